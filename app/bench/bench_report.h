@@ -1,0 +1,32 @@
+// Benchmark output: human-readable lines, then one last line of JSON
+//   {"bench":"NAME","figures":{...},"baseline":{...}}
+// so results can be compared over time. Baselines are measured in the same run.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cb {
+
+class BenchReport {
+ public:
+  explicit BenchReport(std::string name) : name_(std::move(name)) {}
+  void figure(const std::string& key, double value) { figures_.emplace_back(key, value); }
+  void baseline(const std::string& key, double value) { baseline_.emplace_back(key, value); }
+  void note(const std::string& key, const std::string& text) { notes_.emplace_back(key, text); }
+  // Prints the JSON line on stdout.
+  void print() const;
+  std::string json() const;
+
+ private:
+  std::string name_;
+  std::vector<std::pair<std::string, double>> figures_, baseline_;
+  std::vector<std::pair<std::string, std::string>> notes_;
+};
+
+// Median of timing samples (copies; fine for benchmark sizes).
+double median(std::vector<double> v);
+double percentile(std::vector<double> v, double p);  // p in 0..100
+
+}  // namespace cb

@@ -1,0 +1,10 @@
+// One function per benchmark, each in its own bench_<name>.cpp. argv[0] is the bench name.
+#pragma once
+
+namespace cb {
+int benchRender(int argc, char** argv);
+int benchBrush(int argc, char** argv);
+int benchMapping(int argc, char** argv);
+int benchInput(int argc, char** argv);
+int benchSmoothing(int argc, char** argv);
+}  // namespace cb

@@ -1,0 +1,45 @@
+#include "app/volume/volume.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace cb {
+namespace {
+constexpr size_t kMaxKeptChanges = 256;
+}
+
+Volume::Volume(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_max)
+    : dims_(dims), world_min_(world_min), world_max_(world_max) {
+  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || dims.x > 2048 || dims.y > 2048 || dims.z > 2048)
+    throw std::invalid_argument("volume dimensions " + std::to_string(dims.x) + "x" +
+                                std::to_string(dims.y) + "x" + std::to_string(dims.z) +
+                                " out of range 1..2048");
+  data_.assign(size_t(dims.x) * dims.y * dims.z, 0.0f);
+  markDirty(bounds());
+}
+
+void Volume::fill(float v) {
+  std::fill(data_.begin(), data_.end(), v);
+  markDirty(bounds());
+}
+
+uint64_t Volume::markDirty(const VoxelBox& box) {
+  VoxelBox clipped = box.intersect(bounds());
+  if (clipped.empty()) return generation_;
+  ++generation_;
+  changes_.push_back({generation_, clipped});
+  if (changes_.size() > kMaxKeptChanges) changes_.pop_front();
+  return generation_;
+}
+
+VoxelBox Volume::dirtySince(uint64_t since) const {
+  if (since >= generation_) return {};
+  if (changes_.empty() || changes_.front().generation > since + 1) return bounds();
+  VoxelBox u;
+  for (auto it = changes_.rbegin(); it != changes_.rend() && it->generation > since; ++it)
+    u = u.unite(it->box);
+  return u;
+}
+
+}  // namespace cb

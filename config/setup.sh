@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs everything cloudbrush needs to build, run and test on Debian 12, with apt-get only.
+# Idempotent: packages already present are skipped by apt-get.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git clang clang-format libclang-rt-14-dev
+  # display: EGL/GL (libglvnd), GBM/KMS, X11, Mesa software rasteriser (llvmpipe)
+  libegl-dev libgl-dev libgles-dev libgbm-dev libdrm-dev libx11-dev
+  libgl1-mesa-dri libegl-mesa0 libgbm1 xvfb xauth
+  # math, images, volumes, config
+  libglm-dev libopenexr-dev libpng-dev libopenvdb-dev libopenvdb-tools libtbb-dev
+  libtomlplusplus-dev
+  # input devices
+  libevdev-dev libhidapi-dev libusb-1.0-0-dev libudev-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # virtual tablet / KMS in the loop (qemu + Debian's stock kernel)
+  qemu-system-x86 busybox-static cpio
+)
+export DEBIAN_FRONTEND=noninteractive
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup: installing ${#missing[@]} packages: ${missing[*]}"
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all packages present"
+fi

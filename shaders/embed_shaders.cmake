@@ -1,0 +1,12 @@
+# cmake -DOUT=file.cpp -DDIR=shaders -P embed_shaders.cmake
+file(GLOB files ${DIR}/*.glsl)
+list(SORT files)
+set(body "// Generated from shaders/*.glsl by embed_shaders.cmake. Do not edit.\n#include \"shaders/shader_source.h\"\n\nnamespace cb {\nnamespace {\nstruct Entry { const char* name; const char* text; };\nconst Entry kShaders[] = {\n")
+foreach(f ${files})
+  get_filename_component(name ${f} NAME)
+  file(READ ${f} text)
+  string(APPEND body "  {\"${name}\", R\"CBSHADER(${text})CBSHADER\"},\n")
+endforeach()
+string(APPEND body "  {nullptr, nullptr}};\n}  // namespace\n\nstd::string_view shaderSource(std::string_view name) {\n  for (const Entry* e = kShaders; e->name; ++e)\n    if (name == e->name) return e->text;\n  return {};\n}\n\n}  // namespace cb\n")
+file(WRITE ${OUT}.tmp "${body}")
+file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)

@@ -1,0 +1,125 @@
+#include "drivers/core/journal.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+namespace cb {
+namespace {
+
+PenSample sampleAt(int i) {
+  PenSample s;
+  s.t_ns = 1000000LL * i;
+  s.x_raw = 100 + i, s.y_raw = 200 - i;
+  s.x_mm = 0.5 * i, s.y_mm = 1.25 * i;
+  s.pressure_raw = 40 * i, s.pressure = 0.01f * i;
+  s.tilt_x_raw = -i, s.tilt_y_raw = i, s.tilt_x_deg = -1.5f * i, s.tilt_y_deg = 0.75f * i;
+  s.distance_raw = 3, s.distance = 0.1f;
+  s.buttons = i % 2 ? uint32_t(kPenTip) : 0u;
+  s.tool = PenTool::kPen, s.tool_id = 0x802, s.tool_serial = 0xABCDEF01ULL;
+  s.in_proximity = true;
+  return s;
+}
+
+std::string tempPath(const char* name) {
+  return (std::filesystem::temp_directory_path() / name).string();
+}
+
+TEST(Journal, PenSampleRoundTripsExactly) {
+  PenSample s = sampleAt(7);
+  auto d = decodePenSample(encodePenSample(s));
+  ASSERT_TRUE(d.has_value());
+  EXPECT_EQ(encodePenSample(*d), encodePenSample(s));
+  EXPECT_EQ(d->x_mm, s.x_mm);
+  EXPECT_EQ(d->tool_serial, s.tool_serial);
+  EXPECT_EQ(d->tool, PenTool::kPen);
+}
+
+TEST(Journal, WrongSizedPayloadIsRejected) {
+  auto p = encodePenSample(sampleAt(1));
+  p.pop_back();
+  EXPECT_FALSE(decodePenSample(p).has_value());
+}
+
+TEST(Journal, FileRoundTripKeepsOrderAndTypes) {
+  std::string path = tempPath("cb_journal_roundtrip.cbj");
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path)) << w.error();
+    ASSERT_TRUE(w.append(JournalRecordType::kCalibration, 5, "pressure_curve = [0, 0, 100, 100]"));
+    for (int i = 0; i < 50; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
+    ASSERT_TRUE(w.append(JournalRecordType::kMode, 99, "erase"));
+  }
+  JournalReadResult r = readJournal(path);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.records.size(), 52u);
+  EXPECT_EQ(r.records[0].type, JournalRecordType::kCalibration);
+  EXPECT_EQ(r.records[0].text(), "pressure_curve = [0, 0, 100, 100]");
+  for (int i = 0; i < 50; ++i) {
+    auto s = decodePenSample(r.records[1 + i].payload);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_EQ(s->x_raw, 100 + i);
+  }
+  EXPECT_EQ(r.records[51].text(), "erase");
+  std::filesystem::remove(path);
+}
+
+TEST(Journal, TruncatedTailKeepsEarlierRecordsAndNamesOffset) {
+  std::string path = tempPath("cb_journal_trunc.cbj");
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path));
+    for (int i = 0; i < 10; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
+  }
+  auto size = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, size - 7);
+  JournalReadResult r = readJournal(path);
+  EXPECT_EQ(r.records.size(), 9u);
+  EXPECT_NE(r.error.find(path), std::string::npos);
+  EXPECT_NE(r.error.find("truncated"), std::string::npos);
+  EXPECT_NE(r.error.find("byte "), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(Journal, CorruptByteIsCaughtByChecksum) {
+  JournalWriter w;
+  std::string path = tempPath("cb_journal_crc.cbj");
+  ASSERT_TRUE(w.open(path));
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
+  w.close();
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(16 + 16 + 4);  // inside the first record's payload
+  f.put('\x7f');
+  f.close();
+  JournalReadResult r = readJournal(path);
+  EXPECT_TRUE(r.records.empty());
+  EXPECT_NE(r.error.find("checksum"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(Journal, RejectsForeignFilesAndNewerVersions) {
+  const uint8_t junk[] = "this is not a journal at all";
+  EXPECT_NE(parseJournal(junk, sizeof junk).error.find("bad magic"), std::string::npos);
+  uint8_t header[16] = {'C', 'B', 'J', 'O', 'U', 'R', 'N', 'L', 99, 0, 0, 0, 0, 0, 0, 0};
+  EXPECT_NE(parseJournal(header, sizeof header).error.find("version 99"), std::string::npos);
+}
+
+TEST(Journal, UnknownRecordTypesAreSkippedNotFatal) {
+  std::string path = tempPath("cb_journal_unknown.cbj");
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path));
+    ASSERT_TRUE(w.append(JournalRecordType(1000), 1, "from the future"));
+    ASSERT_TRUE(w.appendPenSample(sampleAt(1)));
+  }
+  JournalReadResult r = readJournal(path);
+  EXPECT_TRUE(r.error.empty());
+  EXPECT_EQ(r.skipped_unknown, 1u);
+  EXPECT_EQ(r.records.size(), 1u);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace cb
