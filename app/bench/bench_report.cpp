@@ -58,6 +58,8 @@ double percentile(std::vector<double> v, double p) {
   return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
 }
 
-double median(std::vector<double> v) { return percentile(std::move(v), 50.0); }
+double median(std::vector<double> v) {
+  return percentile(std::move(v), 50.0);
+}
 
 }  // namespace cb

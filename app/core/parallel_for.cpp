@@ -20,7 +20,9 @@ int workerThreads() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-void setWorkerThreads(int n) { g_override.store(std::max(0, n)); }
+void setWorkerThreads(int n) {
+  g_override.store(std::max(0, n));
+}
 
 void parallelFor(size_t n, size_t grain, const std::function<void(size_t, size_t, size_t)>& fn) {
   if (n == 0) return;

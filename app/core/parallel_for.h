@@ -17,6 +17,8 @@ void setWorkerThreads(int n);
 // chunks are done. fn must only write state owned by its chunk.
 void parallelFor(size_t n, size_t grain, const std::function<void(size_t, size_t, size_t)>& fn);
 
-inline size_t chunkCount(size_t n, size_t grain) { return grain ? (n + grain - 1) / grain : 0; }
+inline size_t chunkCount(size_t n, size_t grain) {
+  return grain ? (n + grain - 1) / grain : 0;
+}
 
 }  // namespace cb

@@ -4,7 +4,9 @@
 
 namespace cb {
 
-glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+glm::mat4 Camera::view() const {
+  return glm::lookAt(eye, target, up);
+}
 
 glm::mat4 Camera::projection(float aspect) const {
   return glm::perspective(glm::radians(fov_y_deg), aspect, near_plane, far_plane);

@@ -18,8 +18,7 @@ struct Camera {
   glm::mat4 projection(float aspect) const;
   // World-space ray through pixel centre (px, py) of a width×height image, py = 0 at the top.
   // The origin lies on the near plane, so rays start correctly when the eye is inside a volume.
-  void pixelRay(float px, float py, int width, int height, glm::vec3* origin,
-                glm::vec3* dir) const;
+  void pixelRay(float px, float py, int width, int height, glm::vec3* origin, glm::vec3* dir) const;
 
   // The fixed reference camera of tests and benchmarks: a 3/4 view of the unit sky box
   // [-1,1]^3 from above and to the side, 45° vertical field of view.

@@ -13,7 +13,9 @@ struct VoxelBox {
   long long voxelCount() const {
     return empty() ? 0 : (long long)(hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
   }
-  bool contains(glm::ivec3 p) const { return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThan(p, hi)); }
+  bool contains(glm::ivec3 p) const {
+    return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThan(p, hi));
+  }
   // Smallest box holding both (an empty box is the identity).
   VoxelBox unite(const VoxelBox& o) const {
     if (empty()) return o;

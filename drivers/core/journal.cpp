@@ -120,7 +120,9 @@ std::optional<PenDeviceInfo> decodeDeviceInfo(const std::vector<uint8_t>& p) {
   return d;
 }
 
-JournalWriter::~JournalWriter() { close(); }
+JournalWriter::~JournalWriter() {
+  close();
+}
 
 bool JournalWriter::open(const std::string& path) {
   close();
@@ -182,8 +184,10 @@ JournalReadResult parseJournal(const uint8_t* data, size_t n, const std::string&
     out.error = name + ": byte " + std::to_string(offset) + ": " + why;
     return out;
   };
-  if (n < kHeaderSize) return fail(0, "too short for a journal header (" + std::to_string(n) + " bytes)");
-  if (std::memcmp(data, kMagic, sizeof(kMagic)) != 0) return fail(0, "not a cloudbrush journal (bad magic)");
+  if (n < kHeaderSize)
+    return fail(0, "too short for a journal header (" + std::to_string(n) + " bytes)");
+  if (std::memcmp(data, kMagic, sizeof(kMagic)) != 0)
+    return fail(0, "not a cloudbrush journal (bad magic)");
   ByteReader hr(data + 8, 8);
   out.version = hr.get<uint32_t>();
   if (out.version == 0 || out.version > kJournalVersion)
@@ -200,7 +204,8 @@ JournalReadResult parseJournal(const uint8_t* data, size_t n, const std::string&
     uint32_t stored_crc;
     std::memcpy(&stored_crc, data + pos + kRecordHead + len, 4);
     if (crc32(data + pos, kRecordHead + len) != stored_crc) return fail(pos, "checksum mismatch");
-    if (type >= uint32_t(JournalRecordType::kPenSample) && type <= uint32_t(JournalRecordType::kMarker)) {
+    if (type >= uint32_t(JournalRecordType::kPenSample) &&
+        type <= uint32_t(JournalRecordType::kMarker)) {
       JournalRecord rec;
       rec.type = JournalRecordType(type);
       rec.t_ns = t_ns;
@@ -221,7 +226,8 @@ JournalReadResult readJournal(const std::string& path) {
     r.error = path + ": cannot open: " + std::strerror(errno);
     return r;
   }
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
   return parseJournal(bytes.data(), bytes.size(), path);
 }
 

@@ -11,9 +11,9 @@ enum class PenTool : uint8_t { kNone = 0, kPen = 1, kEraser = 2 };
 
 // Button bits in PenSample::buttons.
 enum PenButton : uint32_t {
-  kPenTip = 1u << 0,       // BTN_TOUCH: the nib is in contact (as the device reports it)
-  kPenStylus1 = 1u << 1,   // BTN_STYLUS, the lower barrel button
-  kPenStylus2 = 1u << 2,   // BTN_STYLUS2, the upper barrel button
+  kPenTip = 1u << 0,      // BTN_TOUCH: the nib is in contact (as the device reports it)
+  kPenStylus1 = 1u << 1,  // BTN_STYLUS, the lower barrel button
+  kPenStylus2 = 1u << 2,  // BTN_STYLUS2, the upper barrel button
 };
 
 struct PenSample {
@@ -35,7 +35,7 @@ struct PenSample {
   int32_t distance_raw = 0;
   float distance = 0.0f;
 
-  uint32_t buttons = 0;      // PenButton bits
+  uint32_t buttons = 0;  // PenButton bits
   PenTool tool = PenTool::kNone;
   uint32_t tool_id = 0;      // Wacom tool id (ABS_MISC), 0 when unknown
   uint64_t tool_serial = 0;  // MSC_SERIAL, 0 when unknown
@@ -48,11 +48,11 @@ struct PenSample {
 struct PenDeviceInfo {
   uint16_t usb_vendor = 0, usb_product = 0;
   char name[96] = {};
-  int32_t x_max = 0, y_max = 0;          // raw range is 0..max
-  double x_res = 0.0, y_res = 0.0;       // units per mm
+  int32_t x_max = 0, y_max = 0;     // raw range is 0..max
+  double x_res = 0.0, y_res = 0.0;  // units per mm
   int32_t pressure_max = 0;
-  int32_t tilt_min = 0, tilt_max = 0;    // raw range
-  double tilt_res = 0.0;                 // units per degree (0: assume raw = degrees)
+  int32_t tilt_min = 0, tilt_max = 0;  // raw range
+  double tilt_res = 0.0;               // units per degree (0: assume raw = degrees)
   int32_t distance_max = 0;
 };
 

@@ -8,8 +8,8 @@
 
 namespace cb {
 
-bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visual,
-                     EglContext* out, std::string* error) {
+bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visual, EglContext* out,
+                     std::string* error) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(display, &major, &minor)) {
     *error = "eglInitialize failed (EGL error 0x" + std::to_string(eglGetError()) + ")";
@@ -21,8 +21,17 @@ bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visu
              " cannot bind the desktop OpenGL API";
     return false;
   }
-  const EGLint attribs[] = {EGL_SURFACE_TYPE, surface_type, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                            EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+  const EGLint attribs[] = {EGL_SURFACE_TYPE,
+                            surface_type,
+                            EGL_RENDERABLE_TYPE,
+                            EGL_OPENGL_BIT,
+                            EGL_RED_SIZE,
+                            8,
+                            EGL_GREEN_SIZE,
+                            8,
+                            EGL_BLUE_SIZE,
+                            8,
+                            EGL_NONE};
   EGLint count = 0;
   EGLConfig configs[64];
   if (!eglChooseConfig(display, attribs, configs, 64, &count) || count == 0) {
@@ -40,9 +49,13 @@ bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visu
       break;
     }
   }
-  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                4,
+                                EGL_CONTEXT_MINOR_VERSION,
+                                5,
                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                EGL_NONE};
   out->context = eglCreateContext(display, out->config, EGL_NO_CONTEXT, ctx_attribs);
   if (out->context == EGL_NO_CONTEXT) {
     // Say what the driver offers: make a default context and read its version.
@@ -70,8 +83,8 @@ bool checkGlVersion(EglContext* ctx, std::string* error) {
   ctx->renderer = r ? r : "";
   ctx->version = v ? v : "";
   if (major * 10 + minor < 45) {
-    *error = "OpenGL 4.5 core profile is needed; found OpenGL " + ctx->version + " on " +
-             ctx->renderer;
+    *error =
+        "OpenGL 4.5 core profile is needed; found OpenGL " + ctx->version + " on " + ctx->renderer;
     return false;
   }
   return true;
@@ -91,9 +104,10 @@ bool createSurfacelessContext(EglContext* out, std::string* error) {
     *error = "EGL_MESA_platform_surfaceless is not available (install libegl-mesa0)";
     return false;
   }
-  auto get_platform_display =
-      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  EGLDisplay display =
+      get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display == EGL_NO_DISPLAY) {
     *error = "cannot open the surfaceless EGL display";
     return false;

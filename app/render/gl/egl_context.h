@@ -19,8 +19,8 @@ struct EglContext {
 // Initialises `display`, picks a config matching `surface_type` (EGL_PBUFFER_BIT,
 // EGL_WINDOW_BIT) and `native_visual` (0 = any), creates a 4.5 core context. On failure returns
 // false with a message naming what was found and what is needed (e.g. the GL version).
-bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visual,
-                     EglContext* out, std::string* error);
+bool createGlContext(EGLDisplay display, EGLint surface_type, EGLint native_visual, EglContext* out,
+                     std::string* error);
 // Checks that the current context is at least OpenGL 4.5 core; fills renderer/version.
 bool checkGlVersion(EglContext* ctx, std::string* error);
 void destroyGlContext(EglContext* ctx);
