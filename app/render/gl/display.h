@@ -1,0 +1,99 @@
+// One EGL display layer, three platforms (kmscube style: one small file per concern):
+//   display_surfaceless.cpp  headless, renders into an offscreen framebuffer object
+//   display_kms.cpp          GBM/KMS fullscreen on a DRM connector, no compositor (kiosk path)
+//   display_x11.cpp          a fullscreen X11 window (desktop, Xvfb)
+// openDisplay() picks one automatically (KMS if it can take the display, else X11 if DISPLAY is
+// set, else surfaceless) unless DisplayOptions names one. Callers see only this interface; no
+// platform header leaks out of app/render/gl.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/render/gl/display_frame_timing.h"
+#include "app/render/gl/egl_context.h"
+#include "app/render/gl/gl.h"
+
+namespace cb {
+
+enum class DisplayPlatform { Auto, Kms, X11, Surfaceless };
+
+// "auto", "kms", "x11", "surfaceless".
+const char* displayPlatformName(DisplayPlatform platform);
+// Parses a --display value; false for anything else.
+bool parseDisplayPlatform(std::string_view text, DisplayPlatform* out);
+
+struct DisplayOptions {
+  DisplayPlatform platform = DisplayPlatform::Auto;
+  // Framebuffer size of the surfaceless platform (KMS uses the connector's preferred mode, X11
+  // the screen size).
+  int width = 1280;
+  int height = 720;
+  // DRM card for KMS; empty = the first /dev/dri/card* with a connected connector.
+  std::string drm_device;
+  // X11 display name; empty = $DISPLAY.
+  std::string x11_display;
+};
+
+// What a display reports between frames. Keys are the few the painter needs; Quit is a window
+// close (WM_DELETE_WINDOW) or a terminal request.
+struct DisplayEvent {
+  enum class Kind { Quit, KeyDown, Resize };
+  enum class Key { Other, Escape, Q, Space };
+  Kind kind = Kind::Quit;
+  Key key = Key::Other;
+  int width = 0;  // Resize: the new size
+  int height = 0;
+
+  // Esc, q or a close request: what every interactive mode treats as "leave".
+  bool isQuitRequest() const {
+    return kind == Kind::Quit || (kind == Kind::KeyDown && (key == Key::Escape || key == Key::Q));
+  }
+};
+
+class Display {
+ public:
+  virtual ~Display() = default;
+  Display(const Display&) = delete;
+  Display& operator=(const Display&) = delete;
+
+  // "surfaceless", "kms" or "x11".
+  virtual const char* platformName() const = 0;
+  // Drawable size in pixels.
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  // Makes the GL context (and surface) current on the calling thread.
+  virtual bool makeCurrent(std::string* error) = 0;
+  // The framebuffer to draw a frame into: 0 (the window surface) on KMS and X11, the offscreen
+  // FBO on surfaceless.
+  virtual GLuint framebuffer() const = 0;
+  // Shows the frame drawn into framebuffer(): swap buffers, and on KMS the page flip (this
+  // waits for the previous flip's event, so frames are paced by vblank). Records a FrameTiming.
+  virtual bool present(std::string* error) = 0;
+  // Input and window events since the last call (never blocks).
+  virtual std::vector<DisplayEvent> pollEvents() = 0;
+  // Reads the frame drawn so far (call before present()) as RGBA8, row 0 at the top.
+  bool readPixels(std::vector<uint8_t>* rgba) const;
+
+  const EglContext& context() const { return context_; }
+  // Timing of the most recent presents; KMS entries carry the kernel's vblank timestamp and
+  // sequence number from the page-flip event.
+  const FrameTimingRing& frameTimings() const { return timings_; }
+
+ protected:
+  Display() = default;
+  EglContext context_;
+  FrameTimingRing timings_;
+};
+
+// Opens the display `options` asks for (or the automatic choice). On failure returns null and
+// says what failed and where (device, DISPLAY name, GL version found vs. needed). With the
+// automatic choice, `choice_note` (if given) says why the platforms before the chosen one were
+// passed over, e.g. "kms: /dev/dri/card0: not DRM master (a compositor holds it)".
+std::unique_ptr<Display> openDisplay(const DisplayOptions& options, std::string* error,
+                                     std::string* choice_note = nullptr);
+
+}  // namespace cb
