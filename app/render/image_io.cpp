@@ -1,0 +1,142 @@
+#include "app/render/image_io.h"
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <png.h>
+
+namespace cb {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw ImageIoError("image file '" + path + "': " + what);
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+void checkImage(const std::string& path, int width, int height, size_t values) {
+  if (width <= 0 || height <= 0 || values != size_t(width) * height * 4)
+    fail(path,
+         "image has inconsistent size " + std::to_string(width) + "x" + std::to_string(height));
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
+                    [](char a, char b) { return std::tolower(a) == b; });
+}
+
+}  // namespace
+
+void writePng(const std::string& path, const ImageRgba8& image) {
+  checkImage(path, image.width, image.height, image.pixels.size());
+  FilePtr f(std::fopen(path.c_str(), "wb"));
+  if (!f) fail(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    fail(path, "libpng could not start");
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    fail(path, "libpng failed while writing");
+  }
+  png_init_io(png, f.get());
+  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8,
+               PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y) png_write_row(png, const_cast<png_bytep>(image.at(0, y)));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+}
+
+ImageRgba8 readPng(const std::string& path) {
+  png_image img;
+  std::memset(&img, 0, sizeof img);
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str()))
+    fail(path, std::string("cannot read PNG: ") + img.message);
+  img.format = PNG_FORMAT_RGBA;
+  ImageRgba8 out;
+  out.width = int(img.width);
+  out.height = int(img.height);
+  out.pixels.resize(PNG_IMAGE_SIZE(img));
+  if (!png_image_finish_read(&img, nullptr, out.pixels.data(), 0, nullptr))
+    fail(path, std::string("cannot decode PNG: ") + img.message);
+  return out;
+}
+
+void writeExr(const std::string& path, const ImageRgbaF& image) {
+  checkImage(path, image.width, image.height, image.pixels.size());
+  try {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const char* names[4] = {"R", "G", "B", "A"};
+    for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer fb;
+    char* base = reinterpret_cast<char*>(const_cast<float*>(image.pixels.data()));
+    for (int c = 0; c < 4; ++c)
+      fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 4 * sizeof(float),
+                                     4 * sizeof(float) * size_t(image.width)));
+    file.setFrameBuffer(fb);
+    file.writePixels(image.height);
+  } catch (const std::exception& e) {
+    fail(path, std::string("OpenEXR: ") + e.what());
+  }
+}
+
+void writeImageByExtension(const std::string& path, const ImageRgba8& rgba8,
+                           const ImageRgbaF& rgbaf) {
+  if (endsWith(path, ".png"))
+    writePng(path, rgba8);
+  else if (endsWith(path, ".exr"))
+    writeExr(path, rgbaf);
+  else
+    fail(path, "unknown image type (use .png or .exr)");
+}
+
+ImageRgba8 readFramebufferRgba8(GLuint fbo, int width, int height) {
+  ImageRgba8 out;
+  out.width = width;
+  out.height = height;
+  out.pixels.resize(size_t(width) * height * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.pixels.data());
+  // GL rows run bottom-up; images here run top-down.
+  const size_t row = size_t(width) * 4;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(out.pixels.begin() + y * row, out.pixels.begin() + (y + 1) * row,
+                     out.pixels.begin() + (height - 1 - y) * row);
+  return out;
+}
+
+ImageRgbaF readFramebufferRgbaF(GLuint fbo, int width, int height) {
+  ImageRgbaF out;
+  out.width = width;
+  out.height = height;
+  out.pixels.resize(size_t(width) * height * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
+  const size_t row = size_t(width) * 4;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(out.pixels.begin() + y * row, out.pixels.begin() + (y + 1) * row,
+                     out.pixels.begin() + (height - 1 - y) * row);
+  return out;
+}
+
+}  // namespace cb
