@@ -1,0 +1,206 @@
+// The X11 platform under a real X server: the test starts Xvfb on a free display number, opens
+// the fullscreen window on it, draws, and checks from a second client what the server shows.
+#include <gtest/gtest.h>
+
+#include "app/render/gl/display.h"
+
+// After gtest: Xlib's macros (None, Bool, ...) would break its headers.
+#include <X11/Xatom.h>
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+#include <X11/keysym.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace cb {
+namespace {
+
+constexpr int kScreenW = 320, kScreenH = 200;
+
+// An Xvfb child process; -displayfd makes the server pick a free display number and tell us.
+class Xvfb {
+ public:
+  Xvfb() {
+    int pipe_fds[2];
+    if (pipe(pipe_fds) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      close(pipe_fds[0]);
+      const std::string fd = std::to_string(pipe_fds[1]);
+      const std::string screen = std::to_string(kScreenW) + "x" + std::to_string(kScreenH) + "x24";
+      const int devnull = open("/dev/null", O_WRONLY);
+      dup2(devnull, 2);
+      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", screen.c_str(), "-nolisten",
+             "tcp", "-noreset", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(pipe_fds[1]);
+    pollfd pfd{pipe_fds[0], POLLIN, 0};
+    char buf[32] = {};
+    if (poll(&pfd, 1, 20000) == 1) {
+      const ssize_t n = read(pipe_fds[0], buf, sizeof(buf) - 1);
+      if (n > 0) name_ = ":" + std::string(buf, size_t(n - (buf[n - 1] == '\n' ? 1 : 0)));
+    }
+    close(pipe_fds[0]);
+  }
+  ~Xvfb() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  const std::string& name() const { return name_; }  // empty if it did not start
+
+ private:
+  pid_t pid_ = -1;
+  std::string name_;
+};
+
+bool xvfbInstalled() {
+  return system("command -v Xvfb >/dev/null 2>&1") == 0;
+}
+
+Window findWindowNamed(::Display* x, const char* wanted) {
+  Window root_return, parent, *children = nullptr;
+  unsigned count = 0;
+  Window found = 0;
+  XQueryTree(x, DefaultRootWindow(x), &root_return, &parent, &children, &count);
+  for (unsigned i = 0; i < count && !found; ++i) {
+    char* name = nullptr;
+    if (XFetchName(x, children[i], &name) && name) {
+      if (std::strcmp(name, wanted) == 0) found = children[i];
+      XFree(name);
+    }
+  }
+  if (children) XFree(children);
+  return found;
+}
+
+// Polls the display until an event matching `want` arrives (2 s at most).
+template <typename Pred>
+bool waitForEvent(Display& display, Pred want) {
+  for (int i = 0; i < 200; ++i) {
+    for (const DisplayEvent& e : display.pollEvents())
+      if (want(e)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+TEST(X11Display, FullscreenWindowShowsTheFrameAndQuitsOnEscAndClose) {
+  if (!xvfbInstalled())
+    GTEST_SKIP() << "SKIPPED LOUDLY: Xvfb is not installed (apt-get install xvfb)";
+  Xvfb server;
+  ASSERT_FALSE(server.name().empty()) << "Xvfb did not report a display number";
+
+  DisplayOptions options;
+  options.platform = DisplayPlatform::X11;
+  options.x11_display = server.name();
+  std::string error;
+  auto display = openDisplay(options, &error);
+  ASSERT_NE(display, nullptr) << error;
+  EXPECT_STREQ(display->platformName(), "x11");
+  EXPECT_EQ(display->width(), kScreenW);
+  EXPECT_EQ(display->height(), kScreenH);
+
+  // Top half red, bottom half green.
+  glBindFramebuffer(GL_FRAMEBUFFER, display->framebuffer());
+  glViewport(0, 0, kScreenW, kScreenH);
+  glClearColor(0.0f, 1.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, kScreenH / 2, kScreenW, kScreenH / 2);
+  glClearColor(1.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  ASSERT_TRUE(display->present(&error)) << error;
+  glFinish();
+  EXPECT_EQ(display->frameTimings().size(), 1u);
+
+  // A second client sees a mapped, screen-sized window asking to be fullscreen ...
+  ::Display* observer = XOpenDisplay(server.name().c_str());
+  ASSERT_NE(observer, nullptr);
+  const Window window = findWindowNamed(observer, "cloudbrush");
+  ASSERT_NE(window, 0u);
+  XWindowAttributes attributes{};
+  XGetWindowAttributes(observer, window, &attributes);
+  EXPECT_EQ(attributes.x, 0);
+  EXPECT_EQ(attributes.y, 0);
+  EXPECT_EQ(attributes.width, kScreenW);
+  EXPECT_EQ(attributes.height, kScreenH);
+  EXPECT_EQ(attributes.map_state, IsViewable);
+  Atom type = 0;
+  int format = 0;
+  unsigned long items = 0, after = 0;
+  unsigned char* data = nullptr;
+  XGetWindowProperty(observer, window, XInternAtom(observer, "_NET_WM_STATE", False), 0, 8, False,
+                     XA_ATOM, &type, &format, &items, &after, &data);
+  ASSERT_EQ(items, 1u);
+  EXPECT_EQ(reinterpret_cast<Atom*>(data)[0],
+            XInternAtom(observer, "_NET_WM_STATE_FULLSCREEN", False));
+  XFree(data);
+
+  // ... and the frame on the screen itself.
+  XImage* image = XGetImage(observer, DefaultRootWindow(observer), 0, 0, kScreenW, kScreenH,
+                            AllPlanes, ZPixmap);
+  ASSERT_NE(image, nullptr);
+  int top = 0, red_top = 0, bottom = 0, green_bottom = 0;
+  for (int y = 0; y < kScreenH; y += 7) {
+    for (int x = 0; x < kScreenW; x += 7) {
+      const unsigned long p = XGetPixel(image, x, y);
+      if (y < kScreenH / 2) {
+        ++top;
+        red_top += p == image->red_mask;
+      } else {
+        ++bottom;
+        green_bottom += p == image->green_mask;
+      }
+    }
+  }
+  EXPECT_EQ(red_top, top) << "top half is not the red that was drawn";
+  EXPECT_EQ(green_bottom, bottom) << "bottom half is not the green that was drawn";
+  XDestroyImage(image);
+
+  // Esc (a key press delivered to the window) is a quit request.
+  XEvent key{};
+  key.xkey.type = KeyPress;
+  key.xkey.display = observer;
+  key.xkey.window = window;
+  key.xkey.root = DefaultRootWindow(observer);
+  key.xkey.keycode = XKeysymToKeycode(observer, XK_Escape);
+  key.xkey.same_screen = True;
+  XSendEvent(observer, window, True, KeyPressMask, &key);
+  XFlush(observer);
+  EXPECT_TRUE(waitForEvent(*display, [](const DisplayEvent& e) {
+    return e.kind == DisplayEvent::Kind::KeyDown && e.key == DisplayEvent::Key::Escape &&
+           e.isQuitRequest();
+  }));
+
+  // Closing the window (WM_DELETE_WINDOW, as a window manager sends it) is a quit request.
+  XEvent close_request{};
+  close_request.xclient.type = ClientMessage;
+  close_request.xclient.window = window;
+  close_request.xclient.message_type = XInternAtom(observer, "WM_PROTOCOLS", False);
+  close_request.xclient.format = 32;
+  close_request.xclient.data.l[0] = long(XInternAtom(observer, "WM_DELETE_WINDOW", False));
+  XSendEvent(observer, window, False, NoEventMask, &close_request);
+  XFlush(observer);
+  EXPECT_TRUE(waitForEvent(*display, [](const DisplayEvent& e) {
+    return e.kind == DisplayEvent::Kind::Quit && e.isQuitRequest();
+  }));
+  XCloseDisplay(observer);
+  display.reset();
+}
+
+}  // namespace
+}  // namespace cb
