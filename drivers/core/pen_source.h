@@ -1,0 +1,56 @@
+// PenSource: one pen input path (evdev, hidapi hidraw/libusb, journal replay) seen the same way
+// by the app. A missing or unplugged tablet is a connection state, never an exception or exit.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "drivers/core/pen_sample.h"
+
+namespace cb {
+
+enum class PenConnection {
+  kSearching,         // no pen device found yet (or it was unplugged): keep polling
+  kConnected,         // reading samples
+  kPermissionDenied,  // a pen exists but cannot be opened; statusMessage() names the fix
+  kFinished,          // a replay reached its end
+};
+
+const char* penConnectionName(PenConnection c);
+
+class PenSource {
+ public:
+  virtual ~PenSource() = default;
+  // "evdev", "hidraw", "libusb", "replay".
+  virtual const char* backendName() const = 0;
+  // Waits up to timeout_ms (0: do not wait) for input or a hotplug change, and appends every
+  // sample decoded meanwhile. Unplugging mid-stroke appends a proximity-out sample.
+  virtual void poll(int timeout_ms, std::vector<PenSample>& out) = 0;
+  virtual PenConnection connection() const = 0;
+  // Valid while connected (and kept after a disconnect until the next device appears).
+  virtual const PenDeviceInfo& deviceInfo() const = 0;
+  // What the source is doing, for the UI: device path, or why it cannot open one.
+  virtual std::string statusMessage() const = 0;
+};
+
+inline const char* penConnectionName(PenConnection c) {
+  switch (c) {
+    case PenConnection::kSearching:
+      return "searching";
+    case PenConnection::kConnected:
+      return "connected";
+    case PenConnection::kPermissionDenied:
+      return "permission-denied";
+    case PenConnection::kFinished:
+      return "finished";
+  }
+  return "?";
+}
+
+// The udev rule shipped with cloudbrush; permission errors name it.
+inline constexpr const char* kUdevRuleHint =
+    "install the udev rule: sudo cp config/udev/70-cloudbrush-tablet.rules /etc/udev/rules.d/ "
+    "&& sudo udevadm control --reload && sudo udevadm trigger, then add the kiosk user to group "
+    "'input' (sudo usermod -aG input $USER) and log in again";
+
+}  // namespace cb

@@ -1,0 +1,108 @@
+#include "drivers/hid/hid_pen_decoder.h"
+
+#include <string>
+
+#include "drivers/core/pen_units.h"
+#include "drivers/hid/wacom_tool.h"
+
+namespace cb::hid {
+namespace {
+
+uint32_t readUnsigned(const uint8_t* p, size_t n, const FieldSlot& s) {
+  return s.present ? extractBits(p, n, s.bit_offset, s.bit_size) : 0;
+}
+
+int32_t readValue(const uint8_t* p, size_t n, const FieldSlot& s) {
+  if (!s.present) return 0;
+  uint32_t v = extractBits(p, n, s.bit_offset, s.bit_size);
+  return s.is_signed ? signExtend(v, s.bit_size) : static_cast<int32_t>(v);
+}
+
+}  // namespace
+
+DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out) {
+  DecodeResult r;
+  const size_t id_bytes = layout_.report_id != 0 ? 1 : 0;
+  if (n == 0) {
+    r.status = DecodeStatus::kRejected;
+    r.reason = "empty report";
+    return r;
+  }
+  if (id_bytes && report[0] != layout_.report_id) {
+    r.status = DecodeStatus::kOtherReport;
+    r.reason = "report ID " + std::to_string(report[0]) + " is not the pen report " +
+               std::to_string(layout_.report_id);
+    return r;
+  }
+  if (n != layout_.report_bytes) {
+    r.status = DecodeStatus::kRejected;
+    r.reason = std::string(n < layout_.report_bytes ? "short" : "oversized") +
+               " pen report: " + std::to_string(n) + " bytes, the descriptor says " +
+               std::to_string(layout_.report_bytes);
+    return r;
+  }
+  const uint8_t* p = report + id_bytes;
+  const size_t pn = n - id_bytes;
+  const bool in_range = readUnsigned(p, pn, layout_.in_range) != 0;
+  // Wacom's vendor "sense" bit is proximity when present; otherwise In Range is.
+  const bool sense = layout_.sense.present ? readUnsigned(p, pn, layout_.sense) != 0 : in_range;
+  const bool invert = readUnsigned(p, pn, layout_.invert) != 0;
+  const bool eraser_bit = readUnsigned(p, pn, layout_.eraser) != 0;
+
+  // Serial and tool id as the kernel assembles them (wacom_wac_pen_event): the low word from
+  // Tool Serial Number, the high word from Wacom's 0x5C, whose top 12 bits may carry id bits.
+  const uint64_t serial_low = readUnsigned(p, pn, layout_.serial);
+  const uint32_t serial_high = readUnsigned(p, pn, layout_.serial_high);
+  const uint64_t serial = serial_low | (uint64_t{serial_high} << 32);
+  uint32_t tool_id = readUnsigned(p, pn, layout_.tool_type);
+  if (serial_high != 0 && (serial_high >> 20) == 1) tool_id |= serial_high & 0xFFFFF;
+  if ((serial >> 52) == 1) tool_id = wacomMangleToolId(tool_id);
+
+  if (tool_ == PenTool::kNone && in_range)
+    tool_ = invert || wacomToolIsEraser(tool_id) ? PenTool::kEraser : PenTool::kPen;
+
+  if (!sense || tool_ == PenTool::kNone) {
+    const bool was_in = last_.in_proximity;
+    if (!sense) tool_ = PenTool::kNone;
+    if (!was_in) {
+      r.status = DecodeStatus::kNoSample;
+      return r;
+    }
+    out = proximityOutSample(last_, t_ns);
+    last_ = out;
+    r.status = DecodeStatus::kSample;
+    return r;
+  }
+
+  PenSample s;
+  s.t_ns = t_ns;
+  s.x_raw = readValue(p, pn, layout_.x);
+  s.y_raw = readValue(p, pn, layout_.y);
+  s.pressure_raw = readValue(p, pn, layout_.pressure);
+  s.tilt_x_raw = readValue(p, pn, layout_.tilt_x);
+  s.tilt_y_raw = readValue(p, pn, layout_.tilt_y);
+  s.distance_raw = readValue(p, pn, layout_.distance);
+  if (readUnsigned(p, pn, layout_.tip) != 0 || eraser_bit) s.buttons |= kPenTip;
+  if (readUnsigned(p, pn, layout_.barrel) != 0) s.buttons |= kPenStylus1;
+  if (readUnsigned(p, pn, layout_.barrel2) != 0) s.buttons |= kPenStylus2;
+  s.tool = tool_;
+  // evdev carries MSC_SERIAL as a 32-bit value and ABS_MISC only alongside a serial.
+  s.tool_serial = serial & 0xFFFFFFFFu;
+  s.tool_id = serial != 0 ? tool_id : 0;
+  s.in_proximity = true;
+  convertPenUnits(s, info_);
+  last_ = s;
+  out = s;
+  r.status = DecodeStatus::kSample;
+  return r;
+}
+
+bool HidPenDecoder::disconnect(int64_t t_ns, PenSample& out) {
+  tool_ = PenTool::kNone;
+  if (!last_.in_proximity) return false;
+  out = proximityOutSample(last_, t_ns);
+  last_ = out;
+  return true;
+}
+
+}  // namespace cb::hid

@@ -1,0 +1,239 @@
+#include "drivers/hid/hidapi_pen_source.h"
+
+#include <fcntl.h>
+#include <linux/hidraw.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <thread>
+
+#include "drivers/core/clock.h"
+#include "drivers/usb/usb_devices.h"
+
+namespace cb::hid {
+namespace {
+
+constexpr int64_t kRescanIntervalNs = 250'000'000;
+
+int64_t nowNs() {
+  return MonotonicClock().nowNs();
+}
+
+bool readHidrawDescriptor(const std::string& path, std::vector<uint8_t>& out, std::string* error,
+                          bool* denied) {
+  int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    *denied = errno == EACCES || errno == EPERM;
+    *error = "cannot open " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  int size = 0;
+  hidraw_report_descriptor rd{};
+  bool ok = ioctl(fd, HIDIOCGRDESCSIZE, &size) == 0 && size > 0 && size <= HID_MAX_DESCRIPTOR_SIZE;
+  if (ok) {
+    rd.size = static_cast<uint32_t>(size);
+    ok = ioctl(fd, HIDIOCGRDESC, &rd) == 0;
+  }
+  close(fd);
+  if (!ok) {
+    *error = "HIDIOCGRDESC failed on " + path;
+    return false;
+  }
+  out.assign(rd.value, rd.value + rd.size);
+  return true;
+}
+
+// hidapi-libusb paths are "bus:address:interface" in hex (hidapi 0.13).
+bool parseLibusbPath(const std::string& path, unsigned& bus, unsigned& address, unsigned& iface) {
+  return std::sscanf(path.c_str(), "%x:%x:%x", &bus, &address, &iface) == 3;
+}
+
+}  // namespace
+
+bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
+                    const std::vector<uint8_t>& descriptor, HidPenDevice& device,
+                    std::unique_ptr<PenDecoder>& decoder) {
+  ParseResult parsed = parseReportDescriptor(descriptor.data(), descriptor.size());
+  if (auto model = intuos4Model(vendor, product)) {
+    device.protocol = "intuos4";
+    device.info = intuos4DeviceInfo(*model);
+    device.mode_report_id = kIntuos4ModeReport;
+    if (parsed.descriptor &&
+        parsed.descriptor->reportBytes(ReportType::kFeature, kIntuos4ModeReport) == 0)
+      device.mode_report_id = 0;  // this interface has no mode report (e.g. the pad/touch one)
+    decoder = std::make_unique<PenDecoder>(Intuos4Decoder(device.info));
+    return true;
+  }
+  if (!parsed.descriptor) {
+    device.error = parsed.error;
+    return false;
+  }
+  PenLayoutResult layout = findPenLayout(*parsed.descriptor);
+  if (!layout.layout) {
+    device.error = layout.error;
+    return false;
+  }
+  device.protocol = "generic";
+  device.info = penDeviceInfo(*layout.layout, vendor, product, name.c_str());
+  device.mode_report_id = 0;  // devices with a descriptor-described pen report need no switch
+  decoder = std::make_unique<PenDecoder>(HidPenDecoder(*layout.layout, device.info));
+  return true;
+}
+
+DecodeResult decodeReport(PenDecoder& decoder, const uint8_t* report, size_t n, int64_t t_ns,
+                          PenSample& out) {
+  return std::visit([&](auto& d) { return d.decode(report, n, t_ns, out); }, decoder);
+}
+
+std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor) {
+  std::vector<HidPenDevice> pens;
+  hid_device_info* list = lib.enumerate(vendor, 0);
+  for (hid_device_info* i = list; i; i = i->next) {
+    HidPenDevice d;
+    d.path = i->path ? i->path : "";
+    d.vendor = i->vendor_id;
+    d.product = i->product_id;
+    d.interface = i->interface_number;
+    d.name = narrow(i->manufacturer_string);
+    const std::string product = narrow(i->product_string);
+    if (!product.empty()) d.name += (d.name.empty() ? "" : " ") + product;
+    std::vector<uint8_t> desc;
+    std::string error;
+    bool ok = false;
+    if (lib.backend == HidapiBackend::kHidraw) {
+      ok = readHidrawDescriptor(d.path, desc, &error, &d.permission_denied);
+    } else {
+      unsigned bus = 0, address = 0, iface = 0;
+      ok = parseLibusbPath(d.path, bus, address, iface) &&
+           usb::readUsbHidReportDescriptor(static_cast<uint8_t>(bus), static_cast<uint8_t>(address),
+                                           static_cast<int>(iface), desc, &error);
+      if (!ok && error.find("Access denied") != std::string::npos) d.permission_denied = true;
+    }
+    std::unique_ptr<PenDecoder> decoder;
+    d.descriptor = desc;
+    if (!ok)
+      d.error = error;
+    else
+      makePenDecoder(d.vendor, d.product, d.name, desc, d, decoder);
+    pens.push_back(d);
+  }
+  lib.free_enumeration(list);
+  return pens;
+}
+
+HidapiPenSource::HidapiPenSource(HidapiPenSourceOptions options) : options_(std::move(options)) {
+  std::string error;
+  lib_ = loadHidapi(options_.backend, &error);
+  if (!lib_) {
+    status_ = error;
+    return;
+  }
+  hotplug_ = std::make_unique<usb::UsbHotplugWatcher>(options_.vendor);
+  tryOpen();
+}
+
+HidapiPenSource::~HidapiPenSource() {
+  closeDevice(nullptr);
+}
+
+void HidapiPenSource::tryOpen() {
+  next_scan_ns_ = nowNs() + kRescanIntervalNs;
+  if (!lib_) return;
+  bool denied = false;
+  for (const HidPenDevice& d : findHidPens(*lib_, options_.vendor)) {
+    if (!options_.path.empty() && d.path != options_.path) continue;
+    if (d.permission_denied) denied = true;
+    if (d.protocol.empty()) continue;
+    // Intuos4 USB ids expose several interfaces; the pen is the one with the mode report.
+    if (d.protocol == "intuos4" && d.mode_report_id == 0) continue;
+    hid_device* dev = lib_->open_path(d.path.c_str());
+    if (!dev) {
+      status_ = "cannot open " + d.path + " through hidapi-" + backendName() + ": " +
+                narrow(lib_->error(nullptr));
+      continue;
+    }
+    HidPenDevice device = d;
+    std::unique_ptr<PenDecoder> decoder;  // fresh decoder state for every connection
+    makePenDecoder(d.vendor, d.product, d.name, d.descriptor, device, decoder);
+    dev_ = dev;
+    device_ = device;
+    decoder_ = std::move(decoder);
+    connection_ = PenConnection::kConnected;
+    status_ = "reading " + d.path + " (" + d.name + ", " + d.protocol +
+              " protocol) through hidapi-" + backendName();
+    ensureTabletMode();
+    return;
+  }
+  connection_ = denied ? PenConnection::kPermissionDenied : PenConnection::kSearching;
+  if (denied)
+    status_ = std::string("a tablet was found but cannot be opened: ") + kUdevRuleHint;
+  else if (status_.empty() || connection_ == PenConnection::kSearching)
+    status_ = std::string("no pen found through hidapi-") + backendName() + "; waiting for one";
+}
+
+void HidapiPenSource::ensureTabletMode() {
+  // An Intuos4 starts in a mouse-compatible mode; feature report 2 = 2 selects the full
+  // protocol. The kernel driver does this when it binds; without it (libusb) we do it here.
+  if (device_.protocol != "intuos4" || device_.mode_report_id == 0) return;
+  unsigned char buf[2] = {device_.mode_report_id, 0};
+  int n = lib_->get_feature_report(dev_, buf, sizeof buf);
+  if (n >= 2 && buf[1] == kIntuos4TabletMode) return;
+  const unsigned char set[2] = {device_.mode_report_id, kIntuos4TabletMode};
+  if (lib_->send_feature_report(dev_, set, sizeof set) < 0)
+    status_ += "; switching to tablet mode failed: " + narrow(lib_->error(dev_));
+  else
+    status_ += "; switched to tablet mode";
+}
+
+void HidapiPenSource::closeDevice(std::vector<PenSample>* out) {
+  if (!dev_) return;
+  if (out && decoder_) {
+    PenSample s;
+    const int64_t t = nowNs();
+    if (std::visit([&](auto& d) { return d.disconnect(t, s); }, *decoder_)) out->push_back(s);
+  }
+  lib_->close(dev_);
+  dev_ = nullptr;
+  decoder_.reset();
+  connection_ = PenConnection::kSearching;
+  status_ = device_.path + " went away; waiting for a pen";
+}
+
+void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
+  if (!lib_) {
+    if (timeout_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
+    return;
+  }
+  if (!dev_) {
+    const bool hotplug = hotplug_ && hotplug_->changed();
+    if (hotplug || nowNs() >= next_scan_ns_) tryOpen();
+    if (!dev_) {
+      int wait = timeout_ms < 0 ? 50 : std::min(timeout_ms, 50);
+      std::this_thread::sleep_for(std::chrono::milliseconds(wait));
+      return;
+    }
+  }
+  unsigned char buf[256];
+  int wait = timeout_ms;
+  for (;;) {
+    int n = lib_->read_timeout(dev_, buf, sizeof buf, wait);
+    if (n < 0) {
+      closeDevice(&out);
+      return;
+    }
+    if (n == 0) return;
+    PenSample s;
+    DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), nowNs(), s);
+    if (r.status == DecodeStatus::kSample) out.push_back(s);
+    if (r.status == DecodeStatus::kRejected) {
+      ++rejected_;
+      last_rejection_ = r.reason;
+    }
+    wait = 0;  // drain what is queued, then return
+  }
+}
+
+}  // namespace cb::hid

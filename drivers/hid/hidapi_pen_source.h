@@ -1,0 +1,89 @@
+// PenSource over hidapi: raw HID reports decoded in user space, with the hidraw backend (kernel
+// driver bound) or the libusb backend (no kernel driver; hidapi detaches it). The descriptor is
+// read from the device (HIDIOCGRDESC on hidraw, GET_DESCRIPTOR over libusb) and picks the decoder:
+// the Intuos4 protocol for Intuos4 USB ids, otherwise the generic layout-driven decoder.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "drivers/core/pen_source.h"
+#include "drivers/hid/hid_pen_decoder.h"
+#include "drivers/hid/hidapi_library.h"
+#include "drivers/hid/intuos4_decoder.h"
+
+namespace cb::usb {
+class UsbHotplugWatcher;
+}
+
+namespace cb::hid {
+
+struct HidapiPenSourceOptions {
+  HidapiBackend backend = HidapiBackend::kHidraw;
+  uint16_t vendor = 0x056A;  // 0: any vendor
+  std::string path;          // a hidapi path to use; empty: discover
+};
+
+// Decoder chosen for a device: Intuos4 protocol or the descriptor-driven generic decoder.
+using PenDecoder = std::variant<Intuos4Decoder, HidPenDecoder>;
+
+struct HidPenDevice {
+  std::string path;  // hidapi path
+  uint16_t vendor = 0, product = 0;
+  int interface = -1;
+  std::string name;
+  PenDeviceInfo info{};
+  std::string protocol;  // "intuos4" or "generic"
+  uint8_t mode_report_id = 0;
+  std::vector<uint8_t> descriptor;  // the HID report descriptor as read from the device
+  std::string error;                // why this HID device is not usable as a pen
+  bool permission_denied = false;
+};
+
+// Lists HID devices of `vendor` through a backend, with the pen each one describes.
+std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor);
+// Builds the decoder for a device from its report descriptor (also used by tests and benches).
+bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
+                    const std::vector<uint8_t>& descriptor, HidPenDevice& device,
+                    std::unique_ptr<PenDecoder>& decoder);
+DecodeResult decodeReport(PenDecoder& decoder, const uint8_t* report, size_t n, int64_t t_ns,
+                          PenSample& out);
+
+class HidapiPenSource final : public PenSource {
+ public:
+  explicit HidapiPenSource(HidapiPenSourceOptions options);
+  ~HidapiPenSource() override;
+  HidapiPenSource(const HidapiPenSource&) = delete;
+  HidapiPenSource& operator=(const HidapiPenSource&) = delete;
+
+  const char* backendName() const override { return hidapiBackendName(options_.backend); }
+  void poll(int timeout_ms, std::vector<PenSample>& out) override;
+  PenConnection connection() const override { return connection_; }
+  const PenDeviceInfo& deviceInfo() const override { return device_.info; }
+  std::string statusMessage() const override { return status_; }
+  const HidPenDevice& device() const { return device_; }
+  uint64_t rejectedReports() const { return rejected_; }
+  const std::string& lastRejection() const { return last_rejection_; }
+
+ private:
+  void tryOpen();
+  void closeDevice(std::vector<PenSample>* out);
+  void ensureTabletMode();
+
+  HidapiPenSourceOptions options_;
+  std::shared_ptr<HidapiLibrary> lib_;
+  std::unique_ptr<usb::UsbHotplugWatcher> hotplug_;
+  hid_device* dev_ = nullptr;
+  HidPenDevice device_;
+  std::unique_ptr<PenDecoder> decoder_;
+  PenConnection connection_ = PenConnection::kSearching;
+  std::string status_;
+  int64_t next_scan_ns_ = 0;
+  uint64_t rejected_ = 0;
+  std::string last_rejection_;
+};
+
+}  // namespace cb::hid

@@ -1,0 +1,133 @@
+#include "drivers/hid/intuos4_decoder.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "drivers/core/pen_units.h"
+#include "drivers/hid/wacom_tool.h"
+
+namespace cb::hid {
+
+std::optional<Intuos4Model> intuos4Model(uint16_t vendor, uint16_t product) {
+  static constexpr Intuos4Model kModels[] = {
+      {0x00B8, "Wacom Intuos4 4x6", 31496, 19685},  {0x00B9, "Wacom Intuos4 6x9", 44704, 27940},
+      {0x00BA, "Wacom Intuos4 8x13", 65024, 40640}, {0x00BB, "Wacom Intuos4 12x19", 97536, 60960},
+      {0x00BC, "Wacom Intuos4 WL", 40640, 25400},
+  };
+  if (vendor != 0x056A) return std::nullopt;
+  for (const Intuos4Model& m : kModels)
+    if (m.product == product) return m;
+  return std::nullopt;
+}
+
+PenDeviceInfo intuos4DeviceInfo(const Intuos4Model& model) {
+  PenDeviceInfo d;
+  d.usb_vendor = 0x056A;
+  d.usb_product = model.product;
+  std::snprintf(d.name, sizeof d.name, "%s", model.name);
+  d.x_max = model.x_max;
+  d.y_max = model.y_max;
+  d.x_res = d.y_res = 200;  // WACOM_INTUOS3_RES, units per mm
+  d.pressure_max = 2047;    // 11 bits
+  d.tilt_min = -64;
+  d.tilt_max = 63;
+  d.tilt_res = 57 * M_PI / 180.0;  // the kernel declares 57 units per radian
+  d.distance_max = 63;
+  return d;
+}
+
+DecodeResult Intuos4Decoder::decode(const uint8_t* d, size_t n, int64_t t_ns, PenSample& out) {
+  DecodeResult r;
+  if (n == 0) {
+    r.status = DecodeStatus::kRejected;
+    r.reason = "empty report";
+    return r;
+  }
+  if (d[0] != kIntuos4PenReportId) {
+    r.status = DecodeStatus::kOtherReport;
+    r.reason = "report ID " + std::to_string(d[0]) + " is not the Intuos4 pen report 2";
+    return r;
+  }
+  if (n != kIntuos4PacketBytes) {
+    r.status = DecodeStatus::kRejected;
+    r.reason = std::string(n < kIntuos4PacketBytes ? "short" : "oversized") +
+               " Intuos4 packet: " + std::to_string(n) + " bytes, expected 10";
+    return r;
+  }
+  // Tool entering proximity: serial and tool id (wacom_intuos_inout).
+  if ((d[1] & 0xFC) == 0xC0) {
+    serial_ = ((d[3] & 0x0Fu) << 28) + (uint32_t{d[4]} << 20) + (uint32_t{d[5]} << 12) +
+              (uint32_t{d[6]} << 4) + (d[7] >> 4);
+    tool_id_ = (uint32_t{d[2]} << 4) | (d[3] >> 4) | ((d[7] & 0x0Fu) << 16) | ((d[8] & 0xF0u) << 8);
+    r.status = DecodeStatus::kNoSample;
+    return r;
+  }
+  // In range but leaving: contact and pressure drop, distance goes to its maximum.
+  if ((d[1] & 0xFE) == 0x20) {
+    if (!last_.in_proximity) {
+      r.status = DecodeStatus::kNoSample;
+      return r;
+    }
+    PenSample s = last_;
+    s.t_ns = t_ns;
+    s.buttons &= ~kPenTip;
+    s.pressure_raw = 0;
+    s.distance_raw = info_.distance_max;
+    convertPenUnits(s, info_);
+    last_ = out = s;
+    r.status = DecodeStatus::kSample;
+    return r;
+  }
+  // Tool leaving proximity.
+  if ((d[1] & 0xFE) == 0x80) {
+    const bool known = tool_id_ != 0;
+    tool_id_ = 0;
+    if (!known || !last_.in_proximity) {
+      r.status = DecodeStatus::kNoSample;
+      return r;
+    }
+    last_ = out = proximityOutSample(last_, t_ns);
+    r.status = DecodeStatus::kSample;
+    return r;
+  }
+  if (tool_id_ == 0) {  // the kernel drops packets until it knows the tool
+    r.status = DecodeStatus::kNoSample;
+    r.reason = "pen packet before the tool entered proximity";
+    return r;
+  }
+  const unsigned type = (d[1] >> 1) & 0x0F;
+  if (type > 3) {  // mouse, lens cursor, airbrush wheel, marker rotation: not a pen
+    r.status = DecodeStatus::kNoSample;
+    r.reason = "packet type " + std::to_string(type) + " is not a general pen packet";
+    return r;
+  }
+  PenSample s;
+  s.t_ns = t_ns;
+  s.x_raw = static_cast<int32_t>(((uint32_t{d[2]} << 8 | d[3]) << 1) | ((d[9] >> 1) & 1));
+  s.y_raw = static_cast<int32_t>(((uint32_t{d[4]} << 8 | d[5]) << 1) | (d[9] & 1));
+  s.distance_raw = d[9] >> 2;
+  s.pressure_raw = static_cast<int32_t>((uint32_t{d[6]} << 3) | ((d[7] & 0xC0u) >> 5) | (d[1] & 1));
+  s.tilt_x_raw = static_cast<int32_t>((((d[7] << 1) & 0x7E) | (d[8] >> 7))) - 64;
+  s.tilt_y_raw = static_cast<int32_t>(d[8] & 0x7F) - 64;
+  if (s.pressure_raw > 10) s.buttons |= kPenTip;  // the kernel's contact threshold
+  if (d[1] & 2) s.buttons |= kPenStylus1;
+  if (d[1] & 4) s.buttons |= kPenStylus2;
+  s.tool = wacomToolIsEraser(tool_id_) ? PenTool::kEraser : PenTool::kPen;
+  s.tool_id = wacomMangleToolId(tool_id_);
+  s.tool_serial = serial_;
+  s.in_proximity = true;
+  convertPenUnits(s, info_);
+  last_ = out = s;
+  r.status = DecodeStatus::kSample;
+  return r;
+}
+
+bool Intuos4Decoder::disconnect(int64_t t_ns, PenSample& out) {
+  tool_id_ = 0;
+  if (!last_.in_proximity) return false;
+  last_ = out = proximityOutSample(last_, t_ns);
+  return true;
+}
+
+}  // namespace cb::hid

@@ -1,0 +1,36 @@
+#include "drivers/open_pen_source.h"
+
+#include "drivers/evdev/evdev_pen_source.h"
+#include "drivers/hid/hidapi_pen_source.h"
+#include "drivers/replay/replay_pen_source.h"
+
+namespace cb {
+
+std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& o, std::string* error) {
+  if (o.backend == "auto" || o.backend == "evdev") {
+    EvdevPenSourceOptions e;
+    e.device_path = o.device;
+    e.grab = o.grab;
+    return std::make_unique<EvdevPenSource>(e);
+  }
+  if (o.backend == "hidraw" || o.backend == "libusb") {
+    hid::HidapiPenSourceOptions h;
+    h.backend = o.backend == "hidraw" ? hid::HidapiBackend::kHidraw : hid::HidapiBackend::kLibusb;
+    h.path = o.device;
+    return std::make_unique<hid::HidapiPenSource>(h);
+  }
+  if (o.backend == "replay") {
+    if (o.device.empty()) {
+      if (error) *error = "the replay backend needs a journal file (--device FILE)";
+      return nullptr;
+    }
+    ReplayOptions r;
+    r.realtime = o.realtime;
+    return std::make_unique<ReplayPenSource>(o.device, r);
+  }
+  if (error)
+    *error = "unknown pen backend '" + o.backend + "' (auto, evdev, hidraw, libusb, replay)";
+  return nullptr;
+}
+
+}  // namespace cb

@@ -1,0 +1,22 @@
+// Picks and opens a pen backend by name: "auto" (evdev, the kernel driver's view), "evdev",
+// "hidraw", "libusb" or "replay" (with a journal path).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "drivers/core/pen_source.h"
+
+namespace cb {
+
+struct PenSourceOptions {
+  std::string backend = "auto";
+  std::string device;    // evdev node, hidapi path or journal file; empty: discover
+  bool grab = false;     // evdev: exclusive grab
+  bool realtime = true;  // replay pacing
+};
+
+// nullptr and `error` set for an unknown backend name or a replay without a file.
+std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& options, std::string* error);
+
+}  // namespace cb
