@@ -1,0 +1,91 @@
+#include "app/render/occupancy_pyramid.h"
+
+#include <algorithm>
+
+#include "app/core/parallel_for.h"
+
+namespace cb {
+namespace {
+
+int nextPowerOfTwo(int v) {
+  int p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+size_t cellIndex(glm::ivec3 d, int x, int y, int z) {
+  return (size_t(z) * d.y + size_t(y)) * d.x + size_t(x);
+}
+
+// Is any voxel in the brick of `cell`, dilated by one voxel, non-zero?
+uint8_t brickOccupied(const Volume& v, int brick, glm::ivec3 cell) {
+  const glm::ivec3 dims = v.dims();
+  glm::ivec3 lo = glm::max(cell * brick - 1, glm::ivec3(0));
+  glm::ivec3 hi = glm::min(cell * brick + brick + 1, dims);
+  const float* data = v.data();
+  for (int z = lo.z; z < hi.z; ++z)
+    for (int y = lo.y; y < hi.y; ++y) {
+      const float* row = data + v.index(0, y, z);
+      for (int x = lo.x; x < hi.x; ++x)
+        if (row[x] != 0.0f) return 1;
+    }
+  return 0;
+}
+
+}  // namespace
+
+OccupancyPyramid buildOccupancy(const Volume& volume) {
+  OccupancyPyramid p;
+  p.volume_dims = volume.dims();
+  glm::ivec3 d0 = (volume.dims() + p.brick - 1) / p.brick;
+  glm::ivec3 d(nextPowerOfTwo(d0.x), nextPowerOfTwo(d0.y), nextPowerOfTwo(d0.z));
+  for (;;) {
+    p.level_dims.push_back(d);
+    p.levels.emplace_back(size_t(d.x) * d.y * d.z, uint8_t(0));
+    if (d == glm::ivec3(1)) break;
+    d = glm::max(d / 2, glm::ivec3(1));
+  }
+  updateOccupancy(p, volume, volume.bounds());
+  return p;
+}
+
+VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelBox& dirty) {
+  VoxelBox voxels = dirty.intersect(volume.bounds());
+  if (voxels.empty()) return {};
+  // Cells whose dilated brick [c*b-1, c*b+b+1) meets the dirty box.
+  const glm::ivec3 real_cells = (volume.dims() + p.brick - 1) / p.brick;
+  VoxelBox cells{glm::max((voxels.lo - 1) / p.brick, glm::ivec3(0)),
+                 glm::min(voxels.hi / p.brick + 1, real_cells)};
+  // (voxels.lo-1)/b rounds toward zero for lo = 0, which the max() above keeps at 0.
+  {
+    const glm::ivec3 d = p.level_dims[0];
+    std::vector<uint8_t>& level = p.levels[0];
+    parallelFor(size_t(cells.hi.z - cells.lo.z), 1, [&](size_t, size_t z0, size_t z1) {
+      for (int z = cells.lo.z + int(z0); z < cells.lo.z + int(z1); ++z)
+        for (int y = cells.lo.y; y < cells.hi.y; ++y)
+          for (int x = cells.lo.x; x < cells.hi.x; ++x)
+            level[cellIndex(d, x, y, z)] = brickOccupied(volume, p.brick, {x, y, z});
+    });
+  }
+  // Max-reduce the touched region up the pyramid.
+  VoxelBox region = cells;
+  for (int m = 1; m < p.levelCount(); ++m) {
+    region = {region.lo / 2, glm::min((region.hi + 1) / 2, p.level_dims[size_t(m)])};
+    const glm::ivec3 dc = p.level_dims[size_t(m - 1)], dp = p.level_dims[size_t(m)];
+    const std::vector<uint8_t>& child = p.levels[size_t(m - 1)];
+    std::vector<uint8_t>& parent = p.levels[size_t(m)];
+    for (int z = region.lo.z; z < region.hi.z; ++z)
+      for (int y = region.lo.y; y < region.hi.y; ++y)
+        for (int x = region.lo.x; x < region.hi.x; ++x) {
+          uint8_t v = 0;
+          for (int k = 0; k < 8; ++k) {
+            glm::ivec3 c = glm::ivec3(x, y, z) * 2 + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
+            if (c.x < dc.x && c.y < dc.y && c.z < dc.z) v |= child[cellIndex(dc, c.x, c.y, c.z)];
+          }
+          parent[cellIndex(dp, x, y, z)] = v;
+        }
+  }
+  return cells;
+}
+
+}  // namespace cb

@@ -1,0 +1,46 @@
+// Max-mip occupancy pyramid for lossless empty-space skipping (the role of the thesis's
+// stackless octree, §4.4, as a mip pyramid that is cheap to update from dirty boxes).
+//
+// Level 0 has one cell per brick of kOccupancyBrick³ voxels; a cell is 1 if any voxel of its
+// brick *dilated by one voxel* is non-zero, so a trilinear sample anywhere inside an empty cell
+// reads only zero voxels and skipping it cannot change the image. Level m+1 is the max of 2×2×2
+// cells of level m. Level dims are padded to powers of two so they match GL's mip chain; the
+// padding cells are empty.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "app/volume/box.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+constexpr int kOccupancyBrick = 4;
+
+struct OccupancyPyramid {
+  int brick = kOccupancyBrick;
+  glm::ivec3 volume_dims{0};
+  std::vector<glm::ivec3> level_dims;        // level_dims[0] = pow2(ceil(volume_dims / brick))
+  std::vector<std::vector<uint8_t>> levels;  // x fastest; 1 = may hold density
+
+  int levelCount() const { return int(levels.size()); }
+  uint8_t at(int level, glm::ivec3 cell) const {
+    const glm::ivec3 d = level_dims[size_t(level)];
+    return levels[size_t(level)][(size_t(cell.z) * d.y + size_t(cell.y)) * d.x + size_t(cell.x)];
+  }
+  // Cell size in voxels at `level`.
+  int cellSize(int level) const { return brick << level; }
+};
+
+// Allocates the pyramid for `volume`'s dims and computes every cell.
+OccupancyPyramid buildOccupancy(const Volume& volume);
+
+// Recomputes the level-0 cells whose dilated footprint meets `dirty` (voxel box) and their
+// ancestors. Returns the box of level-0 cells updated (empty if nothing was dirty). Parallel over
+// z with cb::parallelFor; the result does not depend on the thread count.
+VoxelBox updateOccupancy(OccupancyPyramid& pyramid, const Volume& volume, const VoxelBox& dirty);
+
+}  // namespace cb

@@ -1,0 +1,279 @@
+#include "app/render/volume_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "app/core/parallel_for.h"
+#include "app/render/shader_program.h"
+
+namespace cb {
+namespace {
+
+constexpr int kHistogramBins = 64;
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+uint8_t toUnorm8(float v) {
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
+                         std::vector<uint8_t>* packed) {
+  VoxelBox b = box.intersect(volume.bounds());
+  if (b.empty()) return;
+  packed->resize(volume.voxelCount() * 2);
+  uint8_t* out = packed->data();
+  const float* d = volume.data();
+  const float* t = light.transmittance.data();
+  parallelFor(size_t(b.hi.z - b.lo.z), 4, [&](size_t, size_t z0, size_t z1) {
+    for (int z = b.lo.z + int(z0); z < b.lo.z + int(z1); ++z)
+      for (int y = b.lo.y; y < b.hi.y; ++y) {
+        size_t i = volume.index(b.lo.x, y, z);
+        for (int x = b.lo.x; x < b.hi.x; ++x, ++i) {
+          out[2 * i] = toUnorm8(d[i]);
+          out[2 * i + 1] = toUnorm8(t[i]);
+        }
+      }
+  });
+}
+
+std::string RenderStats::summary() const {
+  char buf[256];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "ray casting %dx%d", width, height);
+  s += buf;
+  if (frame_ms > 0.0) {
+    std::snprintf(buf, sizeof buf, ", %.1f ms", frame_ms);
+    s += buf;
+  }
+  s += "\n";
+  if (!has_samples) return s;
+  std::snprintf(buf, sizeof buf,
+                "samples: total %llu, per pixel mean %.2f, max %u\n"
+                "histogram (samples per pixel: pixels):\n",
+                (unsigned long long)samples_total, samples_mean, samples_max);
+  s += buf;
+  for (size_t i = 0; i < histogram.size(); ++i) {
+    if (!histogram[i]) continue;
+    int lo = int(i) * histogram_bin_width;
+    if (i + 1 == histogram.size())
+      std::snprintf(buf, sizeof buf, "  %4d+     : %u\n", lo, histogram[i]);
+    else
+      std::snprintf(buf, sizeof buf, "  %4d-%-4d : %u\n", lo, lo + histogram_bin_width - 1,
+                    histogram[i]);
+    s += buf;
+  }
+  return s;
+}
+
+VolumeRenderer::~VolumeRenderer() {
+  if (program_) glDeleteProgram(program_);
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (volume_texture_) glDeleteTextures(1, &volume_texture_);
+  if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
+  if (stats_buffer_) glDeleteBuffers(1, &stats_buffer_);
+}
+
+bool VolumeRenderer::init(std::string* error) {
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &stats_buffer_);
+  glNamedBufferStorage(stats_buffer_, sizeof(uint32_t) * (3 + kHistogramBins), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+  if (!ensureProgram(RenderOptions{}.shading)) {
+    *error = error_;
+    return false;
+  }
+  return true;
+}
+
+bool VolumeRenderer::ensureProgram(const std::string& shading) {
+  if (program_ && program_shading_ == shading) return true;
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {shading, "raycast.frag.glsl"}, &error_);
+  if (!p) return false;
+  if (program_) glDeleteProgram(program_);
+  program_ = p;
+  program_shading_ = shading;
+  return true;
+}
+
+void VolumeRenderer::allocateTextures(glm::ivec3 dims) {
+  if (volume_texture_) glDeleteTextures(1, &volume_texture_);
+  if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
+  glCreateTextures(GL_TEXTURE_3D, 1, &volume_texture_);
+  glTextureStorage3D(volume_texture_, 1, GL_RG8, dims.x, dims.y, dims.z);
+  glTextureParameteri(volume_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(volume_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTextureParameteri(volume_texture_, wrap, GL_CLAMP_TO_EDGE);
+  const glm::ivec3 d0 = occupancy_.level_dims[0];
+  glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
+  glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
+  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
+  if (cells.empty()) return;
+  VoxelBox region = cells;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int m = 0; m < occupancy_.levelCount(); ++m) {
+    if (m > 0) region = {region.lo / 2, glm::min((region.hi + 1) / 2, occupancy_.level_dims[m])};
+    const glm::ivec3 d = occupancy_.level_dims[size_t(m)];
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, d.x);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, d.y);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, region.lo.x);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, region.lo.y);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, region.lo.z);
+    glm::ivec3 size = region.hi - region.lo;
+    glTextureSubImage3D(occupancy_texture_, m, region.lo.x, region.lo.y, region.lo.z, size.x,
+                        size.y, size.z, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                        occupancy_.levels[size_t(m)].data());
+  }
+}
+
+SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
+  SyncStats st;
+  const bool fresh = synced_volume_ != &volume || volume.dims() != dims_ ||
+                     volume.worldMin() != world_min_ || volume.worldMax() != world_max_;
+  st.dirty = fresh ? volume.bounds() : volume.dirtySince(synced_generation_);
+
+  auto t0 = std::chrono::steady_clock::now();
+  VoxelBox occupancy_cells;
+  if (fresh) {
+    occupancy_ = buildOccupancy(volume);
+    occupancy_cells = {glm::ivec3(0), occupancy_.level_dims[0]};
+  } else {
+    occupancy_cells = updateOccupancy(occupancy_, volume, st.dirty);
+  }
+  st.occupancy_ms = msSince(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  if (fresh) light_volume_ = LightVolume{};
+  st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty);
+  st.light_ms = msSince(t0);
+
+  st.uploaded = st.dirty.unite(st.light_box);
+  t0 = std::chrono::steady_clock::now();
+  packDensityAndLight(volume, light_volume_, st.uploaded, &packed_);
+  st.pack_ms = msSince(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  if (fresh) {
+    dims_ = volume.dims();
+    world_min_ = volume.worldMin();
+    world_max_ = volume.worldMax();
+    allocateTextures(dims_);
+  }
+  uploadOccupancy(occupancy_cells);
+  if (!st.uploaded.empty()) {
+    const VoxelBox& b = st.uploaded;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, dims_.x);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, dims_.y);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, b.lo.x);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, b.lo.y);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, b.lo.z);
+    glm::ivec3 size = b.hi - b.lo;
+    glTextureSubImage3D(volume_texture_, 0, b.lo.x, b.lo.y, b.lo.z, size.x, size.y, size.z, GL_RG,
+                        GL_UNSIGNED_BYTE, packed_.data());
+  }
+  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                   GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
+    glPixelStorei(p, 0);
+  glFinish();  // the upload is complete when sync returns (so its time is honest)
+  st.upload_ms = msSince(t0);
+
+  synced_volume_ = &volume;
+  synced_generation_ = volume.generation();
+  synced_light_ = light;
+  return st;
+}
+
+void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
+                            const RenderOptions& options) {
+  auto t0 = std::chrono::steady_clock::now();
+  stats_ = RenderStats{};
+  if (!ensureProgram(options.shading)) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+    return;
+  }
+  const float scale = std::clamp(options.scale, 0.05f, 1.0f);
+  int w = std::max(1, int(std::lround(width * scale)));
+  int h = std::max(1, int(std::lround(height * scale)));
+  const bool reduced = w != width || h != height;
+  if (reduced && (low_res_.width() != w || low_res_.height() != h)) {
+    std::string err;
+    if (!low_res_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+      return;
+    }
+  }
+  GLuint draw_fbo = reduced ? low_res_.fbo() : target_fbo;
+  stats_.width = w;
+  stats_.height = h;
+
+  if (options.collect_stats) {
+    std::vector<uint32_t> zero(3 + kHistogramBins, 0u);
+    glNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(zero.size() * 4), zero.data());
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+  glViewport(0, 0, w, h);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(program_);
+  glm::mat4 inv = glm::inverse(camera.projection(float(width) / float(height)) * camera.view());
+  auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
+  glUniformMatrix4fv(loc("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
+  glUniform2f(loc("u_viewport"), float(w), float(h));
+  glUniform3fv(loc("u_world_min"), 1, glm::value_ptr(world_min_));
+  glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
+  glUniform3fv(loc("u_voxel_size"), 1, glm::value_ptr(voxel));
+  glUniform3f(loc("u_dims"), float(dims_.x), float(dims_.y), float(dims_.z));
+  glUniform1i(loc("u_volume"), 0);
+  glUniform1i(loc("u_occupancy"), 1);
+  glUniform1i(loc("u_brick"), occupancy_.brick);
+  glUniform1i(loc("u_levels"), occupancy_.levelCount());
+  glUniform1i(loc("u_skip"), options.skip_empty_space ? 1 : 0);
+  glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
+  glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
+  glUniform1f(loc("u_cutoff"), options.termination_transmittance);
+  glUniform4fv(loc("u_background"), 1, glm::value_ptr(options.background));
+  glUniform1i(loc("u_stats"), options.collect_stats ? 1 : 0);
+  glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
+  glBindTextureUnit(0, volume_texture_);
+  glBindTextureUnit(1, occupancy_texture_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  if (reduced) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, low_res_.fbo());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  }
+  if (options.collect_stats) {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<uint32_t> raw(3 + kHistogramBins);
+    glGetNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(raw.size() * 4), raw.data());
+    stats_.has_samples = true;
+    stats_.samples_total = raw[0];
+    stats_.samples_max = raw[1];
+    stats_.samples_mean = raw[2] ? double(raw[0]) / double(raw[2]) : 0.0;
+    stats_.histogram.assign(raw.begin() + 3, raw.end());
+  }
+  if (options.finish) {
+    glFinish();
+    stats_.frame_ms = msSince(t0);
+  }
+}
+
+}  // namespace cb

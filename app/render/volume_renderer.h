@@ -1,0 +1,114 @@
+// The volume renderer (thesis ch. 4): keeps GPU copies of a Volume's density, its light volume
+// (§4.5) and its occupancy pyramid (§4.4) in step with the Volume's dirty boxes, and ray casts
+// them into any framebuffer.
+//
+//   VolumeRenderer r;
+//   if (!r.init(&error)) ...                  // needs a current OpenGL 4.5 core context
+//   r.sync(volume, light);                    // uploads only what changed since the last sync
+//   r.render(camera, w, h, target_fbo, opts); // draws into target_fbo (0 = default framebuffer)
+//
+// The CPU stages (occupancy update, light sweep, packing) are free functions elsewhere
+// (occupancy_pyramid.h, light_volume.h) so callers can time them separately; sync() reports
+// their times in SyncStats.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "app/render/gl/gl.h"
+#include "app/render/light_volume.h"
+#include "app/render/occupancy_pyramid.h"
+#include "app/render/render_target.h"
+#include "app/scene/camera.h"
+#include "app/scene/light.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+struct RenderOptions {
+  bool skip_empty_space = true;
+  // Render at (width·scale)×(height·scale) and upscale (bilinear) into the target: for a moving
+  // camera; use 1 when it stops.
+  float scale = 1.0f;
+  float step_voxels = 1.0f;                         // ray step in voxels (the reference is 1)
+  float extinction_per_voxel = 0.35f;               // σ: α = 1 − exp(−σ·density·step)
+  float termination_transmittance = 0.01f;          // early ray termination threshold
+  glm::vec4 background{0.47f, 0.62f, 0.82f, 1.0f};  // premultiplied; a = 0 for a transparent one
+  bool collect_stats = false;  // per-pixel sample counts into RenderStats (atomics; a bit slower)
+  bool finish = false;         // glFinish() and report the frame's wall time in RenderStats
+  std::string shading = "shade_thesis.glsl";  // the shading stage (see shaders/README.md)
+};
+
+struct RenderStats {
+  int width = 0, height = 0;  // the resolution actually ray cast
+  bool has_samples = false;   // collect_stats was on
+  uint64_t samples_total = 0;
+  uint32_t samples_max = 0;
+  double samples_mean = 0.0;  // per pixel
+  int histogram_bin_width = 8;
+  std::vector<uint32_t> histogram;  // pixels per bin of samples; the last bin is open-ended
+  double frame_ms = 0.0;            // with `finish`: wall time of render() including glFinish
+  std::string summary() const;      // a human-readable block (CLI --stats)
+};
+
+struct SyncStats {
+  VoxelBox dirty;             // density box changed since the previous sync
+  VoxelBox light_box;         // light volume voxels recomputed
+  VoxelBox uploaded;          // voxels re-packed and uploaded
+  double occupancy_ms = 0.0;  // updateOccupancy
+  double light_ms = 0.0;      // sweepLightVolume
+  double pack_ms = 0.0;       // packing density + transmittance to RG8
+  double upload_ms = 0.0;     // glTextureSubImage3D calls (occupancy + volume)
+};
+
+class VolumeRenderer {
+ public:
+  VolumeRenderer() = default;
+  ~VolumeRenderer();
+  VolumeRenderer(const VolumeRenderer&) = delete;
+  VolumeRenderer& operator=(const VolumeRenderer&) = delete;
+
+  // Compiles the shaders; needs a current GL 4.5 core context. False with a message on failure.
+  bool init(std::string* error);
+  // Brings the GPU copies up to date with `volume` and `light`: only the voxels changed since the
+  // last sync (Volume::dirtySince) are re-packed and uploaded; the occupancy is updated over the
+  // dirty box; the light volume over the dirty box swept away from the light, or entirely when
+  // the light changed. A new Volume object or new dims re-uploads everything.
+  SyncStats sync(const Volume& volume, const Light& light);
+  // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
+  // renders into an internal smaller target and blits it up.
+  void render(const Camera& camera, int width, int height, GLuint target_fbo,
+              const RenderOptions& options = {});
+  RenderStats lastStats() const { return stats_; }
+  const LightVolume& lightVolume() const { return light_volume_; }
+  const OccupancyPyramid& occupancy() const { return occupancy_; }
+
+ private:
+  bool ensureProgram(const std::string& shading);
+  void allocateTextures(glm::ivec3 dims);
+  void uploadOccupancy(const VoxelBox& cells);
+
+  GLuint program_ = 0;
+  std::string program_shading_;
+  GLuint vao_ = 0, volume_texture_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
+  glm::ivec3 dims_{0};
+  glm::vec3 world_min_{0.0f}, world_max_{0.0f};
+  const Volume* synced_volume_ = nullptr;
+  uint64_t synced_generation_ = 0;
+  Light synced_light_;
+  std::vector<uint8_t> packed_;  // RG8 per voxel: density, transmittance
+  LightVolume light_volume_;
+  OccupancyPyramid occupancy_;
+  RenderTarget low_res_;
+  RenderStats stats_;
+  std::string error_;
+};
+
+// Packs density (clamped to [0,1]) and transmittance into 8-bit RG pairs over `box`.
+void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
+                         std::vector<uint8_t>* packed);
+
+}  // namespace cb

@@ -1,0 +1,124 @@
+// Ray casting of the density volume (thesis §4.3, Alg. 4) with lossless empty-space skipping
+// over a max-mip occupancy pyramid (the role of the octree of §4.4). Linked after a shading
+// stage that defines `vec3 shadeSample(float density, float transmittance)`; the renderer
+// prepends the #version line.
+//
+// One ray per pixel from the near plane (so a camera inside the box works) through the box from
+// entry to exit, samples at t_k = t_enter + (k + ½)·step in voxel units. Compositing is
+// front-to-back "over" with opacity α = 1 − exp(−σ·density·step) (Beer–Lambert over the step):
+//   C += T·α·shade,  T *= 1 − α.
+// The thesis's blend (§4.5.2: C = S·F_d + (1 − F_d)·C_pre, α += F_d) is a back-to-front "over"
+// applied in front-to-back order, so its result depends on the step count and order and its
+// alpha exceeds 1; the standard operator here is order-correct and converges as step → 0.
+// Rays stop once T < u_cutoff (early termination).
+//
+// Skipping: at a sample in an empty level-0 cell the ray climbs to the coarsest empty ancestor
+// and jumps to the first sample index past that cell; in an occupied cell it samples every index
+// until the cell's exit. The sample positions are the same with and without skipping, and an
+// empty cell (dilated by one voxel) holds only zero densities, so the image is the same.
+layout(location = 0) out vec4 o_colour;
+
+uniform mat4 u_inv_view_proj;
+uniform vec2 u_viewport;      // size of the image being rendered, pixels
+uniform vec3 u_world_min;
+uniform vec3 u_voxel_size;    // world units per voxel
+uniform vec3 u_dims;          // voxels
+uniform sampler3D u_volume;   // r = density, g = transmittance towards the light
+uniform usampler3D u_occupancy;
+uniform int u_brick;          // voxels per level-0 occupancy cell
+uniform int u_levels;         // occupancy mip levels
+uniform bool u_skip;
+uniform float u_step;         // voxels per ray step
+uniform float u_sigma;        // extinction per voxel at density 1
+uniform float u_cutoff;       // stop when transmittance falls below this
+uniform vec4 u_background;    // premultiplied
+uniform bool u_stats;
+
+layout(std430, binding = 0) buffer RayStatistics {
+  uint total_samples;
+  uint max_samples;
+  uint pixels;
+  uint histogram[64];  // bins of 8 samples; the last bin holds everything beyond
+} ray_stats;
+
+vec3 safeInverse(vec3 d) {
+  const float tiny = 1e-12;
+  return 1.0 / vec3(abs(d.x) < tiny ? tiny : d.x, abs(d.y) < tiny ? tiny : d.y,
+                    abs(d.z) < tiny ? tiny : d.z);
+}
+
+// Ray parameter where the ray leaves the axis-aligned cell [lo, lo + size).
+float cellExit(vec3 origin, vec3 inv_dir, vec3 lo, float size) {
+  vec3 far_plane = lo + step(0.0, inv_dir) * size;
+  vec3 t = (far_plane - origin) * inv_dir;
+  return min(min(t.x, t.y), t.z);
+}
+
+void main() {
+  vec2 ndc = gl_FragCoord.xy / u_viewport * 2.0 - 1.0;
+  vec4 near_h = u_inv_view_proj * vec4(ndc, -1.0, 1.0);
+  vec4 far_h = u_inv_view_proj * vec4(ndc, 1.0, 1.0);
+  vec3 origin_world = near_h.xyz / near_h.w;
+  vec3 dir_world = far_h.xyz / far_h.w - origin_world;
+
+  // Voxel space: the box is [0, dims], voxel i covers [i, i+1).
+  vec3 origin = (origin_world - u_world_min) / u_voxel_size;
+  vec3 dir = normalize(dir_world / u_voxel_size);
+  vec3 inv_dir = safeInverse(dir);
+  vec3 ta = -origin * inv_dir;
+  vec3 tb = (u_dims - origin) * inv_dir;
+  vec3 tmin = min(ta, tb), tmax = max(ta, tb);
+  float t_enter = max(max(max(tmin.x, tmin.y), tmin.z), 0.0);
+  float t_exit = min(min(tmax.x, tmax.y), tmax.z);
+
+  vec3 colour = vec3(0.0);
+  float transmittance = 1.0;
+  uint samples = 0u;
+  vec3 inv_dims = 1.0 / u_dims;
+  ivec3 max_voxel = ivec3(u_dims) - 1;
+  if (t_exit > t_enter) {
+    int n = int(ceil((t_exit - t_enter) / u_step));
+    int k = 0;
+    while (k < n) {
+      int k_end = n;
+      if (u_skip) {
+        vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
+        ivec3 voxel = clamp(ivec3(floor(p)), ivec3(0), max_voxel);
+        if (texelFetch(u_occupancy, voxel / u_brick, 0).r == 0u) {
+          int level = 1;
+          while (level < u_levels &&
+                 texelFetch(u_occupancy, voxel / (u_brick << level), level).r == 0u)
+            ++level;
+          int size = u_brick << (level - 1);  // the coarsest empty cell around p
+          float t_leave = cellExit(origin, inv_dir, vec3(voxel / size * size), float(size));
+          k = max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1);
+          continue;
+        }
+        float t_leave = cellExit(origin, inv_dir, vec3(voxel / u_brick * u_brick), float(u_brick));
+        k_end = min(n, max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1));
+      }
+      for (; k < k_end; ++k) {
+        vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
+        vec2 s = texture(u_volume, p * inv_dims).rg;
+        ++samples;
+        if (s.r > 0.0) {
+          float alpha = 1.0 - exp(-u_sigma * s.r * u_step);
+          colour += transmittance * alpha * shadeSample(s.r, s.g);
+          transmittance *= 1.0 - alpha;
+          if (transmittance < u_cutoff) {
+            k = n;  // early termination: leave both loops
+            break;
+          }
+        }
+      }
+    }
+  }
+  if (u_stats) {
+    atomicAdd(ray_stats.total_samples, samples);
+    atomicMax(ray_stats.max_samples, samples);
+    atomicAdd(ray_stats.pixels, 1u);
+    atomicAdd(ray_stats.histogram[min(samples / 8u, 63u)], 1u);
+  }
+  o_colour = vec4(colour + transmittance * u_background.rgb,
+                  1.0 - transmittance + transmittance * u_background.a);
+}

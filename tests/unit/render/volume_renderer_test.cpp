@@ -1,0 +1,192 @@
+#include "app/render/volume_renderer.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "app/volume/scene_generators.h"
+#include "tests/unit/render/gl_test_context.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 320, kH = 200;
+
+ImageRgba8 renderImage(VolumeRenderer& r, const Camera& cam, const RenderOptions& opt) {
+  RenderTarget target;
+  std::string err;
+  EXPECT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  r.render(cam, kW, kH, target.fbo(), opt);
+  return target.readRgba8();
+}
+
+int maxChannelDifference(const ImageRgba8& a, const ImageRgba8& b) {
+  int m = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::abs(a.pixels[i] - b.pixels[i]));
+  return m;
+}
+
+uint8_t unorm(float v) {
+  return uint8_t(std::lround(v * 255.0f));
+}
+
+bool isBackground(const uint8_t* p, const RenderOptions& opt) {
+  return std::abs(p[0] - unorm(opt.background.r)) <= 1 &&
+         std::abs(p[1] - unorm(opt.background.g)) <= 1 &&
+         std::abs(p[2] - unorm(opt.background.b)) <= 1;
+}
+
+// Pixel (row 0 at the top) where world point w projects.
+glm::ivec2 project(const Camera& cam, glm::vec3 w) {
+  glm::vec4 c = cam.projection(float(kW) / kH) * cam.view() * glm::vec4(w, 1.0f);
+  glm::vec2 ndc = glm::vec2(c) / c.w;
+  return glm::ivec2(int((ndc.x * 0.5f + 0.5f) * kW), int((0.5f - ndc.y * 0.5f) * kH));
+}
+
+class VolumeRendererTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    CB_REQUIRE_GL();
+    std::string err;
+    ASSERT_TRUE(renderer.init(&err)) << err;
+  }
+  VolumeRenderer renderer;
+};
+
+TEST_F(VolumeRendererTest, EmptyVolumeShowsOnlyTheBackground) {
+  Volume v(glm::ivec3(32));
+  renderer.sync(v, Light{});
+  RenderOptions opt;
+  opt.collect_stats = true;
+  ImageRgba8 img = renderImage(renderer, Camera::reference(), opt);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) ASSERT_TRUE(isBackground(img.at(x, y), opt)) << x << "," << y;
+  // With skipping, an empty volume costs no samples at all.
+  EXPECT_EQ(renderer.lastStats().samples_total, 0u);
+}
+
+TEST_F(VolumeRendererTest, EveryPlantedVoxelAppearsWithSkipping) {
+  Volume v(glm::ivec3(64));
+  const glm::ivec3 planted[] = {{0, 0, 0},   {63, 63, 63}, {5, 40, 17}, {31, 32, 33},
+                                {50, 3, 60}, {12, 58, 8},  {63, 0, 31}, {20, 20, 50}};
+  for (glm::ivec3 p : planted) v.set(p.x, p.y, p.z, 1.0f);
+  renderer.sync(v, Light{});
+  RenderOptions opt;
+  Camera cam = Camera::reference();
+  ImageRgba8 img = renderImage(renderer, cam, opt);
+  for (glm::ivec3 p : planted) {
+    glm::ivec2 px = project(cam, v.voxelToWorld(glm::vec3(p) + 0.5f));
+    bool seen = false;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        glm::ivec2 q =
+            glm::clamp(px + glm::ivec2(dx, dy), glm::ivec2(0), glm::ivec2(kW - 1, kH - 1));
+        seen |= !isBackground(img.at(q.x, q.y), opt);
+      }
+    EXPECT_TRUE(seen) << "voxel " << p.x << "," << p.y << "," << p.z << " at pixel " << px.x << ","
+                      << px.y;
+  }
+}
+
+TEST_F(VolumeRendererTest, SkippingIsLosslessAndSavesSamples) {
+  for (int scene = 0; scene < 2; ++scene) {
+    Volume v =
+        scene == 0 ? makeSparsePuffs(glm::ivec3(64), 2) : makeBundledCumulus(glm::ivec3(64), 1);
+    renderer.sync(v, Light{});
+    for (float degrees : {0.0f, 75.0f}) {
+      Camera cam = Camera::reference().orbited(degrees);
+      RenderOptions opt;
+      opt.collect_stats = true;
+      ImageRgba8 skip = renderImage(renderer, cam, opt);
+      uint64_t skip_samples = renderer.lastStats().samples_total;
+      opt.skip_empty_space = false;
+      ImageRgba8 full = renderImage(renderer, cam, opt);
+      uint64_t full_samples = renderer.lastStats().samples_total;
+      EXPECT_LE(maxChannelDifference(skip, full), 1) << "scene " << scene << " at " << degrees;
+      EXPECT_LT(skip_samples, full_samples);
+      if (scene == 0) {
+        EXPECT_LT(skip_samples * 3, full_samples) << "sparse scene";
+      }
+    }
+  }
+}
+
+TEST_F(VolumeRendererTest, SampleStatisticsAddUp) {
+  Volume v = makeSphere(glm::ivec3(64), glm::vec3(0.0f), 0.6f);
+  renderer.sync(v, Light{});
+  RenderOptions opt;
+  opt.collect_stats = true;
+  opt.skip_empty_space = false;
+  renderImage(renderer, Camera::reference(), opt);
+  RenderStats s = renderer.lastStats();
+  ASSERT_TRUE(s.has_samples);
+  uint64_t pixels = 0;
+  for (uint32_t c : s.histogram) pixels += c;
+  EXPECT_EQ(pixels, uint64_t(kW) * kH);
+  EXPECT_NEAR(s.samples_mean, double(s.samples_total) / (kW * kH), 1e-9);
+  // No ray can take more samples than the box diagonal in voxels.
+  EXPECT_LE(s.samples_max, uint32_t(std::ceil(64 * std::sqrt(3.0))) + 1);
+  EXPECT_GT(s.samples_max, 64u);
+  EXPECT_NE(s.summary().find("histogram"), std::string::npos);
+}
+
+TEST_F(VolumeRendererTest, CameraInsideTheCloudSeesFogEverywhere) {
+  Volume v = makeSphere(glm::ivec3(48), glm::vec3(0.0f), 0.9f, 0.3f, 0.1f);
+  renderer.sync(v, Light{});
+  Camera cam;
+  cam.eye = glm::vec3(0.1f, 0.05f, 0.2f);
+  cam.target = glm::vec3(-0.5f, 0.0f, -0.6f);
+  RenderOptions opt;
+  ImageRgba8 img = renderImage(renderer, cam, opt);
+  for (int y = 0; y < kH; y += 7)
+    for (int x = 0; x < kW; x += 7) ASSERT_FALSE(isBackground(img.at(x, y), opt)) << x << "," << y;
+}
+
+TEST_F(VolumeRendererTest, OnlyTheDirtyBoxIsUploadedAndItShows) {
+  Volume v(glm::ivec3(64));
+  SyncStats first = renderer.sync(v, Light{});
+  EXPECT_EQ(first.uploaded, v.bounds());
+  SyncStats idle = renderer.sync(v, Light{});
+  EXPECT_TRUE(idle.dirty.empty());
+  EXPECT_TRUE(idle.uploaded.empty());
+  Camera cam = Camera::reference();
+  RenderOptions opt;
+  ImageRgba8 before = renderImage(renderer, cam, opt);
+  // Fill a small block; the light sweeps its shadow downstream, nothing upstream is touched.
+  VoxelBox block{{28, 28, 28}, {36, 36, 36}};
+  for (int z = 28; z < 36; ++z)
+    for (int y = 28; y < 36; ++y)
+      for (int x = 28; x < 36; ++x) v.data()[v.index(x, y, z)] = 1.0f;
+  v.markDirty(block);
+  SyncStats s = renderer.sync(v, Light{});
+  EXPECT_EQ(s.dirty, block);
+  EXPECT_EQ(s.uploaded.intersect(block), block);
+  EXPECT_LT(s.uploaded.voxelCount(), v.bounds().voxelCount());
+  ImageRgba8 after = renderImage(renderer, cam, opt);
+  glm::ivec2 px = project(cam, glm::vec3(0.0f));
+  EXPECT_TRUE(isBackground(before.at(px.x, px.y), opt));
+  EXPECT_FALSE(isBackground(after.at(px.x, px.y), opt));
+}
+
+TEST_F(VolumeRendererTest, ReducedScaleRendersAndUpscales) {
+  Volume v = makeSphere(glm::ivec3(48), glm::vec3(0.0f), 0.6f);
+  renderer.sync(v, Light{});
+  Camera cam = Camera::reference();
+  RenderOptions opt;
+  opt.collect_stats = true;
+  ImageRgba8 full = renderImage(renderer, cam, opt);
+  opt.scale = 0.5f;
+  ImageRgba8 half = renderImage(renderer, cam, opt);
+  EXPECT_EQ(renderer.lastStats().width, kW / 2);
+  EXPECT_EQ(renderer.lastStats().height, kH / 2);
+  // Same picture, softer: the mean difference is small, the centre is cloud in both.
+  double sum = 0;
+  for (size_t i = 0; i < full.pixels.size(); ++i) sum += std::abs(full.pixels[i] - half.pixels[i]);
+  EXPECT_LT(sum / full.pixels.size(), 4.0);
+  glm::ivec2 c = project(cam, glm::vec3(0.0f));
+  EXPECT_FALSE(isBackground(half.at(c.x, c.y), opt));
+}
+
+}  // namespace
+}  // namespace cb
