@@ -1,0 +1,194 @@
+#include "app/brush/brush_config.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "app/core/config_paths.h"
+
+namespace cb {
+namespace {
+
+std::string where(const std::string& path, const toml::source_region& r) {
+  std::ostringstream s;
+  s << path << ":" << r.begin.line << ":" << r.begin.column;
+  return s.str();
+}
+
+class Reader {
+ public:
+  Reader(const std::string& path, std::vector<std::string>* errors)
+      : path_(path), errors_(errors) {}
+  bool ok() const { return ok_; }
+
+  void number(const toml::table& t, const char* section, const char* key, float* out, double lo,
+              double hi) {
+    const toml::node* n = t.get(key);
+    if (!n) return;
+    std::optional<double> v = n->value<double>();
+    if (!v) return fail(*n, section, key, "expected a number");
+    if (*v < lo || *v > hi) {
+      std::ostringstream s;
+      s << "must be in [" << lo << ", " << hi << "], got " << *v;
+      return fail(*n, section, key, s.str());
+    }
+    *out = float(*v);
+  }
+  template <typename Int>
+  void integer(const toml::table& t, const char* section, const char* key, Int* out, int64_t lo,
+               int64_t hi) {
+    const toml::node* n = t.get(key);
+    if (!n) return;
+    std::optional<int64_t> v = n->value_exact<int64_t>();
+    if (!v) return fail(*n, section, key, "expected an integer");
+    if (*v < lo || *v > hi) {
+      std::ostringstream s;
+      s << "must be in [" << lo << ", " << hi << "], got " << *v;
+      return fail(*n, section, key, s.str());
+    }
+    *out = Int(*v);
+  }
+  void kind(const toml::table& t, const char* key, BrushKind* out) {
+    const toml::node* n = t.get(key);
+    if (!n) return;
+    std::optional<std::string> v = n->value<std::string>();
+    if (!v || !parseBrushKind(*v, out))
+      fail(*n, "", key, "expected \"2d\", \"3d\" or \"skeleton\"");
+  }
+  const toml::table* section(const toml::table& root, const char* name) {
+    const toml::node* n = root.get(name);
+    if (!n) return nullptr;
+    if (!n->is_table()) {
+      fail(*n, "", name, "expected a table");
+      return nullptr;
+    }
+    return n->as_table();
+  }
+
+ private:
+  void fail(const toml::node& n, const char* section, const char* key, const std::string& what) {
+    std::string name = *section ? std::string(section) + "." + key : std::string(key);
+    errors_->push_back(where(path_, n.source()) + ": " + name + " " + what);
+    ok_ = false;
+  }
+  std::string path_;
+  std::vector<std::string>* errors_;
+  bool ok_ = true;
+};
+
+}  // namespace
+
+const char* brushKindName(BrushKind kind) {
+  switch (kind) {
+    case BrushKind::k2D:
+      return "2d";
+    case BrushKind::k3D:
+      return "3d";
+    case BrushKind::kSkeleton:
+      return "skeleton";
+  }
+  return "?";
+}
+
+bool parseBrushKind(const std::string& name, BrushKind* kind) {
+  if (name == "2d")
+    *kind = BrushKind::k2D;
+  else if (name == "3d")
+    *kind = BrushKind::k3D;
+  else if (name == "skeleton")
+    *kind = BrushKind::kSkeleton;
+  else
+    return false;
+  return true;
+}
+
+bool loadBrushConfig(const std::string& path, BrushConfig* c, std::vector<std::string>* errors) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    errors->push_back(where(path, e.source()) + ": " + std::string(e.description()));
+    return false;
+  }
+  Reader r(path, errors);
+  r.kind(root, "brush", &c->default_brush);
+  if (const toml::table* t = r.section(root, "stroke")) {
+    r.number(*t, "stroke", "down_pressure", &c->stroke.down_pressure, 0.0, 1.0);
+    r.number(*t, "stroke", "up_pressure", &c->stroke.up_pressure, 0.0, 1.0);
+    r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
+    r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
+  }
+  if (const toml::table* t = r.section(root, "dispersion")) {
+    DispersionParams& d = c->dispersion;
+    r.number(*t, "dispersion", "slow_speed_px_s", &d.slow_speed_px_s, 0.0, 1e6);
+    r.number(*t, "dispersion", "fast_speed_px_s", &d.fast_speed_px_s, 1.0, 1e6);
+    r.number(*t, "dispersion", "max_dispersion", &d.max_dispersion, 0.0, 1.0);
+    r.number(*t, "dispersion", "speed_smoothing_ms", &d.speed_smoothing_ms, 0.0, 1000.0);
+    r.number(*t, "dispersion", "noise_scale_px", &d.noise_scale_px, 1.0, 256.0);
+  }
+  if (const toml::table* t = r.section(root, "brush2d")) {
+    Brush2DParams& b = c->brush2d;
+    r.number(*t, "brush2d", "min_diameter_px", &b.min_diameter_px, 0.5, 1024.0);
+    r.number(*t, "brush2d", "max_diameter_px", &b.max_diameter_px, 0.5, 1024.0);
+    r.integer(*t, "brush2d", "texture_size", &b.texture_size, 8, 1024);
+    r.integer(*t, "brush2d", "bristles", &b.bristles, 1, 10000);
+    r.integer(*t, "brush2d", "texture_seed", &b.texture_seed, 0, 0xffffffffll);
+  }
+  if (const toml::table* t = r.section(root, "brush3d")) {
+    Brush3DParams& b = c->brush3d;
+    r.number(*t, "brush3d", "diameter_px", &b.diameter_px, 1.0, 1024.0);
+    r.integer(*t, "brush3d", "ink_volume_size", &b.ink_volume_size, 8, 256);
+    r.integer(*t, "brush3d", "ink_seed", &b.ink_seed, 0, 0xffffffffll);
+    r.integer(*t, "brush3d", "sample_size", &b.sample_size, 8, 512);
+    r.number(*t, "brush3d", "slab_thickness", &b.slab_thickness, 0.01, 2.0);
+    r.number(*t, "brush3d", "absorption", &b.absorption, 0.0, 1000.0);
+    r.number(*t, "brush3d", "max_tilt_deg", &b.max_tilt_deg, 0.0, 80.0);
+    r.number(*t, "brush3d", "pressure_quantum", &b.pressure_quantum, 1e-4, 0.25);
+    r.number(*t, "brush3d", "tilt_quantum_deg", &b.tilt_quantum_deg, 0.01, 15.0);
+    r.integer(*t, "brush3d", "cache_entries", &b.cache_entries, 0, 1 << 20);
+  }
+  if (const toml::table* t = r.section(root, "skeleton")) {
+    SkeletonParams& s = c->skeleton;
+    r.number(*t, "skeleton", "segment_length_px", &s.segment_length_px, 1.0, 512.0);
+    r.number(*t, "skeleton", "time_step_ms", &s.time_step_ms, 0.1, 20.0);
+    r.integer(*t, "skeleton", "constraint_iterations", &s.constraint_iterations, 1, 100);
+    r.number(*t, "skeleton", "gravity_px_s2", &s.gravity_px_s2, 0.0, 1e7);
+    r.number(*t, "skeleton", "damping", &s.damping, 0.0, 1.0);
+    r.number(*t, "skeleton", "press_depth", &s.press_depth, 0.0, 1.0);
+    r.number(*t, "skeleton", "paper_softness_px", &s.paper_softness_px, 0.1, 64.0);
+    r.integer(*t, "skeleton", "bristles", &s.bristles, 1, 1000);
+    r.number(*t, "skeleton", "bristle_spread_px", &s.bristle_spread_px, 0.0, 256.0);
+    r.number(*t, "skeleton", "bristle_splay", &s.bristle_splay, 0.0, 10.0);
+    r.number(*t, "skeleton", "bristle_radius_px", &s.bristle_radius_px, 0.1, 32.0);
+    r.integer(*t, "skeleton", "bristle_points", &s.bristle_points, 2, 256);
+    r.integer(*t, "skeleton", "max_steps_per_sample", &s.max_steps_per_sample, 1, 100000);
+    r.integer(*t, "skeleton", "seed", &s.seed, 0, 0xffffffffll);
+  }
+  if (c->stroke.up_pressure > c->stroke.down_pressure) {
+    errors->push_back(path +
+                      ": stroke.up_pressure must not exceed stroke.down_pressure; both "
+                      "reset to defaults");
+    c->stroke.up_pressure = StrokeParams{}.up_pressure;
+    c->stroke.down_pressure = StrokeParams{}.down_pressure;
+    return false;
+  }
+  if (c->brush2d.max_diameter_px < c->brush2d.min_diameter_px) {
+    errors->push_back(path + ": brush2d.max_diameter_px is below min_diameter_px; both reset");
+    c->brush2d.min_diameter_px = Brush2DParams{}.min_diameter_px;
+    c->brush2d.max_diameter_px = Brush2DParams{}.max_diameter_px;
+    return false;
+  }
+  return r.ok();
+}
+
+BrushConfig loadDefaultBrushConfig() {
+  BrushConfig config;
+  std::vector<std::string> errors;
+  if (!loadBrushConfig(configFile("brush.toml"), &config, &errors))
+    for (const std::string& e : errors)
+      std::fprintf(stderr, "cloudbrush: %s (using the default)\n", e.c_str());
+  return config;
+}
+
+}  // namespace cb

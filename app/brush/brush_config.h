@@ -1,0 +1,87 @@
+// Brush parameters (config/brush.toml). Every field has a sane default, so a missing or broken
+// file still gives a working brush; loadBrushConfig reports what was wrong and where.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/brush/stroke_result.h"
+
+namespace cb {
+
+struct StrokeParams {
+  float down_pressure = 0.02f;   // tip-down when pressure rises to this (until calibration's
+  float up_pressure = 0.01f;     // hysteresis lands) and tip-up when it falls below this
+  float spacing_px = 1.5f;       // arc-length step between dabs of the texture brushes
+  float footprint_scale = 1.0f;  // footprint pixels per screen pixel of the paint view
+};
+
+// Speed -> ink dispersion (thesis §5.1.2, mechanism 3): at or below slow_speed the ink is laid
+// solid; at fast_speed and above it is dispersed by max_dispersion (0 = none, 1 = all gone).
+struct DispersionParams {
+  float slow_speed_px_s = 400.0f;
+  float fast_speed_px_s = 4000.0f;
+  float max_dispersion = 0.6f;
+  float speed_smoothing_ms = 30.0f;  // time constant of the speed estimate
+  float noise_scale_px = 6.0f;       // feature size of the dispersion pattern
+};
+
+struct Brush2DParams {
+  float min_diameter_px = 4.0f;   // at pressure 0
+  float max_diameter_px = 40.0f;  // at pressure 1
+  int texture_size = 64;
+  int bristles = 110;
+  unsigned texture_seed = 11;
+};
+
+struct Brush3DParams {
+  float diameter_px = 56.0f;  // footprint size of the whole 2D sample
+  int ink_volume_size = 64;   // thesis §5.3.1: a 64³ ink dataset
+  unsigned ink_seed = 7;
+  int sample_size = 64;                   // resolution of the ray-marched 2D sample
+  float slab_thickness = 0.2f;            // in ink-volume units ([-1,1]), ≈ 1/10 of the volume
+  float absorption = 16.0f;               // ink extinction per unit length inside the slab
+  float max_tilt_deg = 60.0f;             // tilt is clamped to this before tipping the plane
+  float pressure_quantum = 1.0f / 64.0f;  // samples are computed at quantised pressure/tilt,
+  float tilt_quantum_deg = 2.0f;          // so cached and fresh samples are identical
+  int cache_entries = 1024;
+};
+
+struct SkeletonParams {
+  float segment_length_px = 9.0f;   // 3 segments between 4 joints (thesis Fig. 5.4)
+  float time_step_ms = 1.0f;        // fixed internal Verlet step
+  int constraint_iterations = 10;   // thesis §5.2.1
+  float gravity_px_s2 = 200000.0f;  // the predefined acceleration V_acc
+  float damping = 0.08f;
+  float press_depth = 0.85f;       // pressure 1 lowers the rod by this fraction of the spine
+  float paper_softness_px = 2.0f;  // bristles may sink this far below the paper
+  int bristles = 40;
+  float bristle_spread_px = 5.0f;  // radius of the bristle bundle at the ferrule
+  float bristle_splay = 1.5f;      // extra spread of the tip at full pressure
+  float bristle_radius_px = 0.9f;
+  int bristle_points = 12;         // Bezier evaluation points per bristle
+  int max_steps_per_sample = 250;  // caps work after a long pause
+  unsigned seed = 5;
+};
+
+struct BrushConfig {
+  BrushKind default_brush = BrushKind::k3D;
+  StrokeParams stroke;
+  DispersionParams dispersion;
+  Brush2DParams brush2d;
+  Brush3DParams brush3d;
+  SkeletonParams skeleton;
+};
+
+// Reads `path` over the defaults in *config. Returns false and appends messages of the form
+// "FILE:LINE:COL: what" to *errors when the file is unreadable, malformed or holds out-of-range
+// values; fields that were bad keep their defaults.
+bool loadBrushConfig(const std::string& path, BrushConfig* config,
+                     std::vector<std::string>* errors);
+// The shipped config/brush.toml (config_paths.h), or defaults with a message on stderr.
+BrushConfig loadDefaultBrushConfig();
+
+const char* brushKindName(BrushKind kind);
+bool parseBrushKind(const std::string& name, BrushKind* kind);
+
+}  // namespace cb

@@ -1,0 +1,86 @@
+#include "app/brush/stroke_engine.h"
+
+#include <stdexcept>
+
+namespace cb {
+
+StrokeEngine::StrokeEngine(const BrushConfig& config, int width, int height)
+    : config_(config), width_(width), height_(height), selected_(config.default_brush) {
+  if (width <= 0 || height <= 0)
+    throw std::invalid_argument("StrokeEngine: footprint size must be positive, got " +
+                                std::to_string(width) + "x" + std::to_string(height));
+}
+
+Brush& StrokeEngine::brush(BrushKind kind) {
+  std::unique_ptr<Brush>& b = brushes_[int(kind)];
+  if (!b) b = makeBrush(kind, config_);
+  return *b;
+}
+
+StrokePoint StrokeEngine::toPoint(const BrushInput& in) const {
+  return {in.footprint_px, in.pressure, in.tilt_x_deg, in.tilt_y_deg, in.t_ns};
+}
+
+FootprintRect StrokeEngine::beginStroke(const BrushInput& input) {
+  if (in_stroke_) endStroke();
+  BrushInput in = input;
+  Brush& b = brush(selected_);
+  history_ = {};
+  if (!sanitizeBrushInput(&in, width_, height_, b.reachPx(), &history_, &stats_)) return {};
+  active_ = &b;
+  in_stroke_ = true;
+  current_index_ = next_index_++;
+  footprint_ = Footprint(width_, height_);
+  path_.clear();
+  path_.push_back(toPoint(in));
+  return active_->beginStroke(current_index_, path_.back(), &footprint_);
+}
+
+FootprintRect StrokeEngine::addSample(const BrushInput& input) {
+  if (!in_stroke_) return beginStroke(input);
+  BrushInput in = input;
+  if (!sanitizeBrushInput(&in, width_, height_, active_->reachPx(), &history_, &stats_)) return {};
+  path_.push_back(toPoint(in));
+  return active_->continueStroke(path_.back(), &footprint_);
+}
+
+StrokeResult StrokeEngine::endStroke() {
+  StrokeResult result;
+  if (!in_stroke_) return result;
+  active_->endStroke(&footprint_);
+  in_stroke_ = false;
+  result.stroke_index = current_index_;
+  result.brush = active_->kind();
+  result.footprint = std::move(footprint_);
+  result.view = view_;
+  result.canvas = canvas_;
+  result.path = std::move(path_);
+  footprint_ = Footprint();
+  path_.clear();
+  active_ = nullptr;
+  return result;
+}
+
+FootprintRect StrokeEngine::feed(const BrushInput& input) {
+  // A NaN pressure cannot decide contact; let the sanitiser count and drop it.
+  bool valid_pressure = input.pressure == input.pressure;
+  if (!in_stroke_) {
+    if (valid_pressure && input.pressure >= config_.stroke.down_pressure) return beginStroke(input);
+    if (!valid_pressure) ++stats_.dropped_non_finite;
+    return {};
+  }
+  if (valid_pressure && input.pressure < config_.stroke.up_pressure) {
+    finished_.push_back(endStroke());
+    return {};
+  }
+  return addSample(input);
+}
+
+bool StrokeEngine::takeFinishedStroke(StrokeResult* out) {
+  if (finished_.empty()) return false;
+  *out = std::move(finished_.front());
+  finished_.pop_front();
+  return true;
+}
+
+}  // namespace cb

@@ -1,0 +1,66 @@
+// The stroke lifecycle (thesis §3.4, §5.3.1 Fig. 5.6): tip-down starts a stroke with a fresh,
+// never-cleared footprint; each pen sample is repaired or dropped (brush_input.h), recorded in
+// the path and handed to the brush; tip-up ends the stroke and yields a StrokeResult for the
+// mapping. Contact is either driven explicitly (beginStroke/addSample/endStroke, for the
+// calibration's hysteresis) or by feed() with the simple pressure thresholds of config.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+
+#include "app/brush/brush.h"
+#include "app/brush/brush_input.h"
+
+namespace cb {
+
+class StrokeEngine {
+ public:
+  StrokeEngine(const BrushConfig& config, int footprint_width, int footprint_height);
+
+  // Takes effect at the next tip-down.
+  void selectBrush(BrushKind kind) { selected_ = kind; }
+  BrushKind selectedBrush() const { return selected_; }
+  void setPaintView(const PaintView& view, const Canvas& canvas) {
+    view_ = view;
+    canvas_ = canvas;
+  }
+  void setNextStrokeIndex(uint32_t index) { next_index_ = index; }
+  uint32_t nextStrokeIndex() const { return next_index_; }
+
+  // Explicit contact. beginStroke returns an empty rect and stays up if the sample is dropped.
+  FootprintRect beginStroke(const BrushInput& input);
+  FootprintRect addSample(const BrushInput& input);
+  StrokeResult endStroke();
+
+  // Threshold contact: down at stroke.down_pressure, up below stroke.up_pressure. Finished
+  // strokes are queued for takeFinishedStroke().
+  FootprintRect feed(const BrushInput& input);
+  bool takeFinishedStroke(StrokeResult* out);
+
+  bool inStroke() const { return in_stroke_; }
+  // The live footprint of the current stroke (empty between strokes).
+  const Footprint& footprint() const { return footprint_; }
+  const InputStats& inputStats() const { return stats_; }
+  Brush& brush(BrushKind kind);
+
+ private:
+  StrokePoint toPoint(const BrushInput& in) const;
+
+  BrushConfig config_;
+  int width_, height_;
+  BrushKind selected_;
+  std::unique_ptr<Brush> brushes_[3];
+  Brush* active_ = nullptr;
+  PaintView view_{Camera::reference()};
+  Canvas canvas_;
+  Footprint footprint_;
+  std::vector<StrokePoint> path_;
+  bool in_stroke_ = false;
+  uint32_t next_index_ = 0, current_index_ = 0;
+  InputHistory history_;
+  InputStats stats_;
+  std::deque<StrokeResult> finished_;
+};
+
+}  // namespace cb

@@ -1,0 +1,132 @@
+// Bad input (issue 3): NaN or out-of-range pressure, tilt and position are clamped or dropped
+// and counted, never propagated into the footprint.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "brush_test_support.h"
+
+namespace cb::test {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+TEST(BrushInputSanitizer, DropsNonFiniteAndRepairsOutOfRange) {
+  InputHistory history;
+  InputStats stats;
+  BrushInput ok{{10.0f, 10.0f}, 0.5f, 5.0f, -5.0f, 100};
+  EXPECT_TRUE(sanitizeBrushInput(&ok, 64, 64, 8.0f, &history, &stats));
+
+  BrushInput nan_pressure = ok;
+  nan_pressure.pressure = kNaN;
+  EXPECT_FALSE(sanitizeBrushInput(&nan_pressure, 64, 64, 8.0f, &history, &stats));
+  BrushInput inf_position = ok;
+  inf_position.footprint_px.y = kInf;
+  EXPECT_FALSE(sanitizeBrushInput(&inf_position, 64, 64, 8.0f, &history, &stats));
+  EXPECT_EQ(stats.dropped_non_finite, 2u);
+
+  BrushInput loud{{10.0f, 10.0f}, 7.0f, kNaN, 400.0f, 200};
+  EXPECT_TRUE(sanitizeBrushInput(&loud, 64, 64, 8.0f, &history, &stats));
+  EXPECT_EQ(loud.pressure, 1.0f);
+  EXPECT_EQ(loud.tilt_x_deg, 5.0f);   // the previous valid tilt
+  EXPECT_EQ(loud.tilt_y_deg, 90.0f);  // clamped
+  EXPECT_EQ(stats.clamped_pressure, 1u);
+  EXPECT_EQ(stats.repaired_tilt, 1u);
+
+  BrushInput far{{-1e9f, 30.0f}, -0.5f, 0.0f, 0.0f, 150};  // also earlier than the last one
+  EXPECT_TRUE(sanitizeBrushInput(&far, 64, 64, 8.0f, &history, &stats));
+  EXPECT_EQ(far.footprint_px.x, -8.0f);
+  EXPECT_EQ(far.pressure, 0.0f);
+  EXPECT_EQ(far.t_ns, 200);
+  EXPECT_EQ(stats.clamped_position, 1u);
+  EXPECT_EQ(stats.repaired_timestamp, 1u);
+  EXPECT_EQ(stats.accepted, 3u);
+}
+
+TEST(BrushInputSanitizer, BadSamplesNeverReachTheFootprint) {
+  for (BrushKind kind : {BrushKind::k2D, BrushKind::k3D, BrushKind::kSkeleton}) {
+    BrushConfig config;
+    config.default_brush = kind;
+    std::vector<BrushInput> clean = sampleStroke(gentleCurve(192, 128), 200.0);
+    std::vector<BrushInput> dirty;
+    for (size_t i = 0; i < clean.size(); ++i) {
+      dirty.push_back(clean[i]);
+      if (i % 7 == 3) {  // interleave garbage that must be dropped
+        BrushInput bad = clean[i];
+        bad.pressure = kNaN;
+        dirty.push_back(bad);
+        bad = clean[i];
+        bad.footprint_px.x = kNaN;
+        dirty.push_back(bad);
+      }
+    }
+    StrokeEngine clean_engine(config, 192, 128), dirty_engine(config, 192, 128);
+    Footprint expected = paintStroke(&clean_engine, clean).footprint;
+    StrokeResult got = paintStroke(&dirty_engine, dirty);
+    EXPECT_EQ(got.footprint.values, expected.values) << brushKindName(kind);
+    EXPECT_EQ(got.path.size(), clean.size());
+    EXPECT_GT(dirty_engine.inputStats().dropped_non_finite, 10u);
+
+    // Wild values inside a stroke are clamped: the footprint stays finite and in 0..1.
+    StrokeEngine wild_engine(config, 192, 128);
+    std::vector<BrushInput> wild = clean;
+    for (size_t i = 2; i < wild.size(); i += 5) {
+      wild[i].pressure = 50.0f;
+      wild[i].tilt_x_deg = -kInf;
+      wild[i].tilt_y_deg = 1e30f;
+    }
+    wild[wild.size() / 2].footprint_px = {1e12f, -1e12f};
+    Footprint w = paintStroke(&wild_engine, wild).footprint;
+    for (float v : w.values) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << brushKindName(kind);
+    EXPECT_GT(wild_engine.inputStats().clamped_pressure, 5u);
+    EXPECT_GT(wild_engine.inputStats().repaired_tilt, 5u);
+    EXPECT_EQ(wild_engine.inputStats().clamped_position, 1u);
+  }
+}
+
+TEST(StrokeEngine, ThresholdContactStartsAndEndsStrokes) {
+  BrushConfig config;
+  config.default_brush = BrushKind::k2D;
+  StrokeEngine engine(config, 128, 64);
+  engine.setNextStrokeIndex(41);
+  BrushInput hover{{20.0f, 30.0f}, 0.005f, 0.0f, 0.0f, 0};
+  EXPECT_TRUE(engine.feed(hover).empty());
+  EXPECT_FALSE(engine.inStroke());
+  BrushInput down = hover;
+  down.pressure = 0.5f;
+  down.t_ns = 5000000;
+  EXPECT_FALSE(engine.feed(down).empty());
+  EXPECT_TRUE(engine.inStroke());
+  BrushInput move = down;
+  move.footprint_px.x = 60.0f;
+  move.t_ns = 10000000;
+  engine.feed(move);
+  BrushInput between = move;  // between the up and down thresholds: still in contact
+  between.pressure = 0.015f;
+  between.t_ns = 15000000;
+  engine.feed(between);
+  EXPECT_TRUE(engine.inStroke());
+  BrushInput up = move;
+  up.pressure = 0.0f;
+  up.t_ns = 20000000;
+  engine.feed(up);
+  EXPECT_FALSE(engine.inStroke());
+  StrokeResult result;
+  ASSERT_TRUE(engine.takeFinishedStroke(&result));
+  EXPECT_EQ(result.stroke_index, 41u);
+  EXPECT_EQ(result.brush, BrushKind::k2D);
+  EXPECT_EQ(result.path.size(), 3u);
+  EXPECT_EQ(result.footprint.width, 128);
+  EXPECT_GT(inkedPixels(result.footprint), 50);
+  EXPECT_FALSE(engine.takeFinishedStroke(&result));
+  EXPECT_EQ(engine.nextStrokeIndex(), 42u);
+}
+
+TEST(StrokeEngine, RejectsAnEmptyFootprintSize) {
+  EXPECT_THROW(StrokeEngine(BrushConfig{}, 0, 10), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cb::test
