@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "app/brush/stroke_engine.h"
-#include "synthetic_strokes.h"
+#include "app/brush/synthetic_strokes.h"
 
 namespace cb::test {
 

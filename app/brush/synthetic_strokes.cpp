@@ -1,9 +1,9 @@
-#include "synthetic_strokes.h"
+#include "app/brush/synthetic_strokes.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace cb::test {
+namespace cb {
 namespace {
 
 // A dense polyline through the control points (uniform Catmull-Rom), with cumulative lengths.
@@ -127,4 +127,4 @@ std::vector<SyntheticStroke> yongStrokes(int size) {
   return s;
 }
 
-}  // namespace cb::test
+}  // namespace cb

@@ -1,7 +1,7 @@
-// Synthetic pen strokes for the brush tests and the brush benchmark: a smooth path (Catmull-Rom
-// through control points) traversed at a constant speed, with pressure and tilt as functions of
-// the normalised arc length, sampled at any report rate. The same stroke at 100 Hz and 400 Hz
-// traces the same curve.
+// Synthetic pen strokes for the brush tests, the brush benchmark and demos: a smooth path
+// (Catmull-Rom through control points) traversed at a constant speed, with pressure and tilt as
+// functions of the normalised arc length, sampled at any report rate. The same stroke at 100 Hz and
+// 400 Hz traces the same curve.
 #pragma once
 
 #include <functional>
@@ -12,7 +12,7 @@
 
 #include "app/brush/brush_input.h"
 
-namespace cb::test {
+namespace cb {
 
 struct SyntheticStroke {
   std::string name;
@@ -34,4 +34,4 @@ SyntheticStroke gentleCurve(int width, int height);   // an S curve, pressure sw
 // The eight basic strokes of 永 (thesis Fig. 5.1), in writing order, on a size × size footprint.
 std::vector<SyntheticStroke> yongStrokes(int size);
 
-}  // namespace cb::test
+}  // namespace cb
