@@ -16,7 +16,7 @@
 namespace cb::hid {
 namespace {
 
-constexpr int64_t kRescanIntervalNs = 250'000'000;
+constexpr int64_t kRescanIntervalNs = 100'000'000;  // when no device is open
 
 int64_t nowNs() {
   return MonotonicClock().nowNs();
@@ -44,11 +44,6 @@ bool readHidrawDescriptor(const std::string& path, std::vector<uint8_t>& out, st
   }
   out.assign(rd.value, rd.value + rd.size);
   return true;
-}
-
-// hidapi-libusb paths are "bus:address:interface" in hex (hidapi 0.13).
-bool parseLibusbPath(const std::string& path, unsigned& bus, unsigned& address, unsigned& iface) {
-  return std::sscanf(path.c_str(), "%x:%x:%x", &bus, &address, &iface) == 3;
 }
 
 }  // namespace
@@ -100,16 +95,22 @@ std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor) {
     d.name = narrow(i->manufacturer_string);
     const std::string product = narrow(i->product_string);
     if (!product.empty()) d.name += (d.name.empty() ? "" : " ") + product;
+    if (d.name.empty()) {  // hidapi-libusb may not read the strings; name the USB id instead
+      char id[24];
+      std::snprintf(id, sizeof id, "USB %04x:%04x", d.vendor, d.product);
+      d.name = id;
+    }
     std::vector<uint8_t> desc;
     std::string error;
     bool ok = false;
     if (lib.backend == HidapiBackend::kHidraw) {
       ok = readHidrawDescriptor(d.path, desc, &error, &d.permission_denied);
     } else {
-      unsigned bus = 0, address = 0, iface = 0;
-      ok = parseLibusbPath(d.path, bus, address, iface) &&
-           usb::readUsbHidReportDescriptor(static_cast<uint8_t>(bus), static_cast<uint8_t>(address),
-                                           static_cast<int>(iface), desc, &error);
+      usb::UsbInterfaceLocation where;
+      if (!usb::parseHidapiLibusbPath(d.path, where))
+        error = "unrecognised hidapi-libusb path";
+      else
+        ok = usb::readUsbHidReportDescriptor(where, desc, &error);
       if (!ok && error.find("Access denied") != std::string::npos) d.permission_denied = true;
     }
     std::unique_ptr<PenDecoder> decoder;
@@ -142,11 +143,21 @@ HidapiPenSource::~HidapiPenSource() {
 void HidapiPenSource::tryOpen() {
   next_scan_ns_ = nowNs() + kRescanIntervalNs;
   if (!lib_) return;
+  if (lib_->backend == HidapiBackend::kLibusb) {
+    // libusb keeps its device list current through udev events; without udevd (kiosk images,
+    // the test VM) a fresh context is the only way to see a replugged device.
+    lib_->exit();
+    lib_->init();
+  }
   bool denied = false;
+  std::string problems;
   for (const HidPenDevice& d : findHidPens(*lib_, options_.vendor)) {
     if (!options_.path.empty() && d.path != options_.path) continue;
     if (d.permission_denied) denied = true;
-    if (d.protocol.empty()) continue;
+    if (d.protocol.empty()) {
+      problems += "; " + d.path + ": " + d.error;
+      continue;
+    }
     // Intuos4 USB ids expose several interfaces; the pen is the one with the mode report.
     if (d.protocol == "intuos4" && d.mode_report_id == 0) continue;
     hid_device* dev = lib_->open_path(d.path.c_str());
@@ -171,7 +182,8 @@ void HidapiPenSource::tryOpen() {
   if (denied)
     status_ = std::string("a tablet was found but cannot be opened: ") + kUdevRuleHint;
   else if (status_.empty() || connection_ == PenConnection::kSearching)
-    status_ = std::string("no pen found through hidapi-") + backendName() + "; waiting for one";
+    status_ = std::string("no pen found through hidapi-") + backendName() + "; waiting for one" +
+              problems;
 }
 
 void HidapiPenSource::ensureTabletMode() {

@@ -1,6 +1,11 @@
 #include "drivers/usb/usb_devices.h"
 
+#include <dirent.h>
 #include <libusb.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 
 namespace cb::usb {
 namespace {
@@ -47,8 +52,71 @@ std::vector<UsbDeviceIdentity> listUsbDevices(uint16_t vendor) {
   return out;
 }
 
-bool readUsbHidReportDescriptor(uint8_t bus, uint8_t address, int interface,
-                                std::vector<uint8_t>& out, std::string* error) {
+bool parseHidapiLibusbPath(const std::string& path, UsbInterfaceLocation& out) {
+  // bus "-" port ("." port)* ":" config "." interface, all decimal
+  size_t dash = path.find('-'), colon = path.find(':');
+  if (dash == std::string::npos || colon == std::string::npos || colon < dash) return false;
+  auto number = [](const std::string& s, int& v) {
+    if (s.empty() || s.size() > 3 || s.find_first_not_of("0123456789") != std::string::npos)
+      return false;
+    v = std::stoi(s);
+    return v <= 255;
+  };
+  int v = 0;
+  if (!number(path.substr(0, dash), v)) return false;
+  out.bus = static_cast<uint8_t>(v);
+  out.ports.clear();
+  std::string ports = path.substr(dash + 1, colon - dash - 1);
+  size_t start = 0;
+  while (true) {
+    size_t dot = ports.find('.', start);
+    if (!number(ports.substr(start, dot - start), v) || out.ports.size() >= 7) return false;
+    out.ports.push_back(static_cast<uint8_t>(v));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  std::string tail = path.substr(colon + 1);
+  size_t dot = tail.find('.');
+  if (dot == std::string::npos || !number(tail.substr(0, dot), v) ||
+      !number(tail.substr(dot + 1), v))
+    return false;
+  out.interface = v;
+  out.sysfs_name = path;
+  return true;
+}
+
+namespace {
+
+// /sys/bus/usb/devices/<interface>/<hid device>/report_descriptor, present while usbhid is bound.
+bool readSysfsReportDescriptor(const std::string& interface_name, std::vector<uint8_t>& out) {
+  if (interface_name.empty() || interface_name.find('/') != std::string::npos) return false;
+  const std::string dir = "/sys/bus/usb/devices/" + interface_name;
+  DIR* d = opendir(dir.c_str());
+  if (!d) return false;
+  bool ok = false;
+  while (dirent* e = readdir(d)) {
+    unsigned bus, vid, pid, seq;
+    char tail;
+    if (std::sscanf(e->d_name, "%4x:%4x:%4x.%4x%c", &bus, &vid, &pid, &seq, &tail) != 4) continue;
+    std::ifstream in(dir + "/" + e->d_name + "/report_descriptor", std::ios::binary);
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
+    if (!bytes.empty()) {
+      out = std::move(bytes);
+      ok = true;
+      break;
+    }
+  }
+  closedir(d);
+  return ok;
+}
+
+}  // namespace
+
+bool readUsbHidReportDescriptor(const UsbInterfaceLocation& where, std::vector<uint8_t>& out,
+                                std::string* error) {
+  if (readSysfsReportDescriptor(where.sysfs_name, out)) return true;
+  const int interface = where.interface;
   libusb_context* ctx = nullptr;
   if (libusb_init(&ctx) != 0) {
     if (error) *error = "libusb_init failed";
@@ -58,15 +126,19 @@ bool readUsbHidReportDescriptor(uint8_t bus, uint8_t address, int interface,
   libusb_device** list = nullptr;
   ssize_t n = libusb_get_device_list(ctx, &list);
   libusb_device* dev = nullptr;
-  for (ssize_t i = 0; i < n; ++i)
-    if (libusb_get_bus_number(list[i]) == bus && libusb_get_device_address(list[i]) == address)
+  for (ssize_t i = 0; i < n; ++i) {
+    uint8_t ports[8];
+    int np = libusb_get_port_numbers(list[i], ports, sizeof ports);
+    if (libusb_get_bus_number(list[i]) == where.bus && np > 0 &&
+        std::vector<uint8_t>(ports, ports + np) == where.ports)
       dev = list[i];
+  }
   libusb_device_handle* h = nullptr;
   int rc = dev ? libusb_open(dev, &h) : LIBUSB_ERROR_NO_DEVICE;
   if (rc != 0) {
     if (error)
-      *error = "cannot open USB device " + std::to_string(bus) + ":" + std::to_string(address) +
-               ": " + libusb_strerror(static_cast<libusb_error>(rc));
+      *error = "cannot open USB device on bus " + std::to_string(where.bus) + ": " +
+               libusb_strerror(static_cast<libusb_error>(rc));
   } else {
     libusb_set_auto_detach_kernel_driver(h, 1);
     rc = libusb_claim_interface(h, interface);

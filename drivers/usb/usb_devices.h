@@ -24,10 +24,21 @@ struct UsbDeviceIdentity {
 // Devices on every bus, filtered by vendor (0: all).
 std::vector<UsbDeviceIdentity> listUsbDevices(uint16_t vendor = kWacomVendor);
 
-// Reads the HID report descriptor of `interface` with GET_DESCRIPTOR (HID 1.11 §7.1.1),
-// detaching the kernel driver for the duration if one is bound. Returns false and sets error.
-bool readUsbHidReportDescriptor(uint8_t bus, uint8_t address, int interface,
-                                std::vector<uint8_t>& out, std::string* error);
+// Where a USB interface sits: bus, port path from the root hub, interface number.
+struct UsbInterfaceLocation {
+  uint8_t bus = 0;
+  std::vector<uint8_t> ports;
+  int interface = 0;
+  std::string sysfs_name;  // the interface's name under /sys/bus/usb/devices, e.g. "1-1:1.0"
+};
+// Parses a hidapi-libusb path: "1-1.4:1.0" (hidapi 0.13: bus-ports:config.interface).
+bool parseHidapiLibusbPath(const std::string& path, UsbInterfaceLocation& out);
+
+// Reads the HID report descriptor of an interface: from sysfs when the kernel's HID driver is
+// bound (no detach/re-probe cycle), otherwise with GET_DESCRIPTOR (HID 1.11 §7.1.1) over libusb.
+// Returns false and sets error.
+bool readUsbHidReportDescriptor(const UsbInterfaceLocation& where, std::vector<uint8_t>& out,
+                                std::string* error);
 
 // libusb hotplug callbacks (when libusb has them) for one vendor; changed() reports whether a
 // device arrived or left since the last call. Without hotplug support it always says false and
