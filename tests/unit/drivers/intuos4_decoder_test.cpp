@@ -1,0 +1,120 @@
+#include "drivers/hid/intuos4_decoder.h"
+
+#include <gtest/gtest.h>
+
+#include "drivers/core/pen_units.h"
+#include "tests/hil/tablet/pen_script.h"
+
+namespace cb::hid {
+namespace {
+
+PenDeviceInfo info() {
+  return intuos4DeviceInfo(*intuos4Model(0x056A, 0x00B9));
+}
+
+TEST(Intuos4Decoder, ModelsAndRanges) {
+  ASSERT_TRUE(intuos4Model(0x056A, 0x00B9));
+  EXPECT_FALSE(intuos4Model(0x056A, 0x0357));
+  EXPECT_FALSE(intuos4Model(0x1234, 0x00B9));
+  PenDeviceInfo d = info();
+  EXPECT_EQ(d.x_max, 44704);
+  EXPECT_EQ(d.pressure_max, 2047);  // 11 bits
+  EXPECT_EQ(d.distance_max, 63);
+}
+
+TEST(Intuos4Decoder, HandAssembledPackets) {
+  Intuos4Decoder dec(info());
+  PenSample s;
+  // Enter: tool id 0x802 (general pen), serial 0x12345678.
+  const uint8_t enter[10] = {0x02, 0xC2, 0x80, 0x21, 0x23, 0x45, 0x67, 0x80, 0x00, 0x00};
+  EXPECT_EQ(dec.decode(enter, 10, 1, s).status, DecodeStatus::kNoSample);
+  // Pen: X = 0x1234 << 1 | 1, Y = 0x0567 << 1 | 0, distance 5, pressure 0x3FF (bits 10..3 =
+  // 0x7F, bits 2..1 = 3, bit 0 = 1), tilt X raw 100 -> 36, tilt Y raw 20 -> -44, barrel 1.
+  const uint8_t pen[10] = {0x02, 0xE3, 0x12, 0x34, 0x05, 0x67, 0x7F, 0xF2, 0x14, 0x16};
+  ASSERT_EQ(dec.decode(pen, 10, 2, s).status, DecodeStatus::kSample);
+  EXPECT_EQ(s.x_raw, 0x2469);
+  EXPECT_EQ(s.y_raw, 0x0ACE);
+  EXPECT_EQ(s.distance_raw, 5);
+  EXPECT_EQ(s.pressure_raw, 0x3FF);
+  EXPECT_EQ(s.tilt_x_raw, 36);
+  EXPECT_EQ(s.tilt_y_raw, -44);
+  EXPECT_EQ(s.buttons, kPenTip | kPenStylus1);
+  EXPECT_EQ(s.tool, PenTool::kPen);
+  EXPECT_EQ(s.tool_id, 0x802u);
+  EXPECT_EQ(s.tool_serial, 0x12345678u);
+  EXPECT_TRUE(s.in_proximity);
+  EXPECT_DOUBLE_EQ(s.x_mm, 0x2469 / 200.0);
+  // Leaving proximity ends the stroke where the pen was.
+  const uint8_t exit[10] = {0x02, 0x80};
+  ASSERT_EQ(dec.decode(exit, 10, 3, s).status, DecodeStatus::kSample);
+  EXPECT_FALSE(s.in_proximity);
+  EXPECT_EQ(s.x_raw, 0x2469);
+  EXPECT_EQ(s.buttons, 0u);
+  // After leaving, pen packets are ignored until a tool enters again.
+  DecodeResult r = dec.decode(pen, 10, 4, s);
+  EXPECT_EQ(r.status, DecodeStatus::kNoSample);
+  EXPECT_NE(r.reason.find("before the tool entered"), std::string::npos);
+}
+
+TEST(Intuos4Decoder, RoundTripsThePenScript) {
+  const PenDeviceInfo d = info();
+  Intuos4Decoder dec(d);
+  PenSample previous{};
+  bool was_in = false;
+  int samples = 0;
+  for (const hil::PenStep& st : hil::penScript(d.x_max, d.y_max, d.pressure_max, d.distance_max)) {
+    PenSample expected, got;
+    const bool expect = hil::expectedSample(st, d, true, previous, expected);
+    if (st.sense && !was_in) {
+      const auto enter = hil::encodeIntuos4Enter(st.tool_type, st.serial);
+      ASSERT_EQ(dec.decode(enter.data(), enter.size(), 0, got).status, DecodeStatus::kNoSample);
+    }
+    was_in = st.sense;
+    const auto pkt = st.sense ? hil::encodeIntuos4Pen(st) : hil::encodeIntuos4Exit();
+    DecodeResult r = dec.decode(pkt.data(), pkt.size(), 0, got);
+    ASSERT_EQ(r.status, expect ? DecodeStatus::kSample : DecodeStatus::kNoSample) << r.reason;
+    if (expect) {
+      EXPECT_TRUE(samePenState(got, expected)) << "sample " << samples;
+      ++samples;
+    }
+  }
+  EXPECT_EQ(samples, 32);
+}
+
+TEST(Intuos4Decoder, EraserToolAndInRangeLeaving) {
+  Intuos4Decoder dec(info());
+  PenSample s;
+  const auto enter = hil::encodeIntuos4Enter(0x80A, 42);  // general pen, eraser end
+  dec.decode(enter.data(), enter.size(), 0, s);
+  hil::PenStep st;
+  st.pressure = 500;
+  st.x = 100;
+  const auto pkt = hil::encodeIntuos4Pen(st);
+  ASSERT_EQ(dec.decode(pkt.data(), pkt.size(), 1, s).status, DecodeStatus::kSample);
+  EXPECT_EQ(s.tool, PenTool::kEraser);
+  EXPECT_TRUE(s.tipDown());
+  const uint8_t leaving[10] = {0x02, 0x20};
+  ASSERT_EQ(dec.decode(leaving, 10, 2, s).status, DecodeStatus::kSample);
+  EXPECT_TRUE(s.in_proximity);
+  EXPECT_FALSE(s.tipDown());
+  EXPECT_EQ(s.pressure_raw, 0);
+  EXPECT_EQ(s.distance_raw, 63);
+}
+
+TEST(Intuos4Decoder, RejectsWrongLengthsAndOtherReports) {
+  Intuos4Decoder dec(info());
+  PenSample s;
+  const uint8_t pkt[12] = {0x02, 0xE0};
+  DecodeResult r = dec.decode(pkt, 9, 0, s);
+  EXPECT_EQ(r.status, DecodeStatus::kRejected);
+  EXPECT_NE(r.reason.find("short Intuos4 packet: 9 bytes"), std::string::npos) << r.reason;
+  r = dec.decode(pkt, 12, 0, s);
+  EXPECT_EQ(r.status, DecodeStatus::kRejected);
+  EXPECT_NE(r.reason.find("oversized"), std::string::npos);
+  const uint8_t pad[10] = {0x0C};
+  EXPECT_EQ(dec.decode(pad, 10, 0, s).status, DecodeStatus::kOtherReport);
+  EXPECT_EQ(dec.decode(pad, 0, 0, s).status, DecodeStatus::kRejected);
+}
+
+}  // namespace
+}  // namespace cb::hid
