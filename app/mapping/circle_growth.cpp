@@ -1,0 +1,312 @@
+#include "app/mapping/circle_growth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cb {
+namespace {
+
+enum PixelClass : uint8_t { kGrey = 0, kWhite = 1, kEmpty = 2 };
+
+bool insideCircle(glm::vec2 c, int r, int x, int y) {
+  double dx = double(x) - double(c.x), dy = double(y) - double(c.y);
+  return dx * dx + dy * dy <= double(r) * double(r);
+}
+
+std::vector<uint8_t> classify(const Footprint& f, const CircleGrowthConfig& cfg) {
+  std::vector<uint8_t> cls(f.values.size());
+  for (size_t i = 0; i < cls.size(); ++i) {
+    float v = f.values[i];
+    cls[i] = v >= cfg.white_threshold ? kWhite : (v <= cfg.empty_threshold ? kEmpty : kGrey);
+  }
+  return cls;
+}
+
+// Fast counter: per-row prefix sums of white (static: white is judged on the unmasked
+// footprint) and of empty-or-covered (updated when a circle is masked out).
+class RowPrefixCounter {
+ public:
+  RowPrefixCounter(const Footprint& f, const CircleGrowthConfig& cfg)
+      : w_(f.width), h_(f.height), cls_(classify(f, cfg)), covered_(cls_.size(), 0) {
+    const size_t stride = size_t(w_) + 1;
+    white_.assign(stride * h_, 0);
+    empty_.assign(stride * h_, 0);
+    for (int y = 0; y < h_; ++y) {
+      int32_t* wp = &white_[y * stride];
+      for (int x = 0; x < w_; ++x) wp[x + 1] = wp[x] + (cls_[size_t(y) * w_ + x] == kWhite);
+      rebuildEmptyRow(y, 0);
+    }
+  }
+
+  CircleCounts count(glm::vec2 c, int r) const {
+    CircleCounts n;
+    const size_t stride = size_t(w_) + 1;
+    for (int y = int(std::ceil(c.y - r)); y <= int(std::floor(c.y + r)); ++y) {
+      int x0, x1;
+      if (!circleRowSpan(c, r, y, &x0, &x1)) continue;
+      long long span = x1 - x0 + 1;
+      n.pixels += span;
+      if (y < 0 || y >= h_) {
+        n.empty += span;
+        continue;
+      }
+      int a = std::max(x0, 0), b = std::min(x1, w_ - 1);
+      long long inside = b >= a ? b - a + 1 : 0;
+      n.empty += span - inside;
+      if (inside) {
+        const int32_t* wp = &white_[y * stride];
+        const int32_t* ep = &empty_[y * stride];
+        n.white += wp[b + 1] - wp[a];
+        n.empty += ep[b + 1] - ep[a];
+      }
+    }
+    return n;
+  }
+
+  void mask(glm::vec2 c, int r) {
+    for (int y = std::max(0, int(std::ceil(c.y - r))); y <= std::min(h_ - 1, int(c.y + r)); ++y) {
+      int x0, x1;
+      if (!circleRowSpan(c, r, y, &x0, &x1)) continue;
+      x0 = std::max(x0, 0);
+      x1 = std::min(x1, w_ - 1);
+      if (x1 < x0) continue;
+      std::fill(covered_.begin() + size_t(y) * w_ + x0, covered_.begin() + size_t(y) * w_ + x1 + 1,
+                uint8_t(1));
+      rebuildEmptyRow(y, x0);
+    }
+  }
+
+  uint8_t pixelClass(int x, int y) const { return cls_[size_t(y) * w_ + x]; }
+  bool covered(int x, int y) const { return covered_[size_t(y) * w_ + x] != 0; }
+  std::vector<uint8_t> takeCovered() { return std::move(covered_); }
+
+ private:
+  void rebuildEmptyRow(int y, int from) {
+    int32_t* ep = &empty_[y * (size_t(w_) + 1)];
+    const size_t row = size_t(y) * w_;
+    for (int x = from; x < w_; ++x)
+      ep[x + 1] = ep[x] + (cls_[row + x] == kEmpty || covered_[row + x] != 0);
+  }
+
+  int w_, h_;
+  std::vector<uint8_t> cls_, covered_;
+  std::vector<int32_t> white_, empty_;
+};
+
+// Straightforward counter (Algorithm 7): traverses the circle's bounding block pixel by pixel.
+class BlockTraversalCounter {
+ public:
+  BlockTraversalCounter(const Footprint& f, const CircleGrowthConfig& cfg)
+      : f_(f), cfg_(cfg), cls_(classify(f, cfg)), covered_(cls_.size(), 0) {}
+
+  CircleCounts count(glm::vec2 c, int r) const { return countCircle(f_, &covered_, c, r, cfg_); }
+
+  void mask(glm::vec2 c, int r) {
+    for (int y = std::max(0, int(std::floor(c.y - r))); y <= std::min(f_.height - 1, int(c.y + r));
+         ++y)
+      for (int x = std::max(0, int(std::floor(c.x - r))); x <= std::min(f_.width - 1, int(c.x + r));
+           ++x)
+        if (insideCircle(c, r, x, y)) covered_[size_t(y) * f_.width + x] = 1;
+  }
+
+  uint8_t pixelClass(int x, int y) const { return cls_[size_t(y) * f_.width + x]; }
+  bool covered(int x, int y) const { return covered_[size_t(y) * f_.width + x] != 0; }
+  std::vector<uint8_t> takeCovered() { return std::move(covered_); }
+
+ private:
+  const Footprint& f_;
+  const CircleGrowthConfig& cfg_;
+  std::vector<uint8_t> cls_, covered_;
+};
+
+bool passes(const CircleCounts& n, const CircleGrowthConfig& cfg) {
+  return n.whiteRatio() >= cfg.accept_white_ratio && n.emptyRatio() <= cfg.drop_empty_ratio;
+}
+
+// Returns the accepted radius at `centre`, or 0 when the direction is dropped or nothing fits.
+// A radius passes when R_w >= accept and R_e <= drop. The Empty Test (§6.3.3) runs first, on the
+// initial circle (the thesis) or on the smallest one (config empty_test_on_smallest): if it is
+// more than half empty the direction is dropped. After it, a too-empty circle is just too big,
+// like a too-grey one.
+template <typename Counter>
+int searchRadius(const Counter& counter, glm::vec2 centre, const CircleGrowthConfig& cfg,
+                 RadiusSearch search, long long* attempts) {
+  const int r0 = cfg.initial_diameter_px / 2;
+  const int rmin = std::min(cfg.min_radius_px, r0);
+  ++*attempts;
+  CircleCounts smallest = counter.count(centre, rmin);
+  if (smallest.emptyRatio() > cfg.drop_empty_ratio) return 0;  // Empty Test (§6.3.3)
+  if (!cfg.empty_test_on_smallest && r0 > rmin) {
+    ++*attempts;
+    CircleCounts initial = counter.count(centre, r0);
+    if (initial.emptyRatio() > cfg.drop_empty_ratio) return 0;
+    if (initial.whiteRatio() >= cfg.accept_white_ratio) return r0;
+  }
+  if (search == RadiusSearch::kLinearStep4) {
+    // Algorithm 6: from the initial radius down, 4 px per attempt.
+    for (int r = r0; r > rmin; r -= 4) {
+      ++*attempts;
+      if (passes(counter.count(centre, r), cfg)) return r;
+    }
+    return passes(smallest, cfg) ? rmin : 0;
+  }
+  // Binary search for the largest passing radius in [rmin, r0] (§6.4.6).
+  if (!passes(smallest, cfg)) return 0;
+  int lo = rmin + 1, hi = r0, best = rmin;
+  while (lo <= hi) {
+    int mid = lo + (hi - lo + 1) / 2;
+    ++*attempts;
+    if (passes(counter.count(centre, mid), cfg)) {
+      best = mid;
+      lo = mid + 1;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  return best;
+}
+
+// Path points ordered from the middle of the stroke outwards (by index along the path).
+std::vector<glm::ivec2> seedOrder(const Footprint& f, const std::vector<StrokePoint>& path) {
+  std::vector<glm::ivec2> order;
+  const int n = int(path.size());
+  const int mid = n / 2;
+  for (int k = 0; k < n; ++k) {
+    int i = (k % 2 == 0) ? mid + k / 2 : mid - (k + 1) / 2;
+    if (i < 0 || i >= n) continue;
+    glm::ivec2 p(int(std::lround(path[i].footprint_px.x)),
+                 int(std::lround(path[i].footprint_px.y)));
+    if (f.inside(p.x, p.y)) order.push_back(p);
+  }
+  return order;
+}
+
+template <typename Counter>
+CircleGrowthResult grow(const Footprint& f, const std::vector<StrokePoint>& path,
+                        const CircleGrowthConfig& cfg, RadiusSearch search) {
+  CircleGrowthResult result;
+  if (f.width <= 0 || f.height <= 0 || f.values.size() != size_t(f.width) * f.height) return result;
+  Counter counter(f, cfg);
+
+  std::vector<glm::vec2> dirs(cfg.directions);
+  for (int j = 0; j < cfg.directions; ++j) {
+    double a = 2.0 * std::numbers::pi * j / cfg.directions;
+    dirs[j] = glm::vec2(float(std::cos(a)), float(std::sin(a)));
+  }
+
+  auto accept = [&](glm::vec2 c, int r, int step) {
+    result.circles.push_back({c, r, step});
+    counter.mask(c, r);
+  };
+
+  // Algorithm 6: grow step by step from the circles accepted in the previous step.
+  auto growFrom = [&](size_t first_circle) {
+    size_t begin = first_circle, end = result.circles.size();
+    int step = 1;
+    while (begin < end) {
+      for (size_t i = begin; i < end; ++i) {
+        const Circle parent = result.circles[i];
+        for (const glm::vec2& d : dirs) {
+          glm::vec2 c = parent.centre + d * float(parent.radius);
+          if (c.x < 0 || c.y < 0 || c.x > f.width - 1 || c.y > f.height - 1) continue;
+          if (int r = searchRadius(counter, c, cfg, search, &result.attempts)) accept(c, r, step);
+        }
+      }
+      ++result.steps;
+      ++step;
+      begin = end;
+      end = result.circles.size();
+    }
+  };
+
+  auto trySeed = [&](glm::ivec2 p) {
+    if (counter.pixelClass(p.x, p.y) != kWhite || counter.covered(p.x, p.y)) return false;
+    glm::vec2 c(p);
+    int r = searchRadius(counter, c, cfg, search, &result.attempts);
+    if (!r) return false;
+    size_t first = result.circles.size();
+    accept(c, r, 0);
+    ++result.seeds;
+    growFrom(first);
+    return true;
+  };
+
+  std::vector<glm::ivec2> seeds = seedOrder(f, path);
+  if (seeds.empty()) {
+    // No usable path: the white pixel nearest the centroid of the white pixels.
+    double sx = 0, sy = 0;
+    long long nw = 0;
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x)
+        if (counter.pixelClass(x, y) == kWhite) sx += x, sy += y, ++nw;
+    if (nw) {
+      glm::dvec2 centroid(sx / nw, sy / nw);
+      double best = 1e300;
+      glm::ivec2 pick(0);
+      for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+          if (counter.pixelClass(x, y) != kWhite) continue;
+          double d = glm::dot(glm::dvec2(x, y) - centroid, glm::dvec2(x, y) - centroid);
+          if (d < best) best = d, pick = {x, y};
+        }
+      seeds.push_back(pick);
+    }
+  }
+  for (const glm::ivec2& p : seeds)
+    if (trySeed(p) && !cfg.reseed_along_path) break;
+
+  result.covered = counter.takeCovered();
+  return result;
+}
+
+}  // namespace
+
+bool circleRowSpan(glm::vec2 c, int r, int y, int* x0, int* x1) {
+  double dy = double(y) - double(c.y);
+  double rem = double(r) * double(r) - dy * dy;
+  if (rem < 0.0) return false;
+  double half = std::sqrt(rem);
+  int a = int(std::ceil(double(c.x) - half)), b = int(std::floor(double(c.x) + half));
+  // Make the span agree exactly with the per-pixel predicate.
+  while (a <= b && !insideCircle(c, r, a, y)) ++a;
+  while (insideCircle(c, r, a - 1, y)) --a;
+  while (b >= a && !insideCircle(c, r, b, y)) --b;
+  while (insideCircle(c, r, b + 1, y)) ++b;
+  if (b < a) return false;
+  *x0 = a;
+  *x1 = b;
+  return true;
+}
+
+CircleCounts countCircle(const Footprint& f, const std::vector<uint8_t>* covered, glm::vec2 c,
+                         int r, const CircleGrowthConfig& cfg) {
+  CircleCounts n;
+  for (int y = int(std::floor(c.y - r)); y <= int(std::ceil(c.y + r)); ++y)
+    for (int x = int(std::floor(c.x - r)); x <= int(std::ceil(c.x + r)); ++x) {
+      if (!insideCircle(c, r, x, y)) continue;
+      ++n.pixels;
+      if (!f.inside(x, y)) {
+        ++n.empty;
+        continue;
+      }
+      float v = f.at(x, y);
+      bool is_covered = covered && (*covered)[size_t(y) * f.width + x];
+      if (v >= cfg.white_threshold) ++n.white;
+      if (v <= cfg.empty_threshold || is_covered) ++n.empty;
+    }
+  return n;
+}
+
+CircleGrowthResult growCircles(const Footprint& footprint, const std::vector<StrokePoint>& path,
+                               const CircleGrowthConfig& config) {
+  return grow<RowPrefixCounter>(footprint, path, config, RadiusSearch::kBinary);
+}
+
+CircleGrowthResult growCirclesStraightforward(const Footprint& footprint,
+                                              const std::vector<StrokePoint>& path,
+                                              const CircleGrowthConfig& config) {
+  return grow<BlockTraversalCounter>(footprint, path, config, RadiusSearch::kLinearStep4);
+}
+
+}  // namespace cb

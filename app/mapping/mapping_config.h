@@ -1,0 +1,85 @@
+// Parameters of the stroke-to-cloud mapping (thesis ch. 6), read from config/mapping.toml.
+// Every field has the default the thesis (or this product) settled on, so a missing file or key
+// falls back to a working mapping.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace cb {
+
+enum class MappingMethod : uint8_t {
+  kHybrid = 0,       // HMM: circle growth + sphere mapping + edge mapping (§6.3–6.6)
+  kRayMarching = 1,  // RMM: each pixel grows voxels along its view ray (§6.1)
+};
+
+struct CircleGrowthConfig {
+  int initial_diameter_px = 128;    // §6.3.3, Table 6.1
+  int min_radius_px = 4;            // smallest circle tried (§6.3.3: "between 128 and 4 pixels")
+  int directions = 16;              // candidates on each accepted circle's perimeter (§6.3.2)
+  float accept_white_ratio = 0.8f;  // R_w threshold (§6.3.3)
+  float drop_empty_ratio = 0.5f;    // R_e threshold: drop the direction (§6.3.3)
+  // The thesis counts a pixel white at exactly 1.0 and empty at exactly 0.0; on a soft
+  // footprint that accepts nothing, so these are thresholds.
+  float white_threshold = 0.95f;
+  float empty_threshold = 0.05f;
+  // After growth from the first circle stops, seed again on the stroke path wherever white
+  // pixels remain unmasked (disjoint parts of a footprint). Not in the thesis.
+  bool reseed_along_path = true;
+  // Where the Empty Test is made. The thesis tests the initial (largest) circle, which drops
+  // every direction on a stroke thinner than the initial diameter; testing the smallest circle
+  // lets circles follow thin strokes too, at the price of more, smaller circles.
+  bool empty_test_on_smallest = false;
+};
+
+struct SphereMappingConfig {
+  float density = 1.0f;            // density at a sphere's core before noise (§6.5: 1.0)
+  float edge_softness = 0.2f;      // fraction of the radius over which density fades to 0
+  float noise_erosion = 0.2f;      // how far (fraction of radius) noise eats into the surface
+  float noise_modulation = 0.35f;  // interior density = density * (1 - m + m * noise)
+};
+
+struct EdgeMappingConfig {
+  int samples_per_pixel = 16;  // Gaussian scatter samples per leftover pixel (§6.6.2)
+  float depth_sigma_of_radius = 1.0f / 3.0f;  // σ along the view ray = R_S / 3 (§6.6.2)
+  // Floor for that σ, in voxels: a pixel next to a tiny circle still gets enough depth to be
+  // seen from the paint view.
+  float min_depth_sigma_voxels = 2.0f;
+  // σ across the view ray, in footprint pixels at the sample's depth: small, so the silhouette
+  // seen from the paint view stays where the footprint put it.
+  float lateral_sigma_px = 0.5f;
+  float density_scale = 1.0f;  // voxel density = footprint value * scale
+};
+
+struct RayMarchingConfig {
+  float density = 1.0f;  // density of the voxels grown along each ray
+};
+
+struct NoiseTextureConfig {
+  uint32_t seed = 20161;        // seeds the pre-generated simplex-noise texture
+  int size = 64;                // texels per side; the texture tiles, one texel per voxel
+  float period_voxels = 32.0f;  // the base octave's feature size, in voxels
+  int octaves = 3;
+};
+
+struct MappingConfig {
+  MappingMethod method = MappingMethod::kHybrid;
+  CircleGrowthConfig circles;
+  SphereMappingConfig spheres;
+  EdgeMappingConfig edges;
+  RayMarchingConfig ray_marching;
+  NoiseTextureConfig noise;
+};
+
+// Reads a mapping config from a TOML file. Missing keys keep their defaults. Throws
+// std::runtime_error naming the file, key and problem for a parse error, a wrong type or an
+// out-of-range value.
+MappingConfig loadMappingConfig(const std::string& path);
+// Checks ranges; throws std::invalid_argument naming the field.
+void validate(const MappingConfig& config);
+
+const char* toString(MappingMethod method);
+// "hybrid"/"hmm" or "ray-marching"/"rmm"; false if unknown.
+bool parseMappingMethod(const std::string& text, MappingMethod* method);
+
+}  // namespace cb

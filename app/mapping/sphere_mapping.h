@@ -1,0 +1,51 @@
+// Sphere mapping (thesis §6.5): each circle's centre is cast from the paint camera onto the
+// canvas altitude plane; the sphere there has the world radius the circle has at that depth.
+// Voxels inside are filled and modulated by the pre-generated simplex-noise texture, so the
+// sphere's surface is eroded irregularly and its interior density varies.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "app/mapping/circle_growth.h"
+#include "app/mapping/mapping_config.h"
+#include "app/mapping/paint_view_geometry.h"
+#include "app/mapping/simplex_noise.h"
+#include "app/scene/canvas.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+struct MappedSphere {
+  glm::vec3 centre{0.0f};  // world
+  float radius = 0.0f;     // world
+  bool on_canvas = true;   // false: the centre's ray missed the canvas; the fallback plane was used
+};
+
+// Where the canvas is not hit (view parallel to it, ray above the horizon) the sphere is placed
+// on the plane facing the camera through `fallback_point`.
+std::vector<MappedSphere> mapCirclesToSpheres(const std::vector<Circle>& circles,
+                                              const PaintViewGeometry& view, const Canvas& canvas,
+                                              glm::vec3 fallback_point, float max_distance);
+
+// Density of a point at normalised distance q = |p - centre| / radius from a sphere's centre,
+// with noise texel n in [0, 1]: the surface sits at b = 1 − erosion·n, density fades to zero
+// over `edge_softness` inside it and is scaled by (1 − m + m·n).
+inline float sphereDensity(float q, float n, const SphereMappingConfig& c) {
+  float b = 1.0f - c.noise_erosion * n;
+  if (q >= b) return 0.0f;
+  float fade = glm::min(1.0f, (b - q) / c.edge_softness);
+  return c.density * fade * (1.0f - c.noise_modulation + c.noise_modulation * n);
+}
+
+// Max-merges the spheres into the volume (parallel over z slabs; each voxel is written by one
+// chunk, so the result does not depend on the thread count). Returns the voxels touched; does
+// not call markDirty.
+VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTexture& noise,
+                     const SphereMappingConfig& config, Volume& volume);
+
+// Voxel box of a world-space sphere, clipped to the volume.
+VoxelBox sphereVoxelBox(const MappedSphere& sphere, const Volume& volume);
+
+}  // namespace cb

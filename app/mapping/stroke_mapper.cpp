@@ -1,0 +1,146 @@
+#include "app/mapping/stroke_mapper.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace cb {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+StrokeMapper::StrokeMapper(const MappingConfig& config) : config_(config) {
+  validate(config_);
+  noise_ = std::make_unique<NoiseTexture>(config_.noise);
+}
+
+void StrokeMapper::warn(MappingReport* report, uint32_t stroke_index,
+                        const std::string& text) const {
+  std::string line = "mapping: stroke " + std::to_string(stroke_index) + ": " + text;
+  if (!quiet_) std::fprintf(stderr, "cloudbrush %s\n", line.c_str());
+  report->warnings.push_back(std::move(line));
+}
+
+MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume) {
+  return map(stroke, volume, config_.method);
+}
+
+MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, MappingMethod method) {
+  const auto t_start = std::chrono::steady_clock::now();
+  MappingReport report;
+  report.method = method;
+  const Footprint& f = stroke.footprint;
+  const uint32_t id = stroke.stroke_index;
+  if (method == MappingMethod::kHybrid) last_circles_.clear();
+
+  if (f.width <= 0 || f.height <= 0 || f.values.size() != size_t(f.width) * size_t(f.height)) {
+    warn(&report, id,
+         "footprint is malformed (" + std::to_string(f.width) + "x" + std::to_string(f.height) +
+             " with " + std::to_string(f.values.size()) + " values); nothing mapped");
+    return report;
+  }
+  long long not_finite = 0;
+  for (float v : f.values) {
+    if (!std::isfinite(v))
+      ++not_finite;
+    else if (v > config_.circles.empty_threshold)
+      ++report.non_empty_pixels;
+  }
+  if (not_finite)
+    warn(&report, id,
+         std::to_string(not_finite) + " footprint values are NaN or infinite; treated as empty");
+  if (report.non_empty_pixels == 0) {
+    warn(&report, id,
+         "footprint has no pixel above the empty threshold " +
+             std::to_string(config_.circles.empty_threshold) + "; nothing mapped");
+    return report;
+  }
+
+  const PaintViewGeometry view(stroke.view.camera, f.width, f.height);
+  if (view.nearlyParallelToCanvas())
+    warn(&report, id,
+         "the paint view is (nearly) parallel to the canvas plane at altitude " +
+             std::to_string(stroke.canvas.altitude) +
+             "; rays that miss it are placed on the plane facing the camera through the volume "
+             "centre");
+  const glm::vec3 centre = 0.5f * (volume.worldMin() + volume.worldMax());
+  const glm::vec3 fallback_point(centre.x, stroke.canvas.altitude, centre.z);
+  const float max_distance =
+      glm::length(view.eye() - centre) + glm::length(volume.worldMax() - volume.worldMin());
+
+  VoxelBox dirty;
+  if (method == MappingMethod::kRayMarching) {
+    auto t0 = std::chrono::steady_clock::now();
+    dirty = mapRayMarching(f, view, stroke.canvas, config_.ray_marching,
+                           config_.circles.empty_threshold, volume, &report.ray_marching);
+    report.timings.ray_marching_ms = msSince(t0);
+    if (report.ray_marching.parallel_pixels)
+      warn(&report, id,
+           std::to_string(report.ray_marching.parallel_pixels) +
+               " pixels' rays are parallel to the canvas or meet it behind the eye; skipped");
+  } else {
+    auto t0 = std::chrono::steady_clock::now();
+    CircleGrowthResult growth = growCircles(f, stroke.path, config_.circles);
+    report.timings.circle_growth_ms = msSince(t0);
+    report.growth_steps = growth.steps;
+    report.circle_attempts = growth.attempts;
+    for (size_t i = 0; i < f.values.size(); ++i)
+      report.covered_pixels += growth.covered[i] && f.values[i] > config_.circles.empty_threshold;
+    if (growth.circles.empty())
+      warn(&report, id,
+           "no circle of radius >= " + std::to_string(config_.circles.min_radius_px) + " px is " +
+               std::to_string(int(config_.circles.accept_white_ratio * 100)) +
+               "% white; the whole footprint is edge-mapped onto the canvas");
+
+    t0 = std::chrono::steady_clock::now();
+    report.spheres =
+        mapCirclesToSpheres(growth.circles, view, stroke.canvas, fallback_point, max_distance);
+    dirty = fillSpheres(report.spheres, *noise_, config_.spheres, volume);
+    report.timings.sphere_mapping_ms = msSince(t0);
+    long long off_canvas = 0;
+    for (const MappedSphere& s : report.spheres) off_canvas += !s.on_canvas;
+    if (off_canvas)
+      warn(&report, id,
+           std::to_string(off_canvas) +
+               " circle centres' rays miss the canvas; placed on the "
+               "fallback plane");
+
+    t0 = std::chrono::steady_clock::now();
+    EdgeMappingInput in;
+    in.footprint = &f;
+    in.covered = &growth.covered;
+    in.circles = &growth.circles;
+    in.spheres = &report.spheres;
+    in.view = &view;
+    in.canvas = stroke.canvas;
+    in.fallback_point = fallback_point;
+    in.max_distance = max_distance;
+    in.stroke_index = id;
+    in.empty_threshold = config_.circles.empty_threshold;
+    dirty = dirty.unite(mapEdges(in, config_.edges, volume, &report.edges));
+    report.timings.edge_mapping_ms = msSince(t0);
+    if (report.edges.off_canvas_pixels)
+      warn(&report, id,
+           std::to_string(report.edges.off_canvas_pixels) +
+               " edge pixels' rays miss the canvas; placed on the fallback plane");
+    if (report.edges.mapped_pixels < report.edges.leftover_pixels)
+      warn(&report, id,
+           std::to_string(report.edges.leftover_pixels - report.edges.mapped_pixels) +
+               " edge pixels fall outside the volume");
+    report.circles = std::move(growth.circles);
+    last_circles_ = report.circles;
+  }
+  report.dirty = dirty;
+  if (!dirty.empty())
+    volume.markDirty(dirty);
+  else
+    warn(&report, id, "the stroke maps outside the volume; nothing changed");
+  report.timings.total_ms = msSince(t_start);
+  return report;
+}
+
+}  // namespace cb
