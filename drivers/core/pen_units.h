@@ -6,15 +6,22 @@
 
 namespace cb {
 
+inline float clampUnit(float v) {
+  return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+}
+
 // Fills x_mm, y_mm, pressure, tilt_x_deg, tilt_y_deg and distance from the raw fields.
 // Resolutions of 0 leave the raw value (positions stay 0 mm; tilts are taken as degrees).
+// Normalised pressure and distance are clamped to 0..1 (a device may report past its maximum).
 inline void convertPenUnits(PenSample& s, const PenDeviceInfo& d) {
   s.x_mm = d.x_res > 0 ? s.x_raw / d.x_res : 0.0;
   s.y_mm = d.y_res > 0 ? s.y_raw / d.y_res : 0.0;
-  s.pressure = d.pressure_max > 0 ? static_cast<float>(s.pressure_raw) / d.pressure_max : 0.0f;
+  s.pressure =
+      d.pressure_max > 0 ? clampUnit(static_cast<float>(s.pressure_raw) / d.pressure_max) : 0.0f;
   s.tilt_x_deg = static_cast<float>(d.tilt_res > 0 ? s.tilt_x_raw / d.tilt_res : s.tilt_x_raw);
   s.tilt_y_deg = static_cast<float>(d.tilt_res > 0 ? s.tilt_y_raw / d.tilt_res : s.tilt_y_raw);
-  s.distance = d.distance_max > 0 ? static_cast<float>(s.distance_raw) / d.distance_max : 0.0f;
+  s.distance =
+      d.distance_max > 0 ? clampUnit(static_cast<float>(s.distance_raw) / d.distance_max) : 0.0f;
 }
 
 // The sample that ends a stroke when the pen leaves proximity (or the device goes away): the

@@ -145,22 +145,25 @@ int32_t kernelResolution(const FieldSlot& slot, bool is_angle) {
     if (slot.unit == 0x11) {  // centimetres -> millimetres
       exponent += 1;
     } else if (slot.unit == 0x13) {  // inches -> millimetres (x 25.4)
-      physical *= 254;
+      if ((physical *= 254) > INT32_MAX) return 0;
       exponent -= 1;
     } else {
       return 0;
     }
   } else {
     if (slot.unit == 0x14) {  // degrees -> radians, as the kernel does: x 57.3
-      logical *= 573;
+      if ((logical *= 573) > INT32_MAX) return 0;
       exponent += 1;
     } else if (slot.unit != 0x12) {
       return 0;
     }
   }
-  for (; exponent < 0; ++exponent) logical *= 10;
-  for (; exponent > 0; --exponent) physical *= 10;
-  if (logical > INT32_MAX || physical > INT32_MAX) return 0;  // the kernel's overflow guard
+  // The kernel gives up (resolution 0) as soon as a 32-bit product would overflow.
+  for (; exponent < 0; ++exponent)
+    if ((logical *= 10) > INT32_MAX) return 0;
+  for (; exponent > 0; --exponent)
+    if ((physical *= 10) > INT32_MAX) return 0;
+  if (logical > INT32_MAX || physical > INT32_MAX) return 0;
   return static_cast<int32_t>((logical + physical / 2) / physical);
 }
 
