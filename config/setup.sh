@@ -13,6 +13,8 @@ packages=(
   # math, images, volumes, config
   libglm-dev libopenexr-dev libpng-dev libopenvdb-dev libopenvdb-tools libtbb-dev
   libtomlplusplus-dev
+  # OpenVDB's headers need Boost's (the .vdb converter for `bench render`)
+  libboost-dev
   # input devices
   libevdev-dev libhidapi-dev libusb-1.0-0-dev libudev-dev
   # tests and benchmarks
