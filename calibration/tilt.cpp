@@ -6,12 +6,6 @@
 
 namespace cb {
 
-float tiltDegreesFromRaw(int32_t raw, int32_t raw_min, int32_t raw_max, double units_per_degree) {
-  const double centre = 0.5 * (static_cast<double>(raw_min) + raw_max);
-  const double deg = units_per_degree > 0.0 ? (raw - centre) / units_per_degree : raw - centre;
-  return static_cast<float>(std::clamp(deg, -90.0, 90.0));
-}
-
 TiltAngles tiltToAzimuthAltitude(float tilt_x_deg, float tilt_y_deg) {
   constexpr double kDeg = std::numbers::pi / 180.0;
   if (!std::isfinite(tilt_x_deg)) tilt_x_deg = 0.0f;

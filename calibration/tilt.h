@@ -1,17 +1,14 @@
-// Tilt: degrees from the axis resolution, a per-device zero offset, and the azimuth/altitude
+// Tilt: a per-device zero offset and the azimuth/altitude
 // pair the 3D brush orients its cutting plane with (thesis §5.3, Fig. 5.7: tilt sets the plane's
 // normal). Tilt x/y are angles from vertical in the x-z and y-z planes, +x right, +y towards
-// the user; azimuth is measured clockwise from +x on the tablet (y down), altitude from the
-// tablet surface (90 = upright), as in the W3C Pointer Events conversion.
+// the user (degrees from the axis resolution are computed once, by the drivers:
+// drivers/core/pen_units.h); azimuth is measured clockwise from +x on the tablet (y down), altitude
+// from the tablet surface (90 = upright), as in the W3C Pointer Events conversion.
 #pragma once
 
 #include <cstdint>
 
 namespace cb {
-
-// Raw tilt units to degrees: centred on the middle of [raw_min, raw_max], divided by the
-// resolution in units per degree. A resolution of 0 means the raw units are degrees already.
-float tiltDegreesFromRaw(int32_t raw, int32_t raw_min, int32_t raw_max, double units_per_degree);
 
 struct TiltZero {
   float x_deg = 0.0f, y_deg = 0.0f;  // what the pen reports when held upright

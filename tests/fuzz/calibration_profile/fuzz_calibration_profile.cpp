@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "calibration/calibration_profile.h"
+#include "calibration/n_point_calibration.h"
 #include "calibration/pressure_range.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -20,5 +21,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   std::string error;
   (void)cb::pressureRangeFromToml(std::string(text), &error);
+  if (!cb::parseTapFile(text, "fuzz-taps.toml", &error) && error.empty()) std::abort();
   return 0;
 }

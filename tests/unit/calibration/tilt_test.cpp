@@ -7,17 +7,6 @@
 namespace cb {
 namespace {
 
-TEST(Tilt, DegreesFromAxisResolution) {
-  // Intuos-style axis: raw 0..127 at 1 unit per degree centred at 63.5.
-  EXPECT_FLOAT_EQ(tiltDegreesFromRaw(127, 0, 127, 1.0), 63.5f);
-  EXPECT_FLOAT_EQ(tiltDegreesFromRaw(0, 0, 127, 1.0), -63.5f);
-  // Symmetric axis, 2 units per degree.
-  EXPECT_FLOAT_EQ(tiltDegreesFromRaw(-60, -64, 63, 2.0), -29.75f);
-  // Resolution 0: raw units are degrees.
-  EXPECT_FLOAT_EQ(tiltDegreesFromRaw(30, -90, 90, 0.0), 30.0f);
-  EXPECT_FLOAT_EQ(tiltDegreesFromRaw(100000, -90, 90, 0.0), 90.0f);
-}
-
 TEST(Tilt, AzimuthAltitude) {
   TiltAngles up = tiltToAzimuthAltitude(0, 0);
   EXPECT_FLOAT_EQ(up.altitude_deg, 90.0f);

@@ -1,0 +1,154 @@
+#include "calibration/n_point_calibration.h"
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <cmath>
+
+#include "calibration/area_mapping.h"
+#include "calibration/point_fit.h"
+
+namespace cb {
+
+std::vector<glm::dvec2> targetLayout(int count, int screen_w, int screen_h, double inset) {
+  const double x0 = screen_w * inset, x1 = screen_w * (1.0 - inset);
+  const double y0 = screen_h * inset, y1 = screen_h * (1.0 - inset);
+  const double xc = 0.5 * screen_w, yc = 0.5 * screen_h;
+  if (count == 5) return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {xc, yc}};
+  std::vector<glm::dvec2> out;
+  for (double y : {y0, yc, y1})
+    for (double x : {x0, xc, x1}) out.push_back({x, y});
+  return out;
+}
+
+std::optional<glm::dvec2> TapCollector::feed(const PenSample& s, bool uses_pressure) {
+  const bool was_down = contact_.down();
+  if (!s.in_proximity) {
+    contact_.reset();
+  } else {
+    contact_.update(uses_pressure ? s.pressure : (s.tipDown() ? 1.0f : 0.0f));
+  }
+  if (contact_.down()) {
+    if (!was_down) points_.clear();
+    if (std::isfinite(s.x_mm) && std::isfinite(s.y_mm)) points_.push_back({s.x_mm, s.y_mm});
+    return std::nullopt;
+  }
+  if (!was_down) return std::nullopt;
+  // The tap just ended.
+  rejection_.clear();
+  if (points_.size() < params_.min_samples) {
+    rejection_ = "tap too short (" + std::to_string(points_.size()) + " samples)";
+    return std::nullopt;
+  }
+  glm::dvec2 lo = points_[0], hi = points_[0];
+  for (const auto& p : points_) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  if (glm::length(hi - lo) > params_.max_drag_mm) {
+    rejection_ = "the pen moved " + std::to_string(glm::length(hi - lo)) +
+                 " mm during the tap: tap and lift without sliding";
+    return std::nullopt;
+  }
+  std::vector<double> xs, ys;
+  for (const auto& p : points_) xs.push_back(p.x), ys.push_back(p.y);
+  const size_t mid = xs.size() / 2;
+  std::nth_element(xs.begin(), xs.begin() + mid, xs.end());
+  std::nth_element(ys.begin(), ys.begin() + mid, ys.end());
+  return glm::dvec2(xs[mid], ys[mid]);
+}
+
+CalibrationFit fitCalibration(const CalibrationProfile& base, const PenDeviceInfo& device,
+                              uint64_t tool_serial, int screen_w, int screen_h,
+                              const std::vector<Tap>& taps, PointFitKind kind) {
+  CalibrationFit out;
+  const double w_mm = device.x_res > 0 ? device.x_max / device.x_res : 0.0;
+  const double h_mm = device.y_res > 0 ? device.y_max / device.y_res : 0.0;
+  const AreaMapping area = computeAreaMapping(base.area, w_mm, h_mm, screen_w, screen_h);
+  if (!area.ok) {
+    out.error = area.error;
+    return out;
+  }
+  std::vector<glm::dvec2> source, target;
+  for (const Tap& t : taps) {
+    source.push_back(applyTransform(area.tablet_to_screen, t.pen_mm));
+    target.push_back(t.target_px);
+  }
+  out.fit = fitPoints(kind, source, target);
+  if (!out.fit.ok) {
+    out.error = out.fit.error;
+    return out;
+  }
+  out.profile = base;
+  out.profile.fit_kind = kind;
+  out.profile.correction = out.fit.transform;
+  out.profile.fit_rms_px = out.fit.rms;
+  out.profile.fit_max_px = out.fit.max_residual;
+  out.profile.fit_points = static_cast<int>(taps.size());
+  out.profile.device.usb_vendor = device.usb_vendor;
+  out.profile.device.usb_product = device.usb_product;
+  out.profile.device.tool_serial = tool_serial;
+  out.profile.device.name = device.name;
+  out.ok = true;
+  return out;
+}
+
+std::optional<TapFile> parseTapFile(std::string_view text, const std::string& name,
+                                    std::string* error) {
+  auto fail = [&](const toml::source_region& where, const std::string& what) {
+    if (error) *error = name + ":" + std::to_string(where.begin.line) + ": " + what;
+    return std::nullopt;
+  };
+  toml::table root;
+  try {
+    root = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    return fail(e.source(), std::string(e.description()));
+  }
+  TapFile f;
+  auto w = root["screen"]["width"].value<int64_t>();
+  auto h = root["screen"]["height"].value<int64_t>();
+  if (!w || !h || *w <= 0 || *h <= 0 || *w > 65536 || *h > 65536) {
+    return fail(root.source(), "[screen] needs integer width and height (1..65536)");
+  }
+  f.screen_w = static_cast<int>(*w);
+  f.screen_h = static_cast<int>(*h);
+  auto vendor = root["device"]["usb_vendor"].value<int64_t>();
+  auto product = root["device"]["usb_product"].value<int64_t>();
+  auto wmm = root["device"]["width_mm"].value<double>();
+  auto hmm = root["device"]["height_mm"].value<double>();
+  if (!vendor || !product || *vendor < 0 || *vendor > 0xffff || *product < 0 || *product > 0xffff ||
+      !wmm || !hmm || !(*wmm > 0 && *wmm < 10000) || !(*hmm > 0 && *hmm < 10000)) {
+    return fail(root.source(),
+                "[device] needs usb_vendor, usb_product (0..0xffff) and width_mm, height_mm "
+                "(> 0)");
+  }
+  f.device.usb_vendor = static_cast<uint16_t>(*vendor);
+  f.device.usb_product = static_cast<uint16_t>(*product);
+  f.device.x_res = f.device.y_res = 100.0;
+  f.device.x_max = static_cast<int32_t>(std::lround(*wmm * 100.0));
+  f.device.y_max = static_cast<int32_t>(std::lround(*hmm * 100.0));
+  if (auto dn = root["device"]["name"].value<std::string>()) {
+    dn->copy(f.device.name, sizeof f.device.name - 1);
+  }
+  const toml::array* taps = root["tap"].as_array();
+  if (!taps) return fail(root.source(), "no [[tap]] entries");
+  for (const toml::node& n : *taps) {
+    const toml::table* t = n.as_table();
+    if (!t) return fail(n.source(), "[[tap]] must be a table");
+    const toml::array* tp = (*t)["target_px"].as_array();
+    const toml::array* pm = (*t)["pen_mm"].as_array();
+    if (!tp || !pm || tp->size() != 2 || pm->size() != 2) {
+      return fail(n.source(), "[[tap]] needs target_px = [x, y] and pen_mm = [x, y]");
+    }
+    Tap tap;
+    auto tx = (*tp)[0].value<double>(), ty = (*tp)[1].value<double>();
+    auto px = (*pm)[0].value<double>(), py = (*pm)[1].value<double>();
+    if (!tx || !ty || !px || !py || !std::isfinite(*tx) || !std::isfinite(*ty) ||
+        !std::isfinite(*px) || !std::isfinite(*py)) {
+      return fail(n.source(), "[[tap]] coordinates must be finite numbers");
+    }
+    tap.target_px = {*tx, *ty};
+    tap.pen_mm = {*px, *py};
+    f.taps.push_back(tap);
+  }
+  return f;
+}
+
+}  // namespace cb

@@ -1,0 +1,130 @@
+#include "calibration/n_point_calibration.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "calibration/calibrator.h"
+#include "calibration/point_fit.h"
+
+namespace cb {
+namespace {
+
+PenDeviceInfo tablet() {
+  PenDeviceInfo d;
+  d.usb_vendor = 0x056a;
+  d.usb_product = 0x00b9;
+  d.x_max = 22352;
+  d.y_max = 13970;
+  d.x_res = d.y_res = 100.0;
+  d.pressure_max = 2047;
+  return d;
+}
+
+PenSample at(int64_t i, double x, double y, float p) {
+  PenSample s;
+  s.t_ns = i * 5'000'000;
+  s.x_mm = x;
+  s.y_mm = y;
+  s.pressure = p;
+  s.in_proximity = true;
+  return s;
+}
+
+TEST(NPointCalibration, LayoutsCoverCornersAndCentre) {
+  auto five = targetLayout(5, 1000, 500);
+  ASSERT_EQ(five.size(), 5u);
+  EXPECT_EQ(five[0], glm::dvec2(100, 50));
+  EXPECT_EQ(five[2], glm::dvec2(900, 450));
+  EXPECT_EQ(five[4], glm::dvec2(500, 250));
+  auto nine = targetLayout(9, 1000, 500);
+  ASSERT_EQ(nine.size(), 9u);
+  EXPECT_EQ(nine[4], glm::dvec2(500, 250));
+}
+
+TEST(NPointCalibration, TapCollectorTakesMedianOfContact) {
+  TapCollector c;
+  int64_t i = 0;
+  for (; i < 5; ++i) EXPECT_FALSE(c.feed(at(i, 50, 50, 0.0f), true));
+  // Touch down with a slip at the start, hold, lift.
+  EXPECT_FALSE(c.feed(at(i++, 51.5, 40, 0.3f), true));
+  for (int k = 0; k < 8; ++k) EXPECT_FALSE(c.feed(at(i++, 50 + 0.01 * k, 40, 0.4f), true));
+  auto tap = c.feed(at(i++, 50, 40, 0.0f), true);
+  ASSERT_TRUE(tap);
+  EXPECT_NEAR(tap->x, 50.04, 0.011);
+  EXPECT_NEAR(tap->y, 40.0, 1e-9);
+}
+
+TEST(NPointCalibration, TapCollectorRefusesDragsAndFlickers) {
+  TapCollector c;
+  int64_t i = 0;
+  for (int k = 0; k < 20; ++k) c.feed(at(i++, 50 + k, 40, 0.4f), true);
+  EXPECT_FALSE(c.feed(at(i++, 70, 40, 0.0f), true));
+  EXPECT_NE(c.lastRejection().find("moved"), std::string::npos);
+  c.feed(at(i++, 50, 40, 0.4f), true);
+  EXPECT_FALSE(c.feed(at(i++, 50, 40, 0.0f), true));
+  EXPECT_NE(c.lastRejection().find("too short"), std::string::npos);
+  // Proximity out ends a tap too.
+  for (int k = 0; k < 5; ++k) c.feed(at(i++, 60, 30, 0.4f), true);
+  PenSample out = at(i++, 60, 30, 0.0f);
+  out.in_proximity = false;
+  EXPECT_TRUE(c.feed(out, true));
+}
+
+TEST(NPointCalibration, FitRecoversMountingErrorAndCalibratorAppliesIt) {
+  // A display tablet whose sensor sits 1.5 mm off and 0.4° turned against the panel.
+  CalibrationProfile base;
+  base.area.fit = AreaFit::kDisplay;
+  const int w = 1920, h = 1200;
+  const PenDeviceInfo dev = tablet();
+  const double px_per_mm_x = w / 223.52, px_per_mm_y = h / 139.70;
+  const double a = 0.4 * M_PI / 180;
+  std::vector<Tap> taps;
+  for (const glm::dvec2& t : targetLayout(9, w, h)) {
+    const glm::dvec2 mm_true(t.x / px_per_mm_x, t.y / px_per_mm_y);
+    const glm::dvec2 c(111.76, 69.85);
+    const glm::dvec2 d = mm_true - c;
+    const glm::dvec2 seen =
+        c +
+        glm::dvec2(std::cos(a) * d.x - std::sin(a) * d.y, std::sin(a) * d.x + std::cos(a) * d.y) +
+        glm::dvec2(1.5, -0.7);
+    taps.push_back({t, seen});
+  }
+  CalibrationFit fit = fitCalibration(base, dev, 0x77, w, h, taps, PointFitKind::kHomography);
+  ASSERT_TRUE(fit.ok) << fit.error;
+  EXPECT_LT(fit.fit.max_residual, 0.5);
+  EXPECT_EQ(fit.profile.device.usb_product, 0x00b9);
+  EXPECT_EQ(fit.profile.device.tool_serial, 0x77u);
+  EXPECT_EQ(fit.profile.fit_points, 9);
+  // The calibrator with this profile puts a tap exactly on its target.
+  Calibrator cal(fit.profile, dev, w, h);
+  MappedSample m = cal.process(at(0, taps[0].pen_mm.x, taps[0].pen_mm.y, 0.5f));
+  EXPECT_NEAR(m.x_px, taps[0].target_px.x, 0.5);
+  EXPECT_NEAR(m.y_px, taps[0].target_px.y, 0.5);
+  // Without the correction it is several pixels off.
+  Calibrator uncorrected(base, dev, w, h);
+  MappedSample u = uncorrected.process(at(0, taps[0].pen_mm.x, taps[0].pen_mm.y, 0.5f));
+  EXPECT_GT(std::hypot(u.x_px - taps[0].target_px.x, u.y_px - taps[0].target_px.y), 5.0);
+}
+
+TEST(NPointCalibration, TapFileParsesAndReportsLines) {
+  const std::string good =
+      "[screen]\nwidth = 1920\nheight = 1080\n"
+      "[device]\nusb_vendor = 0x056a\nusb_product = 0x00b9\nwidth_mm = 223.52\nheight_mm = 139.7\n"
+      "[[tap]]\ntarget_px = [192, 108]\npen_mm = [22.3, 14.0]\n"
+      "[[tap]]\ntarget_px = [1728, 972]\npen_mm = [201.2, 125.7]\n";
+  std::string err;
+  auto f = parseTapFile(good, "taps.toml", &err);
+  ASSERT_TRUE(f) << err;
+  EXPECT_EQ(f->screen_w, 1920);
+  EXPECT_EQ(f->device.x_max, 22352);
+  ASSERT_EQ(f->taps.size(), 2u);
+  EXPECT_EQ(f->taps[1].pen_mm.x, 201.2);
+  EXPECT_FALSE(parseTapFile(good + "[[tap]]\ntarget_px = [1, 2]\n", "taps.toml", &err));
+  EXPECT_NE(err.find("taps.toml:15:"), std::string::npos) << err;
+  EXPECT_FALSE(parseTapFile("[screen]\nwidth = 1920\nheight = = 3\n", "t.toml", &err));
+  EXPECT_NE(err.find("t.toml:3:"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace cb
