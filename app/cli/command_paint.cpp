@@ -1,11 +1,144 @@
-// PLACEHOLDER: replaced by the capability that implements it.
+// `cloudbrush` / `cloudbrush paint`: the main job. On a display (KMS or X11, fullscreen) the
+// bundled cloud under a slowly orbiting camera (PaintLoop); with no display (surfaceless) a
+// headless render of it from the reference camera to PNG + EXR, whose paths go to stdout.
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <string>
 
+#include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/paint_headless.h"
+#include "app/cli/paint_loop.h"
+#include "app/render/gl/display.h"
+#include "app/render/volume_renderer.h"
+#include "app/volume/scene_generators.h"
 
 namespace cb {
-int commandPaint(int, char**) {
-  std::fprintf(stderr, "cloudbrush: this command is not built yet\n");
-  return 3;
+namespace {
+
+constexpr const char* kUsage =
+    "usage: cloudbrush [paint] [OPTIONS]\n"
+    "\n"
+    "The painter. On a display it opens fullscreen on the bundled cloud with a slowly orbiting\n"
+    "camera (Esc or q quits, Space pauses the orbit and refines the still image). With no\n"
+    "display it renders the bundled cloud headlessly from the reference camera and writes a PNG\n"
+    "and an EXR, printing their paths on stdout.\n"
+    "\n"
+    "options:\n"
+    "  --display auto|kms|x11|surfaceless\n"
+    "                      where to draw (auto: KMS if it can take the display, else X11 if\n"
+    "                      DISPLAY is set, else surfaceless = headless render)\n"
+    "  --drm-device PATH   DRM card for kms (default: the first with a connected connector)\n"
+    "  --size WxH          headless image size (default 1280x720)\n"
+    "  --out-dir DIR       headless output directory (default ./out)\n"
+    "  --grid N            volume resolution N³ (default 256)\n"
+    "  --seed N            seed of the bundled cloud (default 1)\n"
+    "  --orbit DEG         orbit speed in degrees per second (default 6; 0 = still)\n"
+    "  --moving-scale F    starting resolution scale while the camera moves (default 0.5;\n"
+    "                      adapted towards 20 fps)\n"
+    "  --frames N          on a display, quit after N frames (default: run until Esc)\n"
+    "  --stats             print ray-sample statistics of full-resolution frames\n"
+    "  --help              this text\n";
+
+std::atomic<bool> g_stop{false};
+void onSignal(int) {
+  g_stop.store(true);
 }
+
+bool parseSize(const std::string& text, int* w, int* h) {
+  int consumed = 0;
+  return std::sscanf(text.c_str(), "%dx%d%n", w, h, &consumed) == 2 &&
+         consumed == int(text.size()) && *w > 0 && *h > 0 && *w <= 16384 && *h <= 16384;
+}
+
+int fail(const std::string& message, int code = 1) {
+  std::fprintf(stderr, "cloudbrush paint: %s\n", message.c_str());
+  return code;
+}
+
+}  // namespace
+
+int commandPaint(int argc, char** argv) {
+  Args args(argc, argv, {"help", "stats"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const auto unknown = args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir",
+                                     "grid", "seed", "orbit", "moving-scale", "frames"});
+  if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
+  if (args.positional().size() > 1)
+    return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
+
+  DisplayOptions display_options;
+  const std::string platform = args.get("display", "auto");
+  if (!parseDisplayPlatform(platform, &display_options.platform))
+    return fail("--display: expected auto, kms, x11 or surfaceless, got '" + platform + "'", 2);
+  display_options.drm_device = args.get("drm-device", "");
+  const std::string size = args.get("size", "1280x720");
+  if (!parseSize(size, &display_options.width, &display_options.height))
+    return fail("--size: expected WxH (1..16384 each), got '" + size + "'", 2);
+  const long grid = args.getInt("grid", 256);
+  const long seed = args.getInt("seed", 1);
+  PaintLoopOptions loop_options;
+  loop_options.orbit_degrees_per_second = float(args.getDouble("orbit", 6.0));
+  loop_options.moving_scale = float(args.getDouble("moving-scale", 0.5));
+  loop_options.max_frames = args.getInt("frames", 0);
+  loop_options.print_stats = args.has("stats");
+  if (!args.error().empty()) return fail(args.error(), 2);
+  if (grid < 8 || grid > 1024)
+    return fail("--grid: expected 8..1024, got " + std::to_string(grid), 2);
+  if (seed < 0) return fail("--seed: expected a non-negative integer", 2);
+  if (loop_options.moving_scale <= 0.0f || loop_options.moving_scale > 1.0f)
+    return fail("--moving-scale: expected a number in (0, 1]", 2);
+  if (loop_options.max_frames < 0) return fail("--frames: expected N >= 0", 2);
+
+  std::string error, choice_note;
+  std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
+  if (!display) return fail(error);
+  const bool headless = std::string(display->platformName()) == "surfaceless";
+  std::fprintf(stderr, "cloudbrush: %s display %dx%d, OpenGL %s on %s\n", display->platformName(),
+               display->width(), display->height(), display->context().version.c_str(),
+               display->context().renderer.c_str());
+  if (!choice_note.empty())
+    std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(), choice_note.c_str());
+
+  const auto generate_start = std::chrono::steady_clock::now();
+  const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
+  std::fprintf(
+      stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
+          .count());
+  const Light light;
+  VolumeRenderer renderer;
+  if (!renderer.init(&error)) return fail(error);
+
+  if (headless) {
+    HeadlessRenderResult result;
+    if (!renderHeadless(*display, renderer, volume, light, args.get("out-dir", "out"),
+                        "cloudbrush-cumulus", loop_options.print_stats, &result, &error))
+      return fail(error);
+    if (loop_options.print_stats) std::fprintf(stderr, "%s\n", result.stats.summary().c_str());
+    for (const std::string& path : result.written) std::printf("%s\n", path.c_str());
+    return 0;
+  }
+
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  std::fprintf(stderr, "cloudbrush: Esc or q quits, Space pauses the orbit\n");
+  PaintLoop loop(*display, renderer, volume, light, loop_options);
+  PaintLoopSummary summary;
+  if (!loop.run(&g_stop, &summary, &error)) return fail(error);
+  std::printf(
+      "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f\n",
+      summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
+      summary.median_frame_ms, summary.final_moving_scale);
+  if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
+    std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
+                last->vblank_sequence, double(last->shown_ns) / 1e9);
+  return 0;
+}
+
 }  // namespace cb

@@ -45,24 +45,29 @@ class Xvfb {
       _exit(127);
     }
     close(pipe_fds[1]);
-    pollfd pfd{pipe_fds[0], POLLIN, 0};
-    char buf[32] = {};
-    if (poll(&pfd, 1, 20000) == 1) {
-      const ssize_t n = read(pipe_fds[0], buf, sizeof(buf) - 1);
-      if (n > 0) name_ = ":" + std::string(buf, size_t(n - (buf[n - 1] == '\n' ? 1 : 0)));
+    // Read up to the newline; the read end stays open for the server's lifetime, since Xvfb
+    // writes the number and the newline separately and dies of SIGPIPE if nobody listens.
+    read_fd_ = pipe_fds[0];
+    std::string number;
+    for (char c = 0; c != '\n';) {
+      pollfd pfd{read_fd_, POLLIN, 0};
+      if (poll(&pfd, 1, 20000) != 1 || read(read_fd_, &c, 1) != 1) return;
+      if (c >= '0' && c <= '9') number += c;
     }
-    close(pipe_fds[0]);
+    if (!number.empty()) name_ = ":" + number;
   }
   ~Xvfb() {
     if (pid_ > 0) {
       kill(pid_, SIGTERM);
       waitpid(pid_, nullptr, 0);
     }
+    if (read_fd_ >= 0) close(read_fd_);
   }
   const std::string& name() const { return name_; }  // empty if it did not start
 
  private:
   pid_t pid_ = -1;
+  int read_fd_ = -1;
   std::string name_;
 };
 
