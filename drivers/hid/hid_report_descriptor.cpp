@@ -80,13 +80,15 @@ int32_t resolveMax(int32_t min, uint32_t raw, uint32_t size) {
 
 uint32_t extractBits(const uint8_t* payload, size_t payload_bytes, uint32_t bit_offset,
                      uint32_t bit_size) {
-  uint32_t value = 0;
-  for (uint32_t i = 0; i < bit_size && i < 32; ++i) {
-    uint32_t bit = bit_offset + i;
-    if (bit / 8 >= payload_bytes) break;
-    if ((payload[bit / 8] >> (bit % 8)) & 1u) value |= 1u << i;
-  }
-  return value;
+  if (bit_size == 0) return 0;
+  if (bit_size > 32) bit_size = 32;
+  // At most five bytes hold a 32-bit field at any bit alignment; bytes past the end read as 0.
+  const size_t first = bit_offset / 8, last = (size_t{bit_offset} + bit_size - 1) / 8;
+  uint64_t acc = 0;
+  for (size_t b = first, shift = 0; b <= last && b < payload_bytes; ++b, shift += 8)
+    acc |= uint64_t{payload[b]} << shift;
+  acc >>= bit_offset % 8;
+  return static_cast<uint32_t>(acc & ((uint64_t{1} << bit_size) - 1));
 }
 
 int32_t signExtend(uint32_t value, uint32_t bits) {

@@ -3,7 +3,7 @@
 // backend and both hidapi backends report what was injected. Prints "CB-HIL CHECK ok|FAIL ..."
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
-//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget]
+//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]
 #include <linux/input.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_units.h"
 #include "drivers/evdev/evdev_pen_source.h"
+#include "drivers/evdev/uinput_latency.h"
 #include "drivers/hid/hid_pen_layout.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/hid/intuos4_decoder.h"
@@ -341,18 +342,37 @@ void phaseGadget(const std::string& fixtures) {
   runScript("gadget-libusb after replug", steps, false, evdev_info, inject, {&libusb}, 8);
 }
 
+double percentileOf(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p / 100.0 * (v.size() - 1) + 0.5))];
+}
+
+// The host benchmark's latency probe, run here on the emulated machine (uinput -> evdev ->
+// consumer thread). TCG emulation makes these figures pessimistic; they are labelled emulated.
+void phaseLatency() {
+  EvdevLatencyResult r = measureEvdevLatency(1000, 500.0);
+  if (!check(r.ran, "latency: uinput probe ran " + r.error)) return;
+  check(r.delay_us.size() >= 990, "latency: consumer received " + std::to_string(r.delay_us.size()) +
+                                      " of 1000 samples");
+  figure("vm_uinput_delay_p50_us", percentileOf(r.delay_us, 50));
+  figure("vm_uinput_delay_p99_us", percentileOf(r.delay_us, 99));
+  figure("vm_thread_wakeup_p50_us", percentileOf(r.wakeup_us, 50));
+  figure("vm_thread_wakeup_p99_us", percentileOf(r.wakeup_us, 99));
+}
+
 }  // namespace
 }  // namespace cb::hil
 
 int main(int argc, char** argv) {
   using namespace cb::hil;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]\n", argv[0]);
     return 2;
   }
   const std::string fixtures = argv[1];
   std::vector<std::string> phases(argv + 2, argv + argc);
-  if (phases.empty()) phases = {"uhid", "intuos4", "gadget"};
+  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency"};
   for (const std::string& p : phases) {
     std::printf("CB-HIL PHASE %s\n", p.c_str());
     std::fflush(stdout);
@@ -362,6 +382,8 @@ int main(int argc, char** argv) {
       phaseUhidIntuos4();
     else if (p == "gadget")
       phaseGadget(fixtures);
+    else if (p == "latency")
+      phaseLatency();
     else
       check(false, "unknown phase " + p);
   }
