@@ -14,49 +14,71 @@ bool insideCircle(glm::vec2 c, int r, int x, int y) {
   return dx * dx + dy * dy <= double(r) * double(r);
 }
 
-std::vector<uint8_t> classify(const Footprint& f, const CircleGrowthConfig& cfg) {
-  std::vector<uint8_t> cls(f.values.size());
-  for (size_t i = 0; i < cls.size(); ++i) {
-    float v = f.values[i];
-    cls[i] = v >= cfg.white_threshold ? kWhite : (v <= cfg.empty_threshold ? kEmpty : kGrey);
-  }
-  return cls;
-}
-
 // Fast counter: per-row prefix sums of white (static: white is judged on the unmasked
-// footprint) and of empty-or-covered (updated when a circle is masked out).
+// footprint) and of empty-or-covered (updated when a circle is masked out), kept only over the
+// bounding box of the non-empty pixels; everything outside it is empty.
 class RowPrefixCounter {
  public:
   RowPrefixCounter(const Footprint& f, const CircleGrowthConfig& cfg)
-      : w_(f.width), h_(f.height), cls_(classify(f, cfg)), covered_(cls_.size(), 0) {
-    const size_t stride = size_t(w_) + 1;
-    white_.assign(stride * h_, 0);
-    empty_.assign(stride * h_, 0);
+      : w_(f.width), h_(f.height), covered_(size_t(f.width) * f.height, 0) {
+    // Bounding box of the non-empty pixels.
+    int x0 = w_, x1 = -1, y0 = h_, y1 = -1;
     for (int y = 0; y < h_; ++y) {
+      const float* row = &f.values[size_t(y) * w_];
+      int first = -1, last = -1;
+      for (int x = 0; x < w_; ++x)
+        if (row[x] > cfg.empty_threshold) {
+          if (first < 0) first = x;
+          last = x;
+        }
+      if (first < 0) continue;
+      x0 = std::min(x0, first);
+      x1 = std::max(x1, last);
+      y0 = std::min(y0, y);
+      y1 = y;
+    }
+    if (x1 < 0) x0 = y0 = 0, x1 = y1 = -1;
+    bx0_ = x0;
+    by0_ = y0;
+    bw_ = x1 - x0 + 1;
+    bh_ = y1 - y0 + 1;
+    const size_t stride = size_t(bw_) + 1;
+    cls_.assign(size_t(bw_) * bh_, kEmpty);
+    white_.assign(stride * bh_, 0);
+    empty_.assign(stride * bh_, 0);
+    for (int y = 0; y < bh_; ++y) {
+      const float* src = &f.values[size_t(y + by0_) * w_ + bx0_];
+      uint8_t* cls = &cls_[size_t(y) * bw_];
       int32_t* wp = &white_[y * stride];
-      for (int x = 0; x < w_; ++x) wp[x + 1] = wp[x] + (cls_[size_t(y) * w_ + x] == kWhite);
-      rebuildEmptyRow(y, 0);
+      int32_t* ep = &empty_[y * stride];
+      for (int x = 0; x < bw_; ++x) {
+        const float v = src[x];
+        cls[x] = v >= cfg.white_threshold ? kWhite : (v <= cfg.empty_threshold ? kEmpty : kGrey);
+        wp[x + 1] = wp[x] + (cls[x] == kWhite);
+        ep[x + 1] = ep[x] + (cls[x] == kEmpty);
+      }
     }
   }
 
   CircleCounts count(glm::vec2 c, int r) const {
     CircleCounts n;
-    const size_t stride = size_t(w_) + 1;
+    const size_t stride = size_t(bw_) + 1;
     for (int y = int(std::ceil(c.y - r)); y <= int(std::floor(c.y + r)); ++y) {
       int x0, x1;
       if (!circleRowSpan(c, r, y, &x0, &x1)) continue;
-      long long span = x1 - x0 + 1;
+      const long long span = x1 - x0 + 1;
       n.pixels += span;
-      if (y < 0 || y >= h_) {
+      const int by = y - by0_;
+      if (by < 0 || by >= bh_) {
         n.empty += span;
         continue;
       }
-      int a = std::max(x0, 0), b = std::min(x1, w_ - 1);
-      long long inside = b >= a ? b - a + 1 : 0;
+      const int a = std::max(x0 - bx0_, 0), b = std::min(x1 - bx0_, bw_ - 1);
+      const long long inside = b >= a ? b - a + 1 : 0;
       n.empty += span - inside;
       if (inside) {
-        const int32_t* wp = &white_[y * stride];
-        const int32_t* ep = &empty_[y * stride];
+        const int32_t* wp = &white_[by * stride];
+        const int32_t* ep = &empty_[by * stride];
         n.white += wp[b + 1] - wp[a];
         n.empty += ep[b + 1] - ep[a];
       }
@@ -73,23 +95,33 @@ class RowPrefixCounter {
       if (x1 < x0) continue;
       std::fill(covered_.begin() + size_t(y) * w_ + x0, covered_.begin() + size_t(y) * w_ + x1 + 1,
                 uint8_t(1));
-      rebuildEmptyRow(y, x0);
+      rebuildEmptyRow(y, x0, x1);
     }
   }
 
-  uint8_t pixelClass(int x, int y) const { return cls_[size_t(y) * w_ + x]; }
+  uint8_t pixelClass(int x, int y) const {
+    const int bx = x - bx0_, by = y - by0_;
+    if (bx < 0 || by < 0 || bx >= bw_ || by >= bh_) return kEmpty;
+    return cls_[size_t(by) * bw_ + bx];
+  }
   bool covered(int x, int y) const { return covered_[size_t(y) * w_ + x] != 0; }
   std::vector<uint8_t> takeCovered() { return std::move(covered_); }
 
  private:
-  void rebuildEmptyRow(int y, int from) {
-    int32_t* ep = &empty_[y * (size_t(w_) + 1)];
-    const size_t row = size_t(y) * w_;
-    for (int x = from; x < w_; ++x)
-      ep[x + 1] = ep[x] + (cls_[row + x] == kEmpty || covered_[row + x] != 0);
+  // Pixels [x0, x1] of image row y were just covered: recount the row's prefix from x0.
+  void rebuildEmptyRow(int y, int x0, int x1) {
+    const int by = y - by0_;
+    if (by < 0 || by >= bh_) return;
+    const int a = std::max(x0 - bx0_, 0), b = std::min(x1 - bx0_, bw_ - 1);
+    if (b < a) return;
+    int32_t* ep = &empty_[by * (size_t(bw_) + 1)];
+    const uint8_t* cls = &cls_[size_t(by) * bw_];
+    const uint8_t* cov = &covered_[size_t(y) * w_ + bx0_];
+    for (int x = a; x < bw_; ++x) ep[x + 1] = ep[x] + (cls[x] == kEmpty || cov[x] != 0);
   }
 
   int w_, h_;
+  int bx0_ = 0, by0_ = 0, bw_ = 0, bh_ = 0;  // bounding box of the non-empty pixels
   std::vector<uint8_t> cls_, covered_;
   std::vector<int32_t> white_, empty_;
 };
@@ -98,7 +130,7 @@ class RowPrefixCounter {
 class BlockTraversalCounter {
  public:
   BlockTraversalCounter(const Footprint& f, const CircleGrowthConfig& cfg)
-      : f_(f), cfg_(cfg), cls_(classify(f, cfg)), covered_(cls_.size(), 0) {}
+      : f_(f), cfg_(cfg), covered_(f.values.size(), 0) {}
 
   CircleCounts count(glm::vec2 c, int r) const { return countCircle(f_, &covered_, c, r, cfg_); }
 
@@ -110,14 +142,17 @@ class BlockTraversalCounter {
         if (insideCircle(c, r, x, y)) covered_[size_t(y) * f_.width + x] = 1;
   }
 
-  uint8_t pixelClass(int x, int y) const { return cls_[size_t(y) * f_.width + x]; }
+  uint8_t pixelClass(int x, int y) const {
+    const float v = f_.at(x, y);
+    return v >= cfg_.white_threshold ? kWhite : (v <= cfg_.empty_threshold ? kEmpty : kGrey);
+  }
   bool covered(int x, int y) const { return covered_[size_t(y) * f_.width + x] != 0; }
   std::vector<uint8_t> takeCovered() { return std::move(covered_); }
 
  private:
   const Footprint& f_;
   const CircleGrowthConfig& cfg_;
-  std::vector<uint8_t> cls_, covered_;
+  std::vector<uint8_t> covered_;
 };
 
 bool passes(const CircleCounts& n, const CircleGrowthConfig& cfg) {

@@ -40,7 +40,7 @@ struct SphereMappingConfig {
 };
 
 struct EdgeMappingConfig {
-  int samples_per_pixel = 16;  // Gaussian scatter samples per leftover pixel (§6.6.2)
+  int samples_per_pixel = 8;  // Gaussian scatter samples per leftover pixel (§6.6.2)
   float depth_sigma_of_radius = 1.0f / 3.0f;  // σ along the view ray = R_S / 3 (§6.6.2)
   // Floor for that σ, in voxels: a pixel next to a tiny circle still gets enough depth to be
   // seen from the paint view.

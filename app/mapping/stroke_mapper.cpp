@@ -84,7 +84,9 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
                " pixels' rays are parallel to the canvas or meet it behind the eye; skipped");
   } else {
     auto t0 = std::chrono::steady_clock::now();
-    CircleGrowthResult growth = growCircles(f, stroke.path, config_.circles);
+    CircleGrowthResult growth = straightforward_growth_
+                                    ? growCirclesStraightforward(f, stroke.path, config_.circles)
+                                    : growCircles(f, stroke.path, config_.circles);
     report.timings.circle_growth_ms = msSince(t0);
     report.growth_steps = growth.steps;
     report.circle_attempts = growth.attempts;

@@ -59,6 +59,8 @@ class StrokeMapper {
   const NoiseTexture& noise() const { return *noise_; }
   // Silences the stderr log lines (warnings stay in the report).
   void setQuiet(bool quiet) { quiet_ = quiet; }
+  // Uses growCirclesStraightforward (the benchmark's baseline) instead of growCircles.
+  void setStraightforwardCircleGrowth(bool on) { straightforward_growth_ = on; }
 
  private:
   void warn(MappingReport* report, uint32_t stroke_index, const std::string& text) const;
@@ -67,6 +69,7 @@ class StrokeMapper {
   std::unique_ptr<NoiseTexture> noise_;
   std::vector<Circle> last_circles_;
   bool quiet_ = false;
+  bool straightforward_growth_ = false;
 };
 
 }  // namespace cb

@@ -1,5 +1,6 @@
-// Test helper: a CPU opacity integrator standing in for the renderer (app/render's
-// VolumeRenderer had not landed when these tests were written). It marches each pixel ray of a
+// Test helpers. A CPU opacity integrator, used where a check needs the density along exact
+// footprint pixel rays (silhouettes go through the real VolumeRenderer, see
+// stroke_mapper_render_test.cpp). It marches each pixel ray of a
 // camera through the volume one voxel per step, sampling the nearest voxel, with the
 // transmittance convention of Light::extinction, T = Π (1 − k·density), k = 0.12 per step of
 // one voxel of the default 256³ volume over [-1,1]³ (1/128 world units); steps of another
