@@ -25,17 +25,37 @@ void DispersionField::reset(uint32_t stroke_index, float noise_scale_px) {
   stroke_index_ = stroke_index;
   scale_ = noise_scale_px;
   noise_.resize(size_t(kTile) * kTile);
-  // Tileable: the lattice period is the tile size in noise cells.
+  // Tileable value noise, three octaves: the lattice of each octave (period × period hashed
+  // values, wrapping) is built first, then interpolated for every pixel of the tile.
   int period = std::max(1, int(std::lround(kTile / noise_scale_px)));
-  float cells_per_px = float(period) / kTile;
   uint32_t seed = hashCombine(0xd15e5u, int32_t(stroke_index));
-  for (int y = 0; y < kTile; ++y)
-    for (int x = 0; x < kTile; ++x) {
-      float n =
-          fractalNoise2D((x + 0.5f) * cells_per_px, (y + 0.5f) * cells_per_px, 3, seed, period);
-      // Stretch the fractal sum (which bunches around 0.5) back over 0..1.
-      noise_[size_t(y) * kTile + x] = std::clamp((n - 0.5f) * 2.2f + 0.5f, 0.0f, 1.0f);
+  std::vector<float> sum(size_t(kTile) * kTile, 0.0f);
+  float amplitude = 1.0f, norm = 0.0f;
+  for (int octave = 0; octave < 3; ++octave, period *= 2, amplitude *= 0.5f) {
+    std::vector<float> lattice(size_t(period) * period);
+    for (int j = 0; j < period; ++j)
+      for (int i = 0; i < period; ++i)
+        lattice[size_t(j) * period + i] = unitFloat(hashCombine(seed + 101u * octave, i, j));
+    float cells_per_px = float(period) / kTile;
+    for (int y = 0; y < kTile; ++y) {
+      float fy = (y + 0.5f) * cells_per_px;
+      int j0 = int(fy) % period, j1 = (j0 + 1) % period;
+      float ty = smoothstep(0.0f, 1.0f, fy - std::floor(fy));
+      for (int x = 0; x < kTile; ++x) {
+        float fx = (x + 0.5f) * cells_per_px;
+        int i0 = int(fx) % period, i1 = (i0 + 1) % period;
+        float tx = smoothstep(0.0f, 1.0f, fx - std::floor(fx));
+        const float* r0 = &lattice[size_t(j0) * period];
+        const float* r1 = &lattice[size_t(j1) * period];
+        float top = r0[i0] + (r0[i1] - r0[i0]) * tx, bottom = r1[i0] + (r1[i1] - r1[i0]) * tx;
+        sum[size_t(y) * kTile + x] += amplitude * (top + (bottom - top) * ty);
+      }
     }
+    norm += amplitude;
+  }
+  // Stretch the fractal sum (which bunches around 0.5) back over 0..1.
+  for (size_t i = 0; i < sum.size(); ++i)
+    noise_[i] = std::clamp((sum[i] / norm - 0.5f) * 2.2f + 0.5f, 0.0f, 1.0f);
 }
 
 float DispersionField::keep(int x, int y, float d) const {

@@ -44,22 +44,28 @@ InkVolume::InkVolume(int n, uint32_t seed, const InkVolumeShape& shape)
           d_[(z * n + y) * n + x] = density;
         }
   });
+  const int m = n + 2;
+  padded_.assign(size_t(m) * m * m, 0.0f);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        padded_[(size_t(z + 1) * m + (y + 1)) * m + (x + 1)] = voxel(x, y, z);
 }
 
 float InkVolume::sample(glm::vec3 p) const {
-  glm::vec3 g = (p + 1.0f) * 0.5f * float(n_) - 0.5f;
+  // Padded grid: index i of the padded grid is voxel i − 1, with a zero border, so the eight
+  // corners never need a bounds check once the cell is inside.
+  const int m = n_ + 2;
+  glm::vec3 g = (p + 1.0f) * 0.5f * float(n_) + 0.5f;
   glm::vec3 f = glm::floor(g);
   int x0 = int(f.x), y0 = int(f.y), z0 = int(f.z);
-  if (x0 < -1 || y0 < -1 || z0 < -1 || x0 >= n_ || y0 >= n_ || z0 >= n_) return 0.0f;
+  if (x0 < 0 || y0 < 0 || z0 < 0 || x0 >= m - 1 || y0 >= m - 1 || z0 >= m - 1) return 0.0f;
   glm::vec3 t = g - f;
-  auto v = [&](int x, int y, int z) {
-    return (x < 0 || y < 0 || z < 0 || x >= n_ || y >= n_ || z >= n_) ? 0.0f : voxel(x, y, z);
-  };
+  const float* c = &padded_[(size_t(z0) * m + y0) * m + x0];
+  const size_t dy = size_t(m), dz = size_t(m) * m;
   auto lerp = [](float a, float b, float s) { return a + (b - a) * s; };
-  float a = lerp(lerp(v(x0, y0, z0), v(x0 + 1, y0, z0), t.x),
-                 lerp(v(x0, y0 + 1, z0), v(x0 + 1, y0 + 1, z0), t.x), t.y);
-  float b = lerp(lerp(v(x0, y0, z0 + 1), v(x0 + 1, y0, z0 + 1), t.x),
-                 lerp(v(x0, y0 + 1, z0 + 1), v(x0 + 1, y0 + 1, z0 + 1), t.x), t.y);
+  float a = lerp(lerp(c[0], c[1], t.x), lerp(c[dy], c[dy + 1], t.x), t.y);
+  float b = lerp(lerp(c[dz], c[dz + 1], t.x), lerp(c[dz + dy], c[dz + dy + 1], t.x), t.y);
   return lerp(a, b, t.z);
 }
 

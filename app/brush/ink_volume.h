@@ -25,6 +25,8 @@ class InkVolume {
   float voxel(int x, int y, int z) const { return d_[(size_t(z) * n_ + y) * n_ + x]; }
   // Trilinear density at p in [-1,1]³ (voxel centres at the cell midpoints); 0 outside.
   float sample(glm::vec3 p) const;
+  // Radius around the y axis outside which the volume holds no ink.
+  float inkRadius() const { return shape_.sphere_radius; }
   // The cutting plane's height for a pressure 0..1: top_y at 0, the sphere's centre at 1.
   float planeHeight(float pressure) const;
 
@@ -32,6 +34,7 @@ class InkVolume {
   int n_;
   InkVolumeShape shape_;
   std::vector<float> d_;
+  std::vector<float> padded_;  // (n+2)³ copy with a zero border, for sample()
 };
 
 }  // namespace cb

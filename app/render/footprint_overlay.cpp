@@ -1,5 +1,7 @@
 #include "app/render/footprint_overlay.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "app/render/shader_program.h"
@@ -33,9 +35,14 @@ void FootprintOverlay::beginFootprint(int width, int height) {
     glTextureParameteri(footprint_texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     width_ = width;
     height_ = height;
+    full_redraw_ = true;
+    inked_ = {};
   }
   const float zero = 0.0f;
   glClearTexImage(footprint_texture_, 0, GL_RED, GL_FLOAT, &zero);
+  // Only where the previous footprint had ink needs compositing again.
+  pending_ = pending_.united(inked_);
+  inked_ = {};
 }
 
 size_t FootprintOverlay::upload(const Footprint& fp, const FootprintRect& rect) {
@@ -46,15 +53,47 @@ size_t FootprintOverlay::upload(const Footprint& fp, const FootprintRect& rect) 
   glTextureSubImage2D(footprint_texture_, 0, r.x0, r.y0, r.width(), r.height(), GL_RED, GL_FLOAT,
                       fp.values.data() + size_t(r.y0) * fp.width + r.x0);
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  pending_ = pending_.united(r);
+  inked_ = inked_.united(r);
   return size_t(r.width()) * r.height();
+}
+
+FootprintOverlay::ScreenRect FootprintOverlay::cursorRect(const OverlayCursor& c,
+                                                          const OverlayStyle& style) const {
+  if (!c.visible || style.cursor_colour.a <= 0.0f) return {0, 0, 0, 0};
+  float reach = c.radius_px + style.cursor_width_px + 2.0f;
+  return {int(std::floor(c.screen_px.x - reach)), int(std::floor(c.screen_px.y - reach)),
+          int(std::ceil(c.screen_px.x + reach)) + 1, int(std::ceil(c.screen_px.y + reach)) + 1};
+}
+
+void FootprintOverlay::composite(const ScreenRect& rect, int width, int height) {
+  ScreenRect r{std::max(rect.x0, 0), std::max(rect.y0, 0), std::min(rect.x1, width),
+               std::min(rect.y1, height)};
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) return;
+  // GL's scissor box has y up.
+  glScissor(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  last_composited_ += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
 }
 
 void FootprintOverlay::draw(GLuint scene_texture, GLuint target_fbo, int width, int height,
                             const OverlayCursor& cursor, const OverlayStyle& style) {
-  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  if (composite_.width() != width || composite_.height() != height) {
+    std::string error;
+    if (!composite_.create(width, height, RenderTarget::Format::kRgba8, &error)) return;
+    full_redraw_ = true;
+  }
+  auto same = [](const OverlayStyle& a, const OverlayStyle& b) {
+    return a.ink_colour == b.ink_colour && a.ink_opacity == b.ink_opacity &&
+           a.cursor_colour == b.cursor_colour && a.cursor_width_px == b.cursor_width_px;
+  };
+  if (scene_texture != last_scene_ || !same(style, last_style_)) full_redraw_ = true;
+
+  glBindFramebuffer(GL_FRAMEBUFFER, composite_.fbo());
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
+  glEnable(GL_SCISSOR_TEST);
   glUseProgram(program_);
   glBindTextureUnit(0, scene_texture);
   glBindTextureUnit(1, footprint_texture_);
@@ -70,9 +109,33 @@ void FootprintOverlay::draw(GLuint scene_texture, GLuint target_fbo, int width, 
   if (!cursor.visible) cursor_colour.a = 0.0f;
   glUniform4fv(glGetUniformLocation(program_, "u_cursor_colour"), 1, &cursor_colour.x);
   glBindVertexArray(vao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  last_composited_ = 0;
+  ScreenRect new_cursor = cursorRect(cursor, style);
+  if (full_redraw_) {
+    composite({0, 0, width, height}, width, height);
+  } else {
+    // The uploaded footprint texels, in screen pixels (+2 for the bilinear footprint lookup).
+    if (!pending_.empty() && width_ > 0 && height_ > 0) {
+      float sx = float(width) / float(width_), sy = float(height) / float(height_);
+      composite({int(std::floor(pending_.x0 * sx)) - 2, int(std::floor(pending_.y0 * sy)) - 2,
+                 int(std::ceil(pending_.x1 * sx)) + 2, int(std::ceil(pending_.y1 * sy)) + 2},
+                width, height);
+    }
+    composite(last_cursor_, width, height);  // erase the old one
+    composite(new_cursor, width, height);
+  }
+  glDisable(GL_SCISSOR_TEST);
   glBindVertexArray(0);
   glUseProgram(0);
+  glBlitNamedFramebuffer(composite_.fbo(), target_fbo, 0, 0, width, height, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  full_redraw_ = false;
+  last_scene_ = scene_texture;
+  last_style_ = style;
+  last_cursor_ = new_cursor;
+  pending_ = {};
 }
 
 }  // namespace cb

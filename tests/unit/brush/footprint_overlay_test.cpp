@@ -126,3 +126,50 @@ TEST(FootprintOverlay, BrushRectanglesKeepTheTextureEqualToTheFootprint) {
 
 }  // namespace
 }  // namespace cb
+
+namespace cb {
+namespace {
+
+TEST(FootprintOverlay, IncrementalFramesEqualAFullComposite) {
+  CB_REQUIRE_GL();
+  std::string err;
+  RenderTarget scene, frame;
+  ASSERT_TRUE(scene.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  ASSERT_TRUE(frame.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  fillScene(&scene);
+  FootprintOverlay overlay;
+  ASSERT_TRUE(overlay.init(&err)) << err;
+  BrushConfig config;
+  config.default_brush = BrushKind::k2D;
+  StrokeEngine engine(config, kW, kH);
+  OverlayCursor cursor;
+  cursor.radius_px = 6.0f;
+  size_t composited = 0;
+  for (int stroke = 0; stroke < 2; ++stroke) {
+    for (int i = 0; i < 40; ++i) {
+      BrushInput in{
+          {20.0f + 3.0f * i, 30.0f + 40.0f * stroke}, 0.6f, 0.0f, 0.0f, int64_t(i) * 5000000};
+      FootprintRect r = engine.feed(in);
+      if (i == 0) overlay.beginFootprint(kW, kH);
+      overlay.upload(engine.footprint(), r);
+      cursor.screen_px = in.footprint_px;
+      overlay.draw(scene.texture(), frame.fbo(), kW, kH, cursor);
+      if (stroke == 1 && i > 0) composited += overlay.lastCompositedPixels();
+    }
+    BrushInput lift{{0.0f, 0.0f}, 0.0f, 0.0f, 0.0f, 400000000};
+    engine.feed(lift);
+  }
+  ImageRgba8 incremental = frame.readRgba8();
+  overlay.invalidate();
+  overlay.draw(scene.texture(), frame.fbo(), kW, kH, cursor);
+  EXPECT_EQ(overlay.lastCompositedPixels(), size_t(kW) * kH);
+  ImageRgba8 full = frame.readRgba8();
+  EXPECT_EQ(incremental.pixels, full.pixels);
+  // The first stroke's ink was erased at the second tip-down: only the second row is inked.
+  EXPECT_NEAR(full.at(60, 30)[0], 51, 1);
+  EXPECT_GT(full.at(60, 70)[0], 100);
+  EXPECT_LT(composited, size_t(kW) * kH * 39 / 4);  // far less than full frames
+}
+
+}  // namespace
+}  // namespace cb
