@@ -120,7 +120,7 @@ int benchSmoothing(int argc, char** argv) {
       "d-cutoff", "velocity-cutoff", "horizon", "write-strokes"};
   if (args.has("help")) return usage(0);
   if (auto bad = args.unknown(known); !bad.empty()) {
-    std::fprintf(stderr, "cloudbrush bench smoothing: unknown option --%s\n", bad[0].c_str());
+    std::fprintf(stderr, "cloudbrush bench smoothing: unknown option %s\n", bad[0].c_str());
     return usage(2);
   }
 

@@ -1,11 +1,512 @@
-// PLACEHOLDER: replaced by the capability that implements it.
+// `cloudbrush calibrate`: the pen-driven N-point calibration.
+//
+// Interactive (default): targets are drawn on the display one at a time (corners and centre,
+// or a 3x3 grid); the participant taps each with the pen; the correction is fitted (homography
+// or affine) and the residual of every point is shown in pixels; tapping the green box (or
+// Space) accepts and saves the profile for this tablet under the state directory, the orange
+// box redoes, Esc leaves without saving. The whole session is recorded as a journal (device,
+// screen, targets as markers, raw pen samples, the accepted profile), so it can be re-fitted.
+//
+// Non-interactive: --points FILE fits a tap file (calibration/n_point_calibration.h);
+// --journal FILE re-fits a recorded calibration session. Both print the fit and, with --save,
+// write the profile.
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
 
+#include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/core/config_paths.h"
+#include "app/render/gl/display.h"
+#include "calibration/area_mapping.h"
+#include "calibration/n_point_calibration.h"
+#include "calibration/point_fit.h"
+#include "calibration/profile_store.h"
+#include "drivers/core/journal.h"
+#include "drivers/open_pen_source.h"
 
 namespace cb {
-int commandCalibrate(int, char**) {
-  std::fprintf(stderr, "cloudbrush: this command is not built yet\n");
-  return 3;
+namespace {
+
+int usage(int code) {
+  std::printf(
+      "usage: cloudbrush calibrate [OPTIONS]\n"
+      "\n"
+      "Pen-driven N-point calibration: tap each target with the pen, check the residuals,\n"
+      "accept (green box or Space) or redo (orange box); Esc leaves without saving. The profile\n"
+      "is saved for this tablet under the state directory and used from then on.\n"
+      "\n"
+      "  --targets 5|9         corners and centre, or a 3x3 grid (default 9)\n"
+      "  --fit homography|affine   correction model (default homography)\n"
+      "  --backend NAME        pen backend: auto, evdev, hidraw, libusb, replay (default auto)\n"
+      "  --device PATH         event node, hidapi path, or the journal for --backend replay\n"
+      "  --display NAME        auto, kms, x11, surfaceless (default auto)\n"
+      "  --per-tool            save the profile for this pen's serial only\n"
+      "  --yes                 accept the first fit without asking (unattended runs)\n"
+      "  --record FILE         journal of the session (default STATE/calibration-<time>.cbj)\n"
+      "  --timeout S           give up after S seconds without finishing (default 300)\n"
+      "  --points FILE         non-interactive: fit the taps in a tap file (TOML)\n"
+      "  --journal FILE        non-interactive: re-fit a recorded calibration session\n"
+      "  --save                with --points/--journal: save the fitted profile\n"
+      "  --config-dir DIR      shipped defaults (default: the config/ directory)\n"
+      "  --state-dir DIR       where kiosk profiles are saved (default: the state directory)\n");
+  return code;
 }
+
+struct Settings {
+  int targets = 9;
+  PointFitKind fit = PointFitKind::kHomography;
+  std::string config_dir, state_dir;
+  bool per_tool = false;
+};
+
+// The profile whose area mapping the taps are measured against: the one in force for this
+// device, with its old correction removed.
+CalibrationProfile baseProfile(const PenDeviceInfo& device, uint64_t serial, const Settings& s) {
+  ProfileSelection sel = selectProfile(device, serial, s.config_dir, s.state_dir);
+  for (const auto& m : sel.messages) std::fprintf(stderr, "calibrate: %s\n", m.c_str());
+  std::printf("area mapping from %s\n", sel.source.c_str());
+  CalibrationProfile p = sel.profile;
+  p.fit_kind = PointFitKind::kNone;
+  p.correction = glm::dmat3(1.0);
+  p.fit_rms_px = p.fit_max_px = 0.0;
+  p.fit_points = 0;
+  return p;
+}
+
+void printFit(const CalibrationFit& fit, const std::vector<Tap>& taps) {
+  std::printf("%s fit over %zu points:\n", pointFitKindName(fit.profile.fit_kind), taps.size());
+  for (size_t i = 0; i < taps.size() && i < fit.fit.residuals.size(); ++i) {
+    std::printf("  target %zu at (%.0f, %.0f) px: tap at (%.2f, %.2f) mm, residual %.2f px\n", i,
+                taps[i].target_px.x, taps[i].target_px.y, taps[i].pen_mm.x, taps[i].pen_mm.y,
+                fit.fit.residuals[i]);
+  }
+  std::printf("residual: rms %.3f px, max %.3f px\n", fit.fit.rms, fit.fit.max_residual);
+}
+
+int saveFit(const CalibrationFit& fit, const Settings& s, std::string* saved_path) {
+  std::string error;
+  const std::string path = saveProfile(fit.profile, s.state_dir, &error);
+  if (path.empty()) {
+    std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("saved %s\n", path.c_str());
+  if (saved_path) *saved_path = path;
+  return 0;
+}
+
+CalibrationFit fitTaps(const PenDeviceInfo& device, uint64_t serial, int w, int h,
+                       const std::vector<Tap>& taps, const Settings& s) {
+  CalibrationProfile base = baseProfile(device, s.per_tool ? serial : 0, s);
+  return fitCalibration(base, device, s.per_tool ? serial : 0, w, h, taps, s.fit);
+}
+
+// --points FILE
+int runPointsFile(const std::string& path, const Settings& s, bool save) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    std::fprintf(stderr, "calibrate: %s: cannot be opened\n", path.c_str());
+    return 2;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string error;
+  std::optional<TapFile> file = parseTapFile(ss.str(), path, &error);
+  if (!file) {
+    std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+    return 2;
+  }
+  CalibrationFit fit = fitTaps(file->device, 0, file->screen_w, file->screen_h, file->taps, s);
+  if (!fit.ok) {
+    std::fprintf(stderr, "calibrate: %s: %s\n", path.c_str(), fit.error.c_str());
+    return 1;
+  }
+  printFit(fit, file->taps);
+  return save ? saveFit(fit, s, nullptr) : 0;
+}
+
+// Markers written by the interactive session and read back by --journal.
+std::string screenMarker(int w, int h) {
+  return "calibrate screen " + std::to_string(w) + " " + std::to_string(h);
+}
+std::string targetMarker(size_t i, glm::dvec2 t) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "calibrate target %zu %.17g %.17g", i, t.x, t.y);
+  return buf;
+}
+
+// --journal FILE: device, screen and targets from the records, taps from the raw samples.
+int runJournal(const std::string& path, const Settings& s, bool save) {
+  JournalReadResult j = readJournal(path);
+  if (!j.error.empty()) std::fprintf(stderr, "calibrate: %s\n", j.error.c_str());
+  std::optional<PenDeviceInfo> device;
+  int w = 0, h = 0;
+  std::vector<glm::dvec2> targets;
+  std::vector<Tap> taps;
+  TapCollector collector;
+  uint64_t serial = 0;
+  for (const JournalRecord& r : j.records) {
+    if (r.type == JournalRecordType::kDevice) {
+      device = decodeDeviceInfo(r.payload);
+    } else if (r.type == JournalRecordType::kMarker) {
+      std::istringstream in{std::string(r.text())};
+      std::string word, what;
+      in >> word >> what;
+      if (word != "calibrate") continue;
+      if (what == "screen") {
+        in >> w >> h;
+      } else if (what == "target") {
+        size_t i = 0;
+        glm::dvec2 t;
+        if (in >> i >> t.x >> t.y && i == targets.size()) targets.push_back(t);
+      } else if (what == "redo") {
+        taps.clear();
+      }
+    } else if (r.type == JournalRecordType::kPenSample && device) {
+      std::optional<PenSample> sample = decodePenSample(r.payload);
+      if (!sample) continue;
+      if (sample->tool_serial) serial = sample->tool_serial;
+      if (auto tap = collector.feed(*sample, device->pressure_max > 0)) {
+        if (taps.size() < targets.size()) taps.push_back({targets[taps.size()], *tap});
+      }
+    }
+  }
+  if (!device || w <= 0 || h <= 0 || targets.empty()) {
+    std::fprintf(stderr,
+                 "calibrate: %s: not a calibration journal (needs a device record and "
+                 "'calibrate screen' / 'calibrate target' markers)\n",
+                 path.c_str());
+    return 2;
+  }
+  if (taps.size() < targets.size()) {
+    std::fprintf(stderr, "calibrate: %s: %zu taps for %zu targets\n", path.c_str(), taps.size(),
+                 targets.size());
+    return 1;
+  }
+  CalibrationFit fit = fitTaps(*device, serial, w, h, taps, s);
+  if (!fit.ok) {
+    std::fprintf(stderr, "calibrate: %s: %s\n", path.c_str(), fit.error.c_str());
+    return 1;
+  }
+  printFit(fit, taps);
+  return save ? saveFit(fit, s, nullptr) : 0;
+}
+
+// ---- Drawing: filled rectangles by scissored clears (no shaders needed for a calibration
+// screen), and digits from a 3x5 pixel font. y is measured from the top.
+
+class Painter {
+ public:
+  Painter(int w, int h) : w_(w), h_(h) {}
+  void clear(float r, float g, float b) {
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(r, g, b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  void rect(double x, double y, double w, double h, float r, float g, float b) {
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    const int x1 = static_cast<int>(std::ceil(x + w)), y1 = static_cast<int>(std::ceil(y + h));
+    if (x1 <= 0 || y1 <= 0 || x0 >= w_ || y0 >= h_) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(x0, h_ - y1, x1 - x0, y1 - y0);  // GL's origin is bottom-left
+    glClearColor(r, g, b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+  }
+  void crosshair(glm::dvec2 c, double size, float r, float g, float b) {
+    rect(c.x - size, c.y - 1, 2 * size, 3, r, g, b);
+    rect(c.x - 1, c.y - size, 3, 2 * size, r, g, b);
+  }
+  // Digits, '.', 'p', 'x' in a 3x5 font, `scale` pixels per font pixel.
+  void text(const std::string& s, double x, double y, double scale, float r, float g, float b) {
+    static const char* kGlyphs[] = {"111101101101111", "010110010010111", "111001111100111",
+                                    "111001111001111", "101101111001001", "111100111001111",
+                                    "111100111101111", "111001001001001", "111101111101111",
+                                    "111101111001111"};
+    for (char c : s) {
+      const char* g5 = nullptr;
+      if (c >= '0' && c <= '9')
+        g5 = kGlyphs[c - '0'];
+      else if (c == '.')
+        g5 = "000000000000010";
+      else if (c == 'p')
+        g5 = "000111101111100";
+      else if (c == 'x')
+        g5 = "000101010101000";
+      if (g5) {
+        for (int i = 0; i < 15; ++i)
+          if (g5[i] == '1') rect(x + (i % 3) * scale, y + (i / 3) * scale, scale, scale, r, g, b);
+      }
+      x += 4 * scale;
+    }
+  }
+
+ private:
+  int w_, h_;
+};
+
+struct Button {
+  double x, y, w, h;
+  bool contains(glm::dvec2 p) const { return p.x >= x && p.x < x + w && p.y >= y && p.y < y + h; }
+};
+
+std::string defaultRecordPath(const std::string& state_dir) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::gmtime(&now));
+  return (std::filesystem::path(state_dir) / (std::string("calibration-") + stamp + ".cbj"))
+      .string();
+}
+
+int runInteractive(const Args& args, const Settings& s) {
+  PenSourceOptions po;
+  po.backend = args.get("backend", "auto");
+  po.device = args.get("device", "");
+  po.realtime = false;  // replays are fed as fast as the loop takes them
+  std::string error;
+  std::unique_ptr<PenSource> pen = openPenSource(po, &error);
+  if (!pen) {
+    std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+    return 2;
+  }
+  DisplayOptions dopt;
+  if (auto d = args.get("display")) {
+    if (!parseDisplayPlatform(*d, &dopt.platform)) {
+      std::fprintf(stderr, "calibrate: --display %s is not auto, kms, x11 or surfaceless\n",
+                   d->c_str());
+      return 2;
+    }
+  }
+  std::string note;
+  std::unique_ptr<Display> display = openDisplay(dopt, &error, &note);
+  if (!display) {
+    std::fprintf(stderr, "calibrate: no display: %s\n", error.c_str());
+    return 2;
+  }
+  if (!note.empty()) std::printf("display: %s\n", note.c_str());
+  if (!display->makeCurrent(&error)) {
+    std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+    return 2;
+  }
+  const int w = display->width(), h = display->height();
+  std::printf("display %s %dx%d, pen backend %s\n", display->platformName(), w, h,
+              pen->backendName());
+
+  const bool auto_accept = args.has("yes");
+  const double timeout_s = std::atof(args.get("timeout", "300").c_str());
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  // Wait for the pen.
+  std::vector<PenSample> samples;
+  while (pen->connection() != PenConnection::kConnected) {
+    if (pen->connection() == PenConnection::kPermissionDenied ||
+        pen->connection() == PenConnection::kFinished || elapsed() > timeout_s) {
+      std::fprintf(stderr, "calibrate: no pen: %s\n", pen->statusMessage().c_str());
+      return 1;
+    }
+    Painter(w, h).clear(0.25f, 0.05f, 0.05f);  // dark red: waiting for the pen
+    display->present(&error);
+    pen->poll(50, samples);
+    for (const DisplayEvent& e : display->pollEvents())
+      if (e.isQuitRequest()) return 1;
+  }
+  const PenDeviceInfo device = pen->deviceInfo();
+  const bool uses_pressure = device.pressure_max > 0;
+  const CalibrationProfile base = baseProfile(device, 0, s);
+  const double w_mm = device.x_res > 0 ? device.x_max / device.x_res : 0.0;
+  const double h_mm = device.y_res > 0 ? device.y_max / device.y_res : 0.0;
+  const AreaMapping area = computeAreaMapping(base.area, w_mm, h_mm, w, h);
+  if (!area.ok) {
+    std::fprintf(stderr, "calibrate: %s\n", area.error.c_str());
+    return 2;
+  }
+
+  JournalWriter journal;
+  const std::string record = args.get("record", defaultRecordPath(s.state_dir));
+  if (!journal.open(record)) {
+    std::fprintf(stderr, "calibrate: %s (continuing without a record)\n", journal.error().c_str());
+  } else {
+    std::printf("recording %s\n", record.c_str());
+  }
+  int64_t last_t = 0;
+  const std::vector<uint8_t> dev_bytes = encodeDeviceInfo(device);
+  journal.append(JournalRecordType::kDevice, 0, dev_bytes.data(), dev_bytes.size());
+  journal.append(JournalRecordType::kMarker, 0, screenMarker(w, h));
+  const std::vector<glm::dvec2> targets = targetLayout(s.targets, w, h);
+  for (size_t i = 0; i < targets.size(); ++i) {
+    journal.append(JournalRecordType::kMarker, 0, targetMarker(i, targets[i]));
+  }
+
+  const Button accept{w * 0.25 - 100, h * 0.5 - 60, 200, 120};
+  const Button redo{w * 0.75 - 100, h * 0.5 - 60, 200, 120};
+  TapCollector collector;
+  std::vector<Tap> taps;
+  std::optional<CalibrationFit> fit;
+  uint64_t serial = 0;
+  glm::dvec2 cursor(-100.0);
+  bool in_contact_on_result = false;
+
+  for (;;) {
+    if (elapsed() > timeout_s) {
+      std::fprintf(stderr, "calibrate: timed out after %.0f s\n", timeout_s);
+      return 1;
+    }
+    for (const DisplayEvent& e : display->pollEvents()) {
+      if (e.isQuitRequest()) {
+        std::printf("left without saving\n");
+        return 1;
+      }
+      if (e.kind == DisplayEvent::Kind::KeyDown && e.key == DisplayEvent::Key::Space && fit &&
+          fit->ok) {
+        journal.append(JournalRecordType::kCalibration, last_t,
+                       formatCalibrationProfile(fit->profile));
+        return saveFit(*fit, s, nullptr);
+      }
+    }
+    samples.clear();
+    pen->poll(fit ? 10 : 5, samples);
+    if (pen->connection() == PenConnection::kFinished && samples.empty()) {
+      std::fprintf(stderr, "calibrate: the replay ended with %zu of %zu taps\n", taps.size(),
+                   targets.size());
+      return 1;
+    }
+    for (const PenSample& sample : samples) {
+      journal.appendPenSample(sample);
+      last_t = sample.t_ns;
+      if (sample.tool_serial) serial = sample.tool_serial;
+      if (sample.in_proximity)
+        cursor = applyTransform(area.tablet_to_screen, {sample.x_mm, sample.y_mm});
+      if (!fit) {
+        const bool was_in_contact = collector.inContact();
+        std::optional<glm::dvec2> tap = collector.feed(sample, uses_pressure);
+        if (!tap) {
+          if (was_in_contact && !collector.inContact()) {
+            std::printf("target %zu: %s\n", taps.size(), collector.lastRejection().c_str());
+          }
+          continue;
+        }
+        taps.push_back({targets[taps.size()], *tap});
+        std::printf("target %zu: tap at (%.2f, %.2f) mm\n", taps.size() - 1, tap->x, tap->y);
+        if (taps.size() == targets.size()) {
+          const uint64_t tool = s.per_tool ? serial : 0;
+          fit = fitCalibration(base, device, tool, w, h, taps, s.fit);
+          if (!fit->ok) {
+            std::fprintf(stderr, "calibrate: %s; tap the targets again\n", fit->error.c_str());
+            journal.append(JournalRecordType::kMarker, last_t, "calibrate redo");
+            taps.clear();
+            fit.reset();
+            continue;
+          }
+          printFit(*fit, taps);
+          if (auto_accept) {
+            journal.append(JournalRecordType::kCalibration, last_t,
+                           formatCalibrationProfile(fit->profile));
+            return saveFit(*fit, s, nullptr);
+          }
+          std::printf("tap the green box (or press Space) to accept, the orange box to redo\n");
+        }
+      } else {
+        // Result screen: a tap (contact then lift) inside a box chooses it.
+        const bool down =
+            uses_pressure ? sample.pressure >= base.pressure.contact.down : sample.tipDown();
+        if (down) in_contact_on_result = true;
+        if (!down && in_contact_on_result) {
+          in_contact_on_result = false;
+          if (accept.contains(cursor)) {
+            journal.append(JournalRecordType::kCalibration, last_t,
+                           formatCalibrationProfile(fit->profile));
+            return saveFit(*fit, s, nullptr);
+          }
+          if (redo.contains(cursor)) {
+            std::printf("redo\n");
+            journal.append(JournalRecordType::kMarker, last_t, "calibrate redo");
+            taps.clear();
+            fit.reset();
+            collector = TapCollector();
+          }
+        }
+      }
+    }
+
+    // Draw the frame.
+    glBindFramebuffer(GL_FRAMEBUFFER, display->framebuffer());
+    glViewport(0, 0, w, h);
+    Painter p(w, h);
+    p.clear(0.08f, 0.09f, 0.11f);
+    if (!fit) {
+      p.rect(0, 0, w * static_cast<double>(taps.size()) / targets.size(), 6, 0.3f, 0.7f, 0.3f);
+      for (size_t i = 0; i < taps.size(); ++i) p.crosshair(targets[i], 8, 0.3f, 0.6f, 0.3f);
+      const glm::dvec2 t = targets[taps.size()];
+      p.crosshair(t, 30, 1.0f, 1.0f, 1.0f);
+      p.rect(t.x - 3, t.y - 3, 7, 7, collector.inContact() ? 0.2f : 1.0f, 0.3f, 0.2f);
+    } else {
+      for (size_t i = 0; i < taps.size(); ++i) {
+        const glm::dvec2 mapped = applyTransform(
+            fit->profile.correction, applyTransform(area.tablet_to_screen, taps[i].pen_mm));
+        p.crosshair(taps[i].target_px, 12, 0.8f, 0.8f, 0.8f);
+        p.rect(mapped.x - 3, mapped.y - 3, 7, 7, 1.0f, 0.3f, 0.2f);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.1fpx", fit->fit.residuals[i]);
+        p.text(buf, taps[i].target_px.x + 16, taps[i].target_px.y + 16, 3, 1.0f, 1.0f, 1.0f);
+      }
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.2fpx", fit->fit.max_residual);
+      p.text(buf, w * 0.5 - 60, 30, 6, 1.0f, 1.0f, 0.6f);
+      p.rect(accept.x, accept.y, accept.w, accept.h, 0.2f, 0.65f, 0.25f);
+      p.rect(redo.x, redo.y, redo.w, redo.h, 0.9f, 0.5f, 0.1f);
+    }
+    p.rect(cursor.x - 2, cursor.y - 2, 5, 5, 0.9f, 0.9f, 1.0f);
+    if (!display->present(&error)) {
+      std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+      return 2;
+    }
+  }
+}
+
+}  // namespace
+
+int commandCalibrate(int argc, char** argv) {
+  Args args(argc, argv, {"help", "yes", "save", "per-tool"});
+  if (args.has("help")) return usage(0);
+  const std::vector<std::string> known = {
+      "help",    "yes",    "save",    "per-tool", "targets", "fit",        "backend",  "device",
+      "display", "record", "timeout", "points",   "journal", "config-dir", "state-dir"};
+  if (auto bad = args.unknown(known); !bad.empty()) {
+    std::fprintf(stderr, "calibrate: unknown option %s\n", bad[0].c_str());
+    return usage(2);
+  }
+  Settings s;
+  s.targets = static_cast<int>(args.getInt("targets", 9));
+  if (s.targets != 5 && s.targets != 9) {
+    std::fprintf(stderr, "calibrate: --targets must be 5 or 9\n");
+    return 2;
+  }
+  if (!parsePointFitKind(args.get("fit", "homography"), &s.fit) || s.fit == PointFitKind::kNone) {
+    std::fprintf(stderr, "calibrate: --fit must be homography or affine\n");
+    return 2;
+  }
+  if (!args.error().empty()) {
+    std::fprintf(stderr, "calibrate: %s\n", args.error().c_str());
+    return 2;
+  }
+  s.per_tool = args.has("per-tool");
+  s.config_dir = args.get("config-dir", defaultConfigDir());
+  s.state_dir = args.has("state-dir") ? args.get("state-dir", "") : stateDir();
+
+  if (auto path = args.get("points")) return runPointsFile(*path, s, args.has("save"));
+  if (auto path = args.get("journal")) return runJournal(*path, s, args.has("save"));
+  return runInteractive(args, s);
+}
+
 }  // namespace cb

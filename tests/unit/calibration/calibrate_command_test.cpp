@@ -1,0 +1,205 @@
+// `cloudbrush calibrate` end to end: the interactive loop driven by a replayed pen (the replay
+// backend) on the surfaceless display (EGL on llvmpipe), then the non-interactive paths
+// (--journal re-fit of the recorded session, --points tap file) and their error reports.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "calibration/area_mapping.h"
+#include "calibration/calibration_profile.h"
+#include "calibration/n_point_calibration.h"
+#include "calibration/point_fit.h"
+#include "drivers/core/journal.h"
+
+namespace cb {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kW = 1280, kH = 720;  // the surfaceless display's default size
+
+PenDeviceInfo intuos4() {
+  PenDeviceInfo d;
+  d.usb_vendor = 0x056a;
+  d.usb_product = 0x00b9;
+  std::strcpy(d.name, "Wacom Intuos4 6x9 Pen");
+  d.x_max = 44704;
+  d.y_max = 27940;
+  d.x_res = d.y_res = 200.0;
+  d.pressure_max = 2047;
+  d.tilt_min = -64;
+  d.tilt_max = 63;
+  d.distance_max = 63;
+  return d;
+}
+
+// The tablet's error the calibration has to find, in screen px: a small perspective tilt.
+glm::dmat3 distortion() {
+  glm::dmat3 m(1.0);
+  m[0][0] = 1.01;
+  m[1][0] = 0.004;
+  m[2][0] = -6.0;
+  m[0][1] = -0.003;
+  m[1][1] = 0.995;
+  m[2][1] = 4.0;
+  m[0][2] = 1e-6;
+  return m;
+}
+
+std::string run(const std::string& cmd, int* status) {
+  const std::string out =
+      (fs::temp_directory_path() / ("cb_calibrate_cmd_out_" + std::to_string(::getpid()) + ".txt"))
+          .string();
+  *status = std::system((cmd + " > " + out + " 2>&1").c_str());
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class CalibrateCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("cb_calibrate_cmd_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "config");
+    // Shipped defaults as they are in the tree.
+    fs::copy_file(fs::path(CB_SOURCE_DIR) / "config/calibration.toml",
+                  root_ / "config/calibration.toml");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  // A calibration session as the replay backend plays it: hover, then a tap on every target
+  // where the distorted tablet reports it.
+  std::string writeSessionJournal() {
+    const PenDeviceInfo dev = intuos4();
+    ProfileParseResult defaults =
+        readCalibrationProfile((root_ / "config/calibration.toml").string());
+    EXPECT_TRUE(defaults.profile);
+    const AreaMapping area = computeAreaMapping(defaults.profile->area, 223.52, 139.70, kW, kH);
+    EXPECT_TRUE(area.ok);
+    // Where the pen must be so that area mapping then distortion lands on the target:
+    // distortion(area(mm)) = target  =>  mm = area^-1(distortion^-1(target)).
+    const glm::dmat3 to_mm = glm::inverse(area.tablet_to_screen) * glm::inverse(distortion());
+    const std::string path = (root_ / "session.cbj").string();
+    JournalWriter w;
+    EXPECT_TRUE(w.open(path)) << w.error();
+    const auto dev_bytes = encodeDeviceInfo(dev);
+    w.append(JournalRecordType::kDevice, 0, dev_bytes.data(), dev_bytes.size());
+    int64_t t = 1'000'000'000;
+    auto emit = [&](glm::dvec2 mm, float pressure, float distance) {
+      PenSample s;
+      s.t_ns = t;
+      t += 5'000'000;
+      s.x_mm = mm.x;
+      s.y_mm = mm.y;
+      s.x_raw = static_cast<int32_t>(std::lround(mm.x * 200));
+      s.y_raw = static_cast<int32_t>(std::lround(mm.y * 200));
+      s.pressure = pressure;
+      s.pressure_raw = static_cast<int32_t>(pressure * 2047);
+      s.distance = distance;
+      s.buttons = pressure > 0.01f ? uint32_t{kPenTip} : 0u;
+      s.tool = PenTool::kPen;
+      s.tool_serial = 0x1234;
+      s.in_proximity = true;
+      w.appendPenSample(s);
+    };
+    for (const glm::dvec2& target : targetLayout(9, kW, kH)) {
+      const glm::dvec2 mm = applyTransform(to_mm, target);
+      for (int i = 0; i < 10; ++i) emit(mm + glm::dvec2(0, -3.0 + 0.3 * i), 0.0f, 0.6f);
+      for (int i = 0; i < 12; ++i) emit(mm, 0.4f, 0.0f);
+      for (int i = 0; i < 10; ++i) emit(mm + glm::dvec2(0, 0.3 * i), 0.0f, 0.6f);
+    }
+    w.close();
+    return path;
+  }
+
+  fs::path root_;
+};
+
+TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJournalRefits) {
+  const std::string session = writeSessionJournal();
+  const std::string state = (root_ / "state").string();
+  const std::string record = (root_ / "record.cbj").string();
+  int status = 0;
+  std::string out =
+      run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --backend replay --device " + session +
+              " --display surfaceless --yes --timeout 120 --config-dir " +
+              (root_ / "config").string() + " --state-dir " + state + " --record " + record,
+          &status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("homography fit over 9 points"), std::string::npos) << out;
+
+  const std::string saved = state + "/profiles/056a-00b9.toml";
+  ProfileParseResult r = readCalibrationProfile(saved);
+  ASSERT_TRUE(r.profile) << out;
+  EXPECT_EQ(r.profile->device.usb_vendor, 0x056a);
+  EXPECT_EQ(r.profile->device.usb_product, 0x00b9);
+  EXPECT_EQ(r.profile->fit_kind, PointFitKind::kHomography);
+  EXPECT_LT(r.profile->fit_max_px, 0.5);
+  // The taps were made so that the area mapping alone lands them on distortion^-1(target):
+  // the fitted correction is the distortion itself, over the whole screen.
+  for (const glm::dvec2& p : targetLayout(9, kW, kH, 0.0)) {
+    const glm::dvec2 d = applyTransform(r.profile->correction, p) - applyTransform(distortion(), p);
+    EXPECT_LT(glm::length(d), 0.5) << p.x << "," << p.y;
+  }
+
+  // The recorded session re-fits to the same profile without pen or display.
+  const std::string state2 = (root_ / "state2").string();
+  out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --journal " + record +
+                " --save --config-dir " + (root_ / "config").string() + " --state-dir " + state2,
+            &status);
+  ASSERT_EQ(status, 0) << out;
+  ProfileParseResult again = readCalibrationProfile(state2 + "/profiles/056a-00b9.toml");
+  ASSERT_TRUE(again.profile) << out;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(again.profile->correction[c][k], r.profile->correction[c][k], 1e-9);
+}
+
+TEST_F(CalibrateCommandTest, PointsFileFitsAndBadFileNamesLine) {
+  const fs::path taps = root_ / "taps.toml";
+  std::ofstream(taps) << "[screen]\nwidth = 1000\nheight = 1000\n"
+                         "[device]\nusb_vendor = 0x056a\nusb_product = 0x00b9\n"
+                         "width_mm = 100\nheight_mm = 100\n"
+                         "[[tap]]\ntarget_px = [100, 100]\npen_mm = [10.2, 10.1]\n"
+                         "[[tap]]\ntarget_px = [900, 100]\npen_mm = [90.2, 10.1]\n"
+                         "[[tap]]\ntarget_px = [900, 900]\npen_mm = [90.2, 90.1]\n"
+                         "[[tap]]\ntarget_px = [100, 900]\npen_mm = [10.2, 90.1]\n"
+                         "[[tap]]\ntarget_px = [500, 500]\npen_mm = [50.2, 50.1]\n";
+  int status = 0;
+  std::string out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --points " + taps.string() +
+                            " --fit affine --config-dir " + (root_ / "config").string() +
+                            " --state-dir " + (root_ / "s").string(),
+                        &status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("affine fit over 5 points"), std::string::npos) << out;
+  EXPECT_NE(out.find("max 0.000 px"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(root_ / "s/profiles"));  // no --save
+
+  std::ofstream(taps) << "[screen]\nwidth = 1000\nheight = 1000\n[device]\nusb_vendor = \n";
+  out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --points " + taps.string(), &status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find(taps.string() + ":5:"), std::string::npos) << out;
+}
+
+TEST_F(CalibrateCommandTest, BadOptionsSayWhat) {
+  int status = 0;
+  std::string out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --targets 7", &status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("--targets must be 5 or 9"), std::string::npos) << out;
+  out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --fitt affine", &status);
+  EXPECT_NE(out.find("unknown option --fitt"), std::string::npos) << out;
+  out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --journal /nonexistent.cbj", &status);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("/nonexistent.cbj"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace cb
