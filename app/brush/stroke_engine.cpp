@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "app/brush/calibrated_input.h"
+
 namespace cb {
 
 StrokeEngine::StrokeEngine(const BrushConfig& config, int width, int height)
@@ -22,7 +24,7 @@ StrokePoint StrokeEngine::toPoint(const BrushInput& in) const {
 }
 
 FootprintRect StrokeEngine::beginStroke(const BrushInput& input) {
-  if (in_stroke_) endStroke();
+  if (in_stroke_) finished_.push_back(endStroke());  // a missed tip-up: keep the stroke
   BrushInput in = input;
   Brush& b = brush(selected_);
   history_ = {};
@@ -32,6 +34,7 @@ FootprintRect StrokeEngine::beginStroke(const BrushInput& input) {
   current_index_ = next_index_++;
   footprint_ = Footprint(width_, height_);
   path_.clear();
+  raw_path_.clear();
   path_.push_back(toPoint(in));
   return active_->beginStroke(current_index_, path_.back(), &footprint_);
 }
@@ -55,8 +58,10 @@ StrokeResult StrokeEngine::endStroke() {
   result.view = view_;
   result.canvas = canvas_;
   result.path = std::move(path_);
+  result.raw_path = std::move(raw_path_);
   footprint_ = Footprint();
   path_.clear();
+  raw_path_.clear();
   active_ = nullptr;
   return result;
 }
@@ -74,6 +79,18 @@ FootprintRect StrokeEngine::feed(const BrushInput& input) {
     return {};
   }
   return addSample(input);
+}
+
+FootprintRect StrokeEngine::feedCalibrated(const MappedSample& sample) {
+  BrushInput in = brushInputFromCalibrated(sample, config_.stroke.footprint_scale);
+  FootprintRect changed;
+  if (sample.contact_began || (sample.contact && !in_stroke_))
+    changed = beginStroke(in);
+  else if (sample.contact)
+    changed = addSample(in);
+  if (in_stroke_) raw_path_.push_back(sample.raw);
+  if (sample.contact_ended && in_stroke_) finished_.push_back(endStroke());
+  return changed;
 }
 
 bool StrokeEngine::takeFinishedStroke(StrokeResult* out) {

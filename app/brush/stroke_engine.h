@@ -11,6 +11,7 @@
 
 #include "app/brush/brush.h"
 #include "app/brush/brush_input.h"
+#include "calibration/mapped_sample.h"
 
 namespace cb {
 
@@ -38,6 +39,11 @@ class StrokeEngine {
   FootprintRect feed(const BrushInput& input);
   bool takeFinishedStroke(StrokeResult* out);
 
+  // Calibrated contact (calibration/'s hysteresis): contact_began starts a stroke, contact
+  // continues it, contact_ended ends it (queued for takeFinishedStroke). The raw PenSamples of
+  // the stroke are kept in StrokeResult::raw_path.
+  FootprintRect feedCalibrated(const MappedSample& sample);
+
   bool inStroke() const { return in_stroke_; }
   // The live footprint of the current stroke (empty between strokes).
   const Footprint& footprint() const { return footprint_; }
@@ -56,6 +62,7 @@ class StrokeEngine {
   Canvas canvas_;
   Footprint footprint_;
   std::vector<StrokePoint> path_;
+  std::vector<PenSample> raw_path_;
   bool in_stroke_ = false;
   uint32_t next_index_ = 0, current_index_ = 0;
   InputHistory history_;

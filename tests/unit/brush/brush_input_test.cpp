@@ -124,6 +124,47 @@ TEST(StrokeEngine, ThresholdContactStartsAndEndsStrokes) {
   EXPECT_EQ(engine.nextStrokeIndex(), 42u);
 }
 
+TEST(StrokeEngine, CalibratedContactDrivesTheStrokeAndKeepsRawSamples) {
+  BrushConfig config;
+  config.default_brush = BrushKind::k3D;
+  config.stroke.footprint_scale = 0.5f;  // footprint at half the screen resolution
+  StrokeEngine engine(config, 200, 100);
+  auto mapped = [](double x, float pressure, bool contact, int64_t t) {
+    MappedSample m;
+    m.t_ns = t;
+    m.x_px = x;
+    m.y_px = 100.0;
+    m.pressure = pressure;
+    m.contact = contact;
+    m.raw.t_ns = t;
+    m.raw.pressure_raw = int32_t(pressure * 1000);
+    return m;
+  };
+  // Hovering: pressure alone never starts a stroke here, contact does.
+  EXPECT_TRUE(engine.feedCalibrated(mapped(100, 0.3f, false, 0)).empty());
+  EXPECT_FALSE(engine.inStroke());
+  MappedSample down = mapped(100, 0.3f, true, 5000000);
+  down.contact_began = true;
+  FootprintRect r = engine.feedCalibrated(down);
+  EXPECT_TRUE(engine.inStroke());
+  EXPECT_FALSE(r.empty());
+  EXPECT_LT(r.x0, 50);  // screen x 100 -> footprint x 50
+  EXPECT_GT(r.x1, 50);
+  for (int i = 1; i <= 10; ++i)
+    engine.feedCalibrated(mapped(100 + 10 * i, 0.004f, true, 5000000 * (i + 1)));
+  EXPECT_TRUE(engine.inStroke());  // low pressure but still in contact: the hysteresis decides
+  MappedSample up = mapped(210, 0.0f, false, 60000000);
+  up.contact_ended = true;
+  engine.feedCalibrated(up);
+  EXPECT_FALSE(engine.inStroke());
+  StrokeResult result;
+  ASSERT_TRUE(engine.takeFinishedStroke(&result));
+  EXPECT_EQ(result.path.size(), 11u);
+  ASSERT_EQ(result.raw_path.size(), 12u);  // the lifting sample is kept raw, not painted
+  EXPECT_EQ(result.raw_path.back().t_ns, 60000000);
+  EXPECT_FLOAT_EQ(result.path.back().footprint_px.x, 100.0f);
+}
+
 TEST(StrokeEngine, RejectsAnEmptyFootprintSize) {
   EXPECT_THROW(StrokeEngine(BrushConfig{}, 0, 10), std::invalid_argument);
 }

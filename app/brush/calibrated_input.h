@@ -1,0 +1,14 @@
+// From calibration/ to the brushes: a MappedSample (filtered screen position, calibrated
+// pressure, contact with hysteresis, tilt) becomes a BrushInput in footprint pixels. The
+// footprint uses the unpredicted position; the prediction is for the cursor only (issue 6).
+#pragma once
+
+#include "app/brush/brush_input.h"
+#include "calibration/mapped_sample.h"
+
+namespace cb {
+
+// `footprint_scale`: footprint pixels per screen pixel (config stroke.footprint_scale).
+BrushInput brushInputFromCalibrated(const MappedSample& sample, float footprint_scale);
+
+}  // namespace cb
