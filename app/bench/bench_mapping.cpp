@@ -37,7 +37,7 @@ constexpr int kFrameW = 1280, kFrameH = 720;
 
 // Medians over repetitions of one configuration.
 struct StageFigures {
-  double growth = 0, spheres = 0, edges = 0, occupancy = 0, light = 0, upload = 0;
+  double growth = 0, spheres = 0, edges = 0, mapping = 0, occupancy = 0, light = 0, upload = 0;
   double volume_light_ready = 0, first_lit_frame = -1;
   size_t circles = 0;
   int steps = 0;
@@ -156,6 +156,7 @@ class MappingBench {
     f->growth = rep.timings.circle_growth_ms;
     f->spheres = rep.timings.sphere_mapping_ms;
     f->edges = rep.timings.edge_mapping_ms;
+    f->mapping = rep.timings.total_ms;
     f->circles = rep.circles.size();
     f->steps = rep.growth_steps;
     f->attempts = rep.circle_attempts;
@@ -172,6 +173,7 @@ class MappingBench {
     m.growth = med(&StageFigures::growth);
     m.spheres = med(&StageFigures::spheres);
     m.edges = med(&StageFigures::edges);
+    m.mapping = med(&StageFigures::mapping);
     m.occupancy = med(&StageFigures::occupancy);
     m.light = med(&StageFigures::light);
     m.upload = med(&StageFigures::upload);
@@ -191,8 +193,8 @@ class MappingBench {
 void printStages(const char* name, const StageFigures& f) {
   std::printf(
       "  %-22s circles %4zu steps %3d attempts %6lld edge px %6lld | growth %8.2f  spheres %7.2f  "
-      "edges %7.2f  occupancy %6.2f  light %7.2f  upload %6.2f | ready %8.2f ms",
-      name, f.circles, f.steps, f.attempts, f.edge_pixels, f.growth, f.spheres, f.edges,
+      "edges %7.2f (mapping %7.2f)  occupancy %6.2f  light %7.2f  upload %6.2f | ready %8.2f ms",
+      name, f.circles, f.steps, f.attempts, f.edge_pixels, f.growth, f.spheres, f.edges, f.mapping,
       f.occupancy, f.light, f.upload, f.volume_light_ready);
   if (f.first_lit_frame >= 0) std::printf("  first lit frame %8.2f ms", f.first_lit_frame);
   std::printf("\n");
@@ -211,6 +213,7 @@ void addStages(BenchReport* report, const std::string& prefix, const StageFigure
   put("circle_growth_ms", f.growth);
   put("sphere_mapping_ms", f.spheres);
   put("edge_mapping_ms", f.edges);
+  put("mapping_ms", f.mapping);
   put("occupancy_ms", f.occupancy);
   put("light_ms", f.light);
   if (!baseline) put("texture_upload_ms", f.upload);
@@ -266,6 +269,17 @@ int benchMapping(int argc, char** argv) {
               gpu.ok ? (", renderer: " + gpu.context.renderer).c_str() : "");
 
   BenchReport report("mapping");
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    char line[128] = {0};
+    if (std::fgets(line, sizeof line, f)) {
+      std::string load(line);
+      while (!load.empty() && load.back() == '\n') load.pop_back();
+      std::printf("load average at start: %s (timings are wall clock; other load inflates them)\n",
+                  load.c_str());
+      report.note("loadavg", load);
+    }
+    std::fclose(f);
+  }
   MappingBench bench(volume_size, repeats, &gpu);
   const StrokeResult thick = makeThickStroke(kFootprintW, kFootprintH, 1);
   const StrokeResult heart = makeHeart(kFootprintW, kFootprintH, 2);
@@ -279,6 +293,17 @@ int benchMapping(int argc, char** argv) {
   printStages("heart", heart_fast);
   const StageFigures heart_base = bench.runBaseline(heart, config);
   printStages("  baseline", heart_base);
+  // The thesis's heart has 163 circles; with the thesis's Empty Test on the initial circle this
+  // heart grows fewer, bigger circles. Testing the smallest circle instead gives a load of
+  // about that many circles.
+  MappingConfig many = config;
+  many.circles.empty_test_on_smallest = true;
+  const StageFigures heart_many = bench.runFast(heart, many);
+  printStages("heart, many circles", heart_many);
+  const StageFigures heart_many_base = bench.runBaseline(heart, many);
+  printStages("  baseline", heart_many_base);
+  addStages(&report, "heart_many_", heart_many, false);
+  addStages(&report, "heart_many_", heart_many_base, true);
   addStages(&report, "single_", thick_fast, false);
   addStages(&report, "single_", thick_base, true);
   addStages(&report, "heart_", heart_fast, false);
@@ -319,22 +344,36 @@ int benchMapping(int argc, char** argv) {
   const double speedup = thick_base.volume_light_ready / thick_fast.volume_light_ready;
   const double heart_speedup = heart_base.volume_light_ready / heart_fast.volume_light_ready;
   const double growth_speedup = thick_base.growth / std::max(1e-9, thick_fast.growth);
+  const double mapping_speedup = thick_base.mapping / std::max(1e-9, thick_fast.mapping);
+  const double heart_mapping_speedup = heart_base.mapping / std::max(1e-9, heart_fast.mapping);
   report.figure("single_speedup_vs_baseline", speedup);
   report.figure("heart_speedup_vs_baseline", heart_speedup);
   report.figure("single_circle_growth_speedup_vs_baseline", growth_speedup);
+  report.figure("single_mapping_speedup_vs_baseline", mapping_speedup);
+  report.figure("heart_mapping_speedup_vs_baseline", heart_mapping_speedup);
 
   std::printf("targets:\n");
   std::printf("  single stroke pen-up -> volume and light ready %.1f ms <= 100 ms: %s\n",
               thick_fast.volume_light_ready, verdict(thick_fast.volume_light_ready <= 100.0));
-  std::printf("  heart pen-up -> volume and light ready %.1f ms <= 250 ms: %s\n",
-              heart_fast.volume_light_ready, verdict(heart_fast.volume_light_ready <= 250.0));
+  std::printf(
+      "  heart pen-up -> volume and light ready %.1f ms (%zu circles), %.1f ms (%zu "
+      "circles) <= 250 ms: %s\n",
+      heart_fast.volume_light_ready, heart_fast.circles, heart_many.volume_light_ready,
+      heart_many.circles,
+      verdict(std::max(heart_fast.volume_light_ready, heart_many.volume_light_ready) <= 250.0));
   if (thick_fast.first_lit_frame >= 0)
     std::printf("  single stroke pen-up -> first lit frame %.1f ms <= 200 ms: %s\n",
                 thick_fast.first_lit_frame, verdict(thick_fast.first_lit_frame <= 200.0));
   else
     std::printf("  pen-up -> first lit frame: not measured (no renderer)\n");
-  std::printf("  speed-up vs baseline %.1fx (single), %.1fx (heart) >= 8x: %s\n", speedup,
-              heart_speedup, verdict(speedup >= 8.0 && heart_speedup >= 8.0));
+  std::printf(
+      "  speed-up vs baseline, pen-up -> volume and light ready: %.1fx (single), %.1fx "
+      "(heart) >= 8x: %s\n",
+      speedup, heart_speedup, verdict(speedup >= 8.0 && heart_speedup >= 8.0));
+  std::printf(
+      "  speed-up vs baseline, mapping alone: %.1fx (single), %.1fx (heart); circle "
+      "growth alone %.1fx (single)\n",
+      mapping_speedup, heart_mapping_speedup, growth_speedup);
   std::printf("  diameter 32 pen-up -> volume and light ready %.1f ms < 1000 ms: %s\n", d32_total,
               verdict(d32_total < 1000.0));
   report.note("targets",
