@@ -58,6 +58,32 @@ PressureRangeFit fitPressureRange(std::vector<float> light, std::vector<float> f
   return fit;
 }
 
+void PressureRangeCollector::feed(float pressure) {
+  if (step_ == Step::kDone) return;
+  if (std::isfinite(pressure) && pressure >= contact_down_) {
+    current_.push_back(pressure);
+    return;
+  }
+  // Lifted: a step counts once the press was held long enough; shorter presses start over.
+  if (current_.size() >= hold_samples_) {
+    if (step_ == Step::kLight) {
+      light_ = std::move(current_);
+      step_ = Step::kFirm;
+    } else {
+      result_ = fitPressureRange(light_, current_, light_target_);
+      step_ = Step::kDone;
+    }
+  }
+  current_.clear();
+}
+
+void PressureRangeCollector::restart() {
+  step_ = Step::kLight;
+  current_.clear();
+  light_.clear();
+  result_ = PressureRangeFit{};
+}
+
 std::string pressureRangeToToml(const PressureRange& range) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "[pressure_range]\nlo = %.9g\nhi = %.9g\n", range.lo, range.hi);

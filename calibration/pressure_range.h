@@ -32,6 +32,33 @@ struct PressureRangeFit {
 PressureRangeFit fitPressureRange(std::vector<float> light, std::vector<float> firm,
                                   float light_target = 0.2f);
 
+// The two-step press calibration as a state machine: feed pen samples; it waits for a light
+// press held for `hold_samples` samples in contact and lifted, then a firm one, then fits.
+class PressureRangeCollector {
+ public:
+  enum class Step { kLight, kFirm, kDone };
+  explicit PressureRangeCollector(float contact_down = 0.05f, size_t hold_samples = 100,
+                                  float light_target = 0.2f)
+      : contact_down_(contact_down), hold_samples_(hold_samples), light_target_(light_target) {}
+  // `pressure`: offset-corrected pressure of an in-proximity sample (0 when out of proximity).
+  void feed(float pressure);
+  Step step() const { return step_; }
+  // Samples held in contact during the current step (for a progress bar).
+  size_t held() const { return current_.size(); }
+  size_t holdSamples() const { return hold_samples_; }
+  // Valid once step() is kDone.
+  const PressureRangeFit& result() const { return result_; }
+  void restart();
+
+ private:
+  float contact_down_;
+  size_t hold_samples_;
+  float light_target_;
+  Step step_ = Step::kLight;
+  std::vector<float> current_, light_;
+  PressureRangeFit result_;
+};
+
 // "[pressure_range]\nlo = ..\nhi = ..\n": the session record's text, and back. parse returns
 // nullopt (and says why) for anything else.
 std::string pressureRangeToToml(const PressureRange& range);

@@ -27,7 +27,9 @@
 #include "app/render/gl/display.h"
 #include "calibration/area_mapping.h"
 #include "calibration/n_point_calibration.h"
+#include "calibration/nib_offset.h"
 #include "calibration/point_fit.h"
+#include "calibration/pressure_range.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/journal.h"
 #include "drivers/open_pen_source.h"
@@ -52,6 +54,9 @@ int usage(int code) {
       "  --yes                 accept the first fit without asking (unattended runs)\n"
       "  --record FILE         journal of the session (default STATE/calibration-<time>.cbj)\n"
       "  --timeout S           give up after S seconds without finishing (default 300)\n"
+      "  --pressure            the participant's press calibration instead: press lightly, lift,\n"
+      "                        press firmly, lift; prints the [pressure_range] for the session\n"
+      "  --session-out FILE    with --pressure: also write the [pressure_range] to FILE\n"
       "  --points FILE         non-interactive: fit the taps in a tap file (TOML)\n"
       "  --journal FILE        non-interactive: re-fit a recorded calibration session\n"
       "  --save                with --points/--journal: save the fitted profile\n"
@@ -266,14 +271,23 @@ std::string defaultRecordPath(const std::string& state_dir) {
       .string();
 }
 
-int runInteractive(const Args& args, const Settings& s) {
+// The pen and the display of an interactive session, opened and waited for.
+struct InteractiveIo {
+  std::unique_ptr<PenSource> pen;
+  std::unique_ptr<Display> display;
+  int w = 0, h = 0;
+};
+
+// Opens both, shows a dark red screen until the pen is connected. Returns an exit code on
+// failure, 0 when ready.
+int openInteractive(const Args& args, double timeout_s, InteractiveIo* io) {
   PenSourceOptions po;
   po.backend = args.get("backend", "auto");
   po.device = args.get("device", "");
   po.realtime = false;  // replays are fed as fast as the loop takes them
   std::string error;
-  std::unique_ptr<PenSource> pen = openPenSource(po, &error);
-  if (!pen) {
+  io->pen = openPenSource(po, &error);
+  if (!io->pen) {
     std::fprintf(stderr, "calibrate: %s\n", error.c_str());
     return 2;
   }
@@ -286,41 +300,139 @@ int runInteractive(const Args& args, const Settings& s) {
     }
   }
   std::string note;
-  std::unique_ptr<Display> display = openDisplay(dopt, &error, &note);
-  if (!display) {
+  io->display = openDisplay(dopt, &error, &note);
+  if (!io->display) {
     std::fprintf(stderr, "calibrate: no display: %s\n", error.c_str());
     return 2;
   }
   if (!note.empty()) std::printf("display: %s\n", note.c_str());
-  if (!display->makeCurrent(&error)) {
+  if (!io->display->makeCurrent(&error)) {
     std::fprintf(stderr, "calibrate: %s\n", error.c_str());
     return 2;
   }
-  const int w = display->width(), h = display->height();
-  std::printf("display %s %dx%d, pen backend %s\n", display->platformName(), w, h,
-              pen->backendName());
+  io->w = io->display->width();
+  io->h = io->display->height();
+  std::printf("display %s %dx%d, pen backend %s\n", io->display->platformName(), io->w, io->h,
+              io->pen->backendName());
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<PenSample> ignored;
+  while (io->pen->connection() != PenConnection::kConnected) {
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (io->pen->connection() == PenConnection::kPermissionDenied ||
+        io->pen->connection() == PenConnection::kFinished || waited > timeout_s) {
+      std::fprintf(stderr, "calibrate: no pen: %s\n", io->pen->statusMessage().c_str());
+      return 1;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, io->display->framebuffer());
+    glViewport(0, 0, io->w, io->h);
+    Painter(io->w, io->h).clear(0.25f, 0.05f, 0.05f);  // dark red: waiting for the pen
+    io->display->present(&error);
+    io->pen->poll(50, ignored);
+    for (const DisplayEvent& e : io->display->pollEvents())
+      if (e.isQuitRequest()) return 1;
+  }
+  return 0;
+}
 
-  const bool auto_accept = args.has("yes");
+// --pressure: light press, firm press, [pressure_range] for the session.
+int runPressure(const Args& args, const Settings& s) {
   const double timeout_s = std::atof(args.get("timeout", "300").c_str());
+  InteractiveIo io;
+  if (int rc = openInteractive(args, timeout_s, &io)) return rc;
+  const PenDeviceInfo device = io.pen->deviceInfo();
+  if (device.pressure_max <= 0) {
+    std::fprintf(stderr, "calibrate: this pen reports no pressure\n");
+    return 1;
+  }
+  const CalibrationProfile profile = baseProfile(device, 0, s);
+  NibOffsetDetector nib(profile.pressure.nib);
+  PressureRangeCollector collector(profile.pressure.contact.down, 100,
+                                   profile.pressure.light_target);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<PenSample> samples;
+  std::string error;
+  bool was_in_proximity = false;
+  auto step = collector.step();
+  std::printf("press lightly and hold (0.5 s), then lift\n");
+  for (;;) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+        timeout_s) {
+      std::fprintf(stderr, "calibrate: timed out after %.0f s\n", timeout_s);
+      return 1;
+    }
+    for (const DisplayEvent& e : io.display->pollEvents())
+      if (e.isQuitRequest()) return 1;
+    samples.clear();
+    io.pen->poll(5, samples);
+    if (io.pen->connection() == PenConnection::kFinished && samples.empty()) {
+      std::fprintf(stderr, "calibrate: the replay ended before both presses\n");
+      return 1;
+    }
+    for (const PenSample& sample : samples) {
+      if (sample.in_proximity && !was_in_proximity) nib.proximityIn();
+      was_in_proximity = sample.in_proximity;
+      nib.observe(sample, device.distance_max > 0);
+      collector.feed(sample.in_proximity ? nib.correct(sample.pressure) : 0.0f);
+      if (collector.step() == step) continue;
+      step = collector.step();
+      if (step == PressureRangeCollector::Step::kFirm) {
+        std::printf("now press firmly and hold (0.5 s), then lift\n");
+        continue;
+      }
+      const PressureRangeFit& fit = collector.result();
+      if (!fit.range) {
+        std::printf("%s; again: press lightly and hold, then lift\n", fit.error.c_str());
+        collector.restart();
+        step = collector.step();
+        continue;
+      }
+      const std::string text = pressureRangeToToml(*fit.range);
+      std::printf("light press %.3f, firm press %.3f (nib offset %.3f)\n%s", fit.light, fit.firm,
+                  nib.offset(), text.c_str());
+      if (auto path = args.get("session-out")) {
+        std::ofstream out(*path, std::ios::binary | std::ios::trunc);
+        out << text;
+        if (!out) {
+          std::fprintf(stderr, "calibrate: %s: cannot be written\n", path->c_str());
+          return 1;
+        }
+      }
+      return 0;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, io.display->framebuffer());
+    glViewport(0, 0, io.w, io.h);
+    Painter p(io.w, io.h);
+    p.clear(0.08f, 0.09f, 0.11f);
+    const bool light = collector.step() == PressureRangeCollector::Step::kLight;
+    // A pale box asks for a light press, a deep one for a firm press; the bar fills as the
+    // press is held.
+    p.rect(io.w * 0.3, io.h * 0.3, io.w * 0.4, io.h * 0.4, light ? 0.6f : 0.1f,
+           light ? 0.75f : 0.2f, light ? 0.95f : 0.6f);
+    const double held = std::min(
+        1.0, static_cast<double>(collector.held()) / static_cast<double>(collector.holdSamples()));
+    p.rect(io.w * 0.3, io.h * 0.75, io.w * 0.4 * held, 12, 0.3f, 0.8f, 0.3f);
+    if (!io.display->present(&error)) {
+      std::fprintf(stderr, "calibrate: %s\n", error.c_str());
+      return 2;
+    }
+  }
+}
+
+int runInteractive(const Args& args, const Settings& s) {
+  const double timeout_s = std::atof(args.get("timeout", "300").c_str());
+  InteractiveIo io;
+  if (int rc = openInteractive(args, timeout_s, &io)) return rc;
+  PenSource* pen = io.pen.get();
+  Display* display = io.display.get();
+  const int w = io.w, h = io.h;
+  std::string error;
+  const bool auto_accept = args.has("yes");
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-
-  // Wait for the pen.
   std::vector<PenSample> samples;
-  while (pen->connection() != PenConnection::kConnected) {
-    if (pen->connection() == PenConnection::kPermissionDenied ||
-        pen->connection() == PenConnection::kFinished || elapsed() > timeout_s) {
-      std::fprintf(stderr, "calibrate: no pen: %s\n", pen->statusMessage().c_str());
-      return 1;
-    }
-    Painter(w, h).clear(0.25f, 0.05f, 0.05f);  // dark red: waiting for the pen
-    display->present(&error);
-    pen->poll(50, samples);
-    for (const DisplayEvent& e : display->pollEvents())
-      if (e.isQuitRequest()) return 1;
-  }
   const PenDeviceInfo device = pen->deviceInfo();
   const bool uses_pressure = device.pressure_max > 0;
   const CalibrationProfile base = baseProfile(device, 0, s);
@@ -477,11 +589,12 @@ int runInteractive(const Args& args, const Settings& s) {
 }  // namespace
 
 int commandCalibrate(int argc, char** argv) {
-  Args args(argc, argv, {"help", "yes", "save", "per-tool"});
+  Args args(argc, argv, {"help", "yes", "save", "per-tool", "pressure"});
   if (args.has("help")) return usage(0);
   const std::vector<std::string> known = {
-      "help",    "yes",    "save",    "per-tool", "targets", "fit",        "backend",  "device",
-      "display", "record", "timeout", "points",   "journal", "config-dir", "state-dir"};
+      "help",    "yes",        "save",      "per-tool", "targets",    "fit",
+      "backend", "device",     "display",   "record",   "timeout",    "points",
+      "journal", "config-dir", "state-dir", "pressure", "session-out"};
   if (auto bad = args.unknown(known); !bad.empty()) {
     std::fprintf(stderr, "calibrate: unknown option %s\n", bad[0].c_str());
     return usage(2);
@@ -504,6 +617,7 @@ int commandCalibrate(int argc, char** argv) {
   s.config_dir = args.get("config-dir", defaultConfigDir());
   s.state_dir = args.has("state-dir") ? args.get("state-dir", "") : stateDir();
 
+  if (args.has("pressure")) return runPressure(args, s);
   if (auto path = args.get("points")) return runPointsFile(*path, s, args.has("save"));
   if (auto path = args.get("journal")) return runJournal(*path, s, args.has("save"));
   return runInteractive(args, s);

@@ -15,6 +15,7 @@
 #include "calibration/calibration_profile.h"
 #include "calibration/n_point_calibration.h"
 #include "calibration/point_fit.h"
+#include "calibration/pressure_range.h"
 #include "drivers/core/journal.h"
 
 namespace cb {
@@ -161,6 +162,50 @@ TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJourna
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(again.profile->correction[c][k], r.profile->correction[c][k], 1e-9);
+}
+
+TEST_F(CalibrateCommandTest, PressureCalibrationFromReplayedPresses) {
+  const std::string path = (root_ / "presses.cbj").string();
+  JournalWriter w;
+  ASSERT_TRUE(w.open(path)) << w.error();
+  const auto dev_bytes = encodeDeviceInfo(intuos4());
+  w.append(JournalRecordType::kDevice, 0, dev_bytes.data(), dev_bytes.size());
+  int64_t t = 1'000'000'000;
+  auto emit = [&](float pressure, int n) {
+    for (int i = 0; i < n; ++i) {
+      PenSample s;
+      s.t_ns = (t += 5'000'000);
+      s.x_mm = 100;
+      s.y_mm = 70;
+      s.pressure = pressure > 0 ? pressure + 0.004f * ((i % 5) - 2) : 0.0f;
+      s.distance = pressure > 0 ? 0.0f : 0.7f;
+      s.buttons = pressure > 0 ? uint32_t{kPenTip} : 0u;
+      s.in_proximity = true;
+      w.appendPenSample(s);
+    }
+  };
+  emit(0.0f, 20);
+  emit(0.15f, 120);  // light
+  emit(0.0f, 20);
+  emit(0.55f, 120);  // firm
+  emit(0.0f, 20);
+  w.close();
+  const std::string session = (root_ / "session.toml").string();
+  int status = 0;
+  std::string out = run(
+      std::string(CB_CLOUDBRUSH_BIN) + " calibrate --pressure --backend replay --device " + path +
+          " --display surfaceless --timeout 60 --session-out " + session + " --config-dir " +
+          (root_ / "config").string() + " --state-dir " + (root_ / "s").string(),
+      &status);
+  ASSERT_EQ(status, 0) << out;
+  std::ifstream in(session);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string err;
+  auto range = pressureRangeFromToml(ss.str(), &err);
+  ASSERT_TRUE(range) << err << "\n" << out;
+  EXPECT_NEAR(range->hi, 0.555f, 0.01f);
+  EXPECT_NEAR(range->apply(0.15f), 0.2f, 0.02f);  // the light press gives the light target
 }
 
 TEST_F(CalibrateCommandTest, PointsFileFitsAndBadFileNamesLine) {

@@ -55,5 +55,24 @@ TEST(PressureRange, SessionTextRoundTrips) {
   EXPECT_NE(err.find("line 1"), std::string::npos) << err;
 }
 
+TEST(PressureRange, CollectorWalksLightThenFirm) {
+  PressureRangeCollector c(0.05f, 20, 0.2f);
+  auto press = [&](float level, int n) {
+    for (int i = 0; i < n; ++i) c.feed(level + 0.005f * ((i % 3) - 1));
+    c.feed(0.0f);
+  };
+  press(0.15f, 5);  // too short: still the light step
+  EXPECT_EQ(c.step(), PressureRangeCollector::Step::kLight);
+  press(0.15f, 30);
+  EXPECT_EQ(c.step(), PressureRangeCollector::Step::kFirm);
+  press(0.6f, 30);
+  ASSERT_EQ(c.step(), PressureRangeCollector::Step::kDone);
+  ASSERT_TRUE(c.result().range) << c.result().error;
+  EXPECT_NEAR(c.result().range->apply(0.15f), 0.2f, 0.02f);
+  EXPECT_NEAR(c.result().range->hi, 0.605f, 0.006f);
+  c.restart();
+  EXPECT_EQ(c.step(), PressureRangeCollector::Step::kLight);
+}
+
 }  // namespace
 }  // namespace cb
