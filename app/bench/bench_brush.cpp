@@ -18,6 +18,7 @@
 #include "app/brush/stroke_engine.h"
 #include "app/brush/synthetic_strokes.h"
 #include "app/cli/args.h"
+#include "app/core/config_paths.h"
 #include "app/render/footprint_overlay.h"
 #include "app/render/gl/egl_context.h"
 #include "app/render/render_target.h"
@@ -68,9 +69,9 @@ struct SampleCosts {
 
 // Feeds every stroke through a fresh engine, timing each sample (tip-down and tip-up included).
 // The brush (and the 3D brush's ink volume) is built before timing starts.
-SampleCosts timeBrush(BrushKind kind, bool cached_3d, int w, int h,
+SampleCosts timeBrush(const BrushConfig& base, BrushKind kind, bool cached_3d, int w, int h,
                       const std::vector<std::vector<BrushInput>>& strokes) {
-  BrushConfig config;
+  BrushConfig config = base;
   config.default_brush = kind;
   StrokeEngine engine(config, w, h);
   Brush& brush = engine.brush(kind);
@@ -111,7 +112,8 @@ void printCosts(const char* name, const SampleCosts& c) {
 }
 
 // The painting-mode frame at w×h: returns false (with a note) when no GL context is available.
-bool benchOverlayFrames(int w, int h, int frames, int volume_size, BenchReport* report) {
+bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int volume_size,
+                        BenchReport* report) {
   EglContext ctx;
   std::string error;
   if (!createSurfacelessContext(&ctx, &error)) {
@@ -149,7 +151,7 @@ bool benchOverlayFrames(int w, int h, int frames, int volume_size, BenchReport* 
       // Paint the 永 sequence at 200 Hz while drawing frames at 60 Hz of pen time: each frame
       // feeds the samples that arrived since the last one, uploads the changed rectangles and
       // draws cached scene + footprint + cursor.
-      BrushConfig config;
+      BrushConfig config = base;
       config.default_brush = BrushKind::k3D;
       StrokeEngine engine(config, w, h);
       std::vector<BrushInput> samples;
@@ -242,8 +244,8 @@ int benchBrush(int argc, char** argv) {
   Args args(argc, argv, {"help", "no-gl"});
   if (args.has("help")) {
     std::printf(
-        "usage: cloudbrush bench brush [--rate HZ] [--repeat N] [--frames N] [--volume N] "
-        "[--no-gl]\n"
+        "usage: cloudbrush bench brush [--rate HZ] [--repeat N] [--frames N] [--volume N]\n"
+        "                             [--config FILE] [--no-gl]\n"
         "  Cost per pen sample of the 2D, 3D and skeleton brushes on a 1280x720 footprint\n"
         "  (永 strokes, pressure ramp, tilt sweep, a fast curve) against the naive uncached 3D\n"
         "  brush; then the painting frame (cached scene + footprint overlay + cursor).\n"
@@ -251,13 +253,14 @@ int benchBrush(int argc, char** argv) {
         "  --repeat N    passes over the workload per brush (default 3)\n"
         "  --frames N    painting frames to time (default 300)\n"
         "  --volume N    cached scene volume size N³ (default 128)\n"
+        "  --config FILE brush parameters (default: the shipped config/brush.toml)\n"
         "  --no-gl       skip the frame measurement\n");
     return 0;
   }
   std::vector<std::string> unknown =
-      args.unknown({"help", "no-gl", "rate", "repeat", "frames", "volume"});
+      args.unknown({"help", "no-gl", "rate", "repeat", "frames", "volume", "config"});
   if (!unknown.empty()) {
-    std::fprintf(stderr, "cloudbrush bench brush: unknown option --%s (see --help)\n",
+    std::fprintf(stderr, "cloudbrush bench brush: unknown option %s (see --help)\n",
                  unknown[0].c_str());
     return 2;
   }
@@ -279,6 +282,12 @@ int benchBrush(int argc, char** argv) {
               n, rate, strokes.size(), w, h, repeat);
 
   BrushConfig config;
+  std::vector<std::string> config_errors;
+  std::string config_path = args.get("config", configFile("brush.toml"));
+  if (!loadBrushConfig(config_path, &config, &config_errors))
+    for (const std::string& e : config_errors)
+      std::fprintf(stderr, "cloudbrush bench brush: %s (using the default)\n", e.c_str());
+  std::printf("  brush parameters from %s\n", config_path.c_str());
   Clock::time_point t0 = Clock::now();
   auto ink =
       std::make_shared<const InkVolume>(config.brush3d.ink_volume_size, config.brush3d.ink_seed);
@@ -303,7 +312,7 @@ int benchBrush(int argc, char** argv) {
   for (const Run& run : runs) {
     SampleCosts all;
     for (long r = 0; r < repeat; ++r) {
-      SampleCosts c = timeBrush(run.kind, run.cached, w, h, strokes);
+      SampleCosts c = timeBrush(config, run.kind, run.cached, w, h, strokes);
       all.ms.insert(all.ms.end(), c.ms.begin(), c.ms.end());
       all.cpu_ms.insert(all.cpu_ms.end(), c.cpu_ms.begin(), c.cpu_ms.end());
       all.dabs += c.dabs;
@@ -328,7 +337,7 @@ int benchBrush(int argc, char** argv) {
   report.figure("slab_march_ms", slice_ms);
   report.note("per_sample_target", "3d brush < 2 ms per sample at 200 Hz");
 
-  if (!args.has("no-gl")) benchOverlayFrames(w, h, int(frames), int(volume), &report);
+  if (!args.has("no-gl")) benchOverlayFrames(config, w, h, int(frames), int(volume), &report);
   report.print();
   return 0;
 }
