@@ -20,6 +20,7 @@
 #include "calibration/calibrator.h"
 #include "calibration/smoothing_metrics.h"
 #include "calibration/synthetic_stroke.h"
+#include "drivers/core/journal.h"
 
 namespace cb {
 namespace {
@@ -97,15 +98,127 @@ FilterOutputs runStroke(const SyntheticStroke& stroke, const CalibrationProfile&
   return out;
 }
 
+// A recorded trace (a journal) has no ground truth: jitter is measured over still windows of
+// contact (the raw position stays within 0.5 mm for 0.4 s) and lag against the raw samples
+// themselves over moving stretches of contact (mean speed above 50 mm/s for 0.3 s).
+int benchTrace(const std::string& path, const CalibrationProfile& base) {
+  JournalReadResult j = readJournal(path);
+  if (!j.error.empty()) std::fprintf(stderr, "cloudbrush bench smoothing: %s\n", j.error.c_str());
+  PenDeviceInfo device = millimetreDevice();
+  std::vector<PenSample> pen;
+  for (const JournalRecord& r : j.records) {
+    if (r.type == JournalRecordType::kDevice) {
+      if (auto d = decodeDeviceInfo(r.payload)) {
+        device.pressure_max = d->pressure_max;
+        device.distance_max = d->distance_max;
+      }
+    } else if (r.type == JournalRecordType::kPenSample) {
+      if (auto s = decodePenSample(r.payload)) pen.push_back(*s);
+    }
+  }
+  if (pen.size() < 100) {
+    std::fprintf(stderr, "cloudbrush bench smoothing: %s: only %zu pen samples\n", path.c_str(),
+                 pen.size());
+    return 2;
+  }
+  device.x_max = device.y_max = 1000;  // 1 unit per mm on a 1000 px screen: px = mm
+  CalibrationProfile profile = base;
+  profile.area = AreaMappingConfig{};
+  profile.area.fit = AreaFit::kStretch;
+  profile.fit_kind = PointFitKind::kNone;
+  Calibrator cal(profile, device, 1000, 1000);
+  MovingAverageFilter ma(4);
+  // Contact segments, each a run of (raw, ma4, 1-euro) positions.
+  struct Segment {
+    std::vector<int64_t> t;
+    std::vector<glm::dvec2> raw, ma4, euro;
+  };
+  std::vector<Segment> segments;
+  bool in_contact = false;
+  for (const PenSample& s : pen) {
+    const MappedSample m = cal.process(s);
+    if (m.contact_began || (m.contact && !in_contact)) {
+      segments.emplace_back();
+      ma.reset();
+    }
+    in_contact = m.contact;
+    if (!m.contact) continue;
+    Segment& seg = segments.back();
+    seg.t.push_back(s.t_ns);
+    seg.raw.push_back({s.x_mm, s.y_mm});
+    seg.ma4.push_back(ma.filter({s.x_mm, s.y_mm}));
+    seg.euro.push_back({m.x_px, m.y_px});
+  }
+  double jr = 0, jm = 0, je = 0, lag_m = 0, lag_e = 0, speed = 0;
+  int still = 0, moving = 0;
+  for (const Segment& seg : segments) {
+    const size_t n = seg.t.size();
+    for (size_t i = 0; i < n;) {
+      // Grow a window while it stays still.
+      size_t k = i;
+      glm::dvec2 lo = seg.raw[i], hi = seg.raw[i];
+      while (k + 1 < n) {
+        const glm::dvec2 l2 = glm::min(lo, seg.raw[k + 1]), h2 = glm::max(hi, seg.raw[k + 1]);
+        if (glm::length(h2 - l2) > 0.5) break;
+        lo = l2, hi = h2, ++k;
+      }
+      if ((seg.t[k] - seg.t[i]) * 1e-9 >= 0.4) {
+        auto slice = [&](const std::vector<glm::dvec2>& v) {
+          return std::vector<glm::dvec2>(v.begin() + i + 10, v.begin() + k + 1);  // settle 10
+        };
+        jr += jitterStdMm(slice(seg.raw), 0);
+        jm += jitterStdMm(slice(seg.ma4), 0);
+        je += jitterStdMm(slice(seg.euro), 0);
+        ++still;
+      }
+      i = k + 1;
+    }
+    const double dur = n > 1 ? (seg.t.back() - seg.t.front()) * 1e-9 : 0.0;
+    if (dur >= 0.3) {
+      double len = 0;
+      for (size_t i = 1; i < n; ++i) len += glm::length(seg.raw[i] - seg.raw[i - 1]);
+      if (len / dur > 50.0) {
+        const double dt = dur / static_cast<double>(n - 1);
+        lag_m += lagByCrossCorrelation(seg.raw, seg.ma4, dt, 10, 20) * 1e3;
+        lag_e += lagByCrossCorrelation(seg.raw, seg.euro, dt, 10, 20) * 1e3;
+        speed += len / dur;
+        ++moving;
+      }
+    }
+  }
+  BenchReport report("smoothing");
+  report.note("trace", path);
+  std::printf("trace %s: %zu samples, %zu strokes, %d still windows, %d moving strokes\n",
+              path.c_str(), pen.size(), segments.size(), still, moving);
+  if (still > 0) {
+    std::printf("jitter at rest (per-axis std, mm):   raw %.4f   ma4 %.4f   1-euro %.4f\n",
+                jr / still, jm / still, je / still);
+    report.baseline("trace_jitter_rest_mm_raw", jr / still);
+    report.baseline("trace_jitter_rest_mm_ma4", jm / still);
+    report.figure("trace_jitter_rest_mm_one_euro", je / still);
+  }
+  if (moving > 0) {
+    std::printf("lag behind the raw samples at %.0f mm/s mean (ms):   ma4 %.2f   1-euro %.2f\n",
+                speed / moving, lag_m / moving, lag_e / moving);
+    report.figure("trace_mean_speed_mm_s", speed / moving);
+    report.baseline("trace_lag_ms_ma4", lag_m / moving);
+    report.figure("trace_lag_ms_one_euro", lag_e / moving);
+  }
+  report.print();
+  return 0;
+}
+
 int usage(int code) {
   std::printf(
       "usage: cloudbrush bench smoothing [--strokes DIR] [--profile FILE] [--min-cutoff HZ]\n"
       "                                  [--beta B] [--d-cutoff HZ] [--velocity-cutoff HZ]\n"
-      "                                  [--horizon MS] [--write-strokes DIR]\n"
+      "                                  [--horizon MS] [--write-strokes DIR] [--trace JOURNAL]\n"
       "  --strokes DIR        committed strokes (default %s)\n"
       "  --profile FILE       take smoothing/prediction settings from a calibration profile\n"
       "  --min-cutoff, --beta, --d-cutoff   1-euro position parameters (mm, Hz)\n"
       "  --velocity-cutoff, --horizon       prediction parameters\n"
+      "  --trace JOURNAL      measure on a recorded session instead (no ground truth: jitter\n"
+      "                       over still windows, lag against the raw samples)\n"
       "  --write-strokes DIR  regenerate the synthetic strokes into DIR and exit\n",
       benchStrokesDir().c_str());
   return code;
@@ -115,9 +228,9 @@ int usage(int code) {
 
 int benchSmoothing(int argc, char** argv) {
   Args args(argc, argv, {"help"});
-  const std::vector<std::string> known = {
-      "help",     "strokes",         "profile", "min-cutoff",   "beta",
-      "d-cutoff", "velocity-cutoff", "horizon", "write-strokes"};
+  const std::vector<std::string> known = {"help",  "strokes",      "profile",         "min-cutoff",
+                                          "beta",  "d-cutoff",     "velocity-cutoff", "horizon",
+                                          "trace", "write-strokes"};
   if (args.has("help")) return usage(0);
   if (auto bad = args.unknown(known); !bad.empty()) {
     std::fprintf(stderr, "cloudbrush bench smoothing: unknown option %s\n", bad[0].c_str());
@@ -152,6 +265,8 @@ int benchSmoothing(int argc, char** argv) {
     std::fprintf(stderr, "cloudbrush bench smoothing: %s\n", args.error().c_str());
     return 2;
   }
+
+  if (auto trace = args.get("trace")) return benchTrace(*trace, profile);
 
   const std::string dir = args.get("strokes", benchStrokesDir());
   std::map<std::string, FilterOutputs> runs;
