@@ -27,10 +27,11 @@ struct ProcessResult {
 };
 
 // Runs the cloudbrush binary in `cwd` with no DISPLAY and no card to take: the headless case.
-ProcessResult runCloudbrush(const std::string& cwd, const std::string& args) {
+ProcessResult runCloudbrush(const std::string& cwd, const std::string& args,
+                            const std::string& env = "") {
   const std::string err_file = cwd + "/stderr.txt";
-  const std::string command = "cd '" + cwd + "' && env -u DISPLAY LIBGL_ALWAYS_SOFTWARE=1 '" +
-                              CB_CLOUDBRUSH_BIN + "' " + args + " 2>'" + err_file + "'";
+  const std::string command = "cd '" + cwd + "' && env -u DISPLAY LIBGL_ALWAYS_SOFTWARE=1 " + env +
+                              " '" + CB_CLOUDBRUSH_BIN + "' " + args + " 2>'" + err_file + "'";
   ProcessResult run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;
@@ -142,6 +143,19 @@ TEST(PaintHeadless, BadOptionsFailClearlyWithoutOutput) {
     EXPECT_TRUE(run.out.empty()) << c.args << ": " << run.out;
     EXPECT_NE(run.err.find(c.names), std::string::npos) << c.args << ": " << run.err;
   }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  std::filesystem::remove_all(dir);
+}
+
+// A driver without OpenGL 4.5 core (llvmpipe told to offer 3.3): say what was found and what is
+// needed, exit non-zero, write nothing.
+TEST(PaintHeadless, TooOldOpenGlNamesFoundAndNeededVersions) {
+  const std::string dir = freshDir("oldgl");
+  const ProcessResult run = runCloudbrush(dir, "", "MESA_GL_VERSION_OVERRIDE=3.3");
+  EXPECT_NE(run.status, 0);
+  EXPECT_TRUE(run.out.empty()) << run.out;
+  EXPECT_NE(run.err.find("OpenGL 4.5 core profile is needed"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("offers OpenGL 3.3"), std::string::npos) << run.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
   std::filesystem::remove_all(dir);
 }
