@@ -87,14 +87,19 @@ void EvdevPenSource::tryOpen() {
   path_ = path;
   info_ = evdevPenInfo(dev);
   state_ = std::make_unique<EvdevPenState>(info_);
-  for (uint16_t code : {ABS_X, ABS_Y, ABS_PRESSURE, ABS_TILT_X, ABS_TILT_Y, ABS_DISTANCE, ABS_MISC})
-    if (libevdev_has_event_code(dev, EV_ABS, code))
-      state_->setAbs(code, libevdev_get_event_value(dev, EV_ABS, code));
-  for (uint16_t code : {BTN_TOUCH, BTN_STYLUS, BTN_STYLUS2, BTN_TOOL_PEN, BTN_TOOL_RUBBER})
-    if (libevdev_has_event_code(dev, EV_KEY, code))
-      state_->setKey(code, libevdev_get_event_value(dev, EV_KEY, code) != 0);
+  seedState();
   connection_ = PenConnection::kConnected;
   status_ = "reading " + path + " (" + info_.name + ")";
+}
+
+void EvdevPenSource::seedState() {
+  for (uint16_t code : {ABS_X, ABS_Y, ABS_PRESSURE, ABS_TILT_X, ABS_TILT_Y, ABS_DISTANCE, ABS_MISC})
+    if (libevdev_has_event_code(dev_, EV_ABS, code))
+      state_->setAbs(code, libevdev_get_event_value(dev_, EV_ABS, code));
+  for (uint16_t code : {BTN_TOUCH, BTN_STYLUS, BTN_STYLUS2, BTN_TOOL_PEN, BTN_TOOL_PENCIL,
+                        BTN_TOOL_BRUSH, BTN_TOOL_AIRBRUSH, BTN_TOOL_RUBBER})
+    if (libevdev_has_event_code(dev_, EV_KEY, code))
+      state_->setKey(code, libevdev_get_event_value(dev_, EV_KEY, code) != 0);
 }
 
 void EvdevPenSource::closeDevice(std::vector<PenSample>* out) {
@@ -116,16 +121,29 @@ void EvdevPenSource::drain(std::vector<PenSample>& out) {
   for (;;) {
     int rc = libevdev_next_event(dev_, flags, &ev);
     if (rc == LIBEVDEV_READ_STATUS_SYNC) {
-      // SYN_DROPPED: libevdev replays the device's current state as synthetic events.
+      // SYN_DROPPED: the kernel's buffer overflowed. libevdev re-reads the device state and
+      // replays the differences; once it is done the state machine is re-seeded from libevdev's
+      // view (the device's true state) and one sample reports it.
       if (flags == LIBEVDEV_READ_FLAG_NORMAL) ++resyncs_;
       flags = LIBEVDEV_READ_FLAG_SYNC;
-      PenSample s;
-      if (state_->feed(ev, s)) out.push_back(s);
+      if (ev.type == EV_SYN && ev.code == SYN_REPORT) sync_report_ = ev;
       continue;
     }
     if (rc == -EAGAIN) {
       if (flags == LIBEVDEV_READ_FLAG_SYNC) {
         flags = LIBEVDEV_READ_FLAG_NORMAL;  // resync done, back to the live stream
+        seedState();
+        input_event syn = sync_report_;
+        syn.type = EV_SYN;
+        syn.code = SYN_REPORT;
+        if (syn.input_event_sec == 0 && syn.input_event_usec == 0) {
+          const int64_t now = nowNs();
+          syn.input_event_sec = now / 1000000000;
+          syn.input_event_usec = (now % 1000000000) / 1000;
+        }
+        PenSample s;
+        if (state_->feed(syn, s)) out.push_back(s);
+        sync_report_ = input_event{};
         continue;
       }
       return;

@@ -3,6 +3,8 @@
 // /dev/input (works with or without udevd).
 #pragma once
 
+#include <linux/input.h>
+
 #include <memory>
 #include <string>
 
@@ -38,6 +40,7 @@ class EvdevPenSource final : public PenSource {
   void tryOpen();
   void closeDevice(std::vector<PenSample>* out);
   void drain(std::vector<PenSample>& out);
+  void seedState();  // copies libevdev's view of the device into the state machine
 
   EvdevPenSourceOptions options_;
   PenConnection connection_ = PenConnection::kSearching;
@@ -50,6 +53,7 @@ class EvdevPenSource final : public PenSource {
   std::unique_ptr<EvdevPenState> state_;
   int64_t next_scan_ns_ = 0;
   uint64_t resyncs_ = 0;
+  input_event sync_report_{};  // the SYN_REPORT that closed a resync (for its timestamp)
 };
 
 }  // namespace cb

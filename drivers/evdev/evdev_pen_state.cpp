@@ -43,13 +43,15 @@ void EvdevPenState::setKey(uint16_t code, bool down) {
     case BTN_STYLUS2:
       stylus2_ = down;
       break;
-    // Pencil, brush and airbrush are pens to a painter.
+    // Pencil, brush and airbrush are pens to a painter; each key is tracked on its own.
     case BTN_TOOL_PEN:
     case BTN_TOOL_PENCIL:
     case BTN_TOOL_BRUSH:
-    case BTN_TOOL_AIRBRUSH:
-      tool_pen_ = down;
+    case BTN_TOOL_AIRBRUSH: {
+      const uint32_t bit = 1u << (code - BTN_TOOL_PEN);
+      pen_tools_ = down ? (pen_tools_ | bit) : (pen_tools_ & ~bit);
       break;
+    }
     case BTN_TOOL_RUBBER:
       tool_rubber_ = down;
       break;
@@ -77,7 +79,7 @@ bool EvdevPenState::feed(const input_event& ev, PenSample& out) {
   if (ev.code != SYN_REPORT) return false;
   const int64_t t_ns =
       int64_t{ev.input_event_sec} * 1000000000 + int64_t{ev.input_event_usec} * 1000;
-  const bool in_prox = tool_pen_ || tool_rubber_;
+  const bool in_prox = pen_tools_ != 0 || tool_rubber_;
   if (!in_prox) {
     if (!last_.in_proximity) return false;
     // The leaving frame resets the axes; the stroke ends where the pen was.
@@ -105,7 +107,8 @@ bool EvdevPenState::feed(const input_event& ev, PenSample& out) {
 }
 
 bool EvdevPenState::disconnect(int64_t t_ns, PenSample& out) {
-  tool_pen_ = tool_rubber_ = touch_ = stylus_ = stylus2_ = false;
+  pen_tools_ = 0;
+  tool_rubber_ = touch_ = stylus_ = stylus2_ = false;
   if (!last_.in_proximity) return false;
   last_ = out = proximityOutSample(last_, t_ns);
   return true;

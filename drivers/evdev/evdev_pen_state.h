@@ -27,7 +27,8 @@ class EvdevPenState {
   PenDeviceInfo info_;
   int32_t x_ = 0, y_ = 0, pressure_ = 0, tilt_x_ = 0, tilt_y_ = 0, distance_ = 0, misc_ = 0;
   uint32_t serial_ = 0;
-  bool touch_ = false, stylus_ = false, stylus2_ = false, tool_pen_ = false, tool_rubber_ = false;
+  bool touch_ = false, stylus_ = false, stylus2_ = false, tool_rubber_ = false;
+  uint32_t pen_tools_ = 0;  // BTN_TOOL_PEN/PENCIL/BRUSH/AIRBRUSH bits
   PenSample last_{};
 };
 

@@ -18,7 +18,9 @@
 namespace cb {
 namespace {
 
-int64_t nowNs() { return MonotonicClock().nowNs(); }
+int64_t nowNs() {
+  return MonotonicClock().nowNs();
+}
 
 void emit(int fd, uint16_t type, uint16_t code, int32_t value) {
   input_event e{};

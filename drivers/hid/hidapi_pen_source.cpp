@@ -209,6 +209,7 @@ void HidapiPenSource::closeDevice(std::vector<PenSample>* out) {
   }
   lib_->close(dev_);
   dev_ = nullptr;
+  pen_in_proximity_ = false;
   decoder_.reset();
   connection_ = PenConnection::kSearching;
   status_ = device_.path + " went away; waiting for a pen";
@@ -229,22 +230,39 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     }
   }
   unsigned char buf[256];
+  const int64_t idle_ns = int64_t{options_.idle_proximity_timeout_ms} * 1000000;
   int wait = timeout_ms;
+  if (pen_in_proximity_ && idle_ns > 0) {  // wake in time for the idle-proximity timeout
+    const int64_t left_ms = (last_report_ns_ + idle_ns - nowNs()) / 1000000 + 1;
+    if (wait < 0 || left_ms < wait) wait = static_cast<int>(left_ms < 0 ? 0 : left_ms);
+  }
   for (;;) {
     int n = lib_->read_timeout(dev_, buf, sizeof buf, wait);
     if (n < 0) {
       closeDevice(&out);
+      pen_in_proximity_ = false;
       return;
     }
-    if (n == 0) return;
+    if (n == 0) break;
     PenSample s;
-    DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), nowNs(), s);
-    if (r.status == DecodeStatus::kSample) out.push_back(s);
+    const int64_t t = nowNs();
+    DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), t, s);
+    if (r.status == DecodeStatus::kSample) {
+      out.push_back(s);
+      pen_in_proximity_ = s.in_proximity;
+    }
+    if (r.status != DecodeStatus::kRejected && r.status != DecodeStatus::kOtherReport)
+      last_report_ns_ = t;
     if (r.status == DecodeStatus::kRejected) {
       ++rejected_;
       last_rejection_ = r.reason;
     }
     wait = 0;  // drain what is queued, then return
+  }
+  if (pen_in_proximity_ && idle_ns > 0 && nowNs() - last_report_ns_ >= idle_ns) {
+    PenSample s;
+    if (std::visit([&](auto& d) { return d.disconnect(nowNs(), s); }, *decoder_)) out.push_back(s);
+    pen_in_proximity_ = false;
   }
 }
 

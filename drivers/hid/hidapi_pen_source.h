@@ -25,6 +25,10 @@ struct HidapiPenSourceOptions {
   HidapiBackend backend = HidapiBackend::kHidraw;
   uint16_t vendor = 0x056A;  // 0: any vendor
   std::string path;          // a hidapi path to use; empty: discover
+  // A pen in proximity that sends nothing for this long is taken out of proximity, as the
+  // kernel's wacom driver does (wacom_idleprox_timeout, 100 ms) for firmware that may not send
+  // a proximity-out report. 0 disables.
+  int idle_proximity_timeout_ms = 100;
 };
 
 // Decoder chosen for a device: Intuos4 protocol or the descriptor-driven generic decoder.
@@ -83,6 +87,8 @@ class HidapiPenSource final : public PenSource {
   std::string status_;
   int64_t next_scan_ns_ = 0;
   uint64_t rejected_ = 0;
+  int64_t last_report_ns_ = 0;
+  bool pen_in_proximity_ = false;
   std::string last_rejection_;
 };
 

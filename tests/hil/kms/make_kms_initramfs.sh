@@ -48,7 +48,10 @@ add_module() {
 for m in bochs virtio_pci virtio-gpu; do add_module "$m"; done
 printf '%s\n' "${order[@]}" > "$root/lib/modules/order"
 
-for f in "$@"; do cp -L "$f" "$root/bin/"; done
+for f in "$@"; do
+  cp -L "$f" "$root/bin/"
+  strip --strip-debug "$root/bin/$(basename "$f")" 2>/dev/null || true  # smaller initramfs
+done
 
 if [ "${CB_KMS_WITH_LIBS:-0}" = 1 ]; then
   libdir=/usr/lib/x86_64-linux-gnu

@@ -4,7 +4,10 @@
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
 //   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]
+#include <fcntl.h>
 #include <linux/input.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -215,6 +218,39 @@ void phaseUhidPth660(const std::string& fixtures) {
   const auto steps = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
   runScript("uhid-pth660", steps, false, info, inject, {&evdev, &hidraw});
 
+  // Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
+  // the source with the device's true state.
+  {
+    PenStep st = steps[6];
+    for (int i = 0; i < 300; ++i) {
+      st.x = 1000 + 37 * i;
+      st.pressure = (i * 53) % info.pressure_max;
+      dev.input(encodePenReport(*layout.layout, st));
+    }
+    // Read at once: the wacom driver forces the pen out of proximity 100 ms after its last report.
+    std::vector<PenSample> got;
+    evdev.poll(0, got);
+    check(evdev.resyncCount() >= 1,
+          "uhid: evdev overflow reported SYN_DROPPED and libevdev resynced (" +
+              std::to_string(evdev.resyncCount()) + " resyncs, " + std::to_string(got.size()) +
+              " of 300 samples)");
+    const bool final_seen = !got.empty() && got.back().in_proximity && got.back().x_raw == st.x &&
+                            got.back().pressure_raw == st.pressure && got.back().tipDown();
+    check(final_seen, "uhid: after the resync the sample is the device's final state" +
+                          (got.empty() ? std::string() : " (" + describe(got.back()) + ")"));
+    // The pen stops reporting without leaving: the kernel's idle-proximity timer ends the stroke
+    // on evdev; the hidraw backend's own idle timeout must do the same. (hidraw keeps only the
+    // first 64 of the 300 queued reports.)
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    for (PenSource* src : {static_cast<PenSource*>(&evdev), static_cast<PenSource*>(&hidraw)}) {
+      std::vector<PenSample> out;
+      for (int i = 0; i < 60; ++i) src->poll(5, out);
+      check(!out.empty() && !out.back().in_proximity && out.back().buttons == 0,
+            std::string("uhid: a pen that stops reporting leaves proximity via ") +
+                src->backendName() + (out.empty() ? "" : " (" + describe(out.back()) + ")"));
+    }
+  }
+
   // Unplug mid-stroke (pen pressed), replug.
   runScript("uhid-pth660 before unplug", steps, false, info, inject, {&evdev, &hidraw}, 7);
   dev.destroy();
@@ -353,8 +389,8 @@ double percentileOf(std::vector<double> v, double p) {
 void phaseLatency() {
   EvdevLatencyResult r = measureEvdevLatency(1000, 500.0);
   if (!check(r.ran, "latency: uinput probe ran " + r.error)) return;
-  check(r.delay_us.size() >= 990, "latency: consumer received " + std::to_string(r.delay_us.size()) +
-                                      " of 1000 samples");
+  check(r.delay_us.size() >= 990,
+        "latency: consumer received " + std::to_string(r.delay_us.size()) + " of 1000 samples");
   figure("vm_uinput_delay_p50_us", percentileOf(r.delay_us, 50));
   figure("vm_uinput_delay_p99_us", percentileOf(r.delay_us, 99));
   figure("vm_thread_wakeup_p50_us", percentileOf(r.wakeup_us, 50));

@@ -138,3 +138,20 @@ TEST(EvdevPenState, SynDroppedResyncEventsRebuildTheState) {
 
 }  // namespace
 }  // namespace cb
+
+namespace cb {
+namespace {
+
+TEST(EvdevPenState, ToolKeysAreTrackedSeparately) {
+  // Seeding every tool key from the device state (pen down, pencil up) must not lose the pen.
+  EvdevPenState state(pth660());
+  state.setKey(BTN_TOOL_PEN, true);
+  state.setKey(BTN_TOOL_PENCIL, false);
+  state.setKey(BTN_TOOL_BRUSH, false);
+  PenSample s;
+  ASSERT_TRUE(state.feed(ev(1, EV_SYN, SYN_REPORT, 0), s));
+  EXPECT_TRUE(s.in_proximity);
+}
+
+}  // namespace
+}  // namespace cb
