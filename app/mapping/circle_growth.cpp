@@ -166,13 +166,13 @@ bool passes(const CircleCounts& n, const CircleGrowthConfig& cfg) {
 // like a too-grey one.
 template <typename Counter>
 int searchRadius(const Counter& counter, glm::vec2 centre, const CircleGrowthConfig& cfg,
-                 RadiusSearch search, long long* attempts) {
+                 RadiusSearch search, bool empty_test_on_smallest, long long* attempts) {
   const int r0 = cfg.initial_diameter_px / 2;
   const int rmin = std::min(cfg.min_radius_px, r0);
   ++*attempts;
   CircleCounts smallest = counter.count(centre, rmin);
   if (smallest.emptyRatio() > cfg.drop_empty_ratio) return 0;  // Empty Test (§6.3.3)
-  if (!cfg.empty_test_on_smallest && r0 > rmin) {
+  if (!empty_test_on_smallest && r0 > rmin) {
     ++*attempts;
     CircleCounts initial = counter.count(centre, r0);
     if (initial.emptyRatio() > cfg.drop_empty_ratio) return 0;
@@ -245,7 +245,9 @@ CircleGrowthResult grow(const Footprint& f, const std::vector<StrokePoint>& path
         for (const glm::vec2& d : dirs) {
           glm::vec2 c = parent.centre + d * float(parent.radius);
           if (c.x < 0 || c.y < 0 || c.x > f.width - 1 || c.y > f.height - 1) continue;
-          if (int r = searchRadius(counter, c, cfg, search, &result.attempts)) accept(c, r, step);
+          if (int r = searchRadius(counter, c, cfg, search, cfg.empty_test_on_smallest,
+                                   &result.attempts))
+            accept(c, r, step);
         }
       }
       ++result.steps;
@@ -258,7 +260,10 @@ CircleGrowthResult grow(const Footprint& f, const std::vector<StrokePoint>& path
   auto trySeed = [&](glm::ivec2 p) {
     if (counter.pixelClass(p.x, p.y) != kWhite || counter.covered(p.x, p.y)) return false;
     glm::vec2 c(p);
-    int r = searchRadius(counter, c, cfg, search, &result.attempts);
+    // A seed lies on the drawn path, inside the stroke: only its own circle's emptiness
+    // matters, so a stroke thinner than the initial diameter still gets circles along it.
+    int r =
+        searchRadius(counter, c, cfg, search, /*empty_test_on_smallest=*/true, &result.attempts);
     if (!r) return false;
     size_t first = result.circles.size();
     accept(c, r, 0);
@@ -333,15 +338,28 @@ CircleCounts countCircle(const Footprint& f, const std::vector<uint8_t>* covered
   return n;
 }
 
+CircleGrowthConfig effectiveCircleConfig(const Footprint& f, const CircleGrowthConfig& config) {
+  CircleGrowthConfig c = config;
+  if (!c.white_relative_to_peak) return c;
+  float peak = 0.0f;
+  for (float v : f.values)
+    if (v > peak) peak = v;  // NaN never compares greater
+  peak = std::min(peak, 1.0f);
+  c.white_threshold = std::max(c.white_threshold * peak, std::nextafter(c.empty_threshold, 2.0f));
+  return c;
+}
+
 CircleGrowthResult growCircles(const Footprint& footprint, const std::vector<StrokePoint>& path,
                                const CircleGrowthConfig& config) {
-  return grow<RowPrefixCounter>(footprint, path, config, RadiusSearch::kBinary);
+  return grow<RowPrefixCounter>(footprint, path, effectiveCircleConfig(footprint, config),
+                                RadiusSearch::kBinary);
 }
 
 CircleGrowthResult growCirclesStraightforward(const Footprint& footprint,
                                               const std::vector<StrokePoint>& path,
                                               const CircleGrowthConfig& config) {
-  return grow<BlockTraversalCounter>(footprint, path, config, RadiusSearch::kLinearStep4);
+  return grow<BlockTraversalCounter>(footprint, path, effectiveCircleConfig(footprint, config),
+                                     RadiusSearch::kLinearStep4);
 }
 
 }  // namespace cb

@@ -60,7 +60,13 @@ CircleGrowthResult growCirclesStraightforward(const Footprint& footprint,
                                               const std::vector<StrokePoint>& path,
                                               const CircleGrowthConfig& config);
 
-// Counts a circle pixel by pixel. `covered` may be null (the unmasked footprint).
+// The thresholds growth actually uses for this footprint: with white_relative_to_peak the white
+// threshold is scaled by the footprint's peak value (never below the empty threshold).
+CircleGrowthConfig effectiveCircleConfig(const Footprint& footprint,
+                                         const CircleGrowthConfig& config);
+
+// Counts a circle pixel by pixel with config's thresholds as given. `covered` may be null (the
+// unmasked footprint).
 CircleCounts countCircle(const Footprint& footprint, const std::vector<uint8_t>* covered,
                          glm::vec2 centre, int radius, const CircleGrowthConfig& config);
 

@@ -112,6 +112,7 @@ MappingConfig loadMappingConfig(const std::string& path) {
   read(root, path, "circles", "drop_empty_ratio", &c.circles.drop_empty_ratio);
   read(root, path, "circles", "white_threshold", &c.circles.white_threshold);
   read(root, path, "circles", "empty_threshold", &c.circles.empty_threshold);
+  read(root, path, "circles", "white_relative_to_peak", &c.circles.white_relative_to_peak);
   read(root, path, "circles", "reseed_along_path", &c.circles.reseed_along_path);
   read(root, path, "circles", "empty_test_on_smallest", &c.circles.empty_test_on_smallest);
   read(root, path, "spheres", "density", &c.spheres.density);

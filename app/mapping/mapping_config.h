@@ -23,6 +23,9 @@ struct CircleGrowthConfig {
   // footprint that accepts nothing, so these are thresholds.
   float white_threshold = 0.95f;
   float empty_threshold = 0.05f;
+  // Judge white against the footprint's own peak: white at >= white_threshold · peak. A brush
+  // whose ink never quite saturates (a peak of 0.92) still has a body. Off: absolute.
+  bool white_relative_to_peak = true;
   // After growth from the first circle stops, seed again on the stroke path wherever white
   // pixels remain unmasked (disjoint parts of a footprint). Not in the thesis.
   bool reseed_along_path = true;
