@@ -12,10 +12,17 @@
 // alpha exceeds 1; the standard operator here is order-correct and converges as step → 0.
 // Rays stop once T < u_cutoff (early termination).
 //
-// Skipping: at a sample in an empty level-0 cell the ray climbs to the coarsest empty ancestor
-// and jumps to the first sample index past that cell; in an occupied cell it samples every index
-// until the cell's exit. The sample positions are the same with and without skipping, and an
-// empty cell (dilated by one voxel) holds only zero densities, so the image is the same.
+// Skipping (lossless, two levels):
+//  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupied 4³-voxel
+//     cells of the occupancy pyramid (dilated by one voxel) and keeps, per pixel, the nearest and
+//     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them;
+//     a pixel whose ray meets no occupied cell costs one fetch. When the eye is in or next to an
+//     occupied cell the march starts at the near plane.
+//  2. Optional hierarchical stepping (u_brick_stepping): at a sample in an empty level-0 cell the
+//     ray climbs to the coarsest empty ancestor and jumps to the first sample index past it; in
+//     an occupied cell it samples every index until the cell's exit.
+// The sample positions t_enter + (k + ½)·step are the same with and without skipping, and empty
+// cells hold only zero densities, so the image is the same.
 layout(location = 0) out vec4 o_colour;
 
 uniform mat4 u_inv_view_proj;
@@ -28,11 +35,17 @@ uniform usampler3D u_occupancy;
 uniform int u_brick;          // voxels per level-0 occupancy cell
 uniform int u_levels;         // occupancy mip levels
 uniform bool u_skip;
+uniform bool u_brick_stepping;  // hierarchical stepping over the occupancy pyramid inside the bounds
 uniform float u_step;         // voxels per ray step
 uniform float u_sigma;        // extinction per voxel at density 1
 uniform float u_cutoff;       // stop when transmittance falls below this
 uniform vec4 u_background;    // premultiplied
 uniform bool u_stats;
+// Ray bounds from the ray bounds pass (ray_bounds.*.glsl): per pixel the eye distances of the
+// nearest and farthest occupied-cell faces; used only with u_skip.
+uniform sampler2D u_ray_bounds;
+uniform vec3 u_eye;
+uniform bool u_bounds_from_near_plane;  // the eye is in (or next to) an occupied cell
 
 layout(std430, binding = 0) buffer RayStatistics {
   uint total_samples;
@@ -76,12 +89,29 @@ void main() {
   uint samples = 0u;
   vec3 inv_dims = 1.0 / u_dims;
   ivec3 max_voxel = ivec3(u_dims) - 1;
+  int k = 0;
+  int n = int(ceil((t_exit - t_enter) / u_step));
+  if (u_skip && t_exit > t_enter) {
+    // Narrow [k, n) to the samples between the nearest and farthest occupied faces. Sample
+    // positions stay on the same grid t_enter + (k + ½)·step, so the image does not change.
+    vec2 bounds = texelFetch(u_ray_bounds, ivec2(gl_FragCoord.xy), 0).rg;
+    if (bounds.x > -bounds.y) {
+      n = 0;  // the ray meets no occupied cell
+    } else {
+      // World distance from the eye -> ray parameter in voxel units from the near-plane origin.
+      float voxels_per_world = length(normalize(dir_world) / u_voxel_size);
+      float origin_offset = distance(origin_world, u_eye);
+      float t_near = (bounds.x - origin_offset) * voxels_per_world;
+      float t_far = (-bounds.y - origin_offset) * voxels_per_world;
+      if (!u_bounds_from_near_plane)
+        k = max(0, int(floor((t_near - t_enter) / u_step - 0.5)));
+      n = min(n, int(ceil((t_far - t_enter) / u_step)) + 1);
+    }
+  }
   if (t_exit > t_enter) {
-    int n = int(ceil((t_exit - t_enter) / u_step));
-    int k = 0;
     while (k < n) {
       int k_end = n;
-      if (u_skip) {
+      if (u_skip && u_brick_stepping) {
         vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
         ivec3 voxel = clamp(ivec3(floor(p)), ivec3(0), max_voxel);
         if (texelFetch(u_occupancy, voxel / u_brick, 0).r == 0u) {
@@ -99,7 +129,7 @@ void main() {
       }
       for (; k < k_end; ++k) {
         vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
-        vec2 s = texture(u_volume, p * inv_dims).rg;
+        vec2 s = textureLod(u_volume, p * inv_dims, 0.0).rg;
         ++samples;
         if (s.r > 0.0) {
           float alpha = 1.0 - exp(-u_sigma * s.r * u_step);

@@ -191,14 +191,15 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   return out.intersect(volume.bounds());
 }
 
-std::vector<float> marchLightReference(const Volume& volume, const Light& light) {
+std::vector<float> marchLightReference(const Volume& volume, const Light& light, int z_step) {
+  z_step = std::max(1, z_step);
   const glm::ivec3 dims = volume.dims();
   const glm::vec3 l = lightDirectionInVoxels(volume, light);
   const glm::vec3 extent(dims);
-  std::vector<float> out(volume.voxelCount());
+  std::vector<float> out(volume.voxelCount(), -1.0f);
   parallelFor(size_t(dims.z), 1, [&](size_t, size_t z0, size_t z1) {
     for (int z = int(z0); z < int(z1); ++z)
-      for (int y = 0; y < dims.y; ++y)
+      for (int y = 0; y < dims.y && z % z_step == 0; ++y)
         for (int x = 0; x < dims.x; ++x) {
           glm::vec3 start = glm::vec3(x, y, z) + 0.5f;
           float t = 1.0f;

@@ -50,8 +50,10 @@ glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light);
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
                           const VoxelBox& dirty);
 
-// The per-voxel reference march of Alg. 5 (slow: for tests and benchmarks).
-std::vector<float> marchLightReference(const Volume& volume, const Light& light);
+// The per-voxel reference march of Alg. 5 (slow: for tests and benchmarks). With z_step > 1 only
+// the z slices z % z_step == 0 are computed (the others are set to -1), for timing and checking
+// a sample of a large volume.
+std::vector<float> marchLightReference(const Volume& volume, const Light& light, int z_step = 1);
 
 // The thesis's shading strength S = 0.55 + cos(0.4 − I·π)/2.2 with I = 1 − T (§4.5.2, Fig. 4.19);
 // the same formula as shaders/shade_thesis.glsl, for CPU checks.

@@ -88,4 +88,49 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   return cells;
 }
 
+std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& p, int level) {
+  std::vector<glm::vec3> out;
+  const glm::ivec3 d = p.level_dims[size_t(level)];
+  const float size = float(p.cellSize(level));
+  auto occupied = [&](glm::ivec3 c) {
+    return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < d.x && c.y < d.y && c.z < d.z &&
+           p.at(level, c) != 0;
+  };
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        glm::ivec3 c(x, y, z);
+        if (!occupied(c)) continue;
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side = 0; side < 2; ++side) {
+            glm::ivec3 n = c;
+            n[axis] += side ? 1 : -1;
+            if (occupied(n)) continue;
+            // The face at c[axis] + side, spanning the other two axes.
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            glm::vec3 corner[4];
+            for (int k = 0; k < 4; ++k) {
+              glm::vec3 q(c);
+              q[axis] += float(side);
+              q[u] += float(k & 1);
+              q[v] += float(k >> 1);
+              corner[k] = q * size;
+            }
+            for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
+          }
+      }
+  return out;
+}
+
+bool occupiedNear(const OccupancyPyramid& p, int level, glm::vec3 point) {
+  const glm::ivec3 d = p.level_dims[size_t(level)];
+  const glm::ivec3 c = glm::ivec3(glm::floor(point / float(p.cellSize(level))));
+  for (int z = c.z - 1; z <= c.z + 1; ++z)
+    for (int y = c.y - 1; y <= c.y + 1; ++y)
+      for (int x = c.x - 1; x <= c.x + 1; ++x)
+        if (x >= 0 && y >= 0 && z >= 0 && x < d.x && y < d.y && z < d.z && p.at(level, {x, y, z}))
+          return true;
+  return false;
+}
+
 }  // namespace cb

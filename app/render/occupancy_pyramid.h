@@ -43,4 +43,13 @@ OccupancyPyramid buildOccupancy(const Volume& volume);
 // z with cb::parallelFor; the result does not depend on the thread count.
 VoxelBox updateOccupancy(OccupancyPyramid& pyramid, const Volume& volume, const VoxelBox& dirty);
 
+// The boundary of the occupied cells of `level`: two triangles (6 vertices, voxel coordinates)
+// for every face between an occupied cell and an empty or outside neighbour. Rasterised, it tells
+// each pixel where its ray enters and leaves occupied space (see shaders/ray_bounds.*.glsl).
+std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& pyramid, int level);
+
+// Is any cell of `level` within one cell of the voxel-space point `p` occupied? (When the eye is,
+// rays must start at the near plane rather than at the nearest occupied face.)
+bool occupiedNear(const OccupancyPyramid& pyramid, int level, glm::vec3 p);
+
 }  // namespace cb

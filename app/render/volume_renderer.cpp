@@ -14,6 +14,8 @@ namespace cb {
 namespace {
 
 constexpr int kHistogramBins = 64;
+// Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
+constexpr int kRayBoundsLevel = 0;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -80,6 +82,11 @@ VolumeRenderer::~VolumeRenderer() {
   if (volume_texture_) glDeleteTextures(1, &volume_texture_);
   if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
   if (stats_buffer_) glDeleteBuffers(1, &stats_buffer_);
+  if (bounds_program_) glDeleteProgram(bounds_program_);
+  if (bounds_vao_) glDeleteVertexArrays(1, &bounds_vao_);
+  if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
+  if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
+  if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
 }
 
 bool VolumeRenderer::init(std::string* error) {
@@ -91,6 +98,14 @@ bool VolumeRenderer::init(std::string* error) {
     *error = error_;
     return false;
   }
+  bounds_program_ = linkProgram({"ray_bounds.vert.glsl"}, {"ray_bounds.frag.glsl"}, error);
+  if (!bounds_program_) return false;
+  glCreateBuffers(1, &bounds_vbo_);
+  glCreateVertexArrays(1, &bounds_vao_);
+  glVertexArrayVertexBuffer(bounds_vao_, 0, bounds_vbo_, 0, sizeof(glm::vec3));
+  glEnableVertexArrayAttrib(bounds_vao_, 0);
+  glVertexArrayAttribFormat(bounds_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(bounds_vao_, 0, 0);
   return true;
 }
 
@@ -173,6 +188,14 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     allocateTextures(dims_);
   }
   uploadOccupancy(occupancy_cells);
+  if (!occupancy_cells.empty()) {
+    const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
+    std::vector<glm::vec3> faces = occupiedBoundaryFaces(occupancy_, level);
+    bounds_vertices_ = GLsizei(faces.size());
+    glNamedBufferData(bounds_vbo_,
+                      GLsizeiptr(std::max<size_t>(1, faces.size()) * sizeof(glm::vec3)),
+                      faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
+  }
   if (!st.uploaded.empty()) {
     const VoxelBox& b = st.uploaded;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -195,6 +218,46 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   synced_generation_ = volume.generation();
   synced_light_ = light;
   return st;
+}
+
+void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
+  if (bounds_w_ != w || bounds_h_ != h) {
+    if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
+    if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
+    glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
+    glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
+    glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glCreateFramebuffers(1, &bounds_fbo_);
+    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, bounds_texture_, 0);
+    bounds_w_ = w;
+    bounds_h_ = h;
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
+  glViewport(0, 0, w, h);
+  const float nothing[4] = {1e30f, 1e30f, 0.0f, 0.0f};
+  glClearBufferfv(GL_COLOR, 0, nothing);
+  if (bounds_vertices_ > 0) {
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_MIN);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(bounds_program_);
+    glUniformMatrix4fv(glGetUniformLocation(bounds_program_, "u_view_proj"), 1, GL_FALSE,
+                       glm::value_ptr(view_proj));
+    glUniform3fv(glGetUniformLocation(bounds_program_, "u_world_min"), 1,
+                 glm::value_ptr(world_min_));
+    glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
+    glUniform3fv(glGetUniformLocation(bounds_program_, "u_voxel_size"), 1, glm::value_ptr(voxel));
+    glUniform3fv(glGetUniformLocation(bounds_program_, "u_eye"), 1, glm::value_ptr(camera.eye));
+    glBindVertexArray(bounds_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, bounds_vertices_);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+  }
+  const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
+  glm::vec3 eye_voxel = (camera.eye - world_min_) / ((world_max_ - world_min_) / glm::vec3(dims_));
+  eye_near_occupied_ = occupiedNear(occupancy_, level, eye_voxel);
 }
 
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
@@ -224,12 +287,14 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     std::vector<uint32_t> zero(3 + kHistogramBins, 0u);
     glNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(zero.size() * 4), zero.data());
   }
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
-  glViewport(0, 0, w, h);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
+  const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
+  if (options.skip_empty_space) drawRayBounds(camera, view_proj, w, h);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+  glViewport(0, 0, w, h);
   glUseProgram(program_);
-  glm::mat4 inv = glm::inverse(camera.projection(float(width) / float(height)) * camera.view());
+  glm::mat4 inv = glm::inverse(view_proj);
   auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
   glUniformMatrix4fv(loc("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   glUniform2f(loc("u_viewport"), float(w), float(h));
@@ -242,11 +307,16 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_brick"), occupancy_.brick);
   glUniform1i(loc("u_levels"), occupancy_.levelCount());
   glUniform1i(loc("u_skip"), options.skip_empty_space ? 1 : 0);
+  glUniform1i(loc("u_brick_stepping"), options.brick_stepping ? 1 : 0);
   glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
   glUniform4fv(loc("u_background"), 1, glm::value_ptr(options.background));
   glUniform1i(loc("u_stats"), options.collect_stats ? 1 : 0);
+  glUniform1i(loc("u_ray_bounds"), 2);
+  glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
+  glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);
+  if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
   glBindTextureUnit(0, volume_texture_);
   glBindTextureUnit(1, occupancy_texture_);

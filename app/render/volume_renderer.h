@@ -30,6 +30,10 @@ namespace cb {
 
 struct RenderOptions {
   bool skip_empty_space = true;
+  // Inside the rasterised ray bounds, also step hierarchically over the occupancy pyramid
+  // (max-mip climbing). Lossless either way; measured slower on llvmpipe (its texelFetch on the
+  // integer mip chain costs more than the samples it saves), so off by default.
+  bool brick_stepping = false;
   // Render at (width·scale)×(height·scale) and upscale (bilinear) into the target: for a moving
   // camera; use 1 when it stops.
   float scale = 1.0f;
@@ -90,6 +94,7 @@ class VolumeRenderer {
   bool ensureProgram(const std::string& shading);
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
+  void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
 
   GLuint program_ = 0;
   std::string program_shading_;
@@ -103,6 +108,13 @@ class VolumeRenderer {
   LightVolume light_volume_;
   OccupancyPyramid occupancy_;
   RenderTarget low_res_;
+  // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
+  // RG32F target (nearest, −farthest face distance per pixel).
+  GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
+  GLsizei bounds_vertices_ = 0;
+  GLuint bounds_fbo_ = 0, bounds_texture_ = 0;
+  int bounds_w_ = 0, bounds_h_ = 0;
+  bool eye_near_occupied_ = false;
   RenderStats stats_;
   std::string error_;
 };

@@ -66,6 +66,20 @@ TEST_F(VolumeRendererTest, EmptyVolumeShowsOnlyTheBackground) {
   EXPECT_EQ(renderer.lastStats().samples_total, 0u);
 }
 
+TEST(OccupiedBoundaryFaces, AFaceForEveryOccupiedCellSideFacingEmptySpace) {
+  // One 4-voxel brick occupied (a voxel in its middle, far from the dilation reach of others).
+  Volume v = makeSingleVoxel(glm::ivec3(16), {5, 6, 5});
+  OccupancyPyramid p = buildOccupancy(v);
+  std::vector<glm::vec3> faces = occupiedBoundaryFaces(p, 0);
+  EXPECT_EQ(faces.size(), 6u * 6u);  // one cube, 6 faces of 2 triangles
+  for (glm::vec3 q : faces) {
+    EXPECT_TRUE(q.x == 4.0f || q.x == 8.0f) << q.x;
+    EXPECT_TRUE(q.y == 4.0f || q.y == 8.0f) << q.y;
+  }
+  EXPECT_TRUE(occupiedNear(p, 0, glm::vec3(9.5f)));
+  EXPECT_FALSE(occupiedNear(p, 0, glm::vec3(14.5f)));
+}
+
 TEST_F(VolumeRendererTest, EveryPlantedVoxelAppearsWithSkipping) {
   Volume v(glm::ivec3(64));
   const glm::ivec3 planted[] = {{0, 0, 0},   {63, 63, 63}, {5, 40, 17}, {31, 32, 33},
@@ -100,11 +114,17 @@ TEST_F(VolumeRendererTest, SkippingIsLosslessAndSavesSamples) {
       opt.collect_stats = true;
       ImageRgba8 skip = renderImage(renderer, cam, opt);
       uint64_t skip_samples = renderer.lastStats().samples_total;
+      opt.brick_stepping = true;
+      ImageRgba8 stepped = renderImage(renderer, cam, opt);
+      uint64_t stepped_samples = renderer.lastStats().samples_total;
+      opt.brick_stepping = false;
       opt.skip_empty_space = false;
       ImageRgba8 full = renderImage(renderer, cam, opt);
       uint64_t full_samples = renderer.lastStats().samples_total;
       EXPECT_LE(maxChannelDifference(skip, full), 1) << "scene " << scene << " at " << degrees;
+      EXPECT_LE(maxChannelDifference(stepped, full), 1) << "scene " << scene << " at " << degrees;
       EXPECT_LT(skip_samples, full_samples);
+      EXPECT_LE(stepped_samples, skip_samples);
       if (scene == 0) {
         EXPECT_LT(skip_samples * 3, full_samples) << "sparse scene";
       }

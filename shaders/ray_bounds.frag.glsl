@@ -1,0 +1,12 @@
+// Ray bounds pass: distance from the eye to each face fragment, written as (d, −d) into an RG32F
+// target blended with MIN, so r = nearest and −g = farthest occupied-face distance per pixel.
+in vec3 v_world;
+
+uniform vec3 u_eye;
+
+layout(location = 0) out vec2 o_bounds;
+
+void main() {
+  float d = distance(v_world, u_eye);
+  o_bounds = vec2(d, -d);
+}
