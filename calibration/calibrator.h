@@ -7,6 +7,12 @@
 //                 -> predicted preview (extrapolated from the filtered velocity)
 //   tilt (deg)    -> zero offset -> 1€ filter -> azimuth / altitude
 //
+// Why each stage matters (thesis §5.1.2): of the five controls of a Chinese brush, pressure
+// (stroke thickness), speed (ink dispersion) and tilt (contact shape) come straight from the pen,
+// so pressure must feel right per participant, speed must not be faked by jitter at rest, and
+// tilt must be true to the hand. The thesis used an Intuos4 (1024 pressure levels, §5.1.2,
+// §7.4) through the Wacom API; here the raw samples come from drivers/.
+//
 // Smoothing runs in tablet millimetres, so its parameters do not depend on the screen or the
 // mapping. Pure and deterministic: the same samples give the same output, which is what lets a
 // replay of the journal's raw samples reproduce a session.

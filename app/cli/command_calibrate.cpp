@@ -25,6 +25,7 @@
 #include "app/cli/commands.h"
 #include "app/core/config_paths.h"
 #include "app/render/gl/display.h"
+#include "app/render/image_io.h"
 #include "calibration/area_mapping.h"
 #include "calibration/n_point_calibration.h"
 #include "calibration/nib_offset.h"
@@ -53,6 +54,7 @@ int usage(int code) {
       "  --per-tool            save the profile for this pen's serial only\n"
       "  --yes                 accept the first fit without asking (unattended runs)\n"
       "  --record FILE         journal of the session (default STATE/calibration-<time>.cbj)\n"
+      "  --snapshot FILE.png   save the result screen (targets, taps, residuals) as a PNG\n"
       "  --timeout S           give up after S seconds without finishing (default 300)\n"
       "  --pressure            the participant's press calibration instead: press lightly, lift,\n"
       "                        press firmly, lift; prints the [pressure_range] for the session\n"
@@ -428,6 +430,7 @@ int runInteractive(const Args& args, const Settings& s) {
   const int w = io.w, h = io.h;
   std::string error;
   const bool auto_accept = args.has("yes");
+  std::string snapshot = args.get("snapshot", "");  // PNG of the first result screen
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -521,11 +524,7 @@ int runInteractive(const Args& args, const Settings& s) {
             continue;
           }
           printFit(*fit, taps);
-          if (auto_accept) {
-            journal.append(JournalRecordType::kCalibration, last_t,
-                           formatCalibrationProfile(fit->profile));
-            return saveFit(*fit, s, nullptr);
-          }
+          if (auto_accept) break;  // after drawing the result screen once
           std::printf("tap the green box (or press Space) to accept, the orange box to redo\n");
         }
       } else {
@@ -574,14 +573,28 @@ int runInteractive(const Args& args, const Settings& s) {
       }
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.2fpx", fit->fit.max_residual);
-      p.text(buf, w * 0.5 - 60, 30, 6, 1.0f, 1.0f, 0.6f);
+      p.text(buf, w * 0.5 - 72, h * 0.5 + 90, 6, 1.0f, 1.0f, 0.6f);  // max residual
       p.rect(accept.x, accept.y, accept.w, accept.h, 0.2f, 0.65f, 0.25f);
       p.rect(redo.x, redo.y, redo.w, redo.h, 0.9f, 0.5f, 0.1f);
     }
     p.rect(cursor.x - 2, cursor.y - 2, 5, 5, 0.9f, 0.9f, 1.0f);
+    if (fit && !snapshot.empty()) {
+      try {
+        writePng(snapshot, readFramebufferRgba8(display->framebuffer(), w, h));
+        std::printf("wrote %s\n", snapshot.c_str());
+      } catch (const ImageIoError& e) {
+        std::fprintf(stderr, "calibrate: %s\n", e.what());
+      }
+      snapshot.clear();
+    }
     if (!display->present(&error)) {
       std::fprintf(stderr, "calibrate: %s\n", error.c_str());
       return 2;
+    }
+    if (fit && auto_accept) {
+      journal.append(JournalRecordType::kCalibration, last_t,
+                     formatCalibrationProfile(fit->profile));
+      return saveFit(*fit, s, nullptr);
     }
   }
 }
@@ -592,9 +605,9 @@ int commandCalibrate(int argc, char** argv) {
   Args args(argc, argv, {"help", "yes", "save", "per-tool", "pressure"});
   if (args.has("help")) return usage(0);
   const std::vector<std::string> known = {
-      "help",    "yes",        "save",      "per-tool", "targets",    "fit",
-      "backend", "device",     "display",   "record",   "timeout",    "points",
-      "journal", "config-dir", "state-dir", "pressure", "session-out"};
+      "help",    "yes",        "save",      "per-tool", "targets",     "fit",
+      "backend", "device",     "display",   "record",   "timeout",     "points",
+      "journal", "config-dir", "state-dir", "pressure", "session-out", "snapshot"};
   if (auto bad = args.unknown(known); !bad.empty()) {
     std::fprintf(stderr, "calibrate: unknown option %s\n", bad[0].c_str());
     return usage(2);

@@ -2,6 +2,7 @@
 // backend) on the surfaceless display (EGL on llvmpipe), then the non-interactive paths
 // (--journal re-fit of the recorded session, --points tap file) and their error reports.
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <unistd.h>
 #include <cmath>
@@ -53,6 +54,18 @@ glm::dmat3 distortion() {
   return m;
 }
 
+bool readPngRgba(const std::string& path, std::vector<uint8_t>* rgba, int* w, int* h) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return false;
+  image.format = PNG_FORMAT_RGBA;
+  rgba->resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, rgba->data(), 0, nullptr)) return false;
+  *w = static_cast<int>(image.width);
+  *h = static_cast<int>(image.height);
+  return true;
+}
+
 std::string run(const std::string& cmd, int* status) {
   const std::string out =
       (fs::temp_directory_path() / ("cb_calibrate_cmd_out_" + std::to_string(::getpid()) + ".txt"))
@@ -74,7 +87,9 @@ class CalibrateCommandTest : public ::testing::Test {
     fs::copy_file(fs::path(CB_SOURCE_DIR) / "config/calibration.toml",
                   root_ / "config/calibration.toml");
   }
-  void TearDown() override { fs::remove_all(root_); }
+  void TearDown() override {
+    if (!std::getenv("CB_KEEP_TEST_FILES")) fs::remove_all(root_);
+  }
 
   // A calibration session as the replay backend plays it: hover, then a tap on every target
   // where the distorted tablet reports it.
@@ -128,13 +143,29 @@ TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJourna
   const std::string session = writeSessionJournal();
   const std::string state = (root_ / "state").string();
   const std::string record = (root_ / "record.cbj").string();
+  const std::string snapshot = (root_ / "result.png").string();
   int status = 0;
-  std::string out =
-      run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --backend replay --device " + session +
-              " --display surfaceless --yes --timeout 120 --config-dir " +
-              (root_ / "config").string() + " --state-dir " + state + " --record " + record,
-          &status);
+  std::string out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --backend replay --device " +
+                            session + " --display surfaceless --yes --timeout 120 --config-dir " +
+                            (root_ / "config").string() + " --state-dir " + state + " --record " +
+                            record + " --snapshot " + snapshot,
+                        &status);
   ASSERT_EQ(status, 0) << out;
+
+  // The result screen really was drawn (EGL surfaceless on llvmpipe): accept box green, redo
+  // box orange, target crosshairs light grey, background dark.
+  std::vector<uint8_t> rgba;
+  int sw = 0, sh = 0;
+  ASSERT_TRUE(readPngRgba(snapshot, &rgba, &sw, &sh)) << out;
+  ASSERT_EQ(sw, kW);
+  ASSERT_EQ(sh, kH);
+  auto px = [&](int x, int y) { return &rgba[(static_cast<size_t>(y) * sw + x) * 4]; };
+  EXPECT_EQ(px(kW / 4, kH / 2)[1], 166);  // accept: (0.2, 0.65, 0.25)
+  EXPECT_GT(px(kW / 4, kH / 2)[1], px(kW / 4, kH / 2)[0]);
+  EXPECT_EQ(px(3 * kW / 4, kH / 2)[0], 230);  // redo: (0.9, 0.5, 0.1)
+  const glm::dvec2 t0 = targetLayout(9, kW, kH)[0];
+  EXPECT_EQ(px(static_cast<int>(t0.x) + 8, static_cast<int>(t0.y))[0], 204);  // crosshair arm
+  EXPECT_LT(px(5, kH - 5)[0], 40);                                            // background
   EXPECT_NE(out.find("homography fit over 9 points"), std::string::npos) << out;
 
   const std::string saved = state + "/profiles/056a-00b9.toml";
