@@ -1,6 +1,7 @@
 #include "app/render/light_volume.h"
 
 #include <algorithm>
+#include <array>
 #include <barrier>
 #include <cmath>
 #include <thread>
@@ -17,6 +18,28 @@ float voxelAttenuation(float density, float k, float step_length) {
   if (f <= 0.0f) return 0.0f;
   return std::pow(f, step_length);
 }
+
+// (1 − k·d)^e tabulated over d in [0, 1] (linear interpolation; 4096 intervals keep the error
+// below 1e-6 for the smooth curve) so the sweep needs no pow() per voxel.
+class AttenuationTable {
+ public:
+  AttenuationTable(float k, float exponent) : k_(k), exponent_(exponent) {
+    for (int i = 0; i <= kSize; ++i)
+      table_[size_t(i)] = voxelAttenuation(float(i) / kSize, k, exponent);
+  }
+  float operator()(float d) const {
+    if (d >= 1.0f) return voxelAttenuation(d, k_, exponent_);
+    float x = d * float(kSize);
+    int i = int(x);
+    float t = x - float(i);
+    return table_[size_t(i)] + (table_[size_t(i) + 1] - table_[size_t(i)]) * t;
+  }
+
+ private:
+  static constexpr int kSize = 4096;
+  float k_, exponent_;
+  std::array<float, kSize + 1> table_;
+};
 
 float trilinearDensity(const Volume& v, glm::vec3 c) {
   // c in continuous voxel space (voxel centres at i + 0.5), clamp-to-edge like the GPU sampler.
@@ -46,8 +69,9 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
   SweepFrame f;
   glm::vec3 a = glm::abs(l);
   f.axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
-  f.b = (f.axis + 1) % 3;
-  f.c = (f.axis + 2) % 3;
+  // Lateral axes: b (inner loop) has the smaller memory stride, so rows run along memory.
+  f.b = std::min((f.axis + 1) % 3, (f.axis + 2) % 3);
+  f.c = std::max((f.axis + 1) % 3, (f.axis + 2) % 3);
   f.up = l / a[f.axis];
   f.step_length = glm::length(f.up);
   bool light_at_high_side = l[f.axis] > 0.0f;
@@ -79,8 +103,9 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     lv.dims = dims;
     lv.direction = lightDirectionInVoxels(volume, light);
     lv.extinction = light.extinction;
-    lv.transmittance.assign(volume.voxelCount(), 1.0f);
-    lv.through.assign(volume.voxelCount(), 1.0f);
+    // A full sweep writes every voxel, so buffers of the right size are reused as they are.
+    lv.transmittance.resize(volume.voxelCount());
+    lv.through.resize(volume.voxelCount());
     region = volume.bounds();
   }
   if (region.empty()) return {};
@@ -115,39 +140,60 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
 
   float* T = lv.through.data();
   float* lit = lv.transmittance.data();
-  const float own_weight = 0.5f * (f.step_length + 1.0f);
   const float* density = volume.data();
+  const AttenuationTable pass_through(k, f.step_length);
+  const AttenuationTable own(k, 0.5f * (f.step_length + 1.0f));
+  // The upstream point of lateral voxel (b, c) is (b + u_b, c + u_c): the same fractional
+  // offsets for every voxel, so the bilinear weights are constants of the sweep.
+  const int ob = int(std::floor(lateral_up.x)), oc = int(std::floor(lateral_up.y));
+  const float wb = lateral_up.x - float(ob), wc = lateral_up.y - float(oc);
+  const int nb = lateral_dims.x, nc = lateral_dims.y;
   // Process one slice's rows [r0, r1) of the lateral rectangle.
-  auto sweepRows = [&](int j, int s, glm::ivec2 lo, glm::ivec2 hi, int r0, int r1) {
+  auto sweepRows = [&](int s, glm::ivec2 lo, glm::ivec2 hi, int r0, int r1) {
     const int upstream = s - f.dir;  // slice towards the light
     const bool has_upstream = upstream >= 0 && upstream < dims[f.axis];
-    for (int cc = r0; cc < r1; ++cc)
-      for (int bb = lo.x; bb < hi.x; ++bb) {
-        size_t idx = size_t(s) * sa + size_t(bb) * sb + size_t(cc) * sc;
-        float t_up = 1.0f;
-        if (has_upstream) {
-          // Bilinear lookup at the upstream point (voxel centres at integer lateral coords here);
-          // neighbours outside the volume are fully lit.
-          float pb = float(bb) + lateral_up.x, pc = float(cc) + lateral_up.y;
-          float fb = std::floor(pb), fc = std::floor(pc);
-          float wb = pb - fb, wc = pc - fc;
-          int ib = int(fb), ic = int(fc);
-          auto tAt = [&](int x, int y) {
-            if (x < 0 || y < 0 || x >= lateral_dims.x || y >= lateral_dims.y) return 1.0f;
-            return T[size_t(upstream) * sa + size_t(x) * sb + size_t(y) * sc];
-          };
-          t_up = (tAt(ib, ic) * (1 - wb) + tAt(ib + 1, ic) * wb) * (1 - wc) +
-                 (tAt(ib, ic + 1) * (1 - wb) + tAt(ib + 1, ic + 1) * wb) * wc;
-        }
+    for (int cc = r0; cc < r1; ++cc) {
+      // The two upstream rows (nullptr: outside the volume, fully lit).
+      const float* row[2] = {nullptr, nullptr};
+      for (int r = 0; r < 2; ++r) {
+        int c = cc + oc + r;
+        if (has_upstream && c >= 0 && c < nc) row[r] = T + size_t(upstream) * sa + size_t(c) * sc;
+      }
+      auto at = [&](const float* r, int b) {
+        return (r && b >= 0 && b < nb) ? r[size_t(b) * sb] : 1.0f;
+      };
+      const size_t base = size_t(s) * sa + size_t(cc) * sc;
+      // Interior voxels need no bounds checks on b.
+      const int inner_lo = std::clamp(-ob, lo.x, hi.x),
+                inner_hi = std::clamp(nb - 1 - ob, lo.x, hi.x);
+      auto voxel = [&](int bb, float t_up) {
+        size_t idx = base + size_t(bb) * sb;
         float d = density[idx];
         if (d > 0.0f) {
-          T[idx] = t_up * voxelAttenuation(d, k, f.step_length);
-          lit[idx] = t_up * voxelAttenuation(d, k, own_weight);
+          T[idx] = t_up * pass_through(d);
+          lit[idx] = t_up * own(d);
         } else {
           T[idx] = lit[idx] = t_up;
         }
+      };
+      auto edgeVoxel = [&](int bb) {
+        float t_up = (at(row[0], bb + ob) * (1 - wb) + at(row[0], bb + ob + 1) * wb) * (1 - wc) +
+                     (at(row[1], bb + ob) * (1 - wb) + at(row[1], bb + ob + 1) * wb) * wc;
+        voxel(bb, t_up);
+      };
+      for (int bb = lo.x; bb < std::min(inner_lo, hi.x); ++bb) edgeVoxel(bb);
+      if (row[0] && row[1]) {
+        for (int bb = inner_lo; bb < inner_hi; ++bb) {
+          size_t o = size_t(bb + ob) * sb;
+          float t_up = (row[0][o] * (1 - wb) + row[0][o + sb] * wb) * (1 - wc) +
+                       (row[1][o] * (1 - wb) + row[1][o + sb] * wb) * wc;
+          voxel(bb, t_up);
+        }
+      } else {
+        for (int bb = inner_lo; bb < inner_hi; ++bb) edgeVoxel(bb);
       }
-    (void)j;
+      for (int bb = std::max(inner_hi, lo.x); bb < hi.x; ++bb) edgeVoxel(bb);
+    }
   };
 
   // Slices depend on their upstream neighbour, so threads split each slice's rows and meet at a
@@ -161,7 +207,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
       lateralRect(j, &lo, &hi);
       int rows = std::max(0, hi.y - lo.y);
       int r0 = lo.y + rows * id / threads, r1 = lo.y + rows * (id + 1) / threads;
-      if (hi.x > lo.x) sweepRows(j, s, lo, hi, r0, r1);
+      if (hi.x > lo.x) sweepRows(s, lo, hi, r0, r1);
       if (sync) sync->arrive_and_wait();
     }
   };
