@@ -242,7 +242,7 @@ int benchMapping(int argc, char** argv) {
     return 0;
   }
   if (auto bad = args.unknown({"help", "no-gl", "repeat", "volume"}); !bad.empty()) {
-    std::fprintf(stderr, "cloudbrush bench mapping: unknown option --%s (see --help)\n",
+    std::fprintf(stderr, "cloudbrush bench mapping: unknown option %s (see --help)\n",
                  bad.front().c_str());
     return 2;
   }
