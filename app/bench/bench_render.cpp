@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -39,6 +40,21 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double processCpuMs() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) / 1e6;
+}
+
+double loadAverage() {
+  double load = -1;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &load) != 1) load = -1;
+    std::fclose(f);
+  }
+  return load;
 }
 
 double timeMs(const std::function<void()>& fn) {
@@ -94,6 +110,8 @@ int benchRender(int argc, char** argv) {
     return 2;
   }
   BenchReport report("render");
+  const double load_at_start = loadAverage();
+  report.figure("load_average_1min_at_start", load_at_start);
   std::printf("bench render: %dx%d, %d³ volumes, reference camera, %d frames per figure\n", width,
               height, n, frames);
 
@@ -242,7 +260,7 @@ int benchRender(int argc, char** argv) {
     std::printf(
         "  sweep %.1f ms; reference march %.0f ms (%s); MAE %.4f over %zu voxels "
         "(%.4f over the %zu not fully lit)\n",
-        sweep_ms, ref_ms, z_step > 1 ? "timed on every 16th z slice, ×16" : "all voxels", mae,
+        sweep_ms, ref_ms, z_step > 1 ? "timed on every 32nd z slice, x32" : "all voxels", mae,
         count, shadow_mae, shadow_count);
     report.figure("light_sweep_ms", sweep_ms);
     report.baseline("light_reference_march_ms", ref_ms);
@@ -344,6 +362,11 @@ int benchRender(int argc, char** argv) {
     }
   }
   destroyGlContext(&ctx);
+  std::printf(
+      "load average (1 min) at start %.2f, at end %.2f on %ld cores: other processes share "
+      "this machine, so wall times above include their load\n",
+      load_at_start, loadAverage(), sysconf(_SC_NPROCESSORS_ONLN));
+  report.figure("load_average_1min_at_end", loadAverage());
   report.print();
   return status;
 }

@@ -145,13 +145,14 @@ Volume makeBundledCumulus(glm::ivec3 dims, uint32_t seed) {
     // Signed "inside-ness" in world units: positive inside the union of blobs.
     float inside = -1e9f;
     for (const Blob& b : blobs) inside = std::max(inside, b.radius - glm::length(p - b.centre));
-    if (inside < -0.1f) return 0.0f;
-    // Noise erodes and bulges the rim by up to ~0.08 world units.
-    inside += 0.16f * fractalNoise(p * 6.0f, noise_seed);
-    float density = inside / 0.12f;  // soft rim 0.12 world units wide
+    // Noise erodes and bulges the rim by up to 0.08 world units (0.16 × [-0.5, 0.5]); the soft
+    // rim is 0.12 wide. Outside the reach of both the result is known without the noise.
+    if (inside <= -0.08f) return 0.0f;
     // Flat base: cumulus bottoms are level (the condensation height).
     float base = std::clamp((p.y - base_y) / 0.05f, 0.0f, 1.0f);
-    return density * base;
+    if (inside >= 0.2f) return base;
+    inside += 0.16f * fractalNoise(p * 6.0f, noise_seed);
+    return inside / 0.12f * base;
   });
   return v;
 }
