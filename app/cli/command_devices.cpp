@@ -8,6 +8,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "drivers/core/clock.h"
+#include "drivers/core/journal.h"
 #include "drivers/evdev/evdev_discovery.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/open_pen_source.h"
@@ -21,14 +22,16 @@ volatile std::sig_atomic_t g_stop = 0;
 void printHelp() {
   std::printf(
       "usage: cloudbrush devices [--watch] [--backend NAME] [--device PATH] [--grab]\n"
-      "                          [--count N] [--seconds S]\n\n"
+      "                          [--count N] [--seconds S] [--record FILE]\n\n"
       "Lists pen tablets: backend, name, USB id, ranges and resolutions.\n\n"
       "  --watch          print live samples from one pen (Ctrl-C stops)\n"
       "  --backend NAME   auto (evdev), evdev, hidraw, libusb, replay (default auto)\n"
       "  --device PATH    event node, hidapi path or, for replay, a journal file\n"
       "  --grab           evdev: grab the pen exclusively while watching\n"
       "  --count N        stop after N samples\n"
-      "  --seconds S      stop after S seconds\n\n"
+      "  --seconds S      stop after S seconds\n"
+      "  --record FILE    also write the device and its samples to a journal (replayable with\n"
+      "                   --backend replay --device FILE)\n\n"
       "A missing tablet is not an error: --watch waits for one to be plugged in.\n");
 }
 
@@ -110,6 +113,12 @@ int watch(Args& args) {
     std::fprintf(stderr, "cloudbrush devices: %s\n", error.c_str());
     return 2;
   }
+  JournalWriter journal;
+  const std::string record = args.get("record", "");
+  if (!record.empty() && !journal.open(record)) {
+    std::fprintf(stderr, "cloudbrush devices: %s\n", journal.error().c_str());
+    return 1;
+  }
   std::signal(SIGINT, [](int) { g_stop = 1; });
   MonotonicClock clock;
   const int64_t start = clock.nowNs();
@@ -140,6 +149,7 @@ int watch(Args& args) {
           (s.t_ns - start) / 1e9, event, s.tool == PenTool::kEraser ? "eraser" : "pen", s.tool_id,
           static_cast<unsigned long long>(s.tool_serial), s.x_mm, s.y_mm, s.pressure, s.tilt_x_deg,
           s.tilt_y_deg, s.distance, buttonNames(s.buttons).c_str());
+      if (!record.empty()) journal.appendPenSample(s);
       if (count > 0 && ++printed >= count) g_stop = 1;
     }
     std::fflush(stdout);
@@ -156,7 +166,8 @@ int commandDevices(int argc, char** argv) {
     printHelp();
     return 0;
   }
-  auto unknown = args.unknown({"help", "watch", "grab", "backend", "device", "count", "seconds"});
+  auto unknown =
+      args.unknown({"help", "watch", "grab", "backend", "device", "count", "seconds", "record"});
   if (!unknown.empty()) {
     std::fprintf(stderr, "cloudbrush devices: unknown option %s (see --help)\n",
                  unknown.front().c_str());
