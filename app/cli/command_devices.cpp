@@ -125,6 +125,7 @@ int watch(Args& args) {
   PenConnection last_state = PenConnection::kFinished;
   std::string last_status;
   long printed = 0;
+  int64_t t0 = -1;
   bool was_in = false;
   std::vector<PenSample> samples;
   while (!g_stop) {
@@ -136,17 +137,23 @@ int watch(Args& args) {
       last_status = src->statusMessage();
       std::printf("-- %s %s: %s\n", src->backendName(), penConnectionName(last_state),
                   last_status.c_str());
-      if (last_state == PenConnection::kConnected)
+      if (last_state == PenConnection::kConnected) {
         printInfo(src->backendName(), "", src->deviceInfo(), "");
+        if (!record.empty()) {
+          const auto info = encodeDeviceInfo(src->deviceInfo());
+          journal.append(JournalRecordType::kDevice, clock.nowNs(), info.data(), info.size());
+        }
+      }
       std::fflush(stdout);
     }
     for (const PenSample& s : samples) {
+      if (t0 < 0) t0 = s.t_ns;  // times relative to the first sample (replays keep theirs)
       const char* event = s.in_proximity ? (was_in ? "motion " : "prox-in") : "prox-out";
       was_in = s.in_proximity;
       std::printf(
           "%+10.3fs %-8s %-6s id %#06x serial %#010llx  %8.2f %8.2f mm  p %.3f  tilt "
           "%6.1f %6.1f  dist %.3f  %s\n",
-          (s.t_ns - start) / 1e9, event, s.tool == PenTool::kEraser ? "eraser" : "pen", s.tool_id,
+          (s.t_ns - t0) / 1e9, event, s.tool == PenTool::kEraser ? "eraser" : "pen", s.tool_id,
           static_cast<unsigned long long>(s.tool_serial), s.x_mm, s.y_mm, s.pressure, s.tilt_x_deg,
           s.tilt_y_deg, s.distance, buttonNames(s.buttons).c_str());
       if (!record.empty()) journal.appendPenSample(s);
