@@ -61,6 +61,19 @@ double processCpuMs() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+// A stroke as the tablet reports it: the contact samples, a lifting sample 5 ms later, then the
+// pen hovering for 50 ms (10 samples at 200 Hz, pressure 0) before the next stroke.
+std::vector<BrushInput> withLiftAndHover(const std::vector<BrushInput>& stroke) {
+  std::vector<BrushInput> out = stroke;
+  BrushInput hover = stroke.back();
+  hover.pressure = 0.0f;
+  for (int i = 1; i <= 11; ++i) {
+    hover.t_ns += 5000000;
+    out.push_back(hover);
+  }
+  return out;
+}
+
 struct SampleCosts {
   std::vector<double> ms;      // wall time, one per pen sample
   std::vector<double> cpu_ms;  // CPU time of all threads (immune to being descheduled)
@@ -78,11 +91,7 @@ SampleCosts timeBrush(const BrushConfig& base, BrushKind kind, bool cached_3d, i
   if (auto* b3 = dynamic_cast<Brush3D*>(&brush)) b3->setCaching(cached_3d);
   SampleCosts costs;
   for (const std::vector<BrushInput>& stroke : strokes) {
-    BrushInput lift = stroke.back();
-    lift.pressure = 0.0f;
-    lift.t_ns += 5000000;
-    for (size_t i = 0; i <= stroke.size(); ++i) {
-      const BrushInput& in = i < stroke.size() ? stroke[i] : lift;
+    for (const BrushInput& in : withLiftAndHover(stroke)) {
       double c0 = processCpuMs();
       Clock::time_point t0 = Clock::now();
       engine.feed(in);
@@ -156,11 +165,8 @@ bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int v
       StrokeEngine engine(config, w, h);
       std::vector<BrushInput> samples;
       for (const auto& s : workload(w, h, 200.0)) {
-        samples.insert(samples.end(), s.begin(), s.end());
-        BrushInput lift = s.back();
-        lift.pressure = 0.0f;
-        lift.t_ns += 5000000;
-        samples.push_back(lift);
+        std::vector<BrushInput> reported = withLiftAndHover(s);
+        samples.insert(samples.end(), reported.begin(), reported.end());
       }
       // After a camera move the whole frame is composited once.
       overlay.beginFootprint(w, h);
@@ -278,8 +284,10 @@ int benchBrush(int argc, char** argv) {
   std::vector<std::vector<BrushInput>> strokes = workload(w, h, rate);
   size_t n = 0;
   for (const auto& s : strokes) n += s.size();
-  std::printf("brush: %zu pen samples at %.0f Hz in %zu strokes on a %dx%d footprint, %ld passes\n",
-              n, rate, strokes.size(), w, h, repeat);
+  std::printf(
+      "brush: %zu pen samples at %.0f Hz in %zu strokes on a %dx%d footprint (+11 lift/hover "
+      "samples per stroke), %ld passes\n",
+      n, rate, strokes.size(), w, h, repeat);
 
   BrushConfig config;
   std::vector<std::string> config_errors;

@@ -19,6 +19,9 @@ class Brush {
   virtual FootprintRect beginStroke(uint32_t stroke_index, const StrokePoint& first,
                                     Footprint* footprint) = 0;
   virtual FootprintRect continueStroke(const StrokePoint& point, Footprint* footprint) = 0;
+  // Optional: precompute what stroke `stroke_index` will need (its noise pattern), so tip-down
+  // does not pay for it. The engine calls this at tip-up for the next stroke.
+  virtual void prepareStroke(uint32_t /*stroke_index*/) {}
   // Tip-up; a brush with internal dynamics may still settle its last marks here.
   virtual FootprintRect endStroke(Footprint* /*footprint*/) { return {}; }
   // How far from the pen tip this brush can leave ink, in footprint pixels.

@@ -56,6 +56,10 @@ glm::vec3 SkeletonBrush::acceleration(const StrokePoint& p) const {
   return glm::normalize(dir) * params_.gravity_px_s2;
 }
 
+void SkeletonBrush::prepareStroke(uint32_t stroke_index) {
+  field_.reset(stroke_index, dispersion_params_.noise_scale_px);
+}
+
 FootprintRect SkeletonBrush::beginStroke(uint32_t stroke_index, const StrokePoint& first,
                                          Footprint* fp) {
   field_.reset(stroke_index, dispersion_params_.noise_scale_px);

@@ -29,6 +29,7 @@ class SkeletonBrush : public Brush {
   FootprintRect beginStroke(uint32_t stroke_index, const StrokePoint& first,
                             Footprint* footprint) override;
   FootprintRect continueStroke(const StrokePoint& point, Footprint* footprint) override;
+  void prepareStroke(uint32_t stroke_index) override;
   float reachPx() const override;
 
   const std::array<glm::vec3, 4>& joints() const { return joints_; }

@@ -11,6 +11,12 @@ StrokeEngine::StrokeEngine(const BrushConfig& config, int width, int height)
   if (width <= 0 || height <= 0)
     throw std::invalid_argument("StrokeEngine: footprint size must be positive, got " +
                                 std::to_string(width) + "x" + std::to_string(height));
+  prepareNextStroke();
+}
+
+void StrokeEngine::prepareNextStroke() {
+  if (spare_.width != width_ || spare_.height != height_) spare_ = Footprint(width_, height_);
+  brush(selected_).prepareStroke(next_index_);
 }
 
 Brush& StrokeEngine::brush(BrushKind kind) {
@@ -32,7 +38,11 @@ FootprintRect StrokeEngine::beginStroke(const BrushInput& input) {
   active_ = &b;
   in_stroke_ = true;
   current_index_ = next_index_++;
-  footprint_ = Footprint(width_, height_);
+  if (spare_.width == width_ && spare_.height == height_)
+    footprint_ = std::move(spare_);
+  else
+    footprint_ = Footprint(width_, height_);
+  spare_ = Footprint();
   path_.clear();
   raw_path_.clear();
   path_.push_back(toPoint(in));
@@ -72,6 +82,7 @@ FootprintRect StrokeEngine::feed(const BrushInput& input) {
   if (!in_stroke_) {
     if (valid_pressure && input.pressure >= config_.stroke.down_pressure) return beginStroke(input);
     if (!valid_pressure) ++stats_.dropped_non_finite;
+    prepareNextStroke();  // hovering: get the next stroke ready
     return {};
   }
   if (valid_pressure && input.pressure < config_.stroke.up_pressure) {
@@ -88,6 +99,8 @@ FootprintRect StrokeEngine::feedCalibrated(const MappedSample& sample) {
     changed = beginStroke(in);
   else if (sample.contact)
     changed = addSample(in);
+  else if (!in_stroke_ && !sample.contact_ended)
+    prepareNextStroke();  // hovering: get the next stroke ready
   if (in_stroke_) raw_path_.push_back(sample.raw);
   if (sample.contact_ended && in_stroke_) finished_.push_back(endStroke());
   return changed;

@@ -13,6 +13,10 @@ FootprintRect TextureBrush::beginStroke(uint32_t stroke_index, const StrokePoint
   return stampAll(fp);
 }
 
+void TextureBrush::prepareStroke(uint32_t stroke_index) {
+  field_.reset(stroke_index, dispersion_.noise_scale_px);
+}
+
 FootprintRect TextureBrush::continueStroke(const StrokePoint& point, Footprint* fp) {
   dabs_.clear();
   resampler_.add(point, &dabs_);

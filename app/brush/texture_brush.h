@@ -16,6 +16,7 @@ class TextureBrush : public Brush {
   FootprintRect beginStroke(uint32_t stroke_index, const StrokePoint& first,
                             Footprint* footprint) override;
   FootprintRect continueStroke(const StrokePoint& point, Footprint* footprint) override;
+  void prepareStroke(uint32_t stroke_index) override;
   uint64_t dabCount() const { return dab_count_; }
 
  protected:
