@@ -63,7 +63,7 @@ int commandRender(int argc, char** argv) {
   }
   auto unknown =
       args.unknown({"help", "volume", "out", "camera", "size", "light", "no-skip", "stats"});
-  if (!unknown.empty()) return fail("unknown option --" + unknown[0] + " (see --help)");
+  if (!unknown.empty()) return fail("unknown option " + unknown[0] + " (see --help)");
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "'");
   auto volume_path = args.get("volume");
