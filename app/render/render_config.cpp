@@ -1,0 +1,80 @@
+#include "app/render/render_config.h"
+
+#include <stdexcept>
+
+#include <toml++/toml.h>
+
+namespace cb {
+namespace {
+
+[[noreturn]] void bad(const std::string& path, const std::string& key, const std::string& what) {
+  throw std::runtime_error(path + ": " + key + " " + what);
+}
+
+template <class T>
+void read(const toml::table& root, const std::string& path, const char* section, const char* key,
+          T* out) {
+  auto node = root[section][key];
+  if (!node) return;
+  if constexpr (std::is_same_v<T, bool>) {
+    auto v = node.template value<bool>();
+    if (!v) bad(path, std::string(section) + "." + key, "must be true or false");
+    *out = *v;
+  } else {
+    auto v = node.template value<double>();
+    if (!v) bad(path, std::string(section) + "." + key, "must be a number");
+    *out = T(*v);
+  }
+}
+
+template <int N>
+void readVec(const toml::table& root, const std::string& path, const char* section, const char* key,
+             glm::vec<N, float>* out) {
+  auto node = root[section][key];
+  if (!node) return;
+  const toml::array* a = node.as_array();
+  const std::string name = std::string(section) + "." + key;
+  if (!a || a->size() != size_t(N))
+    bad(path, name, "must be an array of " + std::to_string(N) + " numbers");
+  for (int i = 0; i < N; ++i) {
+    auto v = (*a)[size_t(i)].template value<double>();
+    if (!v) bad(path, name, "must be an array of numbers");
+    (*out)[i] = float(*v);
+  }
+}
+
+}  // namespace
+
+RenderConfig loadRenderConfig(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw std::runtime_error(path + ":" + std::to_string(e.source().begin.line) + ": " +
+                             std::string(e.description()));
+  }
+  RenderConfig c;
+  RenderOptions& o = c.options;
+  read(root, path, "raycast", "step_voxels", &o.step_voxels);
+  read(root, path, "raycast", "extinction_per_voxel", &o.extinction_per_voxel);
+  read(root, path, "raycast", "termination_transmittance", &o.termination_transmittance);
+  read(root, path, "raycast", "skip_empty_space", &o.skip_empty_space);
+  read(root, path, "raycast", "brick_stepping", &o.brick_stepping);
+  readVec<4>(root, path, "background", "colour", &o.background);
+  read(root, path, "motion", "moving_scale", &c.moving_scale);
+  readVec<3>(root, path, "light", "position", &c.light.position);
+  readVec<3>(root, path, "light", "colour", &c.light.colour);
+  read(root, path, "light", "extinction", &c.light.extinction);
+  if (!(o.step_voxels >= 0.1f && o.step_voxels <= 8.0f))
+    bad(path, "raycast.step_voxels", "must be in [0.1, 8]");
+  if (!(o.extinction_per_voxel > 0.0f)) bad(path, "raycast.extinction_per_voxel", "must be > 0");
+  if (!(o.termination_transmittance >= 0.0f && o.termination_transmittance < 1.0f))
+    bad(path, "raycast.termination_transmittance", "must be in [0, 1)");
+  if (!(c.moving_scale >= 0.05f && c.moving_scale <= 1.0f))
+    bad(path, "motion.moving_scale", "must be in [0.05, 1]");
+  if (!(c.light.extinction >= 0.0f && c.light.extinction <= 1.0f))
+    bad(path, "light.extinction", "must be in [0, 1]");
+  return c;
+}
+
+}  // namespace cb
