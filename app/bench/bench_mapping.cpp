@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,12 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double threadCpuMs() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
 }
 
 constexpr int kFootprintW = 1280, kFootprintH = 768;
@@ -121,16 +128,21 @@ class MappingBench {
     return medianOf(runs);
   }
 
-  // Circle growth alone (no volume work): for the diameter sweep.
+  // Circle growth alone (no volume work): for the diameter sweep. Growth runs on the calling
+  // thread, so its thread CPU time is also reported (*cpu_ms): unlike wall time it does not
+  // grow with other load on the machine.
   double growthOnly(const StrokeResult& s, const CircleGrowthConfig& c, bool straightforward,
-                    CircleGrowthResult* out) {
-    std::vector<double> t;
+                    CircleGrowthResult* out, double* cpu_ms) {
+    std::vector<double> t, cpu;
     for (int r = 0; r < repeats_; ++r) {
+      const double c0 = threadCpuMs();
       Clock::time_point t0 = Clock::now();
       *out = straightforward ? growCirclesStraightforward(s.footprint, s.path, c)
                              : growCircles(s.footprint, s.path, c);
       t.push_back(msSince(t0));
+      cpu.push_back(threadCpuMs() - c0);
     }
+    *cpu_ms = median(cpu);
     return median(t);
   }
 
@@ -310,24 +322,29 @@ int benchMapping(int argc, char** argv) {
   addStages(&report, "heart_", heart_base, true);
 
   std::printf("initial-diameter sweep on the single stroke (Table 6.1), circle growth only:\n");
-  std::printf("  %8s %8s %6s %9s %12s %14s %8s\n", "diameter", "circles", "steps", "attempts",
-              "growth ms", "baseline ms", "ratio");
+  std::printf("  %8s %8s %6s %9s %10s %12s %8s | %9s %13s %8s\n", "diameter", "circles", "steps",
+              "attempts", "growth ms", "baseline ms", "ratio", "cpu ms", "baseline cpu", "ratio");
   double d32_total = 0.0;
   for (int diameter : {256, 196, 128, 96, 64, 32}) {
     CircleGrowthConfig c = config.circles;
     c.initial_diameter_px = diameter;
     CircleGrowthResult fast, slow;
-    double t_fast = bench.growthOnly(thick, c, false, &fast);
+    double cpu_fast = 0, cpu_slow = 0;
+    double t_fast = bench.growthOnly(thick, c, false, &fast, &cpu_fast);
     setWorkerThreads(1);
-    double t_slow = bench.growthOnly(thick, c, true, &slow);
+    double t_slow = bench.growthOnly(thick, c, true, &slow, &cpu_slow);
     setWorkerThreads(0);
-    std::printf("  %8d %8zu %6d %9lld %12.2f %14.2f %7.1fx\n", diameter, fast.circles.size(),
-                fast.steps, fast.attempts, t_fast, t_slow, t_slow / std::max(1e-9, t_fast));
+    std::printf("  %8d %8zu %6d %9lld %10.2f %12.2f %7.1fx | %9.2f %13.2f %7.1fx\n", diameter,
+                fast.circles.size(), fast.steps, fast.attempts, t_fast, t_slow,
+                t_slow / std::max(1e-9, t_fast), cpu_fast, cpu_slow,
+                cpu_slow / std::max(1e-9, cpu_fast));
     const std::string k = "sweep_d" + std::to_string(diameter) + "_";
     report.figure(k + "circles", double(fast.circles.size()));
     report.figure(k + "steps", fast.steps);
     report.figure(k + "attempts", double(fast.attempts));
     report.figure(k + "circle_growth_ms", t_fast);
+    report.figure(k + "circle_growth_cpu_ms", cpu_fast);
+    report.baseline(k + "circle_growth_cpu_ms", cpu_slow);
     report.baseline(k + "circles", double(slow.circles.size()));
     report.baseline(k + "attempts", double(slow.attempts));
     report.baseline(k + "circle_growth_ms", t_slow);

@@ -60,15 +60,19 @@ class RowPrefixCounter {
     }
   }
 
-  CircleCounts count(glm::vec2 c, int r) const {
+  // Circles have integer centres here, so row half-widths come from a table:
+  // half_width(r, |dy|) = floor(sqrt(r² − dy²)), the same pixels as circleRowSpan.
+  CircleCounts count(glm::vec2 centre, int r) const {
     CircleCounts n;
+    const int cx = int(centre.x), cy = int(centre.y);
+    const int* hw = halfWidths(r);
     const size_t stride = size_t(bw_) + 1;
-    for (int y = int(std::ceil(c.y - r)); y <= int(std::floor(c.y + r)); ++y) {
-      int x0, x1;
-      if (!circleRowSpan(c, r, y, &x0, &x1)) continue;
-      const long long span = x1 - x0 + 1;
+    for (int dy = -r; dy <= r; ++dy) {
+      const int half = hw[dy < 0 ? -dy : dy];
+      const int x0 = cx - half, x1 = cx + half;
+      const long long span = 2 * half + 1;
       n.pixels += span;
-      const int by = y - by0_;
+      const int by = cy + dy - by0_;
       if (by < 0 || by >= bh_) {
         n.empty += span;
         continue;
@@ -86,12 +90,14 @@ class RowPrefixCounter {
     return n;
   }
 
-  void mask(glm::vec2 c, int r) {
-    for (int y = std::max(0, int(std::ceil(c.y - r))); y <= std::min(h_ - 1, int(c.y + r)); ++y) {
-      int x0, x1;
-      if (!circleRowSpan(c, r, y, &x0, &x1)) continue;
-      x0 = std::max(x0, 0);
-      x1 = std::min(x1, w_ - 1);
+  void mask(glm::vec2 centre, int r) {
+    const int cx = int(centre.x), cy = int(centre.y);
+    const int* hw = halfWidths(r);
+    for (int dy = -r; dy <= r; ++dy) {
+      const int y = cy + dy;
+      if (y < 0 || y >= h_) continue;
+      const int half = hw[dy < 0 ? -dy : dy];
+      const int x0 = std::max(cx - half, 0), x1 = std::min(cx + half, w_ - 1);
       if (x1 < x0) continue;
       std::fill(covered_.begin() + size_t(y) * w_ + x0, covered_.begin() + size_t(y) * w_ + x1 + 1,
                 uint8_t(1));
@@ -108,7 +114,8 @@ class RowPrefixCounter {
   std::vector<uint8_t> takeCovered() { return std::move(covered_); }
 
  private:
-  // Pixels [x0, x1] of image row y were just covered: recount the row's prefix from x0.
+  // Pixels [x0, x1] of image row y were just covered: recount the row's prefix over the span,
+  // then shift the rest of the row by the change.
   void rebuildEmptyRow(int y, int x0, int x1) {
     const int by = y - by0_;
     if (by < 0 || by >= bh_) return;
@@ -117,13 +124,34 @@ class RowPrefixCounter {
     int32_t* ep = &empty_[by * (size_t(bw_) + 1)];
     const uint8_t* cls = &cls_[size_t(by) * bw_];
     const uint8_t* cov = &covered_[size_t(y) * w_ + bx0_];
-    for (int x = a; x < bw_; ++x) ep[x + 1] = ep[x] + (cls[x] == kEmpty || cov[x] != 0);
+    const int32_t before = ep[b + 1];
+    for (int x = a; x <= b; ++x) ep[x + 1] = ep[x] + (cls[x] == kEmpty || cov[x] != 0);
+    const int32_t delta = ep[b + 1] - before;
+    if (delta)
+      for (int x = b + 2; x <= bw_; ++x) ep[x] += delta;
+  }
+
+  // Row half-widths of the integer circle of radius r, built on first use.
+  const int* halfWidths(int r) const {
+    if (size_t(r) >= half_widths_.size()) half_widths_.resize(size_t(r) + 1);
+    std::vector<int>& t = half_widths_[size_t(r)];
+    if (t.empty()) {
+      t.resize(size_t(r) + 1);
+      for (int dy = 0; dy <= r; ++dy) {
+        int h = int(std::sqrt(double(r) * r - double(dy) * dy));
+        while (h * h + dy * dy > r * r) --h;
+        while ((h + 1) * (h + 1) + dy * dy <= r * r) ++h;
+        t[size_t(dy)] = h;
+      }
+    }
+    return t.data();
   }
 
   int w_, h_;
   int bx0_ = 0, by0_ = 0, bw_ = 0, bh_ = 0;  // bounding box of the non-empty pixels
   std::vector<uint8_t> cls_, covered_;
   std::vector<int32_t> white_, empty_;
+  mutable std::vector<std::vector<int>> half_widths_;
 };
 
 // Straightforward counter (Algorithm 7): traverses the circle's bounding block pixel by pixel.
@@ -243,7 +271,8 @@ CircleGrowthResult grow(const Footprint& f, const std::vector<StrokePoint>& path
       for (size_t i = begin; i < end; ++i) {
         const Circle parent = result.circles[i];
         for (const glm::vec2& d : dirs) {
-          glm::vec2 c = parent.centre + d * float(parent.radius);
+          // Candidate centres snap to pixel centres (integer), so circle tests use row tables.
+          glm::vec2 c = glm::round(parent.centre + d * float(parent.radius));
           if (c.x < 0 || c.y < 0 || c.x > f.width - 1 || c.y > f.height - 1) continue;
           if (int r = searchRadius(counter, c, cfg, search, cfg.empty_test_on_smallest,
                                    &result.attempts))
