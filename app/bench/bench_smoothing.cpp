@@ -219,7 +219,8 @@ int usage(int code) {
       "  --velocity-cutoff, --horizon       prediction parameters\n"
       "  --trace JOURNAL      measure on a recorded session instead (no ground truth: jitter\n"
       "                       over still windows, lag against the raw samples)\n"
-      "  --write-strokes DIR  regenerate the synthetic strokes into DIR and exit\n",
+      "  --write-strokes DIR  regenerate the synthetic strokes into DIR and exit\n"
+      "  --seed-offset N      with --write-strokes: other noise seeds (a held-out set)\n",
       benchStrokesDir().c_str());
   return code;
 }
@@ -228,9 +229,9 @@ int usage(int code) {
 
 int benchSmoothing(int argc, char** argv) {
   Args args(argc, argv, {"help"});
-  const std::vector<std::string> known = {"help",  "strokes",      "profile",         "min-cutoff",
-                                          "beta",  "d-cutoff",     "velocity-cutoff", "horizon",
-                                          "trace", "write-strokes"};
+  const std::vector<std::string> known = {"help",  "strokes",       "profile",         "min-cutoff",
+                                          "beta",  "d-cutoff",      "velocity-cutoff", "horizon",
+                                          "trace", "write-strokes", "seed-offset"};
   if (args.has("help")) return usage(0);
   if (auto bad = args.unknown(known); !bad.empty()) {
     std::fprintf(stderr, "cloudbrush bench smoothing: unknown option %s\n", bad[0].c_str());
@@ -239,7 +240,9 @@ int benchSmoothing(int argc, char** argv) {
 
   if (auto dir = args.get("write-strokes")) {
     std::filesystem::create_directories(*dir);
-    for (const StrokeSpec& spec : benchStrokeSpecs()) {
+    const long seed_offset = args.getInt("seed-offset", 0);  // != 0: a held-out set
+    for (StrokeSpec spec : benchStrokeSpecs()) {
+      spec.seed += static_cast<uint64_t>(seed_offset);
       const std::string path = *dir + "/" + spec.name + ".csv";
       std::ofstream(path) << formatStrokeCsv(makeSyntheticStroke(spec));
       std::printf("wrote %s\n", path.c_str());
