@@ -1,14 +1,17 @@
 // cloudbrush render: offline render of a saved volume to PNG or EXR through EGL surfaceless.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/core/config_paths.h"
 #include "app/render/gl/egl_context.h"
 #include "app/render/image_io.h"
+#include "app/render/render_config.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/volume/volume_file.h"
@@ -28,7 +31,9 @@ const char kRenderHelp[] =
     "                         eye, target and vertical field of view in degrees; default: the\n"
     "                         reference camera (eye 2.3,1.5,2.3, target 0,-0.05,0, 45°)\n"
     "  --size WxH             image size in pixels (default 1280x720)\n"
-    "  --light X,Y,Z          world position of the light ball (default 3,4,1.5)\n"
+    "  --light X,Y,Z          world position of the light ball (default from the config)\n"
+    "  --config FILE          renderer defaults (default: render.toml in the config directory,\n"
+    "                         see config/render.toml; CLOUDBRUSH_CONFIG_DIR overrides)\n"
     "  --no-skip              disable empty-space skipping (same image, slower)\n"
     "  --stats                print ray-sample statistics (total, mean, max, histogram)\n"
     "  --help                 this text\n";
@@ -61,8 +66,8 @@ int commandRender(int argc, char** argv) {
     std::printf("%s", kRenderHelp);
     return 0;
   }
-  auto unknown =
-      args.unknown({"help", "volume", "out", "camera", "size", "light", "no-skip", "stats"});
+  auto unknown = args.unknown(
+      {"help", "volume", "out", "camera", "size", "light", "no-skip", "stats", "config"});
   if (!unknown.empty()) return fail("unknown option " + unknown[0] + " (see --help)");
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "'");
@@ -99,7 +104,18 @@ int commandRender(int argc, char** argv) {
     if (glm::length(camera.target - camera.eye) < 1e-6f)
       return fail("--camera: eye and target coincide");
   }
-  Light light;
+  RenderConfig config;
+  {
+    const std::string config_path = args.get("config", configFile("render.toml"));
+    if (args.has("config") || std::filesystem::exists(config_path)) {
+      try {
+        config = loadRenderConfig(config_path);
+      } catch (const std::exception& e) {
+        return fail(e.what());
+      }
+    }
+  }
+  Light light = config.light;
   if (auto text = args.get("light")) {
     std::vector<float> v;
     if (!parseNumbers(*text, 3, 3, &v)) return fail("--light '" + *text + "': expected X,Y,Z");
@@ -125,8 +141,8 @@ int commandRender(int argc, char** argv) {
     if (!target.create(width, height,
                        exr ? RenderTarget::Format::kRgba32F : RenderTarget::Format::kRgba8, &error))
       return fail(error);
-    RenderOptions options;
-    options.skip_empty_space = !args.has("no-skip");
+    RenderOptions options = config.options;
+    if (args.has("no-skip")) options.skip_empty_space = false;
     options.collect_stats = args.has("stats");
     options.finish = true;
     renderer.render(camera, width, height, target.fbo(), options);
