@@ -103,7 +103,8 @@ int commandPaint(int argc, char** argv) {
                display->width(), display->height(), display->context().version.c_str(),
                display->context().renderer.c_str());
   if (!choice_note.empty())
-    std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(), choice_note.c_str());
+    std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
+                 choice_note.c_str());
 
   const auto generate_start = std::chrono::steady_clock::now();
   const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
@@ -132,9 +133,10 @@ int commandPaint(int argc, char** argv) {
   PaintLoopSummary summary;
   if (!loop.run(&g_stop, &summary, &error)) return fail(error);
   std::printf(
-      "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f\n",
+      "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f, "
+      "present %.1f ms\n",
       summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
-      summary.median_frame_ms, summary.final_moving_scale);
+      summary.median_frame_ms, summary.final_moving_scale, summary.median_present_ms);
   if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
     std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
                 last->vblank_sequence, double(last->shown_ns) / 1e9);

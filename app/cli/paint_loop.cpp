@@ -102,6 +102,15 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
                      moving_frame_ms.end());
     summary->median_frame_ms = moving_frame_ms[moving_frame_ms.size() / 2];
   }
+  std::vector<double> present_ms;
+  const FrameTimingRing& timings = display_.frameTimings();
+  for (size_t i = 0; i < timings.size(); ++i)
+    present_ms.push_back(double(timings.at(i).shown_ns - timings.at(i).submit_ns) / 1e6);
+  if (!present_ms.empty()) {
+    std::nth_element(present_ms.begin(), present_ms.begin() + long(present_ms.size() / 2),
+                     present_ms.end());
+    summary->median_present_ms = present_ms[present_ms.size() / 2];
+  }
   return true;
 }
 

@@ -31,7 +31,8 @@ struct PaintLoopOptions {
 struct PaintLoopSummary {
   long frames = 0;
   double seconds = 0.0;
-  double median_frame_ms = 0.0;  // present to present while orbiting
+  double median_frame_ms = 0.0;    // present to present while orbiting
+  double median_present_ms = 0.0;  // inside present(): swap (+ page flip wait on KMS)
   double final_moving_scale = 0.0;
   long refined_frames = 0;  // full-resolution frames drawn after the camera stopped
   std::string quit_reason;  // "Esc", "window closed", "frame limit", "signal"
