@@ -21,8 +21,9 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Round to nearest (no libm call: this runs for every uploaded voxel).
 uint8_t toUnorm8(float v) {
-  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
 }
 
 }  // namespace
