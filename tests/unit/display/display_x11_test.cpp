@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "app/render/gl/display.h"
+#include "xvfb_server.h"
 
 // After gtest: Xlib's macros (None, Bool, ...) would break its headers.
 #include <X11/Xatom.h>
@@ -26,50 +27,6 @@ namespace cb {
 namespace {
 
 constexpr int kScreenW = 320, kScreenH = 200;
-
-// An Xvfb child process; -displayfd makes the server pick a free display number and tell us.
-class Xvfb {
- public:
-  Xvfb() {
-    int pipe_fds[2];
-    if (pipe(pipe_fds) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      close(pipe_fds[0]);
-      const std::string fd = std::to_string(pipe_fds[1]);
-      const std::string screen = std::to_string(kScreenW) + "x" + std::to_string(kScreenH) + "x24";
-      const int devnull = open("/dev/null", O_WRONLY);
-      dup2(devnull, 2);
-      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", screen.c_str(), "-nolisten",
-             "tcp", "-noreset", static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    close(pipe_fds[1]);
-    // Read up to the newline; the read end stays open for the server's lifetime, since Xvfb
-    // writes the number and the newline separately and dies of SIGPIPE if nobody listens.
-    read_fd_ = pipe_fds[0];
-    std::string number;
-    for (char c = 0; c != '\n';) {
-      pollfd pfd{read_fd_, POLLIN, 0};
-      if (poll(&pfd, 1, 20000) != 1 || read(read_fd_, &c, 1) != 1) return;
-      if (c >= '0' && c <= '9') number += c;
-    }
-    if (!number.empty()) name_ = ":" + number;
-  }
-  ~Xvfb() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      waitpid(pid_, nullptr, 0);
-    }
-    if (read_fd_ >= 0) close(read_fd_);
-  }
-  const std::string& name() const { return name_; }  // empty if it did not start
-
- private:
-  pid_t pid_ = -1;
-  int read_fd_ = -1;
-  std::string name_;
-};
 
 bool xvfbInstalled() {
   return system("command -v Xvfb >/dev/null 2>&1") == 0;
@@ -105,7 +62,7 @@ bool waitForEvent(Display& display, Pred want) {
 TEST(X11Display, FullscreenWindowShowsTheFrameAndQuitsOnEscAndClose) {
   if (!xvfbInstalled())
     GTEST_SKIP() << "SKIPPED LOUDLY: Xvfb is not installed (apt-get install xvfb)";
-  Xvfb server;
+  Xvfb server(kScreenW, kScreenH);
   ASSERT_FALSE(server.name().empty()) << "Xvfb did not report a display number";
 
   DisplayOptions options;

@@ -1,0 +1,114 @@
+// The main job on a display, as the real binary under a test-started Xvfb: `cloudbrush` opens
+// fullscreen on X11 by itself (DISPLAY set, no card to take), draws the orbiting cloud, and
+// quits on Esc with status 0.
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "xvfb_server.h"
+
+// After gtest: Xlib's macros (None, Bool, ...) would break its headers.
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+#include <X11/keysym.h>
+
+namespace cb {
+namespace {
+
+constexpr int kW = 320, kH = 200;
+
+Window findWindowNamed(::Display* x, const char* wanted) {
+  Window root, parent, *children = nullptr;
+  unsigned count = 0;
+  Window found = 0;
+  XQueryTree(x, DefaultRootWindow(x), &root, &parent, &children, &count);
+  for (unsigned i = 0; i < count && !found; ++i) {
+    char* name = nullptr;
+    if (XFetchName(x, children[i], &name) && name) {
+      if (std::strcmp(name, wanted) == 0) found = children[i];
+      XFree(name);
+    }
+  }
+  if (children) XFree(children);
+  return found;
+}
+
+TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
+  if (!xvfbInstalled())
+    GTEST_SKIP() << "SKIPPED LOUDLY: Xvfb is not installed (apt-get install xvfb)";
+  Xvfb server(kW, kH);
+  ASSERT_FALSE(server.name().empty());
+
+  // The binary, in the background, its stdout/stderr in files.
+  const std::string dir = std::string(CB_TEST_WORK);
+  const std::string out = dir + "/paint_x11.out", err = dir + "/paint_x11.err";
+  const std::string command = "DISPLAY=" + server.name() +
+                              " LIBGL_ALWAYS_SOFTWARE=1 '" CB_CLOUDBRUSH_BIN "' --grid 48 >'" +
+                              out + "' 2>'" + err + "'; echo $? >'" + dir + "/paint_x11.status'";
+  std::remove((dir + "/paint_x11.status").c_str());
+  std::thread runner([&] { std::system(command.c_str()); });
+
+  ::Display* observer = XOpenDisplay(server.name().c_str());
+  ASSERT_NE(observer, nullptr);
+  // Wait for the window and for a few frames of cloud: a bright middle on sky-blue corners.
+  Window window = 0;
+  bool cloud_seen = false;
+  for (int i = 0; i < 600 && !cloud_seen; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!window) window = findWindowNamed(observer, "cloudbrush");
+    if (!window) continue;
+    XImage* image =
+        XGetImage(observer, DefaultRootWindow(observer), 0, 0, kW, kH, AllPlanes, ZPixmap);
+    if (!image) continue;
+    auto channel = [&](int x, int y, unsigned long mask) {
+      const unsigned long p = XGetPixel(image, x, y) & mask;
+      return int(p / (mask & ~(mask << 1)));  // shift the masked bits down to 0..255
+    };
+    const int centre_r = channel(kW / 2, kH / 2, image->red_mask);
+    const int corner_r = channel(1, 1, image->red_mask);
+    const int corner_b = channel(1, 1, image->blue_mask);
+    cloud_seen = corner_b > corner_r + 30 && centre_r > corner_r + 40;
+    XDestroyImage(image);
+  }
+  ASSERT_NE(window, 0u) << "no window named cloudbrush appeared";
+  XWindowAttributes attributes{};
+  XGetWindowAttributes(observer, window, &attributes);
+  EXPECT_EQ(attributes.width, kW);
+  EXPECT_EQ(attributes.height, kH);
+  EXPECT_TRUE(cloud_seen) << "the screen never showed a cloud in front of the sky";
+
+  XEvent key{};
+  key.xkey.type = KeyPress;
+  key.xkey.display = observer;
+  key.xkey.window = window;
+  key.xkey.root = DefaultRootWindow(observer);
+  key.xkey.keycode = XKeysymToKeycode(observer, XK_Escape);
+  key.xkey.same_screen = True;
+  XSendEvent(observer, window, True, KeyPressMask, &key);
+  XFlush(observer);
+  runner.join();  // the binary must end by itself after Esc (ctest's timeout guards this)
+  XCloseDisplay(observer);
+
+  auto slurp = [](const std::string& path) {
+    std::string text;
+    if (FILE* f = std::fopen(path.c_str(), "r")) {
+      char buf[4096];
+      size_t n;
+      while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) text.append(buf, n);
+      std::fclose(f);
+    }
+    return text;
+  };
+  const std::string status = slurp(dir + "/paint_x11.status");
+  const std::string stdout_text = slurp(out), stderr_text = slurp(err);
+  EXPECT_EQ(status, "0\n") << stderr_text;
+  EXPECT_NE(stderr_text.find("x11 display 320x200"), std::string::npos) << stderr_text;
+  EXPECT_NE(stdout_text.find("on x11 (Esc)"), std::string::npos) << stdout_text;
+}
+
+}  // namespace
+}  // namespace cb
