@@ -157,8 +157,11 @@ void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
 
 SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   SyncStats st;
-  const bool fresh = synced_volume_ != &volume || volume.dims() != dims_ ||
-                     volume.worldMin() != world_min_ || volume.worldMax() != world_max_;
+  // A different object, a generation that went backwards (another volume assigned into the same
+  // object) or new dims/placement: upload everything.
+  const bool fresh = synced_volume_ != &volume || volume.generation() < synced_generation_ ||
+                     volume.dims() != dims_ || volume.worldMin() != world_min_ ||
+                     volume.worldMax() != world_max_;
   st.dirty = fresh ? volume.bounds() : volume.dirtySince(synced_generation_);
 
   auto t0 = std::chrono::steady_clock::now();

@@ -80,13 +80,17 @@ class VolumeRenderer {
   // Brings the GPU copies up to date with `volume` and `light`: only the voxels changed since the
   // last sync (Volume::dirtySince) are re-packed and uploaded; the occupancy is updated over the
   // dirty box; the light volume over the dirty box swept away from the light, or entirely when
-  // the light changed. A new Volume object or new dims re-uploads everything.
+  // the light changed. A new Volume object, new dims or a generation lower than last time
+  // re-uploads everything; after replacing a volume's contents without markDirty (never do
+  // that) call invalidate().
   SyncStats sync(const Volume& volume, const Light& light);
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
   // renders into an internal smaller target and blits it up.
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
               const RenderOptions& options = {});
   RenderStats lastStats() const { return stats_; }
+  // Forgets what was uploaded: the next sync() re-uploads everything.
+  void invalidate() { synced_volume_ = nullptr; }
   const LightVolume& lightVolume() const { return light_volume_; }
   const OccupancyPyramid& occupancy() const { return occupancy_; }
 
