@@ -9,6 +9,19 @@ namespace {
 
 enum PixelClass : uint8_t { kGrey = 0, kWhite = 1, kEmpty = 2 };
 
+// Largest value of p[0..n) (0 if none is larger; NaN never wins), with eight independent lanes
+// so the reduction does not wait on one dependency chain.
+float maxOf(const float* p, size_t n) {
+  float lane[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (int k = 0; k < 8; ++k) lane[k] = std::max(lane[k], p[i + size_t(k)]);
+  for (; i < n; ++i) lane[0] = std::max(lane[0], p[i]);
+  float m = lane[0];
+  for (int k = 1; k < 8; ++k) m = std::max(m, lane[k]);
+  return m;
+}
+
 bool insideCircle(glm::vec2 c, int r, int x, int y) {
   double dx = double(x) - double(c.x), dy = double(y) - double(c.y);
   return dx * dx + dy * dy <= double(r) * double(r);
@@ -16,22 +29,34 @@ bool insideCircle(glm::vec2 c, int r, int x, int y) {
 
 // Fast counter: per-row prefix sums of white (static: white is judged on the unmasked
 // footprint) and of empty-or-covered (updated when a circle is masked out), kept only over the
-// bounding box of the non-empty pixels; everything outside it is empty.
+// bounding box of the non-empty pixels; everything outside it is empty. The tables live in a
+// per-thread workspace that keeps its memory between strokes: fresh multi-megabyte buffers
+// cost more in page faults than the whole growth.
+struct RowPrefixWorkspace {
+  std::vector<uint8_t> cls;
+  std::vector<int32_t> white, empty;
+};
+
 class RowPrefixCounter {
  public:
-  RowPrefixCounter(const Footprint& f, const CircleGrowthConfig& cfg)
-      : w_(f.width), h_(f.height), covered_(size_t(f.width) * f.height, 0) {
-    // Bounding box of the non-empty pixels.
+  // row_max[y]: the largest value of footprint row y.
+  RowPrefixCounter(const Footprint& f, const CircleGrowthConfig& cfg,
+                   const std::vector<float>& row_max)
+      : w_(f.width),
+        h_(f.height),
+        cls_(workspace().cls),
+        white_(workspace().white),
+        empty_(workspace().empty),
+        covered_(size_t(f.width) * f.height, 0) {
+    // Bounding box of the non-empty pixels: a row's maximum first (a branch-free reduction),
+    // then its ends only where the row has ink.
     int x0 = w_, x1 = -1, y0 = h_, y1 = -1;
     for (int y = 0; y < h_; ++y) {
       const float* row = &f.values[size_t(y) * w_];
-      int first = -1, last = -1;
-      for (int x = 0; x < w_; ++x)
-        if (row[x] > cfg.empty_threshold) {
-          if (first < 0) first = x;
-          last = x;
-        }
-      if (first < 0) continue;
+      if (!(row_max[size_t(y)] > cfg.empty_threshold)) continue;
+      int first = 0, last = w_ - 1;
+      while (!(row[first] > cfg.empty_threshold)) ++first;
+      while (!(row[last] > cfg.empty_threshold)) --last;
       x0 = std::min(x0, first);
       x1 = std::max(x1, last);
       y0 = std::min(y0, y);
@@ -147,17 +172,24 @@ class RowPrefixCounter {
     return t.data();
   }
 
+  static RowPrefixWorkspace& workspace() {
+    thread_local RowPrefixWorkspace ws;
+    return ws;
+  }
+
   int w_, h_;
   int bx0_ = 0, by0_ = 0, bw_ = 0, bh_ = 0;  // bounding box of the non-empty pixels
-  std::vector<uint8_t> cls_, covered_;
-  std::vector<int32_t> white_, empty_;
+  std::vector<uint8_t>& cls_;
+  std::vector<int32_t>&white_, &empty_;
+  std::vector<uint8_t> covered_;
   mutable std::vector<std::vector<int>> half_widths_;
 };
 
 // Straightforward counter (Algorithm 7): traverses the circle's bounding block pixel by pixel.
 class BlockTraversalCounter {
  public:
-  BlockTraversalCounter(const Footprint& f, const CircleGrowthConfig& cfg)
+  BlockTraversalCounter(const Footprint& f, const CircleGrowthConfig& cfg,
+                        const std::vector<float>& /*row_max*/)
       : f_(f), cfg_(cfg), covered_(f.values.size(), 0) {}
 
   CircleCounts count(glm::vec2 c, int r) const { return countCircle(f_, &covered_, c, r, cfg_); }
@@ -245,12 +277,29 @@ std::vector<glm::ivec2> seedOrder(const Footprint& f, const std::vector<StrokePo
   return order;
 }
 
+// Thresholds for this footprint from its row maxima (see effectiveCircleConfig).
+CircleGrowthConfig thresholdsFor(const CircleGrowthConfig& config, float peak) {
+  CircleGrowthConfig c = config;
+  if (!c.white_relative_to_peak) return c;
+  peak = std::min(peak, 1.0f);
+  c.white_threshold = std::max(c.white_threshold * peak, std::nextafter(c.empty_threshold, 2.0f));
+  return c;
+}
+
 template <typename Counter>
 CircleGrowthResult grow(const Footprint& f, const std::vector<StrokePoint>& path,
-                        const CircleGrowthConfig& cfg, RadiusSearch search) {
+                        const CircleGrowthConfig& config, RadiusSearch search) {
   CircleGrowthResult result;
   if (f.width <= 0 || f.height <= 0 || f.values.size() != size_t(f.width) * f.height) return result;
-  Counter counter(f, cfg);
+  // One pass over the footprint: each row's maximum gives the peak and the rows with ink.
+  std::vector<float> row_max(size_t(f.height));
+  float peak = 0.0f;
+  for (int y = 0; y < f.height; ++y) {
+    row_max[size_t(y)] = maxOf(&f.values[size_t(y) * f.width], size_t(f.width));
+    peak = std::max(peak, row_max[size_t(y)]);
+  }
+  const CircleGrowthConfig cfg = thresholdsFor(config, peak);
+  Counter counter(f, cfg, row_max);
 
   std::vector<glm::vec2> dirs(cfg.directions);
   for (int j = 0; j < cfg.directions; ++j) {
@@ -368,27 +417,18 @@ CircleCounts countCircle(const Footprint& f, const std::vector<uint8_t>* covered
 }
 
 CircleGrowthConfig effectiveCircleConfig(const Footprint& f, const CircleGrowthConfig& config) {
-  CircleGrowthConfig c = config;
-  if (!c.white_relative_to_peak) return c;
-  float peak = 0.0f;
-  for (float v : f.values)
-    if (v > peak) peak = v;  // NaN never compares greater
-  peak = std::min(peak, 1.0f);
-  c.white_threshold = std::max(c.white_threshold * peak, std::nextafter(c.empty_threshold, 2.0f));
-  return c;
+  return thresholdsFor(config, maxOf(f.values.data(), f.values.size()));
 }
 
 CircleGrowthResult growCircles(const Footprint& footprint, const std::vector<StrokePoint>& path,
                                const CircleGrowthConfig& config) {
-  return grow<RowPrefixCounter>(footprint, path, effectiveCircleConfig(footprint, config),
-                                RadiusSearch::kBinary);
+  return grow<RowPrefixCounter>(footprint, path, config, RadiusSearch::kBinary);
 }
 
 CircleGrowthResult growCirclesStraightforward(const Footprint& footprint,
                                               const std::vector<StrokePoint>& path,
                                               const CircleGrowthConfig& config) {
-  return grow<BlockTraversalCounter>(footprint, path, effectiveCircleConfig(footprint, config),
-                                     RadiusSearch::kLinearStep4);
+  return grow<BlockTraversalCounter>(footprint, path, config, RadiusSearch::kLinearStep4);
 }
 
 }  // namespace cb
