@@ -93,16 +93,22 @@ class CalibrateCommandTest : public ::testing::Test {
 
   // A calibration session as the replay backend plays it: hover, then a tap on every target
   // where the distorted tablet reports it.
-  std::string writeSessionJournal() {
+  // What the pen does in a session: tap every target (as a tablet with `error` reports them),
+  // or tap a point given in screen px under the area mapping alone (the result screen's boxes).
+  struct Action {
+    enum Kind { kTapTargets, kTapScreen } kind;
+    glm::dmat3 error{1.0};
+    glm::dvec2 screen_px{0.0};
+  };
+
+  // A calibration session as the replay backend plays it.
+  std::string writeSessionJournal(const std::vector<Action>& actions) {
     const PenDeviceInfo dev = intuos4();
     ProfileParseResult defaults =
         readCalibrationProfile((root_ / "config/calibration.toml").string());
     EXPECT_TRUE(defaults.profile);
     const AreaMapping area = computeAreaMapping(defaults.profile->area, 223.52, 139.70, kW, kH);
     EXPECT_TRUE(area.ok);
-    // Where the pen must be so that area mapping then distortion lands on the target:
-    // distortion(area(mm)) = target  =>  mm = area^-1(distortion^-1(target)).
-    const glm::dmat3 to_mm = glm::inverse(area.tablet_to_screen) * glm::inverse(distortion());
     const std::string path = (root_ / "session.cbj").string();
     JournalWriter w;
     EXPECT_TRUE(w.open(path)) << w.error();
@@ -126,11 +132,20 @@ class CalibrateCommandTest : public ::testing::Test {
       s.in_proximity = true;
       w.appendPenSample(s);
     };
-    for (const glm::dvec2& target : targetLayout(9, kW, kH)) {
-      const glm::dvec2 mm = applyTransform(to_mm, target);
+    auto tap = [&](glm::dvec2 mm) {
       for (int i = 0; i < 10; ++i) emit(mm + glm::dvec2(0, -3.0 + 0.3 * i), 0.0f, 0.6f);
       for (int i = 0; i < 12; ++i) emit(mm, 0.4f, 0.0f);
       for (int i = 0; i < 10; ++i) emit(mm + glm::dvec2(0, 0.3 * i), 0.0f, 0.6f);
+    };
+    for (const Action& a : actions) {
+      if (a.kind == Action::kTapScreen) {
+        tap(applyTransform(glm::inverse(area.tablet_to_screen), a.screen_px));
+        continue;
+      }
+      // Where the pen must be so that area mapping then the error lands on the target:
+      // error(area(mm)) = target  =>  mm = area^-1(error^-1(target)).
+      const glm::dmat3 to_mm = glm::inverse(area.tablet_to_screen) * glm::inverse(a.error);
+      for (const glm::dvec2& target : targetLayout(9, kW, kH)) tap(applyTransform(to_mm, target));
     }
     w.close();
     return path;
@@ -140,7 +155,7 @@ class CalibrateCommandTest : public ::testing::Test {
 };
 
 TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJournalRefits) {
-  const std::string session = writeSessionJournal();
+  const std::string session = writeSessionJournal({{Action::kTapTargets, distortion()}});
   const std::string state = (root_ / "state").string();
   const std::string record = (root_ / "record.cbj").string();
   const std::string snapshot = (root_ / "result.png").string();
@@ -193,6 +208,43 @@ TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJourna
   for (int c = 0; c < 3; ++c)
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(again.profile->correction[c][k], r.profile->correction[c][k], 1e-9);
+}
+
+TEST_F(CalibrateCommandTest, RedoThenAcceptWithThePen) {
+  // First round with a skewed tablet, the orange box (redo), a second round with a shifted
+  // tablet, the green box (accept): the saved correction is the second round's.
+  glm::dmat3 shift(1.0);
+  shift[2][0] = 9.0;
+  shift[2][1] = -5.0;
+  const std::string session = writeSessionJournal({{Action::kTapTargets, distortion()},
+                                                   {Action::kTapScreen, {}, {3.0 * kW / 4, kH / 2}},
+                                                   {Action::kTapTargets, shift},
+                                                   {Action::kTapScreen, {}, {kW / 4.0, kH / 2}}});
+  const std::string state = (root_ / "state").string();
+  int status = 0;
+  std::string out =
+      run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --backend replay --device " + session +
+              " --display surfaceless --timeout 120 --config-dir " + (root_ / "config").string() +
+              " --state-dir " + state + " --record " + (root_ / "record.cbj").string(),
+          &status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("redo"), std::string::npos) << out;
+  ProfileParseResult r = readCalibrationProfile(state + "/profiles/056a-00b9.toml");
+  ASSERT_TRUE(r.profile) << out;
+  for (const glm::dvec2& p : targetLayout(9, kW, kH, 0.0)) {
+    const glm::dvec2 d = applyTransform(r.profile->correction, p) - applyTransform(shift, p);
+    EXPECT_LT(glm::length(d), 0.5) << p.x << "," << p.y;
+  }
+  // The re-fit of the record follows the redo marker to the same answer.
+  out = run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --journal " +
+                (root_ / "record.cbj").string() + " --config-dir " + (root_ / "config").string() +
+                " --state-dir " + (root_ / "state2").string() + " --save",
+            &status);
+  ASSERT_EQ(status, 0) << out;
+  ProfileParseResult again =
+      readCalibrationProfile((root_ / "state2/profiles/056a-00b9.toml").string());
+  ASSERT_TRUE(again.profile) << out;
+  EXPECT_NEAR(again.profile->correction[2][0], r.profile->correction[2][0], 1e-9);
 }
 
 TEST_F(CalibrateCommandTest, PressureCalibrationFromReplayedPresses) {
