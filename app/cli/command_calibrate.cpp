@@ -463,8 +463,9 @@ int runInteractive(const Args& args, const Settings& s) {
     journal.append(JournalRecordType::kMarker, 0, targetMarker(i, targets[i]));
   }
 
-  const Button accept{w * 0.25 - 100, h * 0.5 - 60, 200, 120};
-  const Button redo{w * 0.75 - 100, h * 0.5 - 60, 200, 120};
+  // Between the middle and bottom rows of targets, clear of their labels.
+  const Button accept{w * 0.3 - 90, h * 0.7 - 50, 180, 100};
+  const Button redo{w * 0.7 - 90, h * 0.7 - 50, 180, 100};
   TapCollector collector;
   std::vector<Tap> taps;
   std::optional<CalibrationFit> fit;
@@ -573,7 +574,7 @@ int runInteractive(const Args& args, const Settings& s) {
       }
       char buf[32];
       std::snprintf(buf, sizeof buf, "%.2fpx", fit->fit.max_residual);
-      p.text(buf, w * 0.5 - 72, h * 0.5 + 90, 6, 1.0f, 1.0f, 0.6f);  // max residual
+      p.text(buf, w * 0.5 - 72, h * 0.3 - 15, 6, 1.0f, 1.0f, 0.6f);  // max residual
       p.rect(accept.x, accept.y, accept.w, accept.h, 0.2f, 0.65f, 0.25f);
       p.rect(redo.x, redo.y, redo.w, redo.h, 0.9f, 0.5f, 0.1f);
     }

@@ -175,9 +175,9 @@ TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJourna
   ASSERT_EQ(sw, kW);
   ASSERT_EQ(sh, kH);
   auto px = [&](int x, int y) { return &rgba[(static_cast<size_t>(y) * sw + x) * 4]; };
-  EXPECT_EQ(px(kW / 4, kH / 2)[1], 166);  // accept: (0.2, 0.65, 0.25)
-  EXPECT_GT(px(kW / 4, kH / 2)[1], px(kW / 4, kH / 2)[0]);
-  EXPECT_EQ(px(3 * kW / 4, kH / 2)[0], 230);  // redo: (0.9, 0.5, 0.1)
+  EXPECT_EQ(px(3 * kW / 10, 7 * kH / 10)[1], 166);  // accept: (0.2, 0.65, 0.25)
+  EXPECT_GT(px(3 * kW / 10, 7 * kH / 10)[1], px(3 * kW / 10, 7 * kH / 10)[0]);
+  EXPECT_EQ(px(7 * kW / 10, 7 * kH / 10)[0], 230);  // redo: (0.9, 0.5, 0.1)
   const glm::dvec2 t0 = targetLayout(9, kW, kH)[0];
   EXPECT_EQ(px(static_cast<int>(t0.x) + 8, static_cast<int>(t0.y))[0], 204);  // crosshair arm
   EXPECT_LT(px(5, kH - 5)[0], 40);                                            // background
@@ -217,9 +217,9 @@ TEST_F(CalibrateCommandTest, RedoThenAcceptWithThePen) {
   shift[2][0] = 9.0;
   shift[2][1] = -5.0;
   const std::string session = writeSessionJournal({{Action::kTapTargets, distortion()},
-                                                   {Action::kTapScreen, {}, {3.0 * kW / 4, kH / 2}},
+                                                   {Action::kTapScreen, {}, {0.7 * kW, 0.7 * kH}},
                                                    {Action::kTapTargets, shift},
-                                                   {Action::kTapScreen, {}, {kW / 4.0, kH / 2}}});
+                                                   {Action::kTapScreen, {}, {0.3 * kW, 0.7 * kH}}});
   const std::string state = (root_ / "state").string();
   int status = 0;
   std::string out =
