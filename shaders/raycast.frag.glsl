@@ -1,3 +1,7 @@
+// Compiled in variants (the renderer prepends #defines): CB_SKIP (ray bounds), CB_BRICK_STEPPING
+// (hierarchical stepping inside them), CB_STATS (sample statistics). Variants rather than uniform
+// branches, because llvmpipe runs untaken branches' straight-line code with all lanes masked.
+//
 // Ray casting of the density volume (thesis §4.3, Alg. 4) with lossless empty-space skipping
 // over a max-mip occupancy pyramid (the role of the octree of §4.4). Linked after a shading
 // stage that defines `vec3 shadeSample(float density, float transmittance)`; the renderer
@@ -18,7 +22,7 @@
 //     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them;
 //     a pixel whose ray meets no occupied cell costs one fetch. When the eye is in or next to an
 //     occupied cell the march starts at the near plane.
-//  2. Optional hierarchical stepping (u_brick_stepping): at a sample in an empty level-0 cell the
+//  2. Optional hierarchical stepping (CB_BRICK_STEPPING): at a sample in an empty level-0 cell the
 //     ray climbs to the coarsest empty ancestor and jumps to the first sample index past it; in
 //     an occupied cell it samples every index until the cell's exit.
 // The sample positions t_enter + (k + ½)·step are the same with and without skipping, and empty
@@ -34,25 +38,24 @@ uniform sampler3D u_volume;   // r = density, g = transmittance towards the ligh
 uniform usampler3D u_occupancy;
 uniform int u_brick;          // voxels per level-0 occupancy cell
 uniform int u_levels;         // occupancy mip levels
-uniform bool u_skip;
-uniform bool u_brick_stepping;  // hierarchical stepping over the occupancy pyramid inside the bounds
 uniform float u_step;         // voxels per ray step
 uniform float u_sigma;        // extinction per voxel at density 1
 uniform float u_cutoff;       // stop when transmittance falls below this
 uniform vec4 u_background;    // premultiplied
-uniform bool u_stats;
 // Ray bounds from the ray bounds pass (ray_bounds.*.glsl): per pixel the eye distances of the
-// nearest and farthest occupied-cell faces; used only with u_skip.
+// nearest and farthest occupied-cell faces; used only with CB_SKIP.
 uniform sampler2D u_ray_bounds;
 uniform vec3 u_eye;
 uniform bool u_bounds_from_near_plane;  // the eye is in (or next to) an occupied cell
 
+#if CB_STATS
 layout(std430, binding = 0) buffer RayStatistics {
   uint total_samples;
   uint max_samples;
   uint pixels;
   uint histogram[64];  // bins of 8 samples; the last bin holds everything beyond
 } ray_stats;
+#endif
 
 vec3 safeInverse(vec3 d) {
   const float tiny = 1e-12;
@@ -91,7 +94,8 @@ void main() {
   ivec3 max_voxel = ivec3(u_dims) - 1;
   int k = 0;
   int n = int(ceil((t_exit - t_enter) / u_step));
-  if (u_skip && t_exit > t_enter) {
+#if CB_SKIP
+  if (t_exit > t_enter) {
     // Narrow [k, n) to the samples between the nearest and farthest occupied faces. Sample
     // positions stay on the same grid t_enter + (k + ½)·step, so the image does not change.
     vec2 bounds = texelFetch(u_ray_bounds, ivec2(gl_FragCoord.xy), 0).rg;
@@ -108,10 +112,12 @@ void main() {
       n = min(n, int(ceil((t_far - t_enter) / u_step)) + 1);
     }
   }
+#endif
   if (t_exit > t_enter) {
     while (k < n) {
       int k_end = n;
-      if (u_skip && u_brick_stepping) {
+#if CB_SKIP && CB_BRICK_STEPPING
+      {
         vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
         ivec3 voxel = clamp(ivec3(floor(p)), ivec3(0), max_voxel);
         if (texelFetch(u_occupancy, voxel / u_brick, 0).r == 0u) {
@@ -127,6 +133,7 @@ void main() {
         float t_leave = cellExit(origin, inv_dir, vec3(voxel / u_brick * u_brick), float(u_brick));
         k_end = min(n, max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1));
       }
+#endif
       for (; k < k_end; ++k) {
         vec3 p = origin + (t_enter + (float(k) + 0.5) * u_step) * dir;
         vec2 s = textureLod(u_volume, p * inv_dims, 0.0).rg;
@@ -143,12 +150,12 @@ void main() {
       }
     }
   }
-  if (u_stats) {
-    atomicAdd(ray_stats.total_samples, samples);
-    atomicMax(ray_stats.max_samples, samples);
-    atomicAdd(ray_stats.pixels, 1u);
-    atomicAdd(ray_stats.histogram[min(samples / 8u, 63u)], 1u);
-  }
+#if CB_STATS
+  atomicAdd(ray_stats.total_samples, samples);
+  atomicMax(ray_stats.max_samples, samples);
+  atomicAdd(ray_stats.pixels, 1u);
+  atomicAdd(ray_stats.histogram[min(samples / 8u, 63u)], 1u);
+#endif
   o_colour = vec4(colour + transmittance * u_background.rgb,
                   1.0 - transmittance + transmittance * u_background.a);
 }

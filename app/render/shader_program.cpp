@@ -4,8 +4,9 @@
 
 namespace cb {
 
-GLuint compileShaderStage(GLenum stage, const std::vector<std::string>& files, std::string* error) {
-  std::vector<std::string> texts{"#version 450 core\n"};
+GLuint compileShaderStage(GLenum stage, const std::vector<std::string>& files, std::string* error,
+                          const std::string& defines) {
+  std::vector<std::string> texts{"#version 450 core\n" + defines};
   for (const std::string& name : files) {
     std::string_view src = shaderSource(name);
     if (src.empty()) {
@@ -39,10 +40,11 @@ GLuint compileShaderStage(GLenum stage, const std::vector<std::string>& files, s
 }
 
 GLuint linkProgram(const std::vector<std::string>& vertex_files,
-                   const std::vector<std::string>& fragment_files, std::string* error) {
+                   const std::vector<std::string>& fragment_files, std::string* error,
+                   const std::string& fragment_defines) {
   GLuint vs = compileShaderStage(GL_VERTEX_SHADER, vertex_files, error);
   if (!vs) return 0;
-  GLuint fs = compileShaderStage(GL_FRAGMENT_SHADER, fragment_files, error);
+  GLuint fs = compileShaderStage(GL_FRAGMENT_SHADER, fragment_files, error, fragment_defines);
   if (!fs) {
     glDeleteShader(vs);
     return 0;

@@ -78,7 +78,7 @@ std::string RenderStats::summary() const {
 }
 
 VolumeRenderer::~VolumeRenderer() {
-  if (program_) glDeleteProgram(program_);
+  for (auto& [key, p] : programs_) glDeleteProgram(p);
   if (vao_) glDeleteVertexArrays(1, &vao_);
   if (volume_texture_) glDeleteTextures(1, &volume_texture_);
   if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
@@ -95,7 +95,7 @@ bool VolumeRenderer::init(std::string* error) {
   glCreateBuffers(1, &stats_buffer_);
   glNamedBufferStorage(stats_buffer_, sizeof(uint32_t) * (3 + kHistogramBins), nullptr,
                        GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-  if (!ensureProgram(RenderOptions{}.shading)) {
+  if (!ensureProgram(RenderOptions{})) {
     *error = error_;
     return false;
   }
@@ -110,13 +110,22 @@ bool VolumeRenderer::init(std::string* error) {
   return true;
 }
 
-bool VolumeRenderer::ensureProgram(const std::string& shading) {
-  if (program_ && program_shading_ == shading) return true;
-  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {shading, "raycast.frag.glsl"}, &error_);
+bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
+  const std::string defines =
+      std::string("#define CB_SKIP ") + (options.skip_empty_space ? "1" : "0") +
+      "\n#define CB_BRICK_STEPPING " + (options.brick_stepping ? "1" : "0") +
+      "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n";
+  const std::string key = options.shading + "\n" + defines;
+  auto it = programs_.find(key);
+  if (it != programs_.end()) {
+    program_ = it->second;
+    return true;
+  }
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {options.shading, "raycast.frag.glsl"}, &error_,
+                         defines);
   if (!p) return false;
-  if (program_) glDeleteProgram(program_);
+  programs_[key] = p;
   program_ = p;
-  program_shading_ = shading;
   return true;
 }
 
@@ -268,7 +277,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
                             const RenderOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   stats_ = RenderStats{};
-  if (!ensureProgram(options.shading)) {
+  if (!ensureProgram(options)) {
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;
   }
@@ -310,13 +319,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_occupancy"), 1);
   glUniform1i(loc("u_brick"), occupancy_.brick);
   glUniform1i(loc("u_levels"), occupancy_.levelCount());
-  glUniform1i(loc("u_skip"), options.skip_empty_space ? 1 : 0);
-  glUniform1i(loc("u_brick_stepping"), options.brick_stepping ? 1 : 0);
   glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
   glUniform4fv(loc("u_background"), 1, glm::value_ptr(options.background));
-  glUniform1i(loc("u_stats"), options.collect_stats ? 1 : 0);
   glUniform1i(loc("u_ray_bounds"), 2);
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -95,13 +96,14 @@ class VolumeRenderer {
   const OccupancyPyramid& occupancy() const { return occupancy_; }
 
  private:
-  bool ensureProgram(const std::string& shading);
+  // The ray-cast program variant for these options (compiled on first use, then cached).
+  bool ensureProgram(const RenderOptions& options);
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
 
-  GLuint program_ = 0;
-  std::string program_shading_;
+  GLuint program_ = 0;                      // the variant in use
+  std::map<std::string, GLuint> programs_;  // variants by shading file + defines
   GLuint vao_ = 0, volume_texture_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
