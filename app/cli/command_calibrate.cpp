@@ -53,7 +53,8 @@ int usage(int code) {
       "  --display NAME        auto, kms, x11, surfaceless (default auto)\n"
       "  --per-tool            save the profile for this pen's serial only\n"
       "  --yes                 accept the first fit without asking (unattended runs)\n"
-      "  --record FILE         journal of the session (default STATE/calibration-<time>.cbj)\n"
+      "  --record FILE         journal of the session (default STATE/calibration-<time>.cbj;\n"
+      "                        with --pressure only when given)\n"
       "  --snapshot FILE.png   save the result screen (targets, taps, residuals) as a PNG\n"
       "  --timeout S           give up after S seconds without finishing (default 300)\n"
       "  --pressure            the participant's press calibration instead: press lightly, lift,\n"
@@ -349,6 +350,16 @@ int runPressure(const Args& args, const Settings& s) {
   }
   const CalibrationProfile profile = baseProfile(device, 0, s);
   NibOffsetDetector nib(profile.pressure.nib);
+  // The presses are journalled too; the result goes in as the session's record.
+  JournalWriter journal;
+  if (auto record = args.get("record")) {
+    if (!journal.open(*record)) {
+      std::fprintf(stderr, "calibrate: %s (continuing without a record)\n",
+                   journal.error().c_str());
+    }
+  }
+  const std::vector<uint8_t> dev_bytes = encodeDeviceInfo(device);
+  journal.append(JournalRecordType::kDevice, 0, dev_bytes.data(), dev_bytes.size());
   PressureRangeCollector collector(profile.pressure.contact.down, 100,
                                    profile.pressure.light_target);
   const auto start = std::chrono::steady_clock::now();
@@ -372,6 +383,7 @@ int runPressure(const Args& args, const Settings& s) {
       return 1;
     }
     for (const PenSample& sample : samples) {
+      journal.appendPenSample(sample);
       if (sample.in_proximity && !was_in_proximity) nib.proximityIn();
       was_in_proximity = sample.in_proximity;
       nib.observe(sample, device.distance_max > 0);
@@ -390,6 +402,7 @@ int runPressure(const Args& args, const Settings& s) {
         continue;
       }
       const std::string text = pressureRangeToToml(*fit.range);
+      journal.append(JournalRecordType::kSession, sample.t_ns, text);
       std::printf("light press %.3f, firm press %.3f (nib offset %.3f)\n%s", fit.light, fit.firm,
                   nib.offset(), text.c_str());
       if (auto path = args.get("session-out")) {

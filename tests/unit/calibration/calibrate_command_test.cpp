@@ -275,11 +275,12 @@ TEST_F(CalibrateCommandTest, PressureCalibrationFromReplayedPresses) {
   w.close();
   const std::string session = (root_ / "session.toml").string();
   int status = 0;
-  std::string out = run(
-      std::string(CB_CLOUDBRUSH_BIN) + " calibrate --pressure --backend replay --device " + path +
-          " --display surfaceless --timeout 60 --session-out " + session + " --config-dir " +
-          (root_ / "config").string() + " --state-dir " + (root_ / "s").string(),
-      &status);
+  std::string out =
+      run(std::string(CB_CLOUDBRUSH_BIN) + " calibrate --pressure --backend replay --device " +
+              path + " --display surfaceless --timeout 60 --session-out " + session + " --record " +
+              (root_ / "presses_record.cbj").string() + " --config-dir " +
+              (root_ / "config").string() + " --state-dir " + (root_ / "s").string(),
+          &status);
   ASSERT_EQ(status, 0) << out;
   std::ifstream in(session);
   std::stringstream ss;
@@ -289,6 +290,12 @@ TEST_F(CalibrateCommandTest, PressureCalibrationFromReplayedPresses) {
   ASSERT_TRUE(range) << err << "\n" << out;
   EXPECT_NEAR(range->hi, 0.555f, 0.01f);
   EXPECT_NEAR(range->apply(0.15f), 0.2f, 0.02f);  // the light press gives the light target
+  // The record ends with the session's pressure range.
+  JournalReadResult rec = readJournal((root_ / "presses_record.cbj").string());
+  ASSERT_TRUE(rec.error.empty()) << rec.error;
+  ASSERT_FALSE(rec.records.empty());
+  EXPECT_EQ(rec.records.back().type, JournalRecordType::kSession);
+  EXPECT_EQ(rec.records.back().text(), ss.str());
 }
 
 TEST_F(CalibrateCommandTest, PointsFileFitsAndBadFileNamesLine) {
