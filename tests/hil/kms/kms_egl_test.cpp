@@ -18,9 +18,10 @@
 namespace cb::hil {
 namespace {
 
-std::string fetchModdirAndKernel(std::string* vmlinuz) {
+std::string fetchModdirAndKernel(std::string* vmlinuz, std::string* cache_dir) {
   const char* env = std::getenv("CB_HIL_CACHE");
   const std::string cache = env && *env ? env : CB_HIL_CACHE;
+  *cache_dir = cache;
   std::string out, moddir;
   runCommand("bash " CB_SOURCE_DIR "/tests/hil/common/fetch_kernel.sh '" + cache + "'", &out);
   std::istringstream lines(out);
@@ -32,8 +33,8 @@ std::string fetchModdirAndKernel(std::string* vmlinuz) {
 }
 
 TEST(KmsEgl, CloudbrushShowsTheBundledCloudOnAVirtualCard) {
-  std::string vmlinuz;
-  const std::string moddir = fetchModdirAndKernel(&vmlinuz);
+  std::string vmlinuz, cache;
+  const std::string moddir = fetchModdirAndKernel(&vmlinuz, &cache);
   ASSERT_FALSE(moddir.empty()) << "fetch_kernel.sh failed (needs apt access once)";
   const std::string work = CB_KMS_WORK;
   const std::string initrd = work + "/kms_egl.cpio.gz";
@@ -45,7 +46,7 @@ TEST(KmsEgl, CloudbrushShowsTheBundledCloudOnAVirtualCard) {
   std::string log;
   ASSERT_EQ(
       runCommand("CB_KMS_WITH_LIBS=1 bash " CB_SOURCE_DIR "/tests/hil/kms/make_kms_initramfs.sh '" +
-                     initrd + "' '" + moddir + "' '" + guest_command + "' '" + CB_CLOUDBRUSH_BIN +
+                     cache + "' '" + initrd + "' '" + guest_command + "' '" + CB_CLOUDBRUSH_BIN +
                      "' 2>&1",
                  &log),
       0)

@@ -14,7 +14,7 @@ namespace cb::hil {
 namespace {
 
 struct KernelPaths {
-  std::string vmlinuz, moddir, error;
+  std::string cache, vmlinuz, moddir, error;
 };
 
 // The kernel via tests/hil/common/fetch_kernel.sh (cached; CB_HIL_CACHE overrides the place).
@@ -22,6 +22,7 @@ KernelPaths fetchKernel() {
   KernelPaths k;
   const char* env = std::getenv("CB_HIL_CACHE");
   const std::string cache = env && *env ? env : CB_HIL_CACHE;
+  k.cache = cache;
   std::string out;
   const int status =
       runCommand("bash " CB_SOURCE_DIR "/tests/hil/common/fetch_kernel.sh '" + cache + "'", &out);
@@ -43,10 +44,10 @@ class KmsFlipTest : public testing::TestWithParam<const char*> {
     if (!kernel_->error.empty()) return;
     initrd_ = new std::string(std::string(CB_KMS_WORK) + "/kms_flip.cpio.gz");
     std::string out;
-    build_status_ = runCommand("bash " CB_SOURCE_DIR "/tests/hil/kms/make_kms_initramfs.sh '" +
-                                   *initrd_ + "' '" + kernel_->moddir +
-                                   "' '/bin/kms_flip_probe 30 60' '" CB_KMS_PROBE "' 2>&1",
-                               &out);
+    build_status_ =
+        runCommand("bash " CB_SOURCE_DIR "/tests/hil/kms/make_kms_initramfs.sh '" + kernel_->cache +
+                       "' '" + *initrd_ + "' '/bin/kms_flip_probe 30 60' '" CB_KMS_PROBE "' 2>&1",
+                   &out);
     build_log_ = new std::string(out);
   }
   static void TearDownTestSuite() {
