@@ -1,7 +1,6 @@
 #include "app/mapping/stroke_mapper.h"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 
 namespace cb {
@@ -43,16 +42,20 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
              " with " + std::to_string(f.values.size()) + " values); nothing mapped");
     return report;
   }
-  long long not_finite = 0;
+  // One branch-free pass. NaN fails every comparison, so every stage treats it as empty; +inf
+  // is full ink (densities are clamped to 1). Non-finite values fail v·0 == 0.
+  long long not_finite = 0, non_empty = 0;
+  const float empty = config_.circles.empty_threshold;
   for (float v : f.values) {
-    if (!std::isfinite(v))
-      ++not_finite;
-    else if (v > config_.circles.empty_threshold)
-      ++report.non_empty_pixels;
+    not_finite += !(v * 0.0f == 0.0f);
+    non_empty += v > empty;
   }
+  report.non_empty_pixels = non_empty;
   if (not_finite)
     warn(&report, id,
-         std::to_string(not_finite) + " footprint values are NaN or infinite; treated as empty");
+         std::to_string(not_finite) +
+             " footprint values are NaN or infinite; NaN is treated as empty, infinity as full "
+             "ink");
   if (report.non_empty_pixels == 0) {
     warn(&report, id,
          "footprint has no pixel above the empty threshold " +
@@ -90,8 +93,6 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
     report.timings.circle_growth_ms = msSince(t0);
     report.growth_steps = growth.steps;
     report.circle_attempts = growth.attempts;
-    for (size_t i = 0; i < f.values.size(); ++i)
-      report.covered_pixels += growth.covered[i] && f.values[i] > config_.circles.empty_threshold;
     if (growth.circles.empty())
       warn(&report, id,
            "no circle of radius >= " + std::to_string(config_.circles.min_radius_px) + " px is " +
@@ -133,6 +134,8 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
       warn(&report, id,
            std::to_string(report.edges.leftover_pixels - report.edges.mapped_pixels) +
                " edge pixels fall outside the volume");
+    // Every non-empty pixel is either inside a circle or a leftover edge pixel.
+    report.covered_pixels = report.non_empty_pixels - report.edges.leftover_pixels;
     report.circles = std::move(growth.circles);
     last_circles_ = report.circles;
   }
