@@ -27,6 +27,8 @@
 //     an occupied cell it samples every index until the cell's exit.
 // The sample positions t_enter + (k + ½)·step are the same with and without skipping, and empty
 // cells hold only zero densities, so the image is the same.
+// Stencil (which pixels to cast) is tested before shading, statistics atomics or not.
+layout(early_fragment_tests) in;
 layout(location = 0) out vec4 o_colour;
 
 uniform mat4 u_inv_view_proj;

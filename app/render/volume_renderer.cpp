@@ -88,6 +88,8 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
   if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
   if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
+  if (frame_texture_) glDeleteTextures(1, &frame_texture_);
+  if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
 }
 
 bool VolumeRenderer::init(std::string* error) {
@@ -237,20 +239,38 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
   if (bounds_w_ != w || bounds_h_ != h) {
     if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
     if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
+    if (frame_texture_) glDeleteTextures(1, &frame_texture_);
+    if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
     glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
     glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
     glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glCreateTextures(GL_TEXTURE_2D, 1, &frame_texture_);
+    glTextureStorage2D(frame_texture_, 1, GL_RGBA8, w, h);
+    glCreateRenderbuffers(1, &stencil_buffer_);
+    glNamedRenderbufferStorage(stencil_buffer_, GL_DEPTH24_STENCIL8, w, h);
     glCreateFramebuffers(1, &bounds_fbo_);
-    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, bounds_texture_, 0);
+    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, frame_texture_, 0);
+    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT1, bounds_texture_, 0);
+    glNamedFramebufferRenderbuffer(bounds_fbo_, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                   stencil_buffer_);
     bounds_w_ = w;
     bounds_h_ = h;
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
+  const GLenum bounds_only = GL_COLOR_ATTACHMENT1;  // fragment output 0 -> the bounds texture
+  glDrawBuffers(1, &bounds_only);
   glViewport(0, 0, w, h);
   const float nothing[4] = {1e30f, 1e30f, 0.0f, 0.0f};
   glClearBufferfv(GL_COLOR, 0, nothing);
+  glStencilMask(0xFF);
+  const GLint zero = 0;
+  glClearBufferiv(GL_STENCIL, 0, &zero);
   if (bounds_vertices_ > 0) {
+    // Every covered pixel gets stencil 1.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     glEnable(GL_BLEND);
     glBlendEquation(GL_MIN);
     glBlendFunc(GL_ONE, GL_ONE);
@@ -267,6 +287,7 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
     glDrawArrays(GL_TRIANGLES, 0, bounds_vertices_);
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_STENCIL_TEST);
   }
   const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
   glm::vec3 eye_voxel = (camera.eye - world_min_) / ((world_max_ - world_min_) / glm::vec3(dims_));
@@ -285,7 +306,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   int w = std::max(1, int(std::lround(width * scale)));
   int h = std::max(1, int(std::lround(height * scale)));
   const bool reduced = w != width || h != height;
-  if (reduced && (low_res_.width() != w || low_res_.height() != h)) {
+  if (reduced && !options.skip_empty_space && (low_res_.width() != w || low_res_.height() != h)) {
     std::string err;
     if (!low_res_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
       std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
@@ -303,8 +324,23 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
-  if (options.skip_empty_space) drawRayBounds(camera, view_proj, w, h);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+  const bool skip = options.skip_empty_space;
+  if (skip) {
+    drawRayBounds(camera, view_proj, w, h);
+    // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
+    // eye in or next to an occupied cell every pixel is cast from the near plane.)
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
+    const GLenum colour_only = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(1, &colour_only);
+    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(options.background));
+    if (!eye_near_occupied_) {
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
+  } else {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+  }
   glViewport(0, 0, w, h);
   glUseProgram(program_);
   glm::mat4 inv = glm::inverse(view_proj);
@@ -333,8 +369,16 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_STENCIL_TEST);
 
-  if (reduced) {
+  if (skip) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                      reduced ? GL_LINEAR : GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  } else if (reduced) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, low_res_.fbo());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
@@ -347,8 +391,11 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     stats_.has_samples = true;
     stats_.samples_total = raw[0];
     stats_.samples_max = raw[1];
-    stats_.samples_mean = raw[2] ? double(raw[0]) / double(raw[2]) : 0.0;
     stats_.histogram.assign(raw.begin() + 3, raw.end());
+    // Pixels the stencil kept from ray casting took no samples.
+    const uint64_t pixels = uint64_t(w) * uint64_t(h);
+    if (raw[2] < pixels) stats_.histogram[0] += uint32_t(pixels - raw[2]);
+    stats_.samples_mean = double(raw[0]) / double(pixels);
   }
   if (options.finish) {
     glFinish();

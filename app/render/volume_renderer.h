@@ -118,7 +118,10 @@ class VolumeRenderer {
   // RG32F target (nearest, −farthest face distance per pixel).
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
   GLsizei bounds_vertices_ = 0;
-  GLuint bounds_fbo_ = 0, bounds_texture_ = 0;
+  // With skipping, one FBO holds the frame colour (attachment 0), the ray bounds (attachment 1)
+  // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast
+  // (llvmpipe tests stencil before shading), then the colour is blitted to the target.
+  GLuint bounds_fbo_ = 0, bounds_texture_ = 0, frame_texture_ = 0, stencil_buffer_ = 0;
   int bounds_w_ = 0, bounds_h_ = 0;
   bool eye_near_occupied_ = false;
   RenderStats stats_;

@@ -137,14 +137,17 @@ TEST_F(VolumeRendererTest, SampleStatisticsAddUp) {
   renderer.sync(v, Light{});
   RenderOptions opt;
   opt.collect_stats = true;
-  opt.skip_empty_space = false;
-  renderImage(renderer, Camera::reference(), opt);
+  for (bool skip : {true, false}) {
+    opt.skip_empty_space = skip;
+    renderImage(renderer, Camera::reference(), opt);
+    RenderStats s = renderer.lastStats();
+    ASSERT_TRUE(s.has_samples);
+    uint64_t pixels = 0;
+    for (uint32_t c : s.histogram) pixels += c;
+    EXPECT_EQ(pixels, uint64_t(kW) * kH) << "skip " << skip;  // stencilled pixels count as 0
+    EXPECT_NEAR(s.samples_mean, double(s.samples_total) / (kW * kH), 1e-9);
+  }
   RenderStats s = renderer.lastStats();
-  ASSERT_TRUE(s.has_samples);
-  uint64_t pixels = 0;
-  for (uint32_t c : s.histogram) pixels += c;
-  EXPECT_EQ(pixels, uint64_t(kW) * kH);
-  EXPECT_NEAR(s.samples_mean, double(s.samples_total) / (kW * kH), 1e-9);
   // No ray can take more samples than the box diagonal in voxels.
   EXPECT_LE(s.samples_max, uint32_t(std::ceil(64 * std::sqrt(3.0))) + 1);
   EXPECT_GT(s.samples_max, 64u);
