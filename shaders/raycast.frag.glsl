@@ -20,7 +20,8 @@
 //  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupied 4³-voxel
 //     cells of the occupancy pyramid (dilated by one voxel) and keeps, per pixel, the nearest and
 //     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them;
-//     a pixel whose ray meets no occupied cell costs one fetch. When the eye is in or next to an
+//     pixels whose rays meet no occupied cell are
+//     not shaded at all (the pass also sets a stencil that this one tests early). When the eye is in or next to an
 //     occupied cell the march starts at the near plane.
 //  2. Optional hierarchical stepping (CB_BRICK_STEPPING): at a sample in an empty level-0 cell the
 //     ray climbs to the coarsest empty ancestor and jumps to the first sample index past it; in
