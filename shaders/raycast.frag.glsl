@@ -19,10 +19,10 @@
 // Skipping (lossless, two levels):
 //  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupied 4³-voxel
 //     cells of the occupancy pyramid (dilated by one voxel) and keeps, per pixel, the nearest and
-//     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them;
-//     pixels whose rays meet no occupied cell are
-//     not shaded at all (the pass also sets a stencil that this one tests early). When the eye is in or next to an
-//     occupied cell the march starts at the near plane.
+//     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them.
+//     Pixels whose rays meet no occupied cell are not shaded at all: that pass also sets a
+//     stencil, tested here before shading. When the eye is in or next to an occupied cell the
+//     march starts at the near plane (and every pixel is cast).
 //  2. Optional hierarchical stepping (CB_BRICK_STEPPING): at a sample in an empty level-0 cell the
 //     ray climbs to the coarsest empty ancestor and jumps to the first sample index past it; in
 //     an occupied cell it samples every index until the cell's exit.
