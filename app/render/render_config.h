@@ -11,7 +11,7 @@ namespace cb {
 
 struct RenderConfig {
   RenderOptions options;       // options.scale stays 1 (full resolution when still)
-  float moving_scale = 0.35f;  // options.scale while the camera moves
+  float moving_scale = 0.25f;  // options.scale while the camera moves
   Light light;
 };
 

@@ -25,7 +25,7 @@ TEST(RenderConfig, ShippedDefaultsLoadAndMatchTheBuiltInOnes) {
   EXPECT_EQ(c.options.background, d.background);
   EXPECT_EQ(c.light.position, Light{}.position);
   EXPECT_EQ(c.light.extinction, Light{}.extinction);
-  EXPECT_FLOAT_EQ(c.moving_scale, 0.35f);
+  EXPECT_FLOAT_EQ(c.moving_scale, RenderConfig{}.moving_scale);
 }
 
 TEST(RenderConfig, ValuesAreReadAndBadOnesNamed) {
