@@ -50,6 +50,13 @@ std::vector<EvdevPenCandidate> findEvdevPens(const std::string& dir) {
     const std::string name = e.path().filename().string();
     if (name.rfind("event", 0) == 0) nodes.push_back(e.path().string());
   }
+  if (ec == std::errc::permission_denied) {  // the directory itself is closed to this user
+    EvdevPenCandidate c;
+    c.path = dir;
+    c.permission_denied = true;
+    pens.push_back(c);
+    return pens;
+  }
   for (const std::string& path : nodes) {
     int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {

@@ -22,6 +22,22 @@ int64_t nowNs() {
   return MonotonicClock().nowNs();
 }
 
+// hidapi lists nothing it cannot inspect, so a tablet behind a hidraw node this user may not
+// open is invisible to it. Any such node is reported as a permission problem (like evdev, the
+// node cannot be identified without opening it).
+bool hidrawNodeDenied() {
+  // By name rather than by listing /dev, which may itself be closed to this user.
+  for (int i = 0; i < 64; ++i) {
+    const std::string node = "/dev/hidraw" + std::to_string(i);
+    int fd = open(node.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd >= 0)
+      close(fd);
+    else if (errno == EACCES || errno == EPERM)
+      return true;
+  }
+  return false;
+}
+
 bool readHidrawDescriptor(const std::string& path, std::vector<uint8_t>& out, std::string* error,
                           bool* denied) {
   int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -178,9 +194,12 @@ void HidapiPenSource::tryOpen() {
     ensureTabletMode();
     return;
   }
-  connection_ = denied ? PenConnection::kPermissionDenied : PenConnection::kSearching;
+  const bool hidden = !denied && lib_->backend == HidapiBackend::kHidraw && hidrawNodeDenied();
+  connection_ = denied || hidden ? PenConnection::kPermissionDenied : PenConnection::kSearching;
   if (denied)
     status_ = std::string("a tablet was found but cannot be opened: ") + kUdevRuleHint;
+  else if (hidden)
+    status_ = std::string("hidraw nodes exist that this user cannot open: ") + kUdevRuleHint;
   else if (status_.empty() || connection_ == PenConnection::kSearching)
     status_ = std::string("no pen found through hidapi-") + backendName() + "; waiting for one" +
               problems;

@@ -5,8 +5,10 @@
 //
 //   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]
 #include <fcntl.h>
+#include <grp.h>
 #include <linux/input.h>
 #include <sys/ioctl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -217,6 +219,44 @@ void phaseUhidPth660(const std::string& fixtures) {
   };
   const auto steps = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
   runScript("uhid-pth660", steps, false, info, inject, {&evdev, &hidraw});
+
+  // An unprivileged user (no udev rule installed) gets a state naming the rule, not an exit.
+  {
+    int pipefd[2];
+    if (pipe(pipefd) == 0) {
+      pid_t child = fork();
+      if (child == 0) {
+        close(pipefd[0]);
+        std::string verdict = "setuid failed";
+        if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) {
+          EvdevPenSource e({});
+          hid::HidapiPenSource h({hid::HidapiBackend::kHidraw, 0x056A, ""});
+          verdict = std::string(penConnectionName(e.connection())) + "|" + e.statusMessage() + "|" +
+                    penConnectionName(h.connection()) + "|" + h.statusMessage();
+        }
+        (void)!write(pipefd[1], verdict.data(), verdict.size());
+        _exit(0);
+      }
+      close(pipefd[1]);
+      std::string verdict;
+      char buf[512];
+      for (ssize_t n; (n = read(pipefd[0], buf, sizeof buf)) > 0;) verdict.append(buf, n);
+      close(pipefd[0]);
+      waitpid(child, nullptr, 0);
+      const size_t bar = verdict.find('|', verdict.find('|') + 1);
+      const std::string ev = verdict.substr(0, bar),
+                        hr = bar == std::string::npos ? "" : verdict.substr(bar + 1);
+      check(ev.rfind("permission-denied|", 0) == 0 &&
+                ev.find("70-cloudbrush-tablet.rules") != std::string::npos,
+            "uhid: as an unprivileged user evdev reports permission denied naming the udev rule (" +
+                ev + ")");
+      check(
+          hr.rfind("permission-denied|", 0) == 0 &&
+              hr.find("70-cloudbrush-tablet.rules") != std::string::npos,
+          "uhid: as an unprivileged user hidraw reports permission denied naming the udev rule (" +
+              hr + ")");
+    }
+  }
 
   // Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
   // the source with the device's true state.
