@@ -38,7 +38,6 @@ namespace cb::hil {
 namespace {
 
 int g_failures = 0;
-std::vector<double> g_evdev_delay_us;
 
 bool check(bool ok, const std::string& what) {
   std::printf("CB-HIL CHECK %s %s\n", ok ? "ok" : "FAIL", what.c_str());
@@ -84,13 +83,11 @@ bool waitConnected(PenSource& src, int timeout_ms, int64_t* took_ns = nullptr) {
 }
 
 // Polls until at least one sample arrived (or the timeout), then drains briefly.
-std::vector<PenSample> collect(PenSource& src, int timeout_ms, bool record_delay = false) {
+std::vector<PenSample> collect(PenSource& src, int timeout_ms) {
   std::vector<PenSample> got;
   const int64_t start = nowNs();
   while (got.empty() && nowNs() - start < int64_t{timeout_ms} * 1000000) {
     src.poll(10, got);
-    if (record_delay)
-      for (const PenSample& s : got) g_evdev_delay_us.push_back((nowNs() - s.t_ns) / 1000.0);
   }
   std::vector<PenSample> more;
   src.poll(5, more);
@@ -133,8 +130,7 @@ void runScript(const std::string& label, const std::vector<PenStep>& steps, bool
     }
     for (PenSource* src : sources) {
       const bool is_evdev = std::string(src->backendName()) == "evdev";
-      std::vector<PenSample> got =
-          collect(*src, expect ? 1000 : 50, is_evdev && label.find("uhid") == 0);
+      std::vector<PenSample> got = collect(*src, expect ? 1000 : 50);
       const bool ok = expect ? (got.size() == 1 && samePenState(got[0], expected)) : got.empty();
       if (!ok && mismatches < 6) {
         std::printf("  %s step %zu via %s: expected %s\n", label.c_str(), i, src->backendName(),
@@ -468,13 +464,6 @@ int main(int argc, char** argv) {
       phaseLatency();
     else
       check(false, "unknown phase " + p);
-  }
-  if (!g_evdev_delay_us.empty()) {
-    auto v = g_evdev_delay_us;
-    std::sort(v.begin(), v.end());
-    figure("vm_evdev_delay_p50_us", v[v.size() / 2]);
-    figure("vm_evdev_delay_p99_us", v[std::min(v.size() - 1, v.size() * 99 / 100)]);
-    figure("vm_evdev_delay_samples", static_cast<double>(v.size()));
   }
   std::printf("CB-HIL RESULT %s (%d failed checks)\n", g_failures ? "FAIL" : "PASS", g_failures);
   std::fflush(stdout);
