@@ -46,6 +46,7 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
   parallelFor(leftover.size(), kPixelsPerChunk, [&](size_t chunk, size_t b, size_t e) {
     ChunkOutput& out = chunks[chunk];
     out.samples.reserve((e - b) * size_t(cfg.samples_per_pixel));
+    int previous_nearest = -1;
     for (size_t k = b; k < e; ++k) {
       const uint32_t pixel = leftover[k];
       const int px = int(pixel % uint32_t(f.width)), py = int(pixel / uint32_t(f.width));
@@ -54,13 +55,26 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
 
       glm::vec3 tangent_point;
       float depth_sigma;
-      int nearest = -1;
-      float best = std::numeric_limits<float>::max();
+      // Nearest circle by D = |p − c| − r. The previous pixel's nearest (neighbours share
+      // it) seeds the search, and a circle whose |Δx| − r or |Δy| − r already reaches the best
+      // D cannot win, so most circles cost no square root. The chunk's pixels always run in
+      // the same order on one thread, so the answer does not depend on the thread count.
+      const glm::vec2 p{float(px), float(py)};
+      auto rimDistance = [&](size_t c) {
+        const glm::vec2 delta = p - circles[c].centre;
+        return std::sqrt(glm::dot(delta, delta)) - float(circles[c].radius);  // D_min
+      };
+      int nearest = previous_nearest;
+      float best = nearest >= 0 ? rimDistance(size_t(nearest)) : std::numeric_limits<float>::max();
       for (size_t c = 0; c < circles.size(); ++c) {
-        glm::vec2 delta = glm::vec2(float(px), float(py)) - circles[c].centre;
-        float dist = std::sqrt(glm::dot(delta, delta)) - float(circles[c].radius);  // D_min
+        const float r = float(circles[c].radius);
+        if (std::abs(p.x - circles[c].centre.x) - r >= best ||
+            std::abs(p.y - circles[c].centre.y) - r >= best)
+          continue;
+        const float dist = rimDistance(c);
         if (dist < best) best = dist, nearest = int(c);
       }
+      previous_nearest = nearest;
       if (nearest >= 0) {
         const MappedSphere& s = (*in.spheres)[size_t(nearest)];
         // P_t: the point of the ray closest to P_S, where a sphere about P_S touches the ray.
