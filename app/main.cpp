@@ -20,6 +20,8 @@ const Command kCommands[] = {
     {"devices", "list pen devices; --watch prints live samples", cb::commandDevices},
     {"calibrate", "pen-driven N-point calibration of the tablet-to-screen mapping",
      cb::commandCalibrate},
+    {"replay", "re-run a recorded session journal headlessly (volume checksum, render)",
+     cb::commandReplay},
     {"bench", "run a benchmark: bench NAME (bench --help lists them)", cb::commandBench},
 };
 

@@ -1,19 +1,28 @@
 // `cloudbrush` / `cloudbrush paint`: the main job. On a display (KMS or X11, fullscreen) the
-// bundled cloud under a slowly orbiting camera (PaintLoop); with no display (surfaceless) a
-// headless render of it from the reference camera to PNG + EXR, whose paths go to stdout.
+// painter: the pen (drivers/, any backend) through calibration, brush and mapping into the volume
+// (PaintSession, journalled to the state dir), shown by PaintLoop; without a tablet the bundled
+// cloud orbits and the missing tablet is shown as a state. With no display (surfaceless) and no
+// pen backend named: a headless render of the bundled cloud to PNG + EXR.
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <memory>
 #include <string>
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/paint_headless.h"
 #include "app/cli/paint_loop.h"
+#include "app/core/config_paths.h"
+#include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
 #include "app/render/volume_renderer.h"
+#include "app/ui/paint_session.h"
 #include "app/volume/scene_generators.h"
+#include "drivers/open_pen_source.h"
 
 namespace cb {
 namespace {
@@ -21,10 +30,12 @@ namespace {
 constexpr const char* kUsage =
     "usage: cloudbrush [paint] [OPTIONS]\n"
     "\n"
-    "The painter. On a display it opens fullscreen on the bundled cloud with a slowly orbiting\n"
-    "camera (Esc or q quits, Space pauses the orbit and refines the still image). With no\n"
-    "display it renders the bundled cloud headlessly from the reference camera and writes a PNG\n"
-    "and an EXR, printing their paths on stdout.\n"
+    "The painter. On a display it opens fullscreen with a slowly orbiting camera (Esc or q\n"
+    "quits, Space pauses/resumes the orbit). When a pen comes near the tablet the orbit stops and\n"
+    "you paint: the footprint shows live, and when the pen lifts the stroke becomes a lit cloud.\n"
+    "The session is journalled (its path is printed) for `cloudbrush replay`. Without a tablet\n"
+    "the bundled cloud orbits and the pen state is shown. With no display and no --backend it\n"
+    "renders the bundled cloud headlessly and writes a PNG and an EXR, printing their paths.\n"
     "\n"
     "options:\n"
     "  --display auto|kms|x11|surfaceless\n"
@@ -40,6 +51,11 @@ constexpr const char* kUsage =
     "                      adapted towards 20 fps)\n"
     "  --frames N          on a display, quit after N frames (default: run until Esc)\n"
     "  --stats             print ray-sample statistics of full-resolution frames\n"
+    "  --backend NAME      pen: auto (default), evdev, hidraw, libusb, replay or none\n"
+    "  --pen-device PATH   pen device node / hidraw path (default: discover)\n"
+    "  --journal FILE      with --backend replay: the session journal to play as the pen\n"
+    "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
+    "  --no-record         do not journal this session\n"
     "  --help              this text\n";
 
 std::atomic<bool> g_stop{false};
@@ -61,13 +77,14 @@ int fail(const std::string& message, int code = 1) {
 }  // namespace
 
 int commandPaint(int argc, char** argv) {
-  Args args(argc, argv, {"help", "stats"});
+  Args args(argc, argv, {"help", "stats", "no-record"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return 0;
   }
   const auto unknown = args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir",
-                                     "grid", "seed", "orbit", "moving-scale", "frames"});
+                                     "grid", "seed", "orbit", "moving-scale", "frames", "backend",
+                                     "pen-device", "journal", "session-dir", "no-record"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -95,10 +112,20 @@ int commandPaint(int argc, char** argv) {
     return fail("--moving-scale: expected a number in (0, 1]", 2);
   if (loop_options.max_frames < 0) return fail("--frames: expected N >= 0", 2);
 
+  const std::string backend = args.get("backend", "auto");
+  if (backend != "none" && backend != "auto" && backend != "evdev" && backend != "hidraw" &&
+      backend != "libusb" && backend != "replay")
+    return fail(
+        "--backend: expected auto, evdev, hidraw, libusb, replay or none, got '" + backend + "'",
+        2);
+  if (backend == "replay" && !args.has("journal"))
+    return fail("--backend replay needs --journal FILE", 2);
+
   std::string error, choice_note;
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
   if (!display) return fail(error);
-  const bool headless = std::string(display->platformName()) == "surfaceless";
+  const bool headless =
+      std::string(display->platformName()) == "surfaceless" && !args.has("backend");
   std::fprintf(stderr, "cloudbrush: %s display %dx%d, OpenGL %s on %s\n", display->platformName(),
                display->width(), display->height(), display->context().version.c_str(),
                display->context().renderer.c_str());
@@ -106,13 +133,56 @@ int commandPaint(int argc, char** argv) {
     std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
                  choice_note.c_str());
 
-  const auto generate_start = std::chrono::steady_clock::now();
-  const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
-  std::fprintf(
-      stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
-          .count());
   const Light light;
+  std::unique_ptr<PenSource> pen;
+  if (!headless && backend != "none") {
+    PenSourceOptions pen_options;
+    pen_options.backend = backend;
+    pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
+    pen = openPenSource(pen_options, &error);
+    if (!pen) return fail("--backend " + backend + ": " + error, 2);
+  }
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  if (pen) {
+    // A pen can paint: the volume starts empty and is painted into.
+    MappingConfig mapping;
+    try {
+      if (std::filesystem::exists(configFile("mapping.toml")))
+        mapping = loadMappingConfig(configFile("mapping.toml"));
+    } catch (const std::exception& e) {
+      return fail(e.what());
+    }
+    PaintSessionSettings settings;
+    settings.screen_width = display->width();
+    settings.screen_height = display->height();
+    settings.grid = int(grid);
+    session = std::make_unique<PaintSession>(settings, loadDefaultBrushConfig(), mapping);
+    if (!args.has("no-record")) {
+      const std::string dir = args.get("session-dir", stateDir() + "/sessions");
+      std::error_code ec;
+      std::filesystem::create_directories(dir, ec);
+      char stamp[32];
+      const std::time_t now = std::time(nullptr);
+      std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+      const std::string path = dir + "/" + stamp + ".cbj";
+      if (ec || !journal.open(path))
+        return fail("cannot record the session to " + path + ": " +
+                    (ec ? ec.message() : journal.error()) + " (--no-record to paint anyway)");
+      session->recordTo(&journal, 0);
+      std::printf("journal: %s\n", path.c_str());
+      std::fflush(stdout);
+    }
+  }
+  const auto generate_start = std::chrono::steady_clock::now();
+  const Volume demo_volume =
+      pen ? Volume(glm::ivec3(8)) : makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
+  if (!pen)
+    std::fprintf(
+        stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
+            .count());
+  const Volume& volume = session ? session->volume() : demo_volume;
   VolumeRenderer renderer;
   if (!renderer.init(&error)) return fail(error);
 
@@ -128,8 +198,12 @@ int commandPaint(int argc, char** argv) {
 
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
-  std::fprintf(stderr, "cloudbrush: Esc or q quits, Space pauses the orbit\n");
+  std::fprintf(stderr, "cloudbrush: Esc or q quits, Space pauses the orbit%s\n",
+               pen ? "; bring the pen near the tablet to paint" : "");
+  loop_options.config_dir = defaultConfigDir();
+  loop_options.state_dir = stateDir();
   PaintLoop loop(*display, renderer, volume, light, loop_options);
+  if (pen) loop.attachPen(pen.get(), session.get());
   PaintLoopSummary summary;
   if (!loop.run(&g_stop, &summary, &error)) return fail(error);
   std::printf(
@@ -137,6 +211,12 @@ int commandPaint(int argc, char** argv) {
       "present %.1f ms\n",
       summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
       summary.median_frame_ms, summary.final_moving_scale, summary.median_present_ms);
+  if (pen)
+    std::printf(
+        "cloudbrush: %ld pen samples, %ld strokes mapped; pen-up -> first lit frame "
+        "median %.1f ms (%zu strokes, %dx%d, grid %ld)\n",
+        summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
+        summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid);
   if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
     std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
                 last->vblank_sequence, double(last->shown_ns) / 1e9);

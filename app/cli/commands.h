@@ -8,6 +8,7 @@ int commandPaint(int argc, char** argv);      // default: painter on a display, 
 int commandRender(int argc, char** argv);     // offline render of a saved volume
 int commandDevices(int argc, char** argv);    // list pens, --watch prints live samples
 int commandCalibrate(int argc, char** argv);  // N-point pen calibration
+int commandReplay(int argc, char** argv);     // re-run a session journal headlessly
 int commandBench(int argc, char** argv);      // bench NAME
 
 }  // namespace cb

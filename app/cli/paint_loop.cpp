@@ -7,6 +7,10 @@
 #include <thread>
 #include <vector>
 
+#include "app/ui/paint_session.h"
+#include "calibration/profile_store.h"
+#include "drivers/core/pen_source.h"
+
 namespace cb {
 namespace {
 
@@ -14,7 +18,125 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+int64_t monotonicNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double medianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
 }  // namespace
+
+double PaintLoopSummary::median_pen_up_to_lit_ms() const {
+  return medianOf(pen_up_to_lit_ms);
+}
+
+void PaintLoop::attachPen(PenSource* pen, PaintSession* session) {
+  pen_ = pen;
+  session_ = session;
+}
+
+bool PaintLoop::paintingSetUp(std::string* error) {
+  if (!overlay_ready_) {
+    if (!overlay_.init(error)) return false;
+    overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+    overlay_ready_ = true;
+  }
+  if (scene_.width() != display_.width() || scene_.height() != display_.height()) {
+    if (!scene_.create(display_.width(), display_.height(), RenderTarget::Format::kRgba8, error))
+      return false;
+    scene_stale_ = true;
+  }
+  return true;
+}
+
+void PaintLoop::handlePen(PaintLoopSummary* summary) {
+  samples_.clear();
+  pen_->poll(0, samples_);
+  const int connection = int(pen_->connection());
+  const auto select_calibration = [&](uint64_t tool_serial) {
+    const PenDeviceInfo& device = pen_->deviceInfo();
+    session_->setDevice(device, monotonicNowNs());
+    ProfileSelection selection =
+        selectProfile(device, tool_serial, options_.config_dir, options_.state_dir);
+    for (const std::string& message : selection.messages)
+      std::fprintf(stderr, "cloudbrush: calibration: %s\n", message.c_str());
+    std::fprintf(stderr, "cloudbrush: calibration from %s\n", selection.source.c_str());
+    session_->setCalibration(selection.profile, monotonicNowNs());
+  };
+  if (connection != last_connection_) {
+    last_connection_ = connection;
+    const std::string status = pen_->statusMessage();
+    std::fprintf(stderr, "cloudbrush: pen %s (%s)%s%s\n", penConnectionName(pen_->connection()),
+                 pen_->backendName(), status.empty() ? "" : ": ", status.c_str());
+    if (pen_->connection() == PenConnection::kConnected) select_calibration(tool_serial_);
+  }
+  std::string error;
+  for (const PenSample& sample : samples_) {
+    if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
+      tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
+      select_calibration(tool_serial_);
+    }
+    if (sample.in_proximity && orbiting_) {
+      orbiting_ = false;  // painting needs a still camera (§3.3)
+      refined_ = false;
+    }
+    if (!orbiting_ && session_->cameraOrbitDegrees() != orbit_degrees_) {
+      char text[64];
+      std::snprintf(text, sizeof text, "camera_orbit=%.9g", double(orbit_degrees_));
+      if (!session_->applyUi(text, sample.t_ns, &error))
+        std::fprintf(stderr, "cloudbrush: %s\n", error.c_str());
+      scene_stale_ = true;
+    }
+    const auto received = std::chrono::steady_clock::now();
+    const SampleOutcome outcome = session_->feed(sample);
+    ++summary->pen_samples;
+    if (outcome.stroke_began)
+      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+    if (!outcome.changed.empty())
+      texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
+    if (outcome.stroke_mapped) {
+      ++summary->strokes_mapped;
+      lift_time_ = received;
+      lit_pending_ = true;
+      scene_stale_ = true;
+      // The cloud replaces the ink: the footprint is cleared as the lit scene is drawn.
+      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+    }
+    cursor_.screen_px =
+        glm::vec2(float(outcome.mapped.preview_x_px), float(outcome.mapped.preview_y_px));
+    cursor_.visible = outcome.mapped.in_proximity;
+  }
+}
+
+void PaintLoop::drawPaintingView(PaintFrameInfo* info) {
+  const int w = display_.width(), h = display_.height();
+  if (scene_stale_) {
+    renderer_.sync(volume_, light_);  // the dirty box only: upload, occupancy, light (§4)
+    RenderOptions options;
+    renderer_.render(session_->camera(), w, h, scene_.fbo(), options);
+    overlay_.invalidate();
+    scene_stale_ = false;
+  }
+  overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
+  info->painting_view = true;
+  info->in_stroke = session_->engine().inStroke();
+  info->texels_uploaded = texels_this_frame_;
+  texels_this_frame_ = 0;
+  if (lit_pending_) {
+    glFinish();  // the frame is really drawn, not only queued
+    info->first_lit_after_lift = true;
+    info->pen_up_to_lit_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - lift_time_)
+            .count();
+    lit_pending_ = false;
+  }
+}
 
 PaintLoop::PaintLoop(Display& display, VolumeRenderer& renderer, const Volume& volume,
                      const Light& light, const PaintLoopOptions& options)
@@ -32,8 +154,12 @@ std::string PaintLoop::handleEvents() {
     if (event.kind == DisplayEvent::Kind::KeyDown && event.key == DisplayEvent::Key::Space) {
       orbiting_ = !orbiting_;
       refined_ = false;
+      scene_stale_ = true;
     }
-    if (event.kind == DisplayEvent::Kind::Resize) refined_ = false;
+    if (event.kind == DisplayEvent::Kind::Resize) {
+      refined_ = false;
+      scene_stale_ = true;
+    }
   }
   return "";
 }
@@ -54,6 +180,24 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
       summary->quit_reason = quit;
       break;
     }
+    if (pen_ && last_connection_ == int(PenConnection::kFinished) && !lit_pending_ &&
+        !session_->engine().inStroke()) {
+      summary->quit_reason = "replay finished";
+      break;
+    }
+    if (pen_) handlePen(summary);
+    if (pen_ && !orbiting_) {
+      if (!paintingSetUp(error)) return false;
+      PaintFrameInfo info;
+      info.frame = summary->frames;
+      drawPaintingView(&info);
+      if (info.first_lit_after_lift) summary->pen_up_to_lit_ms.push_back(info.pen_up_to_lit_ms);
+      if (options_.on_frame) options_.on_frame(info);
+      if (!display_.present(error)) return false;
+      last_present = std::chrono::steady_clock::now();
+      ++summary->frames;
+      continue;
+    }
     renderer_.sync(volume_, light_);  // uploads only what changed (nothing, until painting)
     const bool moving = orbiting_;
     if (!moving && refined_) {
@@ -73,6 +217,11 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     renderer_.render(camera, display_.width(), display_.height(), display_.framebuffer(),
                      render_options);
+    if (options_.on_frame) {
+      PaintFrameInfo info;
+      info.frame = summary->frames;
+      options_.on_frame(info);
+    }
     if (!display_.present(error)) return false;
     const auto presented = std::chrono::steady_clock::now();
     const double frame_ms =

@@ -2,19 +2,47 @@
 // and its light) seen by a slowly orbiting camera, drawn at reduced resolution while the camera
 // moves and refined to full resolution when it stops (thesis §1.5: 256³ at 1280×768 at
 // 20–30 fps was the interactive target). Esc, q or closing the window ends it; Space pauses the
-// orbit. The pen will be routed into this loop later (an input router per mode); keep it small.
+// orbit.
+//
+// With a pen attached (attachPen) the loop paints (thesis §3.3, §3.4): a pen in proximity stops
+// the orbit, the still scene is rendered once into a cached target, and each frame only the live
+// footprint (its changed rectangles) and the cursor are composited over it (FootprintOverlay),
+// so a sample shows in the next frame. At tip-up the PaintSession maps the stroke into the
+// volume; the renderer syncs the dirty box (upload, occupancy, light) and the lit scene is shown.
+// A missing tablet is a state shown on stderr, never an exit: the orbit goes on.
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "app/render/footprint_overlay.h"
 #include "app/render/gl/display.h"
+#include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/scene/camera.h"
 #include "app/scene/light.h"
 #include "app/volume/volume.h"
+#include "drivers/core/pen_sample.h"
 
 namespace cb {
+
+class PaintSession;
+class PenSource;
+
+// What the frame just drawn showed, for tests (called before present, with the display's
+// framebuffer bound and readable).
+struct PaintFrameInfo {
+  long frame = 0;
+  bool painting_view = false;         // the cached still scene with the footprint overlay
+  bool in_stroke = false;             // a stroke is being painted
+  size_t texels_uploaded = 0;         // footprint texels uploaded for this frame
+  bool first_lit_after_lift = false;  // first frame showing the volume after a stroke was mapped
+  double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
+};
 
 struct PaintLoopOptions {
   float orbit_degrees_per_second = 6.0f;  // a slow turn: one revolution per minute
@@ -25,6 +53,9 @@ struct PaintLoopOptions {
   double target_frame_ms = 50.0;  // 20 fps
   long max_frames = 0;            // stop after this many presented frames (0: until quit)
   bool print_stats = false;       // ray-sample statistics of the last full-resolution frame
+  // Painting: where calibration profiles are looked up (calibration/profile_store.h).
+  std::string config_dir, state_dir;
+  std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
 };
 
 // What a run did, for the summary line and tests.
@@ -36,6 +67,10 @@ struct PaintLoopSummary {
   double final_moving_scale = 0.0;
   long refined_frames = 0;  // full-resolution frames drawn after the camera stopped
   std::string quit_reason;  // "Esc", "window closed", "frame limit", "signal"
+  long pen_samples = 0;
+  long strokes_mapped = 0;
+  std::vector<double> pen_up_to_lit_ms;  // per mapped stroke: lift received -> lit frame drawn
+  double median_pen_up_to_lit_ms() const;
 };
 
 class PaintLoop {
@@ -46,9 +81,17 @@ class PaintLoop {
   // False with a message if presenting fails.
   bool run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error);
 
+  // Routes `pen` into `session` (neither owned; the loop's volume must be session->volume()).
+  void attachPen(PenSource* pen, PaintSession* session);
+
  private:
   // Applies the display's events; returns the quit reason or "".
   std::string handleEvents();
+  // Polls the pen and feeds the session; updates the overlay, cursor and lift timing.
+  void handlePen(PaintLoopSummary* summary);
+  // The still painting view: cached scene (re-rendered when stale) + footprint + cursor.
+  void drawPaintingView(PaintFrameInfo* info);
+  bool paintingSetUp(std::string* error);
 
   Display& display_;
   VolumeRenderer& renderer_;
@@ -58,6 +101,20 @@ class PaintLoop {
   bool orbiting_ = true;
   bool refined_ = false;  // the still image has been drawn at full resolution
   float orbit_degrees_ = 0.0f;
+
+  PenSource* pen_ = nullptr;
+  PaintSession* session_ = nullptr;
+  int last_connection_ = -1;
+  uint64_t tool_serial_ = 0;
+  FootprintOverlay overlay_;
+  RenderTarget scene_;  // the still scene, rendered once per camera or volume change
+  bool overlay_ready_ = false;
+  bool scene_stale_ = true;
+  bool lit_pending_ = false;  // a stroke was mapped; its lit frame is not drawn yet
+  std::chrono::steady_clock::time_point lift_time_;
+  size_t texels_this_frame_ = 0;
+  OverlayCursor cursor_;
+  std::vector<PenSample> samples_;
 };
 
 }  // namespace cb
