@@ -21,6 +21,7 @@
 #include "app/render/gl/display.h"
 #include "app/render/volume_renderer.h"
 #include "app/ui/paint_session.h"
+#include "app/ui/session_replay.h"
 #include "app/volume/scene_generators.h"
 #include "drivers/open_pen_source.h"
 
@@ -145,7 +146,6 @@ int commandPaint(int argc, char** argv) {
   std::unique_ptr<PaintSession> session;
   JournalWriter journal;
   if (pen) {
-    // A pen can paint: the volume starts empty and is painted into.
     MappingConfig mapping;
     try {
       if (std::filesystem::exists(configFile("mapping.toml")))
@@ -158,31 +158,35 @@ int commandPaint(int argc, char** argv) {
     settings.screen_height = display->height();
     settings.grid = int(grid);
     session = std::make_unique<PaintSession>(settings, loadDefaultBrushConfig(), mapping);
-    if (!args.has("no-record")) {
-      const std::string dir = args.get("session-dir", stateDir() + "/sessions");
-      std::error_code ec;
-      std::filesystem::create_directories(dir, ec);
-      char stamp[32];
-      const std::time_t now = std::time(nullptr);
-      std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
-      const std::string path = dir + "/" + stamp + ".cbj";
-      if (ec || !journal.open(path))
-        return fail("cannot record the session to " + path + ": " +
-                    (ec ? ec.message() : journal.error()) + " (--no-record to paint anyway)");
-      session->recordTo(&journal, 0);
-      std::printf("journal: %s\n", path.c_str());
-      std::fflush(stdout);
-    }
   }
+  // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
+  const std::string session_dir = args.get("session-dir", stateDir() + "/sessions");
+  const bool record = !args.has("no-record");
+  const auto start_journal = [&]() {
+    if (!record) return;
+    std::error_code ec;
+    std::filesystem::create_directories(session_dir, ec);
+    char stamp[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+    const std::string path = session_dir + "/" + stamp + ".cbj";
+    if (ec || !journal.open(path)) {
+      std::fprintf(stderr, "cloudbrush: NOT RECORDING: cannot write the session journal %s: %s\n",
+                   path.c_str(), ec ? ec.message().c_str() : journal.error().c_str());
+      return;
+    }
+    session->recordTo(&journal, 0);
+    std::printf("journal: %s\n", path.c_str());
+    std::fflush(stdout);
+  };
   const auto generate_start = std::chrono::steady_clock::now();
-  const Volume demo_volume =
-      pen ? Volume(glm::ivec3(8)) : makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
-  if (!pen)
-    std::fprintf(
-        stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
-            .count());
-  const Volume& volume = session ? session->volume() : demo_volume;
+  // Shown until a pen connects; then the session's volume (empty at first) is painted into.
+  const Volume demo_volume = makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
+  std::fprintf(
+      stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
+          .count());
+  const Volume& volume = demo_volume;
   VolumeRenderer renderer;
   if (!renderer.init(&error)) return fail(error);
 
@@ -202,6 +206,7 @@ int commandPaint(int argc, char** argv) {
                pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
   loop_options.state_dir = stateDir();
+  loop_options.on_first_connection = start_journal;
   PaintLoop loop(*display, renderer, volume, light, loop_options);
   if (pen) loop.attachPen(pen.get(), session.get());
   PaintLoopSummary summary;
@@ -211,12 +216,19 @@ int commandPaint(int argc, char** argv) {
       "present %.1f ms\n",
       summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
       summary.median_frame_ms, summary.final_moving_scale, summary.median_present_ms);
-  if (pen)
+  if (pen && summary.pen_samples == 0)
+    std::printf("cloudbrush: no pen samples arrived; nothing painted or recorded\n");
+  if (pen && summary.pen_samples > 0)
     std::printf(
         "cloudbrush: %ld pen samples, %ld strokes mapped; pen-up -> first lit frame "
         "median %.1f ms (%zu strokes, %dx%d, grid %ld)\n",
         summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
         summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid);
+  if (session && summary.pen_samples > 0)
+    std::printf(
+        "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "
+        "same)\n",
+        static_cast<unsigned long long>(volumeChecksum(session->volume())));
   if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
     std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
                 last->vblank_sequence, double(last->shown_ns) / 1e9);

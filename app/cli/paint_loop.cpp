@@ -36,6 +36,10 @@ double PaintLoopSummary::median_pen_up_to_lit_ms() const {
   return medianOf(pen_up_to_lit_ms);
 }
 
+const Volume& PaintLoop::shownVolume() const {
+  return pen_connected_once_ ? session_->volume() : volume_;
+}
+
 void PaintLoop::attachPen(PenSource* pen, PaintSession* session) {
   pen_ = pen;
   session_ = session;
@@ -74,7 +78,15 @@ void PaintLoop::handlePen(PaintLoopSummary* summary) {
     const std::string status = pen_->statusMessage();
     std::fprintf(stderr, "cloudbrush: pen %s (%s)%s%s\n", penConnectionName(pen_->connection()),
                  pen_->backendName(), status.empty() ? "" : ": ", status.c_str());
-    if (pen_->connection() == PenConnection::kConnected) select_calibration(tool_serial_);
+    if (pen_->connection() == PenConnection::kConnected) {
+      if (!pen_connected_once_) {
+        pen_connected_once_ = true;  // from now on the session's volume is shown and painted
+        scene_stale_ = true;
+        refined_ = false;
+        if (options_.on_first_connection) options_.on_first_connection();
+      }
+      select_calibration(tool_serial_);
+    }
   }
   std::string error;
   for (const PenSample& sample : samples_) {
@@ -117,7 +129,7 @@ void PaintLoop::handlePen(PaintLoopSummary* summary) {
 void PaintLoop::drawPaintingView(PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
   if (scene_stale_) {
-    renderer_.sync(volume_, light_);  // the dirty box only: upload, occupancy, light (§4)
+    renderer_.sync(shownVolume(), light_);  // the dirty box only: upload, occupancy, light (§4)
     RenderOptions options;
     renderer_.render(session_->camera(), w, h, scene_.fbo(), options);
     overlay_.invalidate();
@@ -198,7 +210,7 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
       ++summary->frames;
       continue;
     }
-    renderer_.sync(volume_, light_);  // uploads only what changed (nothing, until painting)
+    renderer_.sync(shownVolume(), light_);  // uploads only what changed (nothing, until painting)
     const bool moving = orbiting_;
     if (!moving && refined_) {
       // Still and already sharp: nothing to draw until something changes.

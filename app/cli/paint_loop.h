@@ -56,6 +56,7 @@ struct PaintLoopOptions {
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
+  std::function<void()> on_first_connection;            // the pen connected for the first time
 };
 
 // What a run did, for the summary line and tests.
@@ -81,7 +82,8 @@ class PaintLoop {
   // False with a message if presenting fails.
   bool run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error);
 
-  // Routes `pen` into `session` (neither owned; the loop's volume must be session->volume()).
+  // Routes `pen` into `session` (neither owned). The loop's own volume is shown until the pen
+  // first connects, the session's volume from then on.
   void attachPen(PenSource* pen, PaintSession* session);
 
  private:
@@ -105,6 +107,8 @@ class PaintLoop {
   PenSource* pen_ = nullptr;
   PaintSession* session_ = nullptr;
   int last_connection_ = -1;
+  bool pen_connected_once_ = false;
+  const Volume& shownVolume() const;
   uint64_t tool_serial_ = 0;
   FootprintOverlay overlay_;
   RenderTarget scene_;  // the still scene, rendered once per camera or volume change

@@ -166,6 +166,8 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   if (const char* keep = std::getenv("CB_PAINT_LOOP_KEEP_FRAMES")) {  // for looking at them
     writePng(std::string(keep) + "/during_stroke.png", frames.during_stroke);
     writePng(std::string(keep) + "/first_lit.png", frames.first_lit);
+    std::filesystem::copy_file(journal, std::string(keep) + "/stroke.cbj",
+                               std::filesystem::copy_options::overwrite_existing);
   }
   ASSERT_EQ(summary.pen_up_to_lit_ms.size(), 1u);
   std::printf("pen-up -> first lit frame: %.1f ms at %dx%d, grid %d³ on %s (target <= 200 ms)\n",
