@@ -54,6 +54,13 @@ bool PaintLoop::paintingSetUp(std::string* error) {
   if (scene_.width() != display_.width() || scene_.height() != display_.height()) {
     if (!scene_.create(display_.width(), display_.height(), RenderTarget::Format::kRgba8, error))
       return false;
+    // Warm-up: the first reduced-resolution render allocates the renderer's smaller target;
+    // do that now rather than inside the first pen-up -> lit frame.
+    RenderOptions warm_up;
+    warm_up.scale = std::clamp(options_.moving_scale, options_.min_moving_scale, 1.0f);
+    renderer_.sync(shownVolume(), light_);
+    renderer_.render(session_->camera(), display_.width(), display_.height(), scene_.fbo(),
+                     warm_up);
     scene_stale_ = true;
   }
   return true;
@@ -115,6 +122,7 @@ void PaintLoop::handlePen(PaintLoopSummary* summary) {
     if (outcome.stroke_mapped) {
       ++summary->strokes_mapped;
       lift_time_ = received;
+      lift_mapping_ms_ = outcome.mapping.timings.total_ms;
       lit_pending_ = true;
       scene_stale_ = true;
       // The cloud replaces the ink: the footprint is cleared as the lit scene is drawn.
@@ -128,25 +136,52 @@ void PaintLoop::handlePen(PaintLoopSummary* summary) {
 
 void PaintLoop::drawPaintingView(PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
-  if (scene_stale_) {
+  double sync_ms = 0.0, render_ms = 0.0;
+  const auto render_start = std::chrono::steady_clock::now();
+  const bool refine = refine_pending_ && !scene_stale_;
+  if (scene_stale_ || refine) {
     renderer_.sync(shownVolume(), light_);  // the dirty box only: upload, occupancy, light (§4)
+    const auto synced = std::chrono::steady_clock::now();
+    sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
+    // Right after a lift the cloud is shown first at the moving resolution (a quarter of the
+    // rays at 0.5), then refined to full resolution on the next frame.
     RenderOptions options;
+    options.scale =
+        lit_pending_ ? std::clamp(options_.moving_scale, options_.min_moving_scale, 1.0f) : 1.0f;
     renderer_.render(session_->camera(), w, h, scene_.fbo(), options);
+    if (lit_pending_) {
+      glFinish();
+      render_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - synced)
+              .count();
+    }
     overlay_.invalidate();
     scene_stale_ = false;
+    refine_pending_ = options.scale < 1.0f;
   }
   overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
   info->painting_view = true;
   info->in_stroke = session_->engine().inStroke();
   info->texels_uploaded = texels_this_frame_;
   texels_this_frame_ = 0;
+  if (lit_pending_ || refine) glFinish();  // the frame is really drawn, not only queued
+  const double since_lift =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - lift_time_)
+          .count();
   if (lit_pending_) {
-    glFinish();  // the frame is really drawn, not only queued
     info->first_lit_after_lift = true;
-    info->pen_up_to_lit_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - lift_time_)
-            .count();
+    info->pen_up_to_lit_ms = since_lift;
+    info->mapping_ms = lift_mapping_ms_;
+    info->sync_ms = sync_ms;
+    info->render_ms = render_ms;
+    info->composite_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - render_start)
+            .count() -
+        sync_ms - render_ms;
     lit_pending_ = false;
+  } else if (refine) {
+    info->refined_after_lift = true;
+    info->pen_up_to_refined_ms = since_lift;
   }
 }
 
@@ -203,7 +238,24 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
       PaintFrameInfo info;
       info.frame = summary->frames;
       drawPaintingView(&info);
-      if (info.first_lit_after_lift) summary->pen_up_to_lit_ms.push_back(info.pen_up_to_lit_ms);
+      if (info.first_lit_after_lift) {
+        summary->pen_up_to_lit_ms.push_back(info.pen_up_to_lit_ms);
+        summary->mapping_ms.push_back(info.mapping_ms);
+        summary->sync_ms.push_back(info.sync_ms);
+        summary->render_ms.push_back(info.render_ms);
+        if (options_.print_stats)
+          std::printf(
+              "stroke %ld: pen-up -> lit frame %.1f ms (mapping %.1f, sync %.1f, render "
+              "%.1f, composite %.1f)\n",
+              summary->strokes_mapped - 1, info.pen_up_to_lit_ms, info.mapping_ms, info.sync_ms,
+              info.render_ms, info.composite_ms);
+      }
+      if (info.refined_after_lift) {
+        summary->pen_up_to_refined_ms.push_back(info.pen_up_to_refined_ms);
+        if (options_.print_stats)
+          std::printf("stroke %ld: pen-up -> full-resolution lit frame %.1f ms\n",
+                      summary->strokes_mapped - 1, info.pen_up_to_refined_ms);
+      }
       if (options_.on_frame) options_.on_frame(info);
       if (!display_.present(error)) return false;
       last_present = std::chrono::steady_clock::now();

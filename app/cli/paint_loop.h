@@ -42,6 +42,13 @@ struct PaintFrameInfo {
   size_t texels_uploaded = 0;         // footprint texels uploaded for this frame
   bool first_lit_after_lift = false;  // first frame showing the volume after a stroke was mapped
   double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
+  double mapping_ms = 0.0;            // of which: the stroke mapper (StrokeMapper::map)
+  double sync_ms = 0.0;               // renderer sync: occupancy, light, pack, upload
+  double render_ms = 0.0;             // ray casting the scene (to glFinish)
+  double composite_ms = 0.0;          // footprint overlay composite of the whole frame
+  // The frame after the first lit one re-renders the scene at full resolution.
+  bool refined_after_lift = false;
+  double pen_up_to_refined_ms = 0.0;
 };
 
 struct PaintLoopOptions {
@@ -71,6 +78,8 @@ struct PaintLoopSummary {
   long pen_samples = 0;
   long strokes_mapped = 0;
   std::vector<double> pen_up_to_lit_ms;  // per mapped stroke: lift received -> lit frame drawn
+  std::vector<double> mapping_ms, sync_ms, render_ms;  // per mapped stroke, parts of the above
+  std::vector<double> pen_up_to_refined_ms;  // per mapped stroke: lift -> full-resolution frame
   double median_pen_up_to_lit_ms() const;
 };
 
@@ -114,8 +123,10 @@ class PaintLoop {
   RenderTarget scene_;  // the still scene, rendered once per camera or volume change
   bool overlay_ready_ = false;
   bool scene_stale_ = true;
-  bool lit_pending_ = false;  // a stroke was mapped; its lit frame is not drawn yet
+  bool lit_pending_ = false;     // a stroke was mapped; its lit frame is not drawn yet
+  bool refine_pending_ = false;  // the scene was last drawn at reduced resolution
   std::chrono::steady_clock::time_point lift_time_;
+  double lift_mapping_ms_ = 0.0;
   size_t texels_this_frame_ = 0;
   OverlayCursor cursor_;
   std::vector<PenSample> samples_;
