@@ -31,18 +31,27 @@ uint8_t toUnorm8(float v) {
 void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
                          std::vector<uint8_t>* packed) {
   VoxelBox b = box.intersect(volume.bounds());
-  if (b.empty()) return;
-  packed->resize(volume.voxelCount() * 2);
+  if (b.empty()) {
+    packed->clear();
+    return;
+  }
+  const glm::ivec3 size = b.hi - b.lo;
+  // Only the box, contiguous (x fastest): what glTextureSubImage3D reads without row strides.
+  packed->resize(size_t(b.voxelCount()) * 2);
   uint8_t* out = packed->data();
   const float* d = volume.data();
   const float* t = light.transmittance.data();
-  parallelFor(size_t(b.hi.z - b.lo.z), 4, [&](size_t, size_t z0, size_t z1) {
+  // Small boxes on the calling thread: waking workers costs more than packing a few voxels.
+  const size_t grain = size_t(b.voxelCount()) < (size_t(1) << 18) ? size_t(size.z) : 4;
+  parallelFor(size_t(size.z), grain, [&](size_t, size_t z0, size_t z1) {
     for (int z = b.lo.z + int(z0); z < b.lo.z + int(z1); ++z)
       for (int y = b.lo.y; y < b.hi.y; ++y) {
-        size_t i = volume.index(b.lo.x, y, z);
-        for (int x = b.lo.x; x < b.hi.x; ++x, ++i) {
-          out[2 * i] = toUnorm8(d[i]);
-          out[2 * i + 1] = toUnorm8(t[i]);
+        const size_t i = volume.index(b.lo.x, y, z);
+        uint8_t* o =
+            out + 2 * ((size_t(z - b.lo.z) * size_t(size.y) + size_t(y - b.lo.y)) * size_t(size.x));
+        for (int x = 0; x < size.x; ++x) {
+          o[2 * x] = toUnorm8(d[i + size_t(x)]);
+          o[2 * x + 1] = toUnorm8(t[i + size_t(x)]);
         }
       }
   });
@@ -214,11 +223,9 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   if (!st.uploaded.empty()) {
     const VoxelBox& b = st.uploaded;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, dims_.x);
-    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, dims_.y);
-    glPixelStorei(GL_UNPACK_SKIP_PIXELS, b.lo.x);
-    glPixelStorei(GL_UNPACK_SKIP_ROWS, b.lo.y);
-    glPixelStorei(GL_UNPACK_SKIP_IMAGES, b.lo.z);
+    for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                     GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
+      glPixelStorei(p, 0);  // packed_ holds just the box
     glm::ivec3 size = b.hi - b.lo;
     glTextureSubImage3D(volume_texture_, 0, b.lo.x, b.lo.y, b.lo.z, size.x, size.y, size.z, GL_RG,
                         GL_UNSIGNED_BYTE, packed_.data());

@@ -128,7 +128,8 @@ class VolumeRenderer {
   std::string error_;
 };
 
-// Packs density (clamped to [0,1]) and transmittance into 8-bit RG pairs over `box`.
+// Packs density (clamped to [0,1]) and transmittance into 8-bit RG pairs for the voxels of `box`
+// (clipped to the volume), contiguous with x fastest: packed holds box.voxelCount() pairs.
 void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
                          std::vector<uint8_t>* packed);
 
