@@ -221,9 +221,11 @@ int commandPaint(int argc, char** argv) {
   if (pen && summary.pen_samples > 0)
     std::printf(
         "cloudbrush: %ld pen samples, %ld strokes mapped; pen-up -> first lit frame "
-        "median %.1f ms (%zu strokes, %dx%d, grid %ld)\n",
+        "median %.1f ms (%zu strokes, %dx%d, grid %ld); painting median %.1f ms/frame over %ld "
+        "frames\n",
         summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
-        summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid);
+        summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid,
+        summary.median_painting_frame_ms, summary.painting_frames);
   if (session && summary.pen_samples > 0)
     std::printf(
         "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "

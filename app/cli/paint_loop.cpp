@@ -215,7 +215,7 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
   *summary = PaintLoopSummary{};
   const auto start = std::chrono::steady_clock::now();
   auto last_present = start;
-  std::vector<double> moving_frame_ms;
+  std::vector<double> moving_frame_ms, painting_frame_ms;
   float scale = std::clamp(options_.moving_scale, options_.min_moving_scale, 1.0f);
   RenderOptions render_options;
   while (true) {
@@ -258,7 +258,12 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
       }
       if (options_.on_frame) options_.on_frame(info);
       if (!display_.present(error)) return false;
-      last_present = std::chrono::steady_clock::now();
+      const auto presented = std::chrono::steady_clock::now();
+      // Frames while a stroke is drawn, except the lift frames (mapping + re-render).
+      if (info.in_stroke && !info.first_lit_after_lift && !info.refined_after_lift)
+        painting_frame_ms.push_back(
+            std::chrono::duration<double, std::milli>(presented - last_present).count());
+      last_present = presented;
       ++summary->frames;
       continue;
     }
@@ -309,6 +314,8 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
   }
   summary->seconds = secondsSince(start);
   summary->final_moving_scale = scale;
+  summary->median_painting_frame_ms = medianOf(painting_frame_ms);
+  summary->painting_frames = long(painting_frame_ms.size());
   if (!moving_frame_ms.empty()) {
     std::nth_element(moving_frame_ms.begin(),
                      moving_frame_ms.begin() + long(moving_frame_ms.size() / 2),

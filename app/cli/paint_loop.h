@@ -76,6 +76,8 @@ struct PaintLoopSummary {
   long refined_frames = 0;  // full-resolution frames drawn after the camera stopped
   std::string quit_reason;  // "Esc", "window closed", "frame limit", "signal"
   long pen_samples = 0;
+  long painting_frames = 0;               // frames presented while a stroke was being drawn
+  double median_painting_frame_ms = 0.0;  // present to present during strokes
   long strokes_mapped = 0;
   std::vector<double> pen_up_to_lit_ms;  // per mapped stroke: lift received -> lit frame drawn
   std::vector<double> mapping_ms, sync_ms, render_ms;  // per mapped stroke, parts of the above

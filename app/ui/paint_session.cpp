@@ -84,6 +84,7 @@ void PaintSession::journalText(JournalRecordType type, int64_t t_ns, const std::
 void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
   journal_ = journal;
   journalText(JournalRecordType::kSession, t_ns, formatSessionSettings(settings_));
+  journalText(JournalRecordType::kMode, t_ns, "paint");
   journalText(JournalRecordType::kCalibration, t_ns, formatCalibrationProfile(profile_));
   if (journal_ && device_) {
     const std::vector<uint8_t> payload = encodeDeviceInfo(*device_);

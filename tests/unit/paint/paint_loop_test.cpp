@@ -186,6 +186,9 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   EXPECT_GT(refined_cloud, cloud / 2);
   EXPECT_LT(refined_cloud, cloud * 2);
   std::printf("pen-up -> full-resolution lit frame: %.1f ms\n", frames.pen_up_to_refined_ms);
+  EXPECT_GT(summary.painting_frames, 20);
+  std::printf("painting: median %.2f ms/frame over %ld frames while drawing (target <= 16.7)\n",
+              summary.median_painting_frame_ms, summary.painting_frames);
   std::printf(
       "pen-up -> first lit frame (at the moving scale 0.5): %.1f ms (mapping %.1f, sync %.1f, "
       "ray cast %.1f, overlay composite %.1f) at %dx%d, grid %d³ on %s (target <= 200 ms)\n",
