@@ -158,13 +158,20 @@ TEST(LightVolume, ALightChangeRecomputesEverything) {
 
 TEST(LightVolume, SameBytesOnAnyThreadCount) {
   Volume v = makeBundledCumulus(glm::ivec3(48), 2);
-  LightVolume a, b;
-  setWorkerThreads(1);
-  sweepLightVolume(a, v, Light{}, v.bounds());
-  setWorkerThreads(7);
-  sweepLightVolume(b, v, Light{}, v.bounds());
-  setWorkerThreads(0);
-  EXPECT_EQ(a.transmittance, b.transmittance);
+  // Major axis y and x (plane-pipelined full sweep) and z (slice sweep).
+  for (glm::vec3 pos :
+       {glm::vec3(3.0f, 4.0f, 1.5f), glm::vec3(-5.0f, 1.0f, 2.0f), glm::vec3(1.0f, -2.0f, -6.0f)}) {
+    Light light;
+    light.position = pos;
+    LightVolume a, b;
+    setWorkerThreads(1);
+    sweepLightVolume(a, v, light, v.bounds());
+    setWorkerThreads(7);
+    sweepLightVolume(b, v, light, v.bounds());
+    setWorkerThreads(0);
+    EXPECT_EQ(a.transmittance, b.transmittance) << pos.x << "," << pos.y << "," << pos.z;
+    EXPECT_EQ(a.through, b.through);
+  }
 }
 
 }  // namespace
