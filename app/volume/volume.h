@@ -20,6 +20,14 @@ class Volume {
   explicit Volume(glm::ivec3 dims = glm::ivec3(256), glm::vec3 world_min = glm::vec3(-1.0f),
                   glm::vec3 world_max = glm::vec3(1.0f));
 
+  // Every construction or assignment gets a new process-unique id, so a consumer that tracks
+  // (id, generation) never mistakes a different volume at the same address for the one it saw.
+  Volume(const Volume& o);
+  Volume(Volume&& o) noexcept;
+  Volume& operator=(const Volume& o);
+  Volume& operator=(Volume&& o) noexcept;
+  uint64_t instanceId() const { return instance_id_; }
+
   glm::ivec3 dims() const { return dims_; }
   glm::vec3 worldMin() const { return world_min_; }
   glm::vec3 worldMax() const { return world_max_; }
@@ -58,6 +66,7 @@ class Volume {
   glm::vec3 world_min_, world_max_;
   std::vector<float> data_;
   uint64_t generation_ = 0;
+  uint64_t instance_id_;
   struct Change {
     uint64_t generation;
     VoxelBox box;

@@ -66,3 +66,23 @@ TEST(Volume, RejectsNonsenseDimensions) {
 
 }  // namespace
 }  // namespace cb
+
+namespace cb {
+namespace {
+
+TEST(Volume, EveryConstructionAndAssignmentHasItsOwnInstanceId) {
+  Volume a({4, 4, 4});
+  Volume b({4, 4, 4});
+  EXPECT_NE(a.instanceId(), b.instanceId());
+  Volume c(a);
+  EXPECT_NE(c.instanceId(), a.instanceId());
+  uint64_t before = b.instanceId();
+  b = Volume({4, 4, 4});
+  EXPECT_NE(b.instanceId(), before) << "a volume assigned into the same address is a new volume";
+  b = a;
+  EXPECT_NE(b.instanceId(), a.instanceId());
+  EXPECT_EQ(b.generation(), a.generation());
+}
+
+}  // namespace
+}  // namespace cb
