@@ -7,6 +7,10 @@
 #include <cmath>
 #include <thread>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "app/core/parallel_for.h"
 
 namespace cb {
@@ -57,11 +61,16 @@ class AttenuationPair {
     }
   }
 
+  // The table as 4 floats per entry (pass, pass slope, own, own slope) for vector gathers.
+  const float* entries() const { return &table_[0].pass; }
+  static constexpr int kEntries = 1024;
+
  private:
   struct Entry {
     float pass, pass_slope, own, own_slope;
   };
-  static constexpr int kSize = 1024;
+  static_assert(sizeof(Entry) == 4 * sizeof(float));
+  static constexpr int kSize = kEntries;
   float k_, pass_exponent_, own_exponent_;
   std::array<Entry, kSize + 1> table_;
 };
@@ -70,15 +79,71 @@ class AttenuationPair {
 // upstream rows at i and i + 1. Separate restrict-qualified pointers let the compiler keep them
 // in registers (the general loop reloads its captures after every store). The bilinear
 // expression is the same as sweepLightVolume's general path, so both give identical bits.
-void sweepContiguousRun(const float* __restrict up0, const float* __restrict up1,
-                        const float* __restrict density, float* __restrict through,
-                        float* __restrict lit, int count, float wb, float wc,
-                        const AttenuationPair& attenuation) {
+void sweepContiguousRunScalar(const float* __restrict up0, const float* __restrict up1,
+                              const float* __restrict density, float* __restrict through,
+                              float* __restrict lit, int count, float wb, float wc,
+                              const AttenuationPair& attenuation) {
   for (int i = 0; i < count; ++i) {
     const float t_up = (up0[i] * (1 - wb) + up0[i + 1] * wb) * (1 - wc) +
                        (up1[i] * (1 - wb) + up1[i + 1] * wb) * wc;
     attenuation.attenuate(density[i], t_up, &through[i], &lit[i]);
   }
+}
+
+#if defined(__x86_64__)
+// The same run, 8 voxels at a time with AVX2 (gathers for the table), for CPUs that have it.
+// Written with separate multiplies and adds in the scalar order and compiled without FMA, so it
+// gives the scalar path's bits exactly. Blocks with a density outside [0, 1] go the scalar way.
+__attribute__((target("avx2"))) void sweepContiguousRunAvx2(
+    const float* __restrict up0, const float* __restrict up1, const float* __restrict density,
+    float* __restrict through, float* __restrict lit, int count, float wb, float wc,
+    const AttenuationPair& attenuation) {
+  const __m256 wb1 = _mm256_set1_ps(1 - wb), wb0 = _mm256_set1_ps(wb);
+  const __m256 wc1 = _mm256_set1_ps(1 - wc), wc0 = _mm256_set1_ps(wc);
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+  const __m256 scale = _mm256_set1_ps(float(AttenuationPair::kEntries));
+  const float* table = attenuation.entries();
+  int i = 0;
+  for (; i + 8 <= count; i += 8) {
+    const __m256 d = _mm256_loadu_ps(density + i);
+    const __m256 in_range =
+        _mm256_and_ps(_mm256_cmp_ps(d, zero, _CMP_GE_OQ), _mm256_cmp_ps(d, one, _CMP_LE_OQ));
+    if (_mm256_movemask_ps(in_range) != 0xff) {
+      sweepContiguousRunScalar(up0 + i, up1 + i, density + i, through + i, lit + i, 8, wb, wc,
+                               attenuation);
+      continue;
+    }
+    const __m256 row0 = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(up0 + i), wb1),
+                                      _mm256_mul_ps(_mm256_loadu_ps(up0 + i + 1), wb0));
+    const __m256 row1 = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(up1 + i), wb1),
+                                      _mm256_mul_ps(_mm256_loadu_ps(up1 + i + 1), wb0));
+    const __m256 t_up = _mm256_add_ps(_mm256_mul_ps(row0, wc1), _mm256_mul_ps(row1, wc0));
+    const __m256 x = _mm256_mul_ps(d, scale);
+    const __m256i index = _mm256_cvttps_epi32(x);
+    const __m256 t = _mm256_sub_ps(x, _mm256_cvtepi32_ps(index));
+    const __m256i entry = _mm256_slli_epi32(index, 2);
+    const __m256 pass = _mm256_i32gather_ps(table, entry, 4);
+    const __m256 pass_slope = _mm256_i32gather_ps(table + 1, entry, 4);
+    const __m256 own = _mm256_i32gather_ps(table + 2, entry, 4);
+    const __m256 own_slope = _mm256_i32gather_ps(table + 3, entry, 4);
+    _mm256_storeu_ps(through + i,
+                     _mm256_mul_ps(t_up, _mm256_add_ps(pass, _mm256_mul_ps(pass_slope, t))));
+    _mm256_storeu_ps(lit + i, _mm256_mul_ps(t_up, _mm256_add_ps(own, _mm256_mul_ps(own_slope, t))));
+  }
+  sweepContiguousRunScalar(up0 + i, up1 + i, density + i, through + i, lit + i, count - i, wb, wc,
+                           attenuation);
+}
+#endif
+
+void sweepContiguousRun(const float* up0, const float* up1, const float* density, float* through,
+                        float* lit, int count, float wb, float wc,
+                        const AttenuationPair& attenuation) {
+#if defined(__x86_64__)
+  static const bool has_avx2 = __builtin_cpu_supports("avx2");
+  if (has_avx2)
+    return sweepContiguousRunAvx2(up0, up1, density, through, lit, count, wb, wc, attenuation);
+#endif
+  sweepContiguousRunScalar(up0, up1, density, through, lit, count, wb, wc, attenuation);
 }
 
 float trilinearDensity(const Volume& v, glm::vec3 c) {
