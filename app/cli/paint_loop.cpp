@@ -159,7 +159,16 @@ void PaintLoop::drawPaintingView(PaintFrameInfo* info) {
     scene_stale_ = false;
     refine_pending_ = options.scale < 1.0f;
   }
-  overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
+  if (lit_pending_) {
+    // The footprint was just cleared, so the frame is the scene alone: a blit instead of the
+    // overlay's full-frame composite (tens of ms on llvmpipe). The overlay composites the whole
+    // frame, cursor included, on the next frame, which re-renders at full resolution anyway.
+    glBlitNamedFramebuffer(scene_.fbo(), display_.framebuffer(), 0, 0, w, h, 0, 0, w, h,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    overlay_.invalidate();
+  } else {
+    overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
+  }
   info->painting_view = true;
   info->in_stroke = session_->engine().inStroke();
   info->texels_uploaded = texels_this_frame_;

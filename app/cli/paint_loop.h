@@ -45,7 +45,7 @@ struct PaintFrameInfo {
   double mapping_ms = 0.0;            // of which: the stroke mapper (StrokeMapper::map)
   double sync_ms = 0.0;               // renderer sync: occupancy, light, pack, upload
   double render_ms = 0.0;             // ray casting the scene (to glFinish)
-  double composite_ms = 0.0;          // footprint overlay composite of the whole frame
+  double composite_ms = 0.0;          // the scene to the display (a blit on the lit frame)
   // The frame after the first lit one re-renders the scene at full resolution.
   bool refined_after_lift = false;
   double pen_up_to_refined_ms = 0.0;

@@ -191,7 +191,7 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
               summary.median_painting_frame_ms, summary.painting_frames);
   std::printf(
       "pen-up -> first lit frame (at the moving scale 0.5): %.1f ms (mapping %.1f, sync %.1f, "
-      "ray cast %.1f, overlay composite %.1f) at %dx%d, grid %d³ on %s (target <= 200 ms)\n",
+      "ray cast %.1f, to the display %.1f) at %dx%d, grid %d³ on %s (target <= 200 ms)\n",
       frames.pen_up_to_lit_ms, frames.parts[0], frames.parts[1], frames.parts[2], frames.parts[3],
       kW, kH, kGrid, display->context().renderer.c_str());
   EXPECT_LE(frames.parts[0] + frames.parts[1] + frames.parts[2] + frames.parts[3],
