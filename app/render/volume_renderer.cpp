@@ -190,7 +190,12 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     occupancy_ = buildOccupancy(volume);
     occupancy_cells = {glm::ivec3(0), occupancy_.level_dims[0]};
   } else {
+    // An edit inside cloud that is already occupied leaves the pyramid as it was: then neither
+    // the occupancy texture nor the ray-bounds faces (a scan of all cells and a buffer upload of
+    // megabytes for the cumulus) need redoing.
+    occupancy_before_ = occupancy_.levels[0];
     occupancy_cells = updateOccupancy(occupancy_, volume, st.dirty);
+    if (occupancy_.levels[0] == occupancy_before_) occupancy_cells = {};
   }
   st.occupancy_ms = msSince(t0);
 

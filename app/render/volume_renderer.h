@@ -113,6 +113,7 @@ class VolumeRenderer {
   std::vector<uint8_t> packed_;  // RG8 per voxel: density, transmittance
   LightVolume light_volume_;
   OccupancyPyramid occupancy_;
+  std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;
   // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
   // RG32F target (nearest, −farthest face distance per pixel).
