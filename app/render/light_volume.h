@@ -44,9 +44,10 @@ struct LightVolume {
 glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light);
 
 // Brings `light_volume` up to date. If it was computed for another light, extinction or dims,
-// recomputes everything; otherwise recomputes the voxels a density change in `dirty` can reach:
-// the dirty box swept away from the light to the volume's edge (widened slice by slice by the
-// bilinear footprint). Returns the box of voxels rewritten (empty if none).
+// recomputes everything; otherwise recomputes the voxels a density change in `dirty` reaches:
+// the dirty box, then slice by slice away from the light the voxels whose upstream footprint saw
+// a change above 1e-6 (so the update stops where the edit's shadow fades or meets shadow that
+// is already black). Returns the bounding box of the voxels rewritten (empty if none).
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
                           const VoxelBox& dirty);
 
