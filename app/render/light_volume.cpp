@@ -305,10 +305,28 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
         voxel(bb, t_up);
       };
       for (int bb = lo.x; bb < std::min(inner_lo, hi.x); ++bb) edgeVoxel(bb);
-      if (!kTrack && sb == 1 && row[0] && row[1] && inner_hi > inner_lo) {
+      if (sb == 1 && row[0] && row[1] && inner_hi > inner_lo) {
         const size_t i0 = base + size_t(inner_lo);
+        const int count = inner_hi - inner_lo;
+        // Tracking compares with the old values afterwards (kept per thread), so the run itself
+        // stays the fast one.
+        thread_local std::vector<float> old_row;
+        if constexpr (kTrack) old_row.assign(T + i0, T + i0 + count);
         sweepContiguousRun(row[0] + inner_lo + ob, row[1] + inner_lo + ob, density + i0, T + i0,
-                           lit + i0, inner_hi - inner_lo, wb, wc, attenuation);
+                           lit + i0, count, wb, wc, attenuation);
+        if constexpr (kTrack) {
+          auto moved = [&](int i) {
+            return std::abs(T[i0 + size_t(i)] - old_row[size_t(i)]) > kChangeEpsilon;
+          };
+          int first = 0;
+          while (first < count && !moved(first)) ++first;
+          if (first < count) {
+            int last = count - 1;
+            while (!moved(last)) --last;
+            changed_lo = std::min(changed_lo, inner_lo + first);
+            changed_hi = std::max(changed_hi, inner_lo + last + 1);
+          }
+        }
       } else if (row[0] && row[1]) {
         for (int bb = inner_lo; bb < inner_hi; ++bb) {
           size_t o = size_t(bb + ob) * sb;
