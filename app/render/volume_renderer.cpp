@@ -177,11 +177,10 @@ void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
 
 SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   SyncStats st;
-  // A different object, a generation that went backwards (another volume assigned into the same
-  // object) or new dims/placement: upload everything.
-  const bool fresh = synced_volume_ != &volume || volume.generation() < synced_generation_ ||
-                     volume.dims() != dims_ || volume.worldMin() != world_min_ ||
-                     volume.worldMax() != world_max_;
+  // A different volume (instance ids are unique per construction and assignment, so a new volume
+  // at a reused address is recognised) or new dims/placement: upload everything.
+  const bool fresh = synced_volume_id_ != volume.instanceId() || volume.dims() != dims_ ||
+                     volume.worldMin() != world_min_ || volume.worldMax() != world_max_;
   st.dirty = fresh ? volume.bounds() : volume.dirtySince(synced_generation_);
 
   auto t0 = std::chrono::steady_clock::now();
@@ -241,7 +240,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   glFinish();  // the upload is complete when sync returns (so its time is honest)
   st.upload_ms = msSince(t0);
 
-  synced_volume_ = &volume;
+  synced_volume_id_ = volume.instanceId();
   synced_generation_ = volume.generation();
   synced_light_ = light;
   return st;

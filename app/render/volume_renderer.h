@@ -81,8 +81,8 @@ class VolumeRenderer {
   // Brings the GPU copies up to date with `volume` and `light`: only the voxels changed since the
   // last sync (Volume::dirtySince) are re-packed and uploaded; the occupancy is updated over the
   // dirty box; the light volume over the dirty box swept away from the light, or entirely when
-  // the light changed. A new Volume object, new dims or a generation lower than last time
-  // re-uploads everything; after replacing a volume's contents without markDirty (never do
+  // the light changed. A different Volume (by instanceId()) or new dims re-uploads
+  // everything; after replacing a volume's contents without markDirty (never do
   // that) call invalidate().
   SyncStats sync(const Volume& volume, const Light& light);
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
@@ -91,7 +91,7 @@ class VolumeRenderer {
               const RenderOptions& options = {});
   RenderStats lastStats() const { return stats_; }
   // Forgets what was uploaded: the next sync() re-uploads everything.
-  void invalidate() { synced_volume_ = nullptr; }
+  void invalidate() { synced_volume_id_ = 0; }
   const LightVolume& lightVolume() const { return light_volume_; }
   const OccupancyPyramid& occupancy() const { return occupancy_; }
 
@@ -107,7 +107,7 @@ class VolumeRenderer {
   GLuint vao_ = 0, volume_texture_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
-  const Volume* synced_volume_ = nullptr;
+  uint64_t synced_volume_id_ = 0;  // Volume::instanceId() last synced, 0: none
   uint64_t synced_generation_ = 0;
   Light synced_light_;
   std::vector<uint8_t> packed_;  // RG8 per voxel: density, transmittance

@@ -192,6 +192,18 @@ TEST_F(VolumeRendererTest, OnlyTheDirtyBoxIsUploadedAndItShows) {
   EXPECT_FALSE(isBackground(after.at(px.x, px.y), opt));
 }
 
+TEST_F(VolumeRendererTest, ANewVolumeAtTheSameAddressIsUploadedWhole) {
+  // Same object, same generation count, different contents: only the instance id tells.
+  Volume v(glm::ivec3(32));
+  renderer.sync(v, Light{});
+  Volume other(glm::ivec3(32));
+  other.data()[other.index(16, 16, 16)] = 1.0f;
+  ASSERT_EQ(other.generation(), v.generation());
+  v = std::move(other);
+  SyncStats s = renderer.sync(v, Light{});
+  EXPECT_EQ(s.uploaded, v.bounds());
+}
+
 TEST_F(VolumeRendererTest, ReducedScaleRendersAndUpscales) {
   Volume v = makeSphere(glm::ivec3(48), glm::vec3(0.0f), 0.6f);
   renderer.sync(v, Light{});
