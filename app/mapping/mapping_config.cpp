@@ -5,6 +5,8 @@
 
 #include <toml++/toml.h>
 
+#include "app/core/toml_file.h"
+
 namespace cb {
 namespace {
 
@@ -92,13 +94,7 @@ void validate(const MappingConfig& c) {
 }
 
 MappingConfig loadMappingConfig(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw std::runtime_error(path + ":" + std::to_string(e.source().begin.line) + ": " +
-                             std::string(e.description()));
-  }
+  toml::table root = parseTomlFileOrThrow(path);
   MappingConfig c;
   if (auto m = root["mapping"]["method"].value<std::string>()) {
     if (!parseMappingMethod(*m, &c.method))

@@ -4,6 +4,8 @@
 
 #include <toml++/toml.h>
 
+#include "app/core/toml_file.h"
+
 namespace cb {
 namespace {
 
@@ -46,13 +48,7 @@ void readVec(const toml::table& root, const std::string& path, const char* secti
 }  // namespace
 
 RenderConfig loadRenderConfig(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw std::runtime_error(path + ":" + std::to_string(e.source().begin.line) + ": " +
-                             std::string(e.description()));
-  }
+  toml::table root = parseTomlFileOrThrow(path);
   RenderConfig c;
   RenderOptions& o = c.options;
   read(root, path, "raycast", "step_voxels", &o.step_voxels);
