@@ -38,11 +38,12 @@ struct DisplayOptions {
   std::string x11_display;
 };
 
-// What a display reports between frames. Keys are the few the painter needs; Quit is a window
-// close (WM_DELETE_WINDOW) or a terminal request.
+// What a display reports between frames. Keys are the few the painter needs (Esc/q quit, Space
+// pauses the orbit, S/C toggle the statistics and circle overlays, B/M cycle brush and mapping);
+// Quit is a window close (WM_DELETE_WINDOW) or a terminal request.
 struct DisplayEvent {
   enum class Kind { Quit, KeyDown, Resize };
-  enum class Key { Other, Escape, Q, Space };
+  enum class Key { Other, Escape, Q, Space, S, C, B, M };
   Kind kind = Kind::Quit;
   Key key = Key::Other;
   int width = 0;  // Resize: the new size
@@ -75,6 +76,9 @@ class Display {
   virtual bool present(std::string* error) = 0;
   // Input and window events since the last call (never blocks).
   virtual std::vector<DisplayEvent> pollEvents() = 0;
+  // Tests and scripted runs: queues `event` for the next pollEvents() of the surfaceless display
+  // (the platform without a keyboard; KMS and X11 read their real input and ignore the queue).
+  void injectEvent(const DisplayEvent& event) { injected_.push_back(event); }
   // Reads the frame drawn so far (call before present()) as RGBA8, row 0 at the top.
   bool readPixels(std::vector<uint8_t>* rgba) const;
 
@@ -87,6 +91,7 @@ class Display {
   Display() = default;
   EglContext context_;
   FrameTimingRing timings_;
+  std::vector<DisplayEvent> injected_;  // injectEvent() queue, drained by the surfaceless display
 };
 
 // Opens the display `options` asks for (or the automatic choice). On failure returns null and

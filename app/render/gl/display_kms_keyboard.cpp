@@ -23,6 +23,14 @@ DisplayEvent::Key keyFromCode(int code) {
       return DisplayEvent::Key::Q;
     case KEY_SPACE:
       return DisplayEvent::Key::Space;
+    case KEY_S:
+      return DisplayEvent::Key::S;
+    case KEY_C:
+      return DisplayEvent::Key::C;
+    case KEY_B:
+      return DisplayEvent::Key::B;
+    case KEY_M:
+      return DisplayEvent::Key::M;
     default:
       return DisplayEvent::Key::Other;
   }

@@ -1,6 +1,7 @@
 // Surfaceless platform: a headless EGL context (EGL_MESA_platform_surfaceless) drawing into an
 // offscreen framebuffer object of the requested size. present() finishes the frame; there is no
-// screen, so there are no vblanks and no input events.
+// screen, so there are no vblanks and no input devices; events queued with injectEvent() are
+// delivered.
 #include "app/render/gl/display_platforms.h"
 
 namespace cb {
@@ -70,7 +71,12 @@ class SurfacelessDisplay final : public Display {
     return true;
   }
 
-  std::vector<DisplayEvent> pollEvents() override { return {}; }
+  // No keyboard: only what injectEvent() queued, in order.
+  std::vector<DisplayEvent> pollEvents() override {
+    std::vector<DisplayEvent> events;
+    events.swap(injected_);
+    return events;
+  }
 
  private:
   int width_ = 0, height_ = 0;

@@ -108,6 +108,10 @@ class X11Display final : public Display {
         event.key = sym == XK_Escape  ? DisplayEvent::Key::Escape
                     : sym == XK_q     ? DisplayEvent::Key::Q
                     : sym == XK_space ? DisplayEvent::Key::Space
+                    : sym == XK_s     ? DisplayEvent::Key::S
+                    : sym == XK_c     ? DisplayEvent::Key::C
+                    : sym == XK_b     ? DisplayEvent::Key::B
+                    : sym == XK_m     ? DisplayEvent::Key::M
                                       : DisplayEvent::Key::Other;
         events.push_back(event);
       } else if (xev.type == ClientMessage && Atom(xev.xclient.data.l[0]) == wm_delete_window_) {

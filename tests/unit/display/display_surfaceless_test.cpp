@@ -77,5 +77,25 @@ TEST(SurfacelessDisplay, RejectsASizeOutOfRangeNamingIt) {
   EXPECT_NE(error.find("0x100"), std::string::npos) << error;
 }
 
+// Injected key events come out of the next poll, in order, once.
+TEST(SurfacelessDisplay, DeliversInjectedEventsOnceInOrder) {
+  auto display = openSurfaceless(16, 16);
+  ASSERT_NE(display, nullptr);
+  EXPECT_TRUE(display->pollEvents().empty());
+  for (DisplayEvent::Key key : {DisplayEvent::Key::S, DisplayEvent::Key::B, DisplayEvent::Key::Q}) {
+    DisplayEvent event;
+    event.kind = DisplayEvent::Kind::KeyDown;
+    event.key = key;
+    display->injectEvent(event);
+  }
+  const std::vector<DisplayEvent> events = display->pollEvents();
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].key, DisplayEvent::Key::S);
+  EXPECT_EQ(events[1].key, DisplayEvent::Key::B);
+  EXPECT_FALSE(events[1].isQuitRequest());
+  EXPECT_TRUE(events[2].isQuitRequest());
+  EXPECT_TRUE(display->pollEvents().empty());
+}
+
 }  // namespace
 }  // namespace cb
