@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/ui/hud_items.h"
 #include "app/ui/paint_session.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/pen_source.h"
@@ -146,6 +147,7 @@ void PaintLoop::drawPaintingView(PaintFrameInfo* info) {
     // Right after a lift the cloud is shown first at the moving resolution (a quarter of the
     // rays at 0.5), then refined to full resolution on the next frame.
     RenderOptions options;
+    options.collect_stats = show_stats_;
     options.scale =
         lit_pending_ ? std::clamp(options_.moving_scale, options_.min_moving_scale, 1.0f) : 1.0f;
     renderer_.render(session_->camera(), w, h, scene_.fbo(), options);
@@ -201,7 +203,63 @@ PaintLoop::PaintLoop(Display& display, VolumeRenderer& renderer, const Volume& v
       volume_(volume),
       light_(light),
       options_(options),
-      orbiting_(options.orbit_degrees_per_second != 0.0f) {}
+      orbiting_(options.orbit_degrees_per_second != 0.0f),
+      show_stats_(options.show_stats_overlay),
+      show_circles_(options.show_circles_overlay) {}
+
+void PaintLoop::cycleBrush() {
+  if (!session_) {
+    std::fprintf(stderr, "cloudbrush: B: no pen session, the brush is not used\n");
+    return;
+  }
+  const BrushKind order[3] = {BrushKind::k2D, BrushKind::k3D, BrushKind::kSkeleton};
+  int next = 0;
+  for (int i = 0; i < 3; ++i)
+    if (order[i] == session_->selectedBrush()) next = (i + 1) % 3;
+  std::string error;
+  const std::string text = std::string("brush=") + brushKindName(order[next]);
+  if (!session_->applyUi(text, monotonicNowNs(), &error))
+    std::fprintf(stderr, "cloudbrush: B: %s\n", error.c_str());
+  else
+    std::fprintf(stderr, "cloudbrush: %s (from the next stroke)\n", text.c_str());
+}
+
+void PaintLoop::cycleMapping() {
+  if (!session_) {
+    std::fprintf(stderr, "cloudbrush: M: no pen session, no mapping\n");
+    return;
+  }
+  const MappingMethod next = session_->mappingMethod() == MappingMethod::kHybrid
+                                 ? MappingMethod::kRayMarching
+                                 : MappingMethod::kHybrid;
+  std::string error;
+  const std::string text = std::string("method=") + toString(next);
+  if (!session_->applyUi(text, monotonicNowNs(), &error))
+    std::fprintf(stderr, "cloudbrush: M: %s\n", error.c_str());
+  else
+    std::fprintf(stderr, "cloudbrush: %s (from the next stroke)\n", text.c_str());
+}
+
+bool PaintLoop::drawHud(std::string* error) {
+  const bool in_range = pen_ && !orbiting_ && cursor_.visible;
+  const bool circles = show_circles_ && session_ && !session_->lastCircles().empty();
+  if (!show_stats_ && !circles && !in_range) return true;
+  if (!hud_.init(error)) return false;
+  const int w = display_.width(), h = display_.height();
+  std::vector<HudItem> items;
+  if (in_range) {
+    const Volume& volume = shownVolume();
+    appendCanvasOutline(canvasRegionOutline(session_->camera(), session_->canvas(),
+                                            volume.worldMin(), volume.worldMax(), w, h),
+                        &items);
+  }
+  if (circles)
+    appendCircleRings(session_->lastCircles(), session_->footprintWidth(),
+                      session_->footprintHeight(), w, h, &items);
+  if (show_stats_) appendStatsPanel(renderer_.lastStats(), w, h, &items);
+  hud_.draw(display_.framebuffer(), w, h, items);
+  return true;
+}
 
 std::string PaintLoop::handleEvents() {
   for (const DisplayEvent& event : display_.pollEvents()) {
@@ -211,6 +269,27 @@ std::string PaintLoop::handleEvents() {
       orbiting_ = !orbiting_;
       refined_ = false;
       scene_stale_ = true;
+    }
+    if (event.kind == DisplayEvent::Kind::KeyDown) {
+      switch (event.key) {
+        case DisplayEvent::Key::S:
+          show_stats_ = !show_stats_;
+          refined_ = false;     // draw a still frame again, collecting statistics
+          scene_stale_ = true;  // the painting view's cached scene too
+          break;
+        case DisplayEvent::Key::C:
+          show_circles_ = !show_circles_;
+          refined_ = false;
+          break;
+        case DisplayEvent::Key::B:
+          cycleBrush();
+          break;
+        case DisplayEvent::Key::M:
+          cycleMapping();
+          break;
+        default:
+          break;
+      }
     }
     if (event.kind == DisplayEvent::Kind::Resize) {
       refined_ = false;
@@ -265,6 +344,7 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
           std::printf("stroke %ld: pen-up -> full-resolution lit frame %.1f ms\n",
                       summary->strokes_mapped - 1, info.pen_up_to_refined_ms);
       }
+      if (!drawHud(error)) return false;
       if (options_.on_frame) options_.on_frame(info);
       if (!display_.present(error)) return false;
       const auto presented = std::chrono::steady_clock::now();
@@ -291,10 +371,11 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
     // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
     render_options.scale =
         moving ? std::max(options_.min_moving_scale, std::round(scale * 20.0f) / 20.0f) : 1.0f;
-    render_options.collect_stats = !moving && options_.print_stats;
+    render_options.collect_stats = (!moving && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     renderer_.render(camera, display_.width(), display_.height(), display_.framebuffer(),
                      render_options);
+    if (!drawHud(error)) return false;
     if (options_.on_frame) {
       PaintFrameInfo info;
       info.frame = summary->frames;

@@ -10,6 +10,13 @@
 // so a sample shows in the next frame. At tip-up the PaintSession maps the stroke into the
 // volume; the renderer syncs the dirty box (upload, occupancy, light) and the lit scene is shown.
 // A missing tablet is a state shown on stderr, never an exit: the orbit goes on.
+//
+// Keys: S toggles the ray-sample statistics overlay (histogram bars, total/mean/max samples),
+// C toggles the last stroke's circles (rings where they were grown), B cycles the brush
+// 2d -> 3d -> skeleton and M the mapping hybrid <-> ray-marching (both journalled as UI records
+// through PaintSession::applyUi, so a replay repeats them). While the pen is in range the
+// screen region where the canvas slab meets the volume is outlined faintly: strokes outside it
+// cannot land in the volume.
 #pragma once
 
 #include <atomic>
@@ -21,6 +28,7 @@
 
 #include "app/render/footprint_overlay.h"
 #include "app/render/gl/display.h"
+#include "app/render/hud_overlay.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/scene/camera.h"
@@ -57,9 +65,11 @@ struct PaintLoopOptions {
   // [min_moving_scale, 1].
   float moving_scale = 0.5f;
   float min_moving_scale = 0.2f;
-  double target_frame_ms = 50.0;  // 20 fps
-  long max_frames = 0;            // stop after this many presented frames (0: until quit)
-  bool print_stats = false;       // ray-sample statistics of the last full-resolution frame
+  double target_frame_ms = 50.0;      // 20 fps
+  long max_frames = 0;                // stop after this many presented frames (0: until quit)
+  bool print_stats = false;           // ray-sample statistics of the last full-resolution frame
+  bool show_stats_overlay = false;    // start with the S overlay on
+  bool show_circles_overlay = false;  // start with the C overlay on
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
@@ -105,6 +115,11 @@ class PaintLoop {
   // The still painting view: cached scene (re-rendered when stale) + footprint + cursor.
   void drawPaintingView(PaintFrameInfo* info);
   bool paintingSetUp(std::string* error);
+  // Draws the enabled HUD items (S, C, canvas region) over the display framebuffer.
+  bool drawHud(std::string* error);
+  // B and M: the next brush / mapping method, journalled through the session.
+  void cycleBrush();
+  void cycleMapping();
 
   Display& display_;
   VolumeRenderer& renderer_;
@@ -132,6 +147,8 @@ class PaintLoop {
   size_t texels_this_frame_ = 0;
   OverlayCursor cursor_;
   std::vector<PenSample> samples_;
+  HudOverlay hud_;
+  bool show_stats_ = false, show_circles_ = false;
 };
 
 }  // namespace cb

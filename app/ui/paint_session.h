@@ -97,6 +97,11 @@ class PaintSession {
   const std::string& calibratorError() const { return calibrator_error_; }
   uint64_t samplesWithoutDevice() const { return samples_without_device_; }
   void setQuietMapping(bool quiet) { mapper_.setQuiet(quiet); }
+  // The circles the hybrid mapping grew for the last mapped stroke (footprint pixels; empty
+  // after a ray-marching stroke), for the C overlay.
+  const std::vector<Circle>& lastCircles() const { return mapper_.lastCircles(); }
+  BrushKind selectedBrush() const { return engine_.selectedBrush(); }
+  MappingMethod mappingMethod() const { return method_; }
 
  private:
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
