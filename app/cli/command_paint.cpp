@@ -52,12 +52,19 @@ constexpr const char* kUsage =
     "                      adapted towards 20 fps)\n"
     "  --frames N          on a display, quit after N frames (default: run until Esc)\n"
     "  --stats             print ray-sample statistics of full-resolution frames\n"
+    "  --keys LETTERS      press these keys at the start, in order (scripted runs): s, c, b, m\n"
     "  --backend NAME      pen: auto (default), evdev, hidraw, libusb, replay or none\n"
     "  --pen-device PATH   pen device node / hidraw path (default: discover)\n"
     "  --journal FILE      with --backend replay: the session journal to play as the pen\n"
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
-    "  --help              this text\n";
+    "  --help              this text\n"
+    "\n"
+    "keys: Esc/q quit, Space pauses the orbit, S shows ray-sample statistics (histogram bars,\n"
+    "total/mean/max samples), C shows the last stroke's circles, B cycles the brush\n"
+    "(2d/3d/skeleton), M the mapping (hybrid/ray-marching); B and M apply from the next stroke\n"
+    "and are journalled. While the pen is in range a faint outline marks where the canvas slab\n"
+    "meets the volume: strokes outside it cannot land in the volume.\n";
 
 std::atomic<bool> g_stop{false};
 void onSignal(int) {
@@ -85,7 +92,7 @@ int commandPaint(int argc, char** argv) {
   }
   const auto unknown = args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir",
                                      "grid", "seed", "orbit", "moving-scale", "frames", "backend",
-                                     "pen-device", "journal", "session-dir", "no-record"});
+                                     "pen-device", "journal", "session-dir", "no-record", "keys"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -112,6 +119,24 @@ int commandPaint(int argc, char** argv) {
   if (loop_options.moving_scale <= 0.0f || loop_options.moving_scale > 1.0f)
     return fail("--moving-scale: expected a number in (0, 1]", 2);
   if (loop_options.max_frames < 0) return fail("--frames: expected N >= 0", 2);
+  for (char letter : args.get("keys", "")) {
+    switch (letter) {
+      case 's':
+        loop_options.initial_keys.push_back(DisplayEvent::Key::S);
+        break;
+      case 'c':
+        loop_options.initial_keys.push_back(DisplayEvent::Key::C);
+        break;
+      case 'b':
+        loop_options.initial_keys.push_back(DisplayEvent::Key::B);
+        break;
+      case 'm':
+        loop_options.initial_keys.push_back(DisplayEvent::Key::M);
+        break;
+      default:
+        return fail(std::string("--keys: '") + letter + "' is not one of s, c, b, m", 2);
+    }
+  }
 
   const std::string backend = args.get("backend", "auto");
   if (backend != "none" && backend != "auto" && backend != "evdev" && backend != "hidraw" &&
@@ -202,7 +227,9 @@ int commandPaint(int argc, char** argv) {
 
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
-  std::fprintf(stderr, "cloudbrush: Esc or q quits, Space pauses the orbit%s\n",
+  std::fprintf(stderr,
+               "cloudbrush: Esc or q quits, Space pauses the orbit, S statistics, C circles, B "
+               "brush, M mapping%s\n",
                pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
   loop_options.state_dir = stateDir();

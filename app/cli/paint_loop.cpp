@@ -262,7 +262,18 @@ bool PaintLoop::drawHud(std::string* error) {
 }
 
 std::string PaintLoop::handleEvents() {
-  for (const DisplayEvent& event : display_.pollEvents()) {
+  std::vector<DisplayEvent> events;
+  if (!initial_keys_pressed_) {
+    initial_keys_pressed_ = true;
+    for (DisplayEvent::Key key : options_.initial_keys) {
+      DisplayEvent event;
+      event.kind = DisplayEvent::Kind::KeyDown;
+      event.key = key;
+      events.push_back(event);
+    }
+  }
+  for (const DisplayEvent& event : display_.pollEvents()) events.push_back(event);
+  for (const DisplayEvent& event : events) {
     if (event.kind == DisplayEvent::Kind::Quit) return "window closed";
     if (event.isQuitRequest()) return event.key == DisplayEvent::Key::Q ? "q" : "Esc";
     if (event.kind == DisplayEvent::Kind::KeyDown && event.key == DisplayEvent::Key::Space) {

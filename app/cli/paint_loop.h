@@ -70,6 +70,8 @@ struct PaintLoopOptions {
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame
   bool show_stats_overlay = false;    // start with the S overlay on
   bool show_circles_overlay = false;  // start with the C overlay on
+  // Keys pressed before the first frame, as if typed (scripted runs and tests: `--keys`).
+  std::vector<DisplayEvent::Key> initial_keys;
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
@@ -108,7 +110,8 @@ class PaintLoop {
   void attachPen(PenSource* pen, PaintSession* session);
 
  private:
-  // Applies the display's events; returns the quit reason or "".
+  // Applies the display's events (and, the first time, options.initial_keys); returns the quit
+  // reason or "".
   std::string handleEvents();
   // Polls the pen and feeds the session; updates the overlay, cursor and lift timing.
   void handlePen(PaintLoopSummary* summary);
@@ -149,6 +152,7 @@ class PaintLoop {
   std::vector<PenSample> samples_;
   HudOverlay hud_;
   bool show_stats_ = false, show_circles_ = false;
+  bool initial_keys_pressed_ = false;
 };
 
 }  // namespace cb

@@ -103,5 +103,52 @@ TEST(PaintReplayCli, PaintedSessionReplaysToTheSameVolume) {
   std::filesystem::remove_all(dir);
 }
 
+// Keys B and M (pressed with --keys) are journalled; `cloudbrush replay` reproduces the
+// painted volume, which differs from the same stroke painted without them.
+TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_paint_keys_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir);
+  const std::string pen_journal = dir + "/pen.cbj";
+  {
+    PaintSession recorder({640, 360, 16}, BrushConfig{}, MappingConfig{});
+    recorder.setQuietMapping(true);
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(pen_journal)) << journal.error();
+    recorder.recordTo(&journal, 0);
+    const PenDeviceInfo tablet = syntheticTablet(640, 360);
+    recorder.setDevice(tablet, 0);
+    for (const PenSample& s :
+         syntheticPenSamples(gentleCurve(640, 360), tablet, 640, 360, 200.0, 1'000'000'000))
+      recorder.feed(s);
+  }
+  const std::string bin = CB_CLOUDBRUSH_BIN;
+  const auto paint = [&](const std::string& keys, const std::string& sessions) {
+    return run("'" + bin + "' paint --display surfaceless --size 640x360 --grid 64 " +
+               "--backend replay --journal '" + pen_journal + "' --session-dir '" + sessions +
+               "'" + (keys.empty() ? "" : " --keys " + keys));
+  };
+  const CommandRun plain = paint("", dir + "/plain");
+  const CommandRun keyed = paint("bm", dir + "/keyed");
+  ASSERT_EQ(plain.status, 0) << plain.out;
+  ASSERT_EQ(keyed.status, 0) << keyed.out;
+  EXPECT_NE(keyed.out.find("method=ray-marching"), std::string::npos) << keyed.out;
+  const std::string plain_sum = capture(plain.out, "volume checksum ([0-9a-f]{16})");
+  const std::string keyed_sum = capture(keyed.out, "volume checksum ([0-9a-f]{16})");
+  const std::string session = capture(keyed.out, "journal: (\\S+\\.cbj)");
+  ASSERT_FALSE(plain_sum.empty() || keyed_sum.empty() || session.empty()) << keyed.out;
+  EXPECT_NE(plain_sum, keyed_sum) << "the keys changed brush and mapping";
+  const CommandRun replay = run("'" + bin + "' replay '" + session + "' --threads 2");
+  ASSERT_EQ(replay.status, 0) << replay.out;
+  EXPECT_EQ(capture(replay.out, "volume checksum: ([0-9a-f]{16})"), keyed_sum) << replay.out;
+
+  const CommandRun bad = run("'" + bin + "' paint --display surfaceless --backend replay " +
+                             "--journal '" + pen_journal + "' --keys bx");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--keys: 'x'"), std::string::npos) << bad.out;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cb
