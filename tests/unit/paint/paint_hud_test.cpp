@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -118,6 +119,8 @@ TEST(PaintHud, StatsBarsFollowTheHistogram) {
     last = expected[bin];
   }
   EXPECT_GE(distinct_heights, 3) << "a histogram with some shape, so the check means something";
+  if (const char* keep = std::getenv("CB_PAINT_HUD_KEEP_FRAMES"))
+    writePng(std::string(keep) + "/hud_stats.png", frame);
   // Without S there are no bars.
   PaintLoopOptions plain = options;
   ImageRgba8 plain_frame;
@@ -212,6 +215,10 @@ TEST(PaintHud, CircleRingsLieOnTheMappingCircles) {
   EXPECT_GE(double(on_ring_after), 0.9 * double(probes)) << "ring pixels on the circles";
   EXPECT_EQ(on_ring_before, 0) << "no ring colour while the stroke was drawn";
   std::printf("%zu circles, %ld/%ld probes on a ring\n", circles.size(), on_ring_after, probes);
+  if (const char* keep = std::getenv("CB_PAINT_HUD_KEEP_FRAMES")) {  // for looking at them
+    writePng(std::string(keep) + "/hud_rings.png", run.after_lift);
+    writePng(std::string(keep) + "/hud_during_stroke.png", run.before_lift);
+  }
   std::filesystem::remove_all(dir);
 }
 
