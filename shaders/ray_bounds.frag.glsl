@@ -8,5 +8,8 @@ layout(location = 0) out vec2 o_bounds;
 
 void main() {
   float d = distance(v_world, u_eye);
-  o_bounds = vec2(d, -d);
+  // Front faces are where rays enter occupied cells (nearest wanted), back faces where they
+  // leave (farthest wanted); the other channel gets a value the MIN blend ignores.
+  const float none = 1e30;
+  o_bounds = gl_FrontFacing ? vec2(d, none) : vec2(none, -d);
 }

@@ -102,16 +102,22 @@ void main() {
     // Narrow [k, n) to the samples between the nearest and farthest occupied faces. Sample
     // positions stay on the same grid t_enter + (k + ½)·step, so the image does not change.
     vec2 bounds = texelFetch(u_ray_bounds, ivec2(gl_FragCoord.xy), 0).rg;
-    if (bounds.x > -bounds.y) {
-      n = 0;  // the ray meets no occupied cell
-    } else {
-      // World distance from the eye -> ray parameter in voxel units from the near-plane origin.
-      float voxels_per_world = length(normalize(dir_world) / u_voxel_size);
-      float origin_offset = distance(origin_world, u_eye);
-      float t_near = (bounds.x - origin_offset) * voxels_per_world;
-      float t_far = (-bounds.y - origin_offset) * voxels_per_world;
-      if (!u_bounds_from_near_plane)
+    // r: nearest entry face of an occupied level-0 cell, −g: farthest exit face of an occupied
+    // level-1 cell (a superset, so never nearer than the fine exits); 1e30 where none was drawn.
+    const float none = 1e29;
+    // World distance from the eye -> ray parameter in voxel units from the near-plane origin.
+    float voxels_per_world = length(normalize(dir_world) / u_voxel_size);
+    float origin_offset = distance(origin_world, u_eye);
+    if (!u_bounds_from_near_plane) {
+      if (bounds.x >= none) {
+        n = 0;  // the ray enters no occupied cell
+      } else {
+        float t_near = (bounds.x - origin_offset) * voxels_per_world;
         k = max(0, int(floor((t_near - t_enter) / u_step - 0.5)));
+      }
+    }
+    if (bounds.y < none) {
+      float t_far = (-bounds.y - origin_offset) * voxels_per_world;
       n = min(n, int(ceil((t_far - t_enter) / u_step)) + 1);
     }
   }

@@ -116,7 +116,13 @@ std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& p, int leve
               q[v] += float(k >> 1);
               corner[k] = q * size;
             }
-            for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
+            // Counter-clockwise seen from outside the occupied cell (from the empty side), so
+            // front faces are where rays enter occupied space and back faces where they leave.
+            // Corners 0, 1, 3 turn counter-clockwise about +axis (u × v = axis).
+            if (side)
+              for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
+            else
+              for (int k : {0, 3, 1, 0, 2, 3}) out.push_back(corner[k]);
           }
       }
   return out;

@@ -44,8 +44,10 @@ OccupancyPyramid buildOccupancy(const Volume& volume);
 VoxelBox updateOccupancy(OccupancyPyramid& pyramid, const Volume& volume, const VoxelBox& dirty);
 
 // The boundary of the occupied cells of `level`: two triangles (6 vertices, voxel coordinates)
-// for every face between an occupied cell and an empty or outside neighbour. Rasterised, it tells
-// each pixel where its ray enters and leaves occupied space (see shaders/ray_bounds.*.glsl).
+// for every face between an occupied cell and an empty or outside neighbour, wound
+// counter-clockwise as seen from the empty side (front faces face away from occupied space).
+// Rasterised, it tells each pixel where its ray enters and leaves occupied space (see
+// shaders/ray_bounds.*.glsl).
 std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& pyramid, int level);
 
 // Is any cell of `level` within one cell of the voxel-space point `p` occupied? (When the eye is,
