@@ -6,6 +6,7 @@
 //        different one from the same stroke without the keys.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -215,6 +216,27 @@ TEST(PaintHud, CircleRingsLieOnTheMappingCircles) {
   EXPECT_GE(double(on_ring_after), 0.9 * double(probes)) << "ring pixels on the circles";
   EXPECT_EQ(on_ring_before, 0) << "no ring colour while the stroke was drawn";
   std::printf("%zu circles, %ld/%ld probes on a ring\n", circles.size(), on_ring_after, probes);
+  // While the pen was in range the canvas region was outlined: each side's midpoint is tinted
+  // against the sky 8 px away across the side (ink may cover one or two of them).
+  const std::vector<glm::vec2> outline = canvasRegionOutline(
+      run.session->camera(), run.session->canvas(), run.session->volume().worldMin(),
+      run.session->volume().worldMax(), kW, kH);
+  ASSERT_GE(outline.size(), 4u);
+  size_t tinted = 0;
+  for (size_t i = 0; i < outline.size(); ++i) {
+    const glm::vec2 a = outline[i], b = outline[(i + 1) % outline.size()];
+    const glm::vec2 mid = 0.5f * (a + b), across = glm::normalize(glm::vec2(a.y - b.y, b.x - a.x));
+    const glm::vec2 off = mid + 8.0f * across;
+    const auto at = [&](glm::vec2 p, int c) {
+      return int(run.before_lift.pixels[(size_t(p.y) * kW + size_t(p.x)) * 4 + size_t(c)]);
+    };
+    int difference = 0;
+    for (int c = 0; c < 3; ++c)
+      difference = std::max(difference, std::abs(at(mid, c) - at(off, c)));
+    tinted += difference >= 8;
+  }
+  EXPECT_GE(tinted + 2, outline.size()) << tinted << " of " << outline.size() << " sides tinted";
+  std::printf("canvas outline: %zu of %zu sides tinted\n", tinted, outline.size());
   if (const char* keep = std::getenv("CB_PAINT_HUD_KEEP_FRAMES")) {  // for looking at them
     writePng(std::string(keep) + "/hud_rings.png", run.after_lift);
     writePng(std::string(keep) + "/hud_during_stroke.png", run.before_lift);
