@@ -126,8 +126,8 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
   const std::string bin = CB_CLOUDBRUSH_BIN;
   const auto paint = [&](const std::string& keys, const std::string& sessions) {
     return run("'" + bin + "' paint --display surfaceless --size 640x360 --grid 64 " +
-               "--backend replay --journal '" + pen_journal + "' --session-dir '" + sessions +
-               "'" + (keys.empty() ? "" : " --keys " + keys));
+               "--backend replay --journal '" + pen_journal + "' --session-dir '" + sessions + "'" +
+               (keys.empty() ? "" : " --keys " + keys));
   };
   const CommandRun plain = paint("", dir + "/plain");
   const CommandRun keyed = paint("bm", dir + "/keyed");
