@@ -1,5 +1,6 @@
-// Ray bounds pass: distance from the eye to each face fragment, written as (d, −d) into an RG32F
-// target blended with MIN, so r = nearest and −g = farthest occupied-face distance per pixel.
+// Ray bounds pass: distance from the eye to each face fragment, written as (d, ∞) for entry
+// (front) faces and (∞, −d) for exit (back) faces into an RG32F target blended with MIN, so
+// r = nearest entry and −g = farthest exit distance per pixel (∞ = 1e30 where none).
 in vec3 v_world;
 
 uniform vec3 u_eye;

@@ -17,9 +17,9 @@
 // Rays stop once T < u_cutoff (early termination).
 //
 // Skipping (lossless, two levels):
-//  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupied 4³-voxel
-//     cells of the occupancy pyramid (dilated by one voxel) and keeps, per pixel, the nearest and
-//     farthest face distance (ray_bounds.*.glsl). The march covers only the samples between them.
+//  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupancy pyramid
+//     (dilated by one voxel) and keeps, per pixel, the nearest entry face of an occupied 4³-voxel
+//     cell and the farthest exit face of an occupied 8³-voxel cell (ray_bounds.*.glsl). The march covers only the samples between them.
 //     Pixels whose rays meet no occupied cell are not shaded at all: that pass also sets a
 //     stencil, tested here before shading. When the eye is in or next to an occupied cell the
 //     march starts at the near plane (and every pixel is cast).

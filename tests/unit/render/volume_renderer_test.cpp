@@ -80,6 +80,20 @@ TEST(OccupiedBoundaryFaces, AFaceForEveryOccupiedCellSideFacingEmptySpace) {
   EXPECT_FALSE(occupiedNear(p, 0, glm::vec3(14.5f)));
 }
 
+TEST(OccupiedBoundaryFaces, TrianglesAreWoundOutwardSoFrontFacesAreEntries) {
+  // The ray-bounds pass takes entries from front faces and exits from back faces.
+  Volume v = makeSingleVoxel(glm::ivec3(16), {5, 6, 5});
+  OccupancyPyramid p = buildOccupancy(v);
+  std::vector<glm::vec3> faces = occupiedBoundaryFaces(p, 0);
+  const glm::vec3 centre(6.0f);  // of the occupied brick [4, 8)³
+  ASSERT_EQ(faces.size() % 3, 0u);
+  for (size_t i = 0; i < faces.size(); i += 3) {
+    glm::vec3 normal = glm::cross(faces[i + 1] - faces[i], faces[i + 2] - faces[i]);
+    glm::vec3 outward = (faces[i] + faces[i + 1] + faces[i + 2]) / 3.0f - centre;
+    EXPECT_GT(glm::dot(normal, outward), 0.0f) << "triangle " << i / 3;
+  }
+}
+
 TEST_F(VolumeRendererTest, EveryPlantedVoxelAppearsWithSkipping) {
   Volume v(glm::ivec3(64));
   const glm::ivec3 planted[] = {{0, 0, 0},   {63, 63, 63}, {5, 40, 17}, {31, 32, 33},
