@@ -108,6 +108,19 @@ void writeImageByExtension(const std::string& path, const ImageRgba8& rgba8,
     fail(path, "unknown image type (use .png or .exr)");
 }
 
+namespace {
+
+// GL rows run bottom-up; images here run top-down (4 channels per pixel).
+template <typename T>
+void flipRowsToTopDown(std::vector<T>* pixels, int width, int height) {
+  const size_t row = size_t(width) * 4;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(pixels->begin() + y * row, pixels->begin() + (y + 1) * row,
+                     pixels->begin() + (height - 1 - y) * row);
+}
+
+}  // namespace
+
 ImageRgba8 readFramebufferRgba8(GLuint fbo, int width, int height) {
   ImageRgba8 out;
   out.width = width;
@@ -116,11 +129,7 @@ ImageRgba8 readFramebufferRgba8(GLuint fbo, int width, int height) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.pixels.data());
-  // GL rows run bottom-up; images here run top-down.
-  const size_t row = size_t(width) * 4;
-  for (int y = 0; y < height / 2; ++y)
-    std::swap_ranges(out.pixels.begin() + y * row, out.pixels.begin() + (y + 1) * row,
-                     out.pixels.begin() + (height - 1 - y) * row);
+  flipRowsToTopDown(&out.pixels, width, height);
   return out;
 }
 
@@ -132,10 +141,7 @@ ImageRgbaF readFramebufferRgbaF(GLuint fbo, int width, int height) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
-  const size_t row = size_t(width) * 4;
-  for (int y = 0; y < height / 2; ++y)
-    std::swap_ranges(out.pixels.begin() + y * row, out.pixels.begin() + (y + 1) * row,
-                     out.pixels.begin() + (height - 1 - y) * row);
+  flipRowsToTopDown(&out.pixels, width, height);
   return out;
 }
 

@@ -44,6 +44,19 @@ std::string capture(const std::string& text, const std::string& pattern) {
   return std::regex_search(text, match, std::regex(pattern)) ? match[1].str() : std::string();
 }
 
+// Records one synthetic stroke at 640x360 as the pen's input journal.
+void recordPenJournal(const std::string& path, const SyntheticStroke& stroke) {
+  PaintSession recorder({640, 360, 16}, BrushConfig{}, MappingConfig{});
+  recorder.setQuietMapping(true);
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(path)) << journal.error();
+  recorder.recordTo(&journal, 0);
+  const PenDeviceInfo tablet = syntheticTablet(640, 360);
+  recorder.setDevice(tablet, 0);
+  for (const PenSample& s : syntheticPenSamples(stroke, tablet, 640, 360, 200.0, 1'000'000'000))
+    recorder.feed(s);
+}
+
 TEST(PaintReplayCli, PaintedSessionReplaysToTheSameVolume) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("cb_paint_cli_" + std::to_string(::getpid())))
@@ -51,18 +64,7 @@ TEST(PaintReplayCli, PaintedSessionReplaysToTheSameVolume) {
   std::filesystem::create_directories(dir);
   // The pen's input: one synthetic stroke, recorded as a journal.
   const std::string pen_journal = dir + "/pen.cbj";
-  {
-    PaintSession recorder({640, 360, 16}, BrushConfig{}, MappingConfig{});
-    recorder.setQuietMapping(true);
-    JournalWriter journal;
-    ASSERT_TRUE(journal.open(pen_journal)) << journal.error();
-    recorder.recordTo(&journal, 0);
-    const PenDeviceInfo tablet = syntheticTablet(640, 360);
-    recorder.setDevice(tablet, 0);
-    for (const PenSample& s :
-         syntheticPenSamples(pressureRamp(640, 360), tablet, 640, 360, 200.0, 1'000'000'000))
-      recorder.feed(s);
-  }
+  ASSERT_NO_FATAL_FAILURE(recordPenJournal(pen_journal, pressureRamp(640, 360)));
   const std::string bin = CB_CLOUDBRUSH_BIN;
   const CommandRun paint =
       run("'" + bin + "' paint --display surfaceless --size 640x360 --grid 64 " +
@@ -111,18 +113,7 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
           .string();
   std::filesystem::create_directories(dir);
   const std::string pen_journal = dir + "/pen.cbj";
-  {
-    PaintSession recorder({640, 360, 16}, BrushConfig{}, MappingConfig{});
-    recorder.setQuietMapping(true);
-    JournalWriter journal;
-    ASSERT_TRUE(journal.open(pen_journal)) << journal.error();
-    recorder.recordTo(&journal, 0);
-    const PenDeviceInfo tablet = syntheticTablet(640, 360);
-    recorder.setDevice(tablet, 0);
-    for (const PenSample& s :
-         syntheticPenSamples(gentleCurve(640, 360), tablet, 640, 360, 200.0, 1'000'000'000))
-      recorder.feed(s);
-  }
+  ASSERT_NO_FATAL_FAILURE(recordPenJournal(pen_journal, gentleCurve(640, 360)));
   const std::string bin = CB_CLOUDBRUSH_BIN;
   const auto paint = [&](const std::string& keys, const std::string& sessions) {
     return run("'" + bin + "' paint --display surfaceless --size 640x360 --grid 64 " +
