@@ -264,7 +264,7 @@ int benchRender(int argc, char** argv) {
     Light moved = light;
     for (int i = 0; i < 3; ++i) {
       // A light change: full recompute into the existing buffers.
-      moved.position.x = light.position.x + 0.01f * float(i + 1);
+      moved.direction = glm::normalize(light.direction + glm::vec3(0.003f * float(i + 1), 0, 0));
       double c0 = processCpuMs();
       sweep_times.push_back(timeMs([&] { sweepLightVolume(lv, cumulus, moved, {}); }));
       sweep_cpu.push_back(processCpuMs() - c0);
@@ -274,7 +274,7 @@ int benchRender(int argc, char** argv) {
     std::vector<double> single_times;
     setWorkerThreads(1);
     for (int i = 0; i < 3; ++i) {
-      moved.position.x = light.position.x - 0.01f * float(i + 1);
+      moved.direction = glm::normalize(light.direction - glm::vec3(0.003f * float(i + 1), 0, 0));
       single_times.push_back(timeMs([&] { sweepLightVolume(lv, cumulus, moved, {}); }));
     }
     setWorkerThreads(0);

@@ -33,6 +33,10 @@ class StrokeEngine {
   FootprintRect beginStroke(const BrushInput& input);
   FootprintRect addSample(const BrushInput& input);
   StrokeResult endStroke();
+  // Ends a stroke in progress as if the pen lifted and queues it for takeFinishedStroke().
+  void finishStroke() {
+    if (in_stroke_) finished_.push_back(endStroke());
+  }
 
   // Threshold contact: down at stroke.down_pressure, up below stroke.up_pressure. Finished
   // strokes are queued for takeFinishedStroke().

@@ -21,7 +21,10 @@
 #include <string>
 #include <vector>
 
+#include "app/shell/keymap.h"
+
 #include "app/cli/args.h"
+#include "app/shell/keymap.h"
 #include "app/cli/commands.h"
 #include "app/core/config_paths.h"
 #include "app/render/gl/display.h"
@@ -333,7 +336,7 @@ int openInteractive(const Args& args, double timeout_s, InteractiveIo* io) {
     io->display->present(&error);
     io->pen->poll(50, ignored);
     for (const DisplayEvent& e : io->display->pollEvents())
-      if (e.isQuitRequest()) return 1;
+      if (commandFor(e) == Command::kQuit) return 1;
   }
   return 0;
 }
@@ -375,7 +378,7 @@ int runPressure(const Args& args, const Settings& s) {
       return 1;
     }
     for (const DisplayEvent& e : io.display->pollEvents())
-      if (e.isQuitRequest()) return 1;
+      if (commandFor(e) == Command::kQuit) return 1;
     samples.clear();
     io.pen->poll(5, samples);
     if (io.pen->connection() == PenConnection::kFinished && samples.empty()) {
@@ -492,11 +495,11 @@ int runInteractive(const Args& args, const Settings& s) {
       return 1;
     }
     for (const DisplayEvent& e : display->pollEvents()) {
-      if (e.isQuitRequest()) {
+      if (commandFor(e) == Command::kQuit) {
         std::printf("left without saving\n");
         return 1;
       }
-      if (e.kind == DisplayEvent::Kind::KeyDown && e.key == DisplayEvent::Key::Space && fit &&
+      if (commandFor(e) == Command::kSpace && fit &&
           fit->ok) {
         journal.append(JournalRecordType::kCalibration, last_t,
                        formatCalibrationProfile(fit->profile));

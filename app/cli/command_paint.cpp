@@ -15,13 +15,15 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/paint_headless.h"
-#include "app/cli/paint_loop.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
+#include "app/render/render_config.h"
 #include "app/render/volume_renderer.h"
-#include "app/ui/paint_session.h"
-#include "app/ui/session_replay.h"
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/shell/keymap.h"
+#include "app/shell/paint_loop.h"
 #include "app/volume/scene_generators.h"
 #include "drivers/open_pen_source.h"
 
@@ -85,6 +87,7 @@ int fail(const std::string& message, int code = 1) {
 }  // namespace
 
 int commandPaint(int argc, char** argv) {
+  std::string error;
   Args args(argc, argv, {"help", "stats", "no-record"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
@@ -119,24 +122,8 @@ int commandPaint(int argc, char** argv) {
   if (loop_options.moving_scale <= 0.0f || loop_options.moving_scale > 1.0f)
     return fail("--moving-scale: expected a number in (0, 1]", 2);
   if (loop_options.max_frames < 0) return fail("--frames: expected N >= 0", 2);
-  for (char letter : args.get("keys", "")) {
-    switch (letter) {
-      case 's':
-        loop_options.initial_keys.push_back(DisplayEvent::Key::S);
-        break;
-      case 'c':
-        loop_options.initial_keys.push_back(DisplayEvent::Key::C);
-        break;
-      case 'b':
-        loop_options.initial_keys.push_back(DisplayEvent::Key::B);
-        break;
-      case 'm':
-        loop_options.initial_keys.push_back(DisplayEvent::Key::M);
-        break;
-      default:
-        return fail(std::string("--keys: '") + letter + "' is not one of s, c, b, m", 2);
-    }
-  }
+  if (args.has("keys") && !parseKeyList(args.get("keys", ""), &loop_options.initial_keys, &error))
+    return fail("--keys: " + error, 2);
 
   const std::string backend = args.get("backend", "auto");
   if (backend != "none" && backend != "auto" && backend != "evdev" && backend != "hidraw" &&
@@ -147,7 +134,7 @@ int commandPaint(int argc, char** argv) {
   if (backend == "replay" && !args.has("journal"))
     return fail("--backend replay needs --journal FILE", 2);
 
-  std::string error, choice_note;
+  std::string choice_note;
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
   if (!display) return fail(error);
   const bool headless =
@@ -159,7 +146,16 @@ int commandPaint(int argc, char** argv) {
     std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
                  choice_note.c_str());
 
-  const Light light;
+  RenderConfig render_config;
+  try {
+    if (std::filesystem::exists(configFile("render.toml")))
+      render_config = loadRenderConfig(configFile("render.toml"));
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  const Light light = render_config.light;
+  loop_options.render = render_config.options;
+  if (!args.has("moving-scale")) loop_options.moving_scale = render_config.moving_scale;
   std::unique_ptr<PenSource> pen;
   if (!headless && backend != "none") {
     PenSourceOptions pen_options;
@@ -183,6 +179,7 @@ int commandPaint(int argc, char** argv) {
     settings.screen_height = display->height();
     settings.grid = int(grid);
     session = std::make_unique<PaintSession>(settings, loadDefaultBrushConfig(), mapping);
+    session->setStartingLight(light);
   }
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
   const std::string session_dir = args.get("session-dir", stateDir() + "/sessions");

@@ -119,7 +119,9 @@ int commandRender(int argc, char** argv) {
   if (auto text = args.get("light")) {
     std::vector<float> v;
     if (!parseNumbers(*text, 3, 3, &v)) return fail("--light '" + *text + "': expected X,Y,Z");
-    light.position = {v[0], v[1], v[2]};
+    if (glm::length(glm::vec3(v[0], v[1], v[2])) == 0.0f)
+      return fail("--light '" + *text + "': the direction must not be 0,0,0");
+    light.direction = Light::directionTowards({v[0], v[1], v[2]});
   }
 
   Volume volume(glm::ivec3(1));

@@ -1,5 +1,5 @@
 // `cloudbrush replay SESSION.cbj`: re-runs a recorded painting session headlessly through the
-// PaintSession (app/ui/session_replay.h) and reports the resulting volume's checksum; optionally
+// PaintSession (app/session/session_replay.h) and reports the resulting volume's checksum; optionally
 // writes the volume and a lit render of it from the session's last paint view.
 #include <chrono>
 #include <cinttypes>
@@ -17,7 +17,7 @@
 #include "app/render/render_config.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
-#include "app/ui/session_replay.h"
+#include "app/session/session_replay.h"
 #include "app/volume/volume_file.h"
 
 namespace cb {

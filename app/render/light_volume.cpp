@@ -216,9 +216,7 @@ bool LightVolume::matches(const Volume& volume, const Light& light) const {
 }
 
 glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light) {
-  glm::vec3 centre = 0.5f * (volume.worldMin() + volume.worldMax());
-  glm::vec3 world = light.directionFrom(centre);
-  return glm::normalize(world / volume.voxelSize());
+  return glm::normalize(light.direction / volume.voxelSize());
 }
 
 VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& light,

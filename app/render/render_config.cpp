@@ -29,11 +29,12 @@ void read(const toml::table& root, const std::string& path, const char* section,
   }
 }
 
+// True when the key was present (and read).
 template <int N>
-void readVec(const toml::table& root, const std::string& path, const char* section, const char* key,
+bool readVec(const toml::table& root, const std::string& path, const char* section, const char* key,
              glm::vec<N, float>* out) {
   auto node = root[section][key];
-  if (!node) return;
+  if (!node) return false;
   const toml::array* a = node.as_array();
   const std::string name = std::string(section) + "." + key;
   if (!a || a->size() != size_t(N))
@@ -43,6 +44,7 @@ void readVec(const toml::table& root, const std::string& path, const char* secti
     if (!v) bad(path, name, "must be an array of numbers");
     (*out)[i] = float(*v);
   }
+  return true;
 }
 
 }  // namespace
@@ -58,7 +60,13 @@ RenderConfig loadRenderConfig(const std::string& path) {
   read(root, path, "raycast", "brick_stepping", &o.brick_stepping);
   readVec<4>(root, path, "background", "colour", &o.background);
   read(root, path, "motion", "moving_scale", &c.moving_scale);
-  readVec<3>(root, path, "light", "position", &c.light.position);
+  // light.direction points towards the sun; the older light.position (a light ball seen from
+  // the origin) gives the same direction.
+  glm::vec3 towards(0.0f);
+  if (readVec<3>(root, path, "light", "position", &towards) && glm::length(towards) > 0.0f)
+    c.light.direction = Light::directionTowards(towards);
+  if (readVec<3>(root, path, "light", "direction", &towards) && glm::length(towards) > 0.0f)
+    c.light.direction = Light::directionTowards(towards);
   readVec<3>(root, path, "light", "colour", &c.light.colour);
   read(root, path, "light", "extinction", &c.light.extinction);
   if (!(o.step_voxels >= 0.1f && o.step_voxels <= 8.0f))

@@ -38,20 +38,28 @@ struct DisplayOptions {
   std::string x11_display;
 };
 
-// What a display reports between frames. Keys are the few the painter needs (Esc/q quit, Space
-// pauses the orbit, S/C toggle the statistics and circle overlays, B/M cycle brush and mapping);
-// Quit is a window close (WM_DELETE_WINDOW) or a terminal request.
+// What a display reports between frames. Keys are reported, not interpreted: `keysym` is the
+// XKB keysym of the key under the active layout (the same numbers X11 uses, see
+// <xkbcommon/xkbcommon-keysyms.h>), `modifiers` the modifier keys held; the UI decides what a key
+// means (app/shell/keymap.h). Pointer events come from a mouse where the platform has one (X11),
+// in framebuffer pixels. Quit is a window close (WM_DELETE_WINDOW) or a terminal request.
 struct DisplayEvent {
-  enum class Kind { Quit, KeyDown, Resize };
-  enum class Key { Other, Escape, Q, Space, S, C, B, M };
+  enum class Kind { Quit, KeyDown, Resize, PointerMove, PointerDown, PointerUp };
+  enum Modifier : uint32_t { kShift = 1, kCtrl = 2, kAlt = 4 };
   Kind kind = Kind::Quit;
-  Key key = Key::Other;
-  int width = 0;  // Resize: the new size
+  uint32_t keysym = 0;     // KeyDown
+  uint32_t modifiers = 0;  // KeyDown: Modifier bits
+  int width = 0;           // Resize: the new size
   int height = 0;
+  float x = 0.0f, y = 0.0f;  // Pointer*: position, y down
+  int button = 0;            // PointerDown/Up: 1 left, 2 middle, 3 right
 
-  // Esc, q or a close request: what every interactive mode treats as "leave".
-  bool isQuitRequest() const {
-    return kind == Kind::Quit || (kind == Kind::KeyDown && (key == Key::Escape || key == Key::Q));
+  static DisplayEvent key(uint32_t keysym, uint32_t modifiers = 0) {
+    DisplayEvent event;
+    event.kind = Kind::KeyDown;
+    event.keysym = keysym;
+    event.modifiers = modifiers;
+    return event;
   }
 };
 

@@ -1,11 +1,13 @@
 #include "app/render/gl/display_kms_keyboard.h"
 
+#include <cstdio>
 #include <string>
 
 #include <fcntl.h>
 #include <linux/input.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
+#include <xkbcommon/xkbcommon.h>
 
 namespace cb {
 namespace {
@@ -15,28 +17,53 @@ bool hasBit(const unsigned long* bits, int bit) {
   return (bits[bit / kBitsPerLong] >> (bit % kBitsPerLong)) & 1ul;
 }
 
-DisplayEvent::Key keyFromCode(int code) {
-  switch (code) {
-    case KEY_ESC:
-      return DisplayEvent::Key::Escape;
-    case KEY_Q:
-      return DisplayEvent::Key::Q;
-    case KEY_SPACE:
-      return DisplayEvent::Key::Space;
-    case KEY_S:
-      return DisplayEvent::Key::S;
-    case KEY_C:
-      return DisplayEvent::Key::C;
-    case KEY_B:
-      return DisplayEvent::Key::B;
-    case KEY_M:
-      return DisplayEvent::Key::M;
-    default:
-      return DisplayEvent::Key::Other;
-  }
-}
+// Evdev key codes are XKB key codes minus 8 (the X11 convention libxkbcommon keeps).
+constexpr int kXkbOffset = 8;
 
 }  // namespace
+
+uint32_t EvdevKeyboards::fallbackKeysym(int code, bool shift) {
+  static const char kRow1[] = "qwertyuiop", kRow2[] = "asdfghjkl", kRow3[] = "zxcvbnm";
+  const auto letter = [&](char c) { return uint32_t(shift ? c - 'a' + 'A' : c); };
+  if (code >= KEY_Q && code <= KEY_P) return letter(kRow1[code - KEY_Q]);
+  if (code >= KEY_A && code <= KEY_L) return letter(kRow2[code - KEY_A]);
+  if (code >= KEY_Z && code <= KEY_M) return letter(kRow3[code - KEY_Z]);
+  if (code >= KEY_1 && code <= KEY_9) return uint32_t('1' + (code - KEY_1));
+  switch (code) {
+    case KEY_0:
+      return '0';
+    case KEY_ESC:
+      return XKB_KEY_Escape;
+    case KEY_SPACE:
+      return XKB_KEY_space;
+    case KEY_MINUS:
+      return shift ? XKB_KEY_underscore : XKB_KEY_minus;
+    case KEY_EQUAL:
+      return shift ? XKB_KEY_plus : XKB_KEY_equal;
+    case KEY_KPMINUS:
+      return XKB_KEY_KP_Subtract;
+    case KEY_KPPLUS:
+      return XKB_KEY_KP_Add;
+    case KEY_DELETE:
+      return XKB_KEY_Delete;
+    case KEY_BACKSPACE:
+      return XKB_KEY_BackSpace;
+    case KEY_ENTER:
+      return XKB_KEY_Return;
+    case KEY_TAB:
+      return XKB_KEY_Tab;
+    case KEY_UP:
+      return XKB_KEY_Up;
+    case KEY_DOWN:
+      return XKB_KEY_Down;
+    case KEY_LEFT:
+      return XKB_KEY_Left;
+    case KEY_RIGHT:
+      return XKB_KEY_Right;
+    default:
+      return XKB_KEY_NoSymbol;
+  }
+}
 
 EvdevKeyboards::EvdevKeyboards() {
   for (int i = 0; i < 64; ++i) {
@@ -50,10 +77,21 @@ EvdevKeyboards::EvdevKeyboards() {
       close(fd);
     }
   }
+  if (fds_.empty()) return;
+  context_ = xkb_context_new(XKB_CONTEXT_NO_FLAGS);
+  if (context_) keymap_ = xkb_keymap_new_from_names(context_, nullptr, XKB_KEYMAP_COMPILE_NO_FLAGS);
+  if (keymap_) state_ = xkb_state_new(keymap_);
+  if (!state_)
+    std::fprintf(stderr,
+                 "cloudbrush: keyboard: no XKB keymap compiles here (is xkb-data installed?); "
+                 "keys are read as a US layout\n");
 }
 
 EvdevKeyboards::~EvdevKeyboards() {
   for (int fd : fds_) close(fd);
+  if (state_) xkb_state_unref(state_);
+  if (keymap_) xkb_keymap_unref(keymap_);
+  if (context_) xkb_context_unref(context_);
 }
 
 std::vector<DisplayEvent> EvdevKeyboards::poll() {
@@ -63,11 +101,29 @@ std::vector<DisplayEvent> EvdevKeyboards::poll() {
     ssize_t n;
     while ((n = read(fd, ev, sizeof(ev))) > 0) {
       for (size_t i = 0; i < size_t(n) / sizeof(input_event); ++i) {
-        if (ev[i].type != EV_KEY || ev[i].value != 1) continue;  // 1 = press, 2 = repeat
-        DisplayEvent event;
-        event.kind = DisplayEvent::Kind::KeyDown;
-        event.key = keyFromCode(ev[i].code);
-        events.push_back(event);
+        if (ev[i].type != EV_KEY || ev[i].value == 2) continue;  // 2 = auto-repeat
+        const bool down = ev[i].value == 1;
+        const int code = ev[i].code;
+        uint32_t keysym = XKB_KEY_NoSymbol, modifiers = 0;
+        if (state_) {
+          if (down) keysym = xkb_state_key_get_one_sym(state_, code + kXkbOffset);
+          xkb_state_update_key(state_, code + kXkbOffset, down ? XKB_KEY_DOWN : XKB_KEY_UP);
+          const auto active = [&](const char* name) {
+            return xkb_state_mod_name_is_active(state_, name, XKB_STATE_MODS_EFFECTIVE) > 0;
+          };
+          modifiers = (active(XKB_MOD_NAME_SHIFT) ? DisplayEvent::kShift : 0u) |
+                      (active(XKB_MOD_NAME_CTRL) ? DisplayEvent::kCtrl : 0u) |
+                      (active(XKB_MOD_NAME_ALT) ? DisplayEvent::kAlt : 0u);
+        } else {
+          if (code == KEY_LEFTSHIFT || code == KEY_RIGHTSHIFT) shift_ = down;
+          if (code == KEY_LEFTCTRL || code == KEY_RIGHTCTRL) ctrl_ = down;
+          if (code == KEY_LEFTALT || code == KEY_RIGHTALT) alt_ = down;
+          if (down) keysym = fallbackKeysym(code, shift_);
+          modifiers = (shift_ ? DisplayEvent::kShift : 0u) | (ctrl_ ? DisplayEvent::kCtrl : 0u) |
+                      (alt_ ? DisplayEvent::kAlt : 0u);
+        }
+        if (!down || keysym == XKB_KEY_NoSymbol) continue;
+        events.push_back(DisplayEvent::key(keysym, modifiers));
       }
     }
   }

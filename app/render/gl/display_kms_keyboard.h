@@ -1,11 +1,18 @@
 // Keyboard on the KMS platform, where no window system delivers keys: every /dev/input/event*
-// that has an Esc key is read non-blocking through the kernel's evdev interface. Enough for
-// "Esc quits"; the pen has its own drivers in drivers/evdev.
+// that has an Esc key is read non-blocking through the kernel's evdev interface, and key codes
+// become keysyms through an XKB keymap (libxkbcommon, the layout from the XKB_DEFAULT_* variables
+// or the system default), so Ctrl+Z is Ctrl+Z on any layout. Where no keymap compiles (no
+// xkb-data, as in a minimal initramfs) a built-in US table is used and said so on stderr. The
+// pen has its own drivers in drivers/evdev.
 #pragma once
 
 #include <vector>
 
 #include "app/render/gl/display.h"
+
+struct xkb_context;
+struct xkb_keymap;
+struct xkb_state;
 
 namespace cb {
 
@@ -20,8 +27,16 @@ class EvdevKeyboards {
   // Key presses since the last call (never blocks).
   std::vector<DisplayEvent> poll();
 
+  // The keysym and modifiers of a Linux key code (KEY_*) press given the modifier keys held
+  // (exposed for tests of the built-in table).
+  static uint32_t fallbackKeysym(int code, bool shift);
+
  private:
   std::vector<int> fds_;
+  xkb_context* context_ = nullptr;
+  xkb_keymap* keymap_ = nullptr;
+  xkb_state* state_ = nullptr;
+  bool shift_ = false, ctrl_ = false, alt_ = false;  // for the built-in table
 };
 
 }  // namespace cb

@@ -103,16 +103,29 @@ class X11Display final : public Display {
       XNextEvent(x_, &xev);
       DisplayEvent event;
       if (xev.type == KeyPress) {
-        const KeySym sym = XLookupKeysym(&xev.xkey, 0);
+        // The keysym under the server's layout and the shift level (XLookupString), so a key
+        // means what its cap says on any layout; Ctrl/Alt are reported as modifiers.
+        KeySym sym = NoSymbol;
+        char text[8];
+        XLookupString(&xev.xkey, text, sizeof text, &sym, nullptr);
         event.kind = DisplayEvent::Kind::KeyDown;
-        event.key = sym == XK_Escape  ? DisplayEvent::Key::Escape
-                    : sym == XK_q     ? DisplayEvent::Key::Q
-                    : sym == XK_space ? DisplayEvent::Key::Space
-                    : sym == XK_s     ? DisplayEvent::Key::S
-                    : sym == XK_c     ? DisplayEvent::Key::C
-                    : sym == XK_b     ? DisplayEvent::Key::B
-                    : sym == XK_m     ? DisplayEvent::Key::M
-                                      : DisplayEvent::Key::Other;
+        event.keysym = uint32_t(sym);
+        event.modifiers = ((xev.xkey.state & ShiftMask) ? DisplayEvent::kShift : 0u) |
+                          ((xev.xkey.state & ControlMask) ? DisplayEvent::kCtrl : 0u) |
+                          ((xev.xkey.state & Mod1Mask) ? DisplayEvent::kAlt : 0u);
+        events.push_back(event);
+      } else if (xev.type == MotionNotify) {
+        event.kind = DisplayEvent::Kind::PointerMove;
+        event.x = float(xev.xmotion.x);
+        event.y = float(xev.xmotion.y);
+        events.push_back(event);
+      } else if ((xev.type == ButtonPress || xev.type == ButtonRelease) &&
+                 xev.xbutton.button <= 3) {
+        event.kind = xev.type == ButtonPress ? DisplayEvent::Kind::PointerDown
+                                             : DisplayEvent::Kind::PointerUp;
+        event.x = float(xev.xbutton.x);
+        event.y = float(xev.xbutton.y);
+        event.button = int(xev.xbutton.button);
         events.push_back(event);
       } else if (xev.type == ClientMessage && Atom(xev.xclient.data.l[0]) == wm_delete_window_) {
         event.kind = DisplayEvent::Kind::Quit;
@@ -148,7 +161,8 @@ class X11Display final : public Display {
     attributes.colormap = colormap_;
     attributes.background_pixel = BlackPixel(x_, screen);
     attributes.border_pixel = 0;
-    attributes.event_mask = KeyPressMask | StructureNotifyMask | ExposureMask;
+    attributes.event_mask = KeyPressMask | StructureNotifyMask | ExposureMask | PointerMotionMask |
+                            ButtonPressMask | ButtonReleaseMask;
     window_ = XCreateWindow(x_, root, 0, 0, unsigned(width_), unsigned(height_), 0, visual->depth,
                             InputOutput, visual->visual,
                             CWColormap | CWBackPixel | CWBorderPixel | CWEventMask, &attributes);

@@ -79,14 +79,14 @@ TEST(RenderGolden, Sphere) {
 
 TEST(RenderGolden, BundledCloudLitFromTheLeft) {
   Light light;
-  light.position = glm::vec3(-4.0f, 2.0f, 2.5f);
+  light.direction = Light::directionTowards(glm::vec3(-4.0f, 2.0f, 2.5f));
   expectMatchesGolden("cumulus_lit_left", makeBundledCumulus(glm::ivec3(64), 1), light,
                       Camera::reference());
 }
 
 TEST(RenderGolden, BundledCloudLitFromTheRight) {
   Light light;
-  light.position = glm::vec3(3.0f, 1.0f, -4.0f);
+  light.direction = Light::directionTowards(glm::vec3(3.0f, 1.0f, -4.0f));
   light.colour = glm::vec3(1.0f, 0.85f, 0.7f);  // a low, warm sun
   expectMatchesGolden("cumulus_lit_right", makeBundledCumulus(glm::ivec3(64), 1), light,
                       Camera::reference());

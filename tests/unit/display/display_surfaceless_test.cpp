@@ -82,18 +82,14 @@ TEST(SurfacelessDisplay, DeliversInjectedEventsOnceInOrder) {
   auto display = openSurfaceless(16, 16);
   ASSERT_NE(display, nullptr);
   EXPECT_TRUE(display->pollEvents().empty());
-  for (DisplayEvent::Key key : {DisplayEvent::Key::S, DisplayEvent::Key::B, DisplayEvent::Key::Q}) {
-    DisplayEvent event;
-    event.kind = DisplayEvent::Kind::KeyDown;
-    event.key = key;
-    display->injectEvent(event);
-  }
+  for (uint32_t keysym : {uint32_t('s'), uint32_t('b'), uint32_t('q')})
+    display->injectEvent(DisplayEvent::key(keysym, DisplayEvent::kCtrl));
   const std::vector<DisplayEvent> events = display->pollEvents();
   ASSERT_EQ(events.size(), 3u);
-  EXPECT_EQ(events[0].key, DisplayEvent::Key::S);
-  EXPECT_EQ(events[1].key, DisplayEvent::Key::B);
-  EXPECT_FALSE(events[1].isQuitRequest());
-  EXPECT_TRUE(events[2].isQuitRequest());
+  EXPECT_EQ(events[0].keysym, uint32_t('s'));
+  EXPECT_EQ(events[1].keysym, uint32_t('b'));
+  EXPECT_EQ(events[2].keysym, uint32_t('q'));
+  EXPECT_EQ(events[2].modifiers, uint32_t(DisplayEvent::kCtrl));
   EXPECT_TRUE(display->pollEvents().empty());
 }
 

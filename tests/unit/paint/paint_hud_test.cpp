@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/paint_loop.h"
 #include "app/render/image_io.h"
-#include "app/ui/hud_items.h"
-#include "app/ui/paint_session.h"
-#include "app/ui/session_replay.h"
-#include "app/ui/synthetic_session.h"
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/session/synthetic_session.h"
+#include "app/shell/hud_items.h"
+#include "app/shell/paint_loop.h"
 #include "app/volume/scene_generators.h"
 #include "drivers/replay/replay_pen_source.h"
 
@@ -46,11 +46,8 @@ std::unique_ptr<Display> openSurfaceless() {
   return display;
 }
 
-void pressKey(Display& display, DisplayEvent::Key key) {
-  DisplayEvent event;
-  event.kind = DisplayEvent::Kind::KeyDown;
-  event.key = key;
-  display.injectEvent(event);
+void pressKey(Display& display, char key) {
+  display.injectEvent(DisplayEvent::key(uint32_t(key)));
 }
 
 // A journal of one reference stroke (the gentle curve) at this screen size.
@@ -95,7 +92,7 @@ TEST(PaintHud, StatsBarsFollowTheHistogram) {
     frame = readFramebufferRgba8(display->framebuffer(), kW, kH);
     stats = renderer.lastStats();
   };
-  pressKey(*display, DisplayEvent::Key::S);
+  pressKey(*display, 's');
   PaintLoop loop(*display, renderer, volume, Light{}, options);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
@@ -148,8 +145,8 @@ struct ReplayRun {
 
 // Plays `journal` through PaintLoop, pressing `keys` before the first frame; records to
 // `record_to` when given.
-ReplayRun runReplay(const std::string& journal, const std::string& dir,
-                    const std::vector<DisplayEvent::Key>& keys, JournalWriter* record_to) {
+ReplayRun runReplay(const std::string& journal, const std::string& dir, const std::string& keys,
+                    JournalWriter* record_to) {
   ReplayRun run;
   std::unique_ptr<Display> display = openSurfaceless();
   if (!display) return run;
@@ -179,7 +176,7 @@ ReplayRun runReplay(const std::string& journal, const std::string& dir,
       run.have_after = true;
     }
   };
-  for (DisplayEvent::Key key : keys) pressKey(*display, key);
+  for (char key : keys) pressKey(*display, key);
   PaintLoop loop(*display, renderer, run.session->volume(), Light{}, options);
   loop.attachPen(&pen, run.session.get());
   PaintLoopSummary summary;
@@ -192,7 +189,7 @@ ReplayRun runReplay(const std::string& journal, const std::string& dir,
 TEST(PaintHud, CircleRingsLieOnTheMappingCircles) {
   const std::string dir = tempDir("circles");
   const std::string journal = writeStrokeJournal(dir);
-  ReplayRun run = runReplay(journal, dir, {DisplayEvent::Key::C}, nullptr);
+  ReplayRun run = runReplay(journal, dir, "c", nullptr);
   ASSERT_TRUE(run.session && run.have_before && run.have_after);
   const std::vector<Circle>& circles = run.session->lastCircles();
   ASSERT_GE(circles.size(), 3u);
@@ -253,7 +250,7 @@ TEST(PaintHud, BrushAndMappingKeysAreJournalledAndReplayed) {
   {
     JournalWriter journal;
     ASSERT_TRUE(journal.open(recorded)) << journal.error();
-    ReplayRun run = runReplay(stroke, dir, {DisplayEvent::Key::B, DisplayEvent::Key::M}, &journal);
+    ReplayRun run = runReplay(stroke, dir, "bn", &journal);
     ASSERT_TRUE(run.session);
     initial_brush = PaintSession({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}).selectedBrush();
     EXPECT_NE(run.session->selectedBrush(), initial_brush);
@@ -266,11 +263,14 @@ TEST(PaintHud, BrushAndMappingKeysAreJournalledAndReplayed) {
   for (const JournalRecord& record : read.records)
     if (record.type == JournalRecordType::kUi) ui.emplace_back(record.text());
   bool brush_key = false, method_key = false;
-  for (size_t i = 0; i < ui.size(); ++i) {
-    // recordTo journals the settings in force first; the key presses come after them.
-    brush_key |= i >= 2 && ui[i].rfind("brush=", 0) == 0 &&
+  // recordTo journals the settings in force first (brush, then method, ...); the key presses
+  // come after them.
+  size_t start = 0;
+  while (start < ui.size() && ui[start].rfind("method=", 0) != 0) ++start;
+  for (size_t i = start + 1; i < ui.size(); ++i) {
+    brush_key |= ui[i].rfind("brush=", 0) == 0 &&
                  ui[i] != std::string("brush=") + brushKindName(initial_brush);
-    method_key |= i >= 2 && ui[i] == "method=ray-marching";
+    method_key |= ui[i] == "method=ray-marching";
   }
   EXPECT_TRUE(brush_key && method_key) << ui.size() << " UI records";
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/paint_loop.h"
 #include "app/render/image_io.h"
-#include "app/ui/paint_session.h"
-#include "app/ui/synthetic_session.h"
+#include "app/session/paint_session.h"
+#include "app/session/synthetic_session.h"
+#include "app/shell/paint_loop.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "app/ui/paint_session.h"
-#include "app/ui/synthetic_session.h"
+#include "app/session/paint_session.h"
+#include "app/session/synthetic_session.h"
 
 namespace cb {
 namespace {
@@ -105,7 +105,7 @@ TEST(PaintReplayCli, PaintedSessionReplaysToTheSameVolume) {
   std::filesystem::remove_all(dir);
 }
 
-// Keys B and M (pressed with --keys) are journalled; `cloudbrush replay` reproduces the
+// Keys B and N (pressed with --keys) are journalled; `cloudbrush replay` reproduces the
 // painted volume, which differs from the same stroke painted without them.
 TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
   const std::string dir =
@@ -121,7 +121,7 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
                (keys.empty() ? "" : " --keys " + keys));
   };
   const CommandRun plain = paint("", dir + "/plain");
-  const CommandRun keyed = paint("bm", dir + "/keyed");
+  const CommandRun keyed = paint("bn", dir + "/keyed");
   ASSERT_EQ(plain.status, 0) << plain.out;
   ASSERT_EQ(keyed.status, 0) << keyed.out;
   EXPECT_NE(keyed.out.find("method=ray-marching"), std::string::npos) << keyed.out;
@@ -135,9 +135,9 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
   EXPECT_EQ(capture(replay.out, "volume checksum: ([0-9a-f]{16})"), keyed_sum) << replay.out;
 
   const CommandRun bad = run("'" + bin + "' paint --display surfaceless --backend replay " +
-                             "--journal '" + pen_journal + "' --keys bx");
+                             "--journal '" + pen_journal + "' --keys b,f00");
   EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.out.find("--keys: 'x'"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("--keys: key 'f00'"), std::string::npos) << bad.out;
   std::filesystem::remove_all(dir);
 }
 

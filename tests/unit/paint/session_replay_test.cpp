@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "app/core/parallel_for.h"
-#include "app/ui/paint_session.h"
-#include "app/ui/session_replay.h"
-#include "app/ui/synthetic_session.h"
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/session/synthetic_session.h"
 
 namespace cb {
 namespace {
@@ -54,8 +54,9 @@ Recording record(const std::string& path) {
   std::string error;
   for (size_t i = 0; i < strokes.size(); ++i) {
     if (i == 1) {
-      EXPECT_TRUE(session.applyUi("camera_orbit=20", t0, &error)) << error;
-      EXPECT_TRUE(session.applyUi("brush=2d", t0, &error)) << error;
+      EXPECT_TRUE(session.apply(ui::SetCamera{Camera::reference().orbited(20.0f)}, t0, &error))
+          << error;
+      EXPECT_TRUE(session.apply(ui::SetBrush{BrushKind::k2D}, t0, &error)) << error;
     }
     for (const PenSample& s :
          syntheticPenSamples(strokes[i], tablet, kScreenW, kScreenH, 200.0, t0)) {
@@ -84,11 +85,14 @@ std::string tempPath(const char* name) {
 TEST(SessionReplay, BadUiChangesAreRejectedWithTheirName) {
   PaintSession session({kScreenW, kScreenH, kGrid}, testBrush(), MappingConfig{});
   std::string error;
-  EXPECT_FALSE(session.applyUi("brush=oil", 0, &error));
+  UiChange change;
+  EXPECT_FALSE(parseUiChange(JournalRecordType::kUi, "brush=oil", &change, &error));
   EXPECT_NE(error.find("oil"), std::string::npos) << error;
-  EXPECT_FALSE(session.applyUi("zoom=2", 0, &error));
+  EXPECT_FALSE(parseUiChange(JournalRecordType::kUi, "zoom=2", &change, &error));
   EXPECT_NE(error.find("zoom"), std::string::npos) << error;
-  EXPECT_FALSE(session.applyUi("camera_orbit=x", 0, &error));
+  EXPECT_FALSE(parseUiChange(JournalRecordType::kUi, "camera_orbit=x", &change, &error));
+  EXPECT_FALSE(session.apply(ui::Undo{}, 0, &error)) << "nothing to undo yet";
+  EXPECT_NE(error.find("nothing to undo"), std::string::npos) << error;
   PaintSessionSettings parsed;
   EXPECT_FALSE(parseSessionSettings("grid = 4\n", &parsed, &error));
   EXPECT_NE(error.find("line 1"), std::string::npos) << error;
@@ -108,7 +112,7 @@ TEST(SessionReplay, SameVolumeOnAnyThreadCountAndAcrossRuns) {
         << replay.journal_error << (replay.problems.empty() ? "" : replay.problems[0]);
     EXPECT_EQ(replay.strokes_mapped, 2u);
     // The paint view of the second stroke came from the journal, not from the default.
-    EXPECT_FLOAT_EQ(replay.session->cameraOrbitDegrees(), 20.0f);
+    EXPECT_EQ(replay.session->camera().eye, Camera::reference().orbited(20.0f).eye);
     sums.push_back(volumeChecksum(replay.session->volume()));
     EXPECT_EQ(sums.back(), rec.checksum) << "replay on " << threads << " threads";
   }

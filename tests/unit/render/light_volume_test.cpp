@@ -48,7 +48,7 @@ TEST(LightVolume, AxisAlignedSweepEqualsTheProductOfAttenuations) {
   for (int y = 0; y < 8; ++y) v.data()[v.index(3, y, 4)] = 0.5f;
   v.markDirty(v.bounds());
   Light light;
-  light.position = glm::vec3(0.0f, 10.0f, 0.0f);  // straight up
+  light.direction = Light::directionTowards(glm::vec3(0.0f, 10.0f, 0.0f));  // straight up
   light.extinction = 0.2f;
   LightVolume lv;
   sweepLightVolume(lv, v, light, v.bounds());
@@ -63,7 +63,7 @@ TEST(LightVolume, SweepMatchesTheReferenceMarchFromSeveralDirections) {
   for (glm::vec3 pos :
        {glm::vec3(3.0f, 4.0f, 1.5f), glm::vec3(-4.0f, 1.0f, 2.0f), glm::vec3(0.5f, -3.0f, -3.0f)}) {
     Light light;
-    light.position = pos;
+    light.direction = Light::directionTowards(pos);
     LightVolume lv;
     sweepLightVolume(lv, v, light, v.bounds());
     std::vector<float> ref = marchLightReference(v, light);
@@ -149,7 +149,7 @@ TEST(LightVolume, ALightChangeRecomputesEverything) {
   Light light;
   LightVolume lv;
   sweepLightVolume(lv, v, light, v.bounds());
-  light.position = glm::vec3(-3.0f, 2.0f, 0.0f);
+  light.direction = Light::directionTowards(glm::vec3(-3.0f, 2.0f, 0.0f));
   EXPECT_EQ(sweepLightVolume(lv, v, light, {}), v.bounds());
   light.extinction = 0.3f;
   EXPECT_EQ(sweepLightVolume(lv, v, light, {}), v.bounds());
@@ -162,7 +162,7 @@ TEST(LightVolume, SameBytesOnAnyThreadCount) {
   for (glm::vec3 pos :
        {glm::vec3(3.0f, 4.0f, 1.5f), glm::vec3(-5.0f, 1.0f, 2.0f), glm::vec3(1.0f, -2.0f, -6.0f)}) {
     Light light;
-    light.position = pos;
+    light.direction = Light::directionTowards(pos);
     LightVolume a, b;
     setWorkerThreads(1);
     sweepLightVolume(a, v, light, v.bounds());

@@ -23,7 +23,7 @@ TEST(RenderConfig, ShippedDefaultsLoadAndMatchTheBuiltInOnes) {
   EXPECT_EQ(c.options.extinction_per_voxel, d.extinction_per_voxel);
   EXPECT_EQ(c.options.termination_transmittance, d.termination_transmittance);
   EXPECT_EQ(c.options.background, d.background);
-  EXPECT_EQ(c.light.position, Light{}.position);
+  EXPECT_EQ(c.light.direction, Light{}.direction);
   EXPECT_EQ(c.light.extinction, Light{}.extinction);
   EXPECT_FLOAT_EQ(c.moving_scale, RenderConfig{}.moving_scale);
 }

@@ -1,4 +1,4 @@
-#include "app/ui/synthetic_session.h"
+#include "app/session/synthetic_session.h"
 
 #include <algorithm>
 #include <cmath>

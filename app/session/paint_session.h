@@ -23,6 +23,9 @@
 #include "app/mapping/stroke_mapper.h"
 #include "app/scene/camera.h"
 #include "app/scene/canvas.h"
+#include "app/scene/light.h"
+#include "app/session/history.h"
+#include "app/session/ui_change.h"
 #include "app/volume/volume.h"
 #include "calibration/calibration_profile.h"
 #include "calibration/calibrator.h"
@@ -34,7 +37,15 @@ namespace cb {
 struct PaintSessionSettings {
   int screen_width = 1280, screen_height = 720;  // the display the pen maps to (pixels)
   int grid = 128;                                // volume resolution grid³
+  // Journal format of UI changes: 1 = the first landing (no modes; the paint view is
+  // Camera::reference() unless a camera_orbit record says otherwise), 2 = typed changes with
+  // modes and history (the paint view starts at defaultPaintCamera()). A Session record without
+  // `format` is 1, so old journals replay as they did.
+  int format = 2;
 };
+
+// The painter's starting view for a session of `format` (see PaintSessionSettings).
+Camera initialPaintCamera(const PaintSessionSettings& settings);
 
 // The Session record's text ("key = value" lines, TOML) and its parser. The parser names the
 // offending line in *error.
@@ -48,6 +59,7 @@ struct SampleOutcome {
   FootprintRect changed;       // footprint pixels redrawn by this sample (empty: none)
   bool stroke_began = false;   // this sample started a stroke (a fresh footprint)
   bool stroke_mapped = false;  // this sample ended a stroke and it was mapped into the volume
+  bool erased = false;         // this sample rubbed out some cloud (erase mode, rub-out)
   MappingReport mapping;       // valid when stroke_mapped
   uint32_t stroke_index = 0;   // of the mapped stroke
 };
@@ -70,12 +82,22 @@ class PaintSession {
   // device is set cannot be interpreted: they are journalled, counted and otherwise ignored.
   SampleOutcome feed(const PenSample& sample);
 
-  // UI changes, each journalled as a "key=value" Ui record and taking effect for the next stroke:
-  //   camera_orbit=DEG   paint view = Camera::reference().orbited(DEG)
-  //   brush=2d|3d|skeleton
-  //   method=hybrid|ray-marching
-  // False with *error naming the key or value on bad input (nothing is recorded then).
-  bool applyUi(const std::string& key_value, int64_t t_ns, std::string* error);
+  // A typed UI change (ui_change.h): applied, journalled and, when it changes the scene or the
+  // cloud, recorded as a history step. Camera, canvas, brush and mapping take effect from the
+  // next stroke; a mode change ends a stroke in progress first. False with *error when the change
+  // cannot apply now (undo with nothing to undo, ...); nothing is journalled then.
+  bool apply(const UiChange& change, int64_t t_ns, std::string* error = nullptr);
+
+  // Where the vacuum sphere sits for a pen at this sample (§3.5.1, Fig. 3.5): x/z where the
+  // pen's ray meets the canvas mid-plane, the height from the pressure (0 = the bottom of the
+  // volume, 1 = its top). False when the ray misses the plane.
+  bool vacuumCentre(const MappedSample& sample, glm::vec3* centre) const;
+  float eraseDiameter(EraseTool tool) const {
+    return tool == EraseTool::kVacuum ? vacuum_diameter_ : rubout_diameter_;
+  }
+  // The rub-out cylinder's diameter at this pressure (§3.5.2: it varies with pressure; pens
+  // without pressure report contact as full pressure).
+  float rubOutDiameterAt(float pressure) const;
 
   // Replay: applies one journal record as if it happened now (Session records must match the
   // settings this session was made with; Marker/Mode records are ignored). False with *error
@@ -85,9 +107,18 @@ class PaintSession {
   const Volume& volume() const { return volume_; }
   Volume& volume() { return volume_; }
   const StrokeEngine& engine() const { return engine_; }
-  const Camera& camera() const { return camera_; }
-  float cameraOrbitDegrees() const { return orbit_degrees_; }
-  const Canvas& canvas() const { return canvas_; }
+  const Camera& camera() const { return scene_.camera; }
+  const Canvas& canvas() const { return scene_.canvas; }
+  const Light& light() const { return scene_.light; }
+  const SceneState& scene() const { return scene_; }
+  Mode mode() const { return mode_; }
+  EraseTool eraseTool() const { return erase_tool_; }
+  const History& history() const { return history_; }
+  // The sun before anything is recorded (config/render.toml); journalled with the starting state.
+  void setStartingLight(const Light& light) { scene_.light = light; }
+  // Replaces the cloud (open a saved cloud); the history starts over from it. Journalled as a
+  // marker only: a session that opens a file replays with that file present.
+  void replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source);
   const PaintSessionSettings& settings() const { return settings_; }
   int footprintWidth() const { return footprint_w_; }
   int footprintHeight() const { return footprint_h_; }
@@ -106,6 +137,8 @@ class PaintSession {
  private:
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
+  void mapFinishedStroke(SampleOutcome* outcome);
+  void recordStep(const SceneState& before, const std::string& label);
 
   PaintSessionSettings settings_;
   int footprint_w_, footprint_h_;
@@ -117,9 +150,12 @@ class PaintSession {
   std::optional<PenDeviceInfo> device_;
   std::unique_ptr<Calibrator> calibrator_;
   std::string calibrator_error_;
-  Camera camera_ = Camera::reference();
-  float orbit_degrees_ = 0.0f;
-  Canvas canvas_;
+  SceneState scene_;
+  Mode mode_ = Mode::kPaint;
+  EraseTool erase_tool_ = EraseTool::kRubOut;
+  float vacuum_diameter_ = 0.3f, rubout_diameter_ = 0.12f;  // world units (sky box is 2 wide)
+  bool rubbing_ = false;                                    // a rub-out is in progress
+  History history_;
   uint32_t strokes_mapped_ = 0;
   uint64_t samples_without_device_ = 0;
   JournalWriter* journal_ = nullptr;

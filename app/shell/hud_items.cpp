@@ -1,4 +1,4 @@
-#include "app/ui/hud_items.h"
+#include "app/shell/hud_items.h"
 
 #include <algorithm>
 #include <array>

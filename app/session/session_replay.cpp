@@ -1,4 +1,4 @@
-#include "app/ui/session_replay.h"
+#include "app/session/session_replay.h"
 
 #include <cstring>
 

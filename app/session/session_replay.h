@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/ui/paint_session.h"
+#include "app/session/paint_session.h"
 #include "drivers/core/journal.h"
 
 namespace cb {

@@ -11,12 +11,7 @@
 // volume; the renderer syncs the dirty box (upload, occupancy, light) and the lit scene is shown.
 // A missing tablet is a state shown on stderr, never an exit: the orbit goes on.
 //
-// Keys: S toggles the ray-sample statistics overlay (histogram bars, total/mean/max samples),
-// C toggles the last stroke's circles (rings where they were grown), B cycles the brush
-// 2d -> 3d -> skeleton and M the mapping hybrid <-> ray-marching (both journalled as UI records
-// through PaintSession::applyUi, so a replay repeats them). While the pen is in range the
-// screen region where the canvas slab meets the volume is outlined faintly: strokes outside it
-// cannot land in the volume.
+// Modes, keys and the pen menu: see paint_screen.h.
 #pragma once
 
 #include <atomic>
@@ -60,6 +55,8 @@ struct PaintFrameInfo {
 };
 
 struct PaintLoopOptions {
+  // Ray casting settings from config/render.toml (scale and statistics are set per frame).
+  RenderOptions render;
   float orbit_degrees_per_second = 6.0f;  // a slow turn: one revolution per minute
   // Resolution scale while moving; adapted each frame towards target_frame_ms within
   // [min_moving_scale, 1].
@@ -71,7 +68,7 @@ struct PaintLoopOptions {
   bool show_stats_overlay = false;    // start with the S overlay on
   bool show_circles_overlay = false;  // start with the C overlay on
   // Keys pressed before the first frame, as if typed (scripted runs and tests: `--keys`).
-  std::vector<DisplayEvent::Key> initial_keys;
+  std::vector<DisplayEvent> initial_keys;
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
@@ -97,10 +94,15 @@ struct PaintLoopSummary {
   double median_pen_up_to_lit_ms() const;
 };
 
+class PaintScreen;
+
+// `cloudbrush paint` on a display: the frame loop (frame_loop.h) running the painter's screen
+// (paint_screen.h). Kept as one object for the command and its tests.
 class PaintLoop {
  public:
   PaintLoop(Display& display, VolumeRenderer& renderer, const Volume& volume, const Light& light,
             const PaintLoopOptions& options);
+  ~PaintLoop();
   // Runs until a quit request, the frame limit or `*stop` becomes true (signal handlers set it).
   // False with a message if presenting fails.
   bool run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error);
@@ -108,51 +110,15 @@ class PaintLoop {
   // Routes `pen` into `session` (neither owned). The loop's own volume is shown until the pen
   // first connects, the session's volume from then on.
   void attachPen(PenSource* pen, PaintSession* session);
+  // Every command the loop routed, by name, in order (tests).
+  const std::vector<std::string>& routedCommands() const { return routed_; }
 
  private:
-  // Applies the display's events (and, the first time, options.initial_keys); returns the quit
-  // reason or "".
-  std::string handleEvents();
-  // Polls the pen and feeds the session; updates the overlay, cursor and lift timing.
-  void handlePen(PaintLoopSummary* summary);
-  // The still painting view: cached scene (re-rendered when stale) + footprint + cursor.
-  void drawPaintingView(PaintFrameInfo* info);
-  bool paintingSetUp(std::string* error);
-  // Draws the enabled HUD items (S, C, canvas region) over the display framebuffer.
-  bool drawHud(std::string* error);
-  // B and M: the next brush / mapping method, journalled through the session.
-  void cycleBrush();
-  void cycleMapping();
-
   Display& display_;
-  VolumeRenderer& renderer_;
-  const Volume& volume_;
-  Light light_;
-  PaintLoopOptions options_;
-  bool orbiting_ = true;
-  bool refined_ = false;  // the still image has been drawn at full resolution
-  float orbit_degrees_ = 0.0f;
-
+  std::unique_ptr<PaintScreen> screen_;
   PenSource* pen_ = nullptr;
-  PaintSession* session_ = nullptr;
-  int last_connection_ = -1;
-  bool pen_connected_once_ = false;
-  const Volume& shownVolume() const;
-  uint64_t tool_serial_ = 0;
-  FootprintOverlay overlay_;
-  RenderTarget scene_;  // the still scene, rendered once per camera or volume change
-  bool overlay_ready_ = false;
-  bool scene_stale_ = true;
-  bool lit_pending_ = false;     // a stroke was mapped; its lit frame is not drawn yet
-  bool refine_pending_ = false;  // the scene was last drawn at reduced resolution
-  std::chrono::steady_clock::time_point lift_time_;
-  double lift_mapping_ms_ = 0.0;
-  size_t texels_this_frame_ = 0;
-  OverlayCursor cursor_;
-  std::vector<PenSample> samples_;
-  HudOverlay hud_;
-  bool show_stats_ = false, show_circles_ = false;
-  bool initial_keys_pressed_ = false;
+  PaintLoopOptions options_;
+  std::vector<std::string> routed_;
 };
 
 }  // namespace cb

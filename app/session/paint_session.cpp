@@ -1,0 +1,387 @@
+#include "app/session/paint_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "app/volume/volume_erase.h"
+
+namespace cb {
+namespace {
+
+std::string trim(std::string_view text) {
+  size_t b = 0, e = text.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(text[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(text[e - 1]))) --e;
+  return std::string(text.substr(b, e - b));
+}
+
+bool parseInt(const std::string& text, long lo, long hi, long* out) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < lo || v > hi) return false;
+  *out = v;
+  return true;
+}
+
+}  // namespace
+
+std::string formatSessionSettings(const PaintSessionSettings& settings) {
+  return "screen_width = " + std::to_string(settings.screen_width) +
+         "\nscreen_height = " + std::to_string(settings.screen_height) +
+         "\ngrid = " + std::to_string(settings.grid) +
+         "\nformat = " + std::to_string(settings.format) + "\n";
+}
+
+Camera initialPaintCamera(const PaintSessionSettings& settings) {
+  if (settings.format < 2) return Camera::reference();
+  return Camera::reference();
+}
+
+bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
+                          std::string* error) {
+  PaintSessionSettings parsed;
+  parsed.format = 1;  // records of the first landing have no format key
+  std::istringstream lines{std::string(text)};
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    const std::string content = trim(line.substr(0, line.find('#')));
+    if (content.empty()) continue;
+    const size_t eq = content.find('=');
+    const std::string key = eq == std::string::npos ? content : trim(content.substr(0, eq));
+    const std::string value = eq == std::string::npos ? "" : trim(content.substr(eq + 1));
+    long v = 0;
+    const auto bad = [&](const char* expected) {
+      *error = "session line " + std::to_string(number) + ": " + key + ": expected " + expected +
+               ", got '" + value + "'";
+      return false;
+    };
+    if (key == "screen_width") {
+      if (!parseInt(value, 1, 16384, &v)) return bad("1..16384");
+      parsed.screen_width = int(v);
+    } else if (key == "screen_height") {
+      if (!parseInt(value, 1, 16384, &v)) return bad("1..16384");
+      parsed.screen_height = int(v);
+    } else if (key == "grid") {
+      if (!parseInt(value, 8, 1024, &v)) return bad("8..1024");
+      parsed.grid = int(v);
+    } else if (key == "format") {
+      if (!parseInt(value, 1, 2, &v))
+        return bad("1 or 2 (a newer journal needs a newer cloudbrush)");
+      parsed.format = int(v);
+    }  // other keys (participant, task, ...) belong to the study, not to the painting
+  }
+  *settings = parsed;
+  return true;
+}
+
+PaintSession::PaintSession(const PaintSessionSettings& settings, const BrushConfig& brush,
+                           const MappingConfig& mapping)
+    : settings_(settings),
+      footprint_w_(std::max(
+          1, int(std::lround(settings.screen_width * double(brush.stroke.footprint_scale))))),
+      footprint_h_(std::max(
+          1, int(std::lround(settings.screen_height * double(brush.stroke.footprint_scale))))),
+      volume_(glm::ivec3(settings.grid)),
+      engine_(brush, footprint_w_, footprint_h_),
+      mapper_(mapping),
+      method_(mapping.method) {
+  scene_.camera = initialPaintCamera(settings);
+  applyView();
+  history_.reset(volume_);
+}
+
+void PaintSession::journalText(JournalRecordType type, int64_t t_ns, const std::string& text) {
+  if (journal_ && !journal_->append(type, t_ns, text))
+    std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
+}
+
+void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
+  journal_ = journal;
+  journalText(JournalRecordType::kSession, t_ns, formatSessionSettings(settings_));
+  journalText(JournalRecordType::kCalibration, t_ns, formatCalibrationProfile(profile_));
+  if (journal_ && device_) {
+    const std::vector<uint8_t> payload = encodeDeviceInfo(*device_);
+    journal_->append(JournalRecordType::kDevice, t_ns, payload.data(), payload.size());
+  }
+  // The whole starting state, so a replay does not depend on this version's defaults.
+  const UiChange start[] = {ui::SetMode{mode_},
+                            ui::SetCamera{scene_.camera},
+                            ui::SetCanvas{scene_.canvas.altitude, scene_.canvas.thickness},
+                            ui::SetLight{scene_.light.direction, scene_.light.colour},
+                            ui::SetBrush{engine_.selectedBrush()},
+                            ui::SetMapping{method_},
+                            ui::SetEraseTool{erase_tool_},
+                            ui::SetEraseDiameter{EraseTool::kVacuum, vacuum_diameter_},
+                            ui::SetEraseDiameter{EraseTool::kRubOut, rubout_diameter_}};
+  for (const UiChange& change : start) {
+    if (settings_.format < 2 && !std::holds_alternative<ui::SetBrush>(change) &&
+        !std::holds_alternative<ui::SetMapping>(change))
+      continue;  // format 1 knew brush and method only
+    const UiRecordText record = formatUiChange(change);
+    journalText(record.type, t_ns, record.text);
+  }
+}
+
+void PaintSession::setDevice(const PenDeviceInfo& device, int64_t t_ns) {
+  device_ = device;
+  calibrator_.reset();
+  if (journal_) {
+    const std::vector<uint8_t> payload = encodeDeviceInfo(device);
+    if (!journal_->append(JournalRecordType::kDevice, t_ns, payload.data(), payload.size()))
+      std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
+  }
+}
+
+void PaintSession::setCalibration(const CalibrationProfile& profile, int64_t t_ns) {
+  profile_ = profile;
+  calibrator_.reset();
+  journalText(JournalRecordType::kCalibration, t_ns, formatCalibrationProfile(profile));
+}
+
+void PaintSession::applyView() {
+  engine_.setPaintView(PaintView{scene_.camera}, scene_.canvas);
+}
+
+void PaintSession::recordStep(const SceneState& before, const std::string& label) {
+  history_.record(volume_, before, scene_, label);
+}
+
+void PaintSession::mapFinishedStroke(SampleOutcome* outcome) {
+  StrokeResult stroke;
+  while (engine_.takeFinishedStroke(&stroke)) {
+    // §6: the finished footprint becomes voxels, max-merged; the stroke index seeds the noise.
+    outcome->mapping = mapper_.map(stroke, volume_, method_);
+    outcome->stroke_mapped = true;
+    outcome->stroke_index = stroke.stroke_index;
+    ++strokes_mapped_;
+    recordStep(scene_, "stroke " + std::to_string(stroke.stroke_index));
+  }
+}
+
+float PaintSession::rubOutDiameterAt(float pressure) const {
+  return rubout_diameter_ * std::clamp(0.25f + 0.75f * pressure, 0.25f, 1.0f);
+}
+
+bool PaintSession::vacuumCentre(const MappedSample& sample, glm::vec3* centre) const {
+  glm::vec3 origin, dir;
+  scene_.camera.pixelRay(float(sample.x_px), float(sample.y_px), settings_.screen_width,
+                         settings_.screen_height, &origin, &dir);
+  float t = 0.0f;
+  if (!scene_.canvas.intersectMidPlane(origin, dir, &t)) return false;
+  const glm::vec3 on_plane = origin + t * dir;
+  const float lo = volume_.worldMin().y, hi = volume_.worldMax().y;
+  *centre =
+      glm::vec3(on_plane.x, lo + std::clamp(sample.pressure, 0.0f, 1.0f) * (hi - lo), on_plane.z);
+  return true;
+}
+
+void PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source) {
+  if (volume.dims() != volume_.dims()) {
+    volume_ = Volume(volume_.dims(), volume_.worldMin(), volume_.worldMax());
+    std::fprintf(stderr, "cloudbrush: %s: %dx%dx%d does not match the session's grid\n",
+                 source.c_str(), volume.dims().x, volume.dims().y, volume.dims().z);
+  }
+  volume_ = volume;
+  history_.reset(volume_);
+  journalText(JournalRecordType::kMarker, t_ns, "opened " + source);
+}
+
+SampleOutcome PaintSession::feed(const PenSample& sample) {
+  SampleOutcome outcome;
+  if (journal_ && !journal_->appendPenSample(sample))
+    std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
+  if (!device_) {
+    ++samples_without_device_;
+    return outcome;
+  }
+  if (!calibrator_) {
+    calibrator_ = std::make_unique<Calibrator>(profile_, *device_, settings_.screen_width,
+                                               settings_.screen_height);
+    calibrator_error_ = calibrator_->error();
+    if (!calibrator_->ok())
+      std::fprintf(stderr, "cloudbrush: calibration: %s\n", calibrator_error_.c_str());
+  }
+  outcome.mapped = calibrator_->process(sample);
+  const MappedSample& m = outcome.mapped;
+  if (mode_ == Mode::kPaint) {
+    const bool was_in_stroke = engine_.inStroke();
+    outcome.changed = engine_.feedCalibrated(m);
+    outcome.stroke_began = !was_in_stroke && engine_.inStroke();
+    mapFinishedStroke(&outcome);
+  } else if (mode_ == Mode::kErase && erase_tool_ == EraseTool::kRubOut) {
+    // §3.5.2: while the tip is down, a cylinder along the view through the canvas's height
+    // range, its diameter from the pressure.
+    if (m.contact) {
+      glm::vec3 origin, dir;
+      scene_.camera.pixelRay(float(m.x_px), float(m.y_px), settings_.screen_width,
+                             settings_.screen_height, &origin, &dir);
+      outcome.erased = !rubOutCylinder(volume_, origin, dir, 0.5f * rubOutDiameterAt(m.pressure),
+                                       scene_.canvas.bottom(), scene_.canvas.top())
+                            .empty();
+      rubbing_ = true;
+    }
+    if (rubbing_ && (m.contact_ended || !m.contact)) {
+      rubbing_ = false;
+      recordStep(scene_, "rub-out");
+    }
+  }
+  return outcome;
+}
+
+bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* error) {
+  std::string ignored;
+  if (!error) error = &ignored;
+  const SceneState before = scene_;
+  struct Applier {
+    PaintSession& s;
+    std::string* error;
+    const SceneState& before;
+    bool operator()(const ui::SetMode& c) {
+      if (s.engine_.inStroke() && c.mode != Mode::kPaint) {
+        // The stroke in progress ends where it is, as if the pen lifted.
+        SampleOutcome outcome;
+        s.engine_.finishStroke();
+        s.mapFinishedStroke(&outcome);
+      }
+      if (s.rubbing_) {
+        s.rubbing_ = false;
+        s.recordStep(s.scene_, "rub-out");
+      }
+      s.mode_ = c.mode;
+      return true;
+    }
+    bool operator()(const ui::SetCamera& c) {
+      s.scene_.camera = c.camera;
+      s.applyView();
+      s.recordStep(before, "camera");
+      return true;
+    }
+    bool operator()(const ui::SetBrush& c) {
+      s.engine_.selectBrush(c.brush);
+      return true;
+    }
+    bool operator()(const ui::SetMapping& c) {
+      s.method_ = c.method;
+      return true;
+    }
+    bool operator()(const ui::SetCanvas& c) {
+      s.scene_.canvas.altitude = c.altitude;
+      s.scene_.canvas.thickness = c.thickness;
+      s.applyView();
+      s.recordStep(before, "canvas");
+      return true;
+    }
+    bool operator()(const ui::SetLight& c) {
+      s.scene_.light.direction = glm::normalize(c.direction);
+      s.scene_.light.colour = c.colour;
+      s.recordStep(before, "light");
+      return true;
+    }
+    bool operator()(const ui::SetEraseTool& c) {
+      s.erase_tool_ = c.tool;
+      return true;
+    }
+    bool operator()(const ui::SetEraseDiameter& c) {
+      (c.tool == EraseTool::kVacuum ? s.vacuum_diameter_ : s.rubout_diameter_) = c.diameter;
+      return true;
+    }
+    bool operator()(const ui::VacuumCut& c) {
+      vacuumSphere(s.volume_, c.centre, c.radius);
+      s.recordStep(before, "vacuum");
+      return true;
+    }
+    bool operator()(const ui::Undo&) {
+      if (s.engine_.inStroke()) return *error = "undo: a stroke is being painted", false;
+      SceneState restored;
+      if (!s.history_.undo(&s.volume_, &restored)) return *error = "undo: nothing to undo", false;
+      s.scene_ = restored;
+      s.applyView();
+      return true;
+    }
+    bool operator()(const ui::Redo&) {
+      if (s.engine_.inStroke()) return *error = "redo: a stroke is being painted", false;
+      SceneState restored;
+      if (!s.history_.redo(&s.volume_, &restored)) return *error = "redo: nothing to redo", false;
+      s.scene_ = restored;
+      s.applyView();
+      return true;
+    }
+    bool operator()(const ui::DeleteAll&) {
+      if (s.engine_.inStroke()) return *error = "delete: a stroke is being painted", false;
+      s.volume_.fill(0.0f);
+      s.recordStep(before, "delete all");
+      return true;
+    }
+  };
+  if (!std::visit(Applier{*this, error, before}, change)) return false;
+  const UiRecordText record = formatUiChange(change);
+  journalText(record.type, t_ns, record.text);
+  return true;
+}
+
+bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outcome,
+                               std::string* error) {
+  switch (record.type) {
+    case JournalRecordType::kPenSample: {
+      const std::optional<PenSample> sample = decodePenSample(record.payload);
+      if (!sample) {
+        *error =
+            "pen sample record of " + std::to_string(record.payload.size()) + " bytes (wrong size)";
+        return false;
+      }
+      const SampleOutcome result = feed(*sample);
+      if (outcome) *outcome = result;
+      return true;
+    }
+    case JournalRecordType::kDevice: {
+      const std::optional<PenDeviceInfo> device = decodeDeviceInfo(record.payload);
+      if (!device) {
+        *error =
+            "device record of " + std::to_string(record.payload.size()) + " bytes (wrong size)";
+        return false;
+      }
+      setDevice(*device, record.t_ns);
+      return true;
+    }
+    case JournalRecordType::kCalibration: {
+      ProfileParseResult parsed = parseCalibrationProfile(record.text(), "calibration record");
+      if (!parsed.profile) {
+        *error = parsed.errors.empty() ? "calibration record does not parse" : parsed.errors[0];
+        return false;
+      }
+      setCalibration(*parsed.profile, record.t_ns);
+      return true;
+    }
+    case JournalRecordType::kSession: {
+      PaintSessionSettings recorded;
+      if (!parseSessionSettings(record.text(), &recorded, error)) return false;
+      if (recorded.screen_width != settings_.screen_width ||
+          recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
+          recorded.format != settings_.format) {
+        *error = "session record (" + formatSessionSettings(recorded) +
+                 ") differs from this session's settings";
+        return false;
+      }
+      journalText(JournalRecordType::kSession, record.t_ns, std::string(record.text()));
+      return true;
+    }
+    case JournalRecordType::kUi:
+    case JournalRecordType::kMode: {
+      if (record.type == JournalRecordType::kMode && settings_.format < 2) {
+        journalText(record.type, record.t_ns, std::string(record.text()));
+        return true;  // format 1 wrote "paint" once, for information
+      }
+      UiChange change;
+      if (!parseUiChange(record.type, record.text(), &change, error)) return false;
+      return apply(change, record.t_ns, error);
+    }
+    case JournalRecordType::kMarker:
+      journalText(record.type, record.t_ns, std::string(record.text()));
+      return true;
+  }
+  return true;  // a type this version does not know: skipped, as the reader does
+}
+
+}  // namespace cb

@@ -1,0 +1,190 @@
+#include "app/session/ui_change.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace cb {
+namespace {
+
+constexpr const char* kModeNames[] = {"camera", "canvas", "paint", "erase", "light"};
+
+std::string formatFloats(const float* values, size_t n) {
+  std::string out;
+  char buffer[32];
+  for (size_t i = 0; i < n; ++i) {
+    std::snprintf(buffer, sizeof buffer, "%s%.9g", i ? "," : "", double(values[i]));
+    out += buffer;
+  }
+  return out;
+}
+
+// Exactly `n` comma-separated finite floats.
+bool parseFloats(std::string_view text, size_t n, float* out) {
+  std::vector<float> values;
+  std::string rest(text);
+  size_t start = 0;
+  while (true) {
+    const size_t comma = rest.find(',', start);
+    const std::string field =
+        rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const float v = std::strtof(field.c_str(), &end);
+    if (field.empty() || *end != '\0' || !std::isfinite(v)) return false;
+    values.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (values.size() != n) return false;
+  for (size_t i = 0; i < n; ++i) out[i] = values[i];
+  return true;
+}
+
+}  // namespace
+
+const char* modeName(Mode mode) {
+  return kModeNames[int(mode)];
+}
+
+bool parseMode(std::string_view text, Mode* out) {
+  for (int i = 0; i < 5; ++i)
+    if (text == kModeNames[i]) {
+      *out = Mode(i);
+      return true;
+    }
+  return false;
+}
+
+const char* eraseToolName(EraseTool tool) {
+  return tool == EraseTool::kVacuum ? "vacuum" : "rub-out";
+}
+
+UiRecordText formatUiChange(const UiChange& change) {
+  struct Formatter {
+    UiRecordText operator()(const ui::SetMode& c) const {
+      return {JournalRecordType::kMode, modeName(c.mode)};
+    }
+    UiRecordText operator()(const ui::SetCamera& c) const {
+      const float v[7] = {c.camera.eye.x,    c.camera.eye.y,    c.camera.eye.z,
+                          c.camera.target.x, c.camera.target.y, c.camera.target.z,
+                          c.camera.fov_y_deg};
+      return {JournalRecordType::kUi, "camera=" + formatFloats(v, 7)};
+    }
+    UiRecordText operator()(const ui::SetBrush& c) const {
+      return {JournalRecordType::kUi, std::string("brush=") + brushKindName(c.brush)};
+    }
+    UiRecordText operator()(const ui::SetMapping& c) const {
+      return {JournalRecordType::kUi, std::string("method=") + toString(c.method)};
+    }
+    UiRecordText operator()(const ui::SetCanvas& c) const {
+      const float v[2] = {c.altitude, c.thickness};
+      return {JournalRecordType::kUi, "canvas=" + formatFloats(v, 2)};
+    }
+    UiRecordText operator()(const ui::SetLight& c) const {
+      const float v[6] = {c.direction.x, c.direction.y, c.direction.z,
+                          c.colour.r,    c.colour.g,    c.colour.b};
+      return {JournalRecordType::kUi, "light=" + formatFloats(v, 6)};
+    }
+    UiRecordText operator()(const ui::SetEraseTool& c) const {
+      return {JournalRecordType::kUi, std::string("erase_tool=") + eraseToolName(c.tool)};
+    }
+    UiRecordText operator()(const ui::SetEraseDiameter& c) const {
+      return {JournalRecordType::kUi,
+              std::string(c.tool == EraseTool::kVacuum ? "vacuum_diameter=" : "rubout_diameter=") +
+                  formatFloats(&c.diameter, 1)};
+    }
+    UiRecordText operator()(const ui::VacuumCut& c) const {
+      const float v[4] = {c.centre.x, c.centre.y, c.centre.z, c.radius};
+      return {JournalRecordType::kUi, "vacuum_cut=" + formatFloats(v, 4)};
+    }
+    UiRecordText operator()(const ui::Undo&) const { return {JournalRecordType::kUi, "undo"}; }
+    UiRecordText operator()(const ui::Redo&) const { return {JournalRecordType::kUi, "redo"}; }
+    UiRecordText operator()(const ui::DeleteAll&) const {
+      return {JournalRecordType::kUi, "delete_all"};
+    }
+  };
+  return std::visit(Formatter{}, change);
+}
+
+bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
+                   std::string* error) {
+  if (type == JournalRecordType::kMode) {
+    Mode mode;
+    if (!parseMode(text, &mode)) {
+      *error = "mode record: expected camera, canvas, paint, erase or light, got '" +
+               std::string(text) + "'";
+      return false;
+    }
+    *out = ui::SetMode{mode};
+    return true;
+  }
+  if (type != JournalRecordType::kUi) {
+    *error = "not a UI or mode record";
+    return false;
+  }
+  if (text == "undo") return *out = ui::Undo{}, true;
+  if (text == "redo") return *out = ui::Redo{}, true;
+  if (text == "delete_all") return *out = ui::DeleteAll{}, true;
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos) {
+    *error = "UI change '" + std::string(text) + "': expected key=value, undo, redo or delete_all";
+    return false;
+  }
+  const std::string key(text.substr(0, eq));
+  const std::string value(text.substr(eq + 1));
+  const auto bad = [&](const char* expected) {
+    *error = "UI change " + key + ": expected " + expected + ", got '" + value + "'";
+    return false;
+  };
+  float v[7];
+  if (key == "camera") {
+    if (!parseFloats(value, 7, v) || v[6] <= 0.0f || v[6] >= 180.0f)
+      return bad("EX,EY,EZ,TX,TY,TZ,FOV (fov in (0, 180) degrees)");
+    Camera camera = Camera::reference();
+    camera.eye = {v[0], v[1], v[2]};
+    camera.target = {v[3], v[4], v[5]};
+    camera.fov_y_deg = v[6];
+    if (glm::length(camera.eye - camera.target) <= 0.0f) return bad("an eye apart from the target");
+    *out = ui::SetCamera{camera};
+  } else if (key == "camera_orbit") {
+    if (!parseFloats(value, 1, v)) return bad("degrees");
+    *out = ui::SetCamera{Camera::reference().orbited(v[0])};
+  } else if (key == "brush") {
+    BrushKind kind;
+    if (!parseBrushKind(value, &kind)) return bad("2d, 3d or skeleton");
+    *out = ui::SetBrush{kind};
+  } else if (key == "method") {
+    MappingMethod method;
+    if (!parseMappingMethod(value, &method)) return bad("hybrid or ray-marching");
+    *out = ui::SetMapping{method};
+  } else if (key == "canvas") {
+    if (!parseFloats(value, 2, v) || v[1] <= 0.0f) return bad("ALTITUDE,THICKNESS (thickness > 0)");
+    *out = ui::SetCanvas{v[0], v[1]};
+  } else if (key == "light") {
+    if (!parseFloats(value, 6, v) || glm::length(glm::vec3(v[0], v[1], v[2])) <= 0.0f ||
+        v[3] < 0.0f || v[4] < 0.0f || v[5] < 0.0f)
+      return bad("DX,DY,DZ,R,G,B (a non-zero direction, colours >= 0)");
+    *out = ui::SetLight{glm::vec3(v[0], v[1], v[2]), glm::vec3(v[3], v[4], v[5])};
+  } else if (key == "erase_tool") {
+    if (value == "vacuum")
+      *out = ui::SetEraseTool{EraseTool::kVacuum};
+    else if (value == "rub-out")
+      *out = ui::SetEraseTool{EraseTool::kRubOut};
+    else
+      return bad("vacuum or rub-out");
+  } else if (key == "vacuum_diameter" || key == "rubout_diameter") {
+    if (!parseFloats(value, 1, v) || v[0] <= 0.0f) return bad("a diameter > 0");
+    *out = ui::SetEraseDiameter{key == "vacuum_diameter" ? EraseTool::kVacuum : EraseTool::kRubOut,
+                                v[0]};
+  } else if (key == "vacuum_cut") {
+    if (!parseFloats(value, 4, v) || v[3] <= 0.0f) return bad("X,Y,Z,RADIUS (radius > 0)");
+    *out = ui::VacuumCut{glm::vec3(v[0], v[1], v[2]), v[3]};
+  } else {
+    *error = "UI change '" + std::string(text) + "': unknown key '" + key + "'";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cb

@@ -1,0 +1,91 @@
+// Typed UI changes: everything a person does to the session besides drawing with the pen (thesis
+// Appendix A: modes, camera, canvas, light, brush, mapping, erase, undo/redo, delete). The shell
+// produces them from keys, the pen and the menu; PaintSession applies them; the journal keeps
+// them. This file is the one place that formats and parses them for the journal:
+//
+//   record  text                                  change
+//   Mode    camera|canvas|paint|erase|light       SetMode
+//   Ui      camera=EX,EY,EZ,TX,TY,TZ,FOV           SetCamera (eye, target, vertical fov degrees)
+//   Ui      camera_orbit=DEG                      SetCamera: Camera::reference() orbited (format 1)
+//   Ui      brush=2d|3d|skeleton                  SetBrush
+//   Ui      method=hybrid|ray-marching            SetMapping
+//   Ui      canvas=ALTITUDE,THICKNESS             SetCanvas (world units)
+//   Ui      light=DX,DY,DZ,R,G,B                  SetLight (direction towards the sun, colour)
+//   Ui      erase_tool=vacuum|rub-out             SetEraseTool
+//   Ui      vacuum_diameter=D | rubout_diameter=D SetEraseDiameter (world units)
+//   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
+//   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
+//
+// Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include <glm/glm.hpp>
+
+#include "app/brush/brush_config.h"
+#include "app/mapping/mapping_config.h"
+#include "app/scene/camera.h"
+#include "drivers/core/journal.h"
+
+namespace cb {
+
+// The five modes of thesis §3.4–3.5 / Appendix A (keys 1–5).
+enum class Mode { kCamera, kCanvas, kPaint, kErase, kLight };
+const char* modeName(Mode mode);  // "camera", "canvas", ...
+bool parseMode(std::string_view text, Mode* out);
+
+enum class EraseTool { kVacuum, kRubOut };  // thesis §3.5.1, §3.5.2
+const char* eraseToolName(EraseTool tool);  // "vacuum", "rub-out"
+
+namespace ui {
+struct SetMode {
+  Mode mode;
+};
+struct SetCamera {
+  Camera camera;
+};
+struct SetBrush {
+  BrushKind brush;
+};
+struct SetMapping {
+  MappingMethod method;
+};
+struct SetCanvas {
+  float altitude, thickness;
+};
+struct SetLight {
+  glm::vec3 direction, colour;
+};
+struct SetEraseTool {
+  EraseTool tool;
+};
+struct SetEraseDiameter {
+  EraseTool tool;
+  float diameter;
+};
+struct VacuumCut {
+  glm::vec3 centre;
+  float radius;
+};
+struct Undo {};
+struct Redo {};
+struct DeleteAll {};
+}  // namespace ui
+
+using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
+                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
+                              ui::VacuumCut, ui::Undo, ui::Redo, ui::DeleteAll>;
+
+struct UiRecordText {
+  JournalRecordType type;  // kMode or kUi
+  std::string text;
+};
+UiRecordText formatUiChange(const UiChange& change);
+// False with *error naming the key and what was expected.
+bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
+                   std::string* error);
+
+}  // namespace cb

@@ -1,0 +1,45 @@
+// What a person can ask the painter to do, whatever the input: a key (keymap.h), a pen side
+// button, a tap on the pen menu or a scripted run. Screens act on commands, never on key codes.
+// The list follows thesis Appendix A and issue 9's key table.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace cb {
+
+enum class Command {
+  kQuit,
+  kModeCamera,       // 1
+  kModeCanvas,       // 2
+  kModePaint,        // 3
+  kModeErase,        // 4
+  kModeLight,        // 5
+  kMenu,             // M, the pen's upper side button
+  kNextBrush,        // B
+  kNextMapping,      // N, and the menu (hybrid <-> ray-marching)
+  kResetCamera,      // R
+  kViewTop,          // Up
+  kViewFront,        // Down
+  kViewLeft,         // Left
+  kViewPerspective,  // Right
+  kSpace,            // Vacuum cut in Erase mode; pause the auto-rotation elsewhere
+  kSmaller,          // − : vacuum / rub-out diameter, canvas thickness in Canvas mode
+  kLarger,           // +
+  kRaise,            // PageUp: canvas altitude up (Canvas mode)
+  kLower,            // PageDown
+  kNextEraseTool,    // V: vacuum <-> rub-out
+  kToggleCircles,    // C
+  kToggleStats,      // S
+  kDeleteAll,        // Delete
+  kUndo,             // Ctrl+Z
+  kRedo,             // Ctrl+Y (and Ctrl+Shift+Z)
+  kSave,             // Ctrl+S
+  kCount
+};
+
+// "mode-camera", "undo", ... (for logs, the menu and tests).
+const char* commandName(Command command);
+std::optional<Command> parseCommandName(std::string_view name);
+
+}  // namespace cb

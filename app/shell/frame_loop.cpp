@@ -1,0 +1,91 @@
+#include "app/shell/frame_loop.h"
+
+#include <chrono>
+#include <thread>
+
+#include "app/shell/keymap.h"
+#include "drivers/core/pen_source.h"
+
+namespace cb {
+namespace {
+
+int64_t monotonicNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopResult* result,
+                    std::string* error) {
+  *result = FrameLoopResult{};
+  const int64_t start = monotonicNs();
+  int64_t last_present = start;
+  std::vector<DisplayEvent> pending = options.initial_keys;
+  std::vector<PenSample> samples;
+  while (true) {
+    std::string quit;
+    for (const DisplayEvent& event : display_.pollEvents()) pending.push_back(event);
+    for (const DisplayEvent& event : pending) {
+      if (!quit.empty()) break;
+      switch (event.kind) {
+        case DisplayEvent::Kind::Quit:
+          quit = "window closed";
+          break;
+        case DisplayEvent::Kind::KeyDown: {
+          const std::optional<Command> command = commandForKey(event.keysym, event.modifiers);
+          if (!command) break;
+          result->commands.push_back(commandName(*command));
+          if (*command == Command::kQuit && screen.allowsQuit())
+            quit = event.keysym == 'q' || event.keysym == 'Q' ? "q" : "Esc";
+          else
+            screen.onCommand(*command, monotonicNs());
+          break;
+        }
+        case DisplayEvent::Kind::Resize:
+          screen.onResize(event.width, event.height);
+          break;
+        default:
+          screen.onPointer(event);
+          break;
+      }
+    }
+    pending.clear();
+    if (quit.empty() && options.stop && options.stop->load()) quit = "signal";
+    if (quit.empty() && options.max_frames > 0 && result->frames >= options.max_frames)
+      quit = "frame limit";
+    const int64_t now = monotonicNs();
+    FrameContext frame{display_,
+                       display_.width(),
+                       display_.height(),
+                       result->frames,
+                       now,
+                       double(now - last_present) / 1e9};
+    if (quit.empty() && pen_) {
+      samples.clear();
+      pen_->poll(0, samples);
+      screen.onPenSamples(samples);
+    }
+    if (quit.empty()) quit = screen.update(frame);
+    if (!quit.empty()) {
+      result->quit_reason = quit;
+      break;
+    }
+    if (!screen.needsFrame()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      continue;
+    }
+    if (!screen.draw(frame, error)) return false;
+    if (options.after_draw) options.after_draw(frame);
+    if (!display_.present(error)) return false;
+    const int64_t presented = monotonicNs();
+    screen.presented(frame, double(presented - last_present) / 1e6);
+    last_present = presented;
+    ++result->frames;
+  }
+  result->seconds = double(monotonicNs() - start) / 1e9;
+  return true;
+}
+
+}  // namespace cb

@@ -1,0 +1,44 @@
+// The shell's one frame loop: display events → keymap → commands for the active screen, pen
+// samples → the screen, the screen's frame → present, frame timing. Every interactive command
+// runs its screens through this loop.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "app/render/gl/display.h"
+#include "app/shell/screen.h"
+
+namespace cb {
+
+class PenSource;
+
+struct FrameLoopOptions {
+  long max_frames = 0;                      // stop after this many presented frames (0: no limit)
+  std::vector<DisplayEvent> initial_keys;   // pressed before the first frame (scripted runs)
+  const std::atomic<bool>* stop = nullptr;  // set by signal handlers
+  std::function<void(const FrameContext&)> after_draw;  // tests: after drawing, before present
+};
+
+struct FrameLoopResult {
+  long frames = 0;
+  double seconds = 0.0;
+  std::string quit_reason;  // "Esc", "q", "window closed", "frame limit", "signal", or the screen's
+  std::vector<std::string> commands;  // every command routed, by name, in order (tests, logs)
+};
+
+class FrameLoop {
+ public:
+  FrameLoop(Display& display, PenSource* pen) : display_(display), pen_(pen) {}
+  // Runs `screen` until a quit; false with *error when drawing or presenting fails.
+  bool run(Screen& screen, const FrameLoopOptions& options, FrameLoopResult* result,
+           std::string* error);
+
+ private:
+  Display& display_;
+  PenSource* pen_;
+};
+
+}  // namespace cb

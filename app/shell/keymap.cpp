@@ -1,0 +1,234 @@
+#include "app/shell/keymap.h"
+
+#include <cctype>
+
+#include <xkbcommon/xkbcommon-keysyms.h>
+
+namespace cb {
+namespace {
+
+constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
+                                         "mode-canvas",    "mode-paint",
+                                         "mode-erase",     "mode-light",
+                                         "menu",           "next-brush",
+                                         "next-mapping",   "reset-camera",
+                                         "view-top",       "view-front",
+                                         "view-left",      "view-perspective",
+                                         "space",          "smaller",
+                                         "larger",         "raise",
+                                         "lower",          "next-erase-tool",
+                                         "toggle-circles", "toggle-stats",
+                                         "delete-all",     "undo",
+                                         "redo",           "save"};
+static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
+
+uint32_t lowerLetter(uint32_t keysym) {
+  return keysym >= 'A' && keysym <= 'Z' ? keysym - 'A' + 'a' : keysym;
+}
+
+struct NamedKey {
+  const char* name;
+  uint32_t keysym;
+};
+constexpr NamedKey kNamedKeys[] = {
+    {"space", XKB_KEY_space},  {"esc", XKB_KEY_Escape},    {"delete", XKB_KEY_Delete},
+    {"up", XKB_KEY_Up},        {"down", XKB_KEY_Down},     {"left", XKB_KEY_Left},
+    {"right", XKB_KEY_Right},  {"minus", XKB_KEY_minus},   {"plus", XKB_KEY_plus},
+    {"pageup", XKB_KEY_Prior}, {"pagedown", XKB_KEY_Next},
+};
+
+}  // namespace
+
+const char* commandName(Command command) {
+  return kCommandNames[int(command)];
+}
+
+std::optional<Command> parseCommandName(std::string_view name) {
+  for (int i = 0; i < int(Command::kCount); ++i)
+    if (name == kCommandNames[i]) return Command(i);
+  return std::nullopt;
+}
+
+std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
+  const uint32_t k = lowerLetter(keysym);
+  const bool ctrl = modifiers & DisplayEvent::kCtrl;
+  const bool shift = modifiers & DisplayEvent::kShift;
+  if (ctrl) {
+    if (k == 'z') return shift ? Command::kRedo : Command::kUndo;
+    if (k == 'y') return Command::kRedo;
+    if (k == 's') return Command::kSave;
+    return std::nullopt;  // Ctrl+anything else: nothing (no accidental commands)
+  }
+  switch (k) {
+    case XKB_KEY_Escape:
+      return Command::kQuit;
+    case 'q':
+      return Command::kQuit;
+    case '1':
+      return Command::kModeCamera;
+    case '2':
+      return Command::kModeCanvas;
+    case '3':
+      return Command::kModePaint;
+    case '4':
+      return Command::kModeErase;
+    case '5':
+      return Command::kModeLight;
+    case 'm':
+      return Command::kMenu;
+    case 'b':
+      return Command::kNextBrush;
+    case 'n':
+      return Command::kNextMapping;
+    case 'r':
+      return Command::kResetCamera;
+    case 'v':
+      return Command::kNextEraseTool;
+    case 'c':
+      return Command::kToggleCircles;
+    case 's':
+      return Command::kToggleStats;
+    case XKB_KEY_Up:
+      return Command::kViewTop;
+    case XKB_KEY_Down:
+      return Command::kViewFront;
+    case XKB_KEY_Left:
+      return Command::kViewLeft;
+    case XKB_KEY_Right:
+      return Command::kViewPerspective;
+    case XKB_KEY_space:
+      return Command::kSpace;
+    case XKB_KEY_minus:
+    case XKB_KEY_KP_Subtract:
+    case XKB_KEY_underscore:
+      return Command::kSmaller;
+    case XKB_KEY_plus:
+    case XKB_KEY_equal:
+    case XKB_KEY_KP_Add:
+      return Command::kLarger;
+    case XKB_KEY_Prior:
+      return Command::kRaise;
+    case XKB_KEY_Next:
+      return Command::kLower;
+    case XKB_KEY_Delete:
+      return Command::kDeleteAll;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::optional<Command> commandFor(const DisplayEvent& event) {
+  if (event.kind == DisplayEvent::Kind::Quit) return Command::kQuit;
+  if (event.kind != DisplayEvent::Kind::KeyDown) return std::nullopt;
+  return commandForKey(event.keysym, event.modifiers);
+}
+
+bool parseKeyList(std::string_view text, std::vector<DisplayEvent>* keys, std::string* error) {
+  std::vector<std::string> tokens;
+  bool compact = text.find(',') == std::string_view::npos;
+  for (char c : text) compact = compact && std::isalnum(static_cast<unsigned char>(c));
+  if (compact) {
+    for (char c : text) tokens.emplace_back(1, c);
+  } else {
+    size_t start = 0;
+    while (start <= text.size()) {
+      const size_t comma = text.find(',', start);
+      tokens.emplace_back(
+          text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+  }
+  for (std::string token : tokens) {
+    for (char& c : token) c = char(std::tolower(static_cast<unsigned char>(c)));
+    uint32_t modifiers = 0;
+    const auto strip = [&](const char* prefix, uint32_t bit) {
+      const std::string p(prefix);
+      if (token.rfind(p, 0) == 0 && token.size() > p.size()) {
+        token = token.substr(p.size());
+        modifiers |= bit;
+        return true;
+      }
+      return false;
+    };
+    while (strip("ctrl+", DisplayEvent::kCtrl) || strip("shift+", DisplayEvent::kShift) ||
+           strip("alt+", DisplayEvent::kAlt)) {
+    }
+    uint32_t keysym = 0;
+    if (token.size() == 1 && std::isalnum(static_cast<unsigned char>(token[0]))) {
+      keysym = uint32_t(token[0]);
+    } else {
+      for (const NamedKey& named : kNamedKeys)
+        if (token == named.name) keysym = named.keysym;
+    }
+    if (keysym == 0) {
+      *error = "key '" + token +
+               "' is not a letter, digit or one of space, esc, delete, up, down, left, right, "
+               "minus, plus, pageup, pagedown";
+      return false;
+    }
+    keys->push_back(DisplayEvent::key(keysym, modifiers));
+  }
+  return true;
+}
+
+std::string keyLabel(Command command) {
+  switch (command) {
+    case Command::kQuit:
+      return "Esc";
+    case Command::kModeCamera:
+      return "1";
+    case Command::kModeCanvas:
+      return "2";
+    case Command::kModePaint:
+      return "3";
+    case Command::kModeErase:
+      return "4";
+    case Command::kModeLight:
+      return "5";
+    case Command::kMenu:
+      return "M";
+    case Command::kNextBrush:
+      return "B";
+    case Command::kNextMapping:
+      return "N";
+    case Command::kResetCamera:
+      return "R";
+    case Command::kViewTop:
+      return "Up";
+    case Command::kViewFront:
+      return "Down";
+    case Command::kViewLeft:
+      return "Left";
+    case Command::kViewPerspective:
+      return "Right";
+    case Command::kSpace:
+      return "Space";
+    case Command::kSmaller:
+      return "-";
+    case Command::kLarger:
+      return "+";
+    case Command::kRaise:
+      return "PgUp";
+    case Command::kLower:
+      return "PgDn";
+    case Command::kNextEraseTool:
+      return "V";
+    case Command::kToggleCircles:
+      return "C";
+    case Command::kToggleStats:
+      return "S";
+    case Command::kDeleteAll:
+      return "Del";
+    case Command::kUndo:
+      return "Ctrl+Z";
+    case Command::kRedo:
+      return "Ctrl+Y";
+    case Command::kSave:
+      return "Ctrl+S";
+    default:
+      return "";
+  }
+}
+
+}  // namespace cb

@@ -1,0 +1,662 @@
+#include "app/shell/paint_screen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "app/shell/hud_items.h"
+#include "app/shell/keymap.h"
+#include "app/volume/volume_file.h"
+#include "calibration/profile_store.h"
+#include "drivers/core/pen_source.h"
+
+namespace cb {
+namespace {
+
+int64_t monotonicNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double msSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+double medianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fov_y_deg == b.fov_y_deg;
+}
+
+// The camera turned about its target: `yaw` about the world up axis, `pitch` towards the pole,
+// kept between 2° and 89.5° above or below the horizon so the view never flips.
+Camera orbitCamera(const Camera& base, float yaw_deg, float pitch_deg) {
+  Camera c = base.orbited(yaw_deg);
+  glm::vec3 offset = c.eye - c.target;
+  const float distance = glm::length(offset);
+  const float elevation = std::asin(std::clamp(offset.y / distance, -1.0f, 1.0f));
+  const float next =
+      std::clamp(elevation + glm::radians(pitch_deg), glm::radians(-89.5f), glm::radians(89.5f));
+  const glm::vec2 horizontal = glm::normalize(glm::vec2(offset.x, offset.z) + glm::vec2(1e-6f));
+  offset = distance *
+           glm::vec3(std::cos(next) * horizontal.x, std::sin(next), std::cos(next) * horizontal.y);
+  c.eye = c.target + offset;
+  return c;
+}
+
+// The light ball: where the pen's ray meets a sphere of radius 1.5 about the scene origin (the
+// nearest point of the ray when it misses); its direction from the origin is the sun's.
+glm::vec3 lightDirectionAt(const Camera& camera, float x, float y, int w, int h) {
+  glm::vec3 origin, dir;
+  camera.pixelRay(x, y, w, h, &origin, &dir);
+  const float radius = 1.5f;
+  const float b = glm::dot(origin, dir);
+  const float c = glm::dot(origin, origin) - radius * radius;
+  const float disc = b * b - c;
+  glm::vec3 p = disc >= 0.0f ? origin + (-b - std::sqrt(disc)) * dir : origin - b * dir;
+  if (glm::length(p) < 1e-4f) p = glm::vec3(0.0f, 1.0f, 0.0f);
+  return glm::normalize(p);
+}
+
+glm::vec2 project(const Camera& camera, glm::vec3 p, int w, int h) {
+  const glm::vec4 clip = camera.projection(float(w) / float(h)) * camera.view() * glm::vec4(p, 1);
+  if (clip.w <= 1e-6f) return glm::vec2(-1e6f);
+  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+  return {(ndc.x * 0.5f + 0.5f) * float(w), (0.5f - ndc.y * 0.5f) * float(h)};
+}
+
+}  // namespace
+
+bool PaintScreen::SceneKey::operator==(const SceneKey& o) const {
+  return volume == o.volume && generation == o.generation && sameCamera(camera, o.camera) &&
+         light.direction == o.light.direction && light.colour == o.light.colour &&
+         light.extinction == o.light.extinction && stats == o.stats;
+}
+
+PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volume& volume,
+                         const Light& light, const PaintLoopOptions& options)
+    : display_(display),
+      renderer_(renderer),
+      volume_(volume),
+      light_(light),
+      options_(options),
+      orbiting_(options.orbit_degrees_per_second != 0.0f),
+      moving_scale_(std::clamp(options.moving_scale, options.min_moving_scale, 1.0f)),
+      show_stats_(options.show_stats_overlay),
+      show_circles_(options.show_circles_overlay) {}
+
+PaintScreen::~PaintScreen() = default;
+
+void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
+  pen_ = pen;
+  session_ = session;
+}
+
+const Volume& PaintScreen::shownVolume() const {
+  return pen_connected_once_ ? session_->volume() : volume_;
+}
+
+Light PaintScreen::shownLight() const {
+  if (drag_light_) return *drag_light_;
+  return pen_connected_once_ ? session_->light() : light_;
+}
+
+Camera PaintScreen::shownCamera() const {
+  if (drag_camera_) return *drag_camera_;
+  const Camera base = session_ ? session_->camera() : Camera::reference();
+  return orbit_degrees_ != 0.0f ? base.orbited(orbit_degrees_) : base;
+}
+
+PaintScreen::SceneKey PaintScreen::currentKey() const {
+  const Volume& v = shownVolume();
+  return SceneKey{v.instanceId(), v.generation(), shownCamera(), shownLight(), show_stats_};
+}
+
+void PaintScreen::say(const std::string& message) {
+  if (message == last_message_) return;
+  last_message_ = message;
+  std::fprintf(stderr, "cloudbrush: %s\n", message.c_str());
+}
+
+void PaintScreen::apply(const UiChange& change, int64_t t_ns) {
+  if (!session_) {
+    say("no pen session: " + formatUiChange(change).text + " has nothing to change");
+    return;
+  }
+  std::string error;
+  if (!session_->apply(change, t_ns, &error))
+    say(error);
+  else
+    say(formatUiChange(change).text);
+}
+
+void PaintScreen::selectCalibration(uint64_t tool_serial) {
+  const PenDeviceInfo& device = pen_->deviceInfo();
+  session_->setDevice(device, monotonicNowNs());
+  ProfileSelection selection =
+      selectProfile(device, tool_serial, options_.config_dir, options_.state_dir);
+  for (const std::string& message : selection.messages)
+    std::fprintf(stderr, "cloudbrush: calibration: %s\n", message.c_str());
+  std::fprintf(stderr, "cloudbrush: calibration from %s\n", selection.source.c_str());
+  session_->setCalibration(selection.profile, monotonicNowNs());
+}
+
+void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
+  if (!pen_ || !session_) return;
+  const int connection = int(pen_->connection());
+  if (connection != last_connection_) {
+    last_connection_ = connection;
+    const std::string status = pen_->statusMessage();
+    std::fprintf(stderr, "cloudbrush: pen %s (%s)%s%s\n", penConnectionName(pen_->connection()),
+                 pen_->backendName(), status.empty() ? "" : ": ", status.c_str());
+    if (pen_->connection() == PenConnection::kConnected) {
+      if (!pen_connected_once_) {
+        pen_connected_once_ = true;  // from now on the session's volume is shown and painted
+        refined_ = false;
+        if (options_.on_first_connection) options_.on_first_connection();
+      }
+      selectCalibration(tool_serial_);
+    }
+  }
+  for (const PenSample& sample : samples) {
+    if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
+      tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
+      selectCalibration(tool_serial_);
+    }
+    if (sample.in_proximity && orbiting_) {
+      // Painting needs a still camera (§3.3): the auto-rotation stops where it is, and that
+      // view becomes the session's camera.
+      orbiting_ = false;
+      refined_ = false;
+      if (orbit_degrees_ != 0.0f) {
+        const Camera here = shownCamera();
+        orbit_degrees_ = 0.0f;
+        apply(ui::SetCamera{here}, sample.t_ns);
+      }
+    }
+    const auto received = std::chrono::steady_clock::now();
+    const SampleOutcome outcome = session_->feed(sample);
+    ++pen_samples_;
+    if (outcome.stroke_began)
+      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+    if (!outcome.changed.empty())
+      texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
+    if (outcome.stroke_mapped) {
+      ++strokes_seen_;
+      lift_time_ = received;
+      lift_mapping_ms_ = outcome.mapping.timings.total_ms;
+      lit_pending_ = true;
+      // The cloud replaces the ink: the footprint is cleared as the lit scene is drawn.
+      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+    }
+    cursor_.screen_px =
+        glm::vec2(float(outcome.mapped.preview_x_px), float(outcome.mapped.preview_y_px));
+    cursor_.visible = outcome.mapped.in_proximity;
+    events_.clear();
+    pen_events_.derive(outcome.mapped, &events_);
+    for (const PenEvent& event : events_) handleEvent(event, outcome.mapped);
+  }
+}
+
+void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped) {
+  const Mode mode = session_->mode();
+  const int w = display_.width(), h = display_.height();
+  switch (event.kind) {
+    case PenEvent::Kind::kButtonDown:
+      side_buttons_ |= event.button;
+      if (event.button == kPenStylus2) onCommand(Command::kMenu, event.t_ns);  // Appendix A 26
+      return;
+    case PenEvent::Kind::kButtonUp:
+      side_buttons_ &= ~event.button;
+      return;
+    case PenEvent::Kind::kProximityOut:
+      vacuum_centre_.reset();
+      return;
+    case PenEvent::Kind::kDown:
+      drag_start_ = {event.x, event.y};
+      if (mode == Mode::kCamera) drag_camera_ = session_->camera();
+      if (mode == Mode::kCanvas) drag_canvas_ = session_->canvas();
+      if (mode == Mode::kLight) drag_light_ = session_->light();
+      [[fallthrough]];
+    case PenEvent::Kind::kDrag: {
+      const glm::vec2 delta = glm::vec2(event.x, event.y) - drag_start_;
+      if (mode == Mode::kCamera && drag_camera_) {
+        if (side_buttons_ & kPenStylus1) {
+          // Zoom: dragging up moves the eye closer, exponentially in the distance.
+          Camera c = session_->camera();
+          c.eye = c.target + (c.eye - c.target) * std::exp(delta.y / float(h));
+          drag_camera_ = c;
+        } else {
+          // Orbit: a full screen width turns 180°, a full height 90°.
+          drag_camera_ =
+              orbitCamera(session_->camera(), -180.0f * delta.x / float(w), 90.0f * delta.y / h);
+        }
+      } else if (mode == Mode::kCanvas && drag_canvas_) {
+        // A full screen height moves the canvas across the whole sky box.
+        const float height = shownVolume().worldMax().y - shownVolume().worldMin().y;
+        Canvas c = session_->canvas();
+        c.altitude = std::clamp(c.altitude - delta.y / float(h) * height,
+                                shownVolume().worldMin().y, shownVolume().worldMax().y);
+        drag_canvas_ = c;
+      } else if (mode == Mode::kLight && drag_light_) {
+        drag_light_->direction = lightDirectionAt(shownCamera(), event.x, event.y, w, h);
+      }
+      return;
+    }
+    case PenEvent::Kind::kUp:
+      if (drag_camera_) apply(ui::SetCamera{*drag_camera_}, event.t_ns);
+      if (drag_canvas_)
+        apply(ui::SetCanvas{drag_canvas_->altitude, drag_canvas_->thickness}, event.t_ns);
+      if (drag_light_) apply(ui::SetLight{drag_light_->direction, drag_light_->colour}, event.t_ns);
+      drag_camera_.reset();
+      drag_canvas_.reset();
+      drag_light_.reset();
+      return;
+    case PenEvent::Kind::kHover:
+    case PenEvent::Kind::kProximityIn:
+      if (mode == Mode::kErase && session_->eraseTool() == EraseTool::kVacuum) {
+        glm::vec3 centre;
+        if (session_->vacuumCentre(mapped, &centre))
+          vacuum_centre_ = centre;
+        else
+          vacuum_centre_.reset();
+      }
+      return;
+  }
+}
+
+Camera PaintScreen::presetView(Command command) const {
+  const Camera base = session_ ? session_->camera() : Camera::reference();
+  const float distance = glm::length(base.eye - base.target);
+  Camera c = base;
+  switch (command) {
+    case Command::kViewTop:  // straight down, the screen's top towards -z
+      c.eye = c.target + distance * glm::normalize(glm::vec3(0.0f, 1.0f, 0.02f));
+      break;
+    case Command::kViewFront:
+      c.eye = c.target + distance * glm::normalize(glm::vec3(0.0f, 0.15f, 1.0f));
+      break;
+    case Command::kViewLeft:
+      c.eye = c.target + distance * glm::normalize(glm::vec3(-1.0f, 0.15f, 0.0f));
+      break;
+    default:  // perspective, reset
+      c = session_ ? initialPaintCamera(session_->settings()) : Camera::reference();
+      break;
+  }
+  return c;
+}
+
+void PaintScreen::onCommand(Command command, int64_t t_ns) {
+  const bool erase = session_ && session_->mode() == Mode::kErase;
+  switch (command) {
+    case Command::kQuit:
+      break;
+    case Command::kModeCamera:
+    case Command::kModeCanvas:
+    case Command::kModePaint:
+    case Command::kModeErase:
+    case Command::kModeLight:
+      apply(ui::SetMode{Mode(int(command) - int(Command::kModeCamera))}, t_ns);
+      vacuum_centre_.reset();
+      break;
+    case Command::kMenu:
+      menu_open_ = !menu_open_;
+      say(menu_open_ ? "menu open" : "menu closed");
+      break;
+    case Command::kNextBrush: {
+      if (!session_) return say("B: no pen session, the brush is not used");
+      const BrushKind order[3] = {BrushKind::k2D, BrushKind::k3D, BrushKind::kSkeleton};
+      int next = 0;
+      for (int i = 0; i < 3; ++i)
+        if (order[i] == session_->selectedBrush()) next = (i + 1) % 3;
+      apply(ui::SetBrush{order[next]}, t_ns);
+      break;
+    }
+    case Command::kNextMapping:
+      if (!session_) return say("no pen session, no mapping");
+      apply(ui::SetMapping{session_->mappingMethod() == MappingMethod::kHybrid
+                               ? MappingMethod::kRayMarching
+                               : MappingMethod::kHybrid},
+            t_ns);
+      break;
+    case Command::kResetCamera:
+    case Command::kViewTop:
+    case Command::kViewFront:
+    case Command::kViewLeft:
+    case Command::kViewPerspective:
+      orbit_degrees_ = 0.0f;
+      apply(ui::SetCamera{presetView(command)}, t_ns);
+      break;
+    case Command::kSpace:
+      if (erase && session_->eraseTool() == EraseTool::kVacuum) {
+        if (!vacuum_centre_)
+          return say("vacuum: bring the pen over the canvas to place the sphere");
+        apply(ui::VacuumCut{*vacuum_centre_, 0.5f * session_->eraseDiameter(EraseTool::kVacuum)},
+              t_ns);
+      } else {
+        orbiting_ = !orbiting_;
+        refined_ = false;
+        if (!orbiting_ && orbit_degrees_ != 0.0f && session_) {
+          const Camera here = shownCamera();
+          orbit_degrees_ = 0.0f;
+          apply(ui::SetCamera{here}, t_ns);
+        }
+        say(orbiting_ ? "auto-rotation on" : "auto-rotation paused");
+      }
+      break;
+    case Command::kSmaller:
+    case Command::kLarger: {
+      if (!session_) return;
+      const float factor = command == Command::kLarger ? 1.25f : 0.8f;
+      if (erase) {
+        const EraseTool tool = session_->eraseTool();
+        apply(ui::SetEraseDiameter{tool,
+                                   std::clamp(session_->eraseDiameter(tool) * factor, 0.02f, 2.0f)},
+              t_ns);
+      } else if (session_->mode() == Mode::kCanvas) {
+        const Canvas c = session_->canvas();
+        apply(ui::SetCanvas{c.altitude, std::clamp(c.thickness * factor, 0.02f, 2.0f)}, t_ns);
+      } else if (session_->mode() == Mode::kLight) {
+        // Warmer (−) or cooler (+): towards an evening orange or a noon white-blue.
+        const Light l = session_->light();
+        const glm::vec3 towards = command == Command::kSmaller ? glm::vec3(1.0f, 0.72f, 0.48f)
+                                                               : glm::vec3(0.92f, 0.96f, 1.0f);
+        apply(ui::SetLight{l.direction, glm::mix(l.colour, towards, 0.25f)}, t_ns);
+      }
+      break;
+    }
+    case Command::kRaise:
+    case Command::kLower: {
+      if (!session_) return;
+      const Canvas c = session_->canvas();
+      const Volume& v = session_->volume();
+      const float step = v.voxelSize().y * (command == Command::kRaise ? 1.0f : -1.0f);
+      apply(
+          ui::SetCanvas{std::clamp(c.altitude + step, v.worldMin().y, v.worldMax().y), c.thickness},
+          t_ns);
+      break;
+    }
+    case Command::kNextEraseTool:
+      if (!session_) return;
+      apply(ui::SetEraseTool{session_->eraseTool() == EraseTool::kVacuum ? EraseTool::kRubOut
+                                                                         : EraseTool::kVacuum},
+            t_ns);
+      break;
+    case Command::kToggleCircles:
+      show_circles_ = !show_circles_;
+      refined_ = false;
+      break;
+    case Command::kToggleStats:
+      show_stats_ = !show_stats_;
+      refined_ = false;
+      break;
+    case Command::kDeleteAll:
+      apply(ui::DeleteAll{}, t_ns);
+      break;
+    case Command::kUndo:
+      apply(ui::Undo{}, t_ns);
+      break;
+    case Command::kRedo:
+      apply(ui::Redo{}, t_ns);
+      break;
+    case Command::kSave: {
+      if (!session_) return say("save: no pen session, nothing painted");
+      const std::string path = options_.state_dir + "/cloud-" + std::to_string(t_ns) + ".vol";
+      try {
+        saveVolume(session_->volume(), path);
+        say("saved " + path);
+      } catch (const std::exception& e) {
+        say(std::string("save failed: ") + e.what());
+      }
+      break;
+    }
+    case Command::kCount:
+      break;
+  }
+}
+
+std::string PaintScreen::update(const FrameContext& frame) {
+  if (pen_ && last_connection_ == int(PenConnection::kFinished) && !lit_pending_ &&
+      !refine_pending_ && !session_->engine().inStroke())
+    return "replay finished";
+  if (orbiting_) orbit_degrees_ += options_.orbit_degrees_per_second * float(frame.since_last_s);
+  return "";
+}
+
+bool PaintScreen::needsFrame() const {
+  if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
+  if (pen_ && pen_connected_once_) return true;  // the cursor and footprint follow the pen
+  return !drawn_ || !(*drawn_ == currentKey());
+}
+
+bool PaintScreen::paintingSetUp(std::string* error) {
+  if (!overlay_ready_) {
+    if (!overlay_.init(error)) return false;
+    overlay_.beginFootprint(session_ ? session_->footprintWidth() : display_.width(),
+                            session_ ? session_->footprintHeight() : display_.height());
+    overlay_ready_ = true;
+  }
+  if (scene_.width() != display_.width() || scene_.height() != display_.height()) {
+    if (!scene_.create(display_.width(), display_.height(), RenderTarget::Format::kRgba8, error))
+      return false;
+    // Warm-up: the first reduced-resolution render allocates the renderer's smaller target;
+    // do that now rather than inside the first pen-up -> lit frame.
+    RenderOptions warm_up = options_.render;
+    warm_up.scale = moving_scale_;
+    renderer_.sync(shownVolume(), shownLight());
+    renderer_.render(shownCamera(), display_.width(), display_.height(), scene_.fbo(), warm_up);
+    drawn_.reset();
+  }
+  return true;
+}
+
+void PaintScreen::drawStill(PaintFrameInfo* info) {
+  const int w = display_.width(), h = display_.height();
+  double sync_ms = 0.0, render_ms = 0.0;
+  const auto render_start = std::chrono::steady_clock::now();
+  const SceneKey key = currentKey();
+  const bool stale = !drawn_ || !(*drawn_ == key);
+  const bool refine = refine_pending_ && !stale;
+  if (stale || refine) {
+    renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
+    const auto synced = std::chrono::steady_clock::now();
+    sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
+    // Right after a lift, and while a drag moves the view or the light, the scene is shown at
+    // the moving resolution first, then refined to full resolution.
+    RenderOptions options = options_.render;
+    options.collect_stats = show_stats_;
+    const bool dragging = drag_camera_ || drag_light_;
+    options.scale = (lit_pending_ || dragging) ? moving_scale_ : 1.0f;
+    renderer_.render(key.camera, w, h, scene_.fbo(), options);
+    if (lit_pending_) {
+      glFinish();
+      render_ms = msSince(synced);
+    }
+    overlay_.invalidate();
+    drawn_ = key;
+    refine_pending_ = options.scale < 1.0f;
+  }
+  if (lit_pending_) {
+    // The footprint was just cleared, so the frame is the scene alone: a blit instead of the
+    // overlay's full-frame composite (tens of ms on llvmpipe).
+    glBlitNamedFramebuffer(scene_.fbo(), display_.framebuffer(), 0, 0, w, h, 0, 0, w, h,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    overlay_.invalidate();
+  } else {
+    overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
+  }
+  info->painting_view = true;
+  info->in_stroke = session_ && session_->engine().inStroke();
+  info->texels_uploaded = texels_this_frame_;
+  texels_this_frame_ = 0;
+  if (lit_pending_ || refine) glFinish();  // the frame is really drawn, not only queued
+  const double since_lift = msSince(lift_time_);
+  if (lit_pending_) {
+    info->first_lit_after_lift = true;
+    info->pen_up_to_lit_ms = since_lift;
+    info->mapping_ms = lift_mapping_ms_;
+    info->sync_ms = sync_ms;
+    info->render_ms = render_ms;
+    info->composite_ms = msSince(render_start) - sync_ms - render_ms;
+    lit_pending_ = false;
+  } else if (refine) {
+    info->refined_after_lift = true;
+    info->pen_up_to_refined_ms = since_lift;
+  }
+}
+
+bool PaintScreen::drawOverlays(std::string* error) {
+  const int w = display_.width(), h = display_.height();
+  const bool in_range = pen_ && !orbiting_ && cursor_.visible && session_;
+  const bool circles = show_circles_ && session_ && !session_->lastCircles().empty();
+  std::vector<HudItem> items;
+  const Camera camera = shownCamera();
+  if (session_) {
+    const Mode mode = session_->mode();
+    const Volume& volume = shownVolume();
+    // The canvas region: faint while painting, bright while the canvas is being moved.
+    if ((in_range && (mode == Mode::kPaint || mode == Mode::kErase)) || mode == Mode::kCanvas) {
+      Canvas canvas = drag_canvas_ ? *drag_canvas_ : session_->canvas();
+      appendCanvasOutline(
+          canvasRegionOutline(camera, canvas, volume.worldMin(), volume.worldMax(), w, h), &items);
+    }
+    if (mode == Mode::kErase && vacuum_centre_) {
+      // §3.5.1 Fig. 3.5: the sphere, and a rod from the canvas up or down to it.
+      const float radius = 0.5f * session_->eraseDiameter(EraseTool::kVacuum);
+      const glm::vec2 c = project(camera, *vacuum_centre_, w, h);
+      const glm::vec2 edge = project(
+          camera,
+          *vacuum_centre_ +
+              radius * glm::normalize(glm::cross(camera.eye - *vacuum_centre_, glm::vec3(0, 1, 0)) +
+                                      glm::vec3(1e-6f)),
+          w, h);
+      const glm::vec3 foot(vacuum_centre_->x, session_->canvas().altitude, vacuum_centre_->z);
+      items.push_back(makeHudRing(c, glm::length(edge - c), 2.0f, {1.0f, 0.55f, 0.2f, 0.9f}));
+      items.push_back(
+          makeHudSegment(project(camera, foot, w, h), c, 2.0f, {0.8f, 0.8f, 0.85f, 0.9f}));
+    }
+    if (mode == Mode::kLight) {
+      // The light ball on its sphere about the scene origin, and the line to the origin.
+      const glm::vec3 ball = 1.5f * shownLight().direction;
+      const glm::vec2 b = project(camera, ball, w, h);
+      items.push_back(makeHudSegment(project(camera, glm::vec3(0.0f), w, h), b, 2.0f,
+                                     {1.0f, 0.9f, 0.5f, 0.7f}));
+      items.push_back(makeHudRing(b, 14.0f, 5.0f, glm::vec4(shownLight().colour, 1.0f)));
+    }
+  }
+  if (circles)
+    appendCircleRings(session_->lastCircles(), session_->footprintWidth(),
+                      session_->footprintHeight(), w, h, &items);
+  if (show_stats_) appendStatsPanel(renderer_.lastStats(), w, h, &items);
+  if (items.empty()) return true;
+  if (!hud_.init(error)) return false;
+  hud_.draw(display_.framebuffer(), w, h, items);
+  return true;
+}
+
+bool PaintScreen::draw(FrameContext& frame, std::string* error) {
+  PaintFrameInfo info;
+  info.frame = frame.frame;
+  if (pen_ && !orbiting_) {
+    if (!paintingSetUp(error)) return false;
+    drawStill(&info);
+    if (info.first_lit_after_lift) {
+      pen_up_to_lit_ms_.push_back(info.pen_up_to_lit_ms);
+      mapping_ms_.push_back(info.mapping_ms);
+      sync_ms_.push_back(info.sync_ms);
+      render_ms_.push_back(info.render_ms);
+      if (options_.print_stats)
+        std::printf(
+            "stroke %ld: pen-up -> lit frame %.1f ms (mapping %.1f, sync %.1f, render "
+            "%.1f, composite %.1f)\n",
+            strokes_seen_ - 1, info.pen_up_to_lit_ms, info.mapping_ms, info.sync_ms, info.render_ms,
+            info.composite_ms);
+    }
+    if (info.refined_after_lift) {
+      refined_ms_.push_back(info.pen_up_to_refined_ms);
+      if (options_.print_stats)
+        std::printf("stroke %ld: pen-up -> full-resolution lit frame %.1f ms\n", strokes_seen_ - 1,
+                    info.pen_up_to_refined_ms);
+    }
+  } else {
+    renderer_.sync(shownVolume(), shownLight());
+    RenderOptions render_options = options_.render;
+    // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
+    render_options.scale =
+        orbiting_ ? std::max(options_.min_moving_scale, std::round(moving_scale_ * 20.0f) / 20.0f)
+                  : 1.0f;
+    render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
+    glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+    renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
+                     render_options);
+    if (!orbiting_) {
+      refined_ = true;
+      ++refined_frames_;
+      drawn_ = currentKey();
+      if (options_.print_stats) std::printf("%s\n", renderer_.lastStats().summary().c_str());
+    }
+  }
+  if (!drawOverlays(error)) return false;
+  last_info_ = info;
+  if (options_.on_frame) options_.on_frame(info);
+  return true;
+}
+
+void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
+  const PaintFrameInfo& info = last_info_;
+  if (info.painting_view) {
+    // Frames while a stroke is drawn, except the lift frames (mapping + re-render).
+    if (info.in_stroke && !info.first_lit_after_lift && !info.refined_after_lift)
+      painting_frame_ms_.push_back(frame_ms);
+    return;
+  }
+  if (orbiting_ && frame.frame > 0) {
+    moving_frame_ms_.push_back(frame_ms);
+    // Keep the orbit fluid: shrink the resolution when a frame is over budget, grow it back
+    // when there is room (≥ 20 fps is the target, issue 2).
+    if (frame_ms > options_.target_frame_ms)
+      moving_scale_ = std::max(options_.min_moving_scale, moving_scale_ * 0.9f);
+    else if (frame_ms < 0.7 * options_.target_frame_ms)
+      moving_scale_ = std::min(1.0f, moving_scale_ * 1.05f);
+  }
+}
+
+std::string PaintScreen::statusLine() const {
+  if (!session_) return "no tablet: the bundled cloud orbits; connect a pen to paint";
+  const PaintSession& s = *session_;
+  char text[256];
+  const Volume& v = s.volume();
+  const int altitude_voxels =
+      int(std::lround((s.canvas().altitude - v.worldMin().y) / v.voxelSize().y));
+  std::snprintf(text, sizeof text,
+                "%s mode | brush %s | mapping %s | canvas altitude %d thickness %.2f | %s%s",
+                modeName(s.mode()), brushKindName(s.selectedBrush()), toString(s.mappingMethod()),
+                altitude_voxels, double(s.canvas().thickness),
+                s.mode() == Mode::kErase ? eraseToolName(s.eraseTool()) : "",
+                pen_connected_once_ ? "" : " | waiting for the pen: bring it near the tablet");
+  return text;
+}
+
+void PaintScreen::finish(PaintLoopSummary* summary) const {
+  summary->pen_samples = pen_samples_;
+  summary->strokes_mapped = strokes_seen_;
+  summary->pen_up_to_lit_ms = pen_up_to_lit_ms_;
+  summary->mapping_ms = mapping_ms_;
+  summary->sync_ms = sync_ms_;
+  summary->render_ms = render_ms_;
+  summary->pen_up_to_refined_ms = refined_ms_;
+  summary->refined_frames = refined_frames_;
+  summary->final_moving_scale = moving_scale_;
+  summary->median_painting_frame_ms = medianOf(painting_frame_ms_);
+  summary->painting_frames = long(painting_frame_ms_.size());
+  summary->median_frame_ms = medianOf(moving_frame_ms_);
+}
+
+}  // namespace cb

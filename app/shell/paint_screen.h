@@ -1,0 +1,136 @@
+// The painter's screen (thesis ch. 3, Appendix A): the scene seen by the session's camera, in
+// one of five modes, driven by the pen first and keys second.
+//
+//   1 Camera  drag the pen to orbit (lower side button held: zoom); R resets, arrows give the
+//             top / front / left / perspective views; Space starts or stops the auto-rotation
+//   2 Canvas  drag up/down to raise or lower the canvas, PgUp/PgDn by one voxel, −/+ thickness
+//   3 Paint   the live footprint; the cloud appears when the pen lifts (B brush)
+//   4 Erase   Rub-out while the tip is down (diameter from pressure), or Vacuum: the sphere
+//             follows the pen (height from pressure), Space cuts; V switches, −/+ the diameter
+//   5 Light   drag the light ball: the sun's direction from the scene origin; −/+ warmer/cooler
+//
+// M or the pen's upper side button opens the pen menu (every command); Ctrl+Z / Ctrl+Y undo and
+// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics.
+//
+// Every change goes to the PaintSession as a typed UI change (app/session/ui_change.h), so it
+// is journalled and replays. Drags show a preview and commit one change when the pen lifts.
+// Before a pen ever connects the bundled cloud orbits. The scene is re-rendered only when
+// what it shows changed (volume generation, camera, light); otherwise the cached image and the
+// live overlay are composited.
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/render/footprint_overlay.h"
+#include "app/render/hud_overlay.h"
+#include "app/render/render_target.h"
+#include "app/render/volume_renderer.h"
+#include "app/session/paint_session.h"
+#include "app/shell/paint_loop.h"
+#include "app/shell/pen_events.h"
+#include "app/shell/screen.h"
+
+namespace cb {
+
+class PenSource;
+class UiOverlay;
+
+class PaintScreen : public Screen {
+ public:
+  PaintScreen(Display& display, VolumeRenderer& renderer, const Volume& volume, const Light& light,
+              const PaintLoopOptions& options);
+  ~PaintScreen() override;
+  void attachPen(PenSource* pen, PaintSession* session);
+
+  const char* name() const override { return "paint"; }
+  void onPenSamples(const std::vector<PenSample>& samples) override;
+  void onCommand(Command command, int64_t t_ns) override;
+  void onResize(int, int) override { refined_ = false; }
+  std::string update(const FrameContext& frame) override;
+  bool needsFrame() const override;
+  bool draw(FrameContext& frame, std::string* error) override;
+  void presented(const FrameContext& frame, double frame_ms) override;
+
+  // Fills the summary's totals after the loop ended.
+  void finish(PaintLoopSummary* summary) const;
+  // What the status line says (mode, brush, mapping, canvas altitude, pen state).
+  std::string statusLine() const;
+  bool menuOpen() const { return menu_open_; }
+  // The view being shown (a drag preview, the auto-rotation, or the session's camera).
+  Camera shownCamera() const;
+
+ private:
+  void handleEvent(const PenEvent& event, const MappedSample& mapped);
+  void apply(const UiChange& change, int64_t t_ns);
+  void say(const std::string& message);
+  const Volume& shownVolume() const;
+  Light shownLight() const;
+  bool paintingSetUp(std::string* error);
+  void drawStill(PaintFrameInfo* info);
+  bool drawOverlays(std::string* error);
+  void selectCalibration(uint64_t tool_serial);
+  Camera presetView(Command command) const;
+
+  Display& display_;
+  VolumeRenderer& renderer_;
+  const Volume& volume_;
+  Light light_;
+  PaintLoopOptions options_;
+  PenSource* pen_ = nullptr;
+  PaintSession* session_ = nullptr;
+  PenEventDeriver pen_events_;
+  std::vector<PenEvent> events_;
+
+  // Auto-rotation
+  bool orbiting_ = true;
+  float orbit_degrees_ = 0.0f;
+  float moving_scale_;
+  bool refined_ = false;  // the still image is at full resolution
+
+  // Drags (preview until the pen lifts)
+  std::optional<Camera> drag_camera_;
+  std::optional<Canvas> drag_canvas_;
+  std::optional<Light> drag_light_;
+  glm::vec2 drag_start_{0.0f};
+  uint32_t side_buttons_ = 0;
+  std::optional<glm::vec3> vacuum_centre_;
+
+  // Pen and painting
+  int last_connection_ = -1;
+  bool pen_connected_once_ = false;
+  uint64_t tool_serial_ = 0;
+  FootprintOverlay overlay_;
+  RenderTarget scene_;
+  bool overlay_ready_ = false;
+  struct SceneKey {
+    uint64_t volume = 0, generation = 0;
+    Camera camera;
+    Light light;
+    bool stats = false;
+    bool operator==(const SceneKey& o) const;
+  };
+  std::optional<SceneKey> drawn_;  // what the cached scene shows
+  SceneKey currentKey() const;
+  bool lit_pending_ = false;
+  bool refine_pending_ = false;
+  std::chrono::steady_clock::time_point lift_time_;
+  double lift_mapping_ms_ = 0.0;
+  size_t texels_this_frame_ = 0;
+  OverlayCursor cursor_;
+  HudOverlay hud_;
+  bool show_stats_ = false, show_circles_ = false;
+  bool menu_open_ = false;
+  std::string last_message_;
+
+  // Summary figures
+  long pen_samples_ = 0, strokes_seen_ = 0;
+  std::vector<double> moving_frame_ms_, painting_frame_ms_;
+  std::vector<double> pen_up_to_lit_ms_, mapping_ms_, sync_ms_, render_ms_, refined_ms_;
+  long refined_frames_ = 0;
+  PaintFrameInfo last_info_;
+};
+
+}  // namespace cb

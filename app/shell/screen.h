@@ -1,0 +1,57 @@
+// A screen of the shell: what the frame loop (frame_loop.h) shows and routes input to — the
+// painter, and later calibration, the study runner and the exhibition's attract screen. The loop
+// owns the display, pen and key input, timing and presenting; a screen handles pen samples,
+// commands and pointer events, and draws one frame into the framebuffer it is given
+// (kmscube's shape: one loop, one draw per scene).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/render/gl/display.h"
+#include "app/shell/command.h"
+#include "drivers/core/pen_sample.h"
+
+namespace cb {
+
+struct FrameContext {
+  Display& display;
+  int width = 0, height = 0;
+  long frame = 0;           // frames presented before this one
+  int64_t now_ns = 0;       // monotonic time of this frame
+  double since_last_s = 0;  // seconds since the previous frame was presented
+};
+
+class Screen {
+ public:
+  virtual ~Screen() = default;
+  virtual const char* name() const = 0;
+  // Pen samples polled since the last frame (raw, as the driver gave them), with the source's
+  // connection state; called once per frame, also with no samples.
+  virtual void onPenSamples(const std::vector<PenSample>& samples) { (void)samples; }
+  virtual void onCommand(Command command, int64_t t_ns) = 0;
+  virtual void onPointer(const DisplayEvent& event) { (void)event; }
+  virtual void onResize(int width, int height) {
+    (void)width;
+    (void)height;
+  }
+  // Timers; a non-empty result ends the loop with that reason.
+  virtual std::string update(const FrameContext& frame) {
+    (void)frame;
+    return "";
+  }
+  // False when the last frame still shows everything (the loop sleeps instead of drawing).
+  virtual bool needsFrame() const { return true; }
+  // Draws one frame into frame.display.framebuffer(). False with *error stops the loop.
+  virtual bool draw(FrameContext& frame, std::string* error) = 0;
+  // After present(): how long the frame took, present to present.
+  virtual void presented(const FrameContext& frame, double frame_ms) {
+    (void)frame;
+    (void)frame_ms;
+  }
+  // Whether Command::kQuit ends the loop (a kiosk's visitor screen says no).
+  virtual bool allowsQuit() const { return true; }
+};
+
+}  // namespace cb
