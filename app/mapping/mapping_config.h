@@ -19,9 +19,16 @@ struct CircleGrowthConfig {
   int directions = 16;              // candidates on each accepted circle's perimeter (§6.3.2)
   float accept_white_ratio = 0.8f;  // R_w threshold (§6.3.3)
   float drop_empty_ratio = 0.5f;    // R_e threshold: drop the direction (§6.3.3)
-  // The thesis counts a pixel white at exactly 1.0 and empty at exactly 0.0; on a soft
-  // footprint that accepts nothing, so these are thresholds.
-  float white_threshold = 0.95f;
+  // The thesis counts a pixel white at exactly 1.0 and empty at exactly 0.0 (§6.3.3): its
+  // footprints are ink masks whose painted body is full ink, and everything "that falls below
+  // the circle fill threshold" is left to edge mapping (§6.5–6.6). The real brushes' footprints
+  // are graded: bristle striations (2D, §5.3.2; skeleton, §5.2.2) and soft rims (3D) hold
+  // almost no pixel near the peak, so a near-peak threshold (0.95) grew no circle for the 2D and
+  // skeleton brushes and left the 3D brush's rim (~45 % of its ink) to edge mapping, whose
+  // scatter along view rays is the streak §6.6.1 rejects (Fig. 6.17). The body of a graded
+  // stroke is where its ink is at least half its peak (the half-maximum width of a soft
+  // profile); the fainter rim is the edge.
+  float white_threshold = 0.5f;
   float empty_threshold = 0.05f;
   // Judge white against the footprint's own peak: white at >= white_threshold · peak. A brush
   // whose ink never quite saturates (a peak of 0.92) still has a body. Off: absolute.

@@ -33,10 +33,14 @@ VoxelBox sphereVoxelBox(const MappedSphere& s, const Volume& volume) {
 
 VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTexture& noise,
                      const SphereMappingConfig& config, Volume& volume) {
-  std::vector<VoxelBox> boxes(spheres.size());
+  // The filled spheres: the circle's sphere widened so its noise-eroded surface straddles the
+  // circle's outline in the paint view instead of lying inside it (see sphereFillRadius).
+  std::vector<MappedSphere> filled = spheres;
+  for (MappedSphere& s : filled) s.radius = sphereFillRadius(s.radius, config);
+  std::vector<VoxelBox> boxes(filled.size());
   VoxelBox all;
-  for (size_t i = 0; i < spheres.size(); ++i) {
-    boxes[i] = spheres[i].radius > 0.0f ? sphereVoxelBox(spheres[i], volume) : VoxelBox{};
+  for (size_t i = 0; i < filled.size(); ++i) {
+    boxes[i] = filled[i].radius > 0.0f ? sphereVoxelBox(filled[i], volume) : VoxelBox{};
     all = all.unite(boxes[i]);
   }
   if (all.empty()) return {};
@@ -47,10 +51,10 @@ VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTextur
     for (size_t k = k0; k < k1; ++k) {
       const int z = all.lo.z + int(k);
       const float wz = wmin.z + (float(z) + 0.5f) * vs.z;
-      for (size_t i = 0; i < spheres.size(); ++i) {
+      for (size_t i = 0; i < filled.size(); ++i) {
         const VoxelBox& b = boxes[i];
         if (b.empty() || z < b.lo.z || z >= b.hi.z) continue;
-        const MappedSphere& s = spheres[i];
+        const MappedSphere& s = filled[i];
         const float inv_r = 1.0f / s.radius;
         const float dz = wz - s.centre.z;
         for (int y = b.lo.y; y < b.hi.y; ++y) {

@@ -39,6 +39,17 @@ inline float sphereDensity(float q, float n, const SphereMappingConfig& c) {
   return c.density * fade * (1.0f - c.noise_modulation + c.noise_modulation * n);
 }
 
+// Radius the voxels of a sphere are filled to. The noise moves the surface inwards by
+// erosion·n, n in [0, 1] (sphereDensity), so a sphere filled to the circle's own radius shows a
+// silhouette smaller than the circle it came from: the paint view loses the stroke's rim
+// (thesis §6.5 wants the mapped cloud to match the footprint; §6.6 only adds the pixels "that
+// fall below the circle fill threshold"). Filled to r / (1 − erosion/2), the eroded surface
+// lies on the circle's outline where the noise is at its middle, outside it where the noise is
+// low and inside where it is high.
+inline float sphereFillRadius(float circle_radius, const SphereMappingConfig& c) {
+  return circle_radius / (1.0f - 0.5f * c.noise_erosion);
+}
+
 // Max-merges the spheres into the volume (parallel over z slabs; each voxel is written by one
 // chunk, so the result does not depend on the thread count). Returns the voxels touched; does
 // not call markDirty.

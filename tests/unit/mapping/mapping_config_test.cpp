@@ -20,7 +20,7 @@ TEST(MappingConfig, ShippedFileLoadsWithTheThesisParameters) {
   EXPECT_EQ(c.circles.directions, 16);
   EXPECT_FLOAT_EQ(c.circles.accept_white_ratio, 0.8f);
   EXPECT_FLOAT_EQ(c.circles.drop_empty_ratio, 0.5f);
-  EXPECT_FLOAT_EQ(c.circles.white_threshold, 0.95f);
+  EXPECT_FLOAT_EQ(c.circles.white_threshold, 0.5f);
   EXPECT_FLOAT_EQ(c.circles.empty_threshold, 0.05f);
 }
 
