@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/scene/paint_camera.h"
 #include "app/volume/volume_erase.h"
 
 namespace cb {
@@ -36,7 +37,10 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
 
 Camera initialPaintCamera(const PaintSessionSettings& settings) {
   if (settings.format < 2) return Camera::reference();
-  return Camera::reference();
+  // The drawable region (where the canvas meets the sky box) framed to fill the screen.
+  const Volume box(glm::ivec3(1));
+  return defaultPaintCamera(Canvas{}, box.worldMin(), box.worldMax(),
+                            float(settings.screen_width) / float(settings.screen_height));
 }
 
 bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,

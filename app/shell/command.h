@@ -35,6 +35,7 @@ enum class Command {
   kUndo,             // Ctrl+Z
   kRedo,             // Ctrl+Y (and Ctrl+Shift+Z)
   kSave,             // Ctrl+S
+  kGoodView,         // G: the nearest view that is not edge-on to the canvas
   kCount
 };
 

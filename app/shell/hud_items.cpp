@@ -167,3 +167,23 @@ void appendCanvasOutline(const std::vector<glm::vec2>& outline, std::vector<HudI
 }
 
 }  // namespace cb
+
+namespace cb {
+
+void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items) {
+  const glm::vec4 veil(0.05f, 0.05f, 0.12f, 0.45f);
+  const int w = region.width(), h = region.height(), band = 4;
+  for (int y = 0; y < h; y += band) {
+    const int y1 = std::min(h, y + band);
+    int x0 = 0, x1 = 0;
+    if (!region.rowSpan(std::min(h - 1, y + band / 2), &x0, &x1)) {
+      items->push_back(makeHudRect(0.0f, float(y), float(w), float(y1), veil));
+      continue;
+    }
+    if (x0 > 0) items->push_back(makeHudRect(0.0f, float(y), float(x0), float(y1), veil));
+    if (x1 + 1 < w)
+      items->push_back(makeHudRect(float(x1 + 1), float(y), float(w), float(y1), veil));
+  }
+}
+
+}  // namespace cb

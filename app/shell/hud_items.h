@@ -19,6 +19,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/scene/camera.h"
 #include "app/scene/canvas.h"
+#include "app/scene/drawable_region.h"
 
 namespace cb {
 
@@ -63,6 +64,9 @@ void appendCircleRings(const std::vector<Circle>& circles, int footprint_w, int 
 std::vector<glm::vec2> canvasRegionOutline(const Camera& camera, const Canvas& canvas,
                                            glm::vec3 world_min, glm::vec3 world_max, int screen_w,
                                            int screen_h);
+// A veil over the screen outside the drawable region (4-pixel row bands), so ink drawn where it
+// cannot land looks different at once.
+void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items);
 void appendCanvasOutline(const std::vector<glm::vec2>& outline, std::vector<HudItem>* items);
 
 }  // namespace cb

@@ -19,7 +19,8 @@ constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
                                          "lower",          "next-erase-tool",
                                          "toggle-circles", "toggle-stats",
                                          "delete-all",     "undo",
-                                         "redo",           "save"};
+                                         "redo",           "save",
+                                         "good-view"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {

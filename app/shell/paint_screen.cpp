@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "app/scene/drawable_region.h"
+#include "app/scene/paint_camera.h"
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
 #include "app/volume/volume_file.h"
@@ -131,10 +133,27 @@ void PaintScreen::apply(const UiChange& change, int64_t t_ns) {
     return;
   }
   std::string error;
-  if (!session_->apply(change, t_ns, &error))
-    say(error);
-  else
-    say(formatUiChange(change).text);
+  if (!session_->apply(change, t_ns, &error)) return say(error);
+  say(formatUiChange(change).text);
+  warnIfEdgeOn();
+}
+
+void PaintScreen::warnIfEdgeOn() {
+  // §7.7.5 problem 2: from a near edge-on view little of the canvas can be painted; say so and
+  // offer the nearest good view (G takes it).
+  const Volume& v = session_->volume();
+  const PaintViewAssessment view =
+      assessPaintView(session_->camera(), session_->canvas(), v.worldMin(), v.worldMax(),
+                      display_.width(), display_.height());
+  edge_on_ = session_->mode() == Mode::kPaint && !view.good;
+  if (edge_on_) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "this view is nearly edge-on to the canvas (%.0f° above it, %.0f%% of the "
+                  "screen can be painted): press G for the nearest good view",
+                  double(view.elevation_deg), 100.0 * view.fill_fraction);
+    say(text);
+  }
 }
 
 void PaintScreen::selectCalibration(uint64_t tool_serial) {
@@ -417,6 +436,14 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       }
       break;
     }
+    case Command::kGoodView: {
+      if (!session_) return;
+      const Volume& v = session_->volume();
+      apply(ui::SetCamera{nearestGoodPaintView(session_->camera(), session_->canvas(), v.worldMin(),
+                                               v.worldMax(), display_.width(), display_.height())},
+            t_ns);
+      break;
+    }
     case Command::kCount:
       break;
   }
@@ -521,11 +548,14 @@ bool PaintScreen::drawOverlays(std::string* error) {
   if (session_) {
     const Mode mode = session_->mode();
     const Volume& volume = shownVolume();
-    // The canvas region: faint while painting, bright while the canvas is being moved.
+    // Where a stroke can land (§7.7.5 problem 2): outside it the screen is veiled while the pen
+    // is in range, so ink that cannot land looks different at once; in Canvas mode the outline
+    // follows the canvas as it moves.
+    const Canvas canvas = drag_canvas_ ? *drag_canvas_ : session_->canvas();
     if ((in_range && (mode == Mode::kPaint || mode == Mode::kErase)) || mode == Mode::kCanvas) {
-      Canvas canvas = drag_canvas_ ? *drag_canvas_ : session_->canvas();
-      appendCanvasOutline(
-          canvasRegionOutline(camera, canvas, volume.worldMin(), volume.worldMax(), w, h), &items);
+      const DrawableRegion region(camera, canvas, volume.worldMin(), volume.worldMax(), w, h);
+      if (mode == Mode::kPaint) appendOutsideVeil(region, &items);
+      appendCanvasOutline(region.outline(), &items);
     }
     if (mode == Mode::kErase && vacuum_centre_) {
       // §3.5.1 Fig. 3.5: the sphere, and a rod from the canvas up or down to it.

@@ -59,6 +59,7 @@ class PaintScreen : public Screen {
   // What the status line says (mode, brush, mapping, canvas altitude, pen state).
   std::string statusLine() const;
   bool menuOpen() const { return menu_open_; }
+  bool edgeOnWarning() const { return edge_on_; }
   // The view being shown (a drag preview, the auto-rotation, or the session's camera).
   Camera shownCamera() const;
 
@@ -66,6 +67,7 @@ class PaintScreen : public Screen {
   void handleEvent(const PenEvent& event, const MappedSample& mapped);
   void apply(const UiChange& change, int64_t t_ns);
   void say(const std::string& message);
+  void warnIfEdgeOn();
   const Volume& shownVolume() const;
   Light shownLight() const;
   bool paintingSetUp(std::string* error);
@@ -123,6 +125,7 @@ class PaintScreen : public Screen {
   HudOverlay hud_;
   bool show_stats_ = false, show_circles_ = false;
   bool menu_open_ = false;
+  bool edge_on_ = false;  // the session's view is nearly edge-on to the canvas
   std::string last_message_;
 
   // Summary figures
