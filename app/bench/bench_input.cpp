@@ -23,6 +23,7 @@
 #include "app/bench/bench_report.h"
 #include "app/bench/benches.h"
 #include "app/cli/args.h"
+#include "app/core/config_paths.h"
 #include "drivers/evdev/evdev_pen_state.h"
 #include "drivers/evdev/uinput_latency.h"
 #include "drivers/hid/hid_pen_decoder.h"
@@ -123,18 +124,6 @@ std::string defaultVmFigures() {
   return exeDir() + "/../tests/hil/tablet/tablet_hil_figures.txt";
 }
 
-// The recorded descriptors live in ../shared/fixtures/hid next to the project.
-std::string defaultFixtures() {
-  std::vector<std::string> candidates;
-  if (const char* shared = std::getenv("CB_SHARED_DIR"))
-    candidates.push_back(std::string(shared) + "/fixtures/hid");
-  candidates.push_back("../shared/fixtures/hid");
-  candidates.push_back(exeDir() + "/../../../shared/fixtures/hid");
-  for (const std::string& c : candidates)
-    if (std::ifstream(c + "/wacom-pth660_v145.rdesc")) return c;
-  return candidates.front();
-}
-
 }  // namespace
 
 int benchInput(int argc, char** argv) {
@@ -147,7 +136,8 @@ int benchInput(int argc, char** argv) {
         "evdev kernel-timestamp -> consumer-thread delay through uinput (N samples at HZ,\n"
         "default 2000 at 1000 Hz), and the emulated figures of the last tablet HIL run\n"
         "(ctest -L hil writes FILE; default: next to this build's tests). DIR holds the\n"
-        "recorded descriptors (default: $CB_SHARED_DIR/fixtures/hid or ../shared/fixtures/hid).\n");
+        "recorded descriptors (default: the source tree's tests/fixtures/hid, else\n"
+        "/usr/share/cloudbrush/fixtures/hid).\n");
     return 0;
   }
   const long samples = args.getInt("samples", 2000);
@@ -156,8 +146,13 @@ int benchInput(int argc, char** argv) {
   BenchReport report("input");
 
   // --- decode cost on recorded buffers --------------------------------------------------------
-  const std::string fixture = args.get("fixtures", defaultFixtures());
+  const std::string fixture = args.get("fixtures", defaultHidFixtureDir());
   std::vector<uint8_t> desc = readBytes(fixture + "/wacom-pth660_v145.rdesc");
+  if (desc.empty()) {
+    std::fprintf(stderr, "bench input: cannot read %s/wacom-pth660_v145.rdesc (see --fixtures)\n",
+                 fixture.c_str());
+    return 1;
+  }
   hid::ParseResult parsed = hid::parseReportDescriptor(desc.data(), desc.size());
   if (!parsed.descriptor) {
     std::fprintf(stderr, "bench input: cannot parse %s/wacom-pth660_v145.rdesc: %s\n",

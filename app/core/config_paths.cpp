@@ -31,4 +31,10 @@ std::string configFile(const std::string& name) {
   return (std::filesystem::path(defaultConfigDir()) / name).string();
 }
 
+std::string defaultHidFixtureDir() {
+  std::filesystem::path src(CB_HID_FIXTURE_DIR);
+  if (std::filesystem::exists(src)) return src.string();
+  return "/usr/share/cloudbrush/fixtures/hid";
+}
+
 }  // namespace cb

@@ -1,5 +1,6 @@
 // Where configuration lives: the defaults shipped in config/ and a writable state directory
-// (kiosk profiles, sessions). Both can be overridden by environment variables.
+// (kiosk profiles, sessions). Both can be overridden by environment variables. Also where the
+// recorded device data (tests/fixtures) is found.
 #pragma once
 
 #include <string>
@@ -14,5 +15,8 @@ std::string defaultConfigDir();
 std::string stateDir();
 // defaultConfigDir()/name.
 std::string configFile(const std::string& name);
+// The recorded tablet HID descriptors: the source tree's tests/fixtures/hid (compiled in) if it
+// exists, else /usr/share/cloudbrush/fixtures/hid.
+std::string defaultHidFixtureDir();
 
 }  // namespace cb

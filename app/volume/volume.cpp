@@ -16,10 +16,11 @@ uint64_t nextInstanceId() {
 
 Volume::Volume(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_max)
     : dims_(dims), world_min_(world_min), world_max_(world_max), instance_id_(nextInstanceId()) {
-  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || dims.x > 2048 || dims.y > 2048 || dims.z > 2048)
+  if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0 || dims.x > kMaxVolumeDim ||
+      dims.y > kMaxVolumeDim || dims.z > kMaxVolumeDim)
     throw std::invalid_argument("volume dimensions " + std::to_string(dims.x) + "x" +
                                 std::to_string(dims.y) + "x" + std::to_string(dims.z) +
-                                " out of range 1..2048");
+                                " out of range 1.." + std::to_string(kMaxVolumeDim));
   data_.assign(size_t(dims.x) * dims.y * dims.z, 0.0f);
   markDirty(bounds());
 }

@@ -14,9 +14,13 @@
 
 namespace cb {
 
+// The largest grid along any axis.
+constexpr int kMaxVolumeDim = 2048;
+
 class Volume {
  public:
-  // dims voxels, occupying the world-space box [world_min, world_max] (y is up).
+  // dims voxels, occupying the world-space box [world_min, world_max] (y is up). Each dim must be
+  // in 1..kMaxVolumeDim (else std::invalid_argument).
   explicit Volume(glm::ivec3 dims = glm::ivec3(256), glm::vec3 world_min = glm::vec3(-1.0f),
                   glm::vec3 world_max = glm::vec3(1.0f));
 

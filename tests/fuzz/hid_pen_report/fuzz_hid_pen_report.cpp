@@ -13,7 +13,7 @@ namespace {
 
 const cb::hid::PenLayout& layout() {
   static const cb::hid::PenLayout l = [] {
-    std::ifstream in(std::string(CB_SHARED_DIR) + "/fixtures/hid/wacom-pth660_v145.rdesc",
+    std::ifstream in(std::string(CB_HID_FIXTURE_DIR) + "/wacom-pth660_v145.rdesc",
                      std::ios::binary);
     std::vector<uint8_t> d((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     auto r = cb::hid::parseReportDescriptor(d.data(), d.size());

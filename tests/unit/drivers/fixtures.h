@@ -1,4 +1,5 @@
-// Test data shared by the driver tests: the real Wacom descriptors in ../shared/fixtures/hid.
+// Test data shared by the driver tests: the real Wacom descriptors in tests/fixtures/hid
+// (CB_HID_FIXTURE_DIR, set by cb_add_test).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,7 @@
 namespace cb::test {
 
 inline std::vector<uint8_t> readFixture(const std::string& name) {
-  std::ifstream in(std::string(CB_SHARED_DIR) + "/fixtures/hid/" + name, std::ios::binary);
+  std::ifstream in(std::string(CB_HID_FIXTURE_DIR) + "/" + name, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 

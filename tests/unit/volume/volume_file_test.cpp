@@ -88,7 +88,7 @@ TEST(VolumeFile, BadFilesGiveErrorsNamingTheFileAndTheProblem) {
   writeBytes(p, replaced("float32", "float64"));
   EXPECT_NE(errorOf(p).find("float64"), std::string::npos) << errorOf(p);
   writeBytes(p, replaced("\"dims\"", "\"dimz\""));
-  EXPECT_NE(errorOf(p).find("no \"dims\""), std::string::npos) << errorOf(p);
+  EXPECT_NE(errorOf(p).find("header field 'dims' is missing"), std::string::npos) << errorOf(p);
   writeBytes(p, std::string("P6\n4 4\n255\n") + std::string(48, '\0'));
   EXPECT_NE(errorOf(p).find("malformed JSON"), std::string::npos) << errorOf(p);
   writeBytes(p, "");
