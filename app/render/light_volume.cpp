@@ -177,7 +177,7 @@ struct Rect {
 
 // An incremental sweep follows a change downstream only while it exceeds this (see
 // sweepLightVolume); 256 slices of it stay far below the 1e-2 accuracy bound.
-constexpr float kChangeEpsilon = 1e-6f;
+constexpr float kChangeEpsilon = 0.0f;  // any change: updates equal a full recompute bit for bit
 // Slices (and edits) with a smaller lateral area are swept by one thread.
 constexpr int kThreadedArea = 64 * 64;
 // Slices a plane of the full sweep publishes at a time to the thread sweeping the next plane.
@@ -244,9 +244,10 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // Slices to process: from the dirty box's upstream face towards the far edge. The first
   // `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of voxels
   // whose bilinear upstream footprint meets a voxel whose passed-on transmittance changed in the
-  // previous slice (by more than kChangeEpsilon), so the update follows the actual shadow of the
-  // edit and stops where it fades out or falls into shadow that is already black. A voxel left
-  // alone differs from a full recompute by at most kChangeEpsilon per slice it lies downstream.
+  // previous slice (by more than kChangeEpsilon, which is 0), so the update follows the actual
+  // shadow of the edit and stops where it no longer changes anything or falls into shadow that is
+  // already black. Voxels left alone are exactly what a full recompute gives, so undo/redo
+  // restore the light volume bit for bit (app/session/history.h).
   const int start = f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis];
   const int slices = f.dir < 0 ? start + 1 : dims[f.axis] - start;
   const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];

@@ -81,6 +81,8 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kNextBrush;
     case 'n':
       return Command::kNextMapping;
+    case 'g':
+      return Command::kGoodView;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -227,6 +229,8 @@ std::string keyLabel(Command command) {
       return "Ctrl+Y";
     case Command::kSave:
       return "Ctrl+S";
+    case Command::kGoodView:
+      return "G";
     default:
       return "";
   }

@@ -1,0 +1,152 @@
+// Modes and erase through the session model, and a journal with modes, erase, undo and redo
+// replaying to the same volume.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/session/synthetic_session.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 320, kH = 180, kGrid = 64;
+
+double total(const Volume& v) {
+  double sum = 0;
+  for (size_t i = 0; i < v.voxelCount(); ++i) sum += v.data()[i];
+  return sum;
+}
+
+struct Painter {
+  PaintSession session{{kW, kH, kGrid}, BrushConfig{}, MappingConfig{}};
+  PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  int64_t t = 1'000'000'000;
+  Painter() {
+    session.setQuietMapping(true);
+    session.setDevice(tablet, 0);
+  }
+  void stroke(const SyntheticStroke& s) {
+    for (const PenSample& sample : syntheticPenSamples(s, tablet, kW, kH, 200.0, t)) {
+      session.feed(sample);
+      t = sample.t_ns;
+    }
+    t += 100'000'000;
+  }
+  void apply(const UiChange& c) {
+    std::string error;
+    ASSERT_TRUE(session.apply(c, t, &error)) << error;
+  }
+};
+
+TEST(SessionModes, OnlyPaintModePaintsAndRubOutCutsAlongTheView) {
+  const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kW, kH);
+  Painter p;
+  p.apply(ui::SetMode{Mode::kCamera});
+  p.stroke(strokes[0]);
+  EXPECT_EQ(p.session.strokesMapped(), 0u) << "a drag in camera mode paints nothing";
+  EXPECT_EQ(total(p.session.volume()), 0.0);
+  p.apply(ui::SetMode{Mode::kPaint});
+  p.stroke(strokes[0]);
+  ASSERT_EQ(p.session.strokesMapped(), 1u);
+  const double painted = total(p.session.volume());
+  ASSERT_GT(painted, 0.0);
+  // Rub-out along the same path removes most of the cloud inside the canvas range.
+  p.apply(ui::SetMode{Mode::kErase});
+  p.apply(ui::SetEraseTool{EraseTool::kRubOut});
+  p.apply(ui::SetEraseDiameter{EraseTool::kRubOut, 0.4f});
+  const size_t steps = p.session.history().undoable();
+  p.stroke(strokes[0]);
+  const double rubbed = total(p.session.volume());
+  EXPECT_LT(rubbed, 0.5 * painted) << painted << " -> " << rubbed;
+  EXPECT_EQ(p.session.history().undoable(), steps + 1) << "one rub is one history step";
+  p.apply(ui::Undo{});
+  EXPECT_EQ(total(p.session.volume()), painted);
+}
+
+TEST(SessionModes, VacuumCutsASoftSphereAndNothingOutsideIt) {
+  Painter p;
+  Volume& v = p.session.volume();
+  for (size_t i = 0; i < v.voxelCount(); ++i) v.data()[i] = 0.5f;
+  v.markDirty(v.bounds());
+  p.apply(ui::DeleteAll{});  // a step, then refill as the base of the vacuum test
+  for (size_t i = 0; i < v.voxelCount(); ++i) v.data()[i] = 0.5f;
+  v.markDirty(v.bounds());
+  const glm::vec3 centre(0.1f, 0.2f, -0.1f);
+  p.apply(ui::VacuumCut{centre, 0.4f});
+  const auto at = [&](glm::vec3 w) {
+    const glm::ivec3 i = glm::ivec3(v.worldToVoxel(w));
+    return v.at(i.x, i.y, i.z);
+  };
+  EXPECT_EQ(at(centre), 0.0f) << "the sphere's core is empty";
+  EXPECT_EQ(at(centre + glm::vec3(0.5f, 0, 0)), 0.5f) << "outside the sphere nothing changes";
+  const float rim = at(centre + glm::vec3(0.37f, 0, 0));
+  EXPECT_GT(rim, 0.0f);
+  EXPECT_LT(rim, 0.5f) << "the boundary is smooth (§3.5.1)";
+  // The vacuum centre follows the pen: x/z on the canvas plane, the height from pressure.
+  MappedSample pen;
+  pen.x_px = kW / 2.0;
+  pen.y_px = kH / 2.0;
+  pen.pressure = 1.0f;
+  glm::vec3 high, low;
+  ASSERT_TRUE(p.session.vacuumCentre(pen, &high));
+  pen.pressure = 0.0f;
+  ASSERT_TRUE(p.session.vacuumCentre(pen, &low));
+  EXPECT_FLOAT_EQ(high.y, v.worldMax().y);
+  EXPECT_FLOAT_EQ(low.y, v.worldMin().y);
+  EXPECT_FLOAT_EQ(high.x, low.x);
+}
+
+TEST(SessionModes, AJournalWithModesEraseUndoAndRedoReplaysExactly) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("cb_session_modes_" + std::to_string(::getpid()) + ".cbj"))
+                               .string();
+  const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kW, kH);
+  uint64_t sum = 0;
+  {
+    Painter p;
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(path)) << journal.error();
+    p.session.recordTo(&journal, 0);
+    p.stroke(strokes[0]);
+    p.apply(ui::SetCamera{Camera::reference().orbited(30.0f)});
+    p.apply(ui::SetCanvas{0.2f, 0.5f});
+    p.apply(ui::SetBrush{BrushKind::k2D});
+    p.stroke(strokes[1]);
+    p.apply(ui::Undo{});
+    p.apply(ui::Redo{});
+    p.apply(ui::SetMode{Mode::kErase});
+    p.apply(ui::VacuumCut{glm::vec3(0.0f, 0.0f, 0.0f), 0.3f});
+    p.stroke(strokes[0]);  // rub-out
+    p.apply(ui::Undo{});
+    p.apply(ui::SetMode{Mode::kPaint});
+    p.apply(ui::SetLight{glm::vec3(-1, 2, 0), glm::vec3(1, 0.9f, 0.8f)});
+    p.stroke(strokes[1]);
+    journal.close();
+    sum = volumeChecksum(p.session.volume());
+  }
+  const SessionReplay replay = replaySession(readJournal(path), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete()) << replay.journal_error
+                                 << (replay.problems.empty() ? "" : replay.problems[0]);
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), sum);
+  EXPECT_EQ(replay.session->mode(), Mode::kPaint);
+  EXPECT_EQ(replay.session->canvas().altitude, 0.2f);
+  std::filesystem::remove(path);
+}
+
+TEST(SessionModes, FormatOneSessionsKeepTheReferenceView) {
+  PaintSessionSettings old;
+  std::string error;
+  ASSERT_TRUE(
+      parseSessionSettings("screen_width = 320\nscreen_height = 180\ngrid = 64\n", &old, &error))
+      << error;
+  EXPECT_EQ(old.format, 1);
+  EXPECT_EQ(initialPaintCamera(old).eye, Camera::reference().eye);
+  PaintSessionSettings now{kW, kH, kGrid};
+  EXPECT_NE(initialPaintCamera(now).eye, Camera::reference().eye);
+}
+
+}  // namespace
+}  // namespace cb

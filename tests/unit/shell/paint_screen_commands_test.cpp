@@ -1,0 +1,106 @@
+// Every command reaches the painter through the one frame loop: keys injected on the surfaceless
+// display go through the keymap to PaintScreen, change the session (journalled), and a stroke
+// from the replay pen is then painted in the state they left; the journal replays to the same
+// volume.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/session/synthetic_session.h"
+#include "app/shell/keymap.h"
+#include "app/shell/paint_loop.h"
+#include "drivers/replay/replay_pen_source.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 320, kH = 180, kGrid = 64;
+
+TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_paint_commands_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir + "/state");
+  // The pen: one reference stroke.
+  const std::string stroke = dir + "/stroke.cbj";
+  {
+    PaintSession recorder({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+    recorder.setQuietMapping(true);
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(stroke));
+    recorder.recordTo(&journal, 0);
+    const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+    recorder.setDevice(tablet, 0);
+    for (const PenSample& s : syntheticPenSamples(referencePaintStrokes(kW, kH)[0], tablet, kW, kH,
+                                                  200.0, 1'000'000'000))
+      recorder.feed(s);
+  }
+  DisplayOptions display_options;
+  display_options.platform = DisplayPlatform::Surfaceless;
+  display_options.width = kW;
+  display_options.height = kH;
+  std::string error;
+  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  ASSERT_TRUE(display) << error;
+  VolumeRenderer renderer;
+  ASSERT_TRUE(renderer.init(&error)) << error;
+  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+  session.setQuietMapping(true);
+  const std::string recorded = dir + "/session.cbj";
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(recorded));
+  session.recordTo(&journal, 0);
+  const BrushKind first_brush = session.selectedBrush();
+
+  PaintLoopOptions options;
+  options.max_frames = 2000;
+  options.state_dir = dir + "/state";
+  options.config_dir = dir + "/config";
+  ASSERT_TRUE(
+      parseKeyList("1,up,down,left,right,r,g,space,space,2,pageup,pagedown,pageup,minus,"
+                   "plus,3,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
+                   "ctrl+y,m,m,ctrl+s,3",
+                   &options.initial_keys, &error))
+      << error;
+  ReplayOptions replay_options;
+  replay_options.realtime = false;
+  replay_options.batch = 16;
+  ReplayPenSource pen(stroke, replay_options);
+  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  loop.attachPen(&pen, &session);
+  PaintLoopSummary summary;
+  ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+  EXPECT_EQ(summary.quit_reason, "replay finished");
+  journal.close();
+
+  std::set<std::string> routed(loop.routedCommands().begin(), loop.routedCommands().end());
+  for (int i = 0; i < int(Command::kCount); ++i) {
+    const char* name = commandName(Command(i));
+    if (Command(i) == Command::kQuit) continue;  // pressed by the display tests (Esc, q)
+    EXPECT_TRUE(routed.count(name)) << name << " was not routed";
+  }
+  // The state the keys left, then the stroke painted in it.
+  EXPECT_EQ(session.mode(), Mode::kPaint);
+  EXPECT_NE(session.selectedBrush(), first_brush);
+  EXPECT_EQ(session.mappingMethod(), MappingMethod::kRayMarching);
+  EXPECT_FLOAT_EQ(session.canvas().altitude, session.volume().voxelSize().y);
+  EXPECT_EQ(session.strokesMapped(), 1u);
+  EXPECT_EQ(summary.strokes_mapped, 1);
+  bool saved = false;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/state"))
+    saved |= entry.path().extension() == ".vol";
+  EXPECT_TRUE(saved) << "Ctrl+S saved the cloud";
+
+  const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete()) << replay.journal_error
+                                 << (replay.problems.empty() ? "" : replay.problems[0]);
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), volumeChecksum(session.volume()));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cb
