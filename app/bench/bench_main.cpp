@@ -24,6 +24,8 @@ const Bench kBenches[] = {
     {"input", "report decode cost and kernel-to-consumer delay", benchInput},
     {"smoothing", "jitter and lag of raw, moving average and 1-euro filtering; prediction",
      benchSmoothing},
+    {"history", "undo/redo, erase and light to restored volume and lit frame; history bytes",
+     benchHistory},
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "app/scene/paint_camera.h"
 #include "app/volume/volume_erase.h"
+#include "app/volume/volume_file.h"
 
 namespace cb {
 namespace {
@@ -181,15 +182,21 @@ bool PaintSession::vacuumCentre(const MappedSample& sample, glm::vec3* centre) c
   return true;
 }
 
-void PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source) {
-  if (volume.dims() != volume_.dims()) {
-    volume_ = Volume(volume_.dims(), volume_.worldMin(), volume_.worldMax());
-    std::fprintf(stderr, "cloudbrush: %s: %dx%dx%d does not match the session's grid\n",
-                 source.c_str(), volume.dims().x, volume.dims().y, volume.dims().z);
+bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
+                                 std::string* error) {
+  if (volume.dims() != volume_.dims() || volume.worldMin() != volume_.worldMin() ||
+      volume.worldMax() != volume_.worldMax()) {
+    *error = source + ": a " + std::to_string(volume.dims().x) + "x" +
+             std::to_string(volume.dims().y) + "x" + std::to_string(volume.dims().z) +
+             " cloud does not fit this session's " + std::to_string(volume_.dims().x) +
+             "³ sky; the cloud is unchanged";
+    return false;
   }
+  if (engine_.inStroke()) return *error = "open: a stroke is being painted", false;
   volume_ = volume;
   history_.reset(volume_);
   journalText(JournalRecordType::kMarker, t_ns, "opened " + source);
+  return true;
 }
 
 SampleOutcome PaintSession::feed(const PenSample& sample) {
@@ -209,7 +216,9 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
   }
   outcome.mapped = calibrator_->process(sample);
   const MappedSample& m = outcome.mapped;
-  if (mode_ == Mode::kPaint) {
+  if (pen_captured_) {
+    // The UI holds the pen: calibrated (the filters keep running) but nothing drawn.
+  } else if (mode_ == Mode::kPaint) {
     const bool was_in_stroke = engine_.inStroke();
     outcome.changed = engine_.feedCalibrated(m);
     outcome.stroke_began = !was_in_stroke && engine_.inStroke();
@@ -294,6 +303,12 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     bool operator()(const ui::VacuumCut& c) {
       vacuumSphere(s.volume_, c.centre, c.radius);
       s.recordStep(before, "vacuum");
+      return true;
+    }
+    bool operator()(const ui::PenCapture& c) {
+      if (c.captured && (s.engine_.inStroke() || s.rubbing_))
+        return *error = "pen capture: the pen is drawing", false;
+      s.pen_captured_ = c.captured;
       return true;
     }
     bool operator()(const ui::Undo&) {
@@ -382,6 +397,16 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       return apply(change, record.t_ns, error);
     }
     case JournalRecordType::kMarker:
+      if (record.text().rfind("opened ", 0) == 0) {
+        // The session opened a saved cloud here: replay needs that file where it was.
+        const std::string path(record.text().substr(7));
+        try {
+          return replaceVolume(loadVolume(path), record.t_ns, path, error);
+        } catch (const std::exception& e) {
+          *error = std::string("the session opened ") + path + " here: " + e.what();
+          return false;
+        }
+      }
       journalText(record.type, record.t_ns, std::string(record.text()));
       return true;
   }

@@ -112,13 +112,16 @@ class PaintSession {
   const Light& light() const { return scene_.light; }
   const SceneState& scene() const { return scene_; }
   Mode mode() const { return mode_; }
+  bool penCaptured() const { return pen_captured_; }
   EraseTool eraseTool() const { return erase_tool_; }
   const History& history() const { return history_; }
   // The sun before anything is recorded (config/render.toml); journalled with the starting state.
   void setStartingLight(const Light& light) { scene_.light = light; }
-  // Replaces the cloud (open a saved cloud); the history starts over from it. Journalled as a
-  // marker only: a session that opens a file replays with that file present.
-  void replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source);
+  // Replaces the cloud (open a saved cloud); the history starts over from it. Journalled as an
+  // "opened PATH" marker: a session that opens a file replays with that file where it was.
+  // False with *error (the cloud unchanged) when it does not fit this session's sky.
+  bool replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
+                     std::string* error);
   const PaintSessionSettings& settings() const { return settings_; }
   int footprintWidth() const { return footprint_w_; }
   int footprintHeight() const { return footprint_h_; }
@@ -155,6 +158,7 @@ class PaintSession {
   EraseTool erase_tool_ = EraseTool::kRubOut;
   float vacuum_diameter_ = 0.3f, rubout_diameter_ = 0.12f;  // world units (sky box is 2 wide)
   bool rubbing_ = false;                                    // a rub-out is in progress
+  bool pen_captured_ = false;                               // the on-screen UI holds the pen
   History history_;
   uint32_t strokes_mapped_ = 0;
   uint64_t samples_without_device_ = 0;

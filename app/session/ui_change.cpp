@@ -98,6 +98,9 @@ UiRecordText formatUiChange(const UiChange& change) {
       const float v[4] = {c.centre.x, c.centre.y, c.centre.z, c.radius};
       return {JournalRecordType::kUi, "vacuum_cut=" + formatFloats(v, 4)};
     }
+    UiRecordText operator()(const ui::PenCapture& c) const {
+      return {JournalRecordType::kUi, std::string("pen_capture=") + (c.captured ? "on" : "off")};
+    }
     UiRecordText operator()(const ui::Undo&) const { return {JournalRecordType::kUi, "undo"}; }
     UiRecordText operator()(const ui::Redo&) const { return {JournalRecordType::kUi, "redo"}; }
     UiRecordText operator()(const ui::DeleteAll&) const {
@@ -177,6 +180,9 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     if (!parseFloats(value, 1, v) || v[0] <= 0.0f) return bad("a diameter > 0");
     *out = ui::SetEraseDiameter{key == "vacuum_diameter" ? EraseTool::kVacuum : EraseTool::kRubOut,
                                 v[0]};
+  } else if (key == "pen_capture") {
+    if (value != "on" && value != "off") return bad("on or off");
+    *out = ui::PenCapture{value == "on"};
   } else if (key == "vacuum_cut") {
     if (!parseFloats(value, 4, v) || v[3] <= 0.0f) return bad("X,Y,Z,RADIUS (radius > 0)");
     *out = ui::VacuumCut{glm::vec3(v[0], v[1], v[2]), v[3]};

@@ -14,6 +14,7 @@
 //   Ui      erase_tool=vacuum|rub-out             SetEraseTool
 //   Ui      vacuum_diameter=D | rubout_diameter=D SetEraseDiameter (world units)
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
+//   Ui      pen_capture=on|off                    PenCapture
 //   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
 //
 // Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
@@ -70,6 +71,11 @@ struct VacuumCut {
   glm::vec3 centre;
   float radius;
 };
+// While the pen is captured by the on-screen UI (menu open, or pressed on a UI target) its
+// samples are journalled and calibrated but draw, erase and map nothing.
+struct PenCapture {
+  bool captured;
+};
 struct Undo {};
 struct Redo {};
 struct DeleteAll {};
@@ -77,7 +83,7 @@ struct DeleteAll {};
 
 using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
                               ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
-                              ui::VacuumCut, ui::Undo, ui::Redo, ui::DeleteAll>;
+                              ui::VacuumCut, ui::PenCapture, ui::Undo, ui::Redo, ui::DeleteAll>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

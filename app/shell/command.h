@@ -36,6 +36,7 @@ enum class Command {
   kRedo,             // Ctrl+Y (and Ctrl+Shift+Z)
   kSave,             // Ctrl+S
   kGoodView,         // G: the nearest view that is not edge-on to the canvas
+  kOpen,             // Ctrl+O: open the last saved cloud (--open FILE opens any)
   kCount
 };
 

@@ -73,7 +73,10 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       break;
     }
     if (!screen.needsFrame()) {
+      // Nothing changed: wait a tick. A scripted run (max_frames) counts the tick as a frame,
+      // so `--frames N` ends even on a still scene.
       std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      if (options.max_frames > 0) ++result->frames;
       continue;
     }
     if (!screen.draw(frame, error)) return false;

@@ -20,7 +20,7 @@ constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
                                          "toggle-circles", "toggle-stats",
                                          "delete-all",     "undo",
                                          "redo",           "save",
-                                         "good-view"};
+                                         "good-view",      "open"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -58,6 +58,7 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
     if (k == 'z') return shift ? Command::kRedo : Command::kUndo;
     if (k == 'y') return Command::kRedo;
     if (k == 's') return Command::kSave;
+    if (k == 'o') return Command::kOpen;
     return std::nullopt;  // Ctrl+anything else: nothing (no accidental commands)
   }
   switch (k) {
@@ -231,6 +232,8 @@ std::string keyLabel(Command command) {
       return "Ctrl+S";
     case Command::kGoodView:
       return "G";
+    case Command::kOpen:
+      return "Ctrl+O";
     default:
       return "";
   }

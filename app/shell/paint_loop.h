@@ -110,6 +110,7 @@ class PaintLoop {
   // Routes `pen` into `session` (neither owned). The loop's own volume is shown until the pen
   // first connects, the session's volume from then on.
   void attachPen(PenSource* pen, PaintSession* session);
+  PaintScreen& screen() { return *screen_; }
   // Every command the loop routed, by name, in order (tests).
   const std::vector<std::string>& routedCommands() const { return routed_; }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -10,6 +11,7 @@
 #include "app/scene/paint_camera.h"
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
+#include "app/shell/ui_overlay.h"
 #include "app/volume/volume_file.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/pen_source.h"
@@ -146,6 +148,7 @@ void PaintScreen::warnIfEdgeOn() {
       assessPaintView(session_->camera(), session_->canvas(), v.worldMin(), v.worldMax(),
                       display_.width(), display_.height());
   edge_on_ = session_->mode() == Mode::kPaint && !view.good;
+  if (!edge_on_) notice_.clear();
   if (edge_on_) {
     char text[160];
     std::snprintf(text, sizeof text,
@@ -153,6 +156,7 @@ void PaintScreen::warnIfEdgeOn() {
                   "screen can be painted): press G for the nearest good view",
                   double(view.elevation_deg), 100.0 * view.fill_fraction);
     say(text);
+    notice_ = text;
   }
 }
 
@@ -200,6 +204,11 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
         apply(ui::SetCamera{here}, sample.t_ns);
       }
     }
+    // The on-screen UI holds the pen while the menu is open or when the pen comes down on a UI
+    // target; the change is made only while the pen is up, so no stroke is cut short.
+    const bool capture = menu_open_ || pointer_over_ui_;
+    if (capture != session_->penCaptured() && !pen_events_.down() && !session_->engine().inStroke())
+      apply(ui::PenCapture{capture}, sample.t_ns);
     const auto received = std::chrono::steady_clock::now();
     const SampleOutcome outcome = session_->feed(sample);
     ++pen_samples_;
@@ -220,8 +229,24 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
     cursor_.visible = outcome.mapped.in_proximity;
     events_.clear();
     pen_events_.derive(outcome.mapped, &events_);
-    for (const PenEvent& event : events_) handleEvent(event, outcome.mapped);
+    if (ui_ && outcome.mapped.in_proximity)
+      ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
+    for (const PenEvent& event : events_) {
+      // Side buttons always reach the screen; the rest only when the UI does not hold the pen.
+      const bool button =
+          event.kind == PenEvent::Kind::kButtonDown || event.kind == PenEvent::Kind::kButtonUp;
+      if (button || !session_->penCaptured()) handleEvent(event, outcome.mapped);
+    }
   }
+}
+
+void PaintScreen::onPointer(const DisplayEvent& event) {
+  // A mouse (X11) drives the on-screen UI.
+  if (!ui_) return;
+  if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) mouse_down_ = true;
+  if (event.kind == DisplayEvent::Kind::PointerUp && event.button == 1) mouse_down_ = false;
+  ui_->pointer(event.x, event.y, mouse_down_);
+  pointer_moved_ = true;
 }
 
 void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped) {
@@ -425,6 +450,28 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
     case Command::kRedo:
       apply(ui::Redo{}, t_ns);
       break;
+    case Command::kOpen: {
+      if (!session_) return say("open: no pen session to open a cloud into");
+      // The most recently saved cloud of this state dir (--open FILE opens any file).
+      std::filesystem::path newest;
+      std::error_code ec;
+      for (const auto& entry : std::filesystem::directory_iterator(options_.state_dir, ec))
+        if (entry.path().extension() == ".vol" &&
+            (newest.empty() ||
+             entry.last_write_time() > std::filesystem::last_write_time(newest, ec)))
+          newest = entry.path();
+      if (newest.empty()) return say("open: no saved cloud in " + options_.state_dir + " yet");
+      try {
+        std::string error;
+        if (session_->replaceVolume(loadVolume(newest.string()), t_ns, newest.string(), &error))
+          say("opened " + newest.string());
+        else
+          say(error);
+      } catch (const std::exception& e) {
+        say(std::string("open failed, the cloud is unchanged: ") + e.what());
+      }
+      break;
+    }
     case Command::kSave: {
       if (!session_) return say("save: no pen session, nothing painted");
       const std::string path = options_.state_dir + "/cloud-" + std::to_string(t_ns) + ".vol";
@@ -459,7 +506,8 @@ std::string PaintScreen::update(const FrameContext& frame) {
 
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
-  if (pen_ && pen_connected_once_) return true;  // the cursor and footprint follow the pen
+  if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
+  if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
 }
 
@@ -634,6 +682,7 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
     }
   }
   if (!drawOverlays(error)) return false;
+  drawUi(frame);
   last_info_ = info;
   if (options_.on_frame) options_.on_frame(info);
   return true;
@@ -655,6 +704,38 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
       moving_scale_ = std::max(options_.min_moving_scale, moving_scale_ * 0.9f);
     else if (frame_ms < 0.7 * options_.target_frame_ms)
       moving_scale_ = std::min(1.0f, moving_scale_ * 1.05f);
+  }
+}
+
+void PaintScreen::drawUi(const FrameContext& frame) {
+  if (ui_failed_) return;
+  if (!ui_) {
+    ui_ = std::make_unique<UiOverlay>();
+    std::string error;
+    if (!ui_->init(&error)) {
+      say("on-screen UI unavailable (keys still work): " + error);
+      ui_.reset();
+      ui_failed_ = true;
+      return;
+    }
+  }
+  UiOverlayState state;
+  state.status = statusLine();
+  state.notice = notice_;
+  state.menu_open = menu_open_;
+  state.mode = session_ ? int(session_->mode()) : 2;
+  state.can_undo = session_ && session_->history().canUndo();
+  state.can_redo = session_ && session_->history().canRedo();
+  glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+  glViewport(0, 0, frame.width, frame.height);
+  const std::vector<Command> tapped =
+      ui_->draw(frame.width, frame.height, frame.since_last_s, state);
+  pointer_over_ui_ = ui_->pointerOverUi();
+  pointer_moved_ = false;
+  for (Command command : tapped) {
+    tapped_.push_back(command);
+    onCommand(command, frame.now_ns);
+    if (command != Command::kMenu && menu_open_) menu_open_ = false;  // a choice closes it
   }
 }
 

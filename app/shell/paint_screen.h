@@ -20,6 +20,7 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@ class PaintScreen : public Screen {
   void onPenSamples(const std::vector<PenSample>& samples) override;
   void onCommand(Command command, int64_t t_ns) override;
   void onResize(int, int) override { refined_ = false; }
+  void onPointer(const DisplayEvent& event) override;
   std::string update(const FrameContext& frame) override;
   bool needsFrame() const override;
   bool draw(FrameContext& frame, std::string* error) override;
@@ -60,6 +62,9 @@ class PaintScreen : public Screen {
   std::string statusLine() const;
   bool menuOpen() const { return menu_open_; }
   bool edgeOnWarning() const { return edge_on_; }
+  // Commands tapped on the on-screen UI so far (tests).
+  const std::vector<Command>& tappedCommands() const { return tapped_; }
+  const UiOverlay* ui() const { return ui_.get(); }
   // The view being shown (a drag preview, the auto-rotation, or the session's camera).
   Camera shownCamera() const;
 
@@ -73,6 +78,7 @@ class PaintScreen : public Screen {
   bool paintingSetUp(std::string* error);
   void drawStill(PaintFrameInfo* info);
   bool drawOverlays(std::string* error);
+  void drawUi(const FrameContext& frame);
   void selectCalibration(uint64_t tool_serial);
   Camera presetView(Command command) const;
 
@@ -125,6 +131,14 @@ class PaintScreen : public Screen {
   HudOverlay hud_;
   bool show_stats_ = false, show_circles_ = false;
   bool menu_open_ = false;
+  std::unique_ptr<UiOverlay> ui_;
+  bool ui_failed_ = false;
+  bool pointer_over_ui_ = false;
+  bool mouse_down_ = false;
+  bool pointer_moved_ = false;  // a mouse event since the last frame  // the pen or mouse was over
+                                // a UI target last frame
+  std::string notice_;          // shown above the status line
+  std::vector<Command> tapped_;
   bool edge_on_ = false;  // the session's view is nearly edge-on to the canvas
   std::string last_message_;
 

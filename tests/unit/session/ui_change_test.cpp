@@ -21,7 +21,8 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
       ui::VacuumCut{glm::vec3(-0.25f, 0.5f, 1.0f / 3.0f), 0.15f},
       ui::Undo{},
       ui::Redo{},
-      ui::DeleteAll{}};
+      ui::DeleteAll{},
+      ui::PenCapture{true}};
   for (const UiChange& change : changes) {
     const UiRecordText text = formatUiChange(change);
     UiChange parsed;

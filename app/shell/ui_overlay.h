@@ -1,0 +1,72 @@
+// The on-screen UI drawn with Dear ImGui inside the EGL frame (issue 9 "Pen menu and on-screen
+// UI"): a status line (mode, brush, mapping, canvas altitude, what the painter waits for) and
+// the pen menu of big targets (thesis Fig. 3.7): the five modes, the current mode's commands,
+// undo/redo, delete, open and save, each labelled with its key. The pen (or a mouse) drives it
+// as ImGui's pointer; a tap on a target yields its Command. An always-visible menu button makes
+// every command reachable for pens without side buttons.
+//
+// Text is set in Noto Sans CJK (fonts-noto-cjk), so labels may be Chinese; the atlas holds the
+// Latin range plus exactly the CJK characters of the shipped labels.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/shell/command.h"
+
+struct ImGuiContext;
+
+namespace cb {
+
+struct UiOverlayState {
+  std::string status;  // the status line
+  std::string notice;  // a warning shown above it (edge-on view, errors), or empty
+  bool menu_open = false;
+  int mode = 2;  // Mode as an int (0 camera … 4 light), for the mode's commands
+  bool can_undo = false, can_redo = false;
+};
+
+class UiOverlay {
+ public:
+  UiOverlay();
+  ~UiOverlay();
+  UiOverlay(const UiOverlay&) = delete;
+  UiOverlay& operator=(const UiOverlay&) = delete;
+
+  // Creates the ImGui context, font atlas and GL objects (the GL context must be current).
+  bool init(std::string* error);
+  // The pointer (pen tip or mouse) in framebuffer pixels, y down.
+  void pointer(float x, float y, bool down);
+  // Draws the UI over the bound framebuffer of width × height and returns the commands of the
+  // targets tapped since the last frame (a tap = press and release on the same target).
+  std::vector<Command> draw(int width, int height, double dt_s, const UiOverlayState& state);
+  // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
+  bool pointerOverUi() const { return over_ui_; }
+  // The screen rectangle of the menu button, for tests (x0, y0, x1, y1).
+  const float* menuButtonRect() const { return menu_button_; }
+  // The rectangle of a command's target in the open menu, for tests; false when not shown.
+  bool targetRect(Command command, float rect[4]) const;
+
+ private:
+  ImGuiContext* context_ = nullptr;
+  bool ready_ = false;
+  struct PointerState {
+    float x, y;
+    bool down;
+  };
+  // Pointer states since the last frame; a press and release between two frames are shown on
+  // consecutive frames, so a quick tap is never lost.
+  std::vector<PointerState> pointer_queue_;
+  PointerState pointer_{-1.0f, -1.0f, false};
+  bool over_ui_ = false;
+  float menu_button_[4] = {0, 0, 0, 0};
+  struct Target {
+    Command command;
+    float rect[4];
+  };
+  std::vector<Target> targets_;
+};
+
+}  // namespace cb
