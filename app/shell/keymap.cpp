@@ -131,6 +131,9 @@ bool parseKeyList(std::string_view text, std::vector<DisplayEvent>* keys, std::s
   std::vector<std::string> tokens;
   bool compact = text.find(',') == std::string_view::npos;
   for (char c : text) compact = compact && std::isalnum(static_cast<unsigned char>(c));
+  std::string lower(text);
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  for (const NamedKey& named : kNamedKeys) compact = compact && lower != named.name;
   if (compact) {
     for (char c : text) tokens.emplace_back(1, c);
   } else {

@@ -21,7 +21,8 @@ std::optional<Command> commandFor(const DisplayEvent& event);
 // Key names of scripted runs (`--keys`) and tests: a comma-separated list of keys such as
 // "3,b,ctrl+z,space,delete,up" (names: a–z, 0–9, space, esc, delete, up, down, left, right,
 // minus, plus, pageup, pagedown; prefixes ctrl+, shift+, alt+). A list without commas whose
-// characters are all letters or digits is read one key per character ("bm" = b, m).
+// characters are all letters or digits, and which is not one key's name, is read one key per
+// character ("bm" = b, m; "delete" = Delete).
 bool parseKeyList(std::string_view text, std::vector<DisplayEvent>* keys, std::string* error);
 
 // The keys that give `command` (for the menu's labels), e.g. "Ctrl+Z"; empty when none.

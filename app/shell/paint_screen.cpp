@@ -747,12 +747,22 @@ std::string PaintScreen::statusLine() const {
   const int altitude_voxels =
       int(std::lround((s.canvas().altitude - v.worldMin().y) / v.voxelSize().y));
   std::snprintf(text, sizeof text,
-                "%s mode | brush %s | mapping %s | canvas altitude %d thickness %.2f | %s%s",
+                "%s mode | brush %s | mapping %s | canvas altitude %d thickness %.2f",
                 modeName(s.mode()), brushKindName(s.selectedBrush()), toString(s.mappingMethod()),
-                altitude_voxels, double(s.canvas().thickness),
-                s.mode() == Mode::kErase ? eraseToolName(s.eraseTool()) : "",
-                pen_connected_once_ ? "" : " | waiting for the pen: bring it near the tablet");
-  return text;
+                altitude_voxels, double(s.canvas().thickness));
+  std::string line = text;
+  if (s.mode() == Mode::kErase) {
+    std::snprintf(text, sizeof text, " | %s %.2f", eraseToolName(s.eraseTool()),
+                  double(s.eraseDiameter(s.eraseTool())));
+    line += text;
+  }
+  if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
+  if (pen_ && pen_->connection() != PenConnection::kConnected &&
+      pen_->connection() != PenConnection::kFinished)
+    line += std::string(" | no tablet yet: plug one in (") + pen_->statusMessage() + ")";
+  else if (pen_samples_ == 0)
+    line += " | waiting for the pen: bring it near the tablet";
+  return line;
 }
 
 void PaintScreen::finish(PaintLoopSummary* summary) const {

@@ -43,10 +43,10 @@ std::vector<MenuEntry> modeCommands(int mode) {
               {Command::kToggleCircles, "Circles"},
               {Command::kGoodView, "Good view"}};
     case 3:
-      return {{Command::kNextEraseTool, "Vacuum / Rub-out"},
+      return {{Command::kNextEraseTool, "Tool"},
               {Command::kSmaller, "Smaller"},
               {Command::kLarger, "Larger"},
-              {Command::kSpace, "Cut (vacuum)"}};
+              {Command::kSpace, "Cut"}};
     default:
       return {{Command::kSmaller, "Warmer"}, {Command::kLarger, "Cooler"}};
   }

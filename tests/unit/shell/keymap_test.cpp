@@ -55,6 +55,9 @@ TEST(Keymap, KeyListsParseOrNameTheBadKey) {
   ASSERT_EQ(keys.size(), 4u);
   EXPECT_EQ(keys[1].modifiers, uint32_t(DisplayEvent::kCtrl));
   EXPECT_EQ(keys[3].keysym, uint32_t(XKB_KEY_Up));
+  keys.clear();
+  ASSERT_TRUE(parseKeyList("delete", &keys, &error)) << error;
+  ASSERT_EQ(keys.size(), 1u) << "a key's name is that key, not its letters";
   EXPECT_FALSE(parseKeyList("b,f00", &keys, &error));
   EXPECT_NE(error.find("f00"), std::string::npos) << error;
 }
