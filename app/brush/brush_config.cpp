@@ -118,6 +118,8 @@ bool loadBrushConfig(const std::string& path, BrushConfig* c, std::vector<std::s
     r.number(*t, "stroke", "up_pressure", &c->stroke.up_pressure, 0.0, 1.0);
     r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
     r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
+    r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
+    r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
   }
   if (const toml::table* t = r.section(root, "dispersion")) {
     DispersionParams& d = c->dispersion;

@@ -14,6 +14,10 @@ struct StrokeParams {
   float up_pressure = 0.01f;     // hysteresis lands) and tip-up when it falls below this
   float spacing_px = 1.5f;       // arc-length step between dabs of the texture brushes
   float footprint_scale = 1.0f;  // footprint pixels per screen pixel of the paint view
+  // An open stroke ends by itself when held still / touched only lightly this long (0 = never);
+  // the painter copies these into its session (app/session, journalled there).
+  int auto_end_still_ms = 2000;
+  int auto_end_light_ms = 800;
 };
 
 // Speed -> ink dispersion (thesis §5.1.2, mechanism 3): at or below slow_speed the ink is laid

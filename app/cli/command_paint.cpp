@@ -178,7 +178,10 @@ int commandPaint(int argc, char** argv) {
     settings.screen_width = display->width();
     settings.screen_height = display->height();
     settings.grid = int(grid);
-    session = std::make_unique<PaintSession>(settings, loadDefaultBrushConfig(), mapping);
+    const BrushConfig brush = loadDefaultBrushConfig();
+    settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
+    settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+    session = std::make_unique<PaintSession>(settings, brush, mapping);
     session->setStartingLight(light);
   }
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).

@@ -33,7 +33,12 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
   return "screen_width = " + std::to_string(settings.screen_width) +
          "\nscreen_height = " + std::to_string(settings.screen_height) +
          "\ngrid = " + std::to_string(settings.grid) +
-         "\nformat = " + std::to_string(settings.format) + "\n";
+         "\nformat = " + std::to_string(settings.format) +
+         (settings.format >= 2
+              ? "\nauto_end_still_ms = " + std::to_string(settings.auto_end_still_ms) +
+                    "\nauto_end_light_ms = " + std::to_string(settings.auto_end_light_ms)
+              : std::string()) +
+         "\n";
 }
 
 Camera initialPaintCamera(const PaintSessionSettings& settings) {
@@ -48,6 +53,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
                           std::string* error) {
   PaintSessionSettings parsed;
   parsed.format = 1;  // records of the first landing have no format key
+  parsed.auto_end_still_ms = parsed.auto_end_light_ms = 0;  // nor strokes that end by themselves
   std::istringstream lines{std::string(text)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -71,6 +77,9 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
     } else if (key == "grid") {
       if (!parseInt(value, 8, 1024, &v)) return bad("8..1024");
       parsed.grid = int(v);
+    } else if (key == "auto_end_still_ms" || key == "auto_end_light_ms") {
+      if (!parseInt(value, 0, 600000, &v)) return bad("0..600000 ms");
+      (key == "auto_end_still_ms" ? parsed.auto_end_still_ms : parsed.auto_end_light_ms) = int(v);
     } else if (key == "format") {
       if (!parseInt(value, 1, 2, &v))
         return bad("1 or 2 (a newer journal needs a newer cloudbrush)");
@@ -219,9 +228,36 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
   if (pen_captured_) {
     // The UI holds the pen: calibrated (the filters keep running) but nothing drawn.
   } else if (mode_ == Mode::kPaint) {
+    if (held_until_lift_) {
+      if (!m.contact) held_until_lift_ = false;  // lifted: the next touch starts a stroke
+      return outcome;
+    }
     const bool was_in_stroke = engine_.inStroke();
     outcome.changed = engine_.feedCalibrated(m);
     outcome.stroke_began = !was_in_stroke && engine_.inStroke();
+    if (engine_.inStroke()) {
+      // §7.7.5 problem 3: a stroke left open ends by itself (times from the samples, so a
+      // replay ends the same strokes).
+      const glm::vec2 at(float(m.x_px), float(m.y_px));
+      if (outcome.stroke_began || glm::length(at - still_anchor_) >= 2.0f) {
+        still_anchor_ = at;
+        still_since_ns_ = m.t_ns;
+      }
+      if (m.pressure >= 0.05f)
+        light_since_ns_ = -1;
+      else if (light_since_ns_ < 0)
+        light_since_ns_ = m.t_ns;
+      const bool still = settings_.auto_end_still_ms > 0 &&
+                         m.t_ns - still_since_ns_ >= int64_t(settings_.auto_end_still_ms) * 1000000;
+      const bool light = settings_.auto_end_light_ms > 0 && light_since_ns_ >= 0 &&
+                         m.t_ns - light_since_ns_ >= int64_t(settings_.auto_end_light_ms) * 1000000;
+      if (still || light) {
+        engine_.finishStroke();
+        held_until_lift_ = true;
+        light_since_ns_ = -1;
+        outcome.auto_ended = true;
+      }
+    }
     mapFinishedStroke(&outcome);
   } else if (mode_ == Mode::kErase && erase_tool_ == EraseTool::kRubOut) {
     // §3.5.2: while the tip is down, a cylinder along the view through the canvas's height
@@ -378,7 +414,9 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (!parseSessionSettings(record.text(), &recorded, error)) return false;
       if (recorded.screen_width != settings_.screen_width ||
           recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
-          recorded.format != settings_.format) {
+          recorded.format != settings_.format ||
+          recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
+          recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
         *error = "session record (" + formatSessionSettings(recorded) +
                  ") differs from this session's settings";
         return false;

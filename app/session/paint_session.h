@@ -42,6 +42,12 @@ struct PaintSessionSettings {
   // modes and history (the paint view starts at defaultPaintCamera()). A Session record without
   // `format` is 1, so old journals replay as they did.
   int format = 2;
+  // A stroke still open after this long ends by itself (thesis §7.7.5 problem 3: strokes left
+  // open by a pen resting on the tablet). Held still (moving < 2 px) or touching only lightly
+  // (pressure under 5%) for the time given; 0 disables. Journalled with the session, so
+  // replay ends the same strokes.
+  int auto_end_still_ms = 2000;
+  int auto_end_light_ms = 800;
 };
 
 // The painter's starting view for a session of `format` (see PaintSessionSettings).
@@ -60,6 +66,7 @@ struct SampleOutcome {
   bool stroke_began = false;   // this sample started a stroke (a fresh footprint)
   bool stroke_mapped = false;  // this sample ended a stroke and it was mapped into the volume
   bool erased = false;         // this sample rubbed out some cloud (erase mode, rub-out)
+  bool auto_ended = false;     // the open stroke ended by itself (held still or touched lightly)
   MappingReport mapping;       // valid when stroke_mapped
   uint32_t stroke_index = 0;   // of the mapped stroke
 };
@@ -158,7 +165,10 @@ class PaintSession {
   EraseTool erase_tool_ = EraseTool::kRubOut;
   float vacuum_diameter_ = 0.3f, rubout_diameter_ = 0.12f;  // world units (sky box is 2 wide)
   bool rubbing_ = false;                                    // a rub-out is in progress
-  bool pen_captured_ = false;                               // the on-screen UI holds the pen
+  bool pen_captured_ = false;
+  bool held_until_lift_ = false;  // a stroke ended by itself; the pen must lift first
+  glm::vec2 still_anchor_{0.0f};  // where the pen last moved 2 px or more
+  int64_t still_since_ns_ = 0, light_since_ns_ = -1;  // the on-screen UI holds the pen
   History history_;
   uint32_t strokes_mapped_ = 0;
   uint64_t samples_without_device_ = 0;

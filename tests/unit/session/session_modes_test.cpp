@@ -136,6 +136,49 @@ TEST(SessionModes, AJournalWithModesEraseUndoAndRedoReplaysExactly) {
   std::filesystem::remove(path);
 }
 
+// §7.7.5 problem 3: a pen resting on the tablet ends its stroke by itself, and the next stroke
+// needs a lift first; from the samples' own times, so a replay ends the same stroke.
+TEST(SessionModes, AStrokeHeldStillEndsByItself) {
+  Painter p;
+  const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+  std::vector<PenSample> samples = syntheticPenSamples(stroke, p.tablet, kW, kH, 200.0, p.t);
+  // Insert a 2.5 s rest (tip down, not moving) in the middle of the stroke.
+  size_t middle = 0;
+  for (size_t i = 0; i < samples.size(); ++i)
+    if (samples[i].tipDown()) middle = i;
+  middle = middle / 2 + 10;
+  std::vector<PenSample> rest;
+  for (int k = 1; k <= 500; ++k) {
+    PenSample s = samples[middle];
+    s.t_ns += int64_t(k) * 5'000'000;
+    rest.push_back(s);
+  }
+  for (size_t i = middle + 1; i < samples.size(); ++i) samples[i].t_ns += 2'500'000'000;
+  samples.insert(samples.begin() + long(middle) + 1, rest.begin(), rest.end());
+  size_t ended_at = 0;
+  for (size_t i = 0; i < samples.size(); ++i)
+    if (p.session.feed(samples[i]).auto_ended) ended_at = i;
+  EXPECT_EQ(p.session.strokesMapped(), 1u) << "one stroke, ended by the rest; no second one";
+  ASSERT_GT(ended_at, middle);
+  const double ms = double(samples[ended_at].t_ns - samples[middle].t_ns) / 1e6;
+  EXPECT_GE(ms, 2000.0);
+  EXPECT_LE(ms, 2100.0) << "the 1€ filter settles within a few samples";
+  // After a lift, strokes work again.
+  p.t = samples.back().t_ns + 100'000'000;
+  p.stroke(stroke);
+  EXPECT_EQ(p.session.strokesMapped(), 2u);
+  // Off (0), the rest does not end the stroke.
+  PaintSessionSettings off{kW, kH, kGrid};
+  off.auto_end_still_ms = off.auto_end_light_ms = 0;
+  PaintSession session(off, BrushConfig{}, MappingConfig{});
+  session.setQuietMapping(true);
+  session.setDevice(p.tablet, 0);
+  bool ended = false;
+  for (const PenSample& s : samples) ended |= session.feed(s).auto_ended;
+  EXPECT_FALSE(ended);
+  EXPECT_EQ(session.strokesMapped(), 1u);
+}
+
 TEST(SessionModes, FormatOneSessionsKeepTheReferenceView) {
   PaintSessionSettings old;
   std::string error;
