@@ -186,7 +186,7 @@ int benchInput(int argc, char** argv) {
     }
   });
   const double generic_ns = nsPerReport(generic_reports.size(), [&] {
-    hid::HidPenDecoder d(layout, info);
+    hid::HidPenDecoder d(layout, info, hid::PenDriverRules::kWacom);
     PenSample s;
     for (const auto& r : generic_reports) {
       d.decode(r.data(), r.size(), 0, s);

@@ -90,7 +90,8 @@ bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
   device.protocol = "generic";
   device.info = penDeviceInfo(*layout.layout, vendor, product, name.c_str());
   device.mode_report_id = 0;  // devices with a descriptor-described pen report need no switch
-  decoder = std::make_unique<PenDecoder>(HidPenDecoder(*layout.layout, device.info));
+  decoder = std::make_unique<PenDecoder>(
+      HidPenDecoder(*layout.layout, device.info, penDriverRulesFor(vendor)));
   return true;
 }
 
