@@ -250,7 +250,10 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     }
   }
   unsigned char buf[256];
-  const int64_t idle_ns = int64_t{options_.idle_proximity_timeout_ms} * 1000000;
+  // The idle-proximity timer is the wacom driver's; hid-generic devices have none.
+  const int64_t idle_ns = penDriverRulesFor(device_.vendor) == PenDriverRules::kWacom
+                              ? int64_t{options_.idle_proximity_timeout_ms} * 1000000
+                              : 0;
   int wait = timeout_ms;
   if (pen_in_proximity_ && idle_ns > 0) {  // wake in time for the idle-proximity timeout
     const int64_t left_ms = (last_report_ns_ + idle_ns - nowNs()) / 1000000 + 1;

@@ -3,7 +3,7 @@
 // backend and both hidapi backends report what was injected. Prints "CB-HIL CHECK ok|FAIL ..."
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
-//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]
+//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]
 #include <fcntl.h>
 #include <grp.h>
 #include <linux/input.h>
@@ -29,6 +29,7 @@
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/hid/intuos4_decoder.h"
 #include "drivers/usb/usb_devices.h"
+#include "tests/hil/tablet/corpus_phase.h"
 #include "tests/hil/tablet/intuos4_handbuilt.h"
 #include "tests/hil/tablet/pen_script.h"
 #include "tests/hil/tablet/uhid_device.h"
@@ -445,12 +446,13 @@ void phaseLatency() {
 int main(int argc, char** argv) {
   using namespace cb::hil;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]\n",
+                 argv[0]);
     return 2;
   }
   const std::string fixtures = argv[1];
   std::vector<std::string> phases(argv + 2, argv + argc);
-  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency"};
+  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency", "corpus"};
   for (const std::string& p : phases) {
     std::printf("CB-HIL PHASE %s\n", p.c_str());
     std::fflush(stdout);
@@ -462,6 +464,8 @@ int main(int argc, char** argv) {
       phaseGadget(fixtures);
     else if (p == "latency")
       phaseLatency();
+    else if (p == "corpus")
+      g_failures += runCorpusPhase(fixtures);
     else
       check(false, "unknown phase " + p);
   }
