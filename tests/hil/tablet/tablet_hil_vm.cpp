@@ -23,6 +23,7 @@
 
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_units.h"
+#include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/evdev/evdev_pen_source.h"
 #include "drivers/evdev/uinput_latency.h"
 #include "drivers/hid/hid_pen_layout.h"
@@ -180,6 +181,28 @@ void checkReplug(const std::string& label, std::vector<PenSource*> sources) {
   }
 }
 
+// Runs `what` in a child process as user nobody (no supplementary groups) and returns what it
+// returned, or "setuid failed".
+std::string asNobody(const std::function<std::string()>& what) {
+  int pipefd[2];
+  if (pipe(pipefd) != 0) return "pipe failed";
+  const pid_t child = fork();
+  if (child == 0) {
+    close(pipefd[0]);
+    std::string out = "setuid failed";
+    if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) out = what();
+    (void)!write(pipefd[1], out.data(), out.size());
+    _exit(0);
+  }
+  close(pipefd[1]);
+  std::string out;
+  char buf[512];
+  for (ssize_t n; (n = read(pipefd[0], buf, sizeof buf)) > 0;) out.append(buf, n);
+  close(pipefd[0]);
+  waitpid(child, nullptr, 0);
+  return out;
+}
+
 void phaseUhidPth660(const std::string& fixtures) {
   const std::vector<uint8_t> desc = readFile(fixtures + "/wacom-pth660_v145.rdesc");
   auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
@@ -253,6 +276,31 @@ void phaseUhidPth660(const std::string& fixtures) {
           "uhid: as an unprivileged user hidraw reports permission denied naming the udev rule (" +
               hr + ")");
     }
+  }
+
+  // What `cloudbrush devices` reports to that user: the event nodes (or /dev/input itself)
+  // closed to it, each with the error.
+  {
+    const std::string survey = asNobody([] {
+      const EvdevSurvey s = surveyEvdevNodes();
+      if (!s.dir_error.empty())
+        return std::string(s.dir_permission_denied ? "dir-denied " : "dir-error ") + s.dir + ": " +
+               s.dir_error;
+      int denied = 0;
+      std::string first;
+      for (const EvdevNodeReport& n : s.nodes) {
+        if (n.kind == EvdevNodeKind::kCannotOpen && n.permission_denied) ++denied;
+        if (first.empty() && n.kind == EvdevNodeKind::kCannotOpen) first = n.path + ": " + n.detail;
+      }
+      return std::string(denied > 0 && denied == static_cast<int>(s.nodes.size()) ? "nodes-denied "
+                                                                                  : "nodes ") +
+             std::to_string(denied) + "/" + std::to_string(s.nodes.size()) + " " + first;
+    });
+    const bool named =
+        (survey.rfind("dir-denied ", 0) == 0 || survey.rfind("nodes-denied ", 0) == 0) &&
+        survey.find("Permission denied") != std::string::npos;
+    check(named, "uhid: as an unprivileged user the device survey names what is closed and why (" +
+                     survey + ")");
   }
 
   // Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
