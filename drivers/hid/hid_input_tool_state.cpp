@@ -44,7 +44,12 @@ bool HidInputToolState::update(const PenStateValues& v) {
     if (tool_ != PenTool::kEraser) touch_ = v.tip;
   }
   if (usages_.pressure && !usages_.tip) {  // HID_QUIRK_NOTOUCH
-    if (v.pressure > pressure_min_ + ((pressure_max_ - pressure_min_) >> 3)) {
+    // a + ((b - a) >> 3), in the kernel's wrapping 32-bit int arithmetic.
+    const auto span = static_cast<int32_t>(static_cast<uint32_t>(pressure_max_) -
+                                           static_cast<uint32_t>(pressure_min_));
+    const auto threshold = static_cast<int32_t>(static_cast<uint32_t>(pressure_min_) +
+                                                static_cast<uint32_t>(span >> 3));
+    if (v.pressure > threshold) {
       touch_ = true;
       active = true;
     }

@@ -241,6 +241,25 @@ TEST(HidInputRules, InvertSelectsTheRubberWhileHovering) {
   EXPECT_EQ(pen.tool, PenTool::kPen);
 }
 
+// hid-input.c, hidinput_configure_usage() sets HID_QUIRK_NOTOUCH for Tip Pressure without a
+// Tip Switch; hidinput_hid_event(), case HID_DG_TIPPRESSURE, then touches once pressure passes
+// a + ((b - a) >> 3), and the touch lasts until the tool is released.
+TEST(HidInputRules, PressureWithoutTipSwitchTouchesPastAnEighth) {
+  const Bytes pressure = {0x09, 0x30, 0x15, 0x00, 0x26, 0xFF, 0x03,
+                          0x75, 0x10, 0x95, 0x01, 0x81, 0x02};  // 0..1023: threshold 127
+  Parsed p = parsePen(cat({kStylusApplication, stateBits(0x32, 0x44), kXY, pressure, kEnd}));
+  ASSERT_FALSE(p.layout.tip.present);
+  HidPenDecoder d(p.layout, penDeviceInfo(p.layout, 0x1234, 0x5678, "no tip"));
+  EXPECT_FALSE(decodeOne(d, report(0x01, 1, 1, {127, 0})).tipDown()) << "127 is not past 127";
+  EXPECT_TRUE(decodeOne(d, report(0x01, 1, 1, {128, 0})).tipDown());
+  EXPECT_TRUE(decodeOne(d, report(0x01, 1, 1, {0, 0})).tipDown()) << "kept until release";
+  PenSample out;
+  const Bytes leave = report(0x00, 1, 1, {0, 0});
+  ASSERT_EQ(d.decode(leave.data(), leave.size(), 2, out).status, DecodeStatus::kSample);
+  EXPECT_FALSE(out.in_proximity);
+  EXPECT_FALSE(decodeOne(d, report(0x01, 1, 1, {0, 0})).tipDown());
+}
+
 // The Wacom driver keeps its own rules (wacom_wac_pen_report): Eraser is contact, the tool is
 // fixed on entering range; values are not clamped.
 TEST(HidInputRules, WacomRulesAreKeptForWacomDevices) {
