@@ -148,13 +148,16 @@ DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t 
   v.tip = readUnsigned(p, pn, layout_.tip) != 0;
   v.in_range = readUnsigned(p, pn, layout_.in_range) != 0;
   v.pressure = state_.pressure_raw;
-  hid_input_.update(v);
+  const bool released_mid_report = hid_input_.update(v);
   uint32_t buttons = 0;
   if (readUnsigned(p, pn, layout_.barrel) != 0) buttons |= kPenStylus1;
   if (readUnsigned(p, pn, layout_.barrel2) != 0) buttons |= kPenStylus2;
 
   if (hid_input_.tool() == PenTool::kNone) return proximityOut(t_ns, out);
 
+  DecodeResult r;
+  if (released_mid_report && last_.in_proximity)
+    r.released = proximityOutSample(last_, t_ns);  // before this report's X/Y (lower priority)
   PenSample s = state_;
   s.t_ns = t_ns;
   s.buttons = buttons | (hid_input_.touch() ? kPenTip : 0u);
@@ -164,7 +167,6 @@ DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t 
   convertPenUnits(s, info_);
   last_ = s;
   out = s;
-  DecodeResult r;
   r.status = DecodeStatus::kSample;
   return r;
 }

@@ -271,6 +271,7 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     const int64_t t = nowNs();
     DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), t, s);
     if (r.status == DecodeStatus::kSample) {
+      if (r.released) out.push_back(*r.released);  // the kernel's extra proximity-out frame
       out.push_back(s);
       pen_in_proximity_ = s.in_proximity;
     }

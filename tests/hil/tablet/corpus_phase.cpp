@@ -50,23 +50,27 @@ bool waitConnected(PenSource& src, int timeout_ms) {
 }
 
 // Polls until the source's state satisfies the step (or `timeout_ms`), then drains briefly;
-// the state is the last sample received (evdev sends nothing when nothing changed).
-void settle(PenSource& src, const CorpusStep& st, PenSample& state, int timeout_ms) {
-  std::vector<PenSample> got;
+// the state is the last sample received (evdev sends nothing when nothing changed). Returns
+// whether a proximity-out sample came before a final in-proximity one (a tool released and
+// taken again within one report).
+bool settle(PenSource& src, const CorpusStep& st, PenSample& state, int timeout_ms) {
+  std::vector<PenSample> got, all;
   const int64_t deadline = nowNs() + int64_t{timeout_ms} * 1000000;
-  bool seen = false;
   while (nowNs() < deadline) {
     got.clear();
     src.poll(5, got);
-    if (!got.empty()) {
-      state = got.back();
-      seen = true;
-    }
-    if (seen && corpusMismatch(st, state).empty()) break;
+    all.insert(all.end(), got.begin(), got.end());
+    if (!got.empty()) state = got.back();
+    if (!all.empty() && corpusMismatch(st, state).empty()) break;
   }
   got.clear();
   src.poll(2, got);
+  all.insert(all.end(), got.begin(), got.end());
   if (!got.empty()) state = got.back();
+  bool out_then_in = false;
+  for (size_t i = 0; i + 1 < all.size(); ++i)
+    out_then_in |= !all[i].in_proximity && all.back().in_proximity;
+  return out_then_in;
 }
 
 bool sameFields(const PenSample& a, const PenSample& b) {
@@ -111,19 +115,23 @@ void runDevice(const std::string& fixtures, const CorpusDevice& dev, Checker& ch
               std::to_string(evdev.deviceInfo().tilt_res) + " vs " +
               std::to_string(hidraw.deviceInfo().tilt_res) + ")");
   PenSample ev{}, hr{};
-  int ev_bad = 0, hr_bad = 0, differ = 0, printed = 0;
+  int ev_bad = 0, hr_bad = 0, differ = 0, printed = 0, flips = 0;
   for (const CorpusStep& st : dev.steps) {
     if (!u.input(st.report)) {
       check(false, label + ": injecting " + st.name);
       return;
     }
-    settle(hidraw, st, hr, corpusMismatch(st, hr).empty() ? 30 : 500);
+    const bool hr_flip = settle(hidraw, st, hr, corpusMismatch(st, hr).empty() ? 30 : 500);
     const std::string hr_why = corpusMismatch(st, hr);
     std::string ev_why, diff;
     if (evdev_ok) {
-      settle(evdev, st, ev, corpusMismatch(st, ev).empty() ? 30 : 500);
+      const bool ev_flip = settle(evdev, st, ev, corpusMismatch(st, ev).empty() ? 30 : 500);
       ev_why = corpusMismatch(st, ev);
       if (st.expect != "any" && !sameFields(ev, hr)) diff = "evdev and hidraw differ";
+      if (ev_flip != hr_flip)
+        diff += std::string(" proximity-out frame within the report on ") +
+                (ev_flip ? "evdev only" : "hidraw only");
+      flips += ev_flip;
     }
     if (!hr_why.empty() || !ev_why.empty() || !diff.empty()) {
       if (printed++ < 6) {
@@ -142,7 +150,8 @@ void runDevice(const std::string& fixtures, const CorpusDevice& dev, Checker& ch
     check(ev_bad == 0, label + ": evdev follows the script (" + std::to_string(ev_bad) + " of " +
                            n + " steps off)");
     check(differ == 0, label + ": evdev and hidraw agree field by field (" +
-                           std::to_string(differ) + " of " + n + " steps differ)");
+                           std::to_string(differ) + " of " + n + " steps differ; " +
+                           std::to_string(flips) + " tool release(s) within a report on both)");
   }
   check(hr_bad == 0, label + ": hidraw follows the script (" + std::to_string(hr_bad) + " of " + n +
                          " steps off)");

@@ -214,10 +214,20 @@ TEST(HidInputRules, EraserWithoutInvertIsTheRubber) {
   PenSample up = decodeOne(d, report(kInRange, 7, 7));
   EXPECT_EQ(up.tool, PenTool::kEraser);
   EXPECT_FALSE(up.tipDown());
-  // ... then the kernel releases the rubber and In Range brings the pen back.
-  PenSample back = decodeOne(d, report(kInRange | kBarrel, 8, 8));
+  // ... then the kernel releases the rubber (an extra EV_SYN: a proximity-out frame at the last
+  // position) and In Range brings the pen back in the same report.
+  const Bytes back_report = report(kInRange | kBarrel, 8, 8);
+  PenSample back;
+  DecodeResult r = d.decode(back_report.data(), back_report.size(), 1, back);
+  ASSERT_EQ(r.status, DecodeStatus::kSample);
+  ASSERT_TRUE(r.released);
+  EXPECT_FALSE(r.released->in_proximity);
+  EXPECT_EQ(r.released->x_raw, 7);
+  EXPECT_EQ(r.released->tool, PenTool::kEraser);
   EXPECT_EQ(back.tool, PenTool::kPen);
+  EXPECT_EQ(back.x_raw, 8);
   EXPECT_EQ(back.buttons, static_cast<uint32_t>(kPenStylus1));
+  EXPECT_FALSE(decodeOne(d, report(kInRange, 8, 8)).tipDown());
   // A tip switch is ignored while the rubber is the tool.
   decodeOne(d, report(kInRange | kEraser, 9, 9));
   PenSample both = decodeOne(d, report(kInRange | kEraser | kTip, 9, 9));
