@@ -1,5 +1,7 @@
-// `cloudbrush devices [--watch]`: lists pen devices on every backend (evdev, hidapi-hidraw,
-// hidapi-libusb, libusb identity), or prints live samples like `libinput debug-events`.
+// `cloudbrush devices [--watch]`: lists what every backend sees (evdev nodes, hidapi-hidraw and
+// hidapi-libusb interfaces of any vendor, libusb identity of Wacom devices) and says which are
+// pens, which are not and why, and which this user cannot open; or prints live samples like
+// `libinput debug-events`.
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -9,7 +11,7 @@
 #include "app/cli/commands.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
-#include "drivers/evdev/evdev_discovery.h"
+#include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/usb/usb_devices.h"
@@ -46,16 +48,32 @@ void printInfo(const char* backend, const std::string& where, const PenDeviceInf
               d.tilt_res, d.distance_max);
 }
 
+// Every backend in turn, and what it saw: pens, devices that are not pens (and why), nodes
+// this user cannot open (and the error). Ends with what to do when no pen was found.
 int listDevices() {
-  int found = 0;
-  bool denied = false;
-  for (const EvdevPenCandidate& c : findEvdevPens()) {
-    if (c.permission_denied) {
-      denied = true;
-      continue;
+  int found = 0, denied = 0;
+  const EvdevSurvey survey = surveyEvdevNodes();
+  if (!survey.dir_error.empty()) {
+    std::printf("evdev   cannot list %s: %s\n", survey.dir.c_str(), survey.dir_error.c_str());
+    denied += survey.dir_permission_denied ? 1 : 0;
+  } else {
+    std::printf("evdev   %s: %zu event node(s)\n", survey.dir.c_str(), survey.nodes.size());
+  }
+  for (const EvdevNodeReport& n : survey.nodes) {
+    switch (n.kind) {
+      case EvdevNodeKind::kPen:
+        printInfo("evdev", n.path, n.info, "");
+        ++found;
+        break;
+      case EvdevNodeKind::kNotAPen:
+        std::printf("        %-22s not a pen: '%s' is %s\n", n.path.c_str(), n.name.c_str(),
+                    n.detail.c_str());
+        break;
+      case EvdevNodeKind::kCannotOpen:
+        std::printf("        %-22s cannot open: %s\n", n.path.c_str(), n.detail.c_str());
+        denied += n.permission_denied ? 1 : 0;
+        break;
     }
-    printInfo("evdev", c.path, c.info, "");
-    ++found;
   }
   for (hid::HidapiBackend b : {hid::HidapiBackend::kHidraw, hid::HidapiBackend::kLibusb}) {
     std::string error;
@@ -64,12 +82,15 @@ int listDevices() {
       std::printf("%-7s unavailable: %s\n", hid::hidapiBackendName(b), error.c_str());
       continue;
     }
-    for (const hid::HidPenDevice& d : hid::findHidPens(*lib, usb::kWacomVendor)) {
-      if (d.permission_denied) denied = true;
+    const std::vector<hid::HidPenDevice> devices = hid::findHidPens(*lib, 0);  // every vendor
+    std::printf("%-7s %zu HID interface(s)\n", hid::hidapiBackendName(b), devices.size());
+    for (const hid::HidPenDevice& d : devices) {
+      if (d.permission_denied) ++denied;
       if (d.protocol.empty()) {
-        std::printf("%-7s %-22s %04x:%04x  %s (interface %d: not a pen: %s)\n",
-                    hid::hidapiBackendName(b), d.path.c_str(), d.vendor, d.product, d.name.c_str(),
-                    d.interface, d.error.c_str());
+        std::printf("        %-22s %04x:%04x %s (interface %d): %s%s\n", d.path.c_str(), d.vendor,
+                    d.product, d.name.c_str(), d.interface,
+                    d.descriptor.empty() ? "cannot read the report descriptor: " : "not a pen: ",
+                    d.error.c_str());
         continue;
       }
       printInfo(hid::hidapiBackendName(b), d.path, d.info, "  [" + d.protocol + " protocol]");
@@ -81,8 +102,15 @@ int listDevices() {
                 u.address, u.vendor, u.product, u.manufacturer.c_str(), u.product_name.c_str(),
                 u.serial.c_str(), u.opened ? "" : (" (" + u.open_error + ")").c_str());
   }
-  if (found == 0) std::printf("no pen tablet found\n");
-  if (denied) std::printf("some devices could not be opened: %s\n", kUdevRuleHint);
+  if (found == 0) {
+    std::printf("no pen tablet found (tried evdev, hidraw and libusb)\n");
+    if (denied == 0)
+      std::printf(
+          "nothing was closed to this user: plug the tablet in, or check `dmesg` for a "
+          "driver that refused it\n");
+  }
+  if (denied > 0)
+    std::printf("%d device(s) could not be opened by this user: %s\n", denied, kUdevRuleHint);
   return 0;
 }
 

@@ -14,7 +14,7 @@ namespace cb {
 
 bool isEvdevPen(libevdev* dev) {
   return libevdev_has_event_code(dev, EV_KEY, BTN_TOOL_PEN) &&
-         libevdev_has_event_code(dev, EV_ABS, ABS_PRESSURE);
+         libevdev_has_event_code(dev, EV_ABS, ABS_X) && libevdev_has_event_code(dev, EV_ABS, ABS_Y);
 }
 
 PenDeviceInfo evdevPenInfo(libevdev* dev) {

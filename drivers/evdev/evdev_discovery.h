@@ -1,4 +1,5 @@
-// Finds pen devices among /dev/input/event* (BTN_TOOL_PEN + ABS_PRESSURE), Wacom (056a) first.
+// Finds pen devices among /dev/input/event* (BTN_TOOL_PEN + ABS_X/ABS_Y; pressure optional, as
+// a tip-switch-only pen has none), Wacom (056a) first.
 #pragma once
 
 #include <string>
@@ -20,7 +21,7 @@ struct EvdevPenCandidate {
 // permission are listed with permission_denied set (so the caller can name the udev rule).
 std::vector<EvdevPenCandidate> findEvdevPens(const std::string& dir = "/dev/input");
 
-// True when the device reports a pen: BTN_TOOL_PEN and ABS_PRESSURE.
+// True when the device reports a pen: BTN_TOOL_PEN, ABS_X and ABS_Y.
 bool isEvdevPen(libevdev* dev);
 // Ranges and units from the device's absinfo (resolutions: units/mm; tilt converted from the
 // kernel's units per radian to units per degree).

@@ -1,7 +1,10 @@
 // Outcome of feeding one raw report to a decoder.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "drivers/core/pen_sample.h"
 
 namespace cb::hid {
 
@@ -15,6 +18,10 @@ enum class DecodeStatus {
 struct DecodeResult {
   DecodeStatus status = DecodeStatus::kNoSample;
   std::string reason;
+  // Set when the kernel would release the tool in the middle of this report and send an extra
+  // EV_SYN (hid-input's hid_report_release_tool, e.g. rubber -> pen while in range): evdev then
+  // shows this proximity-out sample before the report's own sample.
+  std::optional<PenSample> released;
 };
 
 }  // namespace cb::hid

@@ -1,5 +1,6 @@
 #include "drivers/hid/hid_pen_decoder.h"
 
+#include <algorithm>
 #include <string>
 
 #include "drivers/core/pen_units.h"
@@ -15,10 +16,32 @@ uint32_t readUnsigned(const uint8_t* p, size_t n, const FieldSlot& s) {
 int32_t readValue(const uint8_t* p, size_t n, const FieldSlot& s) {
   if (!s.present) return 0;
   uint32_t v = extractBits(p, n, s.bit_offset, s.bit_size);
-  return s.is_signed ? signExtend(v, s.bit_size) : static_cast<int32_t>(v);
+  return s.is_signed ? signExtend(v, std::min<uint32_t>(s.bit_size, 32)) : static_cast<int32_t>(v);
+}
+
+// hid-input.c, hidinput_hid_event(): for a variable field with logical_minimum <
+// logical_maximum, a value outside the range is ignored when the field has a Null State
+// (`value` is left unchanged, false returned) and clamped into the range otherwise.
+bool applyHidInputRange(const FieldSlot& s, int32_t raw, int32_t& value) {
+  if (!s.present) return false;
+  if (s.logical_min < s.logical_max) {
+    if (s.null_state && (raw < s.logical_min || raw > s.logical_max)) return false;
+    raw = std::clamp(raw, s.logical_min, s.logical_max);
+  }
+  value = raw;
+  return true;
 }
 
 }  // namespace
+
+HidPenDecoder::HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info,
+                             PenDriverRules rules)
+    : layout_(layout),
+      info_(info),
+      rules_(rules),
+      hid_input_(PenStateUsages{layout.eraser.present, layout.invert.present, layout.tip.present,
+                                layout.pressure.present, layout.in_range.present},
+                 layout.pressure.logical_min, layout.pressure.logical_max) {}
 
 DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out) {
   DecodeResult r;
@@ -43,6 +66,23 @@ DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns
   }
   const uint8_t* p = report + id_bytes;
   const size_t pn = n - id_bytes;
+  return rules_ == PenDriverRules::kWacom ? decodeWacom(p, pn, t_ns, out)
+                                          : decodeHidInput(p, pn, t_ns, out);
+}
+
+DecodeResult HidPenDecoder::proximityOut(int64_t t_ns, PenSample& out) {
+  DecodeResult r;
+  if (!last_.in_proximity) {
+    r.status = DecodeStatus::kNoSample;
+    return r;
+  }
+  out = proximityOutSample(last_, t_ns);
+  last_ = out;
+  r.status = DecodeStatus::kSample;
+  return r;
+}
+
+DecodeResult HidPenDecoder::decodeWacom(const uint8_t* p, size_t pn, int64_t t_ns, PenSample& out) {
   const bool in_range = readUnsigned(p, pn, layout_.in_range) != 0;
   // Wacom's vendor "sense" bit is proximity when present; otherwise In Range is.
   const bool sense = layout_.sense.present ? readUnsigned(p, pn, layout_.sense) != 0 : in_range;
@@ -62,16 +102,8 @@ DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns
     tool_ = invert || wacomToolIsEraser(tool_id) ? PenTool::kEraser : PenTool::kPen;
 
   if (!sense || tool_ == PenTool::kNone) {
-    const bool was_in = last_.in_proximity;
     if (!sense) tool_ = PenTool::kNone;
-    if (!was_in) {
-      r.status = DecodeStatus::kNoSample;
-      return r;
-    }
-    out = proximityOutSample(last_, t_ns);
-    last_ = out;
-    r.status = DecodeStatus::kSample;
-    return r;
+    return proximityOut(t_ns, out);
   }
 
   PenSample s;
@@ -93,12 +125,55 @@ DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns
   convertPenUnits(s, info_);
   last_ = s;
   out = s;
+  DecodeResult r;
+  r.status = DecodeStatus::kSample;
+  return r;
+}
+
+DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t t_ns,
+                                           PenSample& out) {
+  // Axes: evdev keeps the last value it was given, so an ignored (null) value leaves it.
+  applyHidInputRange(layout_.x, readValue(p, pn, layout_.x), state_.x_raw);
+  applyHidInputRange(layout_.y, readValue(p, pn, layout_.y), state_.y_raw);
+  applyHidInputRange(layout_.pressure, readValue(p, pn, layout_.pressure), state_.pressure_raw);
+  applyHidInputRange(layout_.tilt_x, readValue(p, pn, layout_.tilt_x), state_.tilt_x_raw);
+  applyHidInputRange(layout_.tilt_y, readValue(p, pn, layout_.tilt_y), state_.tilt_y_raw);
+  int32_t serial = static_cast<int32_t>(state_.tool_serial);
+  if (applyHidInputRange(layout_.serial, readValue(p, pn, layout_.serial), serial))
+    state_.tool_serial = static_cast<uint32_t>(serial);  // MSC_SERIAL, a 32-bit value
+
+  PenStateValues v;
+  v.eraser = readUnsigned(p, pn, layout_.eraser) != 0;
+  v.invert = readUnsigned(p, pn, layout_.invert) != 0;
+  v.tip = readUnsigned(p, pn, layout_.tip) != 0;
+  v.in_range = readUnsigned(p, pn, layout_.in_range) != 0;
+  v.pressure = state_.pressure_raw;
+  const bool released_mid_report = hid_input_.update(v);
+  uint32_t buttons = 0;
+  if (readUnsigned(p, pn, layout_.barrel) != 0) buttons |= kPenStylus1;
+  if (readUnsigned(p, pn, layout_.barrel2) != 0) buttons |= kPenStylus2;
+
+  if (hid_input_.tool() == PenTool::kNone) return proximityOut(t_ns, out);
+
+  DecodeResult r;
+  if (released_mid_report && last_.in_proximity)
+    r.released = proximityOutSample(last_, t_ns);  // before this report's X/Y (lower priority)
+  PenSample s = state_;
+  s.t_ns = t_ns;
+  s.buttons = buttons | (hid_input_.touch() ? kPenTip : 0u);
+  s.tool = hid_input_.tool();
+  s.tool_id = 0;  // hid-input has no tool id (ABS_MISC)
+  s.in_proximity = true;
+  convertPenUnits(s, info_);
+  last_ = s;
+  out = s;
   r.status = DecodeStatus::kSample;
   return r;
 }
 
 bool HidPenDecoder::disconnect(int64_t t_ns, PenSample& out) {
   tool_ = PenTool::kNone;
+  hid_input_.reset();
   if (!last_.in_proximity) return false;
   out = proximityOutSample(last_, t_ns);
   last_ = out;

@@ -1,7 +1,12 @@
 // Generic pen-report decoder built from a PenLayout (any digitizer whose descriptor names its
-// pen fields, e.g. the Intuos Pro PTH-460/660/860). Mirrors what the kernel's wacom driver
-// reports through evdev (wacom_wac_pen_event / wacom_wac_pen_report), so a pen read through
-// hidraw or libusb gives the same PenSamples as through evdev.
+// pen fields). It reports what the kernel driver bound to the device reports through evdev, so a
+// pen read through hidraw or libusb gives the same PenSamples as through evdev:
+// - Wacom (USB vendor 056a): the wacom driver's generic pen path (wacom_wac_pen_event /
+//   wacom_wac_pen_report): the tool is chosen on entering range (Invert or an eraser tool id),
+//   contact is Tip Switch or Eraser, serial and tool id from Wacom's vendor usages;
+// - everyone else: hid-input's rules (drivers/hid/hid-input.c, hidinput_hid_event): values of
+//   a Null State field outside the logical range are ignored (the previous value stays), other
+//   values are clamped to the logical range, and the tool follows HidInputToolState.
 #pragma once
 
 #include <cstddef>
@@ -9,14 +14,22 @@
 
 #include "drivers/core/pen_sample.h"
 #include "drivers/hid/decode_result.h"
+#include "drivers/hid/hid_input_tool_state.h"
 #include "drivers/hid/hid_pen_layout.h"
 
 namespace cb::hid {
 
+enum class PenDriverRules : uint8_t { kHidInput, kWacom };
+
+// The rules of the kernel driver that binds a USB/Bluetooth/I2C HID device with this vendor.
+inline PenDriverRules penDriverRulesFor(uint16_t vendor) {
+  return vendor == 0x056A ? PenDriverRules::kWacom : PenDriverRules::kHidInput;
+}
+
 class HidPenDecoder {
  public:
-  HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info)
-      : layout_(layout), info_(info) {}
+  HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info,
+                PenDriverRules rules = PenDriverRules::kHidInput);
 
   // Decodes one report as read from hidraw / hid_read (ID byte first when numbered).
   DecodeResult decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out);
@@ -24,11 +37,19 @@ class HidPenDecoder {
   // was in proximity.
   bool disconnect(int64_t t_ns, PenSample& out);
   const PenLayout& layout() const { return layout_; }
+  PenDriverRules rules() const { return rules_; }
 
  private:
+  DecodeResult decodeWacom(const uint8_t* p, size_t pn, int64_t t_ns, PenSample& out);
+  DecodeResult decodeHidInput(const uint8_t* p, size_t pn, int64_t t_ns, PenSample& out);
+  DecodeResult proximityOut(int64_t t_ns, PenSample& out);
+
   PenLayout layout_;
   PenDeviceInfo info_;
-  PenTool tool_ = PenTool::kNone;
+  PenDriverRules rules_;
+  PenTool tool_ = PenTool::kNone;  // Wacom rules: the tool chosen on entering range
+  HidInputToolState hid_input_;    // hid-input rules
+  PenSample state_{};              // hid-input rules: the axis values evdev holds
   PenSample last_{};
 };
 

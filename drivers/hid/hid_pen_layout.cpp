@@ -1,5 +1,6 @@
 #include "drivers/hid/hid_pen_layout.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -27,9 +28,24 @@ uint32_t equivalentUsage(uint32_t u) {
 
 namespace {
 
-bool isPenApplication(uint32_t app) {
-  app = equivalentUsage(app);
-  return app == pen_usage::kPen || app == pen_usage::kDigitizer;
+bool isStylusCollection(uint32_t u) {
+  u = equivalentUsage(u);
+  return u == pen_usage::kStylus || u == pen_usage::kPen || u == pen_usage::kDigitizer;
+}
+
+bool isOtherToolCollection(uint32_t u) {
+  u = equivalentUsage(u);
+  return u == pen_usage::kFinger || u == pen_usage::kPuck;
+}
+
+// A field belongs to a pen when a Stylus/Pen/Digitizer collection encloses it and no Finger or
+// Puck collection does (the innermost of each kind is what the parser keeps).
+bool isPenField(const Field& f) {
+  if (isOtherToolCollection(f.application) || isOtherToolCollection(f.physical) ||
+      isOtherToolCollection(f.logical))
+    return false;
+  return isStylusCollection(f.application) || isStylusCollection(f.physical) ||
+         isStylusCollection(f.logical);
 }
 
 FieldSlot slotFor(const Field& f, uint32_t element) {
@@ -38,6 +54,7 @@ FieldSlot slotFor(const Field& f, uint32_t element) {
   s.bit_offset = f.bit_offset + element * f.bit_size;
   s.bit_size = f.bit_size;
   s.is_signed = f.isSigned();
+  s.null_state = f.hasNullState();
   s.logical_min = f.logical_min;
   s.logical_max = f.logical_max;
   s.physical_min = f.physical_min;
@@ -47,124 +64,149 @@ FieldSlot slotFor(const Field& f, uint32_t element) {
   return s;
 }
 
+FieldSlot* slotForUsage(PenLayout& l, uint32_t extended_usage) {
+  switch (equivalentUsage(extended_usage)) {
+    case pen_usage::kX:
+      return &l.x;
+    case pen_usage::kY:
+      return &l.y;
+    case pen_usage::kTipPressure:
+      return &l.pressure;
+    case pen_usage::kTiltX:
+      return &l.tilt_x;
+    case pen_usage::kTiltY:
+      return &l.tilt_y;
+    case pen_usage::kWacomDistance:
+      return &l.distance;
+    case pen_usage::kTipSwitch:
+      return &l.tip;
+    case pen_usage::kBarrelSwitch:
+      return &l.barrel;
+    case pen_usage::kSecondaryBarrelSwitch:
+      return &l.barrel2;
+    case pen_usage::kEraser:
+      return &l.eraser;
+    case pen_usage::kInvert:
+      return &l.invert;
+    case pen_usage::kInRange:
+      return &l.in_range;
+    case pen_usage::kWacomSense:
+      return &l.sense;
+    case pen_usage::kToolSerial:
+      return &l.serial;
+    case pen_usage::kWacomSerialHigh:
+      return &l.serial_high;
+    case pen_usage::kWacomToolType:
+      return &l.tool_type;
+    default:
+      return nullptr;
+  }
+}
+
+// The pen fields of one input report; the first field of each usage wins.
+PenLayout layoutOfReport(const ReportDescriptor& desc, uint8_t id) {
+  PenLayout l;
+  l.report_id = id;
+  l.report_bytes = desc.reportBytes(ReportType::kInput, id);
+  for (const Field& f : desc.fields) {
+    if (f.type != ReportType::kInput || f.report_id != id || !f.isVariable() || f.isConstant() ||
+        f.usages.empty() || !isPenField(f))
+      continue;
+    // A variable field has one usage per element; the last one repeats (hid_add_field).
+    const uint32_t elements = std::min<uint32_t>(f.count, static_cast<uint32_t>(f.usages.size()));
+    for (uint32_t i = 0; i < elements; ++i) {
+      FieldSlot* target = slotForUsage(l, f.usageAt(i));
+      if (target && !target->present) *target = slotFor(f, i);
+    }
+  }
+  return l;
+}
+
+bool isPenReport(const PenLayout& l) {
+  return l.x.present && l.y.present &&
+         (l.tip.present || l.in_range.present || l.sense.present || l.eraser.present ||
+          l.invert.present);
+}
+
 }  // namespace
 
 PenLayoutResult findPenLayout(const ReportDescriptor& desc) {
   PenLayoutResult result;
-  // Candidate input reports: those holding X, Y and tip pressure in a pen application.
   std::vector<uint8_t> ids;
   for (const Field& f : desc.fields)
-    if (f.type == ReportType::kInput && isPenApplication(f.application) && f.isVariable())
-      for (uint32_t i = 0; i < f.count; ++i)
-        if (equivalentUsage(f.usageAt(i)) == pen_usage::kTipPressure) ids.push_back(f.report_id);
+    if (f.type == ReportType::kInput && isPenField(f) &&
+        std::find(ids.begin(), ids.end(), f.report_id) == ids.end())
+      ids.push_back(f.report_id);
+  // Prefer a report with tip pressure; otherwise the first pen report (a tip-switch-only pen).
+  std::optional<PenLayout> first;
   for (uint8_t id : ids) {
-    PenLayout l;
-    l.report_id = id;
-    l.report_bytes = desc.reportBytes(ReportType::kInput, id);
-    for (const Field& f : desc.fields) {
-      if (f.type != ReportType::kInput || f.report_id != id || !f.isVariable() || f.isConstant())
-        continue;
-      for (uint32_t i = 0; i < f.count && i < f.usages.size() + 1; ++i) {
-        if (f.usages.empty()) break;
-        FieldSlot* target = nullptr;
-        switch (equivalentUsage(f.usageAt(i))) {
-          case pen_usage::kX:
-            target = &l.x;
-            break;
-          case pen_usage::kY:
-            target = &l.y;
-            break;
-          case pen_usage::kTipPressure:
-            target = &l.pressure;
-            break;
-          case pen_usage::kTiltX:
-            target = &l.tilt_x;
-            break;
-          case pen_usage::kTiltY:
-            target = &l.tilt_y;
-            break;
-          case pen_usage::kWacomDistance:
-            target = &l.distance;
-            break;
-          case pen_usage::kTipSwitch:
-            target = &l.tip;
-            break;
-          case pen_usage::kBarrelSwitch:
-            target = &l.barrel;
-            break;
-          case pen_usage::kSecondaryBarrelSwitch:
-            target = &l.barrel2;
-            break;
-          case pen_usage::kEraser:
-            target = &l.eraser;
-            break;
-          case pen_usage::kInvert:
-            target = &l.invert;
-            break;
-          case pen_usage::kInRange:
-            target = &l.in_range;
-            break;
-          case pen_usage::kWacomSense:
-            target = &l.sense;
-            break;
-          case pen_usage::kToolSerial:
-            target = &l.serial;
-            break;
-          case pen_usage::kWacomSerialHigh:
-            target = &l.serial_high;
-            break;
-          case pen_usage::kWacomToolType:
-            target = &l.tool_type;
-            break;
-          default:
-            break;
-        }
-        if (target && !target->present) *target = slotFor(f, i);
-        if (i + 1 >= f.usages.size() && i + 1 < f.count) break;  // no more distinct usages
-      }
+    PenLayout l = layoutOfReport(desc, id);
+    if (!isPenReport(l)) continue;
+    if (!first) first = l;
+    if (l.pressure.present) {
+      first = l;
+      break;
     }
-    if (!l.x.present || !l.y.present) continue;
-    if (!l.in_range.present && !l.sense.present && !l.tip.present) continue;
-    for (const Field& f : desc.fields)
-      if (f.type == ReportType::kFeature && f.report_id == 2 && isPenApplication(f.application))
-        l.mode_report_id = 2;
-    result.layout = l;
+  }
+  if (!first) {
+    result.error = ids.empty()
+                       ? "no input field inside a Stylus, Pen or Digitizer collection"
+                       : "no pen report with X, Y and a Tip Switch, In Range, Invert or Eraser bit";
     return result;
   }
-  result.error = ids.empty() ? "no input report with tip pressure in a pen or digitizer collection"
-                             : "the pressure report lacks X, Y or a proximity/tip bit";
+  for (const Field& f : desc.fields)
+    if (f.type == ReportType::kFeature && f.report_id == 2 && isPenField(f))
+      first->mode_report_id = 2;
+  result.layout = first;
   return result;
 }
 
+namespace {
+
+// The kernel computes in __s32 and is built with -fno-strict-overflow: a product wraps, and a
+// wrapped result smaller than before ends the computation with resolution 0.
+bool kernelMultiply(int32_t& value, int32_t factor) {
+  const int32_t prev = value;
+  value = static_cast<int32_t>(static_cast<uint32_t>(value) * static_cast<uint32_t>(factor));
+  return value >= prev;
+}
+
+int32_t wrappingSub(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) - static_cast<uint32_t>(b));
+}
+
+}  // namespace
+
 int32_t kernelResolution(const FieldSlot& slot, bool is_angle) {
-  int64_t logical = int64_t{slot.logical_max} - slot.logical_min;
-  int64_t physical = int64_t{slot.physical_max} - slot.physical_min;
   int32_t exponent = slot.unit_exponent;
-  if (logical <= 0 || physical <= 0) return 0;
+  int32_t logical = wrappingSub(slot.logical_max, slot.logical_min);
+  int32_t physical = wrappingSub(slot.physical_max, slot.physical_min);
+  if (logical <= 0 || physical <= 0) return 0;  // "Check if the extents are sane"
   if (!is_angle) {
     if (slot.unit == 0x11) {  // centimetres -> millimetres
       exponent += 1;
     } else if (slot.unit == 0x13) {  // inches -> millimetres (x 25.4)
-      if ((physical *= 254) > INT32_MAX) return 0;
+      if (!kernelMultiply(physical, 254)) return 0;
       exponent -= 1;
     } else {
       return 0;
     }
   } else {
     if (slot.unit == 0x14) {  // degrees -> radians, as the kernel does: x 57.3
-      if ((logical *= 573) > INT32_MAX) return 0;
+      if (!kernelMultiply(logical, 573)) return 0;
       exponent += 1;
     } else if (slot.unit != 0x12) {
       return 0;
     }
   }
-  // The kernel gives up (resolution 0) as soon as a 32-bit product would overflow.
   for (; exponent < 0; ++exponent)
-    if ((logical *= 10) > INT32_MAX) return 0;
+    if (!kernelMultiply(logical, 10)) return 0;
   for (; exponent > 0; --exponent)
-    if ((physical *= 10) > INT32_MAX) return 0;
-  if (logical > INT32_MAX || physical > INT32_MAX) return 0;
-  return static_cast<int32_t>((logical + physical / 2) / physical);
+    if (!kernelMultiply(physical, 10)) return 0;
+  // DIV_ROUND_CLOSEST for positive operands: (x + d/2) / d, the sum in 32 bits as well.
+  const auto sum =
+      static_cast<int32_t>(static_cast<uint32_t>(logical) + static_cast<uint32_t>(physical / 2));
+  return sum / physical;
 }
 
 PenDeviceInfo penDeviceInfo(const PenLayout& l, uint16_t vendor, uint16_t product,

@@ -2,6 +2,12 @@
 // for standard digitizers (HID Usage Tables §16, Digitizer page 0x0D) and Wacom's vendor page
 // 0xFF0D, whose usages mirror the Digitizer page (plus X/Y at 0x130/0x131, distance at 0x132,
 // a proximity "sense" bit at 0x36, serial high word at 0x5C, tool type at 0x77).
+//
+// Like the kernel's hid-input (drivers/hid/hid-input.c, hidinput_configure_usage), a pen is
+// found by its usages, not by the application collection it sits in: any input report with X, Y
+// and a stylus state bit (Tip Switch, In Range, Invert or Eraser) inside a Stylus, Pen or
+// Digitizer collection of any kind (application, physical or logical) and not inside a Finger
+// or Puck collection. Tip pressure is optional (tip-switch-only pens).
 #pragma once
 
 #include <cstdint>
@@ -20,6 +26,8 @@ inline constexpr uint32_t kY = usage(page::kGenericDesktop, 0x31);
 inline constexpr uint32_t kDigitizer = usage(page::kDigitizer, 0x01);
 inline constexpr uint32_t kPen = usage(page::kDigitizer, 0x02);
 inline constexpr uint32_t kStylus = usage(page::kDigitizer, 0x20);
+inline constexpr uint32_t kPuck = usage(page::kDigitizer, 0x21);
+inline constexpr uint32_t kFinger = usage(page::kDigitizer, 0x22);
 inline constexpr uint32_t kTipPressure = usage(page::kDigitizer, 0x30);
 inline constexpr uint32_t kInRange = usage(page::kDigitizer, 0x32);
 inline constexpr uint32_t kInvert = usage(page::kDigitizer, 0x3C);
@@ -44,6 +52,7 @@ struct FieldSlot {
   bool present = false;
   uint32_t bit_offset = 0, bit_size = 0;
   bool is_signed = false;
+  bool null_state = false;  // out-of-range values mean "no value" (Null State main-item bit)
   int32_t logical_min = 0, logical_max = 0;
   int32_t physical_min = 0, physical_max = 0;
   uint32_t unit = 0;
@@ -67,9 +76,11 @@ struct PenLayoutResult {
 
 PenLayoutResult findPenLayout(const ReportDescriptor& desc);
 
-// Axis resolution exactly as the kernel's hidinput_calc_abs_res() derives it from the
-// descriptor (HID 1.11 §6.2.2.7 units), so the evdev and HID paths agree to the unit:
-// positions in units per mm, tilts in units per radian. 0 when the descriptor gives no unit.
+// Axis resolution exactly as the kernel's hidinput_calc_abs_res() (drivers/hid/hid-input.c)
+// derives it from the descriptor (HID 1.11 §6.2.2.7 units), so the evdev and HID paths agree to
+// the unit: positions in units per mm (from cm or inch), tilts in units per radian (from degrees
+// or radians), in the kernel's 32-bit arithmetic (an overflowing step gives 0) rounded to the
+// closest. 0 when the descriptor gives no unit or no physical extent.
 int32_t kernelResolution(const FieldSlot& slot, bool is_angle);
 
 // Ranges and resolutions of the pen described by a layout (PenDeviceInfo fields in evdev's

@@ -90,7 +90,8 @@ bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
   device.protocol = "generic";
   device.info = penDeviceInfo(*layout.layout, vendor, product, name.c_str());
   device.mode_report_id = 0;  // devices with a descriptor-described pen report need no switch
-  decoder = std::make_unique<PenDecoder>(HidPenDecoder(*layout.layout, device.info));
+  decoder = std::make_unique<PenDecoder>(
+      HidPenDecoder(*layout.layout, device.info, penDriverRulesFor(vendor)));
   return true;
 }
 
@@ -249,7 +250,10 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     }
   }
   unsigned char buf[256];
-  const int64_t idle_ns = int64_t{options_.idle_proximity_timeout_ms} * 1000000;
+  // The idle-proximity timer is the wacom driver's; hid-generic devices have none.
+  const int64_t idle_ns = penDriverRulesFor(device_.vendor) == PenDriverRules::kWacom
+                              ? int64_t{options_.idle_proximity_timeout_ms} * 1000000
+                              : 0;
   int wait = timeout_ms;
   if (pen_in_proximity_ && idle_ns > 0) {  // wake in time for the idle-proximity timeout
     const int64_t left_ms = (last_report_ns_ + idle_ns - nowNs()) / 1000000 + 1;
@@ -267,6 +271,7 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     const int64_t t = nowNs();
     DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), t, s);
     if (r.status == DecodeStatus::kSample) {
+      if (r.released) out.push_back(*r.released);  // the kernel's extra proximity-out frame
       out.push_back(s);
       pen_in_proximity_ = s.in_proximity;
     }

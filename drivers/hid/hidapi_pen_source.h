@@ -27,7 +27,7 @@ struct HidapiPenSourceOptions {
   std::string path;          // a hidapi path to use; empty: discover
   // A pen in proximity that sends nothing for this long is taken out of proximity, as the
   // kernel's wacom driver does (wacom_idleprox_timeout, 100 ms) for firmware that may not send
-  // a proximity-out report. 0 disables.
+  // a proximity-out report. 0 disables. Wacom devices only: hid-input has no such timer.
   int idle_proximity_timeout_ms = 100;
 };
 

@@ -96,23 +96,52 @@ DecodeResult Intuos4Decoder::decode(const uint8_t* d, size_t n, int64_t t_ns, Pe
     r.reason = "pen packet before the tool entered proximity";
     return r;
   }
-  const unsigned type = (d[1] >> 1) & 0x0F;
-  if (type > 3) {  // mouse, lens cursor, airbrush wheel, marker rotation: not a pen
+  if (wacomToolIsPuck(tool_id_)) {  // BTN_TOOL_MOUSE / BTN_TOOL_LENS: not a pen
     r.status = DecodeStatus::kNoSample;
-    r.reason = "packet type " + std::to_string(type) + " is not a general pen packet";
+    r.reason = "tool " + std::to_string(tool_id_) + " is a mouse or lens cursor, not a pen";
     return r;
   }
-  PenSample s;
+  // What evdev holds: the last sample while the tool stays, zeros after it entered (the exit
+  // report reset every axis).
+  PenSample s = last_.in_proximity ? last_ : PenSample{};
   s.t_ns = t_ns;
+  // wacom_intuos_general(): position and distance for every packet type.
   s.x_raw = static_cast<int32_t>(((uint32_t{d[2]} << 8 | d[3]) << 1) | ((d[9] >> 1) & 1));
   s.y_raw = static_cast<int32_t>(((uint32_t{d[4]} << 8 | d[5]) << 1) | (d[9] & 1));
   s.distance_raw = d[9] >> 2;
-  s.pressure_raw = static_cast<int32_t>((uint32_t{d[6]} << 3) | ((d[7] & 0xC0u) >> 5) | (d[1] & 1));
-  s.tilt_x_raw = static_cast<int32_t>((((d[7] << 1) & 0x7E) | (d[8] >> 7))) - 64;
-  s.tilt_y_raw = static_cast<int32_t>(d[8] & 0x7F) - 64;
-  if (s.pressure_raw > 10) s.buttons |= kPenTip;  // the kernel's contact threshold
-  if (d[1] & 2) s.buttons |= kPenStylus1;
-  if (d[1] & 4) s.buttons |= kPenStylus2;
+  const auto tiltX = [&] {
+    return static_cast<int32_t>((((d[7] << 1) & 0x7E) | (d[8] >> 7))) - 64;
+  };
+  const auto tiltY = [&] { return static_cast<int32_t>(d[8] & 0x7F) - 64; };
+  const unsigned type = (d[1] >> 1) & 0x0F;
+  switch (type) {
+    case 0x00:
+    case 0x01:
+    case 0x02:
+    case 0x03:  // general pen packet
+      s.pressure_raw =
+          static_cast<int32_t>((uint32_t{d[6]} << 3) | ((d[7] & 0xC0u) >> 5) | (d[1] & 1));
+      s.tilt_x_raw = tiltX();
+      s.tilt_y_raw = tiltY();
+      s.buttons = 0;
+      if (s.pressure_raw > 10) s.buttons |= kPenTip;  // the kernel's contact threshold
+      if (d[1] & 2) s.buttons |= kPenStylus1;
+      if (d[1] & 4) s.buttons |= kPenStylus2;
+      break;
+    case 0x0A:  // airbrush second packet: wheel and tilt
+      wheel_ = static_cast<int32_t>((uint32_t{d[6]} << 2) | ((d[7] >> 6) & 3u));
+      s.tilt_x_raw = tiltX();
+      s.tilt_y_raw = tiltY();
+      break;
+    case 0x05: {  // rotation (Intuos3 and later: marker / Art Pen), in the kernel's unsigned math
+      uint32_t t = (uint32_t{d[6]} << 3) | ((d[7] >> 5) & 7u);
+      t = (d[7] & 0x20) ? ((t > 900) ? ((t - 1) / 2 - 1350) : ((t - 1) / 2 + 450)) : (450 - t / 2);
+      rotation_ = static_cast<int32_t>(t);
+      break;
+    }
+    default:  // position only
+      break;
+  }
   s.tool = wacomToolIsEraser(tool_id_) ? PenTool::kEraser : PenTool::kPen;
   s.tool_id = wacomMangleToolId(tool_id_);
   s.tool_serial = serial_;

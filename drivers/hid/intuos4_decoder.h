@@ -5,10 +5,18 @@
 //   byte 1 = 0xC0..0xC3 : tool enters proximity; bytes 2..8 carry the tool id and 32-bit serial
 //   byte 1 = 0x20/0x21  : tool in range but leaving (no contact)
 //   byte 1 = 0x80/0x81  : tool leaves proximity
-//   otherwise           : a general pen packet: X and Y 16+1 bits (bytes 2..5 and byte 9 bits
-//                         1/0), hover distance 6 bits (byte 9 >> 2), pressure 11 bits
-//                         (byte 6, byte 7 bits 7..6, byte 1 bit 0), tilt X and Y 7 bits each
-//                         (bytes 7..8, offset by 64), barrel buttons in byte 1 bits 1 and 2.
+//   otherwise           : a tool packet of type (byte 1 >> 1) & 0x0F. Every type carries X and Y
+//                         16+1 bits (bytes 2..5 and byte 9 bits 1/0) and hover distance 6 bits
+//                         (byte 9 >> 2), which the kernel reports whatever the type:
+//     0..3  general pen packet: pressure 11 bits (byte 6, byte 7 bits 7..6, byte 1 bit 0), tilt
+//           X and Y 7 bits each (bytes 7..8, offset by 64), barrel buttons in byte 1 bits 1, 2;
+//     5     rotation (Art Pen / marker, ABS_Z): 11 bits in byte 6 and byte 7 bits 7..5;
+//     10    airbrush second packet: wheel 10 bits (ABS_WHEEL, byte 6, byte 7 bits 7..6) and tilt;
+//     other types (mouse and lens-cursor packets, unhandled ones) carry position only.
+//   Pressure, tilt and buttons not in a packet keep their last values, as evdev keeps them.
+//   Mice and lens cursors (BTN_TOOL_MOUSE / BTN_TOOL_LENS) are not pens: their packets give
+//   no samples. Tool ids use all 20 bits (bits 12..15 from byte 8, 16..19 from byte 7), serials
+//   all 32 (bits 28..31 from byte 3).
 //
 // The tablet starts in a mouse-compatible mode; the host switches it to this protocol by
 // setting feature report 2 to the value 2 (kIntuos4ModeReport / kIntuos4TabletMode).
@@ -44,9 +52,14 @@ class Intuos4Decoder {
   explicit Intuos4Decoder(const PenDeviceInfo& info) : info_(info) {}
   DecodeResult decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out);
   bool disconnect(int64_t t_ns, PenSample& out);
+  // The last rotation (ABS_Z, Art Pen: -900..899) and airbrush wheel (ABS_WHEEL, 0..1023)
+  // values, which PenSample has no fields for.
+  int32_t rotation() const { return rotation_; }
+  int32_t wheel() const { return wheel_; }
 
  private:
   PenDeviceInfo info_;
+  int32_t rotation_ = 0, wheel_ = 0;
   uint32_t tool_id_ = 0;  // 0: no tool has entered
   uint32_t serial_ = 0;
   PenSample last_{};

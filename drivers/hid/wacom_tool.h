@@ -36,6 +36,23 @@ inline bool wacomToolIsEraser(uint32_t id) {
   }
 }
 
+// Mice and lens cursors (BTN_TOOL_MOUSE, BTN_TOOL_LENS in wacom_intuos_get_tool_type).
+inline bool wacomToolIsPuck(uint32_t id) {
+  switch (id) {
+    case 0x007:
+    case 0x09c:
+    case 0x094:
+    case 0x017:
+    case 0x806:
+    case 0x096:
+    case 0x097:
+    case 0x006:
+      return true;
+    default:
+      return false;
+  }
+}
+
 // The kernel's legacy tool-id form: bits above 0xFFF move up by 4 (wacom_intuos_id_mangle).
 inline uint32_t wacomMangleToolId(uint32_t id) {
   return ((id & ~0xFFFu) << 4) | (id & 0xFFFu);

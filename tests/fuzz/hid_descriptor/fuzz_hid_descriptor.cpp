@@ -19,12 +19,25 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const size_t payload_bits = (layout.report_bytes - (layout.report_id ? 1 : 0)) * 8;
   for (const cb::hid::FieldSlot* s : {&layout.x, &layout.y, &layout.pressure, &layout.tilt_x})
     if (s->present && s->bit_offset + s->bit_size > payload_bits) std::abort();
-  // Decode the descriptor's own bytes as a report of the right length.
+  // Decode an all-ones and an all-zeros report of the right length under both drivers' rules;
+  // under hid-input's rules every axis value lies in its logical range (clamped or ignored).
   cb::PenDeviceInfo info = cb::hid::penDeviceInfo(layout, 0x056A, 0, "fuzz");
-  cb::hid::HidPenDecoder decoder(layout, info);
-  std::vector<uint8_t> report(layout.report_bytes, 0xFF);
-  if (layout.report_id) report[0] = layout.report_id;
-  cb::PenSample s;
-  (void)decoder.decode(report.data(), report.size(), 0, s);
+  for (cb::hid::PenDriverRules rules :
+       {cb::hid::PenDriverRules::kHidInput, cb::hid::PenDriverRules::kWacom}) {
+    cb::hid::HidPenDecoder decoder(layout, info, rules);
+    for (uint8_t fill : {uint8_t{0xFF}, uint8_t{0x00}}) {
+      std::vector<uint8_t> report(layout.report_bytes, fill);
+      if (layout.report_id) report[0] = layout.report_id;
+      cb::PenSample s;
+      if (decoder.decode(report.data(), report.size(), 0, s).status !=
+              cb::hid::DecodeStatus::kSample ||
+          rules != cb::hid::PenDriverRules::kHidInput || !s.in_proximity)
+        continue;
+      const cb::hid::FieldSlot& x = layout.x;
+      if (x.logical_min < x.logical_max && s.x_raw != 0 &&
+          (s.x_raw < x.logical_min || s.x_raw > x.logical_max))
+        std::abort();
+    }
+  }
   return 0;
 }

@@ -6,7 +6,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 common=$here/../common
-build=${1:?build dir}; binary=${2:?vm binary}; fixtures=${3:?fixture dir}; phases=${4:-uhid,intuos4,gadget,latency}
+build=${1:?build dir}; binary=${2:?vm binary}; fixtures=${3:?fixture dir}; phases=${4:-uhid,intuos4,gadget,latency,corpus}
 if ! command -v qemu-system-x86_64 >/dev/null; then
   echo "************************************************************************" >&2
   echo "*** SKIPPED: qemu-system-x86_64 is not installed; the virtual tablet   ***" >&2

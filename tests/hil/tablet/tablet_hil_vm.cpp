@@ -3,7 +3,7 @@
 // backend and both hidapi backends report what was injected. Prints "CB-HIL CHECK ok|FAIL ..."
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
-//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]
+//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]
 #include <fcntl.h>
 #include <grp.h>
 #include <linux/input.h>
@@ -23,12 +23,14 @@
 
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_units.h"
+#include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/evdev/evdev_pen_source.h"
 #include "drivers/evdev/uinput_latency.h"
 #include "drivers/hid/hid_pen_layout.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/hid/intuos4_decoder.h"
 #include "drivers/usb/usb_devices.h"
+#include "tests/hil/tablet/corpus_phase.h"
 #include "tests/hil/tablet/intuos4_handbuilt.h"
 #include "tests/hil/tablet/pen_script.h"
 #include "tests/hil/tablet/uhid_device.h"
@@ -179,6 +181,28 @@ void checkReplug(const std::string& label, std::vector<PenSource*> sources) {
   }
 }
 
+// Runs `what` in a child process as user nobody (no supplementary groups) and returns what it
+// returned, or "setuid failed".
+std::string asNobody(const std::function<std::string()>& what) {
+  int pipefd[2];
+  if (pipe(pipefd) != 0) return "pipe failed";
+  const pid_t child = fork();
+  if (child == 0) {
+    close(pipefd[0]);
+    std::string out = "setuid failed";
+    if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) out = what();
+    (void)!write(pipefd[1], out.data(), out.size());
+    _exit(0);
+  }
+  close(pipefd[1]);
+  std::string out;
+  char buf[512];
+  for (ssize_t n; (n = read(pipefd[0], buf, sizeof buf)) > 0;) out.append(buf, n);
+  close(pipefd[0]);
+  waitpid(child, nullptr, 0);
+  return out;
+}
+
 void phaseUhidPth660(const std::string& fixtures) {
   const std::vector<uint8_t> desc = readFile(fixtures + "/wacom-pth660_v145.rdesc");
   auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
@@ -252,6 +276,31 @@ void phaseUhidPth660(const std::string& fixtures) {
           "uhid: as an unprivileged user hidraw reports permission denied naming the udev rule (" +
               hr + ")");
     }
+  }
+
+  // What `cloudbrush devices` reports to that user: the event nodes (or /dev/input itself)
+  // closed to it, each with the error.
+  {
+    const std::string survey = asNobody([] {
+      const EvdevSurvey s = surveyEvdevNodes();
+      if (!s.dir_error.empty())
+        return std::string(s.dir_permission_denied ? "dir-denied " : "dir-error ") + s.dir + ": " +
+               s.dir_error;
+      int denied = 0;
+      std::string first;
+      for (const EvdevNodeReport& n : s.nodes) {
+        if (n.kind == EvdevNodeKind::kCannotOpen && n.permission_denied) ++denied;
+        if (first.empty() && n.kind == EvdevNodeKind::kCannotOpen) first = n.path + ": " + n.detail;
+      }
+      return std::string(denied > 0 && denied == static_cast<int>(s.nodes.size()) ? "nodes-denied "
+                                                                                  : "nodes ") +
+             std::to_string(denied) + "/" + std::to_string(s.nodes.size()) + " " + first;
+    });
+    const bool named =
+        (survey.rfind("dir-denied ", 0) == 0 || survey.rfind("nodes-denied ", 0) == 0) &&
+        survey.find("Permission denied") != std::string::npos;
+    check(named, "uhid: as an unprivileged user the device survey names what is closed and why (" +
+                     survey + ")");
   }
 
   // Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
@@ -445,12 +494,13 @@ void phaseLatency() {
 int main(int argc, char** argv) {
   using namespace cb::hil;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]\n",
+                 argv[0]);
     return 2;
   }
   const std::string fixtures = argv[1];
   std::vector<std::string> phases(argv + 2, argv + argc);
-  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency"};
+  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency", "corpus"};
   for (const std::string& p : phases) {
     std::printf("CB-HIL PHASE %s\n", p.c_str());
     std::fflush(stdout);
@@ -462,6 +512,8 @@ int main(int argc, char** argv) {
       phaseGadget(fixtures);
     else if (p == "latency")
       phaseLatency();
+    else if (p == "corpus")
+      g_failures += runCorpusPhase(fixtures);
     else
       check(false, "unknown phase " + p);
   }
