@@ -11,6 +11,7 @@
 #include "app/scene/paint_camera.h"
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
+#include "app/shell/mouse_pen.h"
 #include "app/shell/ui_overlay.h"
 #include "app/volume/volume_file.h"
 #include "calibration/profile_store.h"
@@ -188,65 +189,83 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
       selectCalibration(tool_serial_);
     }
   }
-  for (const PenSample& sample : samples) {
-    if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
-      tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
-      selectCalibration(tool_serial_);
+  for (const PenSample& sample : samples) feedSample(sample);
+}
+
+void PaintScreen::feedSample(const PenSample& sample) {
+  if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
+    tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
+    selectCalibration(tool_serial_);
+  }
+  if (sample.in_proximity && orbiting_) {
+    // Painting needs a still camera (§3.3): the auto-rotation stops where it is, and that
+    // view becomes the session's camera.
+    orbiting_ = false;
+    refined_ = false;
+    if (orbit_degrees_ != 0.0f) {
+      const Camera here = shownCamera();
+      orbit_degrees_ = 0.0f;
+      apply(ui::SetCamera{here}, sample.t_ns);
     }
-    if (sample.in_proximity && orbiting_) {
-      // Painting needs a still camera (§3.3): the auto-rotation stops where it is, and that
-      // view becomes the session's camera.
-      orbiting_ = false;
-      refined_ = false;
-      if (orbit_degrees_ != 0.0f) {
-        const Camera here = shownCamera();
-        orbit_degrees_ = 0.0f;
-        apply(ui::SetCamera{here}, sample.t_ns);
-      }
-    }
-    // The on-screen UI holds the pen while the menu is open or when the pen comes down on a UI
-    // target; the change is made only while the pen is up, so no stroke is cut short.
-    const bool capture = menu_open_ || pointer_over_ui_;
-    if (capture != session_->penCaptured() && !pen_events_.down() && !session_->engine().inStroke())
-      apply(ui::PenCapture{capture}, sample.t_ns);
-    const auto received = std::chrono::steady_clock::now();
-    const SampleOutcome outcome = session_->feed(sample);
-    ++pen_samples_;
-    if (outcome.stroke_began)
-      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
-    if (!outcome.changed.empty())
-      texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
-    if (outcome.stroke_mapped) {
-      ++strokes_seen_;
-      lift_time_ = received;
-      lift_mapping_ms_ = outcome.mapping.timings.total_ms;
-      lit_pending_ = true;
-      // The cloud replaces the ink: the footprint is cleared as the lit scene is drawn.
-      overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
-    }
-    cursor_.screen_px =
-        glm::vec2(float(outcome.mapped.preview_x_px), float(outcome.mapped.preview_y_px));
-    cursor_.visible = outcome.mapped.in_proximity;
-    events_.clear();
-    pen_events_.derive(outcome.mapped, &events_);
-    if (ui_ && outcome.mapped.in_proximity)
-      ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
-    for (const PenEvent& event : events_) {
-      // Side buttons always reach the screen; the rest only when the UI does not hold the pen.
-      const bool button =
-          event.kind == PenEvent::Kind::kButtonDown || event.kind == PenEvent::Kind::kButtonUp;
-      if (button || !session_->penCaptured()) handleEvent(event, outcome.mapped);
-    }
+  }
+  // The on-screen UI holds the pen while the menu is open or when the pen comes down on a UI
+  // target; the change is made only while the pen is up, so no stroke is cut short.
+  const bool capture = menu_open_ || pointer_over_ui_;
+  if (capture != session_->penCaptured() && !pen_events_.down() && !session_->engine().inStroke())
+    apply(ui::PenCapture{capture}, sample.t_ns);
+  const auto received = std::chrono::steady_clock::now();
+  const SampleOutcome outcome = session_->feed(sample);
+  ++pen_samples_;
+  if (outcome.stroke_began)
+    overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+  if (!outcome.changed.empty())
+    texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
+  if (outcome.stroke_mapped) {
+    ++strokes_seen_;
+    lift_time_ = received;
+    lift_mapping_ms_ = outcome.mapping.timings.total_ms;
+    lit_pending_ = true;
+    // The cloud replaces the ink: the footprint is cleared as the lit scene is drawn.
+    overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
+  }
+  cursor_.screen_px =
+      glm::vec2(float(outcome.mapped.preview_x_px), float(outcome.mapped.preview_y_px));
+  cursor_.visible = outcome.mapped.in_proximity;
+  events_.clear();
+  pen_events_.derive(outcome.mapped, &events_);
+  if (ui_ && outcome.mapped.in_proximity)
+    ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
+  for (const PenEvent& event : events_) {
+    // Side buttons always reach the screen; the rest only when the UI does not hold the pen.
+    const bool button =
+        event.kind == PenEvent::Kind::kButtonDown || event.kind == PenEvent::Kind::kButtonUp;
+    if (button || !session_->penCaptured()) handleEvent(event, outcome.mapped);
   }
 }
 
 void PaintScreen::onPointer(const DisplayEvent& event) {
-  // A mouse (X11) drives the on-screen UI.
-  if (!ui_) return;
+  // A mouse (X11) drives the on-screen UI, and paints when no tablet is connected.
   if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) mouse_down_ = true;
   if (event.kind == DisplayEvent::Kind::PointerUp && event.button == 1) mouse_down_ = false;
-  ui_->pointer(event.x, event.y, mouse_down_);
+  if (ui_) ui_->pointer(event.x, event.y, mouse_down_);
   pointer_moved_ = true;
+  const bool tablet = pen_ && pen_->connection() == PenConnection::kConnected;
+  if (!session_ || tablet) return;
+  if (!mouse_) {
+    mouse_ = std::make_unique<MousePen>(display_.width(), display_.height());
+    session_->setDevice(mouse_->device(), monotonicNowNs());
+    session_->setCalibration(CalibrationProfile{}, monotonicNowNs());
+    if (!pen_connected_once_) {
+      pen_connected_once_ = true;
+      if (options_.on_first_connection) options_.on_first_connection();
+    }
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "no tablet: the mouse paints with pressure %.2f (-/+ in Paint mode change it)",
+                  double(mouse_->pressure()));
+    say(text);
+  }
+  feedSample(mouse_->sample(event, monotonicNowNs()));
 }
 
 void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped) {
@@ -407,6 +426,9 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       } else if (session_->mode() == Mode::kCanvas) {
         const Canvas c = session_->canvas();
         apply(ui::SetCanvas{c.altitude, std::clamp(c.thickness * factor, 0.02f, 2.0f)}, t_ns);
+      } else if (session_->mode() == Mode::kPaint && mouse_) {
+        mouse_->setPressure(mouse_->pressure() + (command == Command::kLarger ? 0.1f : -0.1f));
+        say("mouse pressure " + std::to_string(mouse_->pressure()).substr(0, 4));
       } else if (session_->mode() == Mode::kLight) {
         // Warmer (−) or cooler (+): towards an evening orange or a noon white-blue.
         const Light l = session_->light();
@@ -757,8 +779,10 @@ std::string PaintScreen::statusLine() const {
     line += text;
   }
   if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
-  if (pen_ && pen_->connection() != PenConnection::kConnected &&
-      pen_->connection() != PenConnection::kFinished)
+  if (mouse_ && !(pen_ && pen_->connection() == PenConnection::kConnected))
+    line += " | mouse as pen, pressure " + std::to_string(mouse_->pressure()).substr(0, 4);
+  else if (pen_ && pen_->connection() != PenConnection::kConnected &&
+           pen_->connection() != PenConnection::kFinished)
     line += std::string(" | no tablet yet: plug one in (") + pen_->statusMessage() + ")";
   else if (pen_samples_ == 0)
     line += " | waiting for the pen: bring it near the tablet";

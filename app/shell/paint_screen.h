@@ -36,6 +36,7 @@
 
 namespace cb {
 
+class MousePen;
 class PenSource;
 class UiOverlay;
 
@@ -70,6 +71,8 @@ class PaintScreen : public Screen {
 
  private:
   void handleEvent(const PenEvent& event, const MappedSample& mapped);
+  // One raw sample (tablet or mouse) through the session, the overlay and the pen events.
+  void feedSample(const PenSample& sample);
   void apply(const UiChange& change, int64_t t_ns);
   void say(const std::string& message);
   void warnIfEdgeOn();
@@ -135,6 +138,7 @@ class PaintScreen : public Screen {
   bool ui_failed_ = false;
   bool pointer_over_ui_ = false;
   bool mouse_down_ = false;
+  std::unique_ptr<MousePen> mouse_;  // the mouse as the pen, once it was used without a tablet
   bool pointer_moved_ = false;  // a mouse event since the last frame  // the pen or mouse was over
                                 // a UI target last frame
   std::string notice_;          // shown above the status line

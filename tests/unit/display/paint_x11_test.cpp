@@ -2,6 +2,7 @@
 // fullscreen on X11 by itself (DISPLAY set, no card to take), draws the orbiting cloud, and
 // quits on Esc with status 0.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -81,15 +82,52 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
   EXPECT_EQ(attributes.height, kH);
   EXPECT_TRUE(cloud_seen) << "the screen never showed a cloud in front of the sky";
 
-  XEvent key{};
-  key.xkey.type = KeyPress;
-  key.xkey.display = observer;
-  key.xkey.window = window;
-  key.xkey.root = DefaultRootWindow(observer);
-  key.xkey.keycode = XKeysymToKeycode(observer, XK_Escape);
-  key.xkey.same_screen = True;
-  XSendEvent(observer, window, True, KeyPressMask, &key);
-  XFlush(observer);
+  const auto press = [&](KeySym sym) {
+    XEvent key{};
+    key.xkey.type = KeyPress;
+    key.xkey.display = observer;
+    key.xkey.window = window;
+    key.xkey.root = DefaultRootWindow(observer);
+    key.xkey.keycode = XKeysymToKeycode(observer, sym);
+    key.xkey.same_screen = True;
+    XSendEvent(observer, window, True, KeyPressMask, &key);
+    XFlush(observer);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  };
+  // The mode keys on X11: Canvas, Light, then Paint.
+  press(XK_2);
+  press(XK_5);
+  press(XK_3);
+  // No tablet here: the mouse paints a stroke across the middle.
+  const auto pointer = [&](int type, int x, int y) {
+    XEvent e{};
+    e.type = type;
+    if (type == MotionNotify) {
+      e.xmotion.window = window;
+      e.xmotion.x = x;
+      e.xmotion.y = y;
+      e.xmotion.same_screen = True;
+    } else {
+      e.xbutton.window = window;
+      e.xbutton.x = x;
+      e.xbutton.y = y;
+      e.xbutton.button = Button1;
+      e.xbutton.same_screen = True;
+    }
+    XSendEvent(observer, window, True,
+               type == MotionNotify ? PointerMotionMask
+                                    : (type == ButtonPress ? ButtonPressMask : ButtonReleaseMask),
+               &e);
+    XFlush(observer);
+    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+  };
+  pointer(MotionNotify, kW / 4, kH / 2);
+  pointer(ButtonPress, kW / 4, kH / 2);
+  for (int i = 0; i <= 40; ++i)
+    pointer(MotionNotify, kW / 4 + i * kW / 80, kH / 2 + int(10 * std::sin(i * 0.2)));
+  pointer(ButtonRelease, 3 * kW / 4, kH / 2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  press(XK_Escape);
   runner.join();  // the binary must end by itself after Esc (ctest's timeout guards this)
   XCloseDisplay(observer);
 
@@ -108,6 +146,10 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
   EXPECT_EQ(status, "0\n") << stderr_text;
   EXPECT_NE(stderr_text.find("x11 display 320x200"), std::string::npos) << stderr_text;
   EXPECT_NE(stdout_text.find("on x11 (Esc)"), std::string::npos) << stdout_text;
+  EXPECT_NE(stderr_text.find("cloudbrush: canvas\n"), std::string::npos) << stderr_text;
+  EXPECT_NE(stderr_text.find("cloudbrush: light\n"), std::string::npos) << stderr_text;
+  EXPECT_NE(stderr_text.find("the mouse paints"), std::string::npos) << stderr_text;
+  EXPECT_NE(stdout_text.find(" 1 strokes mapped"), std::string::npos) << stdout_text;
 }
 
 }  // namespace
