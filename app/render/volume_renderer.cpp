@@ -8,12 +8,21 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "app/core/parallel_for.h"
+#include "app/render/detail_noise.h"
 #include "app/render/shader_program.h"
 
 namespace cb {
 namespace {
 
 constexpr int kHistogramBins = 64;
+// Style parameters shared by the iso-surface styles (shade_{ink,cartoon,sketch}.glsl).
+constexpr float kIsoDensity = 0.3f;           // the outer surface (seed 003's threshold T)
+constexpr float kInnerIsoDensity = 0.75f;     // the inner detail surface (seed 003 §5)
+constexpr float kInnerDepthFraction = 0.06f;  // searched behind the hit, of the largest dim
+// Physical style: the fBm cube spans this many voxels (its finest octave: ~1 voxel per cell)
+// and erodes edges by this much (κ_e in shade_physical.glsl).
+constexpr float kDetailNoisePeriodVoxels = 32.0f;
+constexpr float kDetailErosion = 0.6f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
@@ -99,6 +108,7 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
   if (frame_texture_) glDeleteTextures(1, &frame_texture_);
   if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
+  if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
 }
 
 bool VolumeRenderer::init(std::string* error) {
@@ -122,22 +132,106 @@ bool VolumeRenderer::init(std::string* error) {
 }
 
 bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
+  const bool surface = drawsIsoSurface(options.style);
   const std::string defines =
       std::string("#define CB_SKIP ") + (options.skip_empty_space ? "1" : "0") +
       "\n#define CB_BRICK_STEPPING " + (options.brick_stepping ? "1" : "0") +
-      "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n";
-  const std::string key = options.shading + "\n" + defines;
+      "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n#define CB_SURFACE " +
+      (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") + "\n";
+  const std::string stage = shadingStageFile(options.style);
+  const std::string key = stage + "\n" + defines;
   auto it = programs_.find(key);
   if (it != programs_.end()) {
     program_ = it->second;
     return true;
   }
-  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {options.shading, "raycast.frag.glsl"}, &error_,
-                         defines);
+  std::vector<std::string> fragment_files;
+  if (surface) fragment_files.push_back("surface_sample.glsl");
+  fragment_files.push_back(stage);
+  fragment_files.push_back("raycast.frag.glsl");
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, fragment_files, &error_, defines);
   if (!p) return false;
   programs_[key] = p;
   program_ = p;
   return true;
+}
+
+GLuint VolumeRenderer::fullscreenProgram(const std::string& fragment, const std::string& defines) {
+  const std::string key = fragment + "\n" + defines;
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return it->second;
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {fragment}, &error_, defines);
+  if (p) programs_[key] = p;
+  return p;
+}
+
+void VolumeRenderer::ensureDetailNoise() {
+  if (detail_noise_texture_) return;
+  const DetailNoise noise = makeDetailNoise();
+  glCreateTextures(GL_TEXTURE_3D, 1, &detail_noise_texture_);
+  glTextureStorage3D(detail_noise_texture_, 1, GL_R8, noise.size, noise.size, noise.size);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTextureParameteri(detail_noise_texture_, wrap, GL_REPEAT);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(detail_noise_texture_, 0, 0, 0, 0, noise.size, noise.size, noise.size, GL_RED,
+                      GL_UNSIGNED_BYTE, noise.texels.data());
+}
+
+void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width,
+                                       int height, const RenderOptions& options) {
+  const bool ink = options.style == RenderStyle::kInk;
+  const bool bleed = ink && !options.moving;
+  std::string defines = std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
+                        "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
+                        (bleed ? "1" : "0") + "\n";
+  GLuint compose = fullscreenProgram("style_compose.frag.glsl", defines);
+  if (!compose) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+    return;
+  }
+  glTextureParameteri(image, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindVertexArray(vao_);
+  if (bleed) {
+    // First axis of the ink bleeding into bleed_; the compose pass does the second.
+    GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", "");
+    if (!blur) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+      return;
+    }
+    if (bleed_.width() != w || bleed_.height() != h) {
+      std::string err;
+      if (!bleed_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+        std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+        return;
+      }
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bleed_.fbo());
+    glViewport(0, 0, w, h);
+    glUseProgram(blur);
+    glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
+    glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
+    glBindTextureUnit(0, image);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+  glViewport(0, 0, width, height);
+  glUseProgram(compose);
+  glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
+  glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
+  glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));
+  glBindTextureUnit(0, image);
+  glBindTextureUnit(1, bleed ? bleed_.texture() : image);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
 }
 
 void VolumeRenderer::allocateTextures(glm::ivec3 dims) {
@@ -338,7 +432,19 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
       return;
     }
   }
-  GLuint draw_fbo = reduced ? low_res_.fbo() : target_fbo;
+  const bool screen_space = hasScreenSpacePass(options.style);
+  if (screen_space && !options.skip_empty_space &&
+      (style_image_.width() != w || style_image_.height() != h)) {
+    std::string err;
+    if (!style_image_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+      return;
+    }
+  }
+  // A screen-space style casts into an image of its own (ink amounts, not colours) and its pass
+  // draws the target; the ray cast then sees a transparent black background.
+  GLuint draw_fbo = screen_space ? style_image_.fbo() : reduced ? low_res_.fbo() : target_fbo;
+  const glm::vec4 background = screen_space ? glm::vec4(0.0f) : options.background;
   stats_.width = w;
   stats_.height = h;
 
@@ -357,7 +463,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(options.background));
+    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     if (!eye_near_occupied_) {
       glEnable(GL_STENCIL_TEST);
       glStencilFunc(GL_EQUAL, 1, 0xFF);
@@ -383,12 +489,27 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
-  glUniform4fv(loc("u_background"), 1, glm::value_ptr(options.background));
+  glUniform4fv(loc("u_background"), 1, glm::value_ptr(background));
   glUniform1i(loc("u_ray_bounds"), 2);
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);
   if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
+  // Style uniforms (a stage that does not declare one ignores it: location −1).
+  glUniform3fv(loc("u_light_dir"), 1, glm::value_ptr(synced_light_.direction));
+  glUniform3fv(loc("u_sky_colour"), 1, glm::value_ptr(glm::vec3(options.background)));
+  glUniform1f(loc("u_iso"), kIsoDensity);
+  glUniform1f(loc("u_inner_iso"), kInnerIsoDensity);
+  glUniform1f(loc("u_inner_depth"),
+              kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
+  if (options.style == RenderStyle::kPhysical) {
+    ensureDetailNoise();
+    glUniform1i(loc("u_detail_noise"), 3);
+    glUniform3fv(loc("u_noise_repeat"), 1,
+                 glm::value_ptr(glm::vec3(dims_) / kDetailNoisePeriodVoxels));
+    glUniform1f(loc("u_erosion"), kDetailErosion);
+    glBindTextureUnit(3, detail_noise_texture_);
+  }
   glBindTextureUnit(0, volume_texture_);
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
@@ -396,7 +517,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_STENCIL_TEST);
 
-  if (skip) {
+  if (screen_space) {
+    finishScreenSpace(skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
+                      height, options);
+  } else if (skip) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);

@@ -22,6 +22,7 @@
 #include "app/render/gl/gl.h"
 #include "app/render/light_volume.h"
 #include "app/render/occupancy_pyramid.h"
+#include "app/render/render_style.h"
 #include "app/render/render_target.h"
 #include "app/scene/camera.h"
 #include "app/scene/light.h"
@@ -44,8 +45,17 @@ struct RenderOptions {
   glm::vec4 background{0.47f, 0.62f, 0.82f, 1.0f};  // premultiplied; a = 0 for a transparent one
   bool collect_stats = false;  // per-pixel sample counts into RenderStats (atomics; a bit slower)
   bool finish = false;         // glFinish() and report the frame's wall time in RenderStats
-  std::string shading = "shade_thesis.glsl";  // the shading stage (see shaders/README.md)
+  // How density and light become colour (render_style.h): the thesis's curve by default. The
+  // iso-surface styles ignore extinction_per_voxel and termination_transmittance.
+  RenderStyle style = RenderStyle::kThesis;
+  // The view is moving (orbit, drag): styles may shade more simply (ink: the seed's two bands,
+  // no bleeding). Set it together with scale < 1; clear both when the view comes to rest.
+  bool moving = false;
 };
+
+// Partial re-rendering (screen-space passes): a style with screenSpaceReach(style) = r > 0 reads
+// r ray-cast pixels around each output pixel, so refreshing a rectangle R means ray casting R
+// dilated by r and finishing R only (see render_style.h). render() always draws whole frames.
 
 struct RenderStats {
   int width = 0, height = 0;  // the resolution actually ray cast
@@ -98,6 +108,12 @@ class VolumeRenderer {
  private:
   // The ray-cast program variant for these options (compiled on first use, then cached).
   bool ensureProgram(const RenderOptions& options);
+  // A fullscreen program of `fragment` with `defines` (compiled on first use, then cached).
+  GLuint fullscreenProgram(const std::string& fragment, const std::string& defines);
+  // The screen-space pass of ink and sketch: `image` (w×h, the ray-cast image) -> target_fbo.
+  void finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width, int height,
+                         const RenderOptions& options);
+  void ensureDetailNoise();
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
@@ -115,6 +131,9 @@ class VolumeRenderer {
   OccupancyPyramid occupancy_;
   std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;
+  RenderTarget style_image_;         // the ray-cast image of a screen-space style without skipping
+  RenderTarget bleed_;               // ink: the silhouette blurred along x
+  GLuint detail_noise_texture_ = 0;  // physical style's fBm cube (detail_noise.h), made lazily
   // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
   // RG32F target (nearest, −farthest face distance per pixel).
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
