@@ -9,6 +9,7 @@
 //   void styleBeginRay(vec3 dir)                       once per ray (world direction, unit)
 //   float styleDensity(float density, vec3 texcoord)   the density actually composited
 //   vec3 shadeSample(float density, float transmittance)
+//   vec3 styleEndRay(vec3 colour, float transmittance)  the ray's colour before the background
 // or, for an iso-surface style (CB_SURFACE), `vec4 shadeSurface(SurfaceSample s)` returning a
 // premultiplied colour and coverage (surface_sample.glsl, linked first, defines the struct and the iso levels).
 // The renderer prepends the #version line.
@@ -229,6 +230,8 @@ void main() {
   vec4 shaded = shadeSurface(surface);
   colour = shaded.rgb;
   transmittance = 1.0 - shaded.a;
+#else
+  colour = styleEndRay(colour, transmittance);
 #endif
 #if CB_STATS
   atomicAdd(ray_stats.total_samples, samples);

@@ -6,7 +6,8 @@
 // volume holds T(0,D) (Alg. 5 of the thesis). With the light scattered forward at each point in
 // proportion to the optical depth it crosses, C(l) = κ_s·I₀·T(0,l)·dτ/dl, the integral has the
 // closed form κ_s·I₀·T·τ (T(0,l)·T(l,D) = T(0,D)), so L = I₀·T·(1 + κ_s·τ) with τ = −ln T:
-// the in-scattering term costs one log per sample and no second grid.
+// the in-scattering term needs no second grid. L depends on T alone, so it is tabulated for the
+// 256 values of the 8-bit T (physical_light_table.h, u_light_table), one fetch per sample.
 //
 // Render time (seed 004): I = ∫ [L·ρ·κ₁ (reflection) + L·ρ·P(θ)·κ₂ (scattering)]·T(0,s) ds;
 // ρ·ds is the compositing weight, so a sample emits L·(κ₁ + κ₂·4π·P(θ)). P is Henyey–Greenstein,
@@ -19,8 +20,9 @@
 //    renderers use): Σᵢ aⁱ·L(bⁱ·τ)·P(cⁱ·g) with a = b = c = ½, 3 octaves, so shadowed cores are
 //    not black. The phase terms depend only on the ray, so styleBeginRay computes them once;
 //  - an ambient sky term, the sky (background) colour times T^⅛, lighting shadowed parts blue;
-//  - an exponential exposure per sample, 1 − e^(−1.6·c), so sunlit sides (c > 1 when the sun is
-//    behind the viewer) keep their shape instead of clipping, and shadows lift a little.
+//  - an exponential exposure of each ray's emitted colour c (its composited colour over its
+//    opacity), 1 − e^(−1.6·c), in styleEndRay: sunlit sides (c > 1 when the sun is behind the
+//    viewer) keep their shape instead of clipping, and shadows lift a little.
 //
 // fBm detail (seed 004, "Texture generation"): a tileable 64³ texture of fbm = Σᵢ wⁱ·noise(sⁱ·x)
 // with w = ½, s = 2 (built on the CPU, detail_noise.h) erodes the density at render time:
@@ -31,13 +33,12 @@ uniform vec3 u_sky_colour;         // ambient sky light (the background colour)
 uniform sampler3D u_detail_noise;  // fBm in [0,1], repeating
 uniform vec3 u_noise_repeat;       // noise repeats per volume texture coordinate unit, per axis
 uniform float u_erosion;           // κ_e
+uniform sampler1D u_light_table;   // 256 × (L(τ), L(bτ), L(b²τ), e^(−τ/8)) by 8-bit T
 
-const float kReflection = 0.55;       // κ₁
-const float kScattering = 0.45;       // κ₂
-const float kInScattering = 0.6;      // κ_s of the light grid's in-scattering term
+const float kReflection = 0.55;  // κ₁
+const float kScattering = 0.45;  // κ₂
 const float kForwardG = 0.6, kBackG = -0.3, kForwardWeight = 0.75;
 const float kOctaveAttenuation = 0.5;  // a: weight of each further octave
-const float kOctaveDepth = 0.5;        // b: optical depth scale per octave
 const float kOctavePhase = 0.5;        // c: anisotropy scale per octave
 const float kAmbient = 0.5;
 const float kExposure = 1.6;
@@ -47,16 +48,23 @@ float henyeyGreenstein4Pi(float cos_theta, float g) {
   return (1.0 - g * g) / (denom * sqrt(denom));
 }
 
-float phaseOctave[3];  // 4π·P for each octave of this ray
+// Per ray: the sun's weight on each octave's light term, and the sky's.
+vec3 sunOctave0, sunOctave1, sunOctave2, skyWeight;
 
 void styleBeginRay(vec3 dir) {
   float cos_theta = dot(dir, u_light_dir);
+  float phase[3];
   float g = 1.0;
   for (int i = 0; i < 3; ++i) {
-    phaseOctave[i] = mix(henyeyGreenstein4Pi(cos_theta, kBackG * g),
-                         henyeyGreenstein4Pi(cos_theta, kForwardG * g), kForwardWeight);
+    phase[i] = mix(henyeyGreenstein4Pi(cos_theta, kBackG * g),
+                   henyeyGreenstein4Pi(cos_theta, kForwardG * g), kForwardWeight);
     g *= kOctavePhase;
   }
+  // Emitted = sun·(κ₁·L₀ + κ₂·Σ aⁱ·Pᵢ·Lᵢ) + sky·κ_a·e^(−τ/8).
+  sunOctave0 = u_light_colour * (kReflection + kScattering * phase[0]);
+  sunOctave1 = u_light_colour * (kScattering * kOctaveAttenuation * phase[1]);
+  sunOctave2 = u_light_colour * (kScattering * kOctaveAttenuation * kOctaveAttenuation * phase[2]);
+  skyWeight = u_sky_colour * kAmbient;
 }
 
 float styleDensity(float density, vec3 texcoord) {
@@ -65,16 +73,12 @@ float styleDensity(float density, vec3 texcoord) {
 }
 
 vec3 shadeSample(float density, float transmittance) {
-  float tau = -log(max(transmittance, 1.0 / 512.0));
-  // Octave i sees optical depth bⁱ·τ: T_i = exp(−bⁱτ), grid term T_i·(1 + κ_s·bⁱτ).
-  float light0 = exp(-tau) * (1.0 + kInScattering * tau);
-  float tau1 = kOctaveDepth * tau, tau2 = kOctaveDepth * tau1;
-  float light1 = exp(-tau1) * (1.0 + kInScattering * tau1);
-  float light2 = exp(-tau2) * (1.0 + kInScattering * tau2);
-  float scattered = light0 * phaseOctave[0] +
-                    kOctaveAttenuation * (light1 * phaseOctave[1] +
-                                          kOctaveAttenuation * light2 * phaseOctave[2]);
-  vec3 sun = u_light_colour * (kReflection * light0 + kScattering * scattered);
-  vec3 sky = u_sky_colour * (kAmbient * exp(-0.125 * tau));
-  return vec3(1.0) - exp(-kExposure * (sun + sky));
+  vec4 light = texelFetch(u_light_table, int(transmittance * 255.0 + 0.5), 0);
+  return sunOctave0 * light.x + sunOctave1 * light.y + sunOctave2 * light.z + skyWeight * light.w;
+}
+
+vec3 styleEndRay(vec3 colour, float transmittance) {
+  float opacity = 1.0 - transmittance;
+  vec3 emitted = colour / max(opacity, 1e-4);
+  return (vec3(1.0) - exp(-kExposure * emitted)) * opacity;
 }

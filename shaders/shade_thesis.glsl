@@ -4,13 +4,15 @@
 // is ≈ 0.97 fully lit, peaks at ≈ 1.0 on the rim just inside the surface and ≈ 0.13 in deep
 // shadow. Tinted by the light colour. The density is composited as it is (no per-ray state).
 //
-// A composited shading stage defines `styleBeginRay`, `styleDensity` and `shadeSample` (see
-// raycast.frag.glsl); other styles are other files with the same functions.
+// A composited shading stage defines `styleBeginRay`, `styleDensity`, `shadeSample` and
+// `styleEndRay` (see raycast.frag.glsl); other styles are other files with the same functions.
 uniform vec3 u_light_colour;
 
 void styleBeginRay(vec3 dir) {}
 
 float styleDensity(float density, vec3 texcoord) { return density; }
+
+vec3 styleEndRay(vec3 colour, float transmittance) { return colour; }
 
 vec3 shadeSample(float density, float transmittance) {
   float illuminance = 1.0 - transmittance;

@@ -24,6 +24,7 @@ const Bench kBenches[] = {
     {"input", "report decode cost and kernel-to-consumer delay", benchInput},
     {"smoothing", "jitter and lag of raw, moving average and 1-euro filtering; prediction",
      benchSmoothing},
+    {"styles", "each render style's full frame against the thesis style's", benchStyles},
 };
 
 }  // namespace

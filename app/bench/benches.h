@@ -7,4 +7,5 @@ int benchBrush(int argc, char** argv);
 int benchMapping(int argc, char** argv);
 int benchInput(int argc, char** argv);
 int benchSmoothing(int argc, char** argv);
+int benchStyles(int argc, char** argv);
 }  // namespace cb

@@ -9,6 +9,7 @@
 
 #include "app/core/parallel_for.h"
 #include "app/render/detail_noise.h"
+#include "app/render/physical_light_table.h"
 #include "app/render/shader_program.h"
 
 namespace cb {
@@ -109,6 +110,7 @@ VolumeRenderer::~VolumeRenderer() {
   if (frame_texture_) glDeleteTextures(1, &frame_texture_);
   if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
   if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
+  if (light_table_texture_) glDeleteTextures(1, &light_table_texture_);
 }
 
 bool VolumeRenderer::init(std::string* error) {
@@ -165,13 +167,18 @@ GLuint VolumeRenderer::fullscreenProgram(const std::string& fragment, const std:
   return p;
 }
 
-void VolumeRenderer::ensureDetailNoise() {
+void VolumeRenderer::ensurePhysicalTextures() {
   if (detail_noise_texture_) return;
+  const std::array<glm::vec4, 256> table = physicalLightTable();
+  glCreateTextures(GL_TEXTURE_1D, 1, &light_table_texture_);
+  glTextureStorage1D(light_table_texture_, 1, GL_RGBA32F, GLsizei(table.size()));
+  glTextureSubImage1D(light_table_texture_, 0, 0, GLsizei(table.size()), GL_RGBA, GL_FLOAT,
+                      table.data());
   const DetailNoise noise = makeDetailNoise();
   glCreateTextures(GL_TEXTURE_3D, 1, &detail_noise_texture_);
   glTextureStorage3D(detail_noise_texture_, 1, GL_R8, noise.size, noise.size, noise.size);
-  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTextureParameteri(detail_noise_texture_, wrap, GL_REPEAT);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -503,8 +510,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_inner_depth"),
               kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
   if (options.style == RenderStyle::kPhysical) {
-    ensureDetailNoise();
+    ensurePhysicalTextures();
     glUniform1i(loc("u_detail_noise"), 3);
+    glUniform1i(loc("u_light_table"), 4);
+    glBindTextureUnit(4, light_table_texture_);
     glUniform3fv(loc("u_noise_repeat"), 1,
                  glm::value_ptr(glm::vec3(dims_) / kDetailNoisePeriodVoxels));
     glUniform1f(loc("u_erosion"), kDetailErosion);

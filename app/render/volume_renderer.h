@@ -113,7 +113,7 @@ class VolumeRenderer {
   // The screen-space pass of ink and sketch: `image` (w×h, the ray-cast image) -> target_fbo.
   void finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width, int height,
                          const RenderOptions& options);
-  void ensureDetailNoise();
+  void ensurePhysicalTextures();
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
@@ -131,9 +131,11 @@ class VolumeRenderer {
   OccupancyPyramid occupancy_;
   std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;
-  RenderTarget style_image_;         // the ray-cast image of a screen-space style without skipping
-  RenderTarget bleed_;               // ink: the silhouette blurred along x
-  GLuint detail_noise_texture_ = 0;  // physical style's fBm cube (detail_noise.h), made lazily
+  RenderTarget style_image_;  // the ray-cast image of a screen-space style without skipping
+  RenderTarget bleed_;        // ink: the silhouette blurred along x
+  // The physical style's fBm cube (detail_noise.h) and light table (physical_light_table.h),
+  // made on its first frame.
+  GLuint detail_noise_texture_ = 0, light_table_texture_ = 0;
   // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
   // RG32F target (nearest, −farthest face distance per pixel).
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
