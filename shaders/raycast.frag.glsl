@@ -207,8 +207,10 @@ void main() {
     vec3 delta = dir * (u_step * inv_dims);
     float f = clamp((u_iso - previous_density) / max(hit_density - previous_density, 1e-6), 0.0, 1.0);
     vec3 p = base + (float(hit_k) - 1.0 + f) * delta;
-    // Central differences one voxel apart; the outward normal points down the density gradient.
-    vec3 h = inv_dims;
+    // Central differences u_gradient_voxels apart (wider on finer grids, so the normal follows
+    // the cloud's shape rather than its voxel-scale noise); the outward normal points down the
+    // density gradient.
+    vec3 h = u_gradient_voxels * inv_dims;
     vec3 gradient = vec3(textureLod(u_volume, p + vec3(h.x, 0, 0), 0.0).r -
                              textureLod(u_volume, p - vec3(h.x, 0, 0), 0.0).r,
                          textureLod(u_volume, p + vec3(0, h.y, 0), 0.0).r -

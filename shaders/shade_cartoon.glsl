@@ -1,7 +1,8 @@
 // Shading stage: cartoon clouds after Álvarez et al. (seed 003, §4–5), on the iso-surface of the
 // density (the seed's implicit surface F(q) = Σ Dᵢ(q) − T = 0 is our density = u_iso).
-//  - Cel bands (§4, "a maximum of 32 gradations ... as a 1D texture"): four flat tones chosen by
-//    d = N·L times the light volume's transmittance (self-shadowing), tinted by the sun.
+//  - Cel bands (§4, up to 32 gradations from a 1D texture in the seed): four flat tones chosen
+//    by d = N·L times 0.35 + 0.65·T, T the light volume's transmittance (self-shadowing that
+//    darkens but does not blacken, as in shade_ink.glsl), tinted by the sun.
 //  - Outline: where the surface turns away from the eye (|N·V| < 0.3) and, just outside it, on
 //    rays whose largest density comes within 40% of the iso level (a line from the density
 //    field, anti-aliased by that band).
@@ -21,7 +22,7 @@ int celBand(float d) { return d < 0.2 ? 0 : d < 0.45 ? 1 : d < 0.75 ? 2 : 3; }
 vec4 shadeSurface(SurfaceSample s) {
   float near_miss = smoothstep(0.6 * u_iso, u_iso, s.max_density);
   if (!s.hit) return vec4(kOutline * near_miss, near_miss);
-  float d = max(dot(s.normal, u_light_dir), 0.0) * s.light_transmittance;
+  float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
   vec3 cel = kCel[celBand(d)] * u_light_colour;
   float outline = 1.0 - smoothstep(0.15, 0.3, abs(dot(s.normal, s.view)));
   float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));

@@ -20,6 +20,9 @@ constexpr int kHistogramBins = 64;
 constexpr float kIsoDensity = 0.3f;           // the outer surface (seed 003's threshold T)
 constexpr float kInnerIsoDensity = 0.75f;     // the inner detail surface (seed 003 §5)
 constexpr float kInnerDepthFraction = 0.06f;  // searched behind the hit, of the largest dim
+// Normals by central differences this fraction of the largest dim apart (1 voxel at 64³, 4 at
+// 256³): the shape's normal, not the rim noise's.
+constexpr float kGradientFraction = 1.0f / 64.0f;
 // Physical style: the fBm cube spans this many voxels (its finest octave: ~1 voxel per cell)
 // and erodes edges by this much (κ_e in shade_physical.glsl).
 constexpr float kDetailNoisePeriodVoxels = 32.0f;
@@ -507,6 +510,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform3fv(loc("u_sky_colour"), 1, glm::value_ptr(glm::vec3(options.background)));
   glUniform1f(loc("u_iso"), kIsoDensity);
   glUniform1f(loc("u_inner_iso"), kInnerIsoDensity);
+  glUniform1f(loc("u_gradient_voxels"),
+              std::max(1.0f, kGradientFraction * float(std::max({dims_.x, dims_.y, dims_.z}))));
   glUniform1f(loc("u_inner_depth"),
               kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
   if (options.style == RenderStyle::kPhysical) {

@@ -157,7 +157,9 @@ Surface findSurface(const ReferenceScene& s, const Ray& r) {
   float f =
       std::clamp((kReferenceIso - previous) / std::max(hit_density - previous, 1e-6f), 0.f, 1.f);
   glm::vec3 p = r.base + (float(hit_k) - 1.0f + f) * r.delta;
-  glm::vec3 h = 1.0f / glm::vec3(s.dims);
+  const float spacing =
+      std::max(1.0f, float(std::max({s.dims.x, s.dims.y, s.dims.z})) / 64.0f);  // voxels
+  glm::vec3 h = spacing / glm::vec3(s.dims);
   glm::vec3 grad;
   for (int a = 0; a < 3; ++a) {
     glm::vec3 e(0.0f);
@@ -190,7 +192,8 @@ bool near(float v, std::initializer_list<float> thresholds, float eps) {
   return false;
 }
 
-// Seed 003: four cel tones by d = N·L·T, outline where |N·V| < 0.3, inner-surface silhouette.
+// Seed 003: four cel tones by d = N·L·(0.35 + 0.65·T), outline where |N·V| < 0.3, inner-surface
+// silhouette.
 glm::vec4 cartoonPixel(const ReferenceScene& s, const Surface& f, bool* ambiguous,
                        bool* sensitive) {
   const glm::vec3 outline_colour(0.10f, 0.12f, 0.22f);
@@ -200,7 +203,7 @@ glm::vec4 cartoonPixel(const ReferenceScene& s, const Surface& f, bool* ambiguou
     *sensitive |= nm > 0.0f && nm < 1.0f;
     return glm::vec4(outline_colour * nm + (1 - nm) * bg, 1.0f);
   }
-  float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * f.light_t;
+  float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * (0.35f + 0.65f * f.light_t);
   *ambiguous |= near(d, {0.2f, 0.45f, 0.75f}, 0.01f);
   const glm::vec3 tones[4] = {
       {0.50f, 0.57f, 0.78f}, {0.68f, 0.75f, 0.90f}, {0.86f, 0.90f, 0.97f}, {1.0f, 1.0f, 1.0f}};
@@ -237,7 +240,7 @@ glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensiti
   float nm = smoothStep(0.6f * kReferenceIso, kReferenceIso, f.max_density);
   *sensitive |= outlineSensitive(f) || (nm > 0.0f && nm < 1.0f);
   if (!f.hit) return glm::vec4(0, quantise8(nm), 0, quantise8(nm));
-  float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * f.light_t;
+  float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * (0.35f + 0.65f * f.light_t);
   float outline = 1 - smoothStep(0.15f, 0.3f, std::abs(glm::dot(f.normal, f.view)));
   float inner = 1 - smoothStep(0.03f, 0.06f, std::abs(f.inner_max - kReferenceInnerIso));
   return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.7f * inner)), 0, 1);
