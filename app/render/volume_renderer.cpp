@@ -190,7 +190,8 @@ void VolumeRenderer::ensurePhysicalTextures() {
 }
 
 void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width,
-                                       int height, const RenderOptions& options) {
+                                       int height, const RenderOptions& options, bool partial,
+                                       glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
   const bool ink = options.style == RenderStyle::kInk;
   const bool bleed = ink && !options.moving;
   std::string defines = std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
@@ -226,6 +227,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bleed_.fbo());
     glViewport(0, 0, w, h);
+    if (partial) glScissor(bleed_rect.x, bleed_rect.y, bleed_rect.z, bleed_rect.w);
     glUseProgram(blur);
     glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
     glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
@@ -234,6 +236,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
   glViewport(0, 0, width, height);
+  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
   glUseProgram(compose);
   glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
   glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
@@ -466,13 +469,28 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDisable(GL_BLEND);
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
   const bool skip = options.skip_empty_space;
+  // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
+  const bool partial = options.region.z > 0 && options.region.w > 0 && !reduced;
+  auto clipToFrame = [&](glm::ivec4 r, int grow_x, int grow_y) {
+    glm::ivec2 lo = glm::max(glm::ivec2(r.x - grow_x, r.y - grow_y), glm::ivec2(0));
+    glm::ivec2 hi = glm::min(glm::ivec2(r.x + r.z + grow_x, r.y + r.w + grow_y), glm::ivec2(w, h));
+    return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
+  };
+  const int reach = screenSpaceReach(options.style);
+  const glm::ivec4 out_rect = clipToFrame(options.region, 0, 0);
+  const glm::ivec4 cast_rect = clipToFrame(options.region, reach, reach);
+  const glm::ivec4 bleed_rect = clipToFrame(options.region, 0, reach);  // the first axis is x
   if (skip) {
-    drawRayBounds(camera, view_proj, w, h);
+    drawRayBounds(camera, view_proj, w, h);  // whole frame: it costs per triangle, not pixel
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
+    if (partial) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+    }
     glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     if (!eye_near_occupied_) {
       glEnable(GL_STENCIL_TEST);
@@ -481,6 +499,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     }
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+    if (partial) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+    }
   }
   glViewport(0, 0, w, h);
   glUseProgram(program_);
@@ -531,9 +553,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_STENCIL_TEST);
 
+  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
   if (screen_space) {
     finishScreenSpace(skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
-                      height, options);
+                      height, options, partial, bleed_rect, out_rect);
   } else if (skip) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -547,6 +570,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   }
+  glDisable(GL_SCISSOR_TEST);
   if (options.collect_stats) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<uint32_t> raw(3 + kHistogramBins);

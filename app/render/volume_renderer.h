@@ -51,11 +51,16 @@ struct RenderOptions {
   // The view is moving (orbit, drag): styles may shade more simply (ink: the seed's two bands,
   // no bleeding). Set it together with scale < 1; clear both when the view comes to rest.
   bool moving = false;
+  // Re-render only this rectangle of the target (x, y, width, height in pixels, origin at the
+  // bottom left like glScissor) and leave the rest of the target as it is; a zero width or
+  // height means the whole frame. Only at scale 1 (otherwise the whole frame is drawn), and the
+  // previous frame must have come from this renderer at the same size and style, because
+  // screen-space styles keep their ray-cast image between frames: a style whose pass reads r =
+  // screenSpaceReach(style) pixels around each pixel has R dilated by r ray cast, its first
+  // blur axis run over R dilated by r across that axis, and only R finished, so every pixel of
+  // R reads only fresh pixels and equals a full-frame render (tested).
+  glm::ivec4 region{0};
 };
-
-// Partial re-rendering (screen-space passes): a style with screenSpaceReach(style) = r > 0 reads
-// r ray-cast pixels around each output pixel, so refreshing a rectangle R means ray casting R
-// dilated by r and finishing R only (see render_style.h). render() always draws whole frames.
 
 struct RenderStats {
   int width = 0, height = 0;  // the resolution actually ray cast
@@ -111,8 +116,10 @@ class VolumeRenderer {
   // A fullscreen program of `fragment` with `defines` (compiled on first use, then cached).
   GLuint fullscreenProgram(const std::string& fragment, const std::string& defines);
   // The screen-space pass of ink and sketch: `image` (w×h, the ray-cast image) -> target_fbo.
+  // With `partial`, the first blur axis is scissored to bleed_rect and the finish to out_rect.
   void finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width, int height,
-                         const RenderOptions& options);
+                         const RenderOptions& options, bool partial, glm::ivec4 bleed_rect,
+                         glm::ivec4 out_rect);
   void ensurePhysicalTextures();
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
