@@ -30,6 +30,13 @@ constexpr float kDetailErosion = 0.6f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
+// The variant of style_compose.frag.glsl: ink (with or without bleeding) or sketch.
+std::string composeDefines(bool ink, bool bleed) {
+  return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
+         "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
+         (bleed ? "1" : "0") + "\n";
+}
+
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -161,6 +168,18 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
   return true;
 }
 
+bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
+  bool ok = ensureProgram(options);
+  if (ok && hasScreenSpacePass(options.style)) {
+    const bool ink = options.style == RenderStyle::kInk;
+    const bool bleed = ink && !options.moving;
+    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed)) != 0 &&
+         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
+  }
+  if (!ok) *error = error_;
+  return ok;
+}
+
 GLuint VolumeRenderer::fullscreenProgram(const std::string& fragment, const std::string& defines) {
   const std::string key = fragment + "\n" + defines;
   auto it = programs_.find(key);
@@ -194,10 +213,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
                                        glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
   const bool ink = options.style == RenderStyle::kInk;
   const bool bleed = ink && !options.moving;
-  std::string defines = std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
-                        "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
-                        (bleed ? "1" : "0") + "\n";
-  GLuint compose = fullscreenProgram("style_compose.frag.glsl", defines);
+  GLuint compose = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed));
   if (!compose) {
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;

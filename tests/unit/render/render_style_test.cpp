@@ -30,6 +30,20 @@ TEST(RenderStyle, NamesRoundTripAndUnknownNamesAreRejected) {
   EXPECT_EQ(screenSpaceReach(RenderStyle::kThesis), 0);
 }
 
+TEST(RenderStyle, EveryStyleCompilesStillAndMoving) {
+  CB_REQUIRE_GL();
+  VolumeRenderer renderer;
+  std::string err;
+  ASSERT_TRUE(renderer.init(&err)) << err;
+  for (RenderStyle style : kAllRenderStyles)
+    for (bool moving : {false, true}) {
+      RenderOptions options;
+      options.style = style;
+      options.moving = moving;
+      EXPECT_TRUE(renderer.prepare(options, &err)) << renderStyleName(style) << ": " << err;
+    }
+}
+
 struct ShaderCase {
   RenderStyle style;
   bool moving;
