@@ -14,10 +14,12 @@ uniform vec3 u_light_dir;  // towards the sun, unit
 uniform vec3 u_light_colour;
 
 const vec3 kOutline = vec3(0.10, 0.12, 0.22);
-const vec3 kCel[4] = vec3[4](vec3(0.50, 0.57, 0.78), vec3(0.68, 0.75, 0.90),
-                             vec3(0.86, 0.90, 0.97), vec3(1.0));
+const vec3 kCel[4] =
+    vec3[4](vec3(0.50, 0.57, 0.78), vec3(0.68, 0.75, 0.90), vec3(0.86, 0.90, 0.97), vec3(1.0));
 
-int celBand(float d) { return d < 0.2 ? 0 : d < 0.45 ? 1 : d < 0.75 ? 2 : 3; }
+int celBand(float d) {
+  return d < 0.2 ? 0 : d < 0.45 ? 1 : d < 0.75 ? 2 : 3;
+}
 
 vec4 shadeSurface(SurfaceSample s) {
   float near_miss = smoothstep(0.6 * u_iso, u_iso, s.max_density);

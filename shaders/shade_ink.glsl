@@ -5,8 +5,9 @@
 //   r = interior wash, g = silhouette ink, a = coverage.
 //
 // Interior (§3.3.3): diffuse d = N·L (here times 0.35 + 0.65·T with T the light volume's
-// transmittance, so the cloud shadows itself without going black), quantised into bands: d ≤ 0.25 → 1.0, ≤ 0.55 → 0.7, ≤ 0.8 → 0.4, else 0.1
-// of the wash strength. While moving (CB_MOVING) the seed simplifies the interior: two bands.
+// transmittance, so the cloud shadows itself without going black), in bands of the wash:
+//   d ≤ 0.25 → 1.0,  ≤ 0.55 → 0.7,  ≤ 0.8 → 0.4,  else 0.1.
+// While moving (CB_MOVING) the seed simplifies the interior: two bands, and no bleeding.
 // Silhouette (§3.3.4): edge = N·V; where edge < threshold (0.5, §4.1.1) the ink falls off as the
 // Gaussian exp(−x²/2) of x = 3·edge/threshold. Rays that pass just outside the surface (their
 // largest density within 40% of the iso level) continue the line outwards, so the outline is

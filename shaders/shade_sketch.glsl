@@ -2,8 +2,8 @@
 // iso-surface of the density. Writes what the screen-space pass (style_compose.frag.glsl,
 // CB_COMPOSE_SKETCH) draws as pencil strokes on paper:
 //   r = tone (0 lit … 1 dark, for hatching), g = outline stroke, a = coverage.
-// Tone is 1 − d with d = N·L times 0.35 + 0.65·T (T the light volume's transmittance); the outline and the inner
-// surface's silhouette are those of the cartoon style (shade_cartoon.glsl).
+// Tone is 1 − d with d = N·L times 0.35 + 0.65·T (T the light volume's transmittance); the outline
+// and the inner surface's silhouette are those of the cartoon style (shade_cartoon.glsl).
 uniform vec3 u_light_dir;  // towards the sun, unit
 
 vec4 shadeSurface(SurfaceSample s) {

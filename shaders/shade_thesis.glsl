@@ -10,9 +10,13 @@ uniform vec3 u_light_colour;
 
 void styleBeginRay(vec3 dir) {}
 
-float styleDensity(float density, vec3 texcoord) { return density; }
+float styleDensity(float density, vec3 texcoord) {
+  return density;
+}
 
-vec3 styleEndRay(vec3 colour, float transmittance) { return colour; }
+vec3 styleEndRay(vec3 colour, float transmittance) {
+  return colour;
+}
 
 vec3 shadeSample(float density, float transmittance) {
   float illuminance = 1.0 - transmittance;

@@ -10,8 +10,8 @@
 // Paper and strokes are functions of the output pixel, so they stay put while the cloud moves.
 layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;
-uniform sampler2D u_bleed;     // ink: u_image with its silhouette blurred along x
-uniform vec2 u_output_size;    // pixels
+uniform sampler2D u_bleed;   // ink: u_image with its silhouette blurred along x
+uniform vec2 u_output_size;  // pixels
 
 float hash(vec2 p) {
   uvec2 q = uvec2(ivec2(floor(p)) + 65536);

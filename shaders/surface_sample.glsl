@@ -9,7 +9,7 @@ struct SurfaceSample {
   float inner_max_density;    // largest density within u_inner_depth voxels behind the hit
 };
 
-uniform float u_iso;          // density of the outer iso-surface
-uniform float u_inner_iso;    // density of the inner (detail) surface
-uniform float u_inner_depth;  // voxels searched behind the outer hit for the inner surface
+uniform float u_iso;              // density of the outer iso-surface
+uniform float u_inner_iso;        // density of the inner (detail) surface
+uniform float u_inner_depth;      // voxels searched behind the outer hit for the inner surface
 uniform float u_gradient_voxels;  // central-difference spacing of the normal, voxels
