@@ -11,7 +11,8 @@
 //   vec3 shadeSample(float density, float transmittance)
 //   vec3 styleEndRay(vec3 colour, float transmittance)  the ray's colour before the background
 // or, for an iso-surface style (CB_SURFACE), `vec4 shadeSurface(SurfaceSample s)` returning a
-// premultiplied colour and coverage (surface_sample.glsl, linked first, defines the struct and the iso levels).
+// premultiplied colour and coverage (surface_sample.glsl, linked first, defines the struct and
+// the iso levels).
 // The renderer prepends the #version line.
 //
 // One ray per pixel from the near plane (so a camera inside the box works) through the box from
@@ -205,7 +206,8 @@ void main() {
   if (hit) {
     vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
     vec3 delta = dir * (u_step * inv_dims);
-    float f = clamp((u_iso - previous_density) / max(hit_density - previous_density, 1e-6), 0.0, 1.0);
+    float rise = max(hit_density - previous_density, 1e-6);
+    float f = clamp((u_iso - previous_density) / rise, 0.0, 1.0);  // between samples k−1 and k
     vec3 p = base + (float(hit_k) - 1.0 + f) * delta;
     // Central differences u_gradient_voxels apart (wider on finer grids, so the normal follows
     // the cloud's shape rather than its voxel-scale noise); the outward normal points down the
