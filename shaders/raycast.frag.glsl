@@ -1,11 +1,19 @@
 // Compiled in variants (the renderer prepends #defines): CB_SKIP (ray bounds), CB_BRICK_STEPPING
-// (hierarchical stepping inside them), CB_STATS (sample statistics). Variants rather than uniform
-// branches, because llvmpipe runs untaken branches' straight-line code with all lanes masked.
+// (hierarchical stepping inside them), CB_STATS (sample statistics), CB_SURFACE (the style draws
+// an iso-surface instead of compositing the volume). Variants rather than uniform branches,
+// because llvmpipe runs untaken branches' straight-line code with all lanes masked.
 //
 // Ray casting of the density volume (thesis §4.3, Alg. 4) with lossless empty-space skipping
 // over a max-mip occupancy pyramid (the role of the octree of §4.4). Linked after a shading
-// stage that defines `vec3 shadeSample(float density, float transmittance)`; the renderer
-// prepends the #version line.
+// stage (shaders/README.md) that defines, for a composited (volume) style,
+//   void styleBeginRay(vec3 dir)                       once per ray (world direction, unit)
+//   float styleDensity(float density, vec3 texcoord)   the density actually composited
+//   vec3 shadeSample(float density, float transmittance)
+//   vec3 styleEndRay(vec3 colour, float transmittance)  the ray's colour before the background
+// or, for an iso-surface style (CB_SURFACE), `vec4 shadeSurface(SurfaceSample s)` returning a
+// premultiplied colour and coverage (surface_sample.glsl, linked first, defines the struct and
+// the iso levels).
+// The renderer prepends the #version line.
 //
 // One ray per pixel from the near plane (so a camera inside the box works) through the box from
 // entry to exit, samples at t_k = t_enter + (k + ½)·step in voxel units. Compositing is
@@ -122,6 +130,15 @@ void main() {
     }
   }
 #endif
+#if CB_SURFACE
+  // Iso-surface styles: march to the first sample at or above u_iso (refined linearly between
+  // it and the sample before), then look u_inner_depth voxels further for the inner surface.
+  bool hit = false;
+  float previous_density = 0.0, hit_density = 0.0, max_density = 0.0;
+  int hit_k = 0;
+#else
+  styleBeginRay(normalize(dir_world));
+#endif
   if (t_exit > t_enter) {
     while (k < n) {
       int k_end = n;
@@ -151,16 +168,75 @@ void main() {
       vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
       vec3 delta = dir * (u_step * inv_dims);
       float neg_optical_depth_log2 = -u_sigma * u_step * 1.4426950408889634;
-      for (; k < k_end && transmittance >= u_cutoff; ++k) {
-        vec2 s = textureLod(u_volume, base + float(k) * delta, 0.0).rg;
+#if CB_SURFACE
+      for (; k < k_end && !hit; ++k) {
+        float d = textureLod(u_volume, base + float(k) * delta, 0.0).r;
         ++samples;
-        float alpha = 1.0 - exp2(neg_optical_depth_log2 * s.r);
-        colour += (transmittance * alpha) * shadeSample(s.r, s.g);
+        hit = d >= u_iso;
+        hit_density = d;
+        hit_k = k;
+        if (!hit) {
+          previous_density = d;
+          max_density = max(max_density, d);
+        }
+      }
+      if (hit) k = n;
+#else
+      for (; k < k_end && transmittance >= u_cutoff; ++k) {
+        vec3 texcoord = base + float(k) * delta;
+        vec2 s = textureLod(u_volume, texcoord, 0.0).rg;
+        ++samples;
+        float density = styleDensity(s.r, texcoord);
+        float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
+        colour += (transmittance * alpha) * shadeSample(density, s.g);
         transmittance *= 1.0 - alpha;
       }
       if (transmittance < u_cutoff) k = n;  // early termination: leave the outer loop too
+#endif
     }
   }
+#if CB_SURFACE
+  SurfaceSample surface;
+  surface.hit = hit;
+  surface.max_density = max_density;
+  surface.view = -normalize(dir_world);
+  surface.normal = surface.view;
+  surface.light_transmittance = 1.0;
+  surface.inner_max_density = 0.0;
+  if (hit) {
+    vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
+    vec3 delta = dir * (u_step * inv_dims);
+    float rise = max(hit_density - previous_density, 1e-6);
+    float f = clamp((u_iso - previous_density) / rise, 0.0, 1.0);  // between samples k−1 and k
+    vec3 p = base + (float(hit_k) - 1.0 + f) * delta;
+    // Central differences u_gradient_voxels apart (wider on finer grids, so the normal follows
+    // the cloud's shape rather than its voxel-scale noise); the outward normal points down the
+    // density gradient.
+    vec3 h = u_gradient_voxels * inv_dims;
+    vec3 gradient = vec3(textureLod(u_volume, p + vec3(h.x, 0, 0), 0.0).r -
+                             textureLod(u_volume, p - vec3(h.x, 0, 0), 0.0).r,
+                         textureLod(u_volume, p + vec3(0, h.y, 0), 0.0).r -
+                             textureLod(u_volume, p - vec3(0, h.y, 0), 0.0).r,
+                         textureLod(u_volume, p + vec3(0, 0, h.z), 0.0).r -
+                             textureLod(u_volume, p - vec3(0, 0, h.z), 0.0).r);
+    vec3 g_world = gradient / u_voxel_size;
+    surface.normal = dot(g_world, g_world) > 1e-12 ? -normalize(g_world) : surface.view;
+    surface.light_transmittance = textureLod(u_volume, p, 0.0).g;
+    // Inner surface (seed 003 §5): the largest density within u_inner_depth voxels behind the
+    // hit; it equals u_inner_iso where the ray grazes the inner surface (its silhouette).
+    int inner_end = min(n, hit_k + 1 + int(u_inner_depth / u_step));
+    float inner = hit_density;
+    for (int j = hit_k + 1; j < inner_end; ++j)
+      inner = max(inner, textureLod(u_volume, base + float(j) * delta, 0.0).r);
+    samples += uint(max(inner_end - hit_k - 1, 0)) + 7u;
+    surface.inner_max_density = inner;
+  }
+  vec4 shaded = shadeSurface(surface);
+  colour = shaded.rgb;
+  transmittance = 1.0 - shaded.a;
+#else
+  colour = styleEndRay(colour, transmittance);
+#endif
 #if CB_STATS
   atomicAdd(ray_stats.total_samples, samples);
   atomicMax(ray_stats.max_samples, samples);

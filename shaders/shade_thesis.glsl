@@ -2,12 +2,21 @@
 // its transmittance towards the light T (from the light volume, Alg. 5), returns the colour the
 // sample emits. I = 1 − T is the thesis's inverted illuminance; S = 0.55 + cos(0.4 − I·π)/2.2
 // is ≈ 0.97 fully lit, peaks at ≈ 1.0 on the rim just inside the surface and ≈ 0.13 in deep
-// shadow. Tinted by the light colour.
+// shadow. Tinted by the light colour. The density is composited as it is (no per-ray state).
 //
-// A shading stage defines exactly `vec3 shadeSample(float density, float transmittance)`; the
-// ray caster (raycast.frag.glsl) knows nothing else about it, so other styles (ink-wash,
-// cartoon, physically based) are other files with the same function.
+// A composited shading stage defines `styleBeginRay`, `styleDensity`, `shadeSample` and
+// `styleEndRay` (see raycast.frag.glsl); other styles are other files with the same functions.
 uniform vec3 u_light_colour;
+
+void styleBeginRay(vec3 dir) {}
+
+float styleDensity(float density, vec3 texcoord) {
+  return density;
+}
+
+vec3 styleEndRay(vec3 colour, float transmittance) {
+  return colour;
+}
 
 vec3 shadeSample(float density, float transmittance) {
   float illuminance = 1.0 - transmittance;

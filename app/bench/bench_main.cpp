@@ -26,6 +26,7 @@ const Bench kBenches[] = {
      benchSmoothing},
     {"history", "undo/redo, erase and light to restored volume and lit frame; history bytes",
      benchHistory},
+    {"styles", "each render style's full frame against the thesis style's", benchStyles},
 };
 
 }  // namespace

@@ -8,4 +8,5 @@ int benchMapping(int argc, char** argv);
 int benchInput(int argc, char** argv);
 int benchSmoothing(int argc, char** argv);
 int benchHistory(int argc, char** argv);
+int benchStyles(int argc, char** argv);
 }  // namespace cb

@@ -34,6 +34,8 @@ const char kRenderHelp[] =
     "  --light X,Y,Z          world position of the light ball (default from the config)\n"
     "  --config FILE          renderer defaults (default: render.toml in the config directory,\n"
     "                         see config/render.toml; CLOUDBRUSH_CONFIG_DIR overrides)\n"
+    "  --style NAME           thesis|physical|ink|cartoon|sketch (default from the config:\n"
+    "                         [style] name, else thesis; see app/render/render_style.h)\n"
     "  --no-skip              disable empty-space skipping (same image, slower)\n"
     "  --stats                print ray-sample statistics (total, mean, max, histogram)\n"
     "  --help                 this text\n";
@@ -67,7 +69,7 @@ int commandRender(int argc, char** argv) {
     return 0;
   }
   auto unknown = args.unknown(
-      {"help", "volume", "out", "camera", "size", "light", "no-skip", "stats", "config"});
+      {"help", "volume", "out", "camera", "size", "light", "no-skip", "stats", "config", "style"});
   if (!unknown.empty()) return fail("unknown option " + unknown[0] + " (see --help)");
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "'");
@@ -122,6 +124,12 @@ int commandRender(int argc, char** argv) {
     if (glm::length(glm::vec3(v[0], v[1], v[2])) == 0.0f)
       return fail("--light '" + *text + "': the direction must not be 0,0,0");
     light.direction = Light::directionTowards({v[0], v[1], v[2]});
+  }
+
+  if (auto text = args.get("style")) {
+    auto style = parseRenderStyle(*text);
+    if (!style) return fail("--style '" + *text + "': expected one of " + renderStyleNameList());
+    config.options.style = *style;
   }
 
   Volume volume(glm::ivec3(1));

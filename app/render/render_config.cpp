@@ -59,6 +59,12 @@ RenderConfig loadRenderConfig(const std::string& path) {
   read(root, path, "raycast", "skip_empty_space", &o.skip_empty_space);
   read(root, path, "raycast", "brick_stepping", &o.brick_stepping);
   readVec<4>(root, path, "background", "colour", &o.background);
+  if (auto node = root["style"]["name"]) {
+    auto name = node.value<std::string>();
+    auto style = name ? parseRenderStyle(*name) : std::nullopt;
+    if (!style) bad(path, "style.name", "must be one of " + renderStyleNameList());
+    o.style = *style;
+  }
   read(root, path, "motion", "moving_scale", &c.moving_scale);
   // light.direction points towards the sun; the older light.position (a light ball seen from
   // the origin) gives the same direction.

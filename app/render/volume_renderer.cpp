@@ -8,14 +8,34 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "app/core/parallel_for.h"
+#include "app/render/detail_noise.h"
+#include "app/render/physical_light_table.h"
 #include "app/render/shader_program.h"
 
 namespace cb {
 namespace {
 
 constexpr int kHistogramBins = 64;
+// Style parameters shared by the iso-surface styles (shade_{ink,cartoon,sketch}.glsl).
+constexpr float kIsoDensity = 0.3f;           // the outer surface (seed 003's threshold T)
+constexpr float kInnerIsoDensity = 0.75f;     // the inner detail surface (seed 003 §5)
+constexpr float kInnerDepthFraction = 0.06f;  // searched behind the hit, of the largest dim
+// Normals by central differences this fraction of the largest dim apart (1 voxel at 64³, 4 at
+// 256³): the shape's normal, not the rim noise's.
+constexpr float kGradientFraction = 1.0f / 64.0f;
+// Physical style: the fBm cube spans this many voxels (its finest octave: ~1 voxel per cell)
+// and erodes edges by this much (κ_e in shade_physical.glsl).
+constexpr float kDetailNoisePeriodVoxels = 32.0f;
+constexpr float kDetailErosion = 0.6f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
+
+// The variant of style_compose.frag.glsl: ink (with or without bleeding) or sketch.
+std::string composeDefines(bool ink, bool bleed) {
+  return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
+         "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
+         (bleed ? "1" : "0") + "\n";
+}
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -99,6 +119,8 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
   if (frame_texture_) glDeleteTextures(1, &frame_texture_);
   if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
+  if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
+  if (light_table_texture_) glDeleteTextures(1, &light_table_texture_);
 }
 
 bool VolumeRenderer::init(std::string* error) {
@@ -122,22 +144,123 @@ bool VolumeRenderer::init(std::string* error) {
 }
 
 bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
+  const bool surface = drawsIsoSurface(options.style);
   const std::string defines =
       std::string("#define CB_SKIP ") + (options.skip_empty_space ? "1" : "0") +
       "\n#define CB_BRICK_STEPPING " + (options.brick_stepping ? "1" : "0") +
-      "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n";
-  const std::string key = options.shading + "\n" + defines;
+      "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n#define CB_SURFACE " +
+      (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") + "\n";
+  const std::string stage = shadingStageFile(options.style);
+  const std::string key = stage + "\n" + defines;
   auto it = programs_.find(key);
   if (it != programs_.end()) {
     program_ = it->second;
     return true;
   }
-  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {options.shading, "raycast.frag.glsl"}, &error_,
-                         defines);
+  std::vector<std::string> fragment_files;
+  if (surface) fragment_files.push_back("surface_sample.glsl");
+  fragment_files.push_back(stage);
+  fragment_files.push_back("raycast.frag.glsl");
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, fragment_files, &error_, defines);
   if (!p) return false;
   programs_[key] = p;
   program_ = p;
   return true;
+}
+
+bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
+  bool ok = ensureProgram(options);
+  if (ok && hasScreenSpacePass(options.style)) {
+    const bool ink = options.style == RenderStyle::kInk;
+    const bool bleed = ink && !options.moving;
+    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed)) != 0 &&
+         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
+  }
+  if (!ok) *error = error_;
+  return ok;
+}
+
+GLuint VolumeRenderer::fullscreenProgram(const std::string& fragment, const std::string& defines) {
+  const std::string key = fragment + "\n" + defines;
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return it->second;
+  GLuint p = linkProgram({"fullscreen.vert.glsl"}, {fragment}, &error_, defines);
+  if (p) programs_[key] = p;
+  return p;
+}
+
+void VolumeRenderer::ensurePhysicalTextures() {
+  if (detail_noise_texture_) return;
+  const std::array<glm::vec4, 256> table = physicalLightTable();
+  glCreateTextures(GL_TEXTURE_1D, 1, &light_table_texture_);
+  glTextureStorage1D(light_table_texture_, 1, GL_RGBA32F, GLsizei(table.size()));
+  glTextureSubImage1D(light_table_texture_, 0, 0, GLsizei(table.size()), GL_RGBA, GL_FLOAT,
+                      table.data());
+  const DetailNoise noise = makeDetailNoise();
+  glCreateTextures(GL_TEXTURE_3D, 1, &detail_noise_texture_);
+  glTextureStorage3D(detail_noise_texture_, 1, GL_R8, noise.size, noise.size, noise.size);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(detail_noise_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTextureParameteri(detail_noise_texture_, wrap, GL_REPEAT);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(detail_noise_texture_, 0, 0, 0, 0, noise.size, noise.size, noise.size, GL_RED,
+                      GL_UNSIGNED_BYTE, noise.texels.data());
+}
+
+void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width,
+                                       int height, const RenderOptions& options, bool partial,
+                                       glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
+  const bool ink = options.style == RenderStyle::kInk;
+  const bool bleed = ink && !options.moving;
+  GLuint compose = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed));
+  if (!compose) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+    return;
+  }
+  glTextureParameteri(image, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindVertexArray(vao_);
+  if (bleed) {
+    // First axis of the ink bleeding into bleed_; the compose pass does the second.
+    GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", "");
+    if (!blur) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+      return;
+    }
+    if (bleed_.width() != w || bleed_.height() != h) {
+      std::string err;
+      if (!bleed_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+        std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+        return;
+      }
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bleed_.fbo());
+    glViewport(0, 0, w, h);
+    if (partial) glScissor(bleed_rect.x, bleed_rect.y, bleed_rect.z, bleed_rect.w);
+    glUseProgram(blur);
+    glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
+    glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
+    glBindTextureUnit(0, image);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+  glViewport(0, 0, width, height);
+  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
+  glUseProgram(compose);
+  glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
+  glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
+  glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));
+  glBindTextureUnit(0, image);
+  glBindTextureUnit(1, bleed ? bleed_.texture() : image);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
 }
 
 void VolumeRenderer::allocateTextures(glm::ivec3 dims) {
@@ -338,7 +461,19 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
       return;
     }
   }
-  GLuint draw_fbo = reduced ? low_res_.fbo() : target_fbo;
+  const bool screen_space = hasScreenSpacePass(options.style);
+  if (screen_space && !options.skip_empty_space &&
+      (style_image_.width() != w || style_image_.height() != h)) {
+    std::string err;
+    if (!style_image_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+      return;
+    }
+  }
+  // A screen-space style casts into an image of its own (ink amounts, not colours) and its pass
+  // draws the target; the ray cast then sees a transparent black background.
+  GLuint draw_fbo = screen_space ? style_image_.fbo() : reduced ? low_res_.fbo() : target_fbo;
+  const glm::vec4 background = screen_space ? glm::vec4(0.0f) : options.background;
   stats_.width = w;
   stats_.height = h;
 
@@ -350,14 +485,29 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDisable(GL_BLEND);
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
   const bool skip = options.skip_empty_space;
+  // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
+  const bool partial = options.region.z > 0 && options.region.w > 0 && !reduced;
+  auto clipToFrame = [&](glm::ivec4 r, int grow_x, int grow_y) {
+    glm::ivec2 lo = glm::max(glm::ivec2(r.x - grow_x, r.y - grow_y), glm::ivec2(0));
+    glm::ivec2 hi = glm::min(glm::ivec2(r.x + r.z + grow_x, r.y + r.w + grow_y), glm::ivec2(w, h));
+    return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
+  };
+  const int reach = screenSpaceReach(options.style);
+  const glm::ivec4 out_rect = clipToFrame(options.region, 0, 0);
+  const glm::ivec4 cast_rect = clipToFrame(options.region, reach, reach);
+  const glm::ivec4 bleed_rect = clipToFrame(options.region, 0, reach);  // the first axis is x
   if (skip) {
-    drawRayBounds(camera, view_proj, w, h);
+    drawRayBounds(camera, view_proj, w, h);  // whole frame: it costs per triangle, not pixel
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(options.background));
+    if (partial) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+    }
+    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     if (!eye_near_occupied_) {
       glEnable(GL_STENCIL_TEST);
       glStencilFunc(GL_EQUAL, 1, 0xFF);
@@ -365,6 +515,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     }
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+    if (partial) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+    }
   }
   glViewport(0, 0, w, h);
   glUseProgram(program_);
@@ -383,12 +537,31 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
-  glUniform4fv(loc("u_background"), 1, glm::value_ptr(options.background));
+  glUniform4fv(loc("u_background"), 1, glm::value_ptr(background));
   glUniform1i(loc("u_ray_bounds"), 2);
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);
   if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
+  // Style uniforms (a stage that does not declare one ignores it: location −1).
+  glUniform3fv(loc("u_light_dir"), 1, glm::value_ptr(synced_light_.direction));
+  glUniform3fv(loc("u_sky_colour"), 1, glm::value_ptr(glm::vec3(options.background)));
+  glUniform1f(loc("u_iso"), kIsoDensity);
+  glUniform1f(loc("u_inner_iso"), kInnerIsoDensity);
+  glUniform1f(loc("u_gradient_voxels"),
+              std::max(1.0f, kGradientFraction * float(std::max({dims_.x, dims_.y, dims_.z}))));
+  glUniform1f(loc("u_inner_depth"),
+              kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
+  if (options.style == RenderStyle::kPhysical) {
+    ensurePhysicalTextures();
+    glUniform1i(loc("u_detail_noise"), 3);
+    glUniform1i(loc("u_light_table"), 4);
+    glBindTextureUnit(4, light_table_texture_);
+    glUniform3fv(loc("u_noise_repeat"), 1,
+                 glm::value_ptr(glm::vec3(dims_) / kDetailNoisePeriodVoxels));
+    glUniform1f(loc("u_erosion"), kDetailErosion);
+    glBindTextureUnit(3, detail_noise_texture_);
+  }
   glBindTextureUnit(0, volume_texture_);
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
@@ -396,7 +569,11 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_STENCIL_TEST);
 
-  if (skip) {
+  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
+  if (screen_space) {
+    finishScreenSpace(skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
+                      height, options, partial, bleed_rect, out_rect);
+  } else if (skip) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
@@ -409,6 +586,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   }
+  glDisable(GL_SCISSOR_TEST);
   if (options.collect_stats) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<uint32_t> raw(3 + kHistogramBins);

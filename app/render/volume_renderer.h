@@ -22,6 +22,7 @@
 #include "app/render/gl/gl.h"
 #include "app/render/light_volume.h"
 #include "app/render/occupancy_pyramid.h"
+#include "app/render/render_style.h"
 #include "app/render/render_target.h"
 #include "app/scene/camera.h"
 #include "app/scene/light.h"
@@ -44,7 +45,21 @@ struct RenderOptions {
   glm::vec4 background{0.47f, 0.62f, 0.82f, 1.0f};  // premultiplied; a = 0 for a transparent one
   bool collect_stats = false;  // per-pixel sample counts into RenderStats (atomics; a bit slower)
   bool finish = false;         // glFinish() and report the frame's wall time in RenderStats
-  std::string shading = "shade_thesis.glsl";  // the shading stage (see shaders/README.md)
+  // How density and light become colour (render_style.h): the thesis's curve by default. The
+  // iso-surface styles ignore extinction_per_voxel and termination_transmittance.
+  RenderStyle style = RenderStyle::kThesis;
+  // The view is moving (orbit, drag): styles may shade more simply (ink: the seed's two bands,
+  // no bleeding). Set it together with scale < 1; clear both when the view comes to rest.
+  bool moving = false;
+  // Re-render only this rectangle of the target (x, y, width, height in pixels, origin at the
+  // bottom left like glScissor) and leave the rest of the target as it is; a zero width or
+  // height means the whole frame. Only at scale 1 (otherwise the whole frame is drawn), and the
+  // previous frame must have come from this renderer at the same size and style, because
+  // screen-space styles keep their ray-cast image between frames: a style whose pass reads r =
+  // screenSpaceReach(style) pixels around each pixel has R dilated by r ray cast, its first
+  // blur axis run over R dilated by r across that axis, and only R finished, so every pixel of
+  // R reads only fresh pixels and equals a full-frame render (tested).
+  glm::ivec4 region{0};
 };
 
 struct RenderStats {
@@ -89,6 +104,10 @@ class VolumeRenderer {
   // renders into an internal smaller target and blits it up.
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
               const RenderOptions& options = {});
+  // Compiles (and caches) every program render(…, options) will use, without drawing: call it
+  // when a style is chosen so the first frame in that style does not pay llvmpipe's shader
+  // compile (100–500 ms measured by `bench styles`). False with a message on failure.
+  bool prepare(const RenderOptions& options, std::string* error);
   RenderStats lastStats() const { return stats_; }
   // Forgets what was uploaded: the next sync() re-uploads everything.
   void invalidate() { synced_volume_id_ = 0; }
@@ -98,6 +117,14 @@ class VolumeRenderer {
  private:
   // The ray-cast program variant for these options (compiled on first use, then cached).
   bool ensureProgram(const RenderOptions& options);
+  // A fullscreen program of `fragment` with `defines` (compiled on first use, then cached).
+  GLuint fullscreenProgram(const std::string& fragment, const std::string& defines);
+  // The screen-space pass of ink and sketch: `image` (w×h, the ray-cast image) -> target_fbo.
+  // With `partial`, the first blur axis is scissored to bleed_rect and the finish to out_rect.
+  void finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width, int height,
+                         const RenderOptions& options, bool partial, glm::ivec4 bleed_rect,
+                         glm::ivec4 out_rect);
+  void ensurePhysicalTextures();
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
@@ -115,6 +142,11 @@ class VolumeRenderer {
   OccupancyPyramid occupancy_;
   std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;
+  RenderTarget style_image_;  // the ray-cast image of a screen-space style without skipping
+  RenderTarget bleed_;        // ink: the silhouette blurred along x
+  // The physical style's fBm cube (detail_noise.h) and light table (physical_light_table.h),
+  // made on its first frame.
+  GLuint detail_noise_texture_ = 0, light_table_texture_ = 0;
   // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
   // RG32F target (nearest, −farthest face distance per pixel).
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;

@@ -103,5 +103,61 @@ TEST(RenderGolden, CameraInsideTheCloud) {
                       options);
 }
 
+// Every render style (render_style.h) on the bundled cumulus at 64³: two views (the reference
+// 3/4 view and a low view from the other side) × two suns (high from the left; low, warm, from
+// the right). The thesis style's reference-view images are cumulus_lit_{left,right} above.
+struct StyleCase {
+  RenderStyle style;
+  const char* view;
+  const char* light;
+};
+
+Camera styleView(const std::string& view) {
+  if (view == "reference") return Camera::reference();
+  Camera camera = Camera::reference();
+  camera.eye = glm::vec3(-2.4f, 0.4f, 1.9f);
+  camera.target = glm::vec3(0.0f, 0.05f, 0.0f);
+  return camera;
+}
+
+Light styleLight(const std::string& light) {
+  Light l;
+  if (light == "left") {
+    l.direction = Light::directionTowards(glm::vec3(-4.0f, 2.0f, 2.5f));
+  } else {
+    l.direction = Light::directionTowards(glm::vec3(3.0f, 1.0f, -4.0f));
+    l.colour = glm::vec3(1.0f, 0.85f, 0.7f);
+  }
+  return l;
+}
+
+class RenderStyleGolden : public ::testing::TestWithParam<StyleCase> {};
+
+TEST_P(RenderStyleGolden, BundledCloud) {
+  const StyleCase& c = GetParam();
+  RenderOptions options;
+  options.style = c.style;
+  static const Volume cloud = makeBundledCumulus(glm::ivec3(64), 1);
+  expectMatchesGolden(
+      std::string("style_") + renderStyleName(c.style) + "_" + c.view + "_" + c.light, cloud,
+      styleLight(c.light), styleView(c.view), options);
+}
+
+std::vector<StyleCase> allStyleCases() {
+  std::vector<StyleCase> cases;
+  for (RenderStyle style : kAllRenderStyles)
+    for (const char* view : {"reference", "side"})
+      for (const char* light : {"left", "right"})
+        if (style != RenderStyle::kThesis || std::string(view) != "reference")
+          cases.push_back({style, view, light});
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStyles, RenderStyleGolden, ::testing::ValuesIn(allStyleCases()),
+                         [](const ::testing::TestParamInfo<StyleCase>& info) {
+                           return std::string(renderStyleName(info.param.style)) + "_" +
+                                  info.param.view + "_" + info.param.light;
+                         });
+
 }  // namespace
 }  // namespace cb

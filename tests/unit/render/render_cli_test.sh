@@ -1,7 +1,7 @@
 #!/bin/sh
-# `cloudbrush render` end to end: a good volume renders to PNG and EXR; bad input (missing,
-# truncated, mismatched volume, bad size/camera/output) exits non-zero with a message naming the
-# problem. Usage: render_cli_test.sh PATH/TO/cloudbrush
+# `cloudbrush render` end to end: a good volume renders to PNG and EXR, in every --style; bad
+# input (missing, truncated, mismatched volume, bad size/camera/output/style) exits non-zero with
+# a message naming the problem. Usage: render_cli_test.sh PATH/TO/cloudbrush
 set -u
 CB="$1"
 DIR=$(mktemp -d)
@@ -41,5 +41,14 @@ expect_error "bad camera" "--camera" "$CB" render --volume "$DIR/v.cbvol" --out 
 expect_error "bad output type" ".png or .exr" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/x.jpg"
 expect_error "no volume" "--volume FILE is required" "$CB" render --out "$DIR/x.png"
 expect_error "unknown option" "unknown option --colour" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/x.png" --colour red
+# --style: every style renders, each differently from the thesis style; a bad name is named.
+expect_ok "thesis style" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/s-thesis.png" --size 64x40 --style thesis
+for style in physical ink cartoon sketch; do
+  expect_ok "$style style" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/s-$style.png" --size 64x40 --style "$style"
+  if cmp -s "$DIR/s-thesis.png" "$DIR/s-$style.png"; then
+    echo "FAIL: --style $style rendered the thesis image"; fails=$((fails+1))
+  fi
+done
+expect_error "bad style" "thesis|physical|ink|cartoon|sketch" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/x.png" --style watercolour
 [ "$fails" -eq 0 ] && echo "render CLI: all checks passed"
 exit "$fails"

@@ -23,6 +23,7 @@ TEST(RenderConfig, ShippedDefaultsLoadAndMatchTheBuiltInOnes) {
   EXPECT_EQ(c.options.extinction_per_voxel, d.extinction_per_voxel);
   EXPECT_EQ(c.options.termination_transmittance, d.termination_transmittance);
   EXPECT_EQ(c.options.background, d.background);
+  EXPECT_EQ(c.options.style, RenderStyle::kThesis);
   EXPECT_EQ(c.light.direction, Light{}.direction);
   EXPECT_EQ(c.light.extinction, Light{}.extinction);
   EXPECT_FLOAT_EQ(c.moving_scale, RenderConfig{}.moving_scale);
@@ -46,6 +47,9 @@ TEST(RenderConfig, ValuesAreReadAndBadOnesNamed) {
             std::string::npos);
   EXPECT_NE(message("[light]\ncolour = [1, 2]\n").find("light.colour"), std::string::npos);
   EXPECT_NE(message("[raycast\n").find("bad.toml:"), std::string::npos);
+  EXPECT_NE(message("[style]\nname = \"watercolour\"\n").find("style.name"), std::string::npos);
+  EXPECT_EQ(loadRenderConfig(writeTemp("ink.toml", "[style]\nname = \"ink\"\n")).options.style,
+            RenderStyle::kInk);
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+#include "app/render/render_style.h"
+
+namespace cb {
+
+const char* renderStyleName(RenderStyle style) {
+  switch (style) {
+    case RenderStyle::kThesis:
+      return "thesis";
+    case RenderStyle::kPhysical:
+      return "physical";
+    case RenderStyle::kInk:
+      return "ink";
+    case RenderStyle::kCartoon:
+      return "cartoon";
+    case RenderStyle::kSketch:
+      return "sketch";
+  }
+  return "thesis";
+}
+
+std::optional<RenderStyle> parseRenderStyle(std::string_view name) {
+  for (RenderStyle s : kAllRenderStyles)
+    if (name == renderStyleName(s)) return s;
+  return std::nullopt;
+}
+
+std::string renderStyleNameList() {
+  std::string list;
+  for (RenderStyle s : kAllRenderStyles)
+    list += (list.empty() ? "" : "|") + std::string(renderStyleName(s));
+  return list;
+}
+
+const char* shadingStageFile(RenderStyle style) {
+  switch (style) {
+    case RenderStyle::kThesis:
+      return "shade_thesis.glsl";
+    case RenderStyle::kPhysical:
+      return "shade_physical.glsl";
+    case RenderStyle::kInk:
+      return "shade_ink.glsl";
+    case RenderStyle::kCartoon:
+      return "shade_cartoon.glsl";
+    case RenderStyle::kSketch:
+      return "shade_sketch.glsl";
+  }
+  return "shade_thesis.glsl";
+}
+
+bool drawsIsoSurface(RenderStyle style) {
+  return style == RenderStyle::kInk || style == RenderStyle::kCartoon ||
+         style == RenderStyle::kSketch;
+}
+
+bool hasScreenSpacePass(RenderStyle style) {
+  return style == RenderStyle::kInk || style == RenderStyle::kSketch;
+}
+
+int screenSpaceReach(RenderStyle style) {
+  // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side. Sketch's pass reads
+  // only its own pixel (paper and hatching are functions of the pixel's position).
+  return style == RenderStyle::kInk ? 3 : 0;
+}
+
+}  // namespace cb

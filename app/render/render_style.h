@@ -1,0 +1,53 @@
+// Render styles: the run-time choice of how the ray caster turns density and light into colour.
+// The thesis's shading curve (§4.5.2) is the default; the others come from the seed documents:
+//
+//   name        seed                          what it draws
+//   "thesis"    Chen 2014 §4.5.2              composited volume, cosine shading curve
+//   "physical"  Jiménez de Parga (seed 004)   composited volume, Beer–Lambert, Henyey–Greenstein,
+//                                             in-scattering light grid, fBm edge erosion
+//   "ink"       Cao 2016 (seed 001)           iso-surface, banded ink wash, blurred silhouette on
+//                                             xuan paper (screen-space pass)
+//   "cartoon"   Álvarez et al. (seed 003)     iso-surface, cel bands, outline, inner-surface lines
+//   "sketch"    Álvarez et al. (seed 003)     iso-surface as pencil outline and hatching on paper
+//
+// The names are what config (render.toml `[style] name`), the command line (`--style NAME`) and
+// the session journal use; they never change once shipped.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace cb {
+
+enum class RenderStyle { kThesis, kPhysical, kInk, kCartoon, kSketch };
+
+inline constexpr std::array<RenderStyle, 5> kAllRenderStyles = {
+    RenderStyle::kThesis, RenderStyle::kPhysical, RenderStyle::kInk, RenderStyle::kCartoon,
+    RenderStyle::kSketch};
+
+// "thesis", "physical", "ink", "cartoon", "sketch".
+const char* renderStyleName(RenderStyle style);
+// The style with that name (exact, lower case), or nothing.
+std::optional<RenderStyle> parseRenderStyle(std::string_view name);
+// "thesis|physical|ink|cartoon|sketch" (for help texts and error messages).
+std::string renderStyleNameList();
+
+// The shading stage file (shaders/shade_<name>.glsl) linked in front of the ray caster.
+const char* shadingStageFile(RenderStyle style);
+// True when the style draws an iso-surface of the density (first hit along the ray) rather
+// than compositing the whole volume.
+bool drawsIsoSurface(RenderStyle style);
+// True when the ray-cast image is finished by a screen-space pass (style_compose.frag.glsl):
+// paper, ink bleeding, hatching.
+bool hasScreenSpacePass(RenderStyle style);
+// How far, in pixels of the ray-cast image, the style's screen-space pass reads around the pixel
+// it writes (the Gaussian ink bleeding's half kernel; 0 for a style without such a pass).
+//
+// Partial re-rendering rule: to refresh a screen rectangle R of a style with reach r, ray cast R
+// dilated by r on every side (clipped to the frame), then run the screen-space pass over R only.
+// A pixel of R then reads only freshly cast pixels, so it equals a full-frame render.
+int screenSpaceReach(RenderStyle style);
+
+}  // namespace cb

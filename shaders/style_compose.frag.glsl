@@ -1,0 +1,86 @@
+#version 450 core
+// Screen-space finish of the paper styles, from the ray-cast image u_image (one texel per
+// ray; the output may be larger when the frame was cast at reduced scale):
+//  CB_COMPOSE_INK (seed 001 §3.3.5, §4.1.3): ink = 1 − (1 − wash)(1 − silhouette), where the
+//    silhouette comes from u_bleed blurred once more along y (the second pass of the separable
+//    Gaussian; with CB_BLEED 0, moving, the unblurred silhouette); grey = smoothstep(0.1, 0.92,
+//    1 − ink) (the seed's edges); the colour is the ink tone laid on xuan paper by grey.
+//  CB_COMPOSE_SKETCH (seed 003, Fig. 2 and 6): pencil hatching, one more stroke direction per
+//    tone level (r), wobbling and grainy, and the outline strokes (g), on drawing paper.
+// Paper and strokes are functions of the output pixel, so they stay put while the cloud moves.
+layout(location = 0) out vec4 o_colour;
+uniform sampler2D u_image;
+uniform sampler2D u_bleed;   // ink: u_image with its silhouette blurred along x
+uniform vec2 u_output_size;  // pixels
+
+float hash(vec2 p) {
+  uvec2 q = uvec2(ivec2(floor(p)) + 65536);
+  uint h = q.x * 0x8da6b343u ^ q.y * 0xd8163841u;
+  h ^= h >> 13;
+  h *= 0x85ebca6bu;
+  h ^= h >> 16;
+  return float(h & 0xffffu) / 65535.0;
+}
+
+float valueNoise(vec2 p) {
+  vec2 i = floor(p), f = fract(p);
+  vec2 w = f * f * (3.0 - 2.0 * f);
+  return mix(mix(hash(i), hash(i + vec2(1, 0)), w.x), mix(hash(i + vec2(0, 1)), hash(i + 1.0), w.x),
+             w.y);
+}
+
+#if CB_COMPOSE_INK
+const vec3 kInkTone = vec3(0.07, 0.07, 0.09);
+const float kBleedWeights[4] = float[4](1.0, 0.7788008, 0.3678794, 0.1053992);  // ink_bleed
+const float kBleedNorm = 1.0 / 3.5041589;
+
+// Xuan paper: warm off-white with long fibres (noise stretched along x) and a fine grain.
+vec3 xuanPaper(vec2 p) {
+  float fibres = 0.6 * valueNoise(p * vec2(0.015, 0.12)) + 0.4 * valueNoise(p * vec2(0.05, 0.4));
+  float grain = hash(p);
+  return vec3(0.93, 0.90, 0.82) * (0.95 + 0.05 * fibres + 0.02 * grain);
+}
+#endif
+
+#if CB_COMPOSE_SKETCH
+const vec3 kGraphite = vec3(0.22, 0.22, 0.26);
+
+// 1 on a pencil line every `spacing` pixels along coordinate u, 0 between (soft edges).
+float hatchLines(float u, float spacing) {
+  float f = abs(fract(u / spacing) - 0.5) * 2.0;  // 1 on the line's centre
+  return smoothstep(0.72, 0.92, f);
+}
+#endif
+
+void main() {
+  vec2 uv = gl_FragCoord.xy / u_output_size;
+  vec4 image = texture(u_image, uv);
+  vec2 p = gl_FragCoord.xy;
+#if CB_COMPOSE_INK
+#if CB_BLEED
+  vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
+  float silhouette = kBleedWeights[0] * texture(u_bleed, uv).g;
+  for (int i = 1; i < 4; ++i)
+    silhouette += kBleedWeights[i] * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).g +
+                                      texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).g);
+  silhouette *= kBleedNorm;
+#else
+  float silhouette = image.g;
+#endif
+  float ink = 1.0 - (1.0 - image.r) * (1.0 - silhouette);
+  float grey = smoothstep(0.1, 0.92, 1.0 - ink);
+  o_colour = vec4(mix(kInkTone, xuanPaper(p), grey), 1.0);
+#elif CB_COMPOSE_SKETCH
+  float wobble = (valueNoise(p * 0.03) - 0.5) * 5.0;
+  float tone = image.r;
+  float hatch = smoothstep(0.35, 0.45, tone) * hatchLines(p.x + p.y + wobble, 7.0);
+  hatch = max(hatch, smoothstep(0.6, 0.7, tone) * hatchLines(p.x - p.y - wobble, 7.0));
+  hatch = max(hatch, smoothstep(0.85, 0.95, tone) * hatchLines(p.y + 0.5 * wobble, 4.0));
+  float grain = 0.65 + 0.35 * valueNoise(p * vec2(0.6, 0.08));
+  float stroke = max(image.g * (0.75 + 0.25 * grain), 0.5 * hatch * grain);
+  vec3 paper = vec3(0.97, 0.96, 0.93) * (0.97 + 0.03 * hash(p));
+  o_colour = vec4(mix(paper, kGraphite, stroke), 1.0);
+#else
+  o_colour = image;
+#endif
+}
