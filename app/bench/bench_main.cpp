@@ -24,6 +24,8 @@ const Bench kBenches[] = {
     {"input", "report decode cost and kernel-to-consumer delay", benchInput},
     {"smoothing", "jitter and lag of raw, moving average and 1-euro filtering; prediction",
      benchSmoothing},
+    {"study", "study exports (256^3 volume as VDB and raw, EXR+PNG) and report for 20 sessions",
+     benchStudy},
 };
 
 }  // namespace

@@ -7,4 +7,5 @@ int benchBrush(int argc, char** argv);
 int benchMapping(int argc, char** argv);
 int benchInput(int argc, char** argv);
 int benchSmoothing(int argc, char** argv);
+int benchStudy(int argc, char** argv);
 }  // namespace cb
