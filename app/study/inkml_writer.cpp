@@ -100,7 +100,7 @@ void writeTraces(std::ostream& out, const SessionTrace& trace, size_t n) {
       if (k > i) out << ", ";
       out << csvDouble(s[k].x_mm) << ' ' << csvDouble(s[k].y_mm) << ' ' << s[k].pressure_raw << ' '
           << csvFloat(s[k].tilt_x_deg) << ' ' << csvFloat(s[k].tilt_y_deg) << ' '
-          << decimalMillisecondsFromNs(s[k].t_ns - trace.t0_ns);
+          << decimalMillisecondsFromNs(elapsedNs(s[k].t_ns, trace.t0_ns));
     }
     out << "</trace>\n";
     i = end;

@@ -2,8 +2,15 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 namespace cb {
+
+int64_t elapsedNs(int64_t t, int64_t origin) {
+  int64_t d = 0;
+  if (!__builtin_sub_overflow(t, origin, &d)) return d;
+  return t > origin ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+}
 
 SessionTrace sessionTraceFromJournal(const JournalReadResult& journal, const std::string& path,
                                      const std::string& id) {

@@ -37,6 +37,10 @@ struct SessionTrace {
   int64_t t0_ns = 0;            // t_ns of the first record: the session's time origin
 };
 
+// t − origin in nanoseconds, saturated to the int64 range (journals from elsewhere may hold any
+// timestamps; the plain difference could overflow).
+int64_t elapsedNs(int64_t t, int64_t origin);
+
 // Reads `path`. A file that is not a journal, or has no records at all, raises StudyInputError
 // naming the file; a damaged tail keeps the intact prefix and sets journal_warning. A pen-sample
 // record whose payload has the wrong size raises StudyInputError naming the record.

@@ -45,8 +45,8 @@ std::vector<StrokeMeasures> measureStrokes(const SessionTrace& trace) {
     m.index = static_cast<uint32_t>(strokes.size());
     m.first_sample = i;
     m.sample_count = end - i;
-    m.start_s = double(s[i].t_ns - trace.t0_ns) * 1e-9;
-    m.duration_s = double(s[end - 1].t_ns - s[i].t_ns) * 1e-9;
+    m.start_s = double(elapsedNs(s[i].t_ns, trace.t0_ns)) * 1e-9;
+    m.duration_s = double(elapsedNs(s[end - 1].t_ns, s[i].t_ns)) * 1e-9;
     double pressure_sum = 0, tilt_sum = 0;
     for (size_t k = i; k < end; ++k) {
       pressure_sum += s[k].pressure;

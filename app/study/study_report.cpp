@@ -9,7 +9,7 @@ SessionFigures sessionFigures(const SessionTrace& trace) {
   f.id = trace.id;
   f.samples = trace.samples.size();
   if (!trace.samples.empty())
-    f.duration_s = double(trace.samples.back().t_ns - trace.samples.front().t_ns) * 1e-9;
+    f.duration_s = double(elapsedNs(trace.samples.back().t_ns, trace.samples.front().t_ns)) * 1e-9;
   const std::vector<StrokeMeasures> strokes = measureStrokes(trace);
   f.strokes = strokes.size();
   size_t tip_down = 0;
@@ -26,7 +26,7 @@ SessionFigures sessionFigures(const SessionTrace& trace) {
   for (const PenSample& s : trace.samples) {
     if (!s.tipDown()) continue;
     if (k++ % stride != 0) continue;
-    f.pressure_t.push_back(double(s.t_ns - trace.t0_ns) * 1e-9);
+    f.pressure_t.push_back(double(elapsedNs(s.t_ns, trace.t0_ns)) * 1e-9);
     f.pressure.push_back(s.pressure);
   }
   return f;

@@ -53,7 +53,7 @@ void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& session
     for (size_t i = 0; i < trace.samples.size(); ++i) {
       const PenSample& s = trace.samples[i];
       out << session << ',' << i << ',' << s.t_ns << ','
-          << decimalSecondsFromNs(s.t_ns - trace.t0_ns) << ',' << s.x_raw << ',' << s.y_raw << ','
+          << decimalSecondsFromNs(elapsedNs(s.t_ns, trace.t0_ns)) << ',' << s.x_raw << ',' << s.y_raw << ','
           << csvDouble(s.x_mm) << ',' << csvDouble(s.y_mm) << ',' << s.pressure_raw << ','
           << csvFloat(s.pressure) << ',' << s.tilt_x_raw << ',' << s.tilt_y_raw << ','
           << csvFloat(s.tilt_x_deg) << ',' << csvFloat(s.tilt_y_deg) << ',' << s.distance_raw << ','
@@ -101,7 +101,7 @@ void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions
       } else {
         value = e.text;
       }
-      out << session << ',' << decimalSecondsFromNs(e.t_ns - trace.t0_ns) << ',' << e.record_index
+      out << session << ',' << decimalSecondsFromNs(elapsedNs(e.t_ns, trace.t0_ns)) << ',' << e.record_index
           << ',' << eventKindName(e.type) << ',' << csvFieldOrMissing(key) << ','
           << csvFieldOrMissing(value) << '\n';
     }
