@@ -16,6 +16,7 @@
 #include "app/study/student_t.h"
 #include "app/study/study_report.h"
 #include "app/study/study_report_html.h"
+#include "drivers/core/pen_sample.h"
 
 namespace cb {
 namespace {
@@ -165,6 +166,49 @@ TEST(StudyReportOracle, HtmlIsSelfContained) {
   EXPECT_NE(html.find("<td>Q19</td><td>17</td><td>0</td><td>0</td><td>0</td><td>3</td><td>14</td>"
                       "<td>4.82</td><td>0.39</td>"),
             std::string::npos);
+}
+
+// A hand-made trace: hover, a 3-sample stroke, hover, a 2-sample stroke, 10 ms apart.
+SessionTrace handTrace() {
+  SessionTrace trace;
+  trace.id = "hand";
+  trace.t0_ns = 1'000'000'000;
+  const bool tips[] = {false, true, true, true, false, true, true};
+  for (int i = 0; i < 7; ++i) {
+    PenSample s;
+    s.t_ns = trace.t0_ns + 10'000'000 * (i + 1);
+    s.x_mm = 3.0 * i;  // 3 mm per sample
+    s.buttons = tips[i] ? uint32_t(kPenTip) : 0u;
+    s.pressure = tips[i] ? 0.1f * float(i) : 0.0f;
+    s.in_proximity = true;
+    trace.samples.push_back(s);
+    trace.sample_records.push_back(size_t(i));
+  }
+  return trace;
+}
+
+TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
+  const SessionFigures f = sessionFigures(handTrace());
+  EXPECT_EQ(f.samples, 7u);
+  EXPECT_EQ(f.strokes, 2u);
+  EXPECT_NEAR(f.duration_s, 0.060, 1e-12);
+  EXPECT_NEAR(f.tip_down_s, 0.020 + 0.010, 1e-12);
+  ASSERT_EQ(f.pressure.size(), 5u);
+  EXPECT_NEAR(f.pressure_t.front(), 0.020, 1e-12);
+  EXPECT_FLOAT_EQ(float(f.pressure.back()), 0.6f);
+  ASSERT_EQ(f.stroke_speed.size(), 2u);
+  EXPECT_NEAR(f.stroke_speed[0], 6.0 / 0.020, 1e-9);  // 6 mm in 20 ms
+  EXPECT_NEAR(f.stroke_speed[1], 3.0 / 0.010, 1e-9);
+
+  const LikertAnswers answers = loadLikertAnswers(kThesisAnswers);
+  StudyReportOptions options;
+  const StudyReport report = computeStudyReport(answers, options, {handTrace(), handTrace()});
+  const std::string html = studyReportHtml(report, options, 1, 5);
+  size_t svgs = 0;
+  for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1))
+    ++svgs;
+  EXPECT_EQ(svgs, 1u + 2u * 2u);  // items; pressure and speed per session (no constructs given)
+  EXPECT_NE(html.find("<tr><td>hand</td><td>0.1</td><td>7</td><td>2</td>"), std::string::npos);
 }
 
 TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
