@@ -52,7 +52,8 @@ const char kStudyHelp[] =
     "volume   a saved volume as OUT/NAME.vdb (OpenVDB fog volume, grid 'density') and\n"
     "         OUT/NAME.cbvol; --render adds OUT/NAME.exr and NAME.png from the reference camera.\n"
     "report   an HTML page that opens offline: Likert distributions per item, construct\n"
-    "         summaries (--constructs, default the questionnaire's Appendix C sections), the\n"
+    "         summaries (--constructs FILE.toml, see app/study/construct_definitions.h;\n"
+    "         default: the questionnaire's Appendix C sections whose items are all present), the\n"
     "         paired one-tailed t-test of --pair (default Q3,Q6: the 2D vs 3D brush ratings,\n"
     "         thesis §7.7.2), and per-session pressure and speed when journals are given.\n"
     "         ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n";
@@ -118,66 +119,81 @@ int runExport(Args& args) {
   int width = 1280, height = 720;
   if (!parseSize(args.get("size", "1280x720"), &width, &height))
     return fail("export: --size: expected WxH (1..16384 each)", 2);
-  std::vector<SessionTrace> sessions;
-  std::vector<JournalReadResult> journals;
-  for (size_t i = 2; i < positional.size(); ++i) {
-    const std::string& path = positional[i];
+  const std::vector<std::string> paths(positional.begin() + 2, positional.end());
+  std::vector<std::string> ids;
+  for (const std::string& path : paths) {
     if (!std::filesystem::exists(path)) return fail("journal '" + path + "' does not exist");
-    JournalReadResult journal = readJournal(path);
-    if (journal.records.empty())
-      return fail(path + ": no journal records" +
-                  (journal.error.empty() ? "" : " (" + journal.error + ")"));
-    if (!journal.error.empty())
-      std::fprintf(stderr, "cloudbrush study: %s (exporting the intact records before it)\n",
-                   journal.error.c_str());
+    ids.push_back(std::filesystem::path(path).stem().string());
+    for (size_t k = 0; k + 1 < ids.size(); ++k)
+      if (ids[k] == ids.back())
+        return fail("two journals have the session id '" + ids.back() + "' (" + paths[k] + ", " +
+                    path + "); rename one");
+  }
+  const bool volumes = args.has("volumes");
+  MappingConfig mapping;
+  BrushConfig brush;
+  if (volumes) {
+    const std::string mapping_path = configFile("mapping.toml");
     try {
-      sessions.push_back(
-          sessionTraceFromJournal(journal, path, std::filesystem::path(path).stem().string()));
-    } catch (const StudyInputError& e) {
+      if (std::filesystem::exists(mapping_path)) mapping = loadMappingConfig(mapping_path);
+    } catch (const std::exception& e) {
       return fail(e.what());
     }
-    for (size_t k = 0; k + 1 < sessions.size(); ++k)
-      if (sessions[k].id == sessions.back().id)
-        return fail("two journals have the session id '" + sessions.back().id + "' (" +
-                    sessions[k].path + ", " + path + "); rename one");
-    if (args.has("volumes")) journals.push_back(std::move(journal));
+    brush = loadDefaultBrushConfig();
   }
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) return fail(out + ": cannot create the directory: " + ec.message());
   const std::filesystem::path dir(out);
-  std::string error;
-  if (!writeFile((dir / "traces.inkml").string(), [&](std::ostream& s) { writeInkml(s, sessions); },
-                 &error) ||
-      !writeFile((dir / "samples.csv").string(),
-                 [&](std::ostream& s) { writeSamplesCsv(s, sessions); }, &error) ||
-      !writeFile((dir / "strokes.csv").string(),
-                 [&](std::ostream& s) { writeStrokesCsv(s, sessions); }, &error) ||
-      !writeFile((dir / "events.csv").string(),
-                 [&](std::ostream& s) { writeEventsCsv(s, sessions); }, &error))
-    return fail(error);
-  if (!args.has("volumes")) return 0;
-  MappingConfig mapping;
-  const std::string mapping_path = configFile("mapping.toml");
-  try {
-    if (std::filesystem::exists(mapping_path)) mapping = loadMappingConfig(mapping_path);
-  } catch (const std::exception& e) {
-    return fail(e.what());
+  // One file per kind, written one session at a time so memory holds one session.
+  const std::string names[] = {"traces.inkml", "samples.csv", "strokes.csv", "events.csv"};
+  std::ofstream files[4];
+  for (int f = 0; f < 4; ++f) {
+    files[f].open(dir / names[f], std::ios::binary);
+    if (!files[f]) return fail((dir / names[f]).string() + ": cannot create");
   }
-  const BrushConfig brush = loadDefaultBrushConfig();
-  for (size_t i = 0; i < journals.size(); ++i) {
-    std::fprintf(stderr, "cloudbrush study: replaying %s (%zu of %zu)\n", sessions[i].path.c_str(),
-                 i + 1, journals.size());
-    const SessionReplay replay = replaySession(journals[i], brush, mapping);
+  std::ofstream &inkml = files[0], &samples = files[1], &strokes = files[2], &events = files[3];
+  beginInkml(inkml);
+  writeSamplesCsvHeader(samples);
+  writeStrokesCsvHeader(strokes);
+  writeEventsCsvHeader(events);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    if (paths.size() > 1)
+      std::fprintf(stderr, "cloudbrush study: %s (%zu of %zu)\n", paths[i].c_str(), i + 1,
+                   paths.size());
+    const JournalReadResult journal = readJournal(paths[i]);
+    if (journal.records.empty())
+      return fail(paths[i] + ": no journal records" +
+                  (journal.error.empty() ? "" : " (" + journal.error + ")"));
+    if (!journal.error.empty())
+      std::fprintf(stderr, "cloudbrush study: %s (exporting the intact records before it)\n",
+                   journal.error.c_str());
+    try {
+      const SessionTrace trace = sessionTraceFromJournal(journal, paths[i], ids[i]);
+      writeInkmlSession(inkml, trace, i);
+      writeSamplesCsvRows(samples, trace);
+      writeStrokesCsvRows(strokes, trace);
+      writeEventsCsvRows(events, trace);
+    } catch (const StudyInputError& e) {
+      return fail(e.what());
+    }
+    if (!volumes) continue;
+    const SessionReplay replay = replaySession(journal, brush, mapping);
     for (const std::string& problem : replay.problems)
-      std::fprintf(stderr, "cloudbrush study: %s: %s\n", sessions[i].path.c_str(), problem.c_str());
-    if (!replay.session) return fail(sessions[i].path + ": nothing could be replayed");
+      std::fprintf(stderr, "cloudbrush study: %s: %s\n", paths[i].c_str(), problem.c_str());
+    if (!replay.session) return fail(paths[i] + ": nothing could be replayed");
     const PaintSession& session = *replay.session;
     if (int status = exportVolumeAndRender(session.volume(), session.camera(), &session.light(),
                                            (dir / "volumes").string(), (dir / "renders").string(),
-                                           sessions[i].id, true, width, height);
+                                           ids[i], true, width, height);
         status != 0)
       return status;
+  }
+  endInkml(inkml);
+  for (int f = 0; f < 4; ++f) {
+    files[f].close();
+    if (!files[f]) return fail((dir / names[f]).string() + ": write failed");
+    std::printf("%s\n", (dir / names[f]).c_str());
   }
   return 0;
 }

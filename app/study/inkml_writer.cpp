@@ -110,14 +110,26 @@ void writeTraces(std::ostream& out, const SessionTrace& trace, size_t n) {
 
 }  // namespace
 
-void writeInkml(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+void beginInkml(std::ostream& out) {
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out << "<ink xmlns=\"http://www.w3.org/2003/InkML\">\n";
+}
+
+void writeInkmlSession(std::ostream& out, const SessionTrace& trace, size_t n) {
   out << "  <definitions>\n";
-  for (size_t n = 0; n < sessions.size(); ++n) writeContext(out, sessions[n], n);
+  writeContext(out, trace, n);
   out << "  </definitions>\n";
-  for (size_t n = 0; n < sessions.size(); ++n) writeTraces(out, sessions[n], n);
+  writeTraces(out, trace, n);
+}
+
+void endInkml(std::ostream& out) {
   out << "</ink>\n";
+}
+
+void writeInkml(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  beginInkml(out);
+  for (size_t n = 0; n < sessions.size(); ++n) writeInkmlSession(out, sessions[n], n);
+  endInkml(out);
 }
 
 }  // namespace cb

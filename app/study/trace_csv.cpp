@@ -40,11 +40,14 @@ std::string eventKindName(JournalRecordType type) {
   return "type-" + std::to_string(static_cast<uint32_t>(type));
 }
 
-void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+void writeSamplesCsvHeader(std::ostream& out) {
   out << "session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_raw,"
          "tilt_y_raw,tilt_x_deg,tilt_y_deg,distance_raw,distance,buttons,tip,in_proximity,tool,"
          "tool_id,tool_serial,stroke\n";
-  for (const SessionTrace& trace : sessions) {
+}
+
+void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
     const std::string session = csvField(trace.id);
     // Stroke index of each sample (strokes are runs of tip-down samples).
     std::vector<int64_t> stroke_of(trace.samples.size(), -1);
@@ -53,13 +56,13 @@ void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& session
     for (size_t i = 0; i < trace.samples.size(); ++i) {
       const PenSample& s = trace.samples[i];
       out << session << ',' << i << ',' << s.t_ns << ','
-          << decimalSecondsFromNs(elapsedNs(s.t_ns, trace.t0_ns)) << ',' << s.x_raw << ',' << s.y_raw << ','
-          << csvDouble(s.x_mm) << ',' << csvDouble(s.y_mm) << ',' << s.pressure_raw << ','
-          << csvFloat(s.pressure) << ',' << s.tilt_x_raw << ',' << s.tilt_y_raw << ','
-          << csvFloat(s.tilt_x_deg) << ',' << csvFloat(s.tilt_y_deg) << ',' << s.distance_raw << ','
-          << csvFloat(s.distance) << ',' << s.buttons << ',' << (s.tipDown() ? 1 : 0) << ','
-          << (s.in_proximity ? 1 : 0) << ',' << toolName(s.tool) << ',' << s.tool_id << ','
-          << s.tool_serial << ',';
+          << decimalSecondsFromNs(elapsedNs(s.t_ns, trace.t0_ns)) << ',' << s.x_raw << ','
+          << s.y_raw << ',' << csvDouble(s.x_mm) << ',' << csvDouble(s.y_mm) << ','
+          << s.pressure_raw << ',' << csvFloat(s.pressure) << ',' << s.tilt_x_raw << ','
+          << s.tilt_y_raw << ',' << csvFloat(s.tilt_x_deg) << ',' << csvFloat(s.tilt_y_deg) << ','
+          << s.distance_raw << ',' << csvFloat(s.distance) << ',' << s.buttons << ','
+          << (s.tipDown() ? 1 : 0) << ',' << (s.in_proximity ? 1 : 0) << ',' << toolName(s.tool)
+          << ',' << s.tool_id << ',' << s.tool_serial << ',';
       if (stroke_of[i] < 0)
         out << kCsvMissing;
       else
@@ -69,10 +72,13 @@ void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& session
   }
 }
 
-void writeStrokesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+void writeStrokesCsvHeader(std::ostream& out) {
   out << "session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_pressure,"
          "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms\n";
-  for (const SessionTrace& trace : sessions) {
+}
+
+void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
     const std::string session = csvField(trace.id);
     for (const StrokeMeasures& m : measureStrokes(trace)) {
       out << session << ',' << m.index << ',' << csvDouble(m.start_s) << ','
@@ -85,9 +91,12 @@ void writeStrokesCsv(std::ostream& out, const std::vector<SessionTrace>& session
   }
 }
 
-void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+void writeEventsCsvHeader(std::ostream& out) {
   out << "session,t_s,record,kind,key,value\n";
-  for (const SessionTrace& trace : sessions) {
+}
+
+void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
     const std::string session = csvField(trace.id);
     for (const TraceEvent& e : trace.events) {
       std::string key, value;
@@ -101,11 +110,26 @@ void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions
       } else {
         value = e.text;
       }
-      out << session << ',' << decimalSecondsFromNs(elapsedNs(e.t_ns, trace.t0_ns)) << ',' << e.record_index
-          << ',' << eventKindName(e.type) << ',' << csvFieldOrMissing(key) << ','
+      out << session << ',' << decimalSecondsFromNs(elapsedNs(e.t_ns, trace.t0_ns)) << ','
+          << e.record_index << ',' << eventKindName(e.type) << ',' << csvFieldOrMissing(key) << ','
           << csvFieldOrMissing(value) << '\n';
     }
   }
+}
+
+void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeSamplesCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeSamplesCsvRows(out, trace);
+}
+
+void writeStrokesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeStrokesCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeStrokesCsvRows(out, trace);
+}
+
+void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeEventsCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeEventsCsvRows(out, trace);
 }
 
 }  // namespace cb

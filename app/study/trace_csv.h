@@ -26,9 +26,18 @@
 
 namespace cb {
 
+// Header and rows of many sessions.
 void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions);
 void writeStrokesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions);
 void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions);
+
+// The same in pieces, so a study is written one session at a time (one session in memory).
+void writeSamplesCsvHeader(std::ostream& out);
+void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace);
+void writeStrokesCsvHeader(std::ostream& out);
+void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace);
+void writeEventsCsvHeader(std::ostream& out);
+void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace);
 
 // The name events.csv gives a record type ("mode", "ui", ..., "type-9" for unknown types).
 std::string eventKindName(JournalRecordType type);
