@@ -1,6 +1,9 @@
 #include "app/study/csv_text.h"
 
+#include <cmath>
 #include <cstdio>
+
+#include "app/study/utf8_text.h"
 
 namespace cb {
 namespace {
@@ -19,7 +22,8 @@ std::string exactDecimal(int64_t ns, int64_t unit, int digits) {
 
 }  // namespace
 
-std::string csvField(const std::string& text) {
+std::string csvField(const std::string& raw) {
+  const std::string text = validUtf8(raw);
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) {
@@ -34,12 +38,15 @@ std::string csvFieldOrMissing(const std::string& text) {
 }
 
 std::string csvDouble(double v) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "Inf" : "-Inf";
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
 }
 
 std::string csvFloat(float v) {
+  if (!std::isfinite(v)) return csvDouble(double(v));
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", double(v));
   return text;

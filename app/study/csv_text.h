@@ -1,6 +1,7 @@
 // Text of CSV fields (RFC 4180): quoting, and numbers written so that reading them back gives the
 // same value bit for bit (doubles with 17 significant digits, floats with 9; times as exact
-// decimals of nanoseconds). Missing values are written as NA, which R and pandas read as missing.
+// decimals of nanoseconds; NaN, Inf and -Inf as R and pandas spell them). Missing values are
+// written as NA, which R and pandas read as missing. Text is made valid UTF-8 (utf8_text.h).
 #pragma once
 
 #include <cstdint>

@@ -5,11 +5,13 @@
 #include <string>
 
 #include "app/study/csv_text.h"
+#include "app/study/utf8_text.h"
 
 namespace cb {
 namespace {
 
-std::string xmlEscape(const std::string& text) {
+std::string xmlEscape(const std::string& raw) {
+  const std::string text = validUtf8(raw);
   std::string out;
   for (char c : text) {
     switch (c) {

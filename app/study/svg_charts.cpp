@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "app/study/utf8_text.h"
+
 namespace cb {
 namespace {
 
@@ -23,7 +25,8 @@ const char* scaleColour(size_t k, size_t points) {
 
 }  // namespace
 
-std::string htmlEscape(const std::string& text) {
+std::string htmlEscape(const std::string& raw) {
+  const std::string text = validUtf8(raw);
   std::string out;
   for (char c : text) {
     switch (c) {

@@ -9,7 +9,7 @@
 
 namespace cb {
 
-// Escapes &, <, >, " and ' for XML/HTML text and attributes.
+// Escapes &, <, >, " and ' for XML/HTML text and attributes (and makes the text valid UTF-8).
 std::string htmlEscape(const std::string& text);
 
 // One horizontal bar per item, split into the share of each scale point (diverging colours from

@@ -22,6 +22,7 @@
 #include "app/study/session_trace.h"
 #include "app/study/stroke_table.h"
 #include "app/study/trace_csv.h"
+#include "app/study/utf8_text.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/pen_units.h"
 
@@ -400,6 +401,59 @@ TEST(TraceExportErrors, MalformedSampleAndMissingFileNameTheFile) {
   }
   std::filesystem::remove(path);
   EXPECT_THROW(loadSessionTrace(tempPath("missing.cbj")), StudyInputError);
+}
+
+TEST(TraceExportErrors, Utf8IsRepairedOnlyWhereBroken) {
+  const std::string good = "\xE4\xBA\x91 cloud \xC3\xBC \xE2\x82\xAC \xF0\x9F\x96\x8C";
+  EXPECT_EQ(validUtf8(good), good);
+  const std::string fffd = "\xEF\xBF\xBD";
+  EXPECT_EQ(validUtf8("a\xFF" "b"), "a" + fffd + "b");
+  EXPECT_EQ(validUtf8("\xC0\xAF"), fffd + fffd);                // overlong '/'
+  EXPECT_EQ(validUtf8("\xED\xA0\x80"), fffd + fffd + fffd);     // a surrogate
+  EXPECT_EQ(validUtf8("\xF4\x90\x80\x80").substr(0, 3), fffd);  // above U+10FFFF
+  EXPECT_EQ(validUtf8("ok\xE4\xBA"), "ok" + fffd + fffd);       // cut short at the end
+}
+
+// A journal from elsewhere: a device name that is not UTF-8 and has markup and a control
+// character; samples with NaN and infinite values.
+TEST(TraceExportErrors, ForeignBytesStillGiveWellFormedInkmlAndReadableCsv) {
+  const std::string path = tempPath("foreign.cbj");
+  {
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(path));
+    PenDeviceInfo device;
+    std::snprintf(device.name, sizeof device.name, "<pen & \"tablet\"\x01\xFF\xFE>");
+    device.pressure_max = 1023;
+    const std::vector<uint8_t> payload = encodeDeviceInfo(device);
+    journal.append(JournalRecordType::kDevice, 0, payload.data(), payload.size());
+    journal.append(JournalRecordType::kMarker, 0, "note \xFF");
+    PenSample s;
+    s.t_ns = 1;
+    s.buttons = kPenTip;
+    s.x_mm = std::nan("");
+    s.y_mm = INFINITY;
+    s.tilt_x_deg = -INFINITY;
+    ASSERT_TRUE(journal.appendPenSample(s));
+  }
+  const SessionTrace trace = loadSessionTrace(path);
+  std::filesystem::remove(path);
+  std::ostringstream ink, samples, events;
+  writeInkml(ink, {trace});
+  writeSamplesCsv(samples, {trace});
+  writeEventsCsv(events, {trace});
+  xmlDoc* doc = xmlReadMemory(ink.str().data(), int(ink.str().size()), "foreign.inkml", nullptr,
+                              XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+  ASSERT_NE(doc, nullptr) << ink.str();
+  std::vector<xmlNode*> sources;
+  collect(xmlDocGetRootElement(doc), "inkSource", &sources);
+  ASSERT_EQ(sources.size(), 1u);
+  EXPECT_EQ(attr(sources[0], "model"), "<pen & \"tablet\"?\xEF\xBF\xBD\xEF\xBF\xBD>");
+  xmlFreeDoc(doc);
+  const std::vector<std::string> lines = split(samples.str(), '\n');
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NE(lines[1].find(",NaN,Inf,"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find(",-Inf,"), std::string::npos) << lines[1];
+  EXPECT_NE(events.str().find("note \xEF\xBF\xBD"), std::string::npos);
 }
 
 }  // namespace
