@@ -407,7 +407,9 @@ TEST(TraceExportErrors, Utf8IsRepairedOnlyWhereBroken) {
   const std::string good = "\xE4\xBA\x91 cloud \xC3\xBC \xE2\x82\xAC \xF0\x9F\x96\x8C";
   EXPECT_EQ(validUtf8(good), good);
   const std::string fffd = "\xEF\xBF\xBD";
-  EXPECT_EQ(validUtf8("a\xFF" "b"), "a" + fffd + "b");
+  EXPECT_EQ(validUtf8("a\xFF"
+                      "b"),
+            "a" + fffd + "b");
   EXPECT_EQ(validUtf8("\xC0\xAF"), fffd + fffd);                // overlong '/'
   EXPECT_EQ(validUtf8("\xED\xA0\x80"), fffd + fffd + fffd);     // a surrogate
   EXPECT_EQ(validUtf8("\xF4\x90\x80\x80").substr(0, 3), fffd);  // above U+10FFFF
