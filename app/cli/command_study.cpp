@@ -241,6 +241,11 @@ int runReport(Args& args) {
   try {
     options.constructs = args.has("constructs") ? loadConstructDefinitions(*args.get("constructs"))
                                                 : appendixCSections();
+    options.constructs_source =
+        args.has("constructs")
+            ? "Constructs declared in " + *args.get("constructs")
+            : "Constructs: the questionnaire's own sections (thesis Appendix C), not the "
+              "constructs of the thesis's Table 7.3, whose items the thesis does not give";
     const LikertAnswers answers = loadLikertAnswers(positional[2]);
     if (!args.has("constructs")) {
       // The default sections apply only when the answers have the questionnaire's items.

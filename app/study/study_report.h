@@ -17,6 +17,7 @@ struct StudyReportOptions {
   std::string title = "cloudbrush user study";
   std::string answers_name;  // shown in the page (the CSV's path)
   std::vector<ConstructDefinition> constructs;
+  std::string constructs_source;  // where the constructs were declared, shown in the page
   std::string paired_first = "Q3", paired_second = "Q6";
 };
 

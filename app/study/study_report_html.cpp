@@ -109,11 +109,14 @@ std::string studyReportHtml(const StudyReport& report, const StudyReportOptions&
       " scale. Means and sample standard deviations (n − 1); missing answers are left out.</p>\n";
   html += "<h2>Answers per item</h2>\n" + likertStackedBarsSvg(report.items, scale_min) +
           itemTable(report, scale_min);
-  if (!report.constructs.empty())
+  if (!report.constructs.empty()) {
+    html += "<h2>Constructs</h2>\n<p>";
+    if (!options.constructs_source.empty()) html += htmlEscape(options.constructs_source) + ". ";
     html +=
-        "<h2>Constructs</h2>\n<p>Each participant's score is the mean of the construct's "
-        "items they answered; the table gives the mean and SD of those scores.</p>\n" +
+        "Each participant's score is the mean of the construct's items they answered; the "
+        "table gives the mean and SD of those scores.</p>\n" +
         constructMeansSvg(report.constructs, scale_min, scale_max) + constructTable(report);
+  }
   html += pairedSection(report, options);
   html += sessionSection(report);
   return html + "</body></html>\n";

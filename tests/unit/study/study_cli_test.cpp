@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -104,6 +105,19 @@ TEST_F(StudyCli, ExportWritesEveryFileAndTheReplayedVolume) {
   file.close();
   ASSERT_TRUE(grid);
   EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(nonzero));
+}
+
+TEST_F(StudyCli, ReportOnTheThesisAnswers) {
+  const std::string html_path = (dir_ / "report.html").string();
+  const CommandRun report = run(std::string(CB_CLOUDBRUSH_BIN) + " study report " +
+                                CB_STUDY_TEST_DIR + "/thesis_answers.csv --out " + html_path);
+  ASSERT_EQ(report.status, 0) << report.out;
+  std::ifstream in(html_path);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("<td>0.265</td>"), std::string::npos);  // one-tailed p, Q3 vs Q6
+  EXPECT_NE(html.find("not the constructs of the thesis&#39;s Table 7.3"), std::string::npos);
+  EXPECT_NE(html.find("<td>Paint style</td><td>Q1 Q2 Q3 Q4 Q5 Q6</td><td>17</td>"),
+            std::string::npos);
 }
 
 TEST_F(StudyCli, BadInputIsRefusedNamingFileAndField) {
