@@ -22,6 +22,8 @@ const Command kCommands[] = {
      cb::commandCalibrate},
     {"replay", "re-run a recorded session journal headlessly (volume checksum, render)",
      cb::commandReplay},
+    {"study", "user-study exports (InkML, CSV, VDB, EXR) and the questionnaire report",
+     cb::commandStudy},
     {"bench", "run a benchmark: bench NAME (bench --help lists them)", cb::commandBench},
 };
 

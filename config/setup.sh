@@ -21,6 +21,8 @@ packages=(
   libevdev-dev libhidapi-dev libusb-1.0-0-dev libudev-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # reading the study's InkML exports back in tests
+  libxml2-dev
   # virtual tablet / KMS in the loop (qemu + Debian's stock kernel)
   qemu-system-x86 busybox-static cpio
 )

@@ -27,6 +27,8 @@ const Bench kBenches[] = {
     {"history", "undo/redo, erase and light to restored volume and lit frame; history bytes",
      benchHistory},
     {"styles", "each render style's full frame against the thesis style's", benchStyles},
+    {"study", "study exports (256^3 volume as VDB and raw, EXR+PNG) and report for 20 sessions",
+     benchStudy},
 };
 
 }  // namespace

@@ -9,4 +9,5 @@ int benchInput(int argc, char** argv);
 int benchSmoothing(int argc, char** argv);
 int benchHistory(int argc, char** argv);
 int benchStyles(int argc, char** argv);
+int benchStudy(int argc, char** argv);
 }  // namespace cb

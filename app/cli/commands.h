@@ -10,5 +10,6 @@ int commandDevices(int argc, char** argv);    // list pens, --watch prints live 
 int commandCalibrate(int argc, char** argv);  // N-point pen calibration
 int commandReplay(int argc, char** argv);     // re-run a session journal headlessly
 int commandBench(int argc, char** argv);      // bench NAME
+int commandStudy(int argc, char** argv);      // study export | volume | report
 
 }  // namespace cb

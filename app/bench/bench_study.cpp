@@ -1,0 +1,221 @@
+// `cloudbrush bench study`: the cost of a study's exports and report. Export times for a 256³
+// volume (the bundled cumulus) as OpenVDB and as raw float32 + JSON, and of a 1280×720 frame as
+// linear EXR + PNG; the pen-trace exports (InkML, samples/strokes/events CSV) and the HTML report
+// for 20 synthetic sessions with 20 participants' answers. Baselines, measured in the same run:
+// writing the volume's bytes with one fwrite (the floor for any volume file), and reading the 20
+// journals (the floor for anything made from them). Files go to a temporary directory that is
+// removed afterwards. Never fails on a missed target.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/bench/bench_report.h"
+#include "app/bench/benches.h"
+#include "app/cli/args.h"
+#include "app/session/synthetic_session.h"
+#include "app/study/construct_definitions.h"
+#include "app/study/inkml_writer.h"
+#include "app/study/likert_answers.h"
+#include "app/study/render_export.h"
+#include "app/study/session_trace.h"
+#include "app/study/study_report.h"
+#include "app/study/study_report_html.h"
+#include "app/study/trace_csv.h"
+#include "app/study/volume_export.h"
+#include "app/volume/scene_generators.h"
+#include "app/volume/volume_file.h"
+#include "drivers/core/journal.h"
+
+namespace cb {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Median over `repeats` runs of `run`, in ms.
+template <typename Run>
+double medianMs(int repeats, Run run) {
+  std::vector<double> ms;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    run();
+    ms.push_back(msSince(t0));
+  }
+  return median(ms);
+}
+
+constexpr int kScreenW = 1280, kScreenH = 720;
+
+// One synthetic session: the reference strokes repeated `rounds` times, with a brush change
+// before each stroke.
+void writeSyntheticJournal(const std::string& path, int rounds, uint32_t seed) {
+  JournalWriter journal;
+  if (!journal.open(path)) throw std::runtime_error(journal.error());
+  const PenDeviceInfo tablet = syntheticTablet(kScreenW, kScreenH);
+  const std::vector<uint8_t> device = encodeDeviceInfo(tablet);
+  journal.append(JournalRecordType::kDevice, 0, device.data(), device.size());
+  journal.append(JournalRecordType::kMode, 0, "paint");
+  int64_t t = 1'000'000;
+  const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kScreenW, kScreenH);
+  for (int r = 0; r < rounds; ++r)
+    for (size_t k = 0; k < strokes.size(); ++k) {
+      journal.append(JournalRecordType::kUi, t, (k + seed) % 2 ? "brush=2d" : "brush=3d");
+      for (const PenSample& s :
+           syntheticPenSamples(strokes[k], tablet, kScreenW, kScreenH, 200.0, t)) {
+        journal.appendPenSample(s);
+        t = s.t_ns + 5'000'000;
+      }
+    }
+  journal.close();
+}
+
+std::string syntheticAnswers(int participants) {
+  std::string csv = "participant";
+  for (int q = 1; q <= 27; ++q) csv += ",Q" + std::to_string(q);
+  csv += "\n";
+  uint32_t state = 12345;
+  for (int p = 0; p < participants; ++p) {
+    csv += "P" + std::to_string(p + 1);
+    for (int q = 0; q < 27; ++q) {
+      state = state * 1664525u + 1013904223u;  // LCG (Numerical Recipes): answers 1..5
+      csv += "," + std::to_string(1 + (state >> 16) % 5);
+    }
+    csv += "\n";
+  }
+  return csv;
+}
+
+}  // namespace
+
+int benchStudy(int argc, char** argv) {
+  Args args(argc, argv, {"help"});
+  if (args.has("help")) {
+    std::printf(
+        "usage: cloudbrush bench study [--grid N] [--sessions N] [--repeats N]\n"
+        "  export times for a grid³ volume (default 256) and a 1280x720 frame; trace exports\n"
+        "  and the HTML report for N synthetic sessions (default 20); medians of --repeats runs\n"
+        "  (default 3)\n");
+    return 0;
+  }
+  const long grid = args.getInt("grid", 256);
+  const long session_count = args.getInt("sessions", 20);
+  const long repeats = args.getInt("repeats", 3);
+  if (!args.error().empty() || grid < 8 || grid > 512 || session_count < 1 || session_count > 200 ||
+      repeats < 1 || repeats > 50) {
+    std::fprintf(stderr,
+                 "cloudbrush bench study: %s (--grid 8..512, --sessions 1..200, --repeats 1..50)\n",
+                 args.error().empty() ? "option out of range" : args.error().c_str());
+    return 2;
+  }
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("cloudbrush-bench-study-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  BenchReport report("study");
+  try {
+    const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)));
+    std::printf("volume %ld^3 (%.1f MiB of float32)\n", grid,
+                double(volume.voxelCount()) * 4 / (1 << 20));
+    const double fwrite_ms = medianMs(int(repeats), [&] {
+      std::FILE* f = std::fopen((dir / "plain.raw").c_str(), "wb");
+      if (!f) throw std::runtime_error((dir / "plain.raw").string() + ": cannot create");
+      std::fwrite(volume.data(), sizeof(float), volume.voxelCount(), f);
+      std::fclose(f);
+    });
+    double vdb_ms = 0, cbvol_ms = 0;
+    {
+      std::vector<double> vdb, cbvol;
+      for (long i = 0; i < repeats; ++i) {
+        // exportVolume writes the .vdb then the .cbvol; timed as one and the .cbvol alone.
+        const auto t0 = Clock::now();
+        const VolumeExport e = exportVolume(volume, dir.string(), "cloud");
+        const double both = msSince(t0);
+        const auto t1 = Clock::now();
+        saveVolume(volume, (dir / "cloud.cbvol").string());
+        const double raw = msSince(t1);
+        cbvol.push_back(raw);
+        vdb.push_back(volumeExportHasVdb() ? both - raw : 0.0);
+      }
+      vdb_ms = median(vdb);
+      cbvol_ms = median(cbvol);
+    }
+    std::printf("export .vdb %.1f ms (%s), .cbvol %.1f ms; plain fwrite %.1f ms\n", vdb_ms,
+                volumeExportHasVdb() ? "OpenVDB" : "not built", cbvol_ms, fwrite_ms);
+    if (volumeExportHasVdb())
+      report.figure("vdb_export_ms", vdb_ms);
+    else
+      report.note("vdb_export_ms", "built without OpenVDB");
+    report.figure("raw_json_export_ms", cbvol_ms);
+    report.baseline("fwrite_volume_ms", fwrite_ms);
+
+    ImageRgbaF frame;
+    frame.width = 1280;
+    frame.height = 720;
+    frame.pixels.resize(size_t(frame.width) * frame.height * 4);
+    for (size_t i = 0; i < frame.pixels.size(); ++i)
+      frame.pixels[i] = float((i * 2654435761u) % 1000) / 1000.0f;
+    const double render_ms =
+        medianMs(int(repeats), [&] { exportRender(frame, dir.string(), "frame"); });
+    std::printf("render export 1280x720 EXR + PNG %.1f ms\n", render_ms);
+    report.figure("render_exr_png_export_ms", render_ms);
+
+    std::vector<std::string> journals;
+    for (long s = 0; s < session_count; ++s) {
+      journals.push_back((dir / ("session-" + std::to_string(s) + ".cbj")).string());
+      writeSyntheticJournal(journals.back(), 10, uint32_t(s));
+    }
+    std::vector<SessionTrace> traces;
+    const double read_ms = medianMs(int(repeats), [&] {
+      for (const std::string& path : journals) readJournal(path);
+    });
+    const double load_ms = medianMs(int(repeats), [&] {
+      traces.clear();
+      for (const std::string& path : journals) traces.push_back(loadSessionTrace(path));
+    });
+    size_t samples = 0;
+    for (const SessionTrace& t : traces) samples += t.samples.size();
+    const double trace_ms = medianMs(int(repeats), [&] {
+      std::ofstream ink(dir / "traces.inkml"), csv(dir / "samples.csv"), st(dir / "strokes.csv"),
+          ev(dir / "events.csv");
+      writeInkml(ink, traces);
+      writeSamplesCsv(csv, traces);
+      writeStrokesCsv(st, traces);
+      writeEventsCsv(ev, traces);
+    });
+    std::istringstream answers_text(syntheticAnswers(int(session_count)));
+    const LikertAnswers answers = readLikertAnswers(answers_text, "synthetic answers");
+    StudyReportOptions options;
+    options.constructs = appendixCSections();
+    const double report_ms = medianMs(int(repeats), [&] {
+      const StudyReport r = computeStudyReport(answers, options, traces);
+      std::ofstream(dir / "report.html") << studyReportHtml(r, options, 1, 5);
+    });
+    std::printf(
+        "%ld sessions, %zu samples: read journals %.1f ms, load traces %.1f ms, InkML + "
+        "CSV export %.1f ms, report (answers + sessions, HTML) %.1f ms\n",
+        session_count, samples, read_ms, load_ms, trace_ms, report_ms);
+    report.figure("trace_load_ms", load_ms);
+    report.figure("trace_export_ms", trace_ms);
+    report.figure("report_ms", report_ms);
+    report.figure("sessions", double(session_count));
+    report.figure("samples", double(samples));
+    report.baseline("read_journals_ms", read_ms);
+  } catch (const std::exception& e) {
+    std::filesystem::remove_all(dir);
+    std::fprintf(stderr, "cloudbrush bench study: %s\n", e.what());
+    return 1;
+  }
+  std::filesystem::remove_all(dir);
+  report.print();
+  return 0;
+}
+
+}  // namespace cb

@@ -1,0 +1,296 @@
+// cloudbrush study: exports and the questionnaire report for user studies (issue 10), built on
+// app/study. `study export` writes pen traces (and, with --volumes, replayed volumes and renders)
+// of one or many sessions; `study volume` exports a saved volume; `study report` writes the
+// offline HTML report of questionnaire answers.
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "app/brush/brush_config.h"
+#include "app/cli/args.h"
+#include "app/cli/commands.h"
+#include "app/cli/study_frame_render.h"
+#include "app/core/config_paths.h"
+#include "app/mapping/mapping_config.h"
+#include "app/session/session_replay.h"
+#include "app/study/construct_definitions.h"
+#include "app/study/inkml_writer.h"
+#include "app/study/likert_answers.h"
+#include "app/study/render_export.h"
+#include "app/study/session_trace.h"
+#include "app/study/study_report.h"
+#include "app/study/study_report_html.h"
+#include "app/study/trace_csv.h"
+#include "app/study/volume_export.h"
+#include "app/volume/volume_file.h"
+
+namespace cb {
+namespace {
+
+const char kStudyHelp[] =
+    "usage: cloudbrush study export SESSION.cbj... --out DIR [--volumes] [--size WxH]\n"
+    "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
+    "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
+    "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
+    "\n"
+    "export   pen traces of one session or a whole study, one file per kind (sessions\n"
+    "         concatenated in the order given, each row or trace group tagged with the\n"
+    "         session id, the journal's file name without extension):\n"
+    "           DIR/traces.inkml  W3C InkML, channels X Y (mm) F (device units) OTx OTy (deg)\n"
+    "                             T (ms), the capture device in each context's inkSource\n"
+    "           DIR/samples.csv   every raw pen sample\n"
+    "           DIR/strokes.csv   per stroke: start, duration, path length, mean/max pressure,\n"
+    "                             mean tilt, speed, brush, mode, mapping time (NA: not recorded)\n"
+    "           DIR/events.csv    every UI/mode change, marker, calibration, session record\n"
+    "         --volumes replays each journal (brush and mapping from the config directory) and\n"
+    "         writes DIR/volumes/ID.vdb and ID.cbvol and DIR/renders/ID.exr (linear light) and\n"
+    "         ID.png from the session's last view, at --size (default 1280x720).\n"
+    "volume   a saved volume as OUT/NAME.vdb (OpenVDB fog volume, grid 'density') and\n"
+    "         OUT/NAME.cbvol; --render adds OUT/NAME.exr and NAME.png from the reference camera.\n"
+    "report   an HTML page that opens offline: Likert distributions per item, construct\n"
+    "         summaries (--constructs FILE.toml, see app/study/construct_definitions.h;\n"
+    "         default: the questionnaire's Appendix C sections whose items are all present), the\n"
+    "         paired one-tailed t-test of --pair (default Q3,Q6: the 2D vs 3D brush ratings,\n"
+    "         thesis §7.7.2), and per-session pressure and speed when journals are given.\n"
+    "         ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n";
+
+int fail(const std::string& message, int code = 1) {
+  std::fprintf(stderr, "cloudbrush study: %s\n", message.c_str());
+  return code;
+}
+
+bool parseSize(const std::string& text, int* width, int* height) {
+  int consumed = 0;
+  return std::sscanf(text.c_str(), "%dx%d%n", width, height, &consumed) == 2 &&
+         consumed == int(text.size()) && *width >= 1 && *height >= 1 && *width <= 16384 &&
+         *height <= 16384;
+}
+
+// Writes `path` with `write(stream)`; false with a message naming the file.
+template <typename Write>
+bool writeFile(const std::string& path, Write write, std::string* error) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) {
+    *error = path + ": cannot create";
+    return false;
+  }
+  write(out);
+  out.close();
+  if (!out) {
+    *error = path + ": write failed";
+    return false;
+  }
+  std::printf("%s\n", path.c_str());
+  return true;
+}
+
+int exportVolumeAndRender(const Volume& volume, const Camera& camera, const Light* light,
+                          const std::string& volume_dir, const std::string& render_dir,
+                          const std::string& stem, bool render, int width, int height) {
+  try {
+    const VolumeExport exported = exportVolume(volume, volume_dir, stem);
+    for (const std::string& path : exported.written) std::printf("%s\n", path.c_str());
+    if (!exported.note.empty())
+      std::fprintf(stderr, "cloudbrush study: %s\n", exported.note.c_str());
+    if (!render) return 0;
+    ImageRgbaF frame;
+    std::string error;
+    if (!renderStudyFrame(volume, camera, light, width, height, &frame, &error)) return fail(error);
+    for (const std::string& path : exportRender(frame, render_dir, stem))
+      std::printf("%s\n", path.c_str());
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  return 0;
+}
+
+int runExport(Args& args) {
+  auto unknown = args.unknown({"help", "out", "volumes", "size"});
+  if (!unknown.empty()) return fail("export: unknown option " + unknown[0] + " (see --help)", 2);
+  const std::vector<std::string>& positional = args.positional();
+  if (positional.size() < 3)
+    return fail("export: expected one or more journals: study export SESSION.cbj... --out DIR", 2);
+  const std::string out = args.get("out", "");
+  if (out.empty()) return fail("export: --out DIR is required", 2);
+  int width = 1280, height = 720;
+  if (!parseSize(args.get("size", "1280x720"), &width, &height))
+    return fail("export: --size: expected WxH (1..16384 each)", 2);
+  const std::vector<std::string> paths(positional.begin() + 2, positional.end());
+  std::vector<std::string> ids;
+  for (const std::string& path : paths) {
+    if (!std::filesystem::exists(path)) return fail("journal '" + path + "' does not exist");
+    ids.push_back(std::filesystem::path(path).stem().string());
+    for (size_t k = 0; k + 1 < ids.size(); ++k)
+      if (ids[k] == ids.back())
+        return fail("two journals have the session id '" + ids.back() + "' (" + paths[k] + ", " +
+                    path + "); rename one");
+  }
+  const bool volumes = args.has("volumes");
+  MappingConfig mapping;
+  BrushConfig brush;
+  if (volumes) {
+    const std::string mapping_path = configFile("mapping.toml");
+    try {
+      if (std::filesystem::exists(mapping_path)) mapping = loadMappingConfig(mapping_path);
+    } catch (const std::exception& e) {
+      return fail(e.what());
+    }
+    brush = loadDefaultBrushConfig();
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) return fail(out + ": cannot create the directory: " + ec.message());
+  const std::filesystem::path dir(out);
+  // One file per kind, written one session at a time so memory holds one session.
+  const std::string names[] = {"traces.inkml", "samples.csv", "strokes.csv", "events.csv"};
+  std::ofstream files[4];
+  for (int f = 0; f < 4; ++f) {
+    files[f].open(dir / names[f], std::ios::binary);
+    if (!files[f]) return fail((dir / names[f]).string() + ": cannot create");
+  }
+  std::ofstream &inkml = files[0], &samples = files[1], &strokes = files[2], &events = files[3];
+  beginInkml(inkml);
+  writeSamplesCsvHeader(samples);
+  writeStrokesCsvHeader(strokes);
+  writeEventsCsvHeader(events);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    if (paths.size() > 1)
+      std::fprintf(stderr, "cloudbrush study: %s (%zu of %zu)\n", paths[i].c_str(), i + 1,
+                   paths.size());
+    const JournalReadResult journal = readJournal(paths[i]);
+    if (journal.records.empty())
+      return fail(paths[i] + ": no journal records" +
+                  (journal.error.empty() ? "" : " (" + journal.error + ")"));
+    if (!journal.error.empty())
+      std::fprintf(stderr, "cloudbrush study: %s (exporting the intact records before it)\n",
+                   journal.error.c_str());
+    try {
+      const SessionTrace trace = sessionTraceFromJournal(journal, paths[i], ids[i]);
+      writeInkmlSession(inkml, trace, i);
+      writeSamplesCsvRows(samples, trace);
+      writeStrokesCsvRows(strokes, trace);
+      writeEventsCsvRows(events, trace);
+    } catch (const StudyInputError& e) {
+      return fail(e.what());
+    }
+    if (!volumes) continue;
+    const SessionReplay replay = replaySession(journal, brush, mapping);
+    for (const std::string& problem : replay.problems)
+      std::fprintf(stderr, "cloudbrush study: %s: %s\n", paths[i].c_str(), problem.c_str());
+    if (!replay.session) return fail(paths[i] + ": nothing could be replayed");
+    const PaintSession& session = *replay.session;
+    if (int status = exportVolumeAndRender(session.volume(), session.camera(), &session.light(),
+                                           (dir / "volumes").string(), (dir / "renders").string(),
+                                           ids[i], true, width, height);
+        status != 0)
+      return status;
+  }
+  endInkml(inkml);
+  for (int f = 0; f < 4; ++f) {
+    files[f].close();
+    if (!files[f]) return fail((dir / names[f]).string() + ": write failed");
+    std::printf("%s\n", (dir / names[f]).c_str());
+  }
+  return 0;
+}
+
+int runVolume(Args& args) {
+  auto unknown = args.unknown({"help", "out", "render", "size"});
+  if (!unknown.empty()) return fail("volume: unknown option " + unknown[0] + " (see --help)", 2);
+  if (args.positional().size() != 3)
+    return fail("volume: expected one volume file: study volume VOLUME.cbvol --out DIR", 2);
+  const std::string out = args.get("out", "");
+  if (out.empty()) return fail("volume: --out DIR is required", 2);
+  int width = 1280, height = 720;
+  if (!parseSize(args.get("size", "1280x720"), &width, &height))
+    return fail("volume: --size: expected WxH (1..16384 each)", 2);
+  const std::string& path = args.positional()[2];
+  Volume volume(glm::ivec3(1));
+  try {
+    volume = loadVolume(path);
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  return exportVolumeAndRender(volume, Camera::reference(), nullptr, out, out,
+                               std::filesystem::path(path).stem().string(), args.has("render"),
+                               width, height);
+}
+
+int runReport(Args& args) {
+  auto unknown = args.unknown({"help", "out", "constructs", "pair", "title"});
+  if (!unknown.empty()) return fail("report: unknown option " + unknown[0] + " (see --help)", 2);
+  const std::vector<std::string>& positional = args.positional();
+  if (positional.size() < 3)
+    return fail("report: expected the answers: study report ANSWERS.csv --out REPORT.html", 2);
+  const std::string out = args.get("out", "");
+  if (out.empty()) return fail("report: --out REPORT.html is required", 2);
+  StudyReportOptions options;
+  options.answers_name = positional[2];
+  options.title = args.get("title", options.title);
+  if (auto pair = args.get("pair")) {
+    const size_t comma = pair->find(',');
+    if (comma == std::string::npos || comma == 0 || comma + 1 == pair->size())
+      return fail("report: --pair '" + *pair + "': expected FIRST,SECOND item ids, e.g. Q3,Q6", 2);
+    options.paired_first = pair->substr(0, comma);
+    options.paired_second = pair->substr(comma + 1);
+  }
+  try {
+    options.constructs = args.has("constructs") ? loadConstructDefinitions(*args.get("constructs"))
+                                                : appendixCSections();
+    options.constructs_source =
+        args.has("constructs")
+            ? "Constructs declared in " + *args.get("constructs")
+            : "Constructs: the questionnaire's own sections (thesis Appendix C), not the "
+              "constructs of the thesis's Table 7.3, whose items the thesis does not give";
+    const LikertAnswers answers = loadLikertAnswers(positional[2]);
+    if (!args.has("constructs")) {
+      // The default sections apply only when the answers have the questionnaire's items.
+      std::vector<ConstructDefinition> present;
+      for (const ConstructDefinition& c : options.constructs) {
+        bool all = true;
+        for (const std::string& id : c.items) all = all && answers.itemIndex(id) >= 0;
+        if (all) present.push_back(c);
+      }
+      options.constructs = present;
+    }
+    std::vector<SessionTrace> sessions;
+    for (size_t i = 3; i < positional.size(); ++i)
+      sessions.push_back(loadSessionTrace(positional[i]));
+    const StudyReport report = computeStudyReport(answers, options, sessions);
+    std::string error;
+    if (!writeFile(
+            out,
+            [&](std::ostream& s) {
+              s << studyReportHtml(report, options, answers.scale_min, answers.scale_max);
+            },
+            &error))
+      return fail(error);
+    if (!report.paired_problem.empty())
+      std::fprintf(stderr, "cloudbrush study: %s\n", report.paired_problem.c_str());
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int commandStudy(int argc, char** argv) {
+  Args args(argc, argv, {"help", "volumes", "render"});
+  if (args.has("help") || args.positional().size() < 2) {
+    std::fputs(kStudyHelp, args.has("help") ? stdout : stderr);
+    return args.has("help") ? 0 : 2;
+  }
+  if (!args.error().empty()) return fail(args.error(), 2);
+  const std::string& action = args.positional()[1];
+  if (action == "export") return runExport(args);
+  if (action == "volume") return runVolume(args);
+  if (action == "report") return runReport(args);
+  return fail("unknown action '" + action + "' (export, volume or report; see --help)", 2);
+}
+
+}  // namespace cb

@@ -1,0 +1,135 @@
+#include "app/study/trace_csv.h"
+
+#include "app/study/csv_text.h"
+#include "app/study/stroke_table.h"
+
+namespace cb {
+namespace {
+
+const char* toolName(PenTool tool) {
+  switch (tool) {
+    case PenTool::kPen:
+      return "pen";
+    case PenTool::kEraser:
+      return "eraser";
+    case PenTool::kNone:
+      break;
+  }
+  return "none";
+}
+
+}  // namespace
+
+std::string eventKindName(JournalRecordType type) {
+  switch (type) {
+    case JournalRecordType::kMode:
+      return "mode";
+    case JournalRecordType::kUi:
+      return "ui";
+    case JournalRecordType::kMarker:
+      return "marker";
+    case JournalRecordType::kCalibration:
+      return "calibration";
+    case JournalRecordType::kSession:
+      return "session";
+    case JournalRecordType::kDevice:
+      return "device";
+    case JournalRecordType::kPenSample:
+      return "sample";
+  }
+  return "type-" + std::to_string(static_cast<uint32_t>(type));
+}
+
+void writeSamplesCsvHeader(std::ostream& out) {
+  out << "session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_raw,"
+         "tilt_y_raw,tilt_x_deg,tilt_y_deg,distance_raw,distance,buttons,tip,in_proximity,tool,"
+         "tool_id,tool_serial,stroke\n";
+}
+
+void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
+    const std::string session = csvField(trace.id);
+    // Stroke index of each sample (strokes are runs of tip-down samples).
+    std::vector<int64_t> stroke_of(trace.samples.size(), -1);
+    for (const StrokeMeasures& m : measureStrokes(trace))
+      for (size_t k = 0; k < m.sample_count; ++k) stroke_of[m.first_sample + k] = m.index;
+    for (size_t i = 0; i < trace.samples.size(); ++i) {
+      const PenSample& s = trace.samples[i];
+      out << session << ',' << i << ',' << s.t_ns << ','
+          << decimalSecondsFromNs(elapsedNs(s.t_ns, trace.t0_ns)) << ',' << s.x_raw << ','
+          << s.y_raw << ',' << csvDouble(s.x_mm) << ',' << csvDouble(s.y_mm) << ','
+          << s.pressure_raw << ',' << csvFloat(s.pressure) << ',' << s.tilt_x_raw << ','
+          << s.tilt_y_raw << ',' << csvFloat(s.tilt_x_deg) << ',' << csvFloat(s.tilt_y_deg) << ','
+          << s.distance_raw << ',' << csvFloat(s.distance) << ',' << s.buttons << ','
+          << (s.tipDown() ? 1 : 0) << ',' << (s.in_proximity ? 1 : 0) << ',' << toolName(s.tool)
+          << ',' << s.tool_id << ',' << s.tool_serial << ',';
+      if (stroke_of[i] < 0)
+        out << kCsvMissing;
+      else
+        out << stroke_of[i];
+      out << '\n';
+    }
+  }
+}
+
+void writeStrokesCsvHeader(std::ostream& out) {
+  out << "session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_pressure,"
+         "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms\n";
+}
+
+void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
+    const std::string session = csvField(trace.id);
+    for (const StrokeMeasures& m : measureStrokes(trace)) {
+      out << session << ',' << m.index << ',' << csvDouble(m.start_s) << ','
+          << csvDouble(m.duration_s) << ',' << m.sample_count << ',' << csvDouble(m.path_length_mm)
+          << ',' << csvDouble(m.mean_pressure) << ',' << csvDouble(m.max_pressure) << ','
+          << csvDouble(m.mean_tilt_deg) << ',' << csvOptional(m.speed_mm_s) << ','
+          << csvFieldOrMissing(m.brush) << ',' << csvFieldOrMissing(m.mode) << ','
+          << csvOptional(m.mapping_ms) << '\n';
+    }
+  }
+}
+
+void writeEventsCsvHeader(std::ostream& out) {
+  out << "session,t_s,record,kind,key,value\n";
+}
+
+void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace) {
+  {
+    const std::string session = csvField(trace.id);
+    for (const TraceEvent& e : trace.events) {
+      std::string key, value;
+      if (e.type == JournalRecordType::kUi) {
+        const size_t eq = e.text.find('=');
+        key = e.text.substr(0, eq);
+        if (eq != std::string::npos) value = e.text.substr(eq + 1);
+      } else if (e.type == JournalRecordType::kMode) {
+        key = "mode";
+        value = e.text;
+      } else {
+        value = e.text;
+      }
+      out << session << ',' << decimalSecondsFromNs(elapsedNs(e.t_ns, trace.t0_ns)) << ','
+          << e.record_index << ',' << eventKindName(e.type) << ',' << csvFieldOrMissing(key) << ','
+          << csvFieldOrMissing(value) << '\n';
+    }
+  }
+}
+
+void writeSamplesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeSamplesCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeSamplesCsvRows(out, trace);
+}
+
+void writeStrokesCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeStrokesCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeStrokesCsvRows(out, trace);
+}
+
+void writeEventsCsv(std::ostream& out, const std::vector<SessionTrace>& sessions) {
+  writeEventsCsvHeader(out);
+  for (const SessionTrace& trace : sessions) writeEventsCsvRows(out, trace);
+}
+
+}  // namespace cb

@@ -1,0 +1,13 @@
+// Text from journals and answer files as valid UTF-8 for the exports (XML requires it; R and
+// pandas expect it): every byte sequence that is not well-formed UTF-8 (Unicode 15, Table 3-7:
+// overlong forms, surrogates and code points above U+10FFFF included) becomes U+FFFD.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace cb {
+
+std::string validUtf8(std::string_view text);
+
+}  // namespace cb

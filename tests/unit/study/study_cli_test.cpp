@@ -1,0 +1,152 @@
+// The real binary: `cloudbrush study export --volumes` on a recorded journal writes every file of
+// its documented layout, and the exported volume is the replayed one (same checksum as
+// `cloudbrush replay`); `study report` and `study export` refuse bad input naming file and field.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include "app/session/session_replay.h"
+#include "app/session/synthetic_session.h"
+#include "app/volume/volume_file.h"
+#include "drivers/core/journal.h"
+
+namespace cb {
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string out;  // stdout and stderr together
+};
+
+CommandRun run(const std::string& command) {
+  CommandRun result;
+  std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.out.append(buffer.data(), n);
+  const int raw = ::pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return result;
+}
+
+class StudyCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("cb_study_cli_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+// A painter-like journal: session, device, paint mode, 3D brush, the reference strokes.
+void writeJournal(const std::string& path) {
+  constexpr int kW = 1280, kH = 720;
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(path)) << journal.error();
+  journal.append(JournalRecordType::kSession, 0,
+                 "screen_width = 1280\nscreen_height = 720\ngrid = 48\nformat = 2\n");
+  const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  const std::vector<uint8_t> device = encodeDeviceInfo(tablet);
+  journal.append(JournalRecordType::kDevice, 0, device.data(), device.size());
+  journal.append(JournalRecordType::kMode, 0, "paint");
+  journal.append(JournalRecordType::kUi, 0, "brush=3d");
+  int64_t t = 1'000'000;
+  for (const SyntheticStroke& stroke : referencePaintStrokes(kW, kH))
+    for (const PenSample& s : syntheticPenSamples(stroke, tablet, kW, kH, 200.0, t)) {
+      ASSERT_TRUE(journal.appendPenSample(s));
+      t = s.t_ns + 5'000'000;
+    }
+}
+
+TEST_F(StudyCli, ExportWritesEveryFileAndTheReplayedVolume) {
+  const std::string journal = (dir_ / "p01-task1.cbj").string();
+  writeJournal(journal);
+  const std::string out = (dir_ / "export").string();
+  const CommandRun exported = run(std::string(CB_CLOUDBRUSH_BIN) + " study export " + journal +
+                                  " --out " + out + " --volumes --size 64x36");
+  ASSERT_EQ(exported.status, 0) << exported.out;
+  for (const char* file :
+       {"traces.inkml", "samples.csv", "strokes.csv", "events.csv", "volumes/p01-task1.vdb",
+        "volumes/p01-task1.cbvol", "renders/p01-task1.exr", "renders/p01-task1.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "export" / file)) << file << "\n" << exported.out;
+    EXPECT_NE(exported.out.find(file), std::string::npos) << "not reported: " << file;
+  }
+  const CommandRun replay =
+      run(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal + " --threads 2");
+  ASSERT_EQ(replay.status, 0) << replay.out;
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(replay.out, match, std::regex("volume checksum: ([0-9a-f]+)")));
+  const Volume volume = loadVolume((dir_ / "export/volumes/p01-task1.cbvol").string());
+  char checksum[32];
+  std::snprintf(checksum, sizeof checksum, "%016" PRIx64, volumeChecksum(volume));
+  EXPECT_EQ(checksum, match[1].str());
+  size_t nonzero = 0;
+  for (size_t i = 0; i < volume.voxelCount(); ++i) nonzero += volume.data()[i] != 0.0f;
+  ASSERT_GT(nonzero, 0u) << "the strokes left no cloud";
+  openvdb::initialize();
+  openvdb::io::File file((dir_ / "export/volumes/p01-task1.vdb").string());
+  file.open();
+  auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("density"));
+  file.close();
+  ASSERT_TRUE(grid);
+  EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(nonzero));
+}
+
+TEST_F(StudyCli, ReportOnTheThesisAnswers) {
+  const std::string html_path = (dir_ / "report.html").string();
+  const CommandRun report = run(std::string(CB_CLOUDBRUSH_BIN) + " study report " +
+                                CB_STUDY_TEST_DIR + "/thesis_answers.csv --out " + html_path);
+  ASSERT_EQ(report.status, 0) << report.out;
+  std::ifstream in(html_path);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("<td>0.265</td>"), std::string::npos);  // one-tailed p, Q3 vs Q6
+  EXPECT_NE(html.find("not the constructs of the thesis&#39;s Table 7.3"), std::string::npos);
+  EXPECT_NE(html.find("<td>Paint style</td><td>Q1 Q2 Q3 Q4 Q5 Q6</td><td>17</td>"),
+            std::string::npos);
+}
+
+TEST_F(StudyCli, BadInputIsRefusedNamingFileAndField) {
+  const std::string answers = (dir_ / "answers.csv").string();
+  std::ofstream(answers) << "participant,Q1,Q2\nP1,5,7\n";
+  const CommandRun report = run(std::string(CB_CLOUDBRUSH_BIN) + " study report " + answers +
+                                " --out " + (dir_ / "r.html").string());
+  EXPECT_EQ(report.status, 1);
+  EXPECT_NE(report.out.find(answers + ": line 2, column 3: Q2: '7'"), std::string::npos)
+      << report.out;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "r.html"));
+
+  const std::string missing = (dir_ / "missing.cbj").string();
+  const CommandRun exported = run(std::string(CB_CLOUDBRUSH_BIN) + " study export " + missing +
+                                  " --out " + (dir_ / "x").string());
+  EXPECT_EQ(exported.status, 1);
+  EXPECT_NE(exported.out.find(missing), std::string::npos) << exported.out;
+
+  const std::string not_journal = (dir_ / "notes.cbj").string();
+  std::ofstream(not_journal) << "these are notes, not a journal\n";
+  const CommandRun garbage = run(std::string(CB_CLOUDBRUSH_BIN) + " study export " + not_journal +
+                                 " --out " + (dir_ / "y").string());
+  EXPECT_EQ(garbage.status, 1);
+  EXPECT_NE(garbage.out.find(not_journal + ": byte 0"), std::string::npos) << garbage.out;
+
+  const CommandRun unknown = run(std::string(CB_CLOUDBRUSH_BIN) + " study frobnicate");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_NE(unknown.out.find("unknown action 'frobnicate'"), std::string::npos) << unknown.out;
+}
+
+}  // namespace
+}  // namespace cb
