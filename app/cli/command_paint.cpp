@@ -183,6 +183,7 @@ int commandPaint(int argc, char** argv) {
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
     session = std::make_unique<PaintSession>(settings, brush, mapping);
     session->setStartingLight(light);
+    session->setStartingStyle(renderStyleName(render_config.options.style));
   }
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
   const std::string session_dir = args.get("session-dir", stateDir() + "/sessions");

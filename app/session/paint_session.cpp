@@ -128,7 +128,8 @@ void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
                             ui::SetMapping{method_},
                             ui::SetEraseTool{erase_tool_},
                             ui::SetEraseDiameter{EraseTool::kVacuum, vacuum_diameter_},
-                            ui::SetEraseDiameter{EraseTool::kRubOut, rubout_diameter_}};
+                            ui::SetEraseDiameter{EraseTool::kRubOut, rubout_diameter_},
+                            ui::SetStyle{style_}};
   for (const UiChange& change : start) {
     if (settings_.format < 2 && !std::holds_alternative<ui::SetBrush>(change) &&
         !std::holds_alternative<ui::SetMapping>(change))
@@ -339,6 +340,10 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     bool operator()(const ui::VacuumCut& c) {
       vacuumSphere(s.volume_, c.centre, c.radius);
       s.recordStep(before, "vacuum");
+      return true;
+    }
+    bool operator()(const ui::SetStyle& c) {
+      s.style_ = c.name;
       return true;
     }
     bool operator()(const ui::PenCapture& c) {

@@ -120,6 +120,10 @@ class PaintSession {
   const SceneState& scene() const { return scene_; }
   Mode mode() const { return mode_; }
   bool penCaptured() const { return pen_captured_; }
+  const std::string& styleName() const { return style_; }
+  // The render style before anything is recorded (config/render.toml); journalled with the
+  // starting state.
+  void setStartingStyle(const std::string& name) { style_ = name; }
   EraseTool eraseTool() const { return erase_tool_; }
   const History& history() const { return history_; }
   // The sun before anything is recorded (config/render.toml); journalled with the starting state.
@@ -166,6 +170,7 @@ class PaintSession {
   float vacuum_diameter_ = 0.3f, rubout_diameter_ = 0.12f;  // world units (sky box is 2 wide)
   bool rubbing_ = false;                                    // a rub-out is in progress
   bool pen_captured_ = false;
+  std::string style_ = "thesis";
   bool held_until_lift_ = false;  // a stroke ended by itself; the pen must lift first
   glm::vec2 still_anchor_{0.0f};  // where the pen last moved 2 px or more
   int64_t still_since_ns_ = 0, light_since_ns_ = -1;  // the on-screen UI holds the pen

@@ -101,6 +101,9 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::PenCapture& c) const {
       return {JournalRecordType::kUi, std::string("pen_capture=") + (c.captured ? "on" : "off")};
     }
+    UiRecordText operator()(const ui::SetStyle& c) const {
+      return {JournalRecordType::kUi, "style=" + c.name};
+    }
     UiRecordText operator()(const ui::Undo&) const { return {JournalRecordType::kUi, "undo"}; }
     UiRecordText operator()(const ui::Redo&) const { return {JournalRecordType::kUi, "redo"}; }
     UiRecordText operator()(const ui::DeleteAll&) const {
@@ -180,6 +183,11 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     if (!parseFloats(value, 1, v) || v[0] <= 0.0f) return bad("a diameter > 0");
     *out = ui::SetEraseDiameter{key == "vacuum_diameter" ? EraseTool::kVacuum : EraseTool::kRubOut,
                                 v[0]};
+  } else if (key == "style") {
+    bool plain = !value.empty() && value.size() <= 32;
+    for (char c : value) plain = plain && c >= 'a' && c <= 'z';
+    if (!plain) return bad("a style name (lower-case letters)");
+    *out = ui::SetStyle{value};
   } else if (key == "pen_capture") {
     if (value != "on" && value != "off") return bad("on or off");
     *out = ui::PenCapture{value == "on"};

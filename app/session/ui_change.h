@@ -15,6 +15,7 @@
 //   Ui      vacuum_diameter=D | rubout_diameter=D SetEraseDiameter (world units)
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
 //   Ui      pen_capture=on|off                    PenCapture
+//   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
 //
 // Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
@@ -71,6 +72,11 @@ struct VacuumCut {
   glm::vec3 centre;
   float radius;
 };
+// The render style the painter shows (app/render/render_style.h names: thesis, physical, ink,
+// cartoon, sketch); the session keeps the name so a replay renders what the participant saw.
+struct SetStyle {
+  std::string name;
+};
 // While the pen is captured by the on-screen UI (menu open, or pressed on a UI target) its
 // samples are journalled and calibrated but draw, erase and map nothing.
 struct PenCapture {
@@ -81,9 +87,10 @@ struct Redo {};
 struct DeleteAll {};
 }  // namespace ui
 
-using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
-                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
-                              ui::VacuumCut, ui::PenCapture, ui::Undo, ui::Redo, ui::DeleteAll>;
+using UiChange =
+    std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
+                 ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
+                 ui::PenCapture, ui::SetStyle, ui::Undo, ui::Redo, ui::DeleteAll>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

@@ -37,6 +37,7 @@ enum class Command {
   kSave,             // Ctrl+S
   kGoodView,         // G: the nearest view that is not edge-on to the canvas
   kOpen,             // Ctrl+O: open the last saved cloud (--open FILE opens any)
+  kNextStyle,        // T: the next render style (thesis, physical, ink, cartoon, sketch)
   kCount
 };
 

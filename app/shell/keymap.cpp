@@ -20,7 +20,8 @@ constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
                                          "toggle-circles", "toggle-stats",
                                          "delete-all",     "undo",
                                          "redo",           "save",
-                                         "good-view",      "open"};
+                                         "good-view",      "open",
+                                         "next-style"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -84,6 +85,8 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kNextMapping;
     case 'g':
       return Command::kGoodView;
+    case 't':
+      return Command::kNextStyle;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -237,6 +240,8 @@ std::string keyLabel(Command command) {
       return "G";
     case Command::kOpen:
       return "Ctrl+O";
+    case Command::kNextStyle:
+      return "T";
     default:
       return "";
   }

@@ -82,7 +82,7 @@ glm::vec2 project(const Camera& camera, glm::vec3 p, int w, int h) {
 bool PaintScreen::SceneKey::operator==(const SceneKey& o) const {
   return volume == o.volume && generation == o.generation && sameCamera(camera, o.camera) &&
          light.direction == o.light.direction && light.colour == o.light.colour &&
-         light.extinction == o.light.extinction && stats == o.stats;
+         light.extinction == o.light.extinction && stats == o.stats && style == o.style;
 }
 
 PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volume& volume,
@@ -121,7 +121,13 @@ Camera PaintScreen::shownCamera() const {
 
 PaintScreen::SceneKey PaintScreen::currentKey() const {
   const Volume& v = shownVolume();
-  return SceneKey{v.instanceId(), v.generation(), shownCamera(), shownLight(), show_stats_};
+  return SceneKey{v.instanceId(), v.generation(), shownCamera(),
+                  shownLight(),   show_stats_,    currentStyle()};
+}
+
+RenderStyle PaintScreen::currentStyle() const {
+  if (!session_) return options_.render.style;
+  return parseRenderStyle(session_->styleName()).value_or(RenderStyle::kThesis);
 }
 
 void PaintScreen::say(const std::string& message) {
@@ -513,6 +519,15 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
             t_ns);
       break;
     }
+    case Command::kNextStyle: {
+      if (!session_) return say("no pen session: the style is set in render.toml");
+      const RenderStyle now = currentStyle();
+      size_t next = 0;
+      for (size_t i = 0; i < kAllRenderStyles.size(); ++i)
+        if (kAllRenderStyles[i] == now) next = (i + 1) % kAllRenderStyles.size();
+      apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
+      break;
+    }
     case Command::kCount:
       break;
   }
@@ -568,9 +583,11 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     // Right after a lift, and while a drag moves the view or the light, the scene is shown at
     // the moving resolution first, then refined to full resolution.
     RenderOptions options = options_.render;
+    options.style = key.style;
     options.collect_stats = show_stats_;
     const bool dragging = drag_camera_ || drag_light_;
     options.scale = (lit_pending_ || dragging) ? moving_scale_ : 1.0f;
+    options.moving = options.scale < 1.0f;
     renderer_.render(key.camera, w, h, scene_.fbo(), options);
     if (lit_pending_) {
       glFinish();
@@ -688,6 +705,8 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
   } else {
     renderer_.sync(shownVolume(), shownLight());
     RenderOptions render_options = options_.render;
+    render_options.style = currentStyle();
+    render_options.moving = orbiting_;
     // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
     render_options.scale =
         orbiting_ ? std::max(options_.min_moving_scale, std::round(moving_scale_ * 20.0f) / 20.0f)
@@ -769,9 +788,9 @@ std::string PaintScreen::statusLine() const {
   const int altitude_voxels =
       int(std::lround((s.canvas().altitude - v.worldMin().y) / v.voxelSize().y));
   std::snprintf(text, sizeof text,
-                "%s mode | brush %s | mapping %s | canvas altitude %d thickness %.2f",
+                "%s mode | brush %s | mapping %s | canvas altitude %d thickness %.2f | %s style",
                 modeName(s.mode()), brushKindName(s.selectedBrush()), toString(s.mappingMethod()),
-                altitude_voxels, double(s.canvas().thickness));
+                altitude_voxels, double(s.canvas().thickness), renderStyleName(currentStyle()));
   std::string line = text;
   if (s.mode() == Mode::kErase) {
     std::snprintf(text, sizeof text, " | %s %.2f", eraseToolName(s.eraseTool()),

@@ -27,6 +27,7 @@
 
 #include "app/render/footprint_overlay.h"
 #include "app/render/hud_overlay.h"
+#include "app/render/render_style.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
@@ -121,10 +122,12 @@ class PaintScreen : public Screen {
     Camera camera;
     Light light;
     bool stats = false;
+    RenderStyle style = RenderStyle::kThesis;
     bool operator==(const SceneKey& o) const;
   };
   std::optional<SceneKey> drawn_;  // what the cached scene shows
   SceneKey currentKey() const;
+  RenderStyle currentStyle() const;
   bool lit_pending_ = false;
   bool refine_pending_ = false;
   std::chrono::steady_clock::time_point lift_time_;

@@ -48,7 +48,9 @@ std::vector<MenuEntry> modeCommands(int mode) {
               {Command::kLarger, "Larger"},
               {Command::kSpace, "Cut"}};
     default:
-      return {{Command::kSmaller, "Warmer"}, {Command::kLarger, "Cooler"}};
+      return {{Command::kSmaller, "Warmer"},
+              {Command::kLarger, "Cooler"},
+              {Command::kNextStyle, "Style"}};
   }
 }
 

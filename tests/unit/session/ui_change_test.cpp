@@ -22,7 +22,8 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
       ui::Undo{},
       ui::Redo{},
       ui::DeleteAll{},
-      ui::PenCapture{true}};
+      ui::PenCapture{true},
+      ui::SetStyle{"ink"}};
   for (const UiChange& change : changes) {
     const UiRecordText text = formatUiChange(change);
     UiChange parsed;

@@ -66,7 +66,7 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   ASSERT_TRUE(
       parseKeyList("1,up,down,left,right,r,g,space,space,2,pageup,pagedown,pageup,minus,"
                    "plus,3,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
-                   "ctrl+y,m,m,ctrl+s,ctrl+o,3",
+                   "ctrl+y,m,m,ctrl+s,ctrl+o,t,3",
                    &options.initial_keys, &error))
       << error;
   ReplayOptions replay_options;
@@ -103,6 +103,8 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   EXPECT_TRUE(replay.complete()) << replay.journal_error
                                  << (replay.problems.empty() ? "" : replay.problems[0]);
   EXPECT_EQ(volumeChecksum(replay.session->volume()), volumeChecksum(session.volume()));
+  EXPECT_EQ(session.styleName(), "physical") << "T chose the next render style";
+  EXPECT_EQ(replay.session->styleName(), "physical") << "the style is journalled";
   std::filesystem::remove_all(dir);
 }
 
