@@ -42,7 +42,15 @@ void require(bool ok, const char* field, const char* rule) {
 }  // namespace
 
 const char* toString(MappingMethod method) {
-  return method == MappingMethod::kHybrid ? "hybrid" : "ray-marching";
+  switch (method) {
+    case MappingMethod::kHybrid:
+      return "hybrid";
+    case MappingMethod::kRayMarching:
+      return "ray-marching";
+    case MappingMethod::kSheet:
+      return "sheet";
+  }
+  return "?";
 }
 
 bool parseMappingMethod(const std::string& text, MappingMethod* method) {
@@ -52,6 +60,10 @@ bool parseMappingMethod(const std::string& text, MappingMethod* method) {
   }
   if (text == "ray-marching" || text == "rmm") {
     *method = MappingMethod::kRayMarching;
+    return true;
+  }
+  if (text == "sheet") {
+    *method = MappingMethod::kSheet;
     return true;
   }
   return false;
@@ -87,6 +99,9 @@ void validate(const MappingConfig& c) {
   require(c.edges.lateral_sigma_px >= 0.0f, "edges.lateral_sigma_px", "must be >= 0");
   require(c.edges.density_scale > 0.0f, "edges.density_scale", "must be > 0");
   require(c.ray_marching.density > 0.0f, "ray_marching.density", "must be > 0");
+  require(c.sheet.sigma_voxels >= 0.25f && c.sheet.sigma_voxels <= 64.0f, "sheet.sigma_voxels",
+          "must be in [0.25, 64]");
+  require(c.sheet.erosion >= 0.0f && c.sheet.erosion <= 1.0f, "sheet.erosion", "must be in [0, 1]");
   require(c.noise.size >= 8 && c.noise.size <= 256 && (c.noise.size & (c.noise.size - 1)) == 0,
           "noise.size", "must be a power of two in 8..256");
   require(c.noise.period_voxels >= 2.0f, "noise.period_voxels", "must be >= 2");
@@ -99,7 +114,7 @@ MappingConfig loadMappingConfig(const std::string& path) {
   if (auto m = root["mapping"]["method"].value<std::string>()) {
     if (!parseMappingMethod(*m, &c.method))
       throw std::runtime_error(path + ": mapping.method '" + *m +
-                               "' is not one of hybrid, ray-marching");
+                               "' is not one of hybrid, ray-marching, sheet");
   }
   read(root, path, "circles", "initial_diameter_px", &c.circles.initial_diameter_px);
   read(root, path, "circles", "min_radius_px", &c.circles.min_radius_px);
@@ -121,6 +136,8 @@ MappingConfig loadMappingConfig(const std::string& path) {
   read(root, path, "edges", "min_depth_sigma_voxels", &c.edges.min_depth_sigma_voxels);
   read(root, path, "edges", "density_scale", &c.edges.density_scale);
   read(root, path, "ray_marching", "density", &c.ray_marching.density);
+  read(root, path, "sheet", "sigma_voxels", &c.sheet.sigma_voxels);
+  read(root, path, "sheet", "erosion", &c.sheet.erosion);
   read(root, path, "noise", "seed", &c.noise.seed);
   read(root, path, "noise", "size", &c.noise.size);
   read(root, path, "noise", "period_voxels", &c.noise.period_voxels);

@@ -11,6 +11,7 @@ namespace cb {
 enum class MappingMethod : uint8_t {
   kHybrid = 0,       // HMM: circle growth + sphere mapping + edge mapping (§6.3–6.6)
   kRayMarching = 1,  // RMM: each pixel grows voxels along its view ray (§6.1)
+  kSheet = 2,        // a wide, thin, flat layer on the canvas (stratus; sheet_mapping.h)
 };
 
 struct CircleGrowthConfig {
@@ -65,6 +66,11 @@ struct RayMarchingConfig {
   float density = 1.0f;  // density of the voxels grown along each ray
 };
 
+struct SheetConfig {
+  float sigma_voxels = 2.0f;  // the layer's half-thickness (Gaussian σ across the plane)
+  float erosion = 0.6f;       // how much the noise thins the layer into wisps (0 = solid)
+};
+
 struct NoiseTextureConfig {
   uint32_t seed = 20161;        // seeds the pre-generated simplex-noise texture
   int size = 64;                // texels per side; the texture tiles, one texel per voxel
@@ -78,6 +84,7 @@ struct MappingConfig {
   SphereMappingConfig spheres;
   EdgeMappingConfig edges;
   RayMarchingConfig ray_marching;
+  SheetConfig sheet;
   NoiseTextureConfig noise;
 };
 

@@ -1,5 +1,7 @@
 #include "app/mapping/stroke_mapper.h"
 
+#include "app/mapping/sheet_mapping.h"
+
 #include <chrono>
 #include <cstdio>
 
@@ -76,7 +78,14 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
       glm::length(view.eye() - centre) + glm::length(volume.worldMax() - volume.worldMin());
 
   VoxelBox dirty;
-  if (method == MappingMethod::kRayMarching) {
+  if (method == MappingMethod::kSheet) {
+    auto t0 = std::chrono::steady_clock::now();
+    SheetStats sheet;
+    dirty = mapSheet(f, stroke.view.camera, stroke.canvas, config_.sheet, *noise_,
+                     config_.circles.empty_threshold, volume, &sheet);
+    report.timings.ray_marching_ms = msSince(t0);
+    report.covered_pixels = report.non_empty_pixels;
+  } else if (method == MappingMethod::kRayMarching) {
     auto t0 = std::chrono::steady_clock::now();
     dirty = mapRayMarching(f, view, stroke.canvas, config_.ray_marching,
                            config_.circles.empty_threshold, volume, &report.ray_marching);

@@ -162,7 +162,7 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     *out = ui::SetBrush{kind};
   } else if (key == "method") {
     MappingMethod method;
-    if (!parseMappingMethod(value, &method)) return bad("hybrid or ray-marching");
+    if (!parseMappingMethod(value, &method)) return bad("hybrid, ray-marching or sheet");
     *out = ui::SetMapping{method};
   } else if (key == "canvas") {
     if (!parseFloats(value, 2, v) || v[1] <= 0.0f) return bad("ALTITUDE,THICKNESS (thickness > 0)");

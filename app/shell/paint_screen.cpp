@@ -388,13 +388,16 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       apply(ui::SetBrush{order[next]}, t_ns);
       break;
     }
-    case Command::kNextMapping:
+    case Command::kNextMapping: {
       if (!session_) return say("no pen session, no mapping");
-      apply(ui::SetMapping{session_->mappingMethod() == MappingMethod::kHybrid
-                               ? MappingMethod::kRayMarching
-                               : MappingMethod::kHybrid},
+      // hybrid -> ray-marching -> sheet (a wide, thin, flat layer for stratus) -> hybrid
+      const MappingMethod m = session_->mappingMethod();
+      apply(ui::SetMapping{m == MappingMethod::kHybrid        ? MappingMethod::kRayMarching
+                           : m == MappingMethod::kRayMarching ? MappingMethod::kSheet
+                                                              : MappingMethod::kHybrid},
             t_ns);
       break;
+    }
     case Command::kResetCamera:
     case Command::kViewTop:
     case Command::kViewFront:
