@@ -22,13 +22,15 @@
 #include <vector>
 
 #include "app/shell/keymap.h"
+#include "app/shell/ui_overlay.h"
 
 #include "app/cli/args.h"
-#include "app/shell/keymap.h"
 #include "app/cli/commands.h"
 #include "app/core/config_paths.h"
 #include "app/render/gl/display.h"
 #include "app/render/image_io.h"
+#include "app/shell/keymap.h"
+#include "app/shell/ui_overlay.h"
 #include "calibration/area_mapping.h"
 #include "calibration/n_point_calibration.h"
 #include "calibration/nib_offset.h"
@@ -212,7 +214,8 @@ int runJournal(const std::string& path, const Settings& s, bool save) {
 }
 
 // ---- Drawing: filled rectangles by scissored clears (no shaders needed for a calibration
-// screen), and digits from a 3x5 pixel font. y is measured from the top.
+// screen); words through the shell's UiOverlay (one font for every screen). y is measured from
+// the top.
 
 class Painter {
  public:
@@ -236,29 +239,6 @@ class Painter {
     rect(c.x - size, c.y - 1, 2 * size, 3, r, g, b);
     rect(c.x - 1, c.y - size, 3, 2 * size, r, g, b);
   }
-  // Digits, '.', 'p', 'x' in a 3x5 font, `scale` pixels per font pixel.
-  void text(const std::string& s, double x, double y, double scale, float r, float g, float b) {
-    static const char* kGlyphs[] = {"111101101101111", "010110010010111", "111001111100111",
-                                    "111001111001111", "101101111001001", "111100111001111",
-                                    "111100111101111", "111001001001001", "111101111101111",
-                                    "111101111001111"};
-    for (char c : s) {
-      const char* g5 = nullptr;
-      if (c >= '0' && c <= '9')
-        g5 = kGlyphs[c - '0'];
-      else if (c == '.')
-        g5 = "000000000000010";
-      else if (c == 'p')
-        g5 = "000111101111100";
-      else if (c == 'x')
-        g5 = "000101010101000";
-      if (g5) {
-        for (int i = 0; i < 15; ++i)
-          if (g5[i] == '1') rect(x + (i % 3) * scale, y + (i / 3) * scale, scale, scale, r, g, b);
-      }
-      x += 4 * scale;
-    }
-  }
 
  private:
   int w_, h_;
@@ -281,7 +261,17 @@ std::string defaultRecordPath(const std::string& state_dir) {
 struct InteractiveIo {
   std::unique_ptr<PenSource> pen;
   std::unique_ptr<Display> display;
+  UiOverlay ui;
   int w = 0, h = 0;
+  // Draws the words of a calibration screen (a title and lines below it, centred).
+  void say(const std::vector<std::string>& lines, float top = 0.12f) {
+    std::vector<UiLabel> labels;
+    const float size = std::max(18.0f, float(h) / 30.0f);
+    for (size_t i = 0; i < lines.size(); ++i)
+      labels.push_back({float(w) * 0.5f, float(h) * top + float(i) * size * 1.5f, lines[i],
+                        i == 0 ? size * 1.3f : size, i == 0 ? 0xffffffffu : 0xd0d8e0ffu, true});
+    ui.drawLabels(w, h, labels);
+  }
 };
 
 // Opens both, shows a dark red screen until the pen is connected. Returns an exit code on
@@ -320,8 +310,15 @@ int openInteractive(const Args& args, double timeout_s, InteractiveIo* io) {
   io->h = io->display->height();
   std::printf("display %s %dx%d, pen backend %s\n", io->display->platformName(), io->w, io->h,
               io->pen->backendName());
+  if (!io->ui.init(&error))
+    std::fprintf(stderr, "calibrate: on-screen text unavailable: %s\n", error.c_str());
   const auto start = std::chrono::steady_clock::now();
   std::vector<PenSample> ignored;
+  if (io->pen->connection() != PenConnection::kConnected)
+    std::fprintf(stderr,
+                 "calibrate: waiting for the pen (%s): connect the tablet and bring the pen near "
+                 "it; Esc quits\n",
+                 io->pen->statusMessage().c_str());
   while (io->pen->connection() != PenConnection::kConnected) {
     const double waited =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -333,6 +330,9 @@ int openInteractive(const Args& args, double timeout_s, InteractiveIo* io) {
     glBindFramebuffer(GL_FRAMEBUFFER, io->display->framebuffer());
     glViewport(0, 0, io->w, io->h);
     Painter(io->w, io->h).clear(0.25f, 0.05f, 0.05f);  // dark red: waiting for the pen
+    io->say({"Waiting for the pen", "Connect the tablet and bring the pen near it.",
+             io->pen->statusMessage(), "Esc quits."},
+            0.35f);
     io->display->present(&error);
     io->pen->poll(50, ignored);
     for (const DisplayEvent& e : io->display->pollEvents())
@@ -430,6 +430,8 @@ int runPressure(const Args& args, const Settings& s) {
     const double held = std::min(
         1.0, static_cast<double>(collector.held()) / static_cast<double>(collector.holdSamples()));
     p.rect(io.w * 0.3, io.h * 0.75, io.w * 0.4 * held, 12, 0.3f, 0.8f, 0.3f);
+    io.say({light ? "Press lightly, as gently as you would paint" : "Now press firmly",
+            "Hold the pen still until the green bar is full, then lift it.", "Esc quits."});
     if (!io.display->present(&error)) {
       std::fprintf(stderr, "calibrate: %s\n", error.c_str());
       return 2;
@@ -499,8 +501,7 @@ int runInteractive(const Args& args, const Settings& s) {
         std::printf("left without saving\n");
         return 1;
       }
-      if (commandFor(e) == Command::kSpace && fit &&
-          fit->ok) {
+      if (commandFor(e) == Command::kSpace && fit && fit->ok) {
         journal.append(JournalRecordType::kCalibration, last_t,
                        formatCalibrationProfile(fit->profile));
         return saveFit(*fit, s, nullptr);
@@ -572,12 +573,19 @@ int runInteractive(const Args& args, const Settings& s) {
     glViewport(0, 0, w, h);
     Painter p(w, h);
     p.clear(0.08f, 0.09f, 0.11f);
+    std::vector<UiLabel> labels;
+    const float size = std::max(18.0f, float(h) / 30.0f);
     if (!fit) {
       p.rect(0, 0, w * static_cast<double>(taps.size()) / targets.size(), 6, 0.3f, 0.7f, 0.3f);
       for (size_t i = 0; i < taps.size(); ++i) p.crosshair(targets[i], 8, 0.3f, 0.6f, 0.3f);
       const glm::dvec2 t = targets[taps.size()];
       p.crosshair(t, 30, 1.0f, 1.0f, 1.0f);
       p.rect(t.x - 3, t.y - 3, 7, 7, collector.inContact() ? 0.2f : 1.0f, 0.3f, 0.2f);
+      char line[96];
+      std::snprintf(line, sizeof line, "Tap the centre of the cross with the pen (%zu of %zu)",
+                    taps.size() + 1, targets.size());
+      labels.push_back(
+          {float(w) * 0.5f, float(h) * 0.5f + size * 2.5f, line, size, 0xffffffffu, true});
     } else {
       for (size_t i = 0; i < taps.size(); ++i) {
         const glm::dvec2 mapped = applyTransform(
@@ -585,16 +593,23 @@ int runInteractive(const Args& args, const Settings& s) {
         p.crosshair(taps[i].target_px, 12, 0.8f, 0.8f, 0.8f);
         p.rect(mapped.x - 3, mapped.y - 3, 7, 7, 1.0f, 0.3f, 0.2f);
         char buf[32];
-        std::snprintf(buf, sizeof buf, "%.1fpx", fit->fit.residuals[i]);
-        p.text(buf, taps[i].target_px.x + 16, taps[i].target_px.y + 16, 3, 1.0f, 1.0f, 1.0f);
+        std::snprintf(buf, sizeof buf, "%.1f px", fit->fit.residuals[i]);
+        labels.push_back({float(taps[i].target_px.x) + 16.0f, float(taps[i].target_px.y) + 16.0f,
+                          buf, size * 0.8f, 0xffffffffu, false});
       }
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.2fpx", fit->fit.max_residual);
-      p.text(buf, w * 0.5 - 72, h * 0.3 - 15, 6, 1.0f, 1.0f, 0.6f);  // max residual
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "Largest error %.2f px", fit->fit.max_residual);
+      labels.push_back(
+          {float(w) * 0.5f, float(h) * 0.3f - 1.5f * size, buf, size * 1.3f, 0xffff99ffu, true});
       p.rect(accept.x, accept.y, accept.w, accept.h, 0.2f, 0.65f, 0.25f);
       p.rect(redo.x, redo.y, redo.w, redo.h, 0.9f, 0.5f, 0.1f);
+      labels.push_back({float(accept.x + accept.w * 0.5), float(accept.y + accept.h + 0.4 * size),
+                        "Accept (Space)", size, 0xffffffffu, true});
+      labels.push_back({float(redo.x + redo.w * 0.5), float(redo.y + redo.h + 0.4 * size), "Redo",
+                        size, 0xffffffffu, true});
     }
     p.rect(cursor.x - 2, cursor.y - 2, 5, 5, 0.9f, 0.9f, 1.0f);
+    io.ui.drawLabels(w, h, labels);
     if (fit && !snapshot.empty()) {
       try {
         writePng(snapshot, readFramebufferRgba8(display->framebuffer(), w, h));

@@ -236,3 +236,30 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
 }
 
 }  // namespace cb
+
+namespace cb {
+
+void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& labels) {
+  if (!ready_) return;
+  ImGui::SetCurrentContext(context_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(float(width), float(height));
+  io.DeltaTime = 1.0f / 60.0f;
+  io.FontGlobalScale = 1.0f;
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  for (const UiLabel& label : labels) {
+    const ImU32 colour = IM_COL32(label.rgba >> 24, (label.rgba >> 16) & 0xff,
+                                  (label.rgba >> 8) & 0xff, label.rgba & 0xff);
+    ImFont* font = ImGui::GetFont();
+    float x = label.x;
+    if (label.centred)
+      x -= 0.5f * font->CalcTextSizeA(label.size_px, 1e9f, 0.0f, label.text.c_str()).x;
+    draw->AddText(font, label.size_px, ImVec2(x, label.y), colour, label.text.c_str());
+  }
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace cb

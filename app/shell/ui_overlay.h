@@ -9,6 +9,7 @@
 // Latin range plus exactly the CJK characters of the shipped labels.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,16 @@ struct UiOverlayState {
   bool can_undo = false, can_redo = false;
 };
 
+// A line of text drawn by drawLabels (screens without the painter's status line and menu, such
+// as calibration): at (x, y) in framebuffer pixels, y down; `centred` centres it on x.
+struct UiLabel {
+  float x = 0.0f, y = 0.0f;
+  std::string text;
+  float size_px = 28.0f;
+  uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
+  bool centred = false;
+};
+
 class UiOverlay {
  public:
   UiOverlay();
@@ -42,6 +53,8 @@ class UiOverlay {
   // Draws the UI over the bound framebuffer of width × height and returns the commands of the
   // targets tapped since the last frame (a tap = press and release on the same target).
   std::vector<Command> draw(int width, int height, double dt_s, const UiOverlayState& state);
+  // Draws only `labels` over the bound framebuffer (the one font of every screen).
+  void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
   bool pointerOverUi() const { return over_ui_; }
   // The screen rectangle of the menu button, for tests (x0, y0, x1, y1).

@@ -172,6 +172,9 @@ TEST_F(CalibrateCommandTest, InteractiveLoopWithReplayedPenSavesProfileAndJourna
   std::vector<uint8_t> rgba;
   int sw = 0, sh = 0;
   ASSERT_TRUE(readPngRgba(snapshot, &rgba, &sw, &sh)) << out;
+  if (const char* keep = std::getenv("CB_KEEP_FRAMES"))  // for looking at it
+    std::filesystem::copy_file(snapshot, std::string(keep) + "/calibrate_result.png",
+                               std::filesystem::copy_options::overwrite_existing);
   ASSERT_EQ(sw, kW);
   ASSERT_EQ(sh, kH);
   auto px = [&](int x, int y) { return &rgba[(static_cast<size_t>(y) * sw + x) * 4]; };
