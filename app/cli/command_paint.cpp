@@ -25,6 +25,7 @@
 #include "app/shell/keymap.h"
 #include "app/shell/paint_loop.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/volume_file.h"
 #include "drivers/open_pen_source.h"
 
 namespace cb {
@@ -60,6 +61,7 @@ constexpr const char* kUsage =
     "  --journal FILE      with --backend replay: the session journal to play as the pen\n"
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
+    "  --open FILE         start from a saved cloud (a .vol of the session's grid)\n"
     "  --help              this text\n"
     "\n"
     "keys: Esc/q quit, Space pauses the orbit, S shows ray-sample statistics (histogram bars,\n"
@@ -93,9 +95,10 @@ int commandPaint(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const auto unknown = args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir",
-                                     "grid", "seed", "orbit", "moving-scale", "frames", "backend",
-                                     "pen-device", "journal", "session-dir", "no-record", "keys"});
+  const auto unknown =
+      args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir", "grid", "seed",
+                    "orbit", "moving-scale", "frames", "backend", "pen-device", "journal",
+                    "session-dir", "no-record", "keys", "open"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -184,6 +187,15 @@ int commandPaint(int argc, char** argv) {
     session = std::make_unique<PaintSession>(settings, brush, mapping);
     session->setStartingLight(light);
     session->setStartingStyle(renderStyleName(render_config.options.style));
+    if (args.has("open")) {
+      // Start from a saved cloud (a task's starting point, an artist's earlier work).
+      const std::string path = args.get("open", "");
+      try {
+        if (!session->replaceVolume(loadVolume(path), 0, path, &error)) return fail(error, 2);
+      } catch (const std::exception& e) {
+        return fail(std::string("--open: ") + e.what(), 2);
+      }
+    }
   }
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
   const std::string session_dir = args.get("session-dir", stateDir() + "/sessions");

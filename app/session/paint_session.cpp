@@ -130,6 +130,9 @@ void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
                             ui::SetEraseDiameter{EraseTool::kVacuum, vacuum_diameter_},
                             ui::SetEraseDiameter{EraseTool::kRubOut, rubout_diameter_},
                             ui::SetStyle{style_}};
+  // A cloud opened before recording began is where the session starts from.
+  if (!opened_source_.empty())
+    journalText(JournalRecordType::kMarker, t_ns, "opened " + opened_source_);
   for (const UiChange& change : start) {
     if (settings_.format < 2 && !std::holds_alternative<ui::SetBrush>(change) &&
         !std::holds_alternative<ui::SetMapping>(change))
@@ -205,6 +208,7 @@ bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::
   if (engine_.inStroke()) return *error = "open: a stroke is being painted", false;
   volume_ = volume;
   history_.reset(volume_);
+  opened_source_ = source;
   journalText(JournalRecordType::kMarker, t_ns, "opened " + source);
   return true;
 }

@@ -171,6 +171,7 @@ class PaintSession {
   bool rubbing_ = false;                                    // a rub-out is in progress
   bool pen_captured_ = false;
   std::string style_ = "thesis";
+  std::string opened_source_;     // the saved cloud the session started from, if any
   bool held_until_lift_ = false;  // a stroke ended by itself; the pen must lift first
   glm::vec2 still_anchor_{0.0f};  // where the pen last moved 2 px or more
   int64_t still_since_ns_ = 0, light_since_ns_ = -1;  // the on-screen UI holds the pen

@@ -17,6 +17,8 @@
 
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
+#include "app/volume/scene_generators.h"
+#include "app/volume/volume_file.h"
 
 namespace cb {
 namespace {
@@ -133,6 +135,30 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
   const CommandRun replay = run("'" + bin + "' replay '" + session + "' --threads 2");
   ASSERT_EQ(replay.status, 0) << replay.out;
   EXPECT_EQ(capture(replay.out, "volume checksum: ([0-9a-f]{16})"), keyed_sum) << replay.out;
+
+  // --open starts from a saved cloud: the painted volume holds it, and replay (which reads the
+  // journal's "opened" marker) gives the same checksum.
+  const std::string saved = dir + "/start.vol";
+  {
+    Volume start = makeBundledCumulus(glm::ivec3(64), 3);
+    saveVolume(start, saved);
+  }
+  const CommandRun opened =
+      run("'" + bin + "' paint --display surfaceless --size 640x360 --grid 64 " +
+          "--backend replay --journal '" + pen_journal + "' --session-dir '" + dir +
+          "/opened' --open '" + saved + "'");
+  ASSERT_EQ(opened.status, 0) << opened.out;
+  const std::string opened_sum = capture(opened.out, "volume checksum ([0-9a-f]{16})");
+  EXPECT_NE(opened_sum, plain_sum) << "the stroke was painted over the opened cloud";
+  const std::string opened_session = capture(opened.out, "journal: (\\S+\\.cbj)");
+  const CommandRun opened_replay = run("'" + bin + "' replay '" + opened_session + "'");
+  EXPECT_EQ(capture(opened_replay.out, "volume checksum: ([0-9a-f]{16})"), opened_sum)
+      << opened_replay.out;
+  const CommandRun wrong_grid =
+      run("'" + bin + "' paint --display surfaceless --grid 32 " + "--backend replay --journal '" +
+          pen_journal + "' --open '" + saved + "'");
+  EXPECT_EQ(wrong_grid.status, 2);
+  EXPECT_NE(wrong_grid.out.find("does not fit"), std::string::npos) << wrong_grid.out;
 
   const CommandRun bad = run("'" + bin + "' paint --display surfaceless --backend replay " +
                              "--journal '" + pen_journal + "' --keys b,f00");
