@@ -10,37 +10,6 @@
 namespace cb {
 namespace {
 
-std::string xmlEscape(const std::string& raw) {
-  const std::string text = validUtf8(raw);
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // Control characters other than tab/LF/CR are not allowed in XML 1.0.
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
-          out += '?';
-        else
-          out += c;
-    }
-  }
-  return out;
-}
-
 std::string hex4(unsigned v) {
   char text[8];
   std::snprintf(text, sizeof text, "%04x", v);
@@ -49,7 +18,7 @@ std::string hex4(unsigned v) {
 
 void writeProperty(std::ostream& out, const char* name, const std::string& value,
                    const char* units = nullptr) {
-  out << "        <srcProperty name=\"" << name << "\" value=\"" << xmlEscape(value) << '"';
+  out << "        <srcProperty name=\"" << name << "\" value=\"" << markupEscape(value) << '"';
   if (units) out << " units=\"" << units << '"';
   out << "/>\n";
 }
@@ -59,8 +28,8 @@ void writeContext(std::ostream& out, const SessionTrace& trace, size_t n) {
   const std::string name(device.name, strnlen(device.name, sizeof device.name));
   out << "    <context xml:id=\"ctx-" << n << "\">\n";
   out << "      <inkSource xml:id=\"src-" << n << "\" model=\""
-      << xmlEscape(name.empty() ? "unknown device" : name) << "\" description=\""
-      << xmlEscape("cloudbrush session " + trace.id) << "\">\n";
+      << markupEscape(name.empty() ? "unknown device" : name) << "\" description=\""
+      << markupEscape("cloudbrush session " + trace.id) << "\">\n";
   out << "        <traceFormat>\n";
   out << "          <channel name=\"X\" type=\"decimal\" units=\"mm\"/>\n";
   out << "          <channel name=\"Y\" type=\"decimal\" units=\"mm\"/>\n";
@@ -90,7 +59,7 @@ void writeContext(std::ostream& out, const SessionTrace& trace, size_t n) {
 
 void writeTraces(std::ostream& out, const SessionTrace& trace, size_t n) {
   out << "  <traceGroup contextRef=\"#ctx-" << n << "\">\n";
-  out << "    <annotation type=\"session\">" << xmlEscape(trace.id) << "</annotation>\n";
+  out << "    <annotation type=\"session\">" << markupEscape(trace.id) << "</annotation>\n";
   const std::vector<PenSample>& s = trace.samples;
   size_t i = 0;
   while (i < s.size()) {

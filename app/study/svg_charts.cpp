@@ -26,30 +26,7 @@ const char* scaleColour(size_t k, size_t points) {
 }  // namespace
 
 std::string htmlEscape(const std::string& raw) {
-  const std::string text = validUtf8(raw);
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
+  return markupEscape(raw);
 }
 
 std::string likertStackedBarsSvg(const std::vector<ItemSummary>& items, int scale_min) {

@@ -9,5 +9,8 @@
 namespace cb {
 
 std::string validUtf8(std::string_view text);
+// validUtf8, with & < > " ' escaped as entities valid in both XML (InkML) and HTML/SVG and
+// control characters XML 1.0 forbids replaced by '?'.
+std::string markupEscape(std::string_view text);
 
 }  // namespace cb
