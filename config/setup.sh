@@ -25,6 +25,8 @@ packages=(
   libxml2-dev
   # virtual tablet / KMS in the loop (qemu + Debian's stock kernel)
   qemu-system-x86 busybox-static cpio
+  # packaging checks: systemd-analyze verify on the kiosk unit, the .deb (dpkg-shlibdeps, lintian)
+  systemd dpkg-dev lintian
 )
 export DEBIAN_FRONTEND=noninteractive
 missing=()

@@ -1,0 +1,69 @@
+#include "app/kiosk/health_status.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace cb {
+
+namespace {
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string jsonNumber(double value) {
+  if (!std::isfinite(value)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", value);
+  return buf;
+}
+
+}  // namespace
+
+std::string healthStatusJson(const HealthStatus& s) {
+  std::string out = "{";
+  out += "\"written_unix_s\":" + std::to_string(s.written_unix_s);
+  out += ",\"uptime_s\":" + jsonNumber(s.uptime_s);
+  out += ",\"frames_per_second\":" + jsonNumber(s.frames_per_second);
+  out += ",\"last_input_age_s\":" +
+         (s.last_input_age_s ? jsonNumber(*s.last_input_age_s) : std::string("null"));
+  out += ",\"device_state\":" + jsonString(s.device_state);
+  out += ",\"disk_free_bytes\":" +
+         (s.disk_free_bytes ? std::to_string(*s.disk_free_bytes) : std::string("null"));
+  out += ",\"disk_total_bytes\":" +
+         (s.disk_total_bytes ? std::to_string(*s.disk_total_bytes) : std::string("null"));
+  out +=
+      ",\"last_error\":" + (s.last_error.empty() ? std::string("null") : jsonString(s.last_error));
+  out += "}\n";
+  return out;
+}
+
+}  // namespace cb
