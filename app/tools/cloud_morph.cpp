@@ -40,7 +40,8 @@ void cellParticles(const Volume& v, const MorphParams& p, std::vector<Particle>*
       for (int x = 0; x < d.x; ++x) {
         if (v.at(x, y, z) <= p.density_threshold) continue;
         const glm::ivec3 c = glm::ivec3(x, y, z) / p.cell_voxels;
-        voxel_particle->push_back({v.index(x, y, z), id[(size_t(c.z) * cells.y + c.y) * cells.x + c.x]});
+        voxel_particle->push_back(
+            {v.index(x, y, z), id[(size_t(c.z) * cells.y + c.y) * cells.x + c.x]});
       }
 }
 
@@ -107,8 +108,8 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
   cellParticles(source, params, &ps, &vs);
   cellParticles(target, params, &pt, &vt);
   if (ps.empty() || pt.empty())
-    throw ToolError(ToolErrorKind::kEmptyVolume, ps.empty() ? "the source has no density"
-                                                            : "the target has no density");
+    throw ToolError(ToolErrorKind::kEmptyVolume,
+                    ps.empty() ? "the source has no density" : "the target has no density");
   std::vector<std::pair<int, int>> pairs;  // (source particle, target particle)
   if (ps.size() <= pt.size()) {
     pairs = greedyPairs(ps, pt);
@@ -117,7 +118,8 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
   }
   // Eq. (10.1)–(10.3): refining points, farther from the chord for shorter paths.
   float max_dis = 0;
-  for (auto [s, t] : pairs) max_dis = std::max(max_dis, glm::distance(ps[s].position, pt[t].position));
+  for (auto [s, t] : pairs)
+    max_dis = std::max(max_dis, glm::distance(ps[s].position, pt[t].position));
   std::vector<std::vector<uint32_t>> of_source(ps.size()), of_target(pt.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
     const auto [s, t] = pairs[k];
@@ -146,10 +148,11 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
     }
     const glm::ivec3 d = v.dims();
     for (auto [index, particle] : voxels) {
-      const int x = int(index % d.x), y = int((index / d.x) % d.y), z = int(index / (size_t(d.x) * d.y));
+      const int x = int(index % d.x), y = int((index / d.x) % d.y),
+                z = int(index / (size_t(d.x) * d.y));
       const uint32_t count = uint32_t(of[particle].size());
-      out->push_back({glm::vec3(x, y, z) + 0.5f, v.data()[index] / float(count), first[particle],
-                      count});
+      out->push_back(
+          {glm::vec3(x, y, z) + 0.5f, v.data()[index] / float(count), first[particle], count});
     }
   };
   carry(source, vs, of_source, &source_path_ids_, &source_voxels_);

@@ -108,9 +108,12 @@ void squaredDistance3d(int nx, int ny, int nz, const std::vector<uint8_t>& featu
       for (size_t l = lb; l < le; ++l) {
         const int i = int(l % a), j = int(l / a);
         size_t base;
-        if (axis == 0) base = (size_t(j) * ny + i) * nx;        // (y=i, z=j)
-        else if (axis == 1) base = size_t(j) * nx * ny + i;     // (x=i, z=j)
-        else base = size_t(j) * nx + i;                          // (x=i, y=j)
+        if (axis == 0)
+          base = (size_t(j) * ny + i) * nx;  // (y=i, z=j)
+        else if (axis == 1)
+          base = size_t(j) * nx * ny + i;  // (x=i, z=j)
+        else
+          base = size_t(j) * nx + i;  // (x=i, y=j)
         for (int q = 0; q < len; ++q) f[q] = g[base + q * stride];
         envelope1d(f.data(), len, d.data(), nullptr, v.data(), z.data());
         for (int q = 0; q < len; ++q) g[base + q * stride] = d[q];

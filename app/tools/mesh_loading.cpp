@@ -17,12 +17,13 @@ TriangleMesh loadClosedMesh(const std::string& path) {
   const auto bytes = std::filesystem::file_size(path, ec);
   if (ec) throw ToolError(ToolErrorKind::kUnreadableFile, path + ": " + ec.message());
   if ((long long)bytes > kMaxMeshFileBytes)
-    throw ToolError(ToolErrorKind::kMeshFileTooLarge,
-                    path + ": " + std::to_string(bytes) + " bytes, limit " +
-                        std::to_string(kMaxMeshFileBytes));
+    throw ToolError(
+        ToolErrorKind::kMeshFileTooLarge,
+        path + ": " + std::to_string(bytes) + " bytes, limit " + std::to_string(kMaxMeshFileBytes));
   Assimp::Importer importer;
   // Points and lines carry no inside; drop them before triangulating polygons.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode)

@@ -25,9 +25,9 @@ namespace cb {
 struct ModelCloudParams {
   uint32_t seed = 1;
   float peak_density = 1.0f;
-  float falloff_voxels = 4.0f;       // depth over which the density rises to the peak
+  float falloff_voxels = 4.0f;        // depth over which the density rises to the peak
   float noise_erosion_voxels = 3.0f;  // the surface is eroded by up to this much
-  float noise_frequency = 12.0f;     // noise cycles per world unit
+  float noise_frequency = 12.0f;      // noise cycles per world unit
 };
 
 // The world transform of a mesh placed from the view: world = anchor + (p − centre)·scale.
@@ -43,7 +43,7 @@ ModelPlacement placeModel(const TriangleMesh& mesh, const ToolView& view, const 
 VoxelBox modelToCloud(const std::string& mesh_path, const ToolView& view,
                       const ModelCloudParams& params, Volume* volume);
 // The same for a mesh in memory (checked with validatedClosedMesh).
-VoxelBox meshToCloud(const TriangleMesh& mesh, const ToolView& view,
-                     const ModelCloudParams& params, Volume* volume);
+VoxelBox meshToCloud(const TriangleMesh& mesh, const ToolView& view, const ModelCloudParams& params,
+                     Volume* volume);
 
 }  // namespace cb

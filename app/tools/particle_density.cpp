@@ -33,7 +33,8 @@ void tentPass(const std::vector<float>& src, std::vector<float>* dst, glm::ivec3
           float acc = 0;
           const int lo = std::max(-radius, -pos), hi = std::min(radius, len - 1 - pos);
           for (int k = lo; k <= hi; ++k)
-            acc += weights[k + radius] * src[size_t(ptrdiff_t(i) + ptrdiff_t(k) * ptrdiff_t(stride))];
+            acc +=
+                weights[k + radius] * src[size_t(ptrdiff_t(i) + ptrdiff_t(k) * ptrdiff_t(stride))];
           (*dst)[i] = acc;
         }
   });

@@ -47,8 +47,8 @@ VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
   return maskToCloud(mask, view, params, volume);
 }
 
-VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view,
-                     const PictureCloudParams& params, Volume* volume) {
+VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
+                     Volume* volume) {
   if (mask.width <= 0 || mask.height <= 0 || mask.count() == 0)
     throw ToolError(ToolErrorKind::kEmptyImage, "the picture has no shape pixel");
   const int w = mask.width, h = mask.height;
@@ -56,7 +56,8 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view,
   const float texel = placement.pictureTexelWorldSize();
 
   // §3.1.1.1: nearest medial-axis pixel q of every pixel, d_pq, d_max.
-  std::vector<uint8_t> axis = params.naive_uniform_depth ? std::vector<uint8_t>() : medialAxis(mask);
+  std::vector<uint8_t> axis =
+      params.naive_uniform_depth ? std::vector<uint8_t>() : medialAxis(mask);
   std::vector<float> axis_d2;
   std::vector<int> axis_nearest;
   float d_max = 0;
@@ -93,8 +94,8 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view,
   for (int pass = 0; pass < 2; ++pass)
     for (int b = 0; b < kAngleBins; ++b)
       if (extent[b] == 0.0f)
-        extent[b] = std::max(extent[(b + kAngleBins - 1) % kAngleBins],
-                             extent[(b + 1) % kAngleBins]);
+        extent[b] =
+            std::max(extent[(b + kAngleBins - 1) % kAngleBins], extent[(b + 1) % kAngleBins]);
   float r_max = 0;
   for (float e : extent) r_max = std::max(r_max, e);
 

@@ -37,7 +37,7 @@ struct PictureCloudParams {
 VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
                         const PictureCloudParams& params, Volume* volume);
 // The same from a mask already in memory (kEmptyImage if it has no shape pixel).
-VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view,
-                     const PictureCloudParams& params, Volume* volume);
+VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
+                     Volume* volume);
 
 }  // namespace cb

@@ -30,8 +30,8 @@ void readPngSize(const std::string& path, int* width, int* height) {
   };
   const uint32_t w = be32(16), h = be32(20);
   if (w == 0 || h == 0)
-    throw ToolError(ToolErrorKind::kEmptyImage, path + ": header says " + std::to_string(w) +
-                                                    "x" + std::to_string(h));
+    throw ToolError(ToolErrorKind::kEmptyImage,
+                    path + ": header says " + std::to_string(w) + "x" + std::to_string(h));
   if ((long long)w * (long long)h > kMaxPicturePixels || w > 65535 || h > 65535)
     throw ToolError(ToolErrorKind::kImageTooLarge,
                     path + ": header says " + std::to_string(w) + "x" + std::to_string(h) +

@@ -32,17 +32,28 @@ struct ToolError : std::runtime_error {
 
 inline const char* toolErrorName(ToolErrorKind kind) {
   switch (kind) {
-    case ToolErrorKind::kUnreadableFile: return "unreadable file";
-    case ToolErrorKind::kNotPng: return "not a PNG";
-    case ToolErrorKind::kEmptyImage: return "empty image";
-    case ToolErrorKind::kImageTooLarge: return "image too large";
-    case ToolErrorKind::kMeshFileTooLarge: return "mesh file too large";
-    case ToolErrorKind::kMeshUnreadable: return "unreadable mesh";
-    case ToolErrorKind::kMeshTooLarge: return "mesh too large";
-    case ToolErrorKind::kOpenMesh: return "open mesh";
-    case ToolErrorKind::kDegenerateMesh: return "degenerate mesh";
-    case ToolErrorKind::kEmptyVolume: return "empty volume";
-    case ToolErrorKind::kMismatchedVolumes: return "mismatched volumes";
+    case ToolErrorKind::kUnreadableFile:
+      return "unreadable file";
+    case ToolErrorKind::kNotPng:
+      return "not a PNG";
+    case ToolErrorKind::kEmptyImage:
+      return "empty image";
+    case ToolErrorKind::kImageTooLarge:
+      return "image too large";
+    case ToolErrorKind::kMeshFileTooLarge:
+      return "mesh file too large";
+    case ToolErrorKind::kMeshUnreadable:
+      return "unreadable mesh";
+    case ToolErrorKind::kMeshTooLarge:
+      return "mesh too large";
+    case ToolErrorKind::kOpenMesh:
+      return "open mesh";
+    case ToolErrorKind::kDegenerateMesh:
+      return "degenerate mesh";
+    case ToolErrorKind::kEmptyVolume:
+      return "empty volume";
+    case ToolErrorKind::kMismatchedVolumes:
+      return "mismatched volumes";
   }
   return "tool error";
 }

@@ -51,7 +51,8 @@ TEST(ModelCloud, TorusCloudFillsTheInsideAndStaysWithinIt) {
   const ModelPlacement placement = placeModel(torus, view, volume);
   const float voxel_model = volume.voxelSize().x / placement.scale;  // one voxel in model units
   const ModelCloudParams params;
-  const float full_depth = (params.falloff_voxels + params.noise_erosion_voxels + 1.5f) * voxel_model;
+  const float full_depth =
+      (params.falloff_voxels + params.noise_erosion_voxels + 1.5f) * voxel_model;
   long long deep = 0, deep_full = 0, outside = 0, outside_dense = 0;
   for (int z = 0; z < 128; ++z)
     for (int y = 0; y < 128; ++y)
@@ -83,8 +84,10 @@ TEST(ModelCloud, SameMeshGivesTheSameBytesOnAnyThreadCount) {
     view.camera = Camera::reference();
     meshToCloud(torus, view, ModelCloudParams{}, &volume);
     std::vector<float> bytes(volume.data(), volume.data() + volume.voxelCount());
-    if (first.empty()) first = bytes;
-    else EXPECT_EQ(bytes, first) << threads << " threads";
+    if (first.empty())
+      first = bytes;
+    else
+      EXPECT_EQ(bytes, first) << threads << " threads";
   }
   setWorkerThreads(0);
 }

@@ -82,8 +82,10 @@ TEST(PictureCloud, SameInputGivesTheSameBytesOnAnyThreadCount) {
     Volume volume(glm::ivec3(96));
     pictureToCloud(path, smallView(), PictureCloudParams{}, &volume);
     std::vector<float> bytes(volume.data(), volume.data() + volume.voxelCount());
-    if (first.empty()) first = bytes;
-    else EXPECT_EQ(bytes, first) << threads << " threads";
+    if (first.empty())
+      first = bytes;
+    else
+      EXPECT_EQ(bytes, first) << threads << " threads";
   }
   setWorkerThreads(0);
 }
