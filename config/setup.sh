@@ -13,6 +13,8 @@ packages=(
   # math, images, volumes, config
   libglm-dev libopenexr-dev libpng-dev libopenvdb-dev libopenvdb-tools libtbb-dev
   libtomlplusplus-dev
+  # model → cloud: OBJ, PLY, glTF meshes (app/tools)
+  libassimp-dev
   # undo history (compressed brick deltas), keymaps on KMS, the on-screen UI and its CJK font
   libzstd-dev libxkbcommon-dev xkb-data libimgui-dev fonts-noto-cjk
   # OpenVDB's headers need Boost's (the .vdb converter for `bench render`)

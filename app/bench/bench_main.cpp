@@ -29,6 +29,8 @@ const Bench kBenches[] = {
     {"styles", "each render style's full frame against the thesis style's", benchStyles},
     {"study", "study exports (256^3 volume as VDB and raw, EXR+PNG) and report for 20 sessions",
      benchStudy},
+    {"tools", "picture -> cloud, model -> cloud, morph in-betweens, each vs a baseline",
+     benchTools},
 };
 
 }  // namespace

@@ -10,4 +10,5 @@ int benchSmoothing(int argc, char** argv);
 int benchHistory(int argc, char** argv);
 int benchStyles(int argc, char** argv);
 int benchStudy(int argc, char** argv);
+int benchTools(int argc, char** argv);
 }  // namespace cb

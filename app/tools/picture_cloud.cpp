@@ -1,0 +1,189 @@
+#include "app/tools/picture_cloud.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "app/core/parallel_for.h"
+#include "app/mapping/stroke_random.h"
+#include "app/tools/distance_transform.h"
+#include "app/tools/tool_error.h"
+
+namespace cb {
+namespace {
+
+constexpr int kAngleBins = 720;
+
+// Medial axis pixels (§3.1.1.1): ridges of the interior distance to the background — pixels
+// whose distance is not smaller than both neighbours' along x or along y.
+std::vector<uint8_t> medialAxis(const ShapeMask& mask) {
+  std::vector<uint8_t> outside(mask.inside.size());
+  for (size_t i = 0; i < outside.size(); ++i) outside[i] = !mask.inside[i];
+  std::vector<float> d2;
+  squaredDistance2d(mask.width, mask.height, outside, &d2, nullptr);
+  const int w = mask.width, h = mask.height;
+  auto at = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= w || y >= h) return 0.0f;
+    const float v = d2[size_t(y) * w + x];
+    return std::isinf(v) ? 1e30f : v;  // an image with no background: all interior
+  };
+  std::vector<uint8_t> axis(mask.inside.size(), 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!mask.at(x, y)) continue;
+      const float c = at(x, y);
+      const bool ridge_x = c >= at(x - 1, y) && c >= at(x + 1, y);
+      const bool ridge_y = c >= at(x, y - 1) && c >= at(x, y + 1);
+      axis[size_t(y) * w + x] = ridge_x || ridge_y;
+    }
+  return axis;
+}
+
+}  // namespace
+
+VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
+                        const PictureCloudParams& params, Volume* volume) {
+  const ShapeMask mask = loadShapeMask(png_path);
+  return maskToCloud(mask, view, params, volume);
+}
+
+VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
+                     Volume* volume) {
+  if (mask.width <= 0 || mask.height <= 0 || mask.count() == 0)
+    throw ToolError(ToolErrorKind::kEmptyImage, "the picture has no shape pixel");
+  const int w = mask.width, h = mask.height;
+  const PicturePlacement placement(view, *volume, w, h);
+  const float texel = placement.pictureTexelWorldSize();
+
+  // §3.1.1.1: nearest medial-axis pixel q of every pixel, d_pq, d_max.
+  std::vector<uint8_t> axis =
+      params.naive_uniform_depth ? std::vector<uint8_t>() : medialAxis(mask);
+  std::vector<float> axis_d2;
+  std::vector<int> axis_nearest;
+  float d_max = 0;
+  if (!params.naive_uniform_depth) {
+    squaredDistance2d(w, h, axis, &axis_d2, &axis_nearest);
+    for (size_t i = 0; i < axis_d2.size(); ++i)
+      if (mask.inside[i]) d_max = std::max(d_max, std::sqrt(axis_d2[i]));
+  }
+
+  // §3.1.1.2: centre (x_e, y_e) and D_max per direction from it (the shape's outermost extent
+  // along each of kAngleBins directions); Eq. (2.1) R = D_max − D.
+  double cx = 0, cy = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (mask.at(x, y)) cx += x + 0.5, cy += y + 0.5;
+  const double count = double(mask.count());
+  cx /= count;
+  cy /= count;
+  auto binOf = [&](float dx, float dy) {
+    const float a = std::atan2(dy, dx);  // [-pi, pi]
+    int b = int((a + float(M_PI)) * (kAngleBins / (2.0f * float(M_PI))));
+    return std::clamp(b, 0, kAngleBins - 1);
+  };
+  std::vector<float> extent(kAngleBins, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!mask.at(x, y)) continue;
+      // The pixel's far corner distance, so R stays > 0 inside the outermost pixel.
+      const float dx = float(x + 0.5 - cx), dy = float(y + 0.5 - cy);
+      const int b = binOf(dx, dy);
+      extent[b] = std::max(extent[b], std::sqrt(dx * dx + dy * dy) + 0.7072f);
+    }
+  // Bins no pixel fell into (thin shapes far from the centre) take the larger neighbour.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int b = 0; b < kAngleBins; ++b)
+      if (extent[b] == 0.0f)
+        extent[b] =
+            std::max(extent[(b + kAngleBins - 1) % kAngleBins], extent[(b + 1) % kAngleBins]);
+  float r_max = 0;
+  for (float e : extent) r_max = std::max(r_max, e);
+
+  // Particles per pixel from Eq. (5): D × (column volume / voxel volume); the column of a pixel
+  // with range R holds, for the pdf of Eq. (2.2), an effective depth of about R.
+  const glm::vec3 vs = volume->voxelSize();
+  const float voxel_volume = vs.x * vs.y * vs.z;
+  auto rangeOf = [&](int x, int y) {
+    const float dx = float(x + 0.5 - cx), dy = float(y + 0.5 - cy);
+    const float d = std::sqrt(dx * dx + dy * dy);
+    return std::max(0.5f, extent[binOf(dx, dy)] - d);  // Eq. (2.1), in picture pixels
+  };
+  double wanted = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (mask.at(x, y))
+        wanted += double(texel) * texel * (rangeOf(x, y) * texel * params.depth_scale) /
+                  voxel_volume * params.particles_per_voxel;
+  const double density_factor =
+      wanted > double(params.max_particles) ? double(params.max_particles) / wanted : 1.0;
+
+  // The box the particles can reach: the picture's corners at the nearest and farthest depth.
+  const float z_extent = r_max * texel * params.depth_scale;
+  VoxelBox reach;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec2 corner((c & 1) ? float(w) : 0.0f, (c & 2) ? float(h) : 0.0f);
+    const glm::vec3 p = placement.worldPoint(corner, (c & 4) ? z_extent : -z_extent);
+    const glm::ivec3 v = glm::ivec3(glm::floor(volume->worldToVoxel(p)));
+    reach = reach.unite({v, v + 1});
+  }
+  reach = reach.grow(params.smoothing.radius_voxels + 1).intersect(volume->bounds());
+  if (reach.empty()) return {};
+  ParticleCounts counts(reach);
+
+  // The anchor plane is affine in picture coordinates; a depth offset scales along the eye ray.
+  const glm::vec3 p00 = placement.worldPoint({0, 0}, 0);
+  const glm::vec3 du = placement.worldPoint({1, 0}, 0) - p00;
+  const glm::vec3 dv = placement.worldPoint({0, 1}, 0) - p00;
+  const glm::vec3 eye = view.camera.eye;
+  const float anchor_depth = glm::dot(placement.anchor() - eye, placement.forward());
+
+  parallelFor(size_t(h), 8, [&](size_t, size_t yb, size_t ye) {
+    for (size_t yy = yb; yy < ye; ++yy) {
+      const int y = int(yy);
+      for (int x = 0; x < w; ++x) {
+        if (!mask.at(x, y)) continue;
+        const size_t pixel = size_t(y) * w + x;
+        StrokeRandom rng(params.seed, pixel);
+        const float range = rangeOf(x, y);
+        const double expected = double(texel) * texel * (range * texel * params.depth_scale) /
+                                voxel_volume * params.particles_per_voxel * density_factor;
+        // Stochastic rounding, at least one particle per shape pixel.
+        int n = int(expected);
+        if (rng.uniform() < expected - n) ++n;
+        n = std::max(n, 1);
+        glm::vec2 to_axis(0);
+        float d_pq = 0;
+        if (!params.naive_uniform_depth && axis_nearest[pixel] >= 0) {
+          const int q = axis_nearest[pixel];
+          to_axis = glm::vec2(float(q % w - x), float(q / w - y));
+          d_pq = glm::length(to_axis);
+        }
+        for (int i = 0; i < n; ++i) {
+          // Stratified: uniform within the pixel.
+          glm::vec2 p(x + float(rng.uniform()), y + float(rng.uniform()));
+          float z;
+          if (params.naive_uniform_depth) {
+            z = float(2.0 * rng.uniform() - 1.0) * r_max;
+          } else {
+            // Eq. (1): p' = p + (d_pq / d_max) · ε · N_pq, N_pq = q − p (length d_pq).
+            if (d_max > 0) {
+              const float eps = float(rng.uniform()) * params.medial_pull;
+              p += (d_pq / d_max) * eps * to_axis;
+            }
+            // Eq. (2.4): z' = R − R·sqrt(1 − ε), on either side of the anchor plane.
+            const float e = float(rng.uniform());
+            z = range - range * std::sqrt(1.0f - e);
+            if (rng.next() & 1) z = -z;
+          }
+          const float offset = z * texel * params.depth_scale;
+          const glm::vec3 on_plane = p00 + p.x * du + p.y * dv;
+          const glm::vec3 world = eye + (on_plane - eye) * ((anchor_depth + offset) / anchor_depth);
+          counts.add(*volume, world);
+        }
+      }
+    }
+  });
+  return mergeSmoothedDensity(counts, params.smoothing, volume);
+}
+
+}  // namespace cb
