@@ -62,6 +62,8 @@ constexpr const char* kUsage =
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
     "  --open FILE         start from a saved cloud (a .vol of the session's grid)\n"
+    "  --place FILE        make a cloud from a picture (.png) or a model (.obj, .ply, .gltf)\n"
+    "                      at the canvas, seen from the starting view\n"
     "  --help              this text\n"
     "\n"
     "keys: Esc/q quit, Space pauses the orbit, S shows ray-sample statistics (histogram bars,\n"
@@ -98,7 +100,7 @@ int commandPaint(int argc, char** argv) {
   const auto unknown =
       args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir", "grid", "seed",
                     "orbit", "moving-scale", "frames", "backend", "pen-device", "journal",
-                    "session-dir", "no-record", "keys", "open"});
+                    "session-dir", "no-record", "keys", "open", "place"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -246,7 +248,18 @@ int commandPaint(int argc, char** argv) {
                pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
   loop_options.state_dir = stateDir();
-  loop_options.on_first_connection = start_journal;
+  // --place FILE: a picture (PNG) or model (OBJ, PLY, glTF) made into a cloud from the starting
+  // view as the session begins, journalled like any edit.
+  const std::string place = args.get("place", "");
+  loop_options.on_first_connection = [&]() {
+    start_journal();
+    if (place.empty() || !session) return;
+    const std::string ext = std::filesystem::path(place).extension().string();
+    const bool model = ext != ".png" && ext != ".PNG";
+    std::string place_error;
+    if (!session->apply(ui::PlaceShape{model, place}, 0, &place_error))
+      std::fprintf(stderr, "cloudbrush: --place: %s\n", place_error.c_str());
+  };
   PaintLoop loop(*display, renderer, volume, light, loop_options);
   if (pen) loop.attachPen(pen.get(), session.get());
   PaintLoopSummary summary;

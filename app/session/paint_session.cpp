@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "app/scene/paint_camera.h"
+#include "app/tools/model_cloud.h"
+#include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
 #include "app/volume/volume_file.h"
 
@@ -344,6 +346,30 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     bool operator()(const ui::VacuumCut& c) {
       vacuumSphere(s.volume_, c.centre, c.radius);
       s.recordStep(before, "vacuum");
+      return true;
+    }
+    bool operator()(const ui::PlaceShape& c) {
+      if (s.engine_.inStroke()) return *error = "place: a stroke is being painted", false;
+      // Seen from the paint view at the canvas altitude; seeded by the step count, so a replay
+      // places the same cloud.
+      ToolView view{s.scene_.camera, s.settings_.screen_width, s.settings_.screen_height,
+                    s.scene_.canvas};
+      try {
+        if (c.model) {
+          ModelCloudParams params;
+          params.seed = uint32_t(s.history_.steps() + 1);
+          modelToCloud(c.path, view, params, &s.volume_);
+        } else {
+          PictureCloudParams params;
+          params.seed = uint32_t(s.history_.steps() + 1);
+          pictureToCloud(c.path, view, params, &s.volume_);
+        }
+      } catch (const std::exception& e) {
+        return *error = std::string(c.model ? "model" : "picture") + ": " + e.what() +
+                        "; the cloud is unchanged",
+               false;
+      }
+      s.recordStep(before, c.model ? "model" : "picture");
       return true;
     }
     bool operator()(const ui::SetStyle& c) {

@@ -101,6 +101,9 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::PenCapture& c) const {
       return {JournalRecordType::kUi, std::string("pen_capture=") + (c.captured ? "on" : "off")};
     }
+    UiRecordText operator()(const ui::PlaceShape& c) const {
+      return {JournalRecordType::kUi, (c.model ? "place_model=" : "place_picture=") + c.path};
+    }
     UiRecordText operator()(const ui::SetStyle& c) const {
       return {JournalRecordType::kUi, "style=" + c.name};
     }
@@ -183,6 +186,9 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     if (!parseFloats(value, 1, v) || v[0] <= 0.0f) return bad("a diameter > 0");
     *out = ui::SetEraseDiameter{key == "vacuum_diameter" ? EraseTool::kVacuum : EraseTool::kRubOut,
                                 v[0]};
+  } else if (key == "place_picture" || key == "place_model") {
+    if (value.empty() || value.find('\n') != std::string::npos) return bad("a file path");
+    *out = ui::PlaceShape{key == "place_model", value};
   } else if (key == "style") {
     bool plain = !value.empty() && value.size() <= 32;
     for (char c : value) plain = plain && c >= 'a' && c <= 'z';

@@ -16,6 +16,7 @@
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
 //   Ui      pen_capture=on|off                    PenCapture
 //   Ui      style=NAME                            SetStyle (a render style's name)
+//   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
 //   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
 //
 // Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
@@ -77,6 +78,12 @@ struct VacuumCut {
 struct SetStyle {
   std::string name;
 };
+// A cloud made from a picture (PNG silhouette or photo) or a 3D model (OBJ, PLY, glTF), placed
+// at the canvas altitude as seen from the current view (app/tools); an edit like a stroke.
+struct PlaceShape {
+  bool model;  // false: a picture
+  std::string path;
+};
 // While the pen is captured by the on-screen UI (menu open, or pressed on a UI target) its
 // samples are journalled and calibrated but draw, erase and map nothing.
 struct PenCapture {
@@ -90,7 +97,7 @@ struct DeleteAll {};
 using UiChange =
     std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
                  ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
-                 ui::PenCapture, ui::SetStyle, ui::Undo, ui::Redo, ui::DeleteAll>;
+                 ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo, ui::Redo, ui::DeleteAll>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "app/render/image_io.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
@@ -177,6 +178,51 @@ TEST(SessionModes, AStrokeHeldStillEndsByItself) {
   for (const PenSample& s : samples) ended |= session.feed(s).auto_ended;
   EXPECT_FALSE(ended);
   EXPECT_EQ(session.strokesMapped(), 1u);
+}
+
+// A picture placed as a cloud is an edit like a stroke: painted from the current view, undone,
+// journalled, replayed; a bad file is refused by name and leaves the cloud as it was.
+TEST(SessionModes, APlacedPictureIsAnEditLikeAStroke) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_place_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir);
+  ImageRgba8 disc;
+  disc.width = disc.height = 64;
+  disc.pixels.assign(64 * 64 * 4, 255);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool inside = (x - 32) * (x - 32) + (y - 32) * (y - 32) < 24 * 24;
+      disc.pixels[size_t(y * 64 + x) * 4 + 3] = inside ? 255 : 0;
+    }
+  writePng(dir + "/disc.png", disc);
+  const std::string journal_path = dir + "/placed.cbj";
+  uint64_t sum = 0;
+  {
+    Painter p;
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(journal_path));
+    p.session.recordTo(&journal, 0);
+    std::string error;
+    EXPECT_FALSE(p.session.apply(ui::PlaceShape{false, dir + "/missing.png"}, 0, &error));
+    EXPECT_NE(error.find("missing.png"), std::string::npos) << error;
+    EXPECT_EQ(total(p.session.volume()), 0.0);
+    p.apply(ui::PlaceShape{false, dir + "/disc.png"});
+    const double placed = total(p.session.volume());
+    EXPECT_GT(placed, 0.0);
+    p.apply(ui::Undo{});
+    EXPECT_EQ(total(p.session.volume()), 0.0);
+    p.apply(ui::Redo{});
+    EXPECT_EQ(total(p.session.volume()), placed);
+    journal.close();
+    sum = volumeChecksum(p.session.volume());
+  }
+  const SessionReplay replay =
+      replaySession(readJournal(journal_path), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete()) << (replay.problems.empty() ? "" : replay.problems[0]);
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), sum);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(SessionModes, FormatOneSessionsKeepTheReferenceView) {
