@@ -16,6 +16,8 @@ struct Command {
 const Command kCommands[] = {
     {"paint", "the interactive painter (the default; headless render without a display)",
      cb::commandPaint},
+    {"kiosk", "the painter as an exhibition kiosk: visitor mode, idle reset, systemd watchdog",
+     cb::commandKiosk},
     {"render", "render a saved volume offline to PNG/EXR", cb::commandRender},
     {"devices", "list pen devices; --watch prints live samples", cb::commandDevices},
     {"calibrate", "pen-driven N-point calibration of the tablet-to-screen mapping",

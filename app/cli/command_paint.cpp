@@ -10,12 +10,19 @@
 #include <ctime>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/paint_headless.h"
 #include "app/core/config_paths.h"
+#include "app/kiosk/health_file_writer.h"
+#include "app/kiosk/health_tracker.h"
+#include "app/kiosk/sd_notifier.h"
+#include "app/kiosk/watchdog_interval.h"
+#include "app/kiosk/watchdog_pinger.h"
 #include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
 #include "app/render/render_config.h"
@@ -24,6 +31,7 @@
 #include "app/session/session_replay.h"
 #include "app/shell/keymap.h"
 #include "app/shell/paint_loop.h"
+#include "app/shell/paint_screen.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
 #include "drivers/open_pen_source.h"
@@ -62,6 +70,12 @@ constexpr const char* kUsage =
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
     "  --open FILE         start from a saved cloud (a .vol of the session's grid)\n"
+    "  --kiosk             exhibition mode (what `cloudbrush kiosk` runs): visitor mode (no\n"
+    "                      quit keys, no operator commands), idle reset, attract orbit, systemd\n"
+    "                      notifications and watchdog pings, health.json in --data-dir\n"
+    "  --idle-seconds S    kiosk: clear the sky after S s without input (default 90)\n"
+    "  --warning-seconds S kiosk: the countdown shown before that (default 10)\n"
+    "  --data-dir DIR      kiosk: where health.json goes (default the state dir)\n"
     "  --place FILE        make a cloud from a picture (.png) or a model (.obj, .ply, .gltf)\n"
     "                      at the canvas, seen from the starting view\n"
     "  --help              this text\n"
@@ -92,15 +106,16 @@ int fail(const std::string& message, int code = 1) {
 
 int commandPaint(int argc, char** argv) {
   std::string error;
-  Args args(argc, argv, {"help", "stats", "no-record"});
+  Args args(argc, argv, {"help", "stats", "no-record", "kiosk"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const auto unknown =
-      args.unknown({"help", "stats", "display", "drm-device", "size", "out-dir", "grid", "seed",
-                    "orbit", "moving-scale", "frames", "backend", "pen-device", "journal",
-                    "session-dir", "no-record", "keys", "open", "place"});
+  const auto unknown = args.unknown(
+      {"help",       "stats",   "display",      "drm-device",      "size",    "out-dir",
+       "grid",       "seed",    "orbit",        "moving-scale",    "frames",  "backend",
+       "pen-device", "journal", "session-dir",  "no-record",       "keys",    "open",
+       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -120,6 +135,12 @@ int commandPaint(int argc, char** argv) {
   loop_options.moving_scale = float(args.getDouble("moving-scale", 0.5));
   loop_options.max_frames = args.getInt("frames", 0);
   loop_options.print_stats = args.has("stats");
+  const bool kiosk = args.has("kiosk");
+  if (kiosk) {
+    loop_options.visitor_mode = true;
+    loop_options.idle_reset_s = args.getDouble("idle-seconds", 90.0);
+    loop_options.idle_warning_s = args.getDouble("warning-seconds", 10.0);
+  }
   if (!args.error().empty()) return fail(args.error(), 2);
   if (grid < 8 || grid > 1024)
     return fail("--grid: expected 8..1024, got " + std::to_string(grid), 2);
@@ -143,7 +164,7 @@ int commandPaint(int argc, char** argv) {
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
   if (!display) return fail(error);
   const bool headless =
-      std::string(display->platformName()) == "surfaceless" && !args.has("backend");
+      std::string(display->platformName()) == "surfaceless" && !args.has("backend") && !kiosk;
   std::fprintf(stderr, "cloudbrush: %s display %dx%d, OpenGL %s on %s\n", display->platformName(),
                display->width(), display->height(), display->context().version.c_str(),
                display->context().renderer.c_str());
@@ -171,7 +192,7 @@ int commandPaint(int argc, char** argv) {
   }
   std::unique_ptr<PaintSession> session;
   JournalWriter journal;
-  if (pen) {
+  if (pen || kiosk) {  // a kiosk without a tablet still paints with a mouse and resets
     MappingConfig mapping;
     try {
       if (std::filesystem::exists(configFile("mapping.toml")))
@@ -242,10 +263,16 @@ int commandPaint(int argc, char** argv) {
 
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
-  std::fprintf(stderr,
-               "cloudbrush: Esc or q quits, Space pauses the orbit, S statistics, C circles, B "
-               "brush, M mapping%s\n",
-               pen ? "; bring the pen near the tablet to paint" : "");
+  if (kiosk)
+    std::fprintf(stderr,
+                 "cloudbrush: kiosk: visitor mode (quit keys and operator commands are ignored; "
+                 "stop the service to end); the sky clears after %.0f s without input\n",
+                 loop_options.idle_reset_s);
+  else
+    std::fprintf(stderr,
+                 "cloudbrush: Esc or q quits, 1-5 modes, M menu, B brush, N mapping, Ctrl+Z/Y "
+                 "undo/redo%s\n",
+                 pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
   loop_options.state_dir = stateDir();
   // --place FILE: a picture (PNG) or model (OBJ, PLY, glTF) made into a cloud from the starting
@@ -260,10 +287,46 @@ int commandPaint(int argc, char** argv) {
     if (!session->apply(ui::PlaceShape{model, place}, 0, &place_error))
       std::fprintf(stderr, "cloudbrush: --place: %s\n", place_error.c_str());
   };
+  // Kiosk service (issue 11): READY after the first frame, watchdog pings from the loop itself
+  // (a hung loop stops them and systemd restarts the service), health.json for remote checks.
+  const MonotonicClock clock;
+  const SdNotifier notifier = SdNotifier::fromEnvironment();
+  std::optional<WatchdogPinger> pinger;
+  HealthTracker health(clock);
+  const std::string data_dir = args.get("data-dir", stateDir());
+  HealthFileWriter health_file(data_dir, health, clock);
+  bool ready_sent = false;
+  if (kiosk) {
+    std::string watchdog_error;
+    if (const auto timeout = watchdogTimeoutFromEnvironment(&watchdog_error))
+      pinger.emplace(notifier, clock, *timeout);
+    else if (!watchdog_error.empty())
+      std::fprintf(stderr, "cloudbrush kiosk: %s\n", watchdog_error.c_str());
+    health.setDeviceState(pen ? pen->backendName() : "no tablet backend");
+    loop_options.each_iteration = [&](bool presented) {
+      std::string service_error;
+      if (presented) health.onFrame();
+      if (presented && !ready_sent) {
+        ready_sent = true;
+        if (!notifier.ready(&service_error) ||
+            !notifier.status("painting; waiting for visitors", &service_error))
+          std::fprintf(stderr, "cloudbrush kiosk: %s\n", service_error.c_str());
+      }
+      if (pinger && !pinger->tick(&service_error))
+        std::fprintf(stderr, "cloudbrush kiosk: watchdog: %s\n", service_error.c_str());
+      if (!health_file.writeIfDue(&service_error)) health.setError(service_error);
+    };
+  }
   PaintLoop loop(*display, renderer, volume, light, loop_options);
   if (pen) loop.attachPen(pen.get(), session.get());
   PaintLoopSummary summary;
-  if (!loop.run(&g_stop, &summary, &error)) return fail(error);
+  const bool ran = loop.run(&g_stop, &summary, &error);
+  if (kiosk) {
+    std::string service_error;
+    notifier.stopping(&service_error);
+    std::printf("cloudbrush kiosk: %ld idle resets\n", loop.screen().idleResets());
+  }
+  if (!ran) return fail(error);
   std::printf(
       "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f, "
       "present %.1f ms\n",
@@ -288,6 +351,14 @@ int commandPaint(int argc, char** argv) {
     std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
                 last->vblank_sequence, double(last->shown_ns) / 1e9);
   return 0;
+}
+
+int commandKiosk(int argc, char** argv) {
+  // The painter with --kiosk: one frame loop and one set of options for both.
+  std::vector<char*> args(argv, argv + argc);
+  static char kiosk_flag[] = "--kiosk";
+  args.insert(args.begin() + 1, kiosk_flag);
+  return commandPaint(int(args.size()), args.data());
 }
 
 }  // namespace cb

@@ -77,6 +77,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       // so `--frames N` ends even on a still scene.
       std::this_thread::sleep_for(std::chrono::milliseconds(15));
       if (options.max_frames > 0) ++result->frames;
+      if (options.each_iteration) options.each_iteration(false);
       continue;
     }
     if (!screen.draw(frame, error)) return false;
@@ -86,6 +87,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     screen.presented(frame, double(presented - last_present) / 1e6);
     last_present = presented;
     ++result->frames;
+    if (options.each_iteration) options.each_iteration(true);
   }
   result->seconds = double(monotonicNs() - start) / 1e9;
   return true;

@@ -20,6 +20,9 @@ struct FrameLoopOptions {
   std::vector<DisplayEvent> initial_keys;   // pressed before the first frame (scripted runs)
   const std::atomic<bool>* stop = nullptr;  // set by signal handlers
   std::function<void(const FrameContext&)> after_draw;  // tests: after drawing, before present
+  // Every iteration, drawn or idle (the service watchdog pings from here: a hung loop stops
+  // them), with whether a frame was presented.
+  std::function<void(bool presented)> each_iteration;
 };
 
 struct FrameLoopResult {

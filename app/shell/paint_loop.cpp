@@ -33,6 +33,7 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
   loop_options.max_frames = options_.max_frames;
   loop_options.initial_keys = options_.initial_keys;
   loop_options.stop = stop;
+  loop_options.each_iteration = options_.each_iteration;
   FrameLoop loop(display_, pen_);
   FrameLoopResult result;
   if (!loop.run(*screen_, loop_options, &result, error)) return false;

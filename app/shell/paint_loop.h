@@ -73,6 +73,13 @@ struct PaintLoopOptions {
   std::string config_dir, state_dir;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
   std::function<void()> on_first_connection;            // the pen connected for the first time
+  std::function<void(bool presented)> each_iteration;   // every loop iteration (kiosk watchdog)
+  // Exhibition kiosk (issue 11): visitor mode keeps quit keys and operator commands away
+  // (only painting, erasing, camera, undo and start again); after idle_reset_s without input a
+  // countdown of idle_warning_s shows, then the cloud is cleared and the attract orbit resumes.
+  bool visitor_mode = false;
+  double idle_reset_s = 0.0;  // 0: never
+  double idle_warning_s = 10.0;
 };
 
 // What a run did, for the summary line and tests.

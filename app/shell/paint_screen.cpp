@@ -199,6 +199,7 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
 }
 
 void PaintScreen::feedSample(const PenSample& sample) {
+  if (sample.in_proximity) last_input_ns_ = monotonicNowNs();
   if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
     tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
     selectCalibration(tool_serial_);
@@ -251,6 +252,7 @@ void PaintScreen::feedSample(const PenSample& sample) {
 
 void PaintScreen::onPointer(const DisplayEvent& event) {
   // A mouse (X11) drives the on-screen UI, and paints when no tablet is connected.
+  last_input_ns_ = monotonicNowNs();
   if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) mouse_down_ = true;
   if (event.kind == DisplayEvent::Kind::PointerUp && event.button == 1) mouse_down_ = false;
   if (ui_) ui_->pointer(event.x, event.y, mouse_down_);
@@ -362,7 +364,29 @@ Camera PaintScreen::presetView(Command command) const {
   return c;
 }
 
+bool PaintScreen::visitorAllows(Command command) const {
+  // Visitor mode (issue 11): painting, erasing, camera, undo and start again; no operator
+  // commands (files, statistics, canvas and light set-up, style, quit).
+  switch (command) {
+    case Command::kQuit:
+    case Command::kModeCanvas:
+    case Command::kModeLight:
+    case Command::kSave:
+    case Command::kOpen:
+    case Command::kToggleStats:
+    case Command::kNextStyle:
+    case Command::kRaise:
+    case Command::kLower:
+      return false;
+    default:
+      return true;
+  }
+}
+
 void PaintScreen::onCommand(Command command, int64_t t_ns) {
+  last_input_ns_ = monotonicNowNs();
+  if (options_.visitor_mode && !visitorAllows(command))
+    return say(std::string(commandName(command)) + " is for the operator, not in visitor mode");
   const bool erase = session_ && session_->mode() == Mode::kErase;
   switch (command) {
     case Command::kQuit:
@@ -537,8 +561,37 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
 }
 
 std::string PaintScreen::update(const FrameContext& frame) {
-  if (pen_ && last_connection_ == int(PenConnection::kFinished) && !lit_pending_ &&
-      !refine_pending_ && !session_->engine().inStroke())
+  if (options_.idle_reset_s > 0.0 && session_) {
+    // Kiosk: a countdown before the idle reset, then the sky is cleared and the orbit resumes
+    // (the attract loop). Any pen, mouse or key input restarts the wait.
+    if (last_input_ns_ == 0) last_input_ns_ = frame.now_ns;
+    const double idle = double(frame.now_ns - last_input_ns_) / 1e9;
+    const double left = options_.idle_reset_s - idle;
+    const bool painted = session_->history().canUndo() || session_->engine().inStroke();
+    if (left <= 0.0) {
+      if (painted || !orbiting_) {
+        apply(ui::DeleteAll{}, frame.now_ns);
+        apply(ui::SetCamera{initialPaintCamera(session_->settings())}, frame.now_ns);
+        apply(ui::SetMode{Mode::kPaint}, frame.now_ns);
+        orbiting_ = options_.orbit_degrees_per_second != 0.0f;
+        menu_open_ = false;
+        ++idle_resets_;
+        say("idle reset: the sky is cleared; the attract orbit resumes");
+      }
+      notice_ = "Pick up the pen and paint a cloud";
+      last_input_ns_ = frame.now_ns;
+    } else if (left <= options_.idle_warning_s && painted) {
+      char text[128];
+      std::snprintf(text, sizeof text,
+                    "Still there? The sky clears in %d s - touch the pen to keep painting",
+                    int(std::ceil(left)));
+      notice_ = text;
+    } else if (notice_.rfind("Still there?", 0) == 0 || notice_.rfind("Pick up", 0) == 0) {
+      notice_.clear();
+    }
+  }
+  if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
+      !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
   if (orbiting_) orbit_degrees_ += options_.orbit_degrees_per_second * float(frame.since_last_s);
   return "";
@@ -547,6 +600,7 @@ std::string PaintScreen::update(const FrameContext& frame) {
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
   if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
+  if (options_.idle_reset_s > 0.0) return true;   // the kiosk's countdown and attract loop
   if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
 }
@@ -770,6 +824,7 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   state.mode = session_ ? int(session_->mode()) : 2;
   state.can_undo = session_ && session_->history().canUndo();
   state.can_redo = session_ && session_->history().canRedo();
+  state.visitor = options_.visitor_mode;
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
   const std::vector<Command> tapped =

@@ -205,8 +205,11 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
       if (selected) ImGui::PopStyleColor();
       remember(command);
     };
+    bool first = true;
     for (int i = 0; i < 5; ++i) {
-      if (i) ImGui::SameLine();
+      if (state.visitor && (i == 1 || i == 4)) continue;  // canvas and light: the operator's
+      if (!first) ImGui::SameLine();
+      first = false;
       button(kModes[i].command, kModes[i].label, state.mode == i, true);
     }
     ImGui::Separator();
@@ -220,13 +223,15 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
     ImGui::SameLine();
     button(Command::kRedo, "Redo\n重做", false, state.can_redo);
     ImGui::SameLine();
-    button(Command::kDeleteAll, "Delete all", false, true);
-    ImGui::SameLine();
-    button(Command::kSave, "Save", false, true);
-    ImGui::SameLine();
-    button(Command::kOpen, "Open last", false, true);
-    ImGui::SameLine();
-    button(Command::kToggleStats, "Statistics", false, true);
+    button(Command::kDeleteAll, state.visitor ? "Start again" : "Delete all", false, true);
+    if (!state.visitor) {
+      ImGui::SameLine();
+      button(Command::kSave, "Save", false, true);
+      ImGui::SameLine();
+      button(Command::kOpen, "Open last", false, true);
+      ImGui::SameLine();
+      button(Command::kToggleStats, "Statistics", false, true);
+    }
     ImGui::End();
   }
   over_ui_ = io.WantCaptureMouse;

@@ -27,6 +27,7 @@ struct UiOverlayState {
   bool menu_open = false;
   int mode = 2;  // Mode as an int (0 camera … 4 light), for the mode's commands
   bool can_undo = false, can_redo = false;
+  bool visitor = false;  // kiosk visitor mode: operator targets are not shown
 };
 
 // A line of text drawn by drawLabels (screens without the painter's status line and menu, such
