@@ -67,6 +67,8 @@ class PaintScreen : public Screen {
   std::string statusLine() const;
   bool menuOpen() const { return menu_open_; }
   bool edgeOnWarning() const { return edge_on_; }
+  // The notice above the status line (edge-on view, kiosk countdown or invitation), or "".
+  const std::string& notice() const { return notice_; }
   // Commands tapped on the on-screen UI so far (tests).
   const std::vector<Command>& tappedCommands() const { return tapped_; }
   const UiOverlay* ui() const { return ui_.get(); }

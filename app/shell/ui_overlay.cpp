@@ -177,9 +177,14 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
   ImGui::End();
 
   if (!state.notice.empty()) {
+    // Sized from its text, so it shows on the frame it appears (an auto-sized ImGui window
+    // stays hidden for its first frame).
+    const ImVec2 padding = ImGui::GetStyle().WindowPadding;
+    const ImVec2 text = ImGui::CalcTextSize(state.notice.c_str());
     ImGui::SetNextWindowPos(ImVec2(float(width) * 0.5f, bar_h + 8.0f), 0, ImVec2(0.5f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(text.x + 2.0f * padding.x, text.y + 2.0f * padding.y));
     ImGui::SetNextWindowBgAlpha(0.8f);
-    ImGui::Begin("notice", nullptr, fixed | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Begin("notice", nullptr, fixed);
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.4f, 1.0f));
     ImGui::TextUnformatted(state.notice.c_str());
     ImGui::PopStyleColor();
