@@ -187,3 +187,25 @@ void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items
 }
 
 }  // namespace cb
+
+namespace cb {
+
+void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max, int divisions,
+                      const std::function<glm::vec2(glm::vec3)>& to_screen,
+                      std::vector<HudItem>* items) {
+  const glm::vec4 colour(1.0f, 1.0f, 1.0f, 0.22f);
+  const float y = canvas.altitude;
+  if (y < box_min.y || y > box_max.y || divisions < 1) return;
+  for (int i = 0; i <= divisions; ++i) {
+    const float f = float(i) / float(divisions);
+    const float x = box_min.x + f * (box_max.x - box_min.x);
+    const float z = box_min.z + f * (box_max.z - box_min.z);
+    const glm::vec2 pairs[2][2] = {{to_screen({x, y, box_min.z}), to_screen({x, y, box_max.z})},
+                                   {to_screen({box_min.x, y, z}), to_screen({box_max.x, y, z})}};
+    for (const auto& p : pairs)
+      if (p[0].x > -1e5f && p[1].x > -1e5f)  // both ends in front of the camera
+        items->push_back(makeHudSegment(p[0], p[1], 1.0f, colour));
+  }
+}
+
+}  // namespace cb

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,11 @@ std::vector<glm::vec2> canvasRegionOutline(const Camera& camera, const Canvas& c
 // A veil over the screen outside the drawable region (4-pixel row bands), so ink drawn where it
 // cannot land looks different at once.
 void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items);
+// Grid lines on the canvas mid-plane across the box's x/z extent, `divisions` per side, each
+// line projected by `to_screen` (world → screen pixels) and clipped to where it is in front.
+void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max, int divisions,
+                      const std::function<glm::vec2(glm::vec3)>& to_screen,
+                      std::vector<HudItem>* items);
 void appendCanvasOutline(const std::vector<glm::vec2>& outline, std::vector<HudItem>* items);
 
 }  // namespace cb

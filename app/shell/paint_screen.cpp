@@ -699,6 +699,9 @@ bool PaintScreen::drawOverlays(std::string* error) {
     if ((in_range && (mode == Mode::kPaint || mode == Mode::kErase)) || mode == Mode::kCanvas) {
       const DrawableRegion region(camera, canvas, volume.worldMin(), volume.worldMax(), w, h);
       if (mode == Mode::kPaint) appendOutsideVeil(region, &items);
+      // The canvas as a grid on its mid-plane (thesis Fig. 3.4), every eighth of the sky box.
+      const auto to_screen = [&](glm::vec3 p) { return project(camera, p, w, h); };
+      appendCanvasGrid(canvas, volume.worldMin(), volume.worldMax(), 8, to_screen, &items);
       appendCanvasOutline(region.outline(), &items);
     }
     if (mode == Mode::kErase && vacuum_centre_) {
