@@ -1,7 +1,8 @@
 // `cloudbrush bench tools`: picture → cloud (512×512 silhouette into 256³), model → cloud (the
 // generated 70,656-triangle torus), morph in-between generation at 256³ and one wind step (64³
-// velocity driving the 256³ density), each against a straightforward baseline in the same run. Times are to the volume ready (dirty box marked);
-// the lit frame after it is the painter's sync, timed by `bench mapping`.
+// velocity driving the 256³ density), each against a straightforward baseline in the same run.
+// Times are to the volume ready (dirty box marked); the lit frame after it is the painter's sync,
+// timed by `bench mapping`.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
