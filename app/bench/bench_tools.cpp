@@ -1,7 +1,8 @@
 // `cloudbrush bench tools`: picture → cloud (512×512 silhouette into 256³), model → cloud (the
-// generated 70,656-triangle torus) and morph in-between generation at 256³, each against a
-// straightforward baseline in the same run. Times are to the volume ready (dirty box marked);
-// the lit frame after it is the painter's sync, timed by `bench mapping`.
+// generated 70,656-triangle torus), morph in-between generation at 256³ and one wind step (64³
+// velocity driving the 256³ density), each against a straightforward baseline in the same run.
+// Times are to the volume ready (dirty box marked); the lit frame after it is the painter's sync,
+// timed by `bench mapping`.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/tools/procedural_mesh.h"
+#include "app/tools/wind.h"
 
 namespace cb {
 namespace {
@@ -126,6 +128,37 @@ int benchTools(int argc, char** argv) {
   report.figure("morph_pairs", double(plan->pairCount()));
   report.baseline("crossfade_inbetween_ms", median(fade));
   delete plan;
+
+  // Wind: one step of the 64³ velocity grid (self-advection + 20 Jacobi sweeps) driving the
+  // picture's 256³ cloud, a breeze plus a gust; baseline the same step on one thread.
+  auto windSteps = [&](std::vector<double>* velocity_ms, std::vector<double>* density_ms) {
+    Volume cloud = a;
+    WindSolver wind(cloud.worldMin(), cloud.worldMax());
+    wind.setUniformWind({0.15f, 0.0f, 0.05f});
+    wind.addForce({0.0f, 1.5f, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
+    for (int r = 0; r < runs + 1; ++r) {  // the first step faults the scratch grid in
+      const double v = timeMs([&] { wind.stepVelocity(1.0f / 15); });
+      const double d = timeMs([&] { wind.advectDensity(1.0f / 15, &cloud); });
+      if (r == 0) continue;
+      velocity_ms->push_back(v);
+      density_ms->push_back(d);
+    }
+  };
+  std::vector<double> wind_velocity, wind_density, wind_velocity_base, wind_density_base;
+  windSteps(&wind_velocity, &wind_density);
+  setWorkerThreads(1);
+  windSteps(&wind_velocity_base, &wind_density_base);
+  setWorkerThreads(0);
+  const double wind_step = median(wind_velocity) + median(wind_density);
+  const double wind_step_base = median(wind_velocity_base) + median(wind_density_base);
+  std::printf(
+      "wind step 64^3 velocity driving 256^3 density: %.1f ms (velocity %.1f, density %.1f; "
+      "baseline, one thread: %.1f ms; target: step + lit frame at scale 0.5 <= 66.7 ms)\n",
+      wind_step, median(wind_velocity), median(wind_density), wind_step_base);
+  report.figure("wind_step_ms", wind_step);
+  report.figure("wind_velocity_ms", median(wind_velocity));
+  report.figure("wind_density_ms", median(wind_density));
+  report.baseline("wind_step_one_thread_ms", wind_step_base);
   report.print();
   return 0;
 }

@@ -15,8 +15,8 @@ ParticleCounts::ParticleCounts(VoxelBox box) : box_(box) {
 namespace {
 
 // One separable tent pass along `axis` of a grid of `size`, src → dst.
-void tentPass(const std::vector<float>& src, std::vector<float>* dst, glm::ivec3 size, int axis,
-              int radius) {
+void tentPass(const HugePageVector<float>& src, HugePageVector<float>* dst, glm::ivec3 size,
+              int axis, int radius) {
   const size_t stride = axis == 0 ? 1 : axis == 1 ? size_t(size.x) : size_t(size.x) * size.y;
   const int len = size[axis];
   std::vector<float> weights(2 * radius + 1);
@@ -47,19 +47,36 @@ VoxelBox mergeSmoothedDensity(const ParticleCounts& counts, const DensitySmoothi
   const glm::ivec3 size = counts.size();
   const size_t n = counts.counts().size();
   if (n == 0) return {};
+  // Per-chunk maxima reduced in chunk order (a max is order-free anyway).
+  constexpr size_t kGrain = size_t(1) << 16;
+  const HugePageVector<uint32_t>& c = counts.counts();
+  std::vector<uint32_t> chunk_count_max(chunkCount(n, kGrain), 0);
+  parallelFor(n, kGrain, [&](size_t k, size_t begin, size_t end) {
+    uint32_t m = 0;
+    for (size_t i = begin; i < end; ++i) m = std::max(m, c[i]);
+    chunk_count_max[k] = m;
+  });
   uint32_t n_max = 0;
-  for (uint32_t c : counts.counts()) n_max = std::max(n_max, c);
+  for (uint32_t m : chunk_count_max) n_max = std::max(n_max, m);
   if (n_max == 0) return {};
   // Eq. (6): V_d = sqrt(N / N_max).
-  std::vector<float> a(n), b(n);
+  HugePageVector<float> a(n), b(n);
   const float inv = 1.0f / float(n_max);
-  for (size_t i = 0; i < n; ++i) a[i] = std::sqrt(float(counts.counts()[i]) * inv);
+  parallelFor(n, kGrain, [&](size_t, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) a[i] = std::sqrt(float(c[i]) * inv);
+  });
   // Eq. (7) with a separable tent weight.
   tentPass(a, &b, size, 0, smoothing.radius_voxels);
   tentPass(b, &a, size, 1, smoothing.radius_voxels);
   tentPass(a, &b, size, 2, smoothing.radius_voxels);
+  std::vector<float> chunk_peak(chunkCount(n, kGrain), 0.0f);
+  parallelFor(n, kGrain, [&](size_t k, size_t begin, size_t end) {
+    float m = 0;
+    for (size_t i = begin; i < end; ++i) m = std::max(m, b[i]);
+    chunk_peak[k] = m;
+  });
   float peak = 0;
-  for (float v : b) peak = std::max(peak, v);
+  for (float m : chunk_peak) peak = std::max(peak, m);
   if (peak <= 0) return {};
   const float scale = smoothing.peak_density / peak;
   const glm::ivec3 lo = counts.box().lo;

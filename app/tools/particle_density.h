@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/tools/huge_page_allocator.h"
 #include "app/volume/box.h"
 #include "app/volume/volume.h"
 
@@ -29,13 +30,13 @@ class ParticleCounts {
     std::atomic_ref<uint32_t>(counts_[(size_t(l.z) * size_.y + l.y) * size_.x + l.x])
         .fetch_add(1, std::memory_order_relaxed);
   }
-  const std::vector<uint32_t>& counts() const { return counts_; }
+  const HugePageVector<uint32_t>& counts() const { return counts_; }
   glm::ivec3 size() const { return size_; }
 
  private:
   VoxelBox box_;
   glm::ivec3 size_;
-  std::vector<uint32_t> counts_;
+  HugePageVector<uint32_t> counts_;
 };
 
 struct DensitySmoothing {

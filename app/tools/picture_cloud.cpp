@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "app/core/parallel_for.h"
@@ -128,7 +129,6 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
   }
   reach = reach.grow(params.smoothing.radius_voxels + 1).intersect(volume->bounds());
   if (reach.empty()) return {};
-  ParticleCounts counts(reach);
 
   // The anchor plane is affine in picture coordinates; a depth offset scales along the eye ray.
   const glm::vec3 p00 = placement.worldPoint({0, 0}, 0);
@@ -137,51 +137,77 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
   const glm::vec3 eye = view.camera.eye;
   const float anchor_depth = glm::dot(placement.anchor() - eye, placement.forward());
 
-  parallelFor(size_t(h), 8, [&](size_t, size_t yb, size_t ye) {
-    for (size_t yy = yb; yy < ye; ++yy) {
-      const int y = int(yy);
-      for (int x = 0; x < w; ++x) {
-        if (!mask.at(x, y)) continue;
-        const size_t pixel = size_t(y) * w + x;
-        StrokeRandom rng(params.seed, pixel);
-        const float range = rangeOf(x, y);
-        const double expected = double(texel) * texel * (range * texel * params.depth_scale) /
-                                voxel_volume * params.particles_per_voxel * density_factor;
-        // Stochastic rounding, at least one particle per shape pixel.
-        int n = int(expected);
-        if (rng.uniform() < expected - n) ++n;
-        n = std::max(n, 1);
-        glm::vec2 to_axis(0);
-        float d_pq = 0;
-        if (!params.naive_uniform_depth && axis_nearest[pixel] >= 0) {
-          const int q = axis_nearest[pixel];
-          to_axis = glm::vec2(float(q % w - x), float(q / w - y));
-          d_pq = glm::length(to_axis);
-        }
-        for (int i = 0; i < n; ++i) {
-          // Stratified: uniform within the pixel.
-          glm::vec2 p(x + float(rng.uniform()), y + float(rng.uniform()));
-          float z;
-          if (params.naive_uniform_depth) {
-            z = float(2.0 * rng.uniform() - 1.0) * r_max;
-          } else {
-            // Eq. (1): p' = p + (d_pq / d_max) · ε · N_pq, N_pq = q − p (length d_pq).
-            if (d_max > 0) {
-              const float eps = float(rng.uniform()) * params.medial_pull;
-              p += (d_pq / d_max) * eps * to_axis;
-            }
-            // Eq. (2.4): z' = R − R·sqrt(1 − ε), on either side of the anchor plane.
-            const float e = float(rng.uniform());
-            z = range - range * std::sqrt(1.0f - e);
-            if (rng.next() & 1) z = -z;
+  // Calls sink(world) for every particle of picture row y, in a fixed order: the particles of a
+  // pixel depend only on (seed, pixel), so two walks over a row draw the same particles.
+  auto forEachParticleOfRow = [&](int y, auto&& sink) {
+    for (int x = 0; x < w; ++x) {
+      if (!mask.at(x, y)) continue;
+      const size_t pixel = size_t(y) * w + x;
+      StrokeRandom rng(params.seed, pixel);
+      const float range = rangeOf(x, y);
+      const double expected = double(texel) * texel * (range * texel * params.depth_scale) /
+                              voxel_volume * params.particles_per_voxel * density_factor;
+      // Stochastic rounding, at least one particle per shape pixel.
+      int n = int(expected);
+      if (rng.uniform() < expected - n) ++n;
+      n = std::max(n, 1);
+      glm::vec2 to_axis(0);
+      float d_pq = 0;
+      if (!params.naive_uniform_depth && axis_nearest[pixel] >= 0) {
+        const int q = axis_nearest[pixel];
+        to_axis = glm::vec2(float(q % w - x), float(q / w - y));
+        d_pq = glm::length(to_axis);
+      }
+      for (int i = 0; i < n; ++i) {
+        // Stratified: uniform within the pixel.
+        glm::vec2 p(x + float(rng.uniform()), y + float(rng.uniform()));
+        float z;
+        if (params.naive_uniform_depth) {
+          z = float(2.0 * rng.uniform() - 1.0) * r_max;
+        } else {
+          // Eq. (1): p' = p + (d_pq / d_max) · ε · N_pq, N_pq = q − p (length d_pq).
+          if (d_max > 0) {
+            const float eps = float(rng.uniform()) * params.medial_pull;
+            p += (d_pq / d_max) * eps * to_axis;
           }
-          const float offset = z * texel * params.depth_scale;
-          const glm::vec3 on_plane = p00 + p.x * du + p.y * dv;
-          const glm::vec3 world = eye + (on_plane - eye) * ((anchor_depth + offset) / anchor_depth);
-          counts.add(*volume, world);
+          // Eq. (2.4): z' = R − R·sqrt(1 − ε), on either side of the anchor plane.
+          const float e = float(rng.uniform());
+          z = range - range * std::sqrt(1.0f - e);
+          if (rng.next() & 1) z = -z;
         }
+        const float offset = z * texel * params.depth_scale;
+        const glm::vec3 on_plane = p00 + p.x * du + p.y * dv;
+        sink(eye + (on_plane - eye) * ((anchor_depth + offset) / anchor_depth));
       }
     }
+  };
+
+  // First walk: the voxel box the particles occupy. The counts and smoothing grids then cover
+  // that box grown by the smoothing radius (+1) rather than the whole reachable box — less
+  // memory to fault in and to smooth, and the same bytes: the tent pass only ever adds zeros
+  // from the cells this drops.
+  constexpr size_t kRowsPerChunk = 8;
+  std::vector<VoxelBox> chunk_box(chunkCount(size_t(h), kRowsPerChunk));
+  parallelFor(size_t(h), kRowsPerChunk, [&](size_t k, size_t y_begin, size_t y_end) {
+    glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+    for (size_t y = y_begin; y < y_end; ++y)
+      forEachParticleOfRow(int(y), [&](glm::vec3 world) {
+        const glm::ivec3 v = glm::ivec3(glm::floor(volume->worldToVoxel(world)));
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v + 1);
+      });
+    if (lo.x <= hi.x) chunk_box[k] = VoxelBox{lo, hi};
+  });
+  VoxelBox occupied;
+  for (const VoxelBox& box : chunk_box) occupied = occupied.unite(box);
+  const VoxelBox grid = occupied.grow(params.smoothing.radius_voxels + 1).intersect(reach);
+  if (grid.empty()) return {};
+
+  // Second walk: count.
+  ParticleCounts counts(grid);
+  parallelFor(size_t(h), kRowsPerChunk, [&](size_t, size_t y_begin, size_t y_end) {
+    for (size_t y = y_begin; y < y_end; ++y)
+      forEachParticleOfRow(int(y), [&](glm::vec3 world) { counts.add(*volume, world); });
   });
   return mergeSmoothedDensity(counts, params.smoothing, volume);
 }
