@@ -1,7 +1,8 @@
 // cloudbrush study: exports and the questionnaire report for user studies (issue 10), built on
 // app/study. `study export` writes pen traces (and, with --volumes, replayed volumes and renders)
 // of one or many sessions; `study volume` exports a saved volume; `study report` writes the
-// offline HTML report of questionnaire answers.
+// offline HTML report of questionnaire answers; `study check` validates a study protocol;
+// `study withdraw` deletes one participant's data.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -20,6 +21,9 @@
 #include "app/study/construct_definitions.h"
 #include "app/study/inkml_writer.h"
 #include "app/study/likert_answers.h"
+#include "app/study/participant_withdrawal.h"
+#include "app/study/protocol.h"
+#include "app/study/protocol_summary.h"
 #include "app/study/render_export.h"
 #include "app/study/session_trace.h"
 #include "app/study/study_report.h"
@@ -36,6 +40,8 @@ const char kStudyHelp[] =
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
     "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
     "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
+    "       cloudbrush study check [PROTOCOL.toml] [--vocabulary]\n"
+    "       cloudbrush study withdraw --data DIR --participant ID [--key-file FILE] [--dry-run]\n"
     "\n"
     "export   pen traces of one session or a whole study, one file per kind (sessions\n"
     "         concatenated in the order given, each row or trace group tagged with the\n"
@@ -56,7 +62,18 @@ const char kStudyHelp[] =
     "         default: the questionnaire's Appendix C sections whose items are all present), the\n"
     "         paired one-tailed t-test of --pair (default Q3,Q6: the 2D vs 3D brush ratings,\n"
     "         thesis §7.7.2), and per-session pressure and speed when journals are given.\n"
-    "         ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n";
+    "         ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n"
+    "check    reads a study protocol (default: the bundled config/study/thesis_2014.toml;\n"
+    "         format: app/study/protocol.h) and prints a summary: stages, tutorial steps and\n"
+    "         their checks, tasks, the task order of each participant over one cycle, the\n"
+    "         questionnaire and constructs. An error exits 1 naming FILE:LINE: FIELD; images or\n"
+    "         videos it names that do not exist exit 3. --vocabulary lists what tutorial checks\n"
+    "         may name.\n"
+    "withdraw deletes everything of participant ID under DIR: files and folders named ID or\n"
+    "         ID_*, ID-*, ID.* (session folders), the rows of every CSV whose participant column\n"
+    "         is ID or whose session column is such a name, and the ID's row in --key-file. Says\n"
+    "         what it deleted, and which remaining files still mention ID (exit 3). An ID that\n"
+    "         matches nothing is refused (exit 1). --dry-run only says what it would delete.\n";
 
 int fail(const std::string& message, int code = 1) {
   std::fprintf(stderr, "cloudbrush study: %s\n", message.c_str());
@@ -277,10 +294,62 @@ int runReport(Args& args) {
   return 0;
 }
 
+int runCheck(Args& args) {
+  auto unknown = args.unknown({"help", "vocabulary"});
+  if (!unknown.empty()) return fail("check: unknown option " + unknown[0] + " (see --help)", 2);
+  if (args.has("vocabulary")) {
+    std::fputs(tutorialVocabularyText().c_str(), stdout);
+    return 0;
+  }
+  if (args.positional().size() > 3)
+    return fail("check: expected at most one protocol: study check [PROTOCOL.toml]", 2);
+  const std::string path =
+      args.positional().size() == 3 ? args.positional()[2] : defaultStudyProtocolPath();
+  StudyProtocol protocol;
+  try {
+    protocol = loadStudyProtocol(path);
+  } catch (const StudyProtocolError& e) {
+    return fail(e.what());
+  }
+  std::fputs(studyProtocolSummary(protocol).c_str(), stdout);
+  const std::vector<std::string> missing = missingProtocolFiles(protocol);
+  for (const std::string& file : missing)
+    std::fprintf(stderr, "cloudbrush study: %s: missing file %s\n", path.c_str(), file.c_str());
+  return missing.empty() ? 0 : 3;
+}
+
+int runWithdraw(Args& args) {
+  auto unknown = args.unknown({"help", "data", "participant", "key-file", "dry-run"});
+  if (!unknown.empty()) return fail("withdraw: unknown option " + unknown[0] + " (see --help)", 2);
+  if (args.positional().size() != 2)
+    return fail("withdraw: no positional arguments: --data DIR --participant ID", 2);
+  const std::string data = args.get("data", ""), participant = args.get("participant", "");
+  if (data.empty() || participant.empty())
+    return fail("withdraw: --data DIR and --participant ID are required", 2);
+  const bool dry_run = args.has("dry-run");
+  WithdrawalResult result;
+  try {
+    result = withdrawParticipant(data, participant, args.get("key-file", ""), dry_run);
+  } catch (const std::exception& e) {
+    return fail("withdraw: " + std::string(e.what()));
+  }
+  const char* verb = dry_run ? "would delete" : "deleted";
+  for (const auto& path : result.removed_paths) std::printf("%s %s\n", verb, path.string().c_str());
+  for (const CsvRowRemoval& removal : result.removed_rows)
+    std::printf("%s %d row%s of %s from %s\n", verb, removal.rows, removal.rows == 1 ? "" : "s",
+                participant.c_str(), removal.file.string().c_str());
+  for (const auto& path : result.still_mentioning)
+    std::fprintf(stderr,
+                 "cloudbrush study: withdraw: %s still mentions %s (not a CSV with a "
+                 "participant or session column; edit it by hand)\n",
+                 path.string().c_str(), participant.c_str());
+  return result.still_mentioning.empty() ? 0 : 3;
+}
+
 }  // namespace
 
 int commandStudy(int argc, char** argv) {
-  Args args(argc, argv, {"help", "volumes", "render"});
+  Args args(argc, argv, {"help", "volumes", "render", "vocabulary", "dry-run"});
   if (args.has("help") || args.positional().size() < 2) {
     std::fputs(kStudyHelp, args.has("help") ? stdout : stderr);
     return args.has("help") ? 0 : 2;
@@ -290,7 +359,10 @@ int commandStudy(int argc, char** argv) {
   if (action == "export") return runExport(args);
   if (action == "volume") return runVolume(args);
   if (action == "report") return runReport(args);
-  return fail("unknown action '" + action + "' (export, volume or report; see --help)", 2);
+  if (action == "check") return runCheck(args);
+  if (action == "withdraw") return runWithdraw(args);
+  return fail(
+      "unknown action '" + action + "' (export, volume, report, check or withdraw; see --help)", 2);
 }
 
 }  // namespace cb
