@@ -62,6 +62,7 @@ constexpr const char* kUsage =
     "  --moving-scale F    starting resolution scale while the camera moves (default 0.5;\n"
     "                      adapted towards 20 fps)\n"
     "  --frames N          on a display, quit after N frames (default: run until Esc)\n"
+    "  --seconds S         on a display, quit after S seconds (scripted runs)\n"
     "  --stats             print ray-sample statistics of full-resolution frames\n"
     "  --keys LETTERS      press these keys at the start, in order (scripted runs): s, c, b, m\n"
     "  --backend NAME      pen: auto (default), evdev, hidraw, libusb, replay or none\n"
@@ -112,10 +113,10 @@ int commandPaint(int argc, char** argv) {
     return 0;
   }
   const auto unknown = args.unknown(
-      {"help",       "stats",   "display",      "drm-device",      "size",    "out-dir",
-       "grid",       "seed",    "orbit",        "moving-scale",    "frames",  "backend",
-       "pen-device", "journal", "session-dir",  "no-record",       "keys",    "open",
-       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir"});
+      {"help",       "stats",   "display",      "drm-device",      "size",     "out-dir",
+       "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
+       "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
+       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -134,6 +135,7 @@ int commandPaint(int argc, char** argv) {
   loop_options.orbit_degrees_per_second = float(args.getDouble("orbit", 6.0));
   loop_options.moving_scale = float(args.getDouble("moving-scale", 0.5));
   loop_options.max_frames = args.getInt("frames", 0);
+  loop_options.max_seconds = args.getDouble("seconds", 0.0);
   loop_options.print_stats = args.has("stats");
   const bool kiosk = args.has("kiosk");
   if (kiosk) {

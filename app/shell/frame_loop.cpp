@@ -55,6 +55,9 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     if (quit.empty() && options.stop && options.stop->load()) quit = "signal";
     if (quit.empty() && options.max_frames > 0 && result->frames >= options.max_frames)
       quit = "frame limit";
+    if (quit.empty() && options.max_seconds > 0.0 &&
+        double(monotonicNs() - start) / 1e9 >= options.max_seconds)
+      quit = "time limit";
     const int64_t now = monotonicNs();
     FrameContext frame{display_,
                        display_.width(),

@@ -17,6 +17,7 @@ class PenSource;
 
 struct FrameLoopOptions {
   long max_frames = 0;                      // stop after this many presented frames (0: no limit)
+  double max_seconds = 0.0;                 // stop after this long (0: no limit)
   std::vector<DisplayEvent> initial_keys;   // pressed before the first frame (scripted runs)
   const std::atomic<bool>* stop = nullptr;  // set by signal handlers
   std::function<void(const FrameContext&)> after_draw;  // tests: after drawing, before present

@@ -31,6 +31,7 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
   *summary = PaintLoopSummary{};
   FrameLoopOptions loop_options;
   loop_options.max_frames = options_.max_frames;
+  loop_options.max_seconds = options_.max_seconds;
   loop_options.initial_keys = options_.initial_keys;
   loop_options.stop = stop;
   loop_options.each_iteration = options_.each_iteration;

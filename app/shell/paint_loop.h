@@ -64,6 +64,7 @@ struct PaintLoopOptions {
   float min_moving_scale = 0.2f;
   double target_frame_ms = 50.0;      // 20 fps
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
+  double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame
   bool show_stats_overlay = false;    // start with the S overlay on
   bool show_circles_overlay = false;  // start with the C overlay on
