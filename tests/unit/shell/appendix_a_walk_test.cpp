@@ -24,6 +24,8 @@
 #include "app/shell/ui_overlay.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/test_display.h"
+
 namespace cb {
 namespace {
 
@@ -157,12 +159,8 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
     }
   }
 
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = kW;
-  display_options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;

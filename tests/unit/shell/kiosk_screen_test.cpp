@@ -10,18 +10,16 @@
 #include "app/shell/paint_loop.h"
 #include "app/shell/paint_screen.h"
 
+#include "tests/support/test_display.h"
+
 namespace cb {
 namespace {
 
 constexpr int kW = 640, kH = 360;
 
 TEST(KioskScreen, CountdownThenResetAndInvitation) {
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = kW;
-  display_options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;

@@ -18,6 +18,8 @@
 #include "app/shell/ui_overlay.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/test_display.h"
+
 namespace cb {
 namespace {
 
@@ -42,12 +44,8 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
                                                   200.0, 1'000'000'000))
       recorder.feed(s);
   }
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = kW;
-  display_options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;
@@ -116,12 +114,8 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
       (std::filesystem::temp_directory_path() / ("cb_paint_menu_" + std::to_string(::getpid())))
           .string();
   std::filesystem::create_directories(dir + "/state");
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = kW;
-  display_options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;

@@ -21,25 +21,15 @@
 #include "app/volume/volume_file.h"
 #include "drivers/core/journal.h"
 
+#include "tests/support/command_run.h"
+
 namespace cb {
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string out;  // stdout and stderr together
-};
+using test::CommandRun;
 
 CommandRun run(const std::string& command) {
-  CommandRun result;
-  std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int raw = ::pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return result;
+  return test::runCommand(command);
 }
 
 class StudyCli : public ::testing::Test {

@@ -12,24 +12,14 @@
 #include <fstream>
 #include <string>
 
+#include "tests/support/command_run.h"
+
 namespace {
 
-struct CommandRun {
-  int status = -1;  // exit status; -1 when the command did not exit (e.g. killed by a signal)
-  std::string out;  // stdout and stderr together
-};
+using cb::test::CommandRun;
 
 CommandRun run(const std::string& command) {
-  CommandRun result;
-  std::FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int raw = ::pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return result;
+  return cb::test::runCommand(command);
 }
 
 std::string header(const std::string& dims) {
