@@ -10,6 +10,8 @@
 #include "opacity_projection.h"
 #include "tests/unit/render/gl_test_context.h"
 
+#include "rendered_opacity.h"
+
 namespace cb {
 namespace {
 
@@ -28,17 +30,8 @@ class MappedCloudRender : public ::testing::Test {
     mapper->setQuiet(true);
   }
 
-  // Per-pixel accumulated opacity (alpha over a transparent background), row 0 at the top.
   std::vector<float> opacity(const Volume& v, const Camera& camera) {
-    renderer.sync(v, Light{});
-    RenderOptions opt;
-    opt.background = glm::vec4(0.0f);
-    renderer.render(camera, kW, kH, target.fbo(), opt);
-    ImageRgba8 img = target.readRgba8();
-    std::vector<float> a(size_t(kW) * kH);
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) a[size_t(y) * kW + x] = img.at(x, y)[3] / 255.0f;
-    return a;
+    return test::renderedOpacity(renderer, target, v, camera);
   }
 
   double silhouetteIoU(const Volume& v, const StrokeResult& s) {
