@@ -69,6 +69,12 @@ ImageRgba8 readPng(const std::string& path) {
   if (!png_image_begin_read_from_file(&img, path.c_str()))
     fail(path, std::string("cannot read PNG: ") + img.message);
   img.format = PNG_FORMAT_RGBA;
+  if (img.width > kMaxPngSide || img.height > kMaxPngSide) {
+    png_image_free(&img);
+    fail(path, "header field IHDR claims " + std::to_string(img.width) + "x" +
+                   std::to_string(img.height) + " pixels; at most " + std::to_string(kMaxPngSide) +
+                   " per side are read");
+  }
   ImageRgba8 out;
   out.width = int(img.width);
   out.height = int(img.height);

@@ -29,7 +29,9 @@ struct ImageRgbaF {
   std::vector<float> pixels;  // width*height*4
 };
 
-// Write / read 8-bit RGBA PNG (libpng). Errors name the file and the problem.
+// Write / read 8-bit RGBA PNG (libpng). Errors name the file and the problem. readPng checks
+// the header's size against kMaxPngSide before it allocates the pixels.
+inline constexpr uint32_t kMaxPngSide = 16384;
 void writePng(const std::string& path, const ImageRgba8& image);
 ImageRgba8 readPng(const std::string& path);
 // Write a float RGBA OpenEXR file (32-bit float channels, ZIP compression).
