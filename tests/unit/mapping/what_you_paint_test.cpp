@@ -23,6 +23,7 @@
 #include "app/brush/synthetic_strokes.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/stroke_mapper.h"
+#include "app/render/image_io.h"
 #include "app/render/volume_renderer.h"
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
@@ -42,6 +43,18 @@ struct Measures {
   size_t circles = 0;
 };
 
+// A straight stroke across the drawable region at constant screen height, with the S curve's
+// pressure and tilt. On the horizontal canvas it runs across the view, so seen from 90° it is
+// seen end-on: its cross-section is what the side-view anisotropy measures. (The S curve's
+// swings up and down the screen are swings in depth on the canvas; from the side they read as
+// extent along the view however round the cloud's cross-section is.)
+SyntheticStroke straightAcross(int w, int h) {
+  SyntheticStroke s = gentleCurve(w, h);
+  s.name = "straight";
+  s.control_points = {{0.15f * w, 0.5f * h}, {0.85f * w, 0.5f * h}};
+  return s;
+}
+
 class WhatYouPaint : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -58,22 +71,24 @@ class WhatYouPaint : public ::testing::Test {
     return test::renderedOpacity(renderer, target, v, camera);
   }
 
-  StrokeResult paint(BrushKind kind, const Camera& camera, const Canvas& canvas) {
+  StrokeResult paint(BrushKind kind, const SyntheticStroke& drawn, const Camera& camera,
+                     const Canvas& canvas) {
     StrokeEngine engine(loadDefaultBrushConfig(), kW, kH);
     engine.selectBrush(kind);
     engine.setPaintView(PaintView{camera}, canvas);
     engine.setNextStrokeIndex(90 + uint32_t(kind));
-    std::vector<BrushInput> samples = sampleStroke(gentleCurve(kW, kH), 200.0);
+    std::vector<BrushInput> samples = sampleStroke(drawn, 200.0);
     engine.prepareNextStroke();
     engine.beginStroke(samples.front());
     for (size_t i = 1; i < samples.size(); ++i) engine.addSample(samples[i]);
     return engine.endStroke();
   }
 
-  Measures measure(BrushKind kind, const Camera& camera) {
+  Measures measure(BrushKind kind, const Camera& camera,
+                   const SyntheticStroke& drawn = gentleCurve(kW, kH)) {
     const Canvas canvas;
     Measures m;
-    StrokeResult stroke = paint(kind, camera, canvas);
+    StrokeResult stroke = paint(kind, drawn, camera, canvas);
     Volume& v = volumes.emplace_back();  // the default 256³ over [-1,1]³
     MappingReport report = mapper->map(stroke, v);
     m.circles = report.circles.size();
@@ -92,18 +107,58 @@ class WhatYouPaint : public ::testing::Test {
     m.landed = m.ink ? double(landed) / double(m.ink) : 0.0;
     m.iou = either ? double(both) / double(either) : 0.0;
 
-    const Camera side = camera.orbited(90.0f);
-    std::vector<float> s = opacity(v, side);
+    // Seen end-on along the stroke's screen direction (the paint camera's right axis, level):
+    // a distant, narrow camera at the canvas altitude looking along the stroke sees the cloud's
+    // cross-section, and a streak along the paint view's rays (thesis Fig. 6.17) is an elongation
+    // along the paint direction's image there. For a straight stroke across the screen this is
+    // the cross-section of the whole cloud; for a curve, only of its straight parts.
     const glm::vec3 paint_dir = glm::normalize(camera.target - camera.eye);
-    const glm::vec3 f = glm::normalize(side.target - side.eye);
-    const glm::vec3 right = glm::normalize(glm::cross(f, side.up)), up = glm::cross(right, f);
+    const glm::vec3 along = glm::normalize(glm::cross(paint_dir, camera.up));
+    glm::vec3 o, d;
+    camera.pixelRay(0.5f * kW, 0.5f * kH, kW, kH, &o, &d);
+    float t_mid = 0.0f;
+    if (!canvas.intersectMidPlane(o, d, &t_mid)) {
+      ADD_FAILURE() << "the paint view's centre does not reach the canvas";
+      return m;
+    }
+    Camera side;
+    side.target = o + d * t_mid;
+    side.eye = side.target - along * 20.0f;
+    side.fov_y_deg = 1.2f;
+    std::vector<float> s = opacity(v, side);
+    const glm::vec3 right = glm::normalize(glm::cross(along, side.up)), up = side.up;
     m.side_anisotropy = test::anisotropyAlong(
         s, kW, kH, glm::vec2(glm::dot(paint_dir, right), -glm::dot(paint_dir, up)));
+    keepImages(std::string(brushKindName(kind)) + "_" + drawn.name, stroke.footprint.values, a, s);
     std::printf(
-        "%-8s ink %7lld px  landed %.3f  IoU %.3f  circles %3zu covering %.3f  side "
+        "%-8s %-14s ink %7lld px  landed %.3f  IoU %.3f  circles %3zu covering %.3f  side "
         "anisotropy %.2f\n",
-        brushKindName(kind), m.ink, m.landed, m.iou, m.circles, m.covered, m.side_anisotropy);
+        brushKindName(kind), drawn.name.c_str(), m.ink, m.landed, m.iou, m.circles, m.covered,
+        m.side_anisotropy);
     return m;
+  }
+
+  // CB_KEEP_FRAMES=DIR writes the ink, the paint-view cloud and the side view as greyscale PNGs.
+  static void keepImages(const std::string& name, const std::vector<float>& ink,
+                         const std::vector<float>& paint_view, const std::vector<float>& side) {
+    const char* keep = std::getenv("CB_KEEP_FRAMES");
+    if (!keep) return;
+    std::filesystem::create_directories(keep);
+    const auto write = [&](const std::string& what, const std::vector<float>& v) {
+      ImageRgba8 img;
+      img.width = kW;
+      img.height = kH;
+      img.pixels.resize(size_t(kW) * kH * 4);
+      for (size_t i = 0; i < v.size(); ++i) {
+        const uint8_t g = uint8_t(std::clamp(v[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+        img.pixels[i * 4 + 0] = img.pixels[i * 4 + 1] = img.pixels[i * 4 + 2] = g;
+        img.pixels[i * 4 + 3] = 255;
+      }
+      writePng(std::string(keep) + "/what_you_paint_" + name + "_" + what + ".png", img);
+    };
+    write("ink", ink);
+    write("cloud", paint_view);
+    write("side", side);
   }
 
   std::deque<Volume> volumes;  // kept alive: the renderer knows a volume by its address
@@ -133,6 +188,8 @@ TEST_F(WhatYouPaint, EveryBrushsStrokeLandsAndMostOfItIsGrownIntoCircles) {
     EXPECT_GE(m.landed, 0.85) << brushKindName(kind);
     EXPECT_GT(m.covered, 0.5) << brushKindName(kind);
   }
+  // The 2D brush's straight stroke is already round in cross-section (issue 9's streak measure).
+  EXPECT_LE(measure(BrushKind::k2D, camera, straightAcross(kW, kH)).side_anisotropy, 1.3);
 }
 
 // Issue 9's acceptance thresholds. Not all are met yet (see app/mapping/README.md, "Open"):
@@ -149,7 +206,8 @@ TEST_F(WhatYouPaint, DISABLED_EveryBrushMeetsTheIssue9Thresholds) {
     EXPECT_GE(m.landed, 0.95) << brushKindName(kind);
     EXPECT_GE(m.iou, 0.85) << brushKindName(kind);
     EXPECT_GE(m.covered, 0.70) << brushKindName(kind);
-    EXPECT_LE(m.side_anisotropy, 1.3) << brushKindName(kind);
+    const Measures straight = measure(kind, camera, straightAcross(kW, kH));
+    EXPECT_LE(straight.side_anisotropy, 1.3) << brushKindName(kind);
   }
 }
 
