@@ -233,7 +233,7 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
   switch (state.stage()) {
     case StudyStageKind::kTutorial: {
       const TutorialStep& step = p.tutorial[size_t(state.tutorialStep())];
-      line("Tutorial: step " + std::to_string(step.number) + " of " +
+      line("Tutorial: step " + std::to_string(state.tutorialStep() + 1) + " of " +
                std::to_string(p.tutorial.size()),
            b.body(), kStudyTextColour, 1.6f);
       line(step.instruction, 1.1f * b.body(), kStudyTextColour, 4.2f);
@@ -319,13 +319,22 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
   } else {
     formPage(b, state, input);
   }
+  if (state.choosing() || state.paused()) {
+    // The page stays visible, veiled, without its words, picture or targets: only the
+    // chooser takes taps.
+    page.targets.clear();
+    page.labels.clear();
+    std::fill(page.image, page.image + 4, 0.0f);
+  }
   if (state.choosing()) {
-    page.targets.clear();  // only the chooser takes taps
     operatorChooser(b, state);
   } else if (state.paused()) {
-    page.targets.clear();
     b.box(0, 0, b.w(), b.h(), kVeil);
-    b.centred(0.5f * b.w(), 0.4f * b.h(), "Paused", 2.0f * b.title());
+    b.centred(0.5f * b.w(), 0.33f * b.h(), "Paused", 2.0f * b.title());
+    b.centred(0.5f * b.w(), 0.33f * b.h() + 3.0f * b.title(),
+              "by the operator: " + state.pauseReason(), b.body());
+    b.centred(0.5f * b.w(), 0.33f * b.h() + 3.0f * b.title() + 1.8f * b.body(),
+              "The session goes on when the operator resumes (Ctrl+Alt+P).", b.body());
   }
   b.waiting(state.waitingFor(input.now_ns));
   return page;

@@ -418,8 +418,7 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
     case StudyStageKind::kIntroduction:
       return "Read the introduction, then tap \"Continue\" (or press Space).";
     case StudyStageKind::kTutorial: {
-      const TutorialStep& step = protocol_.tutorial[size_t(tutorial_step_)];
-      return "Step " + std::to_string(step.number) + " of " +
+      return "Step " + std::to_string(tutorial_step_ + 1) + " of " +
              std::to_string(protocol_.tutorial.size()) +
              ": do what the step says; it moves on by itself when it is done.";
     }

@@ -133,7 +133,7 @@ TEST(StudyRunState, TheThesisStudyRunsThroughEveryStageInOrder) {
   EXPECT_TRUE(hasRecord(records, "study.stage-closing stage=task task=" + order[3]->id +
                                      " position=4 why=\"time up\""));
   EXPECT_TRUE(hasRecord(records, "study.saved stage=task task=" + order[0]->id));
-  EXPECT_TRUE(hasRecord(records, "study.answer item=Q28 value=4"));
+  EXPECT_TRUE(hasRecord(records, "study.answer item=Q28 value=3"));
   EXPECT_TRUE(hasRecord(records, "study.answer item=Q5 value=NA"));
   EXPECT_TRUE(hasRecord(records, "study.end completed"));
 }
