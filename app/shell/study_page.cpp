@@ -173,7 +173,10 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
       heading("Questionnaire: item " + std::to_string(i + 1) + " of " +
               std::to_string(p.items.size()) +
               (item.section.empty() ? std::string() : " (" + item.section + ")"));
-      b.text(margin, y, item.text, 1.15f * b.body(), kStudyTextColour, wrap);
+      // The thesis's *emphasis* marks are the protocol's transcription, not for the participant.
+      std::string text = item.text;
+      text.erase(std::remove(text.begin(), text.end(), '*'), text.end());
+      b.text(margin, y, text, 1.15f * b.body(), kStudyTextColour, wrap);
       // Five (n) big boxes in a row, the scale's words under each number.
       const int n = int(p.scale_labels.size());
       const float gap = 0.012f * b.w();

@@ -14,6 +14,7 @@
 #include <ImfInputFile.h>
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -323,7 +324,10 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
     if (i == 0) d.keep("questionnaire");
     if (i == items - 1) {
       d.keep("questionnaire_lag_item");
-      EXPECT_TRUE(d.labelShown(rig.protocol.items.back().text.substr(0, 20)));
+      std::string lag = rig.protocol.items.back().text;  // shown without the *emphasis* marks
+      lag.erase(std::remove(lag.begin(), lag.end(), '*'), lag.end());
+      EXPECT_TRUE(d.labelShown(lag)) << lag;
+      EXPECT_NE(lag.find("wait after each stroke"), std::string::npos) << "the lag item";
     }
     if (i == 4)
       d.tap(StudyTargetAction::kSkipItem);
