@@ -392,6 +392,8 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   EXPECT_EQ(window.max.y - window.min.y + 1, kH);
   EXPECT_TRUE(exr.header().channels().findChannel("R"));
   const ImageRgba8 png = readPng(rig.folder + "/tasks/cloud1.png");
+  if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
+    writePng(std::string(keep) + "/study_task_export.png", png);
   EXPECT_EQ(png.width, kW);
   EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol"));
 
