@@ -241,6 +241,13 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
            b.body(), kStudyTextColour, 1.6f);
       line(step.instruction, 1.1f * b.body(), kStudyTextColour, 4.2f);
       line("Done when: " + input.check_status, b.small(), kStudyHintColour, 3.2f);
+      // The tutorial has a planned length (§7.5: ten minutes), not a limit: it ends when its
+      // steps are done (or skipped by the operator).
+      const int elapsed = int(state.stageSeconds(input.now_ns));
+      char text[96];
+      std::snprintf(text, sizeof text, "Tutorial time %d:%02d (planned %.0f min)", elapsed / 60,
+                    elapsed % 60, p.tutorial_minutes);
+      line(text, b.small(), kStudyTextColour, 1.5f);
       break;
     }
     case StudyStageKind::kFreeDrawing:
