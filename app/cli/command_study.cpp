@@ -3,6 +3,9 @@
 // of one or many sessions; `study volume` exports a saved volume; `study report` writes the
 // offline HTML report of questionnaire answers; `study check` validates a study protocol;
 // `study withdraw` deletes one participant's data.
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -17,7 +20,14 @@
 #include "app/cli/study_frame_render.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/mapping_config.h"
+#include "app/render/gl/display.h"
+#include "app/render/render_config.h"
+#include "app/render/volume_renderer.h"
+#include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
+#include "app/shell/frame_loop.h"
+#include "app/shell/keymap.h"
+#include "app/shell/study_run_screen.h"
 #include "app/study/construct_definitions.h"
 #include "app/study/inkml_writer.h"
 #include "app/study/likert_answers.h"
@@ -28,9 +38,12 @@
 #include "app/study/session_trace.h"
 #include "app/study/study_report.h"
 #include "app/study/study_report_html.h"
+#include "app/study/study_run_state.h"
+#include "app/study/study_session_record.h"
 #include "app/study/trace_csv.h"
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
+#include "drivers/open_pen_source.h"
 
 namespace cb {
 namespace {
@@ -42,6 +55,10 @@ const char kStudyHelp[] =
     "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
     "       cloudbrush study check [PROTOCOL.toml] [--vocabulary]\n"
     "       cloudbrush study withdraw --data DIR --participant ID [--key-file FILE] [--dry-run]\n"
+    "       cloudbrush study run [PROTOCOL.toml] [--data-dir DIR] [--participant N] [--venue ID]\n"
+    "                            [--operator INITIALS] [--display auto|kms|x11|surfaceless]\n"
+    "                            [--size WxH] [--grid N] [--backend NAME] [--pen-device PATH]\n"
+    "                            [--journal FILE] [--keys LIST] [--frames N] [--seconds S]\n"
     "\n"
     "export   pen traces of one session or a whole study, one file per kind (sessions\n"
     "         concatenated in the order given, each row or trace group tagged with the\n"
@@ -73,7 +90,23 @@ const char kStudyHelp[] =
     "         ID_*, ID-*, ID.* (session folders), the rows of every CSV whose participant column\n"
     "         is ID or whose session column is such a name, and the ID's row in --key-file. Says\n"
     "         what it deleted, and which remaining files still mention ID (exit 3). An ID that\n"
-    "         matches nothing is refused (exit 1). --dry-run only says what it would delete.\n";
+    "         matches nothing is refused (exit 1). --dry-run only says what it would delete.\n"
+    "run      runs a session of the protocol (default: the bundled thesis study) on the display,\n"
+    "         driven by the pen: consent (tap \"I agree\"), the participant's code, the\n"
+    "         introduction, the guided tutorial (each step moves on when its check holds), free\n"
+    "         drawing, the tasks in the participant's counterbalanced order (reference picture\n"
+    "         beside the canvas, a countdown; the task's files saved when it ends), demographics\n"
+    "         and free text on an on-screen keyboard, the Likert questionnaire (tap one of five\n"
+    "         boxes per item). The operator pauses/resumes with Ctrl+Alt+P, skips with\n"
+    "         Ctrl+Alt+S and aborts with Ctrl+Alt+A, each with a reason (tap or digit key).\n"
+    "         A protocol with an error is refused (exit 1, FILE:LINE: FIELD) and missing\n"
+    "         pictures exit 3, before any screen opens. The session folder\n"
+    "         DIR/ID-YYYYmmddTHHMMSSZ (DIR: --data-dir, default <state dir>/study) holds\n"
+    "         session.json, session.cbj (the journal, stages as markers), questionnaire.csv,\n"
+    "         demographics.csv and tasks/TASK.{vdb,cbvol,exr,png}; its path is printed first.\n"
+    "         --participant N picks participant N (id and task order; default: the first\n"
+    "         number whose id has no folder in DIR); --venue is required when the protocol\n"
+    "         names more than one, --operator when it requires one.\n";
 
 int fail(const std::string& message, int code = 1) {
   std::fprintf(stderr, "cloudbrush study: %s\n", message.c_str());
@@ -346,6 +379,183 @@ int runWithdraw(Args& args) {
   return result.still_mentioning.empty() ? 0 : 3;
 }
 
+std::atomic<bool> g_study_stop{false};
+void onStudySignal(int) {
+  g_study_stop.store(true);
+}
+
+int64_t monotonicNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+int runStudySession(Args& args) {
+  auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
+                               "drm-device", "size", "grid", "backend", "pen-device", "journal",
+                               "keys", "frames", "seconds", "end-seconds"});
+  if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
+  if (args.positional().size() > 3)
+    return fail("run: expected at most one protocol: study run [PROTOCOL.toml]", 2);
+  // The protocol is checked completely before anything opens: no session starts on a guess.
+  const std::string path =
+      args.positional().size() == 3 ? args.positional()[2] : defaultStudyProtocolPath();
+  StudyProtocol protocol;
+  try {
+    protocol = loadStudyProtocol(path);
+  } catch (const StudyProtocolError& e) {
+    return fail(std::string("run: ") + e.what());
+  }
+  const std::vector<std::string> missing = missingProtocolFiles(protocol);
+  for (const std::string& file : missing)
+    std::fprintf(stderr, "cloudbrush study: run: %s: missing file %s\n", path.c_str(),
+                 file.c_str());
+  if (!missing.empty()) return 3;
+  StudySessionInfo info;
+  info.protocol_name = protocol.name;
+  info.protocol_version = protocol.version;
+  info.protocol_file = std::filesystem::absolute(path).string();
+  info.operator_initials = args.get("operator", "");
+  if (protocol.operator_required && info.operator_initials.empty())
+    return fail("run: " + path + ": the protocol requires the operator: --operator INITIALS", 2);
+  info.venue = args.get("venue", protocol.venues.size() == 1 ? protocol.venues[0].id : "");
+  if (!protocol.venues.empty()) {
+    std::string ids;
+    bool known = false;
+    for (const StudyVenue& v : protocol.venues) {
+      ids += (ids.empty() ? "" : ", ") + v.id;
+      known = known || v.id == info.venue;
+    }
+    if (!known)
+      return fail("run: --venue: expected one of the protocol's venues (" + ids + "), got '" +
+                      info.venue + "'",
+                  2);
+  }
+  const long participant = args.getInt("participant", 0);
+  const long grid = args.getInt("grid", 256);
+  const long frames = args.getInt("frames", 0);
+  const double seconds = args.getDouble("seconds", 0.0);
+  const double end_seconds = args.getDouble("end-seconds", 8.0);
+  if (!args.error().empty()) return fail("run: " + args.error(), 2);
+  if (participant < 0) return fail("run: --participant: expected N >= 1", 2);
+  if (grid < 8 || grid > 1024) return fail("run: --grid: expected 8..1024", 2);
+  FrameLoopOptions loop_options;
+  std::string error;
+  if (args.has("keys") && !parseKeyList(args.get("keys", ""), &loop_options.initial_keys, &error))
+    return fail("run: --keys: " + error, 2);
+  DisplayOptions display_options;
+  const std::string platform = args.get("display", "auto");
+  if (!parseDisplayPlatform(platform, &display_options.platform))
+    return fail("run: --display: expected auto, kms, x11 or surfaceless, got '" + platform + "'",
+                2);
+  display_options.drm_device = args.get("drm-device", "");
+  const std::string size = args.get("size", "1280x720");
+  int consumed = 0;
+  if (std::sscanf(size.c_str(), "%dx%d%n", &display_options.width, &display_options.height,
+                  &consumed) != 2 ||
+      consumed != int(size.size()) || display_options.width < 320 || display_options.height < 240 ||
+      display_options.width > 16384 || display_options.height > 16384)
+    return fail("run: --size: expected WxH (320x240 .. 16384x16384), got '" + size + "'", 2);
+  const std::string backend = args.get("backend", "auto");
+  if (backend == "replay" && !args.has("journal"))
+    return fail("run: --backend replay needs --journal FILE", 2);
+
+  // The session folder, before the display: a folder that cannot be written stops here.
+  const std::string data_dir = args.get("data-dir", stateDir() + "/study");
+  std::error_code ec;
+  std::filesystem::create_directories(data_dir, ec);
+  if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
+  const int number =
+      participant > 0 ? int(participant) : nextFreeParticipantNumber(data_dir, [&](int n) {
+        return protocol.participant_ids.idFor(n);
+      });
+  info.participant_number = number;
+  info.participant_id = protocol.participant_ids.idFor(number);
+  for (const StudyTask* task : protocol.tasksForParticipant(number))
+    info.task_order.push_back(task->id);
+  info.anchor_monotonic_ns = monotonicNowNs();
+  info.anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                            std::chrono::system_clock::now().time_since_epoch())
+                            .count();
+  const std::string folder =
+      data_dir + "/" + studySessionFolderName(info.participant_id, info.anchor_unix_ns);
+  if (std::filesystem::exists(folder))
+    return fail("run: " + folder + " exists already (one session per folder)");
+  std::filesystem::create_directories(folder, ec);
+  if (ec) return fail("run: " + folder + ": " + ec.message());
+  std::printf("session folder: %s\nparticipant: %s (number %d)\n", folder.c_str(),
+              info.participant_id.c_str(), number);
+  std::fflush(stdout);
+
+  std::string choice_note;
+  std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
+  if (!display) return fail("run: " + error);
+  info.display_platform = display->platformName();
+  info.display_width = display->width();
+  info.display_height = display->height();
+  RenderConfig render_config;
+  MappingConfig mapping;
+  try {
+    if (std::filesystem::exists(configFile("render.toml")))
+      render_config = loadRenderConfig(configFile("render.toml"));
+    if (std::filesystem::exists(configFile("mapping.toml")))
+      mapping = loadMappingConfig(configFile("mapping.toml"));
+  } catch (const std::exception& e) {
+    return fail(std::string("run: ") + e.what());
+  }
+  std::unique_ptr<PenSource> pen;
+  if (backend != "none") {
+    PenSourceOptions pen_options;
+    pen_options.backend = backend;
+    pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
+    pen = openPenSource(pen_options, &error);
+    if (!pen) return fail("run: --backend " + backend + ": " + error, 2);
+  }
+  PaintSessionSettings settings;
+  settings.screen_width = display->width();
+  settings.screen_height = display->height();
+  settings.grid = int(grid);
+  const BrushConfig brush = loadDefaultBrushConfig();
+  settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
+  settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+  PaintSession session(settings, brush, mapping);
+  session.setStartingLight(render_config.light);
+  session.setStartingStyle(renderStyleName(render_config.options.style));
+  JournalWriter journal;
+  if (!journal.open(folder + "/session.cbj")) return fail("run: " + journal.error());
+  session.recordTo(&journal, info.anchor_monotonic_ns);
+  VolumeRenderer renderer;
+  if (!renderer.init(&error)) return fail("run: " + error);
+
+  StudyRunState state(protocol, number, info.anchor_monotonic_ns);
+  StudyRunOptions options;
+  options.folder = folder;
+  options.info = info;
+  options.end_seconds = end_seconds;
+  options.paint.render = render_config.options;
+  options.paint.moving_scale = render_config.moving_scale;
+  options.paint.config_dir = defaultConfigDir();
+  options.paint.state_dir = stateDir();
+  StudyRunScreen screen(*display, renderer, session, pen.get(), &journal, state, options);
+  std::signal(SIGINT, onStudySignal);
+  std::signal(SIGTERM, onStudySignal);
+  loop_options.stop = &g_study_stop;
+  loop_options.max_frames = frames;
+  loop_options.max_seconds = seconds;
+  FrameLoop loop(*display, pen.get());
+  FrameLoopResult result;
+  const bool ran = loop.run(screen, loop_options, &result, &error);
+  journal.sync();
+  if (!ran) return fail("run: " + error);
+  std::printf("cloudbrush study: %s after %ld frames (%.1f s): stage %s%s\n",
+              result.quit_reason.c_str(), result.frames, result.seconds,
+              studyStageName(state.stage()),
+              state.aborted() ? (", aborted: " + state.abortReason()).c_str() : "");
+  for (const std::string& problem : screen.problems())
+    std::fprintf(stderr, "cloudbrush study: problem: %s\n", problem.c_str());
+  return screen.problems().empty() ? 0 : 1;
+}
+
 }  // namespace
 
 int commandStudy(int argc, char** argv) {
@@ -361,8 +571,10 @@ int commandStudy(int argc, char** argv) {
   if (action == "report") return runReport(args);
   if (action == "check") return runCheck(args);
   if (action == "withdraw") return runWithdraw(args);
-  return fail(
-      "unknown action '" + action + "' (export, volume, report, check or withdraw; see --help)", 2);
+  if (action == "run") return runStudySession(args);
+  return fail("unknown action '" + action +
+                  "' (export, volume, report, check, withdraw or run; see --help)",
+              2);
 }
 
 }  // namespace cb

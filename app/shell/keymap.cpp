@@ -21,7 +21,8 @@ constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
                                          "delete-all",     "undo",
                                          "redo",           "save",
                                          "good-view",      "open",
-                                         "next-style"};
+                                         "next-style",     "operator-pause",
+                                         "operator-skip",  "operator-abort"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -55,6 +56,12 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
   const uint32_t k = lowerLetter(keysym);
   const bool ctrl = modifiers & DisplayEvent::kCtrl;
   const bool shift = modifiers & DisplayEvent::kShift;
+  if (ctrl && (modifiers & DisplayEvent::kAlt)) {
+    if (k == 'p') return Command::kOperatorPause;
+    if (k == 's') return Command::kOperatorSkip;
+    if (k == 'a') return Command::kOperatorAbort;
+    return std::nullopt;
+  }
   if (ctrl) {
     if (k == 'z') return shift ? Command::kRedo : Command::kUndo;
     if (k == 'y') return Command::kRedo;
@@ -242,6 +249,12 @@ std::string keyLabel(Command command) {
       return "Ctrl+O";
     case Command::kNextStyle:
       return "T";
+    case Command::kOperatorPause:
+      return "Ctrl+Alt+P";
+    case Command::kOperatorSkip:
+      return "Ctrl+Alt+S";
+    case Command::kOperatorAbort:
+      return "Ctrl+Alt+A";
     default:
       return "";
   }

@@ -555,6 +555,9 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
       break;
     }
+    case Command::kOperatorPause:  // the study runner's (study_run_screen.h)
+    case Command::kOperatorSkip:
+    case Command::kOperatorAbort:
     case Command::kCount:
       break;
   }

@@ -266,7 +266,8 @@ void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& la
     float x = label.x;
     if (label.centred)
       x -= 0.5f * font->CalcTextSizeA(label.size_px, 1e9f, 0.0f, label.text.c_str()).x;
-    draw->AddText(font, label.size_px, ImVec2(x, label.y), colour, label.text.c_str());
+    draw->AddText(font, label.size_px, ImVec2(x, label.y), colour, label.text.c_str(), nullptr,
+                  label.centred ? 0.0f : label.wrap_width);
   }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

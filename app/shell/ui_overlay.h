@@ -38,6 +38,7 @@ struct UiLabel {
   float size_px = 28.0f;
   uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
   bool centred = false;
+  float wrap_width = 0.0f;  // > 0: lines wrap at this width (pixels; not with `centred`)
 };
 
 class UiOverlay {

@@ -1,0 +1,471 @@
+#include "app/study/study_run_state.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "app/study/csv_text.h"
+
+namespace cb {
+namespace {
+
+std::string quoted(const std::string& text) {
+  if (!text.empty() && text.find_first_of(" \"=\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string na(const std::optional<std::string>& v) {
+  return v && !v->empty() ? csvField(*v) : "NA";
+}
+
+}  // namespace
+
+const char* studyStageName(StudyStageKind kind) {
+  switch (kind) {
+    case StudyStageKind::kConsent:
+      return "consent";
+    case StudyStageKind::kParticipant:
+      return "participant";
+    case StudyStageKind::kIntroduction:
+      return "introduction";
+    case StudyStageKind::kTutorial:
+      return "tutorial";
+    case StudyStageKind::kFreeDrawing:
+      return "free-drawing";
+    case StudyStageKind::kTask:
+      return "task";
+    case StudyStageKind::kDemographics:
+      return "demographics";
+    case StudyStageKind::kQuestionnaire:
+      return "questionnaire";
+    case StudyStageKind::kFreeText:
+      return "free-text";
+    case StudyStageKind::kDone:
+      return "done";
+  }
+  return "?";
+}
+
+bool isPaintingStage(StudyStageKind kind) {
+  return kind == StudyStageKind::kTutorial || kind == StudyStageKind::kFreeDrawing ||
+         kind == StudyStageKind::kTask;
+}
+
+const char* operatorActionName(OperatorAction action) {
+  switch (action) {
+    case OperatorAction::kPause:
+      return "pause";
+    case OperatorAction::kSkip:
+      return "skip";
+    case OperatorAction::kAbort:
+      return "abort";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& operatorReasons(OperatorAction action) {
+  static const std::vector<std::string> pause = {"participant asked a question",
+                                                 "participant needs a break", "technical problem",
+                                                 "interruption", "other"};
+  static const std::vector<std::string> skip = {"participant finished early",
+                                                "participant is stuck", "technical problem",
+                                                "out of session time", "other"};
+  static const std::vector<std::string> abort = {"participant withdrew", "participant unwell",
+                                                 "technical problem", "out of session time",
+                                                 "other"};
+  switch (action) {
+    case OperatorAction::kPause:
+      return pause;
+    case OperatorAction::kSkip:
+      return skip;
+    case OperatorAction::kAbort:
+      break;
+  }
+  return abort;
+}
+
+StudyRunState::StudyRunState(const StudyProtocol& protocol, int participant_number, int64_t t_ns)
+    : protocol_(protocol),
+      participant_number_(std::max(1, participant_number)),
+      participant_id_(protocol.participant_ids.idFor(std::max(1, participant_number))),
+      task_order_(taskOrderForParticipant(protocol.task_order, int(protocol.tasks.size()),
+                                          std::max(1, participant_number))),
+      items_(protocol.items.size()),
+      fields_(protocol.demographics.size()),
+      free_texts_(protocol.free_text.size()) {
+  stages_.push_back({StudyStageKind::kConsent});
+  stages_.push_back({StudyStageKind::kParticipant});
+  if (!protocol.introduction.text.empty() || !protocol.introduction.video.empty())
+    stages_.push_back({StudyStageKind::kIntroduction});
+  if (!protocol.tutorial.empty()) stages_.push_back({StudyStageKind::kTutorial});
+  if (!protocol.free_drawing.text.empty() || protocol.free_drawing.minutes > 0)
+    stages_.push_back({StudyStageKind::kFreeDrawing});
+  for (size_t i = 0; i < task_order_.size(); ++i)
+    stages_.push_back({StudyStageKind::kTask, task_order_[i], int(i)});
+  if (!protocol.demographics.empty()) stages_.push_back({StudyStageKind::kDemographics});
+  if (!protocol.items.empty()) stages_.push_back({StudyStageKind::kQuestionnaire});
+  if (!protocol.free_text.empty()) stages_.push_back({StudyStageKind::kFreeText});
+  stages_.push_back({StudyStageKind::kDone});
+  std::string order;
+  for (int i : task_order_) order += (order.empty() ? "" : ",") + protocol.tasks[size_t(i)].id;
+  record(t_ns, "study.session protocol=" + quoted(protocol.name) +
+                   " version=" + quoted(protocol.version) + " participant=" + participant_id_ +
+                   " number=" + std::to_string(participant_number_) + " task_order=" + order);
+  enterStage(0, t_ns);
+}
+
+const StudyTask* StudyRunState::task() const {
+  const StudyStagePosition& p = position();
+  return p.kind == StudyStageKind::kTask ? &protocol_.tasks[size_t(p.task)] : nullptr;
+}
+
+void StudyRunState::record(int64_t t_ns, const std::string& text) {
+  records_.push_back({t_ns, text});
+}
+
+std::vector<StudyRunRecord> StudyRunState::takeRecords() {
+  std::vector<StudyRunRecord> out;
+  out.swap(records_);
+  return out;
+}
+
+std::string StudyRunState::stageLabel() const {
+  std::string label = std::string("stage=") + studyStageName(stage());
+  if (const StudyTask* t = task())
+    label += " task=" + t->id + " position=" + std::to_string(position().order + 1);
+  if (stage() == StudyStageKind::kTutorial) label += " step=" + std::to_string(tutorial_step_ + 1);
+  return label;
+}
+
+void StudyRunState::enterStage(size_t index, int64_t t_ns) {
+  stage_index_ = index;
+  stage_start_ns_ = t_ns;
+  suspended_ns_ = 0;
+  suspended_since_.reset();
+  closing_.reset();
+  tutorial_step_ = item_index_ = field_index_ = free_text_index_ = 0;
+  if (stage() == StudyStageKind::kDone) {
+    record(t_ns, std::string("study.end ") +
+                     (aborted_ ? "aborted reason=" + quoted(abort_reason_) : "completed"));
+    return;
+  }
+  std::string text = "study.stage-begin " + stageLabel();
+  if (const double limit = stageLimitSeconds(); limit > 0) text += " limit_s=" + csvDouble(limit);
+  record(t_ns, text);
+}
+
+void StudyRunState::nextStage(int64_t t_ns, const std::string& how) {
+  if (done()) return;
+  record(t_ns, "study.stage-end " + stageLabel() + " how=" + quoted(how));
+  enterStage(stage_index_ + 1, t_ns);
+}
+
+void StudyRunState::agree(int64_t t_ns) {
+  if (stage() != StudyStageKind::kConsent || paused_ || choosing()) return;
+  record(t_ns, "study.consent agreed=yes participant=" + participant_id_);
+  nextStage(t_ns, "agreed");
+}
+
+void StudyRunState::proceed(int64_t t_ns) {
+  if (paused_ || choosing()) return;
+  if (stage() == StudyStageKind::kParticipant || stage() == StudyStageKind::kIntroduction)
+    nextStage(t_ns, "continue");
+}
+
+bool StudyRunState::observeTutorial(const TutorialState& state, int64_t t_ns) {
+  if (stage() != StudyStageKind::kTutorial || paused_ || choosing() || closing()) return false;
+  const TutorialStep& step = protocol_.tutorial[size_t(tutorial_step_)];
+  for (const TutorialCondition& c : step.expect)
+    if (!conditionHolds(c, state)) return false;
+  record(t_ns, "study.tutorial-step done step=" + std::to_string(step.number) +
+                   " seconds=" + csvDouble(stageSeconds(t_ns)));
+  if (++tutorial_step_ >= int(protocol_.tutorial.size())) {
+    tutorial_step_ = int(protocol_.tutorial.size()) - 1;
+    endPaintingStage(t_ns, "all steps done");
+  }
+  return true;
+}
+
+void StudyRunState::answerItem(int value, int64_t t_ns) {
+  if (stage() != StudyStageKind::kQuestionnaire || paused_ || choosing()) return;
+  const int scale = int(protocol_.scale_labels.size());
+  if (value < 1 || value > scale) return;
+  items_[size_t(item_index_)] = value;
+  record(t_ns, "study.answer item=" + protocol_.items[size_t(item_index_)].id +
+                   " value=" + std::to_string(value));
+  if (++item_index_ >= int(items_.size())) {
+    item_index_ = int(items_.size()) - 1;
+    nextStage(t_ns, "answered");
+  }
+}
+
+void StudyRunState::skipItem(int64_t t_ns) {
+  if (stage() != StudyStageKind::kQuestionnaire || paused_ || choosing()) return;
+  items_[size_t(item_index_)].reset();
+  record(t_ns, "study.answer item=" + protocol_.items[size_t(item_index_)].id + " value=NA");
+  if (++item_index_ >= int(items_.size())) {
+    item_index_ = int(items_.size()) - 1;
+    nextStage(t_ns, "answered");
+  }
+}
+
+void StudyRunState::previousItem(int64_t t_ns) {
+  (void)t_ns;
+  if (stage() == StudyStageKind::kQuestionnaire && item_index_ > 0) --item_index_;
+}
+
+std::string StudyRunState::answerField(const std::string& text, int64_t t_ns) {
+  if (stage() != StudyStageKind::kDemographics || paused_ || choosing()) return "";
+  const DemographicField& field = protocol_.demographics[size_t(field_index_)];
+  std::string value = text;
+  while (!value.empty() && value.back() == ' ') value.pop_back();
+  while (!value.empty() && value.front() == ' ') value.erase(value.begin());
+  if (value.empty()) return "nothing entered: type an answer, or Skip";
+  if (field.kind == DemographicField::Kind::kInteger) {
+    errno = 0;
+    char* end = nullptr;
+    const long n = std::strtol(value.c_str(), &end, 10);
+    if (errno != 0 || *end != '\0' || n < field.min || n > field.max)
+      return "enter a whole number from " + std::to_string(field.min) + " to " +
+             std::to_string(field.max);
+    value = std::to_string(n);
+  } else if (field.kind == DemographicField::Kind::kChoice &&
+             std::find(field.choices.begin(), field.choices.end(), value) == field.choices.end()) {
+    return "choose one of the listed answers";
+  }
+  fields_[size_t(field_index_)] = value;
+  record(t_ns, "study.answer field=" + field.id + " value=" + quoted(value));
+  if (++field_index_ >= int(fields_.size())) {
+    field_index_ = int(fields_.size()) - 1;
+    nextStage(t_ns, "answered");
+  }
+  return "";
+}
+
+void StudyRunState::skipField(int64_t t_ns) {
+  if (stage() != StudyStageKind::kDemographics || paused_ || choosing()) return;
+  fields_[size_t(field_index_)].reset();
+  record(t_ns,
+         "study.answer field=" + protocol_.demographics[size_t(field_index_)].id + " value=NA");
+  if (++field_index_ >= int(fields_.size())) {
+    field_index_ = int(fields_.size()) - 1;
+    nextStage(t_ns, "answered");
+  }
+}
+
+void StudyRunState::answerFreeText(const std::string& text, int64_t t_ns) {
+  if (stage() != StudyStageKind::kFreeText || paused_ || choosing()) return;
+  if (text.empty())
+    free_texts_[size_t(free_text_index_)].reset();
+  else
+    free_texts_[size_t(free_text_index_)] = text;
+  record(t_ns, "study.answer free_text=" + protocol_.free_text[size_t(free_text_index_)].id +
+                   " value=" + (text.empty() ? std::string("NA") : quoted(text)));
+  if (++free_text_index_ >= int(free_texts_.size())) {
+    free_text_index_ = int(free_texts_.size()) - 1;
+    nextStage(t_ns, "answered");
+  }
+}
+
+double StudyRunState::stageSeconds(int64_t t_ns) const {
+  int64_t stopped = suspended_ns_;
+  if (suspended_since_) stopped += t_ns - *suspended_since_;
+  return std::max(0.0, double(t_ns - stage_start_ns_ - stopped) / 1e9);
+}
+
+double StudyRunState::stageLimitSeconds() const {
+  switch (stage()) {
+    case StudyStageKind::kFreeDrawing:
+      return protocol_.free_drawing.minutes * 60.0;
+    case StudyStageKind::kTask:
+      return task()->minutes * 60.0;
+    default:
+      return 0.0;
+  }
+}
+
+double StudyRunState::secondsLeft(int64_t t_ns) const {
+  const double limit = stageLimitSeconds();
+  if (limit <= 0) return -1.0;
+  return std::max(0.0, limit - stageSeconds(t_ns));
+}
+
+void StudyRunState::tick(int64_t t_ns) {
+  if (closing() || !isPaintingStage(stage()) || paused_ || choosing()) return;
+  const double limit = stageLimitSeconds();
+  if (limit > 0 && stageSeconds(t_ns) >= limit) endPaintingStage(t_ns, "time up");
+}
+
+void StudyRunState::endPaintingStage(int64_t t_ns, const std::string& why) {
+  closing_ = why;
+  record(t_ns, "study.stage-closing " + stageLabel() + " why=" + quoted(why) +
+                   " seconds=" + csvDouble(stageSeconds(t_ns)));
+}
+
+void StudyRunState::closeStage(int64_t t_ns, const std::vector<std::string>& saved) {
+  if (!closing_) return;
+  const std::string why = *closing_;
+  if (!saved.empty()) {
+    std::string list;
+    for (const std::string& s : saved) list += (list.empty() ? "" : ",") + s;
+    record(t_ns, "study.saved " + stageLabel() + " files=" + quoted(list));
+  }
+  if (aborted_) {
+    record(t_ns, "study.stage-end " + stageLabel() + " how=aborted");
+    enterStage(stages_.size() - 1, t_ns);
+    return;
+  }
+  nextStage(t_ns, why);
+}
+
+void StudyRunState::suspend(int64_t t_ns) {
+  if (!suspended_since_) suspended_since_ = t_ns;
+}
+
+void StudyRunState::resume(int64_t t_ns) {
+  if (suspended_since_ && !paused_ && !choosing_) {
+    suspended_ns_ += t_ns - *suspended_since_;
+    suspended_since_.reset();
+  }
+}
+
+void StudyRunState::requestOperator(OperatorAction action, int64_t t_ns) {
+  if (done() || choosing() || closing()) return;
+  if (action == OperatorAction::kPause && paused_) {
+    paused_ = false;
+    record(t_ns, "study.operator action=resume " + stageLabel());
+    resume(t_ns);
+    return;
+  }
+  choosing_ = action;
+  suspend(t_ns);
+  record(t_ns, std::string("study.operator-request action=") + operatorActionName(action) + " " +
+                   stageLabel());
+}
+
+void StudyRunState::cancelChoice(int64_t t_ns) {
+  if (!choosing_) return;
+  record(t_ns, std::string("study.operator-cancel action=") + operatorActionName(*choosing_) + " " +
+                   stageLabel());
+  choosing_.reset();
+  resume(t_ns);
+}
+
+void StudyRunState::chooseReason(int index, int64_t t_ns) {
+  if (!choosing_) return;
+  const OperatorAction action = *choosing_;
+  const std::vector<std::string>& reasons = operatorReasons(action);
+  if (index < 0 || index >= int(reasons.size())) return;
+  const std::string& reason = reasons[size_t(index)];
+  choosing_.reset();
+  record(t_ns, std::string("study.operator action=") + operatorActionName(action) +
+                   " reason=" + quoted(reason) + " " + stageLabel());
+  switch (action) {
+    case OperatorAction::kPause:
+      paused_ = true;
+      pause_reason_ = reason;
+      return;  // the clock stays stopped until the resume
+    case OperatorAction::kSkip:
+      resume(t_ns);
+      if (stage() == StudyStageKind::kTutorial) {
+        record(t_ns, "study.tutorial-step skipped step=" +
+                         std::to_string(protocol_.tutorial[size_t(tutorial_step_)].number));
+        if (++tutorial_step_ >= int(protocol_.tutorial.size())) {
+          tutorial_step_ = int(protocol_.tutorial.size()) - 1;
+          endPaintingStage(t_ns, "skipped: " + reason);
+        }
+      } else if (isPaintingStage(stage())) {
+        endPaintingStage(t_ns, "skipped: " + reason);
+      } else {
+        nextStage(t_ns, "skipped: " + reason);
+      }
+      return;
+    case OperatorAction::kAbort:
+      resume(t_ns);
+      aborted_ = true;
+      abort_reason_ = reason;
+      if (isPaintingStage(stage())) {
+        endPaintingStage(t_ns, "aborted: " + reason);  // the task's files are still saved
+      } else {
+        record(t_ns, "study.stage-end " + stageLabel() + " how=aborted");
+        enterStage(stages_.size() - 1, t_ns);
+      }
+      return;
+  }
+}
+
+std::string StudyRunState::waitingFor(int64_t t_ns) const {
+  if (choosing_)
+    return std::string("Operator: choose why to ") + operatorActionName(*choosing_) +
+           " (tap a reason or press its number; Esc cancels)";
+  if (paused_)
+    return "Paused by the operator (" + pause_reason_ +
+           "). Waiting for the operator to resume (Ctrl+Alt+P).";
+  if (closing_) return "Finishing (" + *closing_ + "): lift the pen; the work is being saved.";
+  switch (stage()) {
+    case StudyStageKind::kConsent:
+      return "Waiting for your consent: read the text, then tap \"I agree\" (or press Space).";
+    case StudyStageKind::kParticipant:
+      return "Your participant code is " + participant_id_ +
+             ". Tap \"Continue\" (or press Space) to begin.";
+    case StudyStageKind::kIntroduction:
+      return "Read the introduction, then tap \"Continue\" (or press Space).";
+    case StudyStageKind::kTutorial: {
+      return "Step " + std::to_string(tutorial_step_ + 1) + " of " +
+             std::to_string(protocol_.tutorial.size()) +
+             ": do what the step says; it moves on by itself when it is done.";
+    }
+    case StudyStageKind::kFreeDrawing:
+    case StudyStageKind::kTask: {
+      const double left = secondsLeft(t_ns);
+      char text[160];
+      if (left >= 0)
+        std::snprintf(text, sizeof text, "Paint with the pen. Time left %d:%02d.", int(left) / 60,
+                      int(left) % 60);
+      else
+        std::snprintf(text, sizeof text, "Paint with the pen.");
+      return text;
+    }
+    case StudyStageKind::kDemographics:
+      return "Enter your answer with the on-screen keys and tap OK (or Skip to leave it blank).";
+    case StudyStageKind::kQuestionnaire:
+      return "Tap the box that matches how much you agree (Skip leaves it blank).";
+    case StudyStageKind::kFreeText:
+      return "Type a comment with the on-screen keys and tap OK (Skip if you have none).";
+    case StudyStageKind::kDone:
+      return aborted_ ? "The session was stopped by the operator. Thank you."
+                      : "All done. Thank you for taking part!";
+  }
+  return "";
+}
+
+std::string StudyRunState::questionnaireCsv() const {
+  std::string header = "participant", row = csvField(participant_id_);
+  for (size_t i = 0; i < items_.size(); ++i) {
+    header += "," + csvField(protocol_.items[i].id);
+    row += "," + (items_[i] ? std::to_string(*items_[i]) : std::string("NA"));
+  }
+  return header + "\n" + row + "\n";
+}
+
+std::string StudyRunState::demographicsCsv() const {
+  std::string header = "participant", row = csvField(participant_id_);
+  for (size_t i = 0; i < fields_.size(); ++i) {
+    header += "," + csvField(protocol_.demographics[i].id);
+    row += "," + na(fields_[i]);
+  }
+  for (size_t i = 0; i < free_texts_.size(); ++i) {
+    header += "," + csvField(protocol_.free_text[i].id);
+    row += "," + na(free_texts_[i]);
+  }
+  return header + "\n" + row + "\n";
+}
+
+}  // namespace cb

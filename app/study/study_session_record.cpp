@@ -1,0 +1,166 @@
+#include "app/study/study_session_record.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+
+#include "app/study/csv_text.h"
+
+#ifndef CB_VERSION
+#define CB_VERSION "unknown"
+#endif
+
+namespace cb {
+namespace {
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (c < 0x20) {
+          char hex[8];
+          std::snprintf(hex, sizeof hex, "\\u%04x", c);
+          out += hex;
+        } else {
+          out += char(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string jsonList(const std::vector<std::string>& values) {
+  std::string out = "[";
+  for (size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + jsonString(values[i]);
+  return out + "]";
+}
+
+std::string utcText(int64_t unix_ns, const char* format) {
+  const std::time_t seconds = std::time_t(unix_ns / 1'000'000'000);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  char text[64];
+  std::strftime(text, sizeof text, format, &tm);
+  return text;
+}
+
+}  // namespace
+
+const char* cloudbrushVersion() {
+  return CB_VERSION;
+}
+
+std::string studySessionFolderName(const std::string& participant_id, int64_t unix_ns) {
+  return participant_id + "-" + utcText(unix_ns, "%Y%m%dT%H%M%SZ");
+}
+
+std::string formatStudySessionJson(const StudySessionInfo& info) {
+  std::string j = "{\n";
+  j += "  \"format\": 1,\n";
+  j += "  \"status\": " + jsonString(info.status) + ",\n";
+  j += "  \"abort_reason\": " +
+       (info.abort_reason.empty() ? std::string("null") : jsonString(info.abort_reason)) + ",\n";
+  j += "  \"protocol\": {\"name\": " + jsonString(info.protocol_name) +
+       ", \"version\": " + jsonString(info.protocol_version) +
+       ", \"file\": " + jsonString(info.protocol_file) + "},\n";
+  j += "  \"participant\": {\"id\": " + jsonString(info.participant_id) +
+       ", \"number\": " + std::to_string(info.participant_number) + "},\n";
+  j += "  \"venue\": " + jsonString(info.venue) + ",\n";
+  j += "  \"operator\": " + jsonString(info.operator_initials) + ",\n";
+  j +=
+      "  \"software\": {\"name\": \"cloudbrush\", \"version\": " + jsonString(cloudbrushVersion()) +
+      "},\n";
+  if (info.device) {
+    const PenDeviceInfo& d = *info.device;
+    char ids[32];
+    std::snprintf(ids, sizeof ids, "\"%04x\", \"usb_product\": \"%04x\"", d.usb_vendor,
+                  d.usb_product);
+    j += "  \"device\": {\"name\": " + jsonString(d.name) + ", \"usb_vendor\": " + ids +
+         ", \"serial\": null, \"x_max\": " + std::to_string(d.x_max) +
+         ", \"y_max\": " + std::to_string(d.y_max) + ", \"x_res_per_mm\": " + csvDouble(d.x_res) +
+         ", \"y_res_per_mm\": " + csvDouble(d.y_res) +
+         ", \"pressure_max\": " + std::to_string(d.pressure_max) +
+         ", \"tilt_min\": " + std::to_string(d.tilt_min) +
+         ", \"tilt_max\": " + std::to_string(d.tilt_max) +
+         ", \"distance_max\": " + std::to_string(d.distance_max) + "},\n";
+  } else {
+    j += "  \"device\": null,\n";
+  }
+  j += "  \"calibration\": " + jsonString(info.calibration_toml) + ",\n";
+  j += "  \"display\": {\"platform\": " + jsonString(info.display_platform) +
+       ", \"width\": " + std::to_string(info.display_width) +
+       ", \"height\": " + std::to_string(info.display_height) +
+       ", \"refresh_hz\": " + csvDouble(info.refresh_hz) + "},\n";
+  j += "  \"clock_anchor\": {\"monotonic_ns\": " + std::to_string(info.anchor_monotonic_ns) +
+       ", \"wall_clock_utc\": " + jsonString(utcText(info.anchor_unix_ns, "%Y-%m-%dT%H:%M:%S")) +
+       ", \"wall_clock_unix_ns\": " + std::to_string(info.anchor_unix_ns) + "},\n";
+  j += "  \"task_order\": " + jsonList(info.task_order) + ",\n";
+  j += "  \"stages_completed\": " + jsonList(info.stages_completed) + "\n";
+  return j + "}\n";
+}
+
+bool writeFileAtomically(const std::string& path, const std::string& text, std::string* error) {
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    *error = "cannot write " + tmp + ": " + std::strerror(errno);
+    return false;
+  }
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      *error = "cannot write " + tmp + ": " + std::strerror(errno);
+      ::close(fd);
+      return false;
+    }
+    done += size_t(n);
+  }
+  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+    *error = "cannot sync " + tmp + ": " + std::strerror(errno);
+    return false;
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    *error = "cannot rename " + tmp + " to " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
+int nextFreeParticipantNumber(const std::string& data_dir,
+                              const std::function<std::string(int)>& id_for) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir, ec))
+    names.push_back(entry.path().filename().string());
+  for (int n = 1;; ++n) {
+    const std::string prefix = id_for(n) + "-";
+    bool used = false;
+    for (const std::string& name : names) used = used || name.rfind(prefix, 0) == 0;
+    if (!used) return n;
+  }
+}
+
+}  // namespace cb

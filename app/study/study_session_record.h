@@ -1,0 +1,64 @@
+// A study session's folder (issue 10 "The record"): one folder per session under the data
+// directory, named `<participant id>-<UTC start, YYYYmmddTHHMMSSZ>` (so `study withdraw` finds
+// it by the id), holding
+//   session.json        what the session ran on (below), rewritten when the session ends
+//   session.cbj         the journal (drivers/core/JOURNAL.md), study stages as Marker records
+//   questionnaire.csv   participant,Q1..Qn (likert_answers.h), NA for missing
+//   demographics.csv    participant, demographic fields, free-text answers, NA for missing
+//   tasks/<task id>.*   what each task's `save` asks for (volume_export.h, render_export.h)
+//
+// session.json fields: format (1), status ("running" | "completed" | "aborted"), abort_reason,
+// protocol {name, version, file}, participant {id, number}, venue, operator, software {name,
+// version}, device {name, usb_vendor, usb_product, serial (null: the drivers do not read it
+// yet), x_max, y_max, x_res_per_mm, y_res_per_mm, pressure_max, tilt_min, tilt_max,
+// distance_max} or null before a pen connected, calibration (the profile in force, TOML text),
+// display {platform, width, height, refresh_hz (0: unknown)}, clock_anchor {monotonic_ns,
+// wall_clock_utc, wall_clock_unix_ns} (the same instant on both clocks: journal times are
+// monotonic), task_order [ids], stages_completed [names].
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drivers/core/pen_sample.h"
+
+namespace cb {
+
+struct StudySessionInfo {
+  std::string status = "running";
+  std::string abort_reason;
+  std::string protocol_name, protocol_version, protocol_file;
+  std::string participant_id;
+  int participant_number = 0;
+  std::string venue, operator_initials;
+  std::optional<PenDeviceInfo> device;
+  std::string calibration_toml;
+  std::string display_platform;
+  int display_width = 0, display_height = 0;
+  double refresh_hz = 0.0;
+  int64_t anchor_monotonic_ns = 0, anchor_unix_ns = 0;
+  std::vector<std::string> task_order, stages_completed;
+};
+
+// This build's version (CMake's project version).
+const char* cloudbrushVersion();
+
+// `<id>-<UTC time of unix_ns>`.
+std::string studySessionFolderName(const std::string& participant_id, int64_t unix_ns);
+
+// session.json's text.
+std::string formatStudySessionJson(const StudySessionInfo& info);
+
+// Writes `text` to `path` whole or not at all (a temporary file renamed over it, fsynced).
+// False with *error naming the file.
+bool writeFileAtomically(const std::string& path, const std::string& text, std::string* error);
+
+// The lowest participant number >= 1 whose id names no folder in `data_dir` yet (folders are
+// `<id>-...`).
+int nextFreeParticipantNumber(const std::string& data_dir,
+                              const std::function<std::string(int)>& id_for);
+
+}  // namespace cb

@@ -1,0 +1,92 @@
+// `cloudbrush study run` (the real binary): a protocol with an error is refused with
+// FILE:LINE: FIELD before any display opens or any session folder is made; options the protocol
+// needs are asked for by name; a surfaceless run makes the session folder with session.json,
+// the journal and the answer files at once.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/support/command_run.h"
+
+namespace cb {
+namespace {
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string tempDir(const std::string& name) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()))).string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(StudyRunCli, AProtocolWithAnErrorIsRefusedBeforeAnyScreen) {
+  const std::string dir = tempDir("cb_study_run_cli_");
+  // The bundled protocol with one typo'd value: the task's minutes are text.
+  std::string text = readText(std::string(CB_SOURCE_DIR) + "/config/study/thesis_2014.toml");
+  const std::string from = "[[task]]\nid = \"cloud2\"";
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + from.size(), "\nminutes = \"ten\"");
+  int line = 1;
+  for (size_t i = 0; i < at + from.size() + 1; ++i) line += text[i] == '\n';
+  const std::string protocol = dir + "/broken.toml";
+  std::ofstream(protocol) << text;
+  // Its pictures next to it, so only the error stops it.
+  std::filesystem::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
+  const test::CommandRun run = test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " study run " +
+                                                protocol + " --data-dir " + dir +
+                                                "/data --operator XY --venue uct-lab "
+                                                "--display surfaceless --backend none --frames 3");
+  EXPECT_EQ(run.status, 1) << run.out;
+  EXPECT_NE(run.out.find(protocol + ":" + std::to_string(line) + ": task[2].minutes"),
+            std::string::npos)
+      << run.out;
+  EXPECT_EQ(run.out.find("session folder"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("display"), std::string::npos) << "no display was opened: " << run.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/data")) << "no session folder on a bad protocol";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StudyRunCli, TheBundledProtocolAsksForItsOperatorAndVenueThenRecords) {
+  const std::string dir = tempDir("cb_study_run_cli_ok_");
+  const std::string base = std::string(CB_CLOUDBRUSH_BIN) + " study run --data-dir " + dir +
+                           "/data --display surfaceless --backend none --frames 4";
+  test::CommandRun run = test::runCommand(base + " --venue uct-lab");
+  EXPECT_EQ(run.status, 2) << run.out;
+  EXPECT_NE(run.out.find("--operator INITIALS"), std::string::npos) << run.out;
+  run = test::runCommand(base + " --operator XY --venue moon");
+  EXPECT_EQ(run.status, 2) << run.out;
+  EXPECT_NE(run.out.find("uct-lab, cityvarsity"), std::string::npos) << run.out;
+
+  run = test::runCommand(base + " --operator XY --venue cityvarsity");
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("participant: P01 (number 1)"), std::string::npos) << run.out;
+  std::string folder;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/data"))
+    folder = entry.path().string();
+  ASSERT_EQ(std::filesystem::path(folder).filename().string().rfind("P01-", 0), 0u) << folder;
+  const std::string json = readText(folder + "/session.json");
+  EXPECT_NE(json.find("\"venue\": \"cityvarsity\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"operator\": \"XY\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"status\": \"running\""), std::string::npos) << "stopped at consent";
+  EXPECT_NE(json.find("\"platform\": \"surfaceless\""), std::string::npos) << json;
+  EXPECT_NE(readText(folder + "/questionnaire.csv").find("P01,NA,NA"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(folder + "/session.cbj"));
+  // The next run is participant 2 (the next free id), with that participant's task order.
+  run = test::runCommand(base + " --operator XY --venue cityvarsity");
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("participant: P02 (number 2)"), std::string::npos) << run.out;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cb
