@@ -38,6 +38,11 @@ enum class Command {
   kGoodView,         // G: the nearest view that is not edge-on to the canvas
   kOpen,             // Ctrl+O: open the last saved cloud (--open FILE opens any)
   kNextStyle,        // T: the next render style (thesis, physical, ink, cartoon, sketch)
+  kPanDrag,          // P: a pen drag in Camera mode pans instead of orbiting (and back)
+  kPanLeft,          // Shift+Left: move the view left (Camera mode)
+  kPanRight,         // Shift+Right
+  kPanUp,            // Shift+Up
+  kPanDown,          // Shift+Down
   kCount
 };
 

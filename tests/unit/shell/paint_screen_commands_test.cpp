@@ -62,7 +62,8 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   options.state_dir = dir + "/state";
   options.config_dir = dir + "/config";
   ASSERT_TRUE(
-      parseKeyList("1,up,down,left,right,r,g,space,space,2,pageup,pagedown,pageup,minus,"
+      parseKeyList("1,p,p,shift+left,shift+right,shift+up,shift+down,up,down,left,right,r,g,space,"
+                   "space,2,pageup,pagedown,pageup,minus,"
                    "plus,3,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
                    "ctrl+y,m,m,ctrl+s,ctrl+o,t,3",
                    &options.initial_keys, &error))
