@@ -195,5 +195,86 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
   std::filesystem::remove_all(dir);
 }
 
+// Camera mode pans: P makes a pen drag pan instead of orbit and Shift+Up pans by keys; the view
+// direction and distance stay, the view moves, and each pan is journalled as a typed camera move
+// that replays to the same camera.
+TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_paint_pan_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir + "/state");
+  const std::string pen_path = dir + "/pen.cbj";
+  {
+    PaintSession recorder({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(pen_path));
+    recorder.recordTo(&journal, 0);
+    const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+    recorder.setDevice(tablet, 0);
+    SyntheticStroke drag;  // a straight drag to the right, a quarter of the screen
+    drag.control_points = {{0.4f * kW, 0.5f * kH}, {0.65f * kW, 0.5f * kH}};
+    for (const PenSample& s : syntheticPenSamples(drag, tablet, kW, kH, 200.0, 1'000'000'000))
+      recorder.feed(s);
+  }
+  std::string error;
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
+  ASSERT_TRUE(display) << error;
+  VolumeRenderer renderer;
+  ASSERT_TRUE(renderer.init(&error)) << error;
+  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+  session.setQuietMapping(true);
+  const std::string recorded = dir + "/session.cbj";
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(recorded));
+  session.recordTo(&journal, 0);
+  PaintLoopOptions options;
+  options.max_frames = 2000;
+  options.orbit_degrees_per_second = 0.0f;
+  options.state_dir = dir + "/state";
+  options.config_dir = dir + "/config";
+  ASSERT_TRUE(parseKeyList("1,p,shift+up", &options.initial_keys, &error)) << error;
+  ReplayOptions replay_options;
+  replay_options.realtime = false;
+  replay_options.batch = 4;
+  ReplayPenSource pen(pen_path, replay_options);
+  const Camera before = session.camera();
+  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  loop.attachPen(&pen, &session);
+  PaintLoopSummary summary;
+  ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+  journal.close();
+
+  const Camera after = session.camera();
+  const glm::vec3 d0 = glm::normalize(before.target - before.eye);
+  const glm::vec3 d1 = glm::normalize(after.target - after.eye);
+  EXPECT_GT(glm::dot(d0, d1), 0.99999f) << "a pan keeps the view direction";
+  EXPECT_NEAR(glm::length(after.eye - after.target), glm::length(before.eye - before.target), 1e-4);
+  const glm::vec3 moved = after.target - before.target;
+  const glm::vec3 right = glm::normalize(glm::cross(d0, before.up));
+  const float step = before.worldPerPixelAtTarget(kH);
+  // Shift+Up: the view up by a twentieth of the screen; the drag right: the view left by the
+  // drag's length (the scene follows the pen).
+  EXPECT_NEAR(glm::dot(moved, glm::cross(right, d0)), 0.05f * kH * step, 0.02f * kH * step);
+  EXPECT_LT(glm::dot(moved, right), -0.15f * kW * step);
+  EXPECT_GT(glm::dot(moved, right), -0.3f * kW * step);
+
+  int pans = 0;
+  for (const JournalRecord& r : readJournal(recorded).records)
+    if (r.type == JournalRecordType::kUi) {
+      UiChange change;
+      std::string why;
+      if (parseUiChange(r.type, r.text(), &change, &why) &&
+          std::holds_alternative<ui::SetCamera>(change))
+        pans += std::get<ui::SetCamera>(change).move == CameraMove::kPan;
+    }
+  EXPECT_EQ(pans, 2) << "one for the key, one for the drag";
+  const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete());
+  EXPECT_EQ(replay.session->camera().eye, after.eye);
+  EXPECT_EQ(replay.session->camera().target, after.target);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cb
