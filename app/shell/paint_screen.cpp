@@ -896,8 +896,7 @@ std::string PaintScreen::statusLine() const {
                   double(s.eraseDiameter(s.eraseTool())));
     line += text;
   }
-  if (s.mode() == Mode::kCamera)
-    line += pan_drag_ ? " | drag pans (P: orbit)" : " | drag orbits (P: pan)";
+  if (s.mode() == Mode::kCamera && pan_drag_) line += " | drag pans (P: orbit)";
   if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
   if (mouse_ && !(pen_ && pen_->connection() == PenConnection::kConnected))
     line += " | mouse as pen, pressure " + std::to_string(mouse_->pressure()).substr(0, 4);

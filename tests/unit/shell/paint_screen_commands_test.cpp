@@ -276,5 +276,74 @@ TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
   std::filesystem::remove_all(dir);
 }
 
+// Erase mode, Vacuum: the pen hovering over the canvas places the sphere, drawn with its rod and
+// the grids of the three axis planes through its centre (§3.5.1, Fig. 3.5). The green plane's
+// lines show where the sky is otherwise bluer than green.
+TEST(PaintScreenCommands, VacuumShowsTheAxisPlaneGrids) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_paint_vacuum_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir + "/state");
+  const std::string pen_path = dir + "/pen.cbj";
+  {
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(pen_path));
+    const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+    const auto bytes = encodeDeviceInfo(tablet);
+    journal.append(JournalRecordType::kDevice, 0, bytes.data(), bytes.size());
+    SyntheticStroke hover;  // the pen hovers across the middle of the screen, never touching
+    hover.control_points = {{0.45f * kW, 0.55f * kH}, {0.55f * kW, 0.55f * kH}};
+    for (PenSample s : syntheticPenSamples(hover, tablet, kW, kH, 200.0, 1'000'000'000)) {
+      s.pressure = 0.0f;
+      s.pressure_raw = 0;
+      s.buttons &= ~uint32_t(kPenTip);
+      s.in_proximity = true;
+      journal.appendPenSample(s);
+    }
+  }
+  std::string error;
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
+  ASSERT_TRUE(display) << error;
+  VolumeRenderer renderer;
+  ASSERT_TRUE(renderer.init(&error)) << error;
+  const auto greenish = [&](const ImageRgba8& image) {
+    long n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) n += image.at(x, y)[1] > image.at(x, y)[2] + 10;
+    return n;
+  };
+  long counts[2] = {0, 0};
+  for (int vacuum = 0; vacuum < 2; ++vacuum) {
+    PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+    session.setQuietMapping(true);
+    PaintLoopOptions options;
+    options.max_frames = 400;
+    options.orbit_degrees_per_second = 0.0f;
+    options.state_dir = dir + "/state";
+    options.config_dir = dir + "/config";
+    ASSERT_TRUE(parseKeyList(vacuum ? "4,v" : "4", &options.initial_keys, &error)) << error;
+    ImageRgba8 last;
+    options.on_frame = [&](const PaintFrameInfo&) {
+      last = readFramebufferRgba8(display->framebuffer(), kW, kH);
+    };
+    ReplayOptions replay_options;
+    replay_options.realtime = false;
+    replay_options.batch = 4;
+    ReplayPenSource pen(pen_path, replay_options);
+    PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+    loop.attachPen(&pen, &session);
+    PaintLoopSummary summary;
+    ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+    EXPECT_EQ(session.eraseTool(), vacuum ? EraseTool::kVacuum : EraseTool::kRubOut);
+    counts[vacuum] = greenish(last);
+    if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
+      writePng(std::string(keep) + (vacuum ? "/erase_vacuum.png" : "/erase_rubout.png"), last);
+  }
+  std::printf("greener-than-blue pixels: rub-out %ld, vacuum %ld\n", counts[0], counts[1]);
+  EXPECT_LT(counts[0], 50) << "the sky alone is bluer than green";
+  EXPECT_GT(counts[1], 300) << "the green plane's grid lines";
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cb
