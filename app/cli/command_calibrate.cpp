@@ -10,7 +10,6 @@
 // Non-interactive: --points FILE fits a tap file (calibration/n_point_calibration.h);
 // --journal FILE re-fits a recorded calibration session. Both print the fit and, with --save,
 // write the profile.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
