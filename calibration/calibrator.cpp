@@ -73,6 +73,7 @@ MappedSample Calibrator::process(const PenSample& s) {
 
   // Pressure: offset -> participant range -> curve.
   const float corrected = nib_.correct(s.pressure);
+  out.pressure_corrected = s.in_proximity ? corrected : 0.0f;
   out.pressure = out.contact ? curve_.apply(range_.apply(corrected)) : 0.0f;
 
   // Position.

@@ -21,6 +21,9 @@ struct MappedSample {
 
   // Pressure after nib offset, participant range and pressure curve, 0..1.
   float pressure = 0.0f;
+  // Pressure after the nib offset only, 0..1: what the participant's light/firm press range is
+  // measured in (calibration/pressure_range.h).
+  float pressure_corrected = 0.0f;
   // Contact after hysteresis (down at the upper threshold, up at the lower one).
   bool contact = false;
   bool contact_began = false;  // this sample put the pen down

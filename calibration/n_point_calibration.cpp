@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "calibration/area_mapping.h"
 #include "calibration/point_fit.h"
@@ -20,19 +21,19 @@ std::vector<glm::dvec2> targetLayout(int count, int screen_w, int screen_h, doub
   return out;
 }
 
-std::optional<glm::dvec2> TapCollector::feed(const PenSample& s, bool uses_pressure) {
-  const bool was_down = contact_.down();
-  if (!s.in_proximity) {
-    contact_.reset();
-  } else {
-    contact_.update(uses_pressure ? s.pressure : (s.tipDown() ? 1.0f : 0.0f));
-  }
-  if (contact_.down()) {
-    if (!was_down) points_.clear();
-    if (std::isfinite(s.x_mm) && std::isfinite(s.y_mm)) points_.push_back({s.x_mm, s.y_mm});
-    return std::nullopt;
-  }
-  if (!was_down) return std::nullopt;
+void TapCollector::down(glm::dvec2 pen_mm) {
+  in_contact_ = true;
+  points_.clear();
+  move(pen_mm);
+}
+
+void TapCollector::move(glm::dvec2 pen_mm) {
+  if (in_contact_ && std::isfinite(pen_mm.x) && std::isfinite(pen_mm.y)) points_.push_back(pen_mm);
+}
+
+std::optional<glm::dvec2> TapCollector::up() {
+  if (!in_contact_) return std::nullopt;
+  in_contact_ = false;
   // The tap just ended.
   rejection_.clear();
   if (points_.size() < params_.min_samples) {
@@ -87,6 +88,22 @@ CalibrationFit fitCalibration(const CalibrationProfile& base, const PenDeviceInf
   out.profile.device.name = device.name;
   out.ok = true;
   return out;
+}
+
+std::string describeFit(const CalibrationFit& fit, const std::vector<Tap>& taps) {
+  std::string out = std::string(pointFitKindName(fit.profile.fit_kind)) + " fit over " +
+                    std::to_string(taps.size()) + " points:\n";
+  char line[160];
+  for (size_t i = 0; i < taps.size() && i < fit.fit.residuals.size(); ++i) {
+    std::snprintf(line, sizeof line,
+                  "  target %zu at (%.0f, %.0f) px: tap at (%.2f, %.2f) mm, residual %.2f px\n", i,
+                  taps[i].target_px.x, taps[i].target_px.y, taps[i].pen_mm.x, taps[i].pen_mm.y,
+                  fit.fit.residuals[i]);
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "residual: rms %.3f px, max %.3f px", fit.fit.rms,
+                fit.fit.max_residual);
+  return out + line;
 }
 
 std::optional<TapFile> parseTapFile(std::string_view text, const std::string& name,

@@ -3,21 +3,22 @@
 //
 //   1. targetLayout(): where the targets are drawn (corners and centre, or a 3x3 grid), inset
 //      from the screen edges;
-//   2. TapCollector: turns the pen samples of each tap into one position in tablet mm (the
+//   2. TapCollector: turns the positions of each tap into one position in tablet mm (the
 //      median of the samples in contact, robust to the slip at touch-down and lift; a tap that
-//      drags more than a few mm is refused);
+//      drags more than a few mm is refused). It does not decide when the pen is down: the
+//      shell's pen events (app/shell/pen_events.h, from the calibrated contact) tell it;
 //   3. fitCalibration(): maps the taps through the profile's area mapping alone and fits the
 //      correction (affine or homography) from there to the targets, with residuals in px; the
 //      profile it returns names the device it was measured on.
 #pragma once
 
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "calibration/calibration_profile.h"
-#include "calibration/contact_hysteresis.h"
 #include "drivers/core/pen_sample.h"
 
 namespace cb {
@@ -35,23 +36,25 @@ struct Tap {
 class TapCollector {
  public:
   struct Params {
-    ContactThresholds contact;
     size_t min_samples = 3;    // 15 ms at 200 Hz
     double max_drag_mm = 4.0;  // a tap, not a stroke
   };
   TapCollector() = default;
-  explicit TapCollector(const Params& params) : params_(params), contact_(params.contact) {}
+  explicit TapCollector(const Params& params) : params_(params) {}
 
-  // Feeds one sample; returns the tap position when a tap just ended, nullopt otherwise.
-  // `uses_pressure`: the device reports pressure (else the tip bit gives contact).
-  std::optional<glm::dvec2> feed(const PenSample& s, bool uses_pressure);
+  // The pen went down at `pen_mm` (raw tablet mm of the sample that put it down).
+  void down(glm::dvec2 pen_mm);
+  // A sample in contact after that.
+  void move(glm::dvec2 pen_mm);
+  // The pen lifted (or left proximity): the tap position, or nullopt with lastRejection().
+  std::optional<glm::dvec2> up();
   // Why the last contact was not accepted as a tap (too short, dragged), empty otherwise.
   const std::string& lastRejection() const { return rejection_; }
-  bool inContact() const { return contact_.down(); }
+  bool inContact() const { return in_contact_; }
 
  private:
   Params params_;
-  ContactHysteresis contact_;
+  bool in_contact_ = false;
   std::vector<glm::dvec2> points_;
   std::string rejection_;
 };
@@ -68,6 +71,10 @@ struct CalibrationFit {
 CalibrationFit fitCalibration(const CalibrationProfile& base, const PenDeviceInfo& device,
                               uint64_t tool_serial, int screen_w, int screen_h,
                               const std::vector<Tap>& taps, PointFitKind kind);
+
+// The fit as lines of text: the kind and point count, each target with its tap and residual,
+// and the rms / max residual (what `cloudbrush calibrate` prints).
+std::string describeFit(const CalibrationFit& fit, const std::vector<Tap>& taps);
 
 // A tap file (the non-interactive input of `cloudbrush calibrate --points FILE`):
 //   [screen]  width = 1920, height = 1080

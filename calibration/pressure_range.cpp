@@ -58,10 +58,10 @@ PressureRangeFit fitPressureRange(std::vector<float> light, std::vector<float> f
   return fit;
 }
 
-void PressureRangeCollector::feed(float pressure) {
+void PressureRangeCollector::feed(bool contact, float pressure) {
   if (step_ == Step::kDone) return;
-  if (std::isfinite(pressure) && pressure >= contact_down_) {
-    current_.push_back(pressure);
+  if (contact) {
+    if (std::isfinite(pressure)) current_.push_back(pressure);
     return;
   }
   // Lifted: a step counts once the press was held long enough; shorter presses start over.

@@ -34,14 +34,16 @@ PressureRangeFit fitPressureRange(std::vector<float> light, std::vector<float> f
 
 // The two-step press calibration as a state machine: feed pen samples; it waits for a light
 // press held for `hold_samples` samples in contact and lifted, then a firm one, then fits.
+// Whether the pen is in contact is decided by the caller (the calibrated contact, as the
+// shell's pen events report it), never here.
 class PressureRangeCollector {
  public:
   enum class Step { kLight, kFirm, kDone };
-  explicit PressureRangeCollector(float contact_down = 0.05f, size_t hold_samples = 100,
-                                  float light_target = 0.2f)
-      : contact_down_(contact_down), hold_samples_(hold_samples), light_target_(light_target) {}
-  // `pressure`: offset-corrected pressure of an in-proximity sample (0 when out of proximity).
-  void feed(float pressure);
+  explicit PressureRangeCollector(size_t hold_samples = 100, float light_target = 0.2f)
+      : hold_samples_(hold_samples), light_target_(light_target) {}
+  // One sample: `contact` the pen is down, `pressure` its offset-corrected pressure
+  // (MappedSample::pressure_corrected).
+  void feed(bool contact, float pressure);
   Step step() const { return step_; }
   // Samples held in contact during the current step (for a progress bar).
   size_t held() const { return current_.size(); }
@@ -51,7 +53,6 @@ class PressureRangeCollector {
   void restart();
 
  private:
-  float contact_down_;
   size_t hold_samples_;
   float light_target_;
   Step step_ = Step::kLight;

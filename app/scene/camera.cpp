@@ -1,5 +1,8 @@
 #include "app/scene/camera.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cb {
@@ -38,6 +41,30 @@ Camera Camera::orbited(float degrees) const {
   glm::mat4 r = glm::rotate(glm::mat4(1.0f), glm::radians(degrees), up);
   c.eye = target + glm::vec3(r * glm::vec4(eye - target, 0.0f));
   return c;
+}
+
+Camera Camera::panned(float right, float up_amount) const {
+  const glm::vec3 forward = glm::normalize(target - eye);
+  const glm::vec3 screen_right = glm::normalize(glm::cross(forward, up));
+  const glm::vec3 screen_up = glm::cross(screen_right, forward);
+  const glm::vec3 shift = right * screen_right + up_amount * screen_up;
+  Camera c = *this;
+  c.eye += shift;
+  c.target += shift;
+  return c;
+}
+
+Camera Camera::zoomed(float factor) const {
+  const glm::vec3 offset = eye - target;
+  const float distance = glm::length(offset);
+  Camera c = *this;
+  c.eye = target + offset * (glm::clamp(distance * factor, 0.05f, 50.0f) / distance);
+  return c;
+}
+
+float Camera::worldPerPixelAtTarget(int height) const {
+  const float distance = glm::length(eye - target);
+  return 2.0f * distance * std::tan(glm::radians(fov_y_deg) * 0.5f) / float(std::max(height, 1));
 }
 
 }  // namespace cb

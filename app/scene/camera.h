@@ -25,6 +25,15 @@ struct Camera {
   static Camera reference();
   // The same camera rotated about the y axis through `target` by `degrees`.
   Camera orbited(float degrees) const;
+  // The same camera moved in its view plane (eye and target together) by `right` and `up`
+  // world units along the screen's right and up directions: a pan.
+  Camera panned(float right, float up) const;
+  // The eye moved along the view direction to `factor` times its distance from the target
+  // (< 1 closer); the distance stays within [0.05, 50] world units.
+  Camera zoomed(float factor) const;
+  // World units per screen pixel at the target's distance, on an image `height` pixels high:
+  // a drag of n pixels pans the point under the pen by n × this.
+  float worldPerPixelAtTarget(int height) const;
 };
 
 }  // namespace cb

@@ -1,5 +1,6 @@
 #include "app/session/ui_change.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -56,6 +57,11 @@ bool parseMode(std::string_view text, Mode* out) {
   return false;
 }
 
+const char* cameraMoveName(CameraMove move) {
+  constexpr const char* kNames[] = {"set", "orbit", "pan", "zoom", "view"};
+  return kNames[int(move)];
+}
+
 const char* eraseToolName(EraseTool tool) {
   return tool == EraseTool::kVacuum ? "vacuum" : "rub-out";
 }
@@ -69,7 +75,11 @@ UiRecordText formatUiChange(const UiChange& change) {
       const float v[7] = {c.camera.eye.x,    c.camera.eye.y,    c.camera.eye.z,
                           c.camera.target.x, c.camera.target.y, c.camera.target.z,
                           c.camera.fov_y_deg};
-      return {JournalRecordType::kUi, "camera=" + formatFloats(v, 7)};
+      // The move is an optional last field, so records written before it existed still parse
+      // (as kSet) and a plain set reads as it always did.
+      return {JournalRecordType::kUi,
+              "camera=" + formatFloats(v, 7) +
+                  (c.move == CameraMove::kSet ? "" : std::string(",") + cameraMoveName(c.move))};
     }
     UiRecordText operator()(const ui::SetBrush& c) const {
       return {JournalRecordType::kUi, std::string("brush=") + brushKindName(c.brush)};
@@ -148,14 +158,25 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   };
   float v[7];
   if (key == "camera") {
-    if (!parseFloats(value, 7, v) || v[6] <= 0.0f || v[6] >= 180.0f)
-      return bad("EX,EY,EZ,TX,TY,TZ,FOV (fov in (0, 180) degrees)");
+    std::string numbers = value;
+    CameraMove move = CameraMove::kSet;
+    const size_t last = value.rfind(',');
+    if (last != std::string::npos && last + 1 < value.size() && std::isalpha(value[last + 1])) {
+      const std::string name = value.substr(last + 1);
+      bool known = false;
+      for (int m = 0; m <= int(CameraMove::kView); ++m)
+        if (name == cameraMoveName(CameraMove(m))) move = CameraMove(m), known = true;
+      if (!known) return bad("a camera move orbit, pan, zoom or view after the numbers");
+      numbers = value.substr(0, last);
+    }
+    if (!parseFloats(numbers, 7, v) || v[6] <= 0.0f || v[6] >= 180.0f)
+      return bad("EX,EY,EZ,TX,TY,TZ,FOV[,MOVE] (fov in (0, 180) degrees)");
     Camera camera = Camera::reference();
     camera.eye = {v[0], v[1], v[2]};
     camera.target = {v[3], v[4], v[5]};
     camera.fov_y_deg = v[6];
     if (glm::length(camera.eye - camera.target) <= 0.0f) return bad("an eye apart from the target");
-    *out = ui::SetCamera{camera};
+    *out = ui::SetCamera{camera, move};
   } else if (key == "camera_orbit") {
     if (!parseFloats(value, 1, v)) return bad("degrees");
     *out = ui::SetCamera{Camera::reference().orbited(v[0])};

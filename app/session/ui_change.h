@@ -5,7 +5,8 @@
 //
 //   record  text                                  change
 //   Mode    camera|canvas|paint|erase|light       SetMode
-//   Ui      camera=EX,EY,EZ,TX,TY,TZ,FOV           SetCamera (eye, target, vertical fov degrees)
+//   Ui      camera=EX,EY,EZ,TX,TY,TZ,FOV[,MOVE]    SetCamera (eye, target, vertical fov degrees;
+//                                                 MOVE orbit|pan|zoom|view, absent = set)
 //   Ui      camera_orbit=DEG                      SetCamera: Camera::reference() orbited (format 1)
 //   Ui      brush=2d|3d|skeleton                  SetBrush
 //   Ui      method=hybrid|ray-marching            SetMapping
@@ -43,12 +44,19 @@ bool parseMode(std::string_view text, Mode* out);
 enum class EraseTool { kVacuum, kRubOut };  // thesis §3.5.1, §3.5.2
 const char* eraseToolName(EraseTool tool);  // "vacuum", "rub-out"
 
+// How a camera change was made (for the study's event log; the camera itself is the state):
+// kSet by the program (auto-rotation stopped, a reset, the good view), kOrbit, kPan and kZoom
+// by a pen drag or keys in Camera mode, kView a preset view (top, front, left, perspective).
+enum class CameraMove { kSet, kOrbit, kPan, kZoom, kView };
+const char* cameraMoveName(CameraMove move);  // "set", "orbit", "pan", "zoom", "view"
+
 namespace ui {
 struct SetMode {
   Mode mode;
 };
 struct SetCamera {
   Camera camera;
+  CameraMove move = CameraMove::kSet;
 };
 struct SetBrush {
   BrushKind brush;

@@ -43,6 +43,11 @@ enum class Command {
   kOperatorPause,  // Ctrl+Alt+P: pause (again: resume), with a reason
   kOperatorSkip,   // Ctrl+Alt+S: skip the tutorial step or the stage, with a reason
   kOperatorAbort,  // Ctrl+Alt+A: abort the session, with a reason
+  kPanDrag,        // P: a pen drag in Camera mode pans instead of orbiting (and back)
+  kPanLeft,        // Shift+Left: move the view left (Camera mode)
+  kPanRight,       // Shift+Right
+  kPanUp,          // Shift+Up
+  kPanDown,        // Shift+Down
   kCount
 };
 

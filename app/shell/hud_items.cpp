@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace cb {
 namespace {
@@ -205,6 +206,35 @@ void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max
     for (const auto& p : pairs)
       if (p[0].x > -1e5f && p[1].x > -1e5f)  // both ends in front of the camera
         items->push_back(makeHudSegment(p[0], p[1], 1.0f, colour));
+  }
+}
+
+}  // namespace cb
+
+namespace cb {
+
+void appendAxisPlaneGrids(glm::vec3 centre, glm::vec3 box_min, glm::vec3 box_max, int divisions,
+                          const std::function<glm::vec2(glm::vec3)>& to_screen,
+                          std::vector<HudItem>* items) {
+  if (divisions < 1) return;
+  const glm::vec4 colours[3] = {
+      {1.0f, 0.45f, 0.4f, 0.35f}, {0.45f, 1.0f, 0.5f, 0.35f}, {0.45f, 0.6f, 1.0f, 0.35f}};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (centre[axis] < box_min[axis] || centre[axis] > box_max[axis]) continue;
+    // The plane's two other axes: lines along each, at every division of the other.
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int i = 0; i <= divisions; ++i) {
+      const float f = float(i) / float(divisions);
+      for (const auto& [along, across] : {std::pair{a, b}, std::pair{b, a}}) {
+        glm::vec3 p0 = centre, p1 = centre;
+        p0[across] = p1[across] = box_min[across] + f * (box_max[across] - box_min[across]);
+        p0[along] = box_min[along];
+        p1[along] = box_max[along];
+        const glm::vec2 s0 = to_screen(p0), s1 = to_screen(p1);
+        if (s0.x > -1e5f && s1.x > -1e5f)
+          items->push_back(makeHudSegment(s0, s1, 1.0f, colours[axis]));
+      }
+    }
   }
 }
 

@@ -73,6 +73,13 @@ void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items
 void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max, int divisions,
                       const std::function<glm::vec2(glm::vec3)>& to_screen,
                       std::vector<HudItem>* items);
+// The Vacuum's location aid (thesis §3.5.1, Fig. 3.5: "intersecting grids from three
+// axis-aligned planes"): grids on the planes x = centre.x, y = centre.y and z = centre.z across
+// the box, `divisions` cells per side, red, green and blue; lines with an end behind the camera
+// (to_screen gives x < -1e5) are left out.
+void appendAxisPlaneGrids(glm::vec3 centre, glm::vec3 box_min, glm::vec3 box_max, int divisions,
+                          const std::function<glm::vec2(glm::vec3)>& to_screen,
+                          std::vector<HudItem>* items);
 void appendCanvasOutline(const std::vector<glm::vec2>& outline, std::vector<HudItem>* items);
 
 }  // namespace cb

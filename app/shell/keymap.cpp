@@ -22,7 +22,10 @@ constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
                                          "redo",           "save",
                                          "good-view",      "open",
                                          "next-style",     "operator-pause",
-                                         "operator-skip",  "operator-abort"};
+                                         "operator-skip",  "operator-abort",
+                                         "pan-drag",       "pan-left",
+                                         "pan-right",      "pan-up",
+                                         "pan-down"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -69,6 +72,13 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
     if (k == 'o') return Command::kOpen;
     return std::nullopt;  // Ctrl+anything else: nothing (no accidental commands)
   }
+  if (shift) {
+    // Shift+arrows pan the view; the plain arrows are the preset views.
+    if (k == XKB_KEY_Left) return Command::kPanLeft;
+    if (k == XKB_KEY_Right) return Command::kPanRight;
+    if (k == XKB_KEY_Up) return Command::kPanUp;
+    if (k == XKB_KEY_Down) return Command::kPanDown;
+  }
   switch (k) {
     case XKB_KEY_Escape:
       return Command::kQuit;
@@ -98,6 +108,8 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kResetCamera;
     case 'v':
       return Command::kNextEraseTool;
+    case 'p':
+      return Command::kPanDrag;
     case 'c':
       return Command::kToggleCircles;
     case 's':
@@ -255,6 +267,16 @@ std::string keyLabel(Command command) {
       return "Ctrl+Alt+S";
     case Command::kOperatorAbort:
       return "Ctrl+Alt+A";
+    case Command::kPanDrag:
+      return "P";
+    case Command::kPanLeft:
+      return "Shift+Left";
+    case Command::kPanRight:
+      return "Shift+Right";
+    case Command::kPanUp:
+      return "Shift+Up";
+    case Command::kPanDown:
+      return "Shift+Down";
     default:
       return "";
   }

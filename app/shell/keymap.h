@@ -1,6 +1,6 @@
 // Keys → commands: the one place that decides what a key means (the platform layer only reports
 // keysyms and modifiers, app/render/gl/display.h). Letters match case-insensitively, so Shift
-// does not change a command (except Ctrl+Shift+Z = redo).
+// does not change a command (except Ctrl+Shift+Z = redo, and Shift+arrows, which pan).
 #pragma once
 
 #include <cstdint>

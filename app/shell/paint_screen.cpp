@@ -299,15 +299,20 @@ void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped)
     case PenEvent::Kind::kDrag: {
       const glm::vec2 delta = glm::vec2(event.x, event.y) - drag_start_;
       if (mode == Mode::kCamera && drag_camera_) {
+        const Camera& from = session_->camera();
         if (side_buttons_ & kPenStylus1) {
           // Zoom: dragging up moves the eye closer, exponentially in the distance.
-          Camera c = session_->camera();
-          c.eye = c.target + (c.eye - c.target) * std::exp(delta.y / float(h));
-          drag_camera_ = c;
+          drag_camera_ = from.zoomed(std::exp(delta.y / float(h)));
+          drag_move_ = CameraMove::kZoom;
+        } else if (pan_drag_) {
+          // Pan: the scene follows the pen (the point under it stays under it).
+          const float step = from.worldPerPixelAtTarget(h);
+          drag_camera_ = from.panned(-delta.x * step, delta.y * step);
+          drag_move_ = CameraMove::kPan;
         } else {
           // Orbit: a full screen width turns 180°, a full height 90°.
-          drag_camera_ =
-              orbitCamera(session_->camera(), -180.0f * delta.x / float(w), 90.0f * delta.y / h);
+          drag_camera_ = orbitCamera(from, -180.0f * delta.x / float(w), 90.0f * delta.y / h);
+          drag_move_ = CameraMove::kOrbit;
         }
       } else if (mode == Mode::kCanvas && drag_canvas_) {
         // A full screen height moves the canvas across the whole sky box.
@@ -322,7 +327,7 @@ void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped)
       return;
     }
     case PenEvent::Kind::kUp:
-      if (drag_camera_) apply(ui::SetCamera{*drag_camera_}, event.t_ns);
+      if (drag_camera_) apply(ui::SetCamera{*drag_camera_, drag_move_}, event.t_ns);
       if (drag_canvas_)
         apply(ui::SetCanvas{drag_canvas_->altitude, drag_canvas_->thickness}, event.t_ns);
       if (drag_light_) apply(ui::SetLight{drag_light_->direction, drag_light_->colour}, event.t_ns);
@@ -428,8 +433,32 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
     case Command::kViewLeft:
     case Command::kViewPerspective:
       orbit_degrees_ = 0.0f;
-      apply(ui::SetCamera{presetView(command)}, t_ns);
+      apply(ui::SetCamera{presetView(command), CameraMove::kView}, t_ns);
       break;
+    case Command::kPanDrag:
+      pan_drag_ = !pan_drag_;
+      say(pan_drag_ ? "camera mode: a pen drag pans the view (P orbits again)"
+                    : "camera mode: a pen drag orbits (P pans)");
+      break;
+    case Command::kPanLeft:
+    case Command::kPanRight:
+    case Command::kPanUp:
+    case Command::kPanDown: {
+      if (!session_) return say("no pen session: the view is the bundled cloud's");
+      // A twentieth of the screen height per press, in the arrow's direction (the view moves,
+      // so the scene moves the other way).
+      const Camera c = session_->camera();
+      const float step =
+          0.05f * float(display_.height()) * c.worldPerPixelAtTarget(display_.height());
+      const float right = command == Command::kPanRight  ? step
+                          : command == Command::kPanLeft ? -step
+                                                         : 0.0f;
+      const float up = command == Command::kPanUp     ? step
+                       : command == Command::kPanDown ? -step
+                                                      : 0.0f;
+      apply(ui::SetCamera{c.panned(right, up), CameraMove::kPan}, t_ns);
+      break;
+    }
     case Command::kSpace:
       if (erase && session_->eraseTool() == EraseTool::kVacuum) {
         if (!vacuum_centre_)
@@ -455,6 +484,11 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
         const EraseTool tool = session_->eraseTool();
         apply(ui::SetEraseDiameter{tool,
                                    std::clamp(session_->eraseDiameter(tool) * factor, 0.02f, 2.0f)},
+              t_ns);
+      } else if (session_->mode() == Mode::kCamera) {
+        // Zoom for pens without side buttons: + closer, − further.
+        apply(ui::SetCamera{session_->camera().zoomed(command == Command::kLarger ? 0.8f : 1.25f),
+                            CameraMove::kZoom},
               t_ns);
       } else if (session_->mode() == Mode::kCanvas) {
         const Canvas c = session_->canvas();
@@ -718,6 +752,10 @@ bool PaintScreen::drawOverlays(std::string* error) {
                                       glm::vec3(1e-6f)),
           w, h);
       const glm::vec3 foot(vacuum_centre_->x, session_->canvas().altitude, vacuum_centre_->z);
+      // §3.5.1: grids on the three axis-aligned planes through the sphere's centre.
+      appendAxisPlaneGrids(
+          *vacuum_centre_, volume.worldMin(), volume.worldMax(), 4,
+          [&](glm::vec3 p) { return project(camera, p, w, h); }, &items);
       items.push_back(makeHudRing(c, glm::length(edge - c), 2.0f, {1.0f, 0.55f, 0.2f, 0.9f}));
       items.push_back(
           makeHudSegment(project(camera, foot, w, h), c, 2.0f, {0.8f, 0.8f, 0.85f, 0.9f}));
@@ -861,6 +899,7 @@ std::string PaintScreen::statusLine() const {
                   double(s.eraseDiameter(s.eraseTool())));
     line += text;
   }
+  if (s.mode() == Mode::kCamera && pan_drag_) line += " | drag pans (P: orbit)";
   if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
   if (mouse_ && !(pen_ && pen_->connection() == PenConnection::kConnected))
     line += " | mouse as pen, pressure " + std::to_string(mouse_->pressure()).substr(0, 4);

@@ -1,8 +1,9 @@
 // The painter's screen (thesis ch. 3, Appendix A): the scene seen by the session's camera, in
 // one of five modes, driven by the pen first and keys second.
 //
-//   1 Camera  drag the pen to orbit (lower side button held: zoom); R resets, arrows give the
-//             top / front / left / perspective views; Space starts or stops the auto-rotation
+//   1 Camera  drag the pen to orbit (lower side button held: zoom; after P: pan); R resets,
+//             arrows give the top / front / left / perspective views, Shift+arrows pan, −/+
+//             zoom; Space starts or stops the auto-rotation
 //   2 Canvas  drag up/down to raise or lower the canvas, PgUp/PgDn by one voxel, −/+ thickness
 //   3 Paint   the live footprint; the cloud appears when the pen lifts (B brush)
 //   4 Erase   Rub-out while the tip is down (diameter from pressure), or Vacuum: the sphere
@@ -109,6 +110,8 @@ class PaintScreen : public Screen {
 
   // Drags (preview until the pen lifts)
   std::optional<Camera> drag_camera_;
+  CameraMove drag_move_ = CameraMove::kOrbit;  // what the camera drag does (journalled)
+  bool pan_drag_ = false;                      // P: a Camera-mode drag pans instead of orbiting
   std::optional<Canvas> drag_canvas_;
   std::optional<Light> drag_light_;
   glm::vec2 drag_start_{0.0f};

@@ -44,31 +44,35 @@ TEST(NPointCalibration, LayoutsCoverCornersAndCentre) {
 
 TEST(NPointCalibration, TapCollectorTakesMedianOfContact) {
   TapCollector c;
-  int64_t i = 0;
-  for (; i < 5; ++i) EXPECT_FALSE(c.feed(at(i, 50, 50, 0.0f), true));
+  EXPECT_FALSE(c.up()) << "no tap without a down";
   // Touch down with a slip at the start, hold, lift.
-  EXPECT_FALSE(c.feed(at(i++, 51.5, 40, 0.3f), true));
-  for (int k = 0; k < 8; ++k) EXPECT_FALSE(c.feed(at(i++, 50 + 0.01 * k, 40, 0.4f), true));
-  auto tap = c.feed(at(i++, 50, 40, 0.0f), true);
+  c.down({51.5, 40});
+  EXPECT_TRUE(c.inContact());
+  for (int k = 0; k < 8; ++k) c.move({50 + 0.01 * k, 40});
+  auto tap = c.up();
   ASSERT_TRUE(tap);
+  EXPECT_FALSE(c.inContact());
   EXPECT_NEAR(tap->x, 50.04, 0.011);
   EXPECT_NEAR(tap->y, 40.0, 1e-9);
 }
 
 TEST(NPointCalibration, TapCollectorRefusesDragsAndFlickers) {
   TapCollector c;
-  int64_t i = 0;
-  for (int k = 0; k < 20; ++k) c.feed(at(i++, 50 + k, 40, 0.4f), true);
-  EXPECT_FALSE(c.feed(at(i++, 70, 40, 0.0f), true));
+  c.down({50, 40});
+  for (int k = 1; k < 20; ++k) c.move({50.0 + k, 40});
+  EXPECT_FALSE(c.up());
   EXPECT_NE(c.lastRejection().find("moved"), std::string::npos);
-  c.feed(at(i++, 50, 40, 0.4f), true);
-  EXPECT_FALSE(c.feed(at(i++, 50, 40, 0.0f), true));
+  c.down({50, 40});
+  EXPECT_FALSE(c.up());
   EXPECT_NE(c.lastRejection().find("too short"), std::string::npos);
-  // Proximity out ends a tap too.
-  for (int k = 0; k < 5; ++k) c.feed(at(i++, 60, 30, 0.4f), true);
-  PenSample out = at(i++, 60, 30, 0.0f);
-  out.in_proximity = false;
-  EXPECT_TRUE(c.feed(out, true));
+  // Positions that are not finite are left out; moves while up are ignored.
+  c.move({60, 30});
+  c.down({60, 30});
+  c.move({std::nan(""), 30});
+  for (int k = 0; k < 3; ++k) c.move({60, 30});
+  auto tap = c.up();
+  ASSERT_TRUE(tap) << c.lastRejection();
+  EXPECT_EQ(*tap, glm::dvec2(60, 30));
 }
 
 TEST(NPointCalibration, FitRecoversMountingErrorAndCalibratorAppliesIt) {

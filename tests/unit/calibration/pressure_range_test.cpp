@@ -56,10 +56,10 @@ TEST(PressureRange, SessionTextRoundTrips) {
 }
 
 TEST(PressureRange, CollectorWalksLightThenFirm) {
-  PressureRangeCollector c(0.05f, 20, 0.2f);
+  PressureRangeCollector c(20, 0.2f);
   auto press = [&](float level, int n) {
-    for (int i = 0; i < n; ++i) c.feed(level + 0.005f * ((i % 3) - 1));
-    c.feed(0.0f);
+    for (int i = 0; i < n; ++i) c.feed(true, level + 0.005f * ((i % 3) - 1));
+    c.feed(false, 0.0f);
   };
   press(0.15f, 5);  // too short: still the light step
   EXPECT_EQ(c.step(), PressureRangeCollector::Step::kLight);

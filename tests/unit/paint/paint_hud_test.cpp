@@ -342,3 +342,37 @@ TEST(PaintHud, CanvasRegionOutlineBoundsWhereRaysMeetTheSlabInTheVolume) {
 
 }  // namespace
 }  // namespace cb
+
+namespace cb {
+namespace {
+
+// The Vacuum's three axis-plane grids (§3.5.1): every line lies on one of the planes through
+// the sphere's centre, spans the box, and a plane the centre is outside of is left out.
+TEST(PaintHud, VacuumAxisPlaneGridsLieOnThePlanesThroughTheCentre) {
+  const glm::vec3 lo(-1.0f), hi(1.0f), centre(0.25f, -0.5f, 0.75f);
+  std::vector<glm::vec3> ends;
+  const auto to_screen = [&](glm::vec3 p) {
+    ends.push_back(p);
+    return glm::vec2(p.x, p.z);
+  };
+  std::vector<HudItem> items;
+  appendAxisPlaneGrids(centre, lo, hi, 4, to_screen, &items);
+  ASSERT_EQ(items.size(), 3u * 2u * 5u);
+  ASSERT_EQ(ends.size(), 2 * items.size());
+  int on_plane[3] = {0, 0, 0};
+  for (size_t i = 0; i < ends.size(); i += 2) {
+    const glm::vec3 a = ends[i], b = ends[i + 1];
+    int planes = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      if (a[axis] == centre[axis] && b[axis] == centre[axis]) ++on_plane[axis], ++planes;
+    EXPECT_GE(planes, 1) << "segment " << i / 2 << " is on no plane through the centre";
+    EXPECT_NEAR(glm::length(b - a), 2.0f, 1e-6f) << "spans the box";
+  }
+  for (int axis = 0; axis < 3; ++axis) EXPECT_GE(on_plane[axis], 10) << axis;
+  items.clear();
+  appendAxisPlaneGrids(glm::vec3(0.0f, 3.0f, 0.0f), lo, hi, 4, to_screen, &items);
+  EXPECT_EQ(items.size(), 2u * 2u * 5u) << "the y plane lies outside the box";
+}
+
+}  // namespace
+}  // namespace cb

@@ -12,6 +12,8 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
   const std::vector<UiChange> changes = {
       ui::SetMode{Mode::kErase},
       ui::SetCamera{camera},
+      ui::SetCamera{camera, CameraMove::kPan},
+      ui::SetCamera{camera, CameraMove::kOrbit},
       ui::SetBrush{BrushKind::kSkeleton},
       ui::SetMapping{MappingMethod::kRayMarching},
       ui::SetCanvas{0.1234567f, 0.4f},
@@ -40,6 +42,25 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
   EXPECT_EQ(std::get<ui::SetCamera>(parsed).camera.eye, camera.eye);
   EXPECT_EQ(std::get<ui::SetCamera>(parsed).camera.fov_y_deg, camera.fov_y_deg);
   EXPECT_EQ(formatUiChange(ui::SetMode{Mode::kLight}).type, JournalRecordType::kMode);
+}
+
+TEST(UiChange, CameraMovesAreJournalledAndOldCameraRecordsReadAsSet) {
+  UiChange parsed;
+  std::string error;
+  const Camera camera = Camera::reference();
+  const UiRecordText pan = formatUiChange(ui::SetCamera{camera, CameraMove::kPan});
+  EXPECT_NE(pan.text.find(",pan"), std::string::npos) << pan.text;
+  ASSERT_TRUE(parseUiChange(pan.type, pan.text, &parsed, &error)) << error;
+  EXPECT_EQ(std::get<ui::SetCamera>(parsed).move, CameraMove::kPan);
+  EXPECT_EQ(std::get<ui::SetCamera>(parsed).camera.target, camera.target);
+  // A record written before moves existed: seven numbers, read as a plain set.
+  ASSERT_TRUE(parseUiChange(JournalRecordType::kUi, "camera=2.2,1.6,2.2,0,0,0,45", &parsed, &error))
+      << error;
+  EXPECT_EQ(std::get<ui::SetCamera>(parsed).move, CameraMove::kSet);
+  EXPECT_EQ(formatUiChange(parsed).text, "camera=2.20000005,1.60000002,2.20000005,0,0,0,45");
+  EXPECT_FALSE(
+      parseUiChange(JournalRecordType::kUi, "camera=2,1,2,0,0,0,45,spin", &parsed, &error));
+  EXPECT_NE(error.find("spin"), std::string::npos) << error;
 }
 
 TEST(UiChange, OldOrbitRecordsStillParse) {

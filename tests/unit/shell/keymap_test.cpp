@@ -39,6 +39,11 @@ TEST(Keymap, ModifiersAndLayouts) {
   EXPECT_EQ(commandForKey('B', DisplayEvent::kShift), Command::kNextBrush) << "Shift+b is still B";
   EXPECT_EQ(commandForKey('q', DisplayEvent::kCtrl), std::nullopt);
   EXPECT_EQ(commandForKey(XKB_KEY_KP_Add, 0), Command::kLarger);
+  EXPECT_EQ(commandForKey(XKB_KEY_Left, 0), Command::kViewLeft);
+  EXPECT_EQ(commandForKey(XKB_KEY_Left, DisplayEvent::kShift), Command::kPanLeft)
+      << "Shift+arrows pan";
+  EXPECT_EQ(commandForKey(XKB_KEY_Down, DisplayEvent::kShift), Command::kPanDown);
+  EXPECT_EQ(commandForKey('P', DisplayEvent::kShift), Command::kPanDrag);
   DisplayEvent close;
   close.kind = DisplayEvent::Kind::Quit;
   EXPECT_EQ(commandFor(close), Command::kQuit);
