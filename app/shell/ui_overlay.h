@@ -38,6 +38,7 @@ struct UiLabel {
   float size_px = 28.0f;
   uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
   bool centred = false;
+  uint32_t background_rgba = 0;  // a box behind the text when its alpha is not 0
 };
 
 class UiOverlay {
@@ -47,6 +48,9 @@ class UiOverlay {
   UiOverlay(const UiOverlay&) = delete;
   UiOverlay& operator=(const UiOverlay&) = delete;
 
+  // Characters the font atlas must hold besides the shipped labels' (e.g. the kiosk's visitor
+  // texts in Chinese); call before init().
+  void addGlyphs(const std::string& utf8_text) { extra_glyphs_ += utf8_text; }
   // Creates the ImGui context, font atlas and GL objects (the GL context must be current).
   bool init(std::string* error);
   // The pointer (pen tip or mouse) in framebuffer pixels, y down.
@@ -66,6 +70,7 @@ class UiOverlay {
  private:
   ImGuiContext* context_ = nullptr;
   bool ready_ = false;
+  std::string extra_glyphs_;
   struct PointerState {
     float x, y;
     bool down;
