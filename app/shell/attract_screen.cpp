@@ -1,6 +1,7 @@
 #include "app/shell/attract_screen.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "app/render/gl/gl.h"
@@ -79,10 +80,21 @@ std::string AttractScreen::update(const FrameContext& frame) {
   return "";
 }
 
+void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
+  if (frame.frame == 0) return;  // the first frame compiles shaders
+  float& scale = options_.render.scale;
+  if (frame_ms > 50.0)
+    scale = std::max(0.2f, scale * 0.9f);
+  else if (frame_ms < 35.0)
+    scale = std::min(1.0f, scale * 1.05f);
+}
+
 bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
   renderer_.sync(session_->volume(), session_->light());
   RenderOptions render = options_.render;
+  // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
+  render.scale = std::max(0.2f, std::round(render.scale * 20.0f) / 20.0f);
   render.style = parseRenderStyle(session_->styleName()).value_or(render.style);
   render.moving = render.scale < 1.0f;
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());

@@ -47,6 +47,10 @@ class AttractScreen : public Screen {
   void onCommand(Command, int64_t) override {}
   std::string update(const FrameContext& frame) override;
   bool draw(FrameContext& frame, std::string* error) override;
+  // Keeps the orbit fluid: the resolution scale shrinks when a frame is over 50 ms (20 fps) and
+  // grows back when there is room, within [0.2, 1] (as the painter's orbit does).
+  void presented(const FrameContext& frame, double frame_ms) override;
+  float scale() const { return options_.render.scale; }
 
   // Starts the replay from the beginning at the clock's time (an empty sky).
   void restart();

@@ -488,6 +488,7 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
 
 void KioskScreen::presented(const FrameContext& frame, double frame_ms) {
   if (state_ == State::kVisitor) paint_.presented(frame, frame_ms);
+  if (state_ == State::kAttract) attract_.presented(frame, frame_ms);
 }
 
 }  // namespace cb

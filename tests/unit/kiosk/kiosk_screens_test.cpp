@@ -215,6 +215,13 @@ TEST(KioskScreens, VisitorTextsInEnglishAndChinese) {
     frames[language] = rig.lastFrame();
     keep(std::string("kiosk_attract_") + language + ".png", rig.lastFrame());
     EXPECT_TRUE(rig.textLog().empty()) << "every key is bundled in " << language;
+    // The reconnect screen in the same language, for looking.
+    rig.pen().hover(rig.clock().nowNs());
+    rig.run(1);
+    rig.pen().unplug();
+    rig.run(2, 0.0);
+    EXPECT_EQ(rig.kiosk().state(), KioskScreen::State::kReconnect);
+    keep(std::string("kiosk_reconnect_") + language + ".png", rig.lastFrame());
   }
   // The invitation band (38%..60% of the height) differs between the languages; the sky above
   // it does not (the same replay, the same clock).
@@ -366,13 +373,26 @@ TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
   ASSERT_EQ(kiosk.state(), State::kReconnect);
   rig.run(5, 1.0);
   EXPECT_EQ(kiosk.state(), State::kReconnect) << "waits for the pen";
-  keep("kiosk_reconnect_en.png", rig.lastFrame());
   rig.pen().replug();
   rig.run(1);
   EXPECT_EQ(kiosk.state(), State::kVisitor);
   rig.pen().stroke(rig.clock().nowNs());
   rig.run(3);
   EXPECT_GT(kiosk.visitorSession()->strokesMapped(), strokes) << "painting goes on after replug";
+  // Twenty more unplug/replug cycles, some mid-stroke: each shows the screen and recovers.
+  for (int i = 0; i < 20; ++i) {
+    if (i % 2) rig.pen().stroke(rig.clock().nowNs(), /*lift=*/false);
+    rig.pen().unplug();
+    rig.run(1);
+    ASSERT_EQ(kiosk.state(), State::kReconnect) << "cycle " << i;
+    rig.pen().replug();
+    rig.run(1);
+    ASSERT_EQ(kiosk.state(), State::kVisitor) << "cycle " << i;
+  }
+  const uint32_t before = kiosk.visitorSession()->strokesMapped();
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  EXPECT_GT(kiosk.visitorSession()->strokesMapped(), before);
 }
 
 }  // namespace
