@@ -15,6 +15,8 @@
 #include <string>
 #include <thread>
 
+#include <sys/wait.h>
+
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "notify_socket_listener.h"
@@ -106,6 +108,29 @@ void writeVisitorJournal(const std::string& path) {
   for (const PenSample& s : syntheticPenSamples(referencePaintStrokes(320, 180)[0], tablet, 320,
                                                 180, 200.0, 1'000'000'000))
     recorder.feed(s);
+}
+
+TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
+  const std::string data =
+      (std::filesystem::temp_directory_path() / ("cb_kiosk_off_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(data);
+  // The combination, the bundled PIN, X and Y: the panel shuts the kiosk down.
+  const std::string command = "LIBGL_ALWAYS_SOFTWARE=1 '" + std::string(CB_CLOUDBRUSH_BIN) +
+                              "' kiosk --display surfaceless --size 160x90 --grid 16 --backend "
+                              "none --no-record --data-dir '" +
+                              data + "' --seconds 60 --keys ctrl+alt+o,2,4,6,8,x,y >'" + data +
+                              ".out' 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string out = slurp(data + ".out");
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 10) << out;
+  EXPECT_NE(out.find("(operator shutdown)"), std::string::npos) << out;
+  const std::string log = slurp(data + "/operator.log");
+  EXPECT_NE(log.find("Z panel-opened\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("Z shutdown\n"), std::string::npos) << log;
+  std::filesystem::remove_all(data);
+  std::filesystem::remove(data + ".out");
 }
 
 TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
