@@ -572,18 +572,6 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
   }
 }
 
-void PaintScreen::startAgain(int64_t t_ns) {
-  // Kiosk: the visitor's cloud is cleared and the painter is back at its starting view.
-  if (!session_) return;
-  apply(ui::DeleteAll{}, t_ns);
-  apply(ui::SetCamera{initialPaintCamera(session_->settings())}, t_ns);
-  apply(ui::SetMode{Mode::kPaint}, t_ns);
-  orbiting_ = options_.orbit_degrees_per_second != 0.0f;
-  orbit_degrees_ = 0.0f;
-  menu_open_ = false;
-  refined_ = false;
-}
-
 bool PaintScreen::hasPaint() const {
   return session_ && (session_->history().canUndo() || session_->engine().inStroke());
 }

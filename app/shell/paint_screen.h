@@ -54,8 +54,6 @@ class PaintScreen : public Screen {
   void onResize(int, int) override { refined_ = false; }
   void onPointer(const DisplayEvent& event) override;
   bool allowsQuit() const override { return !options_.visitor_mode; }
-  // Kiosk: clears the cloud and returns to the starting view and Paint mode (journalled).
-  void startAgain(int64_t t_ns);
   // Something was painted (an undoable change, or a stroke open).
   bool hasPaint() const;
   std::string update(const FrameContext& frame) override;
