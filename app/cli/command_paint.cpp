@@ -434,7 +434,8 @@ int commandPaint(int argc, char** argv) {
         summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
         summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid,
         summary.median_painting_frame_ms, summary.painting_frames);
-  const PaintSession* painted = kiosk_screen ? kiosk_screen->visitorSession() : session.get();
+  // (The kiosk's visitors each have a journal of their own; no one checksum stands for them.)
+  const PaintSession* painted = session.get();
   if (painted && summary.pen_samples > 0)
     std::printf(
         "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "

@@ -1,5 +1,6 @@
 #include "app/shell/kiosk_screen.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -93,6 +94,7 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
   updateTexts();
   cleanUpOldData();
+  prepareVisitor();
   last_input_ns_ = clock_.nowNs();
   setState(State::kAttract);
 }
@@ -157,36 +159,40 @@ void KioskScreen::cleanUpOldData() {
   if (!error.empty()) std::fprintf(stderr, "cloudbrush kiosk: cleanup: %s\n", error.c_str());
 }
 
-void KioskScreen::beginVisit(int64_t now) {
-  // A fresh session (no undo into the previous visitor's cloud) and a journal of its own.
-  ++visits_;
+void KioskScreen::prepareVisitor() {
+  // A fresh session for the next visitor (no undo into the previous visitor's cloud), made while
+  // nobody waits: allocating a 256³ sky takes a while, and the hand-over must be at once.
   auto session =
       std::make_unique<PaintSession>(setup_.visitor_settings, setup_.brush, setup_.mapping);
   session->setStartingLight(setup_.light);
   session->setStartingStyle(setup_.style);
-  std::unique_ptr<JournalWriter> journal;
+  paint_.attachPen(pen_, session.get());
+  if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+  visitor_ = std::move(session);
+}
+
+void KioskScreen::beginVisit(int64_t now) {
+  ++visits_;
+  if (!visitor_) prepareVisitor();
   if (setup_.record_journals) {
+    // A journal of the visitor's own.
     std::error_code ec;
     std::filesystem::create_directories(session_dir_, ec);
     const std::string path =
         session_dir_ + "/" + utcStamp() + "-visit" + std::to_string(visits_) + ".cbj";
-    journal = std::make_unique<JournalWriter>();
-    if (ec || !journal->open(path)) {
+    journal_ = std::make_unique<JournalWriter>();
+    if (ec || !journal_->open(path)) {
       std::fprintf(stderr, "cloudbrush kiosk: NOT RECORDING: %s: %s\n", path.c_str(),
-                   ec ? ec.message().c_str() : journal->error().c_str());
-      journal.reset();
+                   ec ? ec.message().c_str() : journal_->error().c_str());
+      journal_.reset();
     } else {
-      session->recordTo(journal.get(), now);
+      visitor_->recordTo(journal_.get(), now);
       std::printf("journal: %s\n", path.c_str());
       std::fflush(stdout);
     }
   }
-  paint_.attachPen(pen_, session.get());
-  if (visitor_) visitor_->recordTo(nullptr, now);
-  visitor_ = std::move(session);
-  journal_ = std::move(journal);
   notice_.clear();
-  input(now);
+  input(clock_.nowNs());
   setState(State::kVisitor);
 }
 
@@ -194,6 +200,7 @@ void KioskScreen::keepFinishedCloud(const std::string& why) {
   if (!setup_.config.gallery_enabled || !visitor_ || !paint_.hasPaint()) return;
   GallerySave save;
   std::string error;
+  const auto started = std::chrono::steady_clock::now();
   const bool ok = saveToGallery(gallery_, renderer_, visitor_->volume(), paint_.shownCamera(),
                                 visitor_->light(), setup_.render, display_.width(),
                                 display_.height(), &save, &error);
@@ -205,9 +212,16 @@ void KioskScreen::keepFinishedCloud(const std::string& why) {
     return;
   }
   gallery_saved_.push_back(save.number);
-  std::fprintf(stderr, "cloudbrush kiosk: gallery: %s saved as %06ld (%zu files)%s%s\n",
-               why.c_str(), save.number, save.written.size(), save.note.empty() ? "" : "; ",
-               save.note.c_str());
+  uint64_t bytes = 0;
+  for (const std::string& path : save.written) {
+    std::error_code ec;
+    bytes += std::filesystem::file_size(path, ec);
+  }
+  std::fprintf(
+      stderr, "cloudbrush kiosk: gallery: %s saved as %06ld (%zu files, %.1f MB, %.0f ms)%s%s\n",
+      why.c_str(), save.number, save.written.size(), double(bytes) / 1048576.0,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count(),
+      save.note.empty() ? "" : "; ", save.note.c_str());
   for (long n : save.cleanup.removed_for_quota)
     std::fprintf(stderr, "cloudbrush kiosk: gallery %06ld deleted (over the quota)\n", n);
   for (long n : save.cleanup.removed_for_age)
@@ -221,6 +235,7 @@ void KioskScreen::endVisit(int64_t now, const std::string& why) {
   if (visitor_) visitor_->recordTo(nullptr, now);
   if (journal_) journal_->close();
   journal_.reset();
+  prepareVisitor();
   ++idle_resets_;
   std::fprintf(stderr,
                "cloudbrush kiosk: idle reset (%s): the sky is cleared; the attract loop resumes\n",
@@ -361,8 +376,8 @@ void KioskScreen::runOperatorActions(int64_t now) {
         updateTexts();
         break;
       case OperatorActionKind::kExportCloud: {
-        if (!visitor_) {
-          message_ = "export: no visitor has painted yet, nothing to export";
+        if (!visitor_ || !paint_.hasPaint()) {
+          message_ = "export: the current visitor has painted nothing yet";
           logOperator(std::string(name) + " (nothing to export)");
           break;
         }

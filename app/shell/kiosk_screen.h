@@ -60,7 +60,8 @@ class KioskScreen : public Screen {
  public:
   enum class State { kAttract, kVisitor, kReconnect, kOperator };
 
-  // `paint` runs in visitor mode with `pen` attached (no session yet); none owned.
+  // `paint` runs in visitor mode with `pen` attached; the kiosk attaches its visitor sessions.
+  // None owned.
   KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen& paint, PenSource* pen,
               const Clock& clock, KioskSetup setup);
   ~KioskScreen() override;
@@ -85,6 +86,7 @@ class KioskScreen : public Screen {
   static const char* stateName(State state);
   long idleResets() const { return idle_resets_; }
   long visits() const { return visits_; }
+  // The current visitor's session; between visits, the fresh one the next visitor gets.
   const PaintSession* visitorSession() const { return visitor_.get(); }
   const AttractScreen& attract() const { return attract_; }
   const OperatorPanelScreen& operatorPanel() const { return panel_; }
@@ -95,6 +97,7 @@ class KioskScreen : public Screen {
 
  private:
   void setState(State state);
+  void prepareVisitor();
   void beginVisit(int64_t now);
   void endVisit(int64_t now, const std::string& why);
   void input(int64_t now);

@@ -188,11 +188,9 @@ TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
   EXPECT_EQ(kiosk.idleResets(), 1);
   EXPECT_LT(kiosk.attract().recordsPlayed(), kiosk.attract().recordCount()) << "replay restarted";
   // The next visitor starts on an empty canvas and cannot undo into the previous cloud.
-  const PaintSession* first = kiosk.visitorSession();
   rig.pen().hover(rig.clock().nowNs());
   rig.run(1);
   EXPECT_EQ(kiosk.state(), State::kVisitor);
-  EXPECT_NE(kiosk.visitorSession(), first);
   EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0);
   EXPECT_FALSE(kiosk.visitorSession()->history().canUndo());
   EXPECT_EQ(kiosk.visits(), 2);
