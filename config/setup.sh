@@ -21,8 +21,8 @@ packages=(
   libboost-dev
   # input devices
   libevdev-dev libhidapi-dev libusb-1.0-0-dev libudev-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (strace: the kiosk's data-dir confinement test)
+  libgtest-dev libgmock-dev libbenchmark-dev strace
   # reading the study's InkML exports back in tests
   libxml2-dev
   # virtual tablet / KMS in the loop (qemu + Debian's stock kernel)

@@ -20,6 +20,8 @@
 #include "app/core/config_paths.h"
 #include "app/kiosk/health_file_writer.h"
 #include "app/kiosk/health_tracker.h"
+#include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/sd_notifier.h"
 #include "app/kiosk/watchdog_interval.h"
 #include "app/kiosk/watchdog_pinger.h"
@@ -29,7 +31,9 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
+#include "app/shell/attract_journal.h"
 #include "app/shell/keymap.h"
+#include "app/shell/kiosk_screen.h"
 #include "app/shell/paint_loop.h"
 #include "app/shell/paint_screen.h"
 #include "app/volume/scene_generators.h"
@@ -71,12 +75,20 @@ constexpr const char* kUsage =
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
     "  --open FILE         start from a saved cloud (a .vol of the session's grid)\n"
-    "  --kiosk             exhibition mode (what `cloudbrush kiosk` runs): visitor mode (no\n"
-    "                      quit keys, no operator commands), idle reset, attract orbit, systemd\n"
-    "                      notifications and watchdog pings, health.json in --data-dir\n"
-    "  --idle-seconds S    kiosk: clear the sky after S s without input (default 90)\n"
-    "  --warning-seconds S kiosk: the countdown shown before that (default 10)\n"
-    "  --data-dir DIR      kiosk: where health.json goes (default the state dir)\n"
+    "  --kiosk             exhibition mode (what `cloudbrush kiosk` runs; settings in\n"
+    "                      config/kiosk.toml): the attract loop replays a journal until a pen\n"
+    "                      comes near, visitor mode (no quit keys, no operator commands), idle\n"
+    "                      countdown and reset, the operator panel (key combination + PIN), the\n"
+    "                      gallery, \"reconnect the pen\", systemd notifications and watchdog\n"
+    "                      pings, health.json; everything it writes goes into --data-dir\n"
+    "  --idle-seconds S    kiosk: clear the sky after S s without input (kiosk.toml: 90)\n"
+    "  --warning-seconds S kiosk: the countdown shown before that (kiosk.toml: 10)\n"
+    "  --language CODE     kiosk: visitor texts (kiosk/texts.toml: en, zh; kiosk.toml: en)\n"
+    "  --gallery on|off    kiosk: keep each visitor's cloud (kiosk.toml [gallery] enabled)\n"
+    "  --data-dir DIR      kiosk: sessions, gallery, exports, operator.log, health.json\n"
+    "                      (default the state dir)\n"
+    "  --make-attract-journal FILE\n"
+    "                      (`cloudbrush kiosk` only, alone) write the bundled attract journal\n"
     "  --place FILE        make a cloud from a picture (.png) or a model (.obj, .ply, .gltf)\n"
     "                      at the canvas, seen from the starting view\n"
     "  --help              this text\n"
@@ -116,7 +128,8 @@ int commandPaint(int argc, char** argv) {
       {"help",       "stats",   "display",      "drm-device",      "size",     "out-dir",
        "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
        "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
-       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds"});
+       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds",
+       "language",   "gallery"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -138,10 +151,30 @@ int commandPaint(int argc, char** argv) {
   loop_options.max_seconds = args.getDouble("seconds", 0.0);
   loop_options.print_stats = args.has("stats");
   const bool kiosk = args.has("kiosk");
+  KioskConfig kiosk_config;
   if (kiosk) {
+    try {
+      if (std::filesystem::exists(configFile("kiosk.toml")))
+        kiosk_config = loadKioskConfig(configFile("kiosk.toml"));
+    } catch (const std::exception& e) {
+      return fail(e.what(), 2);
+    }
     loop_options.visitor_mode = true;
-    loop_options.idle_reset_s = args.getDouble("idle-seconds", 90.0);
-    loop_options.idle_warning_s = args.getDouble("warning-seconds", 10.0);
+    kiosk_config.idle_seconds = args.getDouble("idle-seconds", kiosk_config.idle_seconds);
+    kiosk_config.warning_seconds = args.getDouble("warning-seconds", kiosk_config.warning_seconds);
+    kiosk_config.language = args.get("language", kiosk_config.language);
+    if (args.has("orbit"))
+      kiosk_config.orbit_degrees_per_second = loop_options.orbit_degrees_per_second;
+    if (args.has("gallery")) {
+      const std::string gallery = args.get("gallery", "");
+      if (gallery != "on" && gallery != "off")
+        return fail("--gallery: expected on or off, got '" + gallery + "'", 2);
+      kiosk_config.gallery_enabled = gallery == "on";
+    }
+    if (kiosk_config.idle_seconds <= 0.0 || kiosk_config.warning_seconds < 0.0)
+      return fail("--idle-seconds / --warning-seconds: expected positive seconds", 2);
+  } else if (args.has("language") || args.has("gallery") || args.has("idle-seconds")) {
+    return fail("--idle-seconds, --language and --gallery are kiosk options (--kiosk)", 2);
   }
   if (!args.error().empty()) return fail(args.error(), 2);
   if (grid < 8 || grid > 1024)
@@ -194,21 +227,25 @@ int commandPaint(int argc, char** argv) {
   }
   std::unique_ptr<PaintSession> session;
   JournalWriter journal;
+  MappingConfig mapping;
+  PaintSessionSettings settings;
+  BrushConfig brush;
   if (pen || kiosk) {  // a kiosk without a tablet still paints with a mouse and resets
-    MappingConfig mapping;
     try {
       if (std::filesystem::exists(configFile("mapping.toml")))
         mapping = loadMappingConfig(configFile("mapping.toml"));
     } catch (const std::exception& e) {
       return fail(e.what());
     }
-    PaintSessionSettings settings;
     settings.screen_width = display->width();
     settings.screen_height = display->height();
     settings.grid = int(grid);
-    const BrushConfig brush = loadDefaultBrushConfig();
+    brush = loadDefaultBrushConfig();
     settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+  }
+  if (kiosk && args.has("open")) return fail("--open is not a kiosk option", 2);
+  if (pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
     session = std::make_unique<PaintSession>(settings, brush, mapping);
     session->setStartingLight(light);
     session->setStartingStyle(renderStyleName(render_config.options.style));
@@ -222,11 +259,14 @@ int commandPaint(int argc, char** argv) {
       }
     }
   }
+  // Kiosk: everything it writes goes under the data dir (the state dir is not even created).
+  const std::string data_dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
-  const std::string session_dir = args.get("session-dir", stateDir() + "/sessions");
+  const std::string session_dir =
+      args.get("session-dir", (kiosk ? data_dir : stateDir()) + "/sessions");
   const bool record = !args.has("no-record");
   const auto start_journal = [&]() {
-    if (!record) return;
+    if (!record || !session) return;  // the kiosk journals each visitor itself
     std::error_code ec;
     std::filesystem::create_directories(session_dir, ec);
     char stamp[32];
@@ -269,14 +309,14 @@ int commandPaint(int argc, char** argv) {
     std::fprintf(stderr,
                  "cloudbrush: kiosk: visitor mode (quit keys and operator commands are ignored; "
                  "stop the service to end); the sky clears after %.0f s without input\n",
-                 loop_options.idle_reset_s);
+                 kiosk_config.idle_seconds);
   else
     std::fprintf(stderr,
                  "cloudbrush: Esc or q quits, 1-5 modes, M menu, B brush, N mapping, Ctrl+Z/Y "
                  "undo/redo%s\n",
                  pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
-  loop_options.state_dir = stateDir();
+  loop_options.state_dir = kiosk ? data_dir : stateDir();
   // --place FILE: a picture (PNG) or model (OBJ, PLY, glTF) made into a cloud from the starting
   // view as the session begins, journalled like any edit.
   const std::string place = args.get("place", "");
@@ -295,7 +335,6 @@ int commandPaint(int argc, char** argv) {
   const SdNotifier notifier = SdNotifier::fromEnvironment();
   std::optional<WatchdogPinger> pinger;
   HealthTracker health(clock);
-  const std::string data_dir = args.get("data-dir", stateDir());
   HealthFileWriter health_file(data_dir, health, clock);
   bool ready_sent = false;
   if (kiosk) {
@@ -308,10 +347,13 @@ int commandPaint(int argc, char** argv) {
     loop_options.each_iteration = [&](bool presented) {
       std::string service_error;
       if (presented) health.onFrame();
+      if (pen)
+        health.setDeviceState(std::string(pen->backendName()) + " " +
+                              penConnectionName(pen->connection()));
       if (presented && !ready_sent) {
         ready_sent = true;
         if (!notifier.ready(&service_error) ||
-            !notifier.status("painting; waiting for visitors", &service_error))
+            !notifier.status("attract loop: waiting for a visitor", &service_error))
           std::fprintf(stderr, "cloudbrush kiosk: %s\n", service_error.c_str());
       }
       if (pinger && !pinger->tick(&service_error))
@@ -319,14 +361,62 @@ int commandPaint(int argc, char** argv) {
       if (!health_file.writeIfDue(&service_error)) health.setError(service_error);
     };
   }
+  std::unique_ptr<KioskScreen> kiosk_screen;
+  if (kiosk) {
+    loop_options.orbit_degrees_per_second = 0.0f;  // the attract loop orbits; visitors paint
+    loop_options.clock = &clock;
+    loop_options.before_start_again = [&]() {
+      if (kiosk_screen) kiosk_screen->keepFinishedCloud("start again");
+    };
+  }
   PaintLoop loop(*display, renderer, volume, light, loop_options);
   if (pen) loop.attachPen(pen.get(), session.get());
+  if (kiosk) {
+    KioskSetup setup;
+    setup.config = kiosk_config;
+    try {
+      setup.texts = KioskTexts::load(configFile("kiosk/texts.toml"), kiosk_config.language,
+                                     [](const std::string& line) {
+                                       std::fprintf(stderr, "cloudbrush kiosk: %s\n", line.c_str());
+                                     });
+    } catch (const std::exception& e) {
+      return fail(e.what(), 2);
+    }
+    const std::filesystem::path attract_path =
+        std::filesystem::path(kiosk_config.attract_journal).is_absolute()
+            ? std::filesystem::path(kiosk_config.attract_journal)
+            : std::filesystem::path(defaultConfigDir()) / kiosk_config.attract_journal;
+    JournalReadResult attract = readJournal(attract_path.string());
+    if (!attract.error.empty())
+      std::fprintf(stderr, "cloudbrush kiosk: attract journal: %s (%zu records play)\n",
+                   attract.error.c_str(), attract.records.size());
+    setup.attract_journal = std::move(attract.records);
+    setup.data_dir = data_dir;
+    setup.visitor_settings = settings;
+    setup.brush = brush;
+    setup.mapping = mapping;
+    setup.light = light;
+    setup.style = renderStyleName(render_config.options.style);
+    setup.render = render_config.options;
+    setup.moving_scale = loop_options.moving_scale;
+    setup.record_journals = record;
+    setup.on_status = [&](const std::string& status) {
+      std::string service_error;
+      if (ready_sent && !notifier.status(status, &service_error))
+        std::fprintf(stderr, "cloudbrush kiosk: %s\n", service_error.c_str());
+    };
+    setup.on_input = [&]() { health.onInput(); };
+    kiosk_screen = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), pen.get(),
+                                                 clock, std::move(setup));
+  }
   PaintLoopSummary summary;
-  const bool ran = loop.run(&g_stop, &summary, &error);
+  const bool ran = loop.run(&g_stop, &summary, &error, kiosk_screen.get());
   if (kiosk) {
     std::string service_error;
     notifier.stopping(&service_error);
-    std::printf("cloudbrush kiosk: %ld idle resets\n", loop.screen().idleResets());
+    std::printf("cloudbrush kiosk: %ld visits, %ld idle resets, %zu clouds kept in the gallery\n",
+                kiosk_screen->visits(), kiosk_screen->idleResets(),
+                kiosk_screen->gallerySaved().size());
   }
   if (!ran) return fail(error);
   std::printf(
@@ -344,18 +434,29 @@ int commandPaint(int argc, char** argv) {
         summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
         summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid,
         summary.median_painting_frame_ms, summary.painting_frames);
-  if (session && summary.pen_samples > 0)
+  // (The kiosk's visitors each have a journal of their own; no one checksum stands for them.)
+  const PaintSession* painted = session.get();
+  if (painted && summary.pen_samples > 0)
     std::printf(
         "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "
         "same)\n",
-        static_cast<unsigned long long>(volumeChecksum(session->volume())));
+        static_cast<unsigned long long>(volumeChecksum(painted->volume())));
   if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
     std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
                 last->vblank_sequence, double(last->shown_ns) / 1e9);
+  if (summary.quit_reason == "operator shutdown") return kOperatorShutdownExitStatus;
   return 0;
 }
 
 int commandKiosk(int argc, char** argv) {
+  // `cloudbrush kiosk --make-attract-journal FILE` writes the bundled attract journal
+  // (config/kiosk/attract.cbj; app/shell/attract_journal.h).
+  if (argc == 3 && std::string(argv[1]) == "--make-attract-journal") {
+    std::string error;
+    if (!writeAttractJournal(argv[2], &error)) return fail(error);
+    std::printf("%s\n", argv[2]);
+    return 0;
+  }
   // The painter with --kiosk: one frame loop and one set of options for both.
   std::vector<char*> args(argv, argv + argc);
   static char kiosk_flag[] = "--kiosk";

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "app/shell/keymap.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
 namespace cb {
@@ -22,6 +23,8 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
   *result = FrameLoopResult{};
   const int64_t start = monotonicNs();
   int64_t last_present = start;
+  const auto now_ns = [&]() { return options.clock ? options.clock->nowNs() : monotonicNs(); };
+  int64_t last_frame_ns = now_ns();
   std::vector<DisplayEvent> pending = options.initial_keys;
   std::vector<PenSample> samples;
   while (true) {
@@ -34,13 +37,14 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
           quit = "window closed";
           break;
         case DisplayEvent::Kind::KeyDown: {
+          if (screen.onKey(event, now_ns())) break;
           const std::optional<Command> command = commandForKey(event.keysym, event.modifiers);
           if (!command) break;
           result->commands.push_back(commandName(*command));
           if (*command == Command::kQuit && screen.allowsQuit())
             quit = event.keysym == 'q' || event.keysym == 'Q' ? "q" : "Esc";
           else
-            screen.onCommand(*command, monotonicNs());
+            screen.onCommand(*command, now_ns());
           break;
         }
         case DisplayEvent::Kind::Resize:
@@ -58,13 +62,13 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     if (quit.empty() && options.max_seconds > 0.0 &&
         double(monotonicNs() - start) / 1e9 >= options.max_seconds)
       quit = "time limit";
-    const int64_t now = monotonicNs();
+    const int64_t now = now_ns();
     FrameContext frame{display_,
                        display_.width(),
                        display_.height(),
                        result->frames,
                        now,
-                       double(now - last_present) / 1e9};
+                       double(now - last_frame_ns) / 1e9};
     if (quit.empty() && pen_) {
       samples.clear();
       pen_->poll(0, samples);
@@ -89,6 +93,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     const int64_t presented = monotonicNs();
     screen.presented(frame, double(presented - last_present) / 1e6);
     last_present = presented;
+    last_frame_ns = now;
     ++result->frames;
     if (options.each_iteration) options.each_iteration(true);
   }

@@ -13,6 +13,7 @@
 
 namespace cb {
 
+class Clock;
 class PenSource;
 
 struct FrameLoopOptions {
@@ -24,6 +25,10 @@ struct FrameLoopOptions {
   // Every iteration, drawn or idle (the service watchdog pings from here: a hung loop stops
   // them), with whether a frame was presented.
   std::function<void(bool presented)> each_iteration;
+  // The clock of FrameContext::now_ns / since_last_s and of command times, which screens' timers
+  // read (tests drive a ManualClock); null: the monotonic clock. max_seconds and the frame
+  // timings passed to presented() stay on the monotonic clock.
+  const Clock* clock = nullptr;
 };
 
 struct FrameLoopResult {

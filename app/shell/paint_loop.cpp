@@ -27,7 +27,8 @@ void PaintLoop::attachPen(PenSource* pen, PaintSession* session) {
   screen_->attachPen(pen, session);
 }
 
-bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error) {
+bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error,
+                    Screen* front) {
   *summary = PaintLoopSummary{};
   FrameLoopOptions loop_options;
   loop_options.max_frames = options_.max_frames;
@@ -35,9 +36,10 @@ bool PaintLoop::run(const std::atomic<bool>* stop, PaintLoopSummary* summary, st
   loop_options.initial_keys = options_.initial_keys;
   loop_options.stop = stop;
   loop_options.each_iteration = options_.each_iteration;
+  loop_options.clock = options_.clock;
   FrameLoop loop(display_, pen_);
   FrameLoopResult result;
-  if (!loop.run(*screen_, loop_options, &result, error)) return false;
+  if (!loop.run(front ? *front : *screen_, loop_options, &result, error)) return false;
   routed_ = result.commands;
   screen_->finish(summary);
   summary->frames = result.frames;

@@ -33,8 +33,10 @@
 
 namespace cb {
 
+class Clock;
 class PaintSession;
 class PenSource;
+class Screen;
 
 // What the frame just drawn showed, for tests (called before present, with the display's
 // framebuffer bound and readable).
@@ -76,11 +78,11 @@ struct PaintLoopOptions {
   std::function<void()> on_first_connection;            // the pen connected for the first time
   std::function<void(bool presented)> each_iteration;   // every loop iteration (kiosk watchdog)
   // Exhibition kiosk (issue 11): visitor mode keeps quit keys and operator commands away
-  // (only painting, erasing, camera, undo and start again); after idle_reset_s without input a
-  // countdown of idle_warning_s shows, then the cloud is cleared and the attract orbit resumes.
+  // (only painting, erasing, camera, undo and start again). Idle reset, attract loop, operator
+  // panel and gallery are the kiosk screen's (kiosk_screen.h), which runs this screen.
   bool visitor_mode = false;
-  double idle_reset_s = 0.0;  // 0: never
-  double idle_warning_s = 10.0;
+  std::function<void()> before_start_again;  // visitor mode: "start again" with a cloud painted
+  const Clock* clock = nullptr;              // the frame loop's clock (frame_loop.h)
 };
 
 // What a run did, for the summary line and tests.
@@ -113,7 +115,9 @@ class PaintLoop {
   ~PaintLoop();
   // Runs until a quit request, the frame limit or `*stop` becomes true (signal handlers set it).
   // False with a message if presenting fails.
-  bool run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error);
+  // `front`, when given, is run instead of the paint screen and routes to it (the kiosk).
+  bool run(const std::atomic<bool>* stop, PaintLoopSummary* summary, std::string* error,
+           Screen* front = nullptr);
 
   // Routes `pen` into `session` (neither owned). The loop's own volume is shown until the pen
   // first connects, the session's volume from then on.

@@ -101,6 +101,19 @@ PaintScreen::~PaintScreen() = default;
 
 void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
   pen_ = pen;
+  // A new session (the kiosk's next visitor) gets the device and calibration again.
+  if (session_ && session != session_) {
+    last_connection_ = -1;
+    menu_open_ = false;
+    drag_camera_.reset();
+    drag_canvas_.reset();
+    drag_light_.reset();
+    refined_ = false;
+    if (mouse_ && session) {
+      session->setDevice(mouse_->device(), monotonicNowNs());
+      session->setCalibration(CalibrationProfile{}, monotonicNowNs());
+    }
+  }
   session_ = session;
 }
 
@@ -199,7 +212,6 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
 }
 
 void PaintScreen::feedSample(const PenSample& sample) {
-  if (sample.in_proximity) last_input_ns_ = monotonicNowNs();
   if (sample.tool_serial != 0 && sample.tool_serial != tool_serial_) {
     tool_serial_ = sample.tool_serial;  // a profile may be for one tool: select again
     selectCalibration(tool_serial_);
@@ -252,7 +264,6 @@ void PaintScreen::feedSample(const PenSample& sample) {
 
 void PaintScreen::onPointer(const DisplayEvent& event) {
   // A mouse (X11) drives the on-screen UI, and paints when no tablet is connected.
-  last_input_ns_ = monotonicNowNs();
   if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) mouse_down_ = true;
   if (event.kind == DisplayEvent::Kind::PointerUp && event.button == 1) mouse_down_ = false;
   if (ui_) ui_->pointer(event.x, event.y, mouse_down_);
@@ -389,7 +400,6 @@ bool PaintScreen::visitorAllows(Command command) const {
 }
 
 void PaintScreen::onCommand(Command command, int64_t t_ns) {
-  last_input_ns_ = monotonicNowNs();
   if (options_.visitor_mode && !visitorAllows(command))
     return say(std::string(commandName(command)) + " is for the operator, not in visitor mode");
   const bool erase = session_ && session_->mode() == Mode::kErase;
@@ -531,6 +541,8 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       refined_ = false;
       break;
     case Command::kDeleteAll:
+      if (options_.visitor_mode && options_.before_start_again && hasPaint())
+        options_.before_start_again();  // the kiosk keeps the finished cloud first
       apply(ui::DeleteAll{}, t_ns);
       break;
     case Command::kUndo:
@@ -597,36 +609,11 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
   }
 }
 
+bool PaintScreen::hasPaint() const {
+  return session_ && (session_->history().canUndo() || session_->engine().inStroke());
+}
+
 std::string PaintScreen::update(const FrameContext& frame) {
-  if (options_.idle_reset_s > 0.0 && session_) {
-    // Kiosk: a countdown before the idle reset, then the sky is cleared and the orbit resumes
-    // (the attract loop). Any pen, mouse or key input restarts the wait.
-    if (last_input_ns_ == 0) last_input_ns_ = frame.now_ns;
-    const double idle = double(frame.now_ns - last_input_ns_) / 1e9;
-    const double left = options_.idle_reset_s - idle;
-    const bool painted = session_->history().canUndo() || session_->engine().inStroke();
-    if (left <= 0.0) {
-      if (painted || !orbiting_) {
-        apply(ui::DeleteAll{}, frame.now_ns);
-        apply(ui::SetCamera{initialPaintCamera(session_->settings())}, frame.now_ns);
-        apply(ui::SetMode{Mode::kPaint}, frame.now_ns);
-        orbiting_ = options_.orbit_degrees_per_second != 0.0f;
-        menu_open_ = false;
-        ++idle_resets_;
-        say("idle reset: the sky is cleared; the attract orbit resumes");
-      }
-      notice_ = "Pick up the pen and paint a cloud";
-      last_input_ns_ = frame.now_ns;
-    } else if (left <= options_.idle_warning_s && painted) {
-      char text[128];
-      std::snprintf(text, sizeof text,
-                    "Still there? The sky clears in %d s - touch the pen to keep painting",
-                    int(std::ceil(left)));
-      notice_ = text;
-    } else if (notice_.rfind("Still there?", 0) == 0 || notice_.rfind("Pick up", 0) == 0) {
-      notice_.clear();
-    }
-  }
   if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
@@ -637,7 +624,6 @@ std::string PaintScreen::update(const FrameContext& frame) {
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
   if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
-  if (options_.idle_reset_s > 0.0) return true;   // the kiosk's countdown and attract loop
   if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
 }

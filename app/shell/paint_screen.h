@@ -55,8 +55,8 @@ class PaintScreen : public Screen {
   void onResize(int, int) override { refined_ = false; }
   void onPointer(const DisplayEvent& event) override;
   bool allowsQuit() const override { return !options_.visitor_mode; }
-  // Idle resets done so far (kiosk).
-  long idleResets() const { return idle_resets_; }
+  // Something was painted (an undoable change, or a stroke open).
+  bool hasPaint() const;
   std::string update(const FrameContext& frame) override;
   bool needsFrame() const override;
   bool draw(FrameContext& frame, std::string* error) override;
@@ -154,9 +154,6 @@ class PaintScreen : public Screen {
                                 // a UI target last frame
   std::string notice_;          // shown above the status line
   std::vector<Command> tapped_;
-  // Kiosk idle timing (monotonic ns of the last pen, mouse or key input; 0: none yet).
-  int64_t last_input_ns_ = 0;
-  long idle_resets_ = 0;
   bool visitorAllows(Command command) const;
   bool edge_on_ = false;  // the session's view is nearly edge-on to the canvas
   std::string last_message_;

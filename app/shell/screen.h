@@ -31,6 +31,13 @@ class Screen {
   // connection state; called once per frame, also with no samples.
   virtual void onPenSamples(const std::vector<PenSample>& samples) { (void)samples; }
   virtual void onCommand(Command command, int64_t t_ns) = 0;
+  // A key before the keymap sees it; true when the screen took it (the keymap then does not).
+  // The kiosk's operator combination and PIN digits come through here.
+  virtual bool onKey(const DisplayEvent& event, int64_t t_ns) {
+    (void)event;
+    (void)t_ns;
+    return false;
+  }
   virtual void onPointer(const DisplayEvent& event) { (void)event; }
   virtual void onResize(int width, int height) {
     (void)width;

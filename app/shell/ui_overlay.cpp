@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <list>
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
@@ -85,8 +86,10 @@ bool UiOverlay::init(std::string* error) {
   ImFontGlyphRangesBuilder ranges_builder;
   ranges_builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
   ranges_builder.AddText(shippedText());
-  static ImVector<ImWchar> ranges;  // must outlive the atlas build
-  ranges.clear();
+  ranges_builder.AddText(extra_glyphs_.c_str());
+  // Must outlive the atlas build; one per overlay, since overlays may hold different glyphs.
+  static std::list<ImVector<ImWchar>> all_ranges;
+  ImVector<ImWchar>& ranges = all_ranges.emplace_back();
   ranges_builder.BuildRanges(&ranges);
   ImFontConfig config;
   config.OversampleH = 1;
@@ -263,11 +266,20 @@ void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& la
     const ImU32 colour = IM_COL32(label.rgba >> 24, (label.rgba >> 16) & 0xff,
                                   (label.rgba >> 8) & 0xff, label.rgba & 0xff);
     ImFont* font = ImGui::GetFont();
+    const float wrap = label.centred ? 0.0f : label.wrap_width;
+    const ImVec2 size = font->CalcTextSizeA(label.size_px, 1e9f, wrap, label.text.c_str());
     float x = label.x;
-    if (label.centred)
-      x -= 0.5f * font->CalcTextSizeA(label.size_px, 1e9f, 0.0f, label.text.c_str()).x;
+    if (label.centred) x -= 0.5f * size.x;
+    if (label.background_rgba & 0xffu) {
+      const uint32_t b = label.background_rgba;
+      const float pad = 0.4f * label.size_px;
+      draw->AddRectFilled(ImVec2(x - pad, label.y - 0.5f * pad),
+                          ImVec2(x + size.x + pad, label.y + size.y + 0.5f * pad),
+                          IM_COL32(b >> 24, (b >> 16) & 0xff, (b >> 8) & 0xff, b & 0xff),
+                          0.3f * label.size_px);
+    }
     draw->AddText(font, label.size_px, ImVec2(x, label.y), colour, label.text.c_str(), nullptr,
-                  label.centred ? 0.0f : label.wrap_width);
+                  wrap);
   }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

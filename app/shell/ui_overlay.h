@@ -39,6 +39,7 @@ struct UiLabel {
   uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
   bool centred = false;
   float wrap_width = 0.0f;  // > 0: lines wrap at this width (pixels; not with `centred`)
+  uint32_t background_rgba = 0;  // a box behind the text when its alpha is not 0
 };
 
 class UiOverlay {
@@ -48,6 +49,9 @@ class UiOverlay {
   UiOverlay(const UiOverlay&) = delete;
   UiOverlay& operator=(const UiOverlay&) = delete;
 
+  // Characters the font atlas must hold besides the shipped labels' (e.g. the kiosk's visitor
+  // texts in Chinese); call before init().
+  void addGlyphs(const std::string& utf8_text) { extra_glyphs_ += utf8_text; }
   // Creates the ImGui context, font atlas and GL objects (the GL context must be current).
   bool init(std::string* error);
   // The pointer (pen tip or mouse) in framebuffer pixels, y down.
@@ -67,6 +71,7 @@ class UiOverlay {
  private:
   ImGuiContext* context_ = nullptr;
   bool ready_ = false;
+  std::string extra_glyphs_;
   struct PointerState {
     float x, y;
     bool down;

@@ -21,7 +21,8 @@ for directive in 'Type=notify' 'WatchdogSec=10s' 'Restart=always' 'User=cloudbru
     'SupplementaryGroups=input video render' 'TTYPath=/dev/tty7' 'StandardInput=tty-fail' \
     'StateDirectory=cloudbrush' 'Environment=MESA_SHADER_CACHE_DIR=/var/lib/cloudbrush/mesa-shader-cache' \
     'Environment=CLOUDBRUSH_STATE_DIR=/var/lib/cloudbrush' 'Conflicts=getty@tty7.service' \
-    'ProtectSystem=strict' 'ExecStart=/usr/bin/cloudbrush kiosk'; do
+    'ProtectSystem=strict' 'ExecStart=/usr/bin/cloudbrush kiosk' \
+    'RestartPreventExitStatus=10'; do
   if ! grep -qxF "$directive" "$unit"; then
     echo "FAIL: $unit lacks the line '$directive'"
     fail=1

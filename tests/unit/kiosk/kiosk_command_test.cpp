@@ -2,15 +2,20 @@
 // stroke, under a test-bound NOTIFY_SOCKET and WATCHDOG_USEC (systemd's side): it says READY
 // after its first frame, pings the watchdog from its loop, writes health.json into its data
 // dir, ignores Esc, q and operator keys (visitor mode), clears the sky after the idle time
-// (countdown first) and says STOPPING at the end.
+// (countdown first) and says STOPPING at the end. And a scripted visit (operator panel, a
+// stroke, the gallery, the idle reset) under strace writes nothing outside its data dir.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
+
+#include <sys/wait.h>
 
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
@@ -63,7 +68,7 @@ TEST(KioskCommand, ReadyWatchdogHealthVisitorModeAndIdleReset) {
   EXPECT_EQ(status, 0) << out << err;
   EXPECT_EQ(received.count("READY=1"), 1u) << err;
   EXPECT_GE(received.count("WATCHDOG=1"), 2u) << "pings every 0.5 s from the loop";
-  EXPECT_EQ(received.count("STATUS="), 1u);
+  EXPECT_GE(received.count("STATUS="), 2u) << "with READY, then the attract loop after the reset";
   EXPECT_EQ(received.count("STOPPING=1"), 1u);
   EXPECT_NE(out.find("(time limit)"), std::string::npos) << "Esc and q did not quit: " << out;
   EXPECT_NE(err.find("mode-light is for the operator"), std::string::npos) << err;
@@ -73,6 +78,130 @@ TEST(KioskCommand, ReadyWatchdogHealthVisitorModeAndIdleReset) {
   const std::string health = slurp(dir + "/data/health.json");
   EXPECT_NE(health.find("\"uptime"), std::string::npos) << health;
   std::filesystem::remove_all(dir);
+}
+
+// Every file under `root` except `skip`, with its size and modification time.
+std::map<std::string, std::string> snapshot(const std::string& root, const std::string& skip) {
+  std::map<std::string, std::string> files;
+  for (auto it = std::filesystem::recursive_directory_iterator(root);
+       it != std::filesystem::recursive_directory_iterator(); ++it) {
+    const std::string path = it->path().string();
+    if (path == skip) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    std::error_code ec;
+    const auto size = it->is_regular_file(ec) ? it->file_size(ec) : 0;
+    files[path] = std::to_string(size) + "@" +
+                  std::to_string(it->last_write_time(ec).time_since_epoch().count());
+  }
+  return files;
+}
+
+void writeVisitorJournal(const std::string& path) {
+  PaintSession recorder({320, 180, 64}, BrushConfig{}, MappingConfig{});
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(path));
+  recorder.recordTo(&journal, 0);
+  const PenDeviceInfo tablet = syntheticTablet(320, 180);
+  recorder.setDevice(tablet, 0);
+  for (const PenSample& s : syntheticPenSamples(referencePaintStrokes(320, 180)[0], tablet, 320,
+                                                180, 200.0, 1'000'000'000))
+    recorder.feed(s);
+}
+
+TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
+  const std::string data =
+      (std::filesystem::temp_directory_path() / ("cb_kiosk_off_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(data);
+  // The combination, the bundled PIN, X and Y: the panel shuts the kiosk down.
+  const std::string command = "LIBGL_ALWAYS_SOFTWARE=1 '" + std::string(CB_CLOUDBRUSH_BIN) +
+                              "' kiosk --display surfaceless --size 160x90 --grid 16 --backend "
+                              "none --no-record --data-dir '" +
+                              data + "' --seconds 60 --keys ctrl+alt+o,2,4,6,8,x,y >'" + data +
+                              ".out' 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string out = slurp(data + ".out");
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 10) << out;
+  EXPECT_NE(out.find("(operator shutdown)"), std::string::npos) << out;
+  const std::string log = slurp(data + "/operator.log");
+  EXPECT_NE(log.find("Z panel-opened\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("Z shutdown\n"), std::string::npos) << log;
+  std::filesystem::remove_all(data);
+  std::filesystem::remove(data + ".out");
+}
+
+TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
+  namespace fs = std::filesystem;
+  const std::string root =
+      (fs::temp_directory_path() / ("cb_kiosk_confine_" + std::to_string(::getpid()))).string();
+  fs::remove_all(root);
+  for (const char* dir : {"/home", "/cwd", "/data", "/pen"}) fs::create_directories(root + dir);
+  std::ofstream(root + "/home/.profile") << "# a home with something in it\n";
+  writeVisitorJournal(root + "/pen/pen.cbj");
+  const std::string data = root + "/data";
+  const auto before = snapshot(root, data);
+  // As the unit runs it (HOME, MESA_SHADER_CACHE_DIR), no XDG or state-dir variables, the
+  // working directory elsewhere; the operator opens the panel and exports, a visitor paints,
+  // the idle reset keeps the cloud in the gallery. The idle time leaves room for the first
+  // frames, slow on a cold shader cache (seconds on llvmpipe).
+  const std::string command =
+      "cd '" + root + "/cwd' && env -u XDG_STATE_HOME -u XDG_CACHE_HOME -u XDG_CONFIG_HOME " +
+      "-u XDG_DATA_HOME -u CLOUDBRUSH_STATE_DIR -u NOTIFY_SOCKET -u WATCHDOG_USEC HOME='" + root +
+      "/home' MESA_SHADER_CACHE_DIR='" + data + "/mesa-shader-cache' LIBGL_ALWAYS_SOFTWARE=1 " +
+      "strace -f -qq --seccomp-bpf -e trace=%file -o '" + root + "/strace.txt' '" +
+      CB_CLOUDBRUSH_BIN +
+      "' kiosk --display surfaceless --size 320x180 --grid 64 --backend replay --journal '" + root +
+      "/pen/pen.cbj' --data-dir '" + data + "' --gallery on --idle-seconds 3 " +
+      "--warning-seconds 1 --seconds 12 --keys ctrl+alt+o,2,4,6,8,e,esc >'" + root + "/out' 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string out = slurp(root + "/out");
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("idle reset"), std::string::npos) << out;
+  // The data dir holds what the visit left ...
+  EXPECT_TRUE(fs::exists(data + "/gallery/000001/thumbnail.png")) << out;
+  EXPECT_TRUE(fs::exists(data + "/operator.log"));
+  EXPECT_TRUE(fs::exists(data + "/health.json"));
+  size_t journals = 0;
+  for (const auto& entry : fs::directory_iterator(data + "/sessions"))
+    journals += entry.path().extension() == ".cbj";
+  EXPECT_GE(journals, 1u);
+  // ... and nothing else under the home, the working directory or beside them changed.
+  auto after = snapshot(root, data);
+  after.erase(root + "/out");
+  after.erase(root + "/strace.txt");
+  EXPECT_EQ(after, before);
+  // Every path the process (and its threads) opened for writing, created, renamed or removed
+  // is inside the data dir (devices aside: the render node is opened read-write).
+  std::istringstream trace(slurp(root + "/strace.txt"));
+  std::string line;
+  size_t writes = 0, outside = 0;
+  std::string first_outside;
+  while (std::getline(trace, line)) {
+    const bool open = line.find("open") != std::string::npos;
+    const bool writing =
+        (open &&
+         (line.find("O_WRONLY") != std::string::npos || line.find("O_RDWR") != std::string::npos ||
+          line.find("O_CREAT") != std::string::npos)) ||
+        line.find("mkdir") != std::string::npos || line.find("rename") != std::string::npos ||
+        line.find("unlink") != std::string::npos || line.find("rmdir") != std::string::npos;
+    if (!writing || line.find("= -1") != std::string::npos) continue;
+    const size_t q = line.find('"');
+    if (q == std::string::npos) continue;
+    std::string path = line.substr(q + 1, line.find('"', q + 1) - q - 1);
+    if (path.rfind("/dev/", 0) == 0) continue;
+    ++writes;
+    if (path[0] != '/') path = root + "/cwd/" + path;
+    if (path.rfind(data + "/", 0) != 0 && path.rfind(root + "/out", 0) != 0) {
+      ++outside;
+      if (first_outside.empty()) first_outside = line;
+    }
+  }
+  EXPECT_GT(writes, 5u) << "strace saw the kiosk write its files";
+  EXPECT_EQ(outside, 0u) << first_outside;
+  fs::remove_all(root);
 }
 
 }  // namespace

@@ -1,0 +1,120 @@
+#include "app/shell/attract_screen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/render/gl/gl.h"
+#include "app/render/render_style.h"
+
+namespace cb {
+
+AttractScreen::AttractScreen(VolumeRenderer& renderer, const Clock& clock,
+                             std::vector<JournalRecord> journal, AttractOptions options,
+                             UiOverlay* ui)
+    : renderer_(renderer),
+      clock_(clock),
+      journal_(std::move(journal)),
+      options_(std::move(options)),
+      ui_(ui) {
+  // The journal's own session settings (screen, format, auto-end), so the replay is the one
+  // `cloudbrush replay` gives; the grid may be the kiosk's.
+  for (const JournalRecord& record : journal_) {
+    if (record.type == JournalRecordType::kPenSample) break;
+    if (record.type == JournalRecordType::kSession) {
+      std::string error;
+      if (!parseSessionSettings(record.text(), &settings_, &error))
+        problems_.push_back("attract journal: " + error);
+      break;
+    }
+  }
+  if (options_.grid > 0) settings_.grid = options_.grid;
+  restart();
+}
+
+AttractScreen::~AttractScreen() = default;
+
+void AttractScreen::restart() {
+  session_ = std::make_unique<PaintSession>(settings_, options_.brush, options_.mapping);
+  session_->setQuietMapping(true);
+  session_->setStartingLight(options_.light);
+  started_ns_ = clock_.nowNs();
+  if (orbit_start_ns_ < 0) orbit_start_ns_ = started_ns_;
+  finished_ns_ = journal_.empty() ? started_ns_ : -1;
+  next_ = 0;
+  camera_ = session_->camera();
+}
+
+void AttractScreen::setTexts(std::string invitation, std::string hint, std::string notice) {
+  options_.invitation = std::move(invitation);
+  options_.hint = std::move(hint);
+  options_.notice = std::move(notice);
+}
+
+std::string AttractScreen::update(const FrameContext& frame) {
+  (void)frame;
+  const int64_t now = clock_.nowNs();
+  if (finished_ns_ < 0) {
+    // Every record due by now, at the journal's pace: record time since the first record,
+    // against clock time since the start, times the speed.
+    const int64_t t0 = journal_.front().t_ns;
+    const double played_s = double(now - started_ns_) / 1e9 * options_.speed;
+    while (next_ < journal_.size() && double(journal_[next_].t_ns - t0) / 1e9 <= played_s) {
+      std::string error;
+      // The Session record made the session (with the kiosk's grid); everything else applies.
+      if (journal_[next_].type != JournalRecordType::kSession &&
+          !session_->applyRecord(journal_[next_], nullptr, &error) && problems_.size() < 20) {
+        problems_.push_back("attract journal record " + std::to_string(next_) + ": " + error);
+        std::fprintf(stderr, "cloudbrush kiosk: %s\n", problems_.back().c_str());
+      }
+      ++next_;
+    }
+    if (next_ == journal_.size()) finished_ns_ = now;
+  } else if (!journal_.empty() && double(now - finished_ns_) / 1e9 >= options_.hold_s) {
+    ++loops_;
+    restart();
+  }
+  const float degrees =
+      options_.orbit_degrees_per_second * float(double(now - orbit_start_ns_) / 1e9);
+  camera_ = session_->camera().orbited(degrees);
+  return "";
+}
+
+void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
+  if (frame.frame == 0) return;  // the first frame compiles shaders
+  float& scale = options_.render.scale;
+  if (frame_ms > 50.0)
+    scale = std::max(0.2f, scale * 0.9f);
+  else if (frame_ms < 35.0)
+    scale = std::min(1.0f, scale * 1.05f);
+}
+
+bool AttractScreen::draw(FrameContext& frame, std::string* error) {
+  (void)error;
+  renderer_.sync(session_->volume(), session_->light());
+  RenderOptions render = options_.render;
+  // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
+  render.scale = std::max(0.2f, std::round(render.scale * 20.0f) / 20.0f);
+  render.style = parseRenderStyle(session_->styleName()).value_or(render.style);
+  render.moving = render.scale < 1.0f;
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
+  renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);
+  if (!ui_) return true;
+  const float h = float(frame.height), w = float(frame.width);
+  std::vector<UiLabel> labels;
+  labels.push_back(
+      {0.5f * w, 0.38f * h, options_.invitation, 0.075f * h, 0xffffffffu, true, 0x00000088u});
+  labels.push_back({0.5f * w, 0.52f * h, options_.hint, std::max(16.0f, 0.04f * h), 0xffe9b0ffu,
+                    true, 0x00000088u});
+  if (!options_.notice.empty()) {
+    const float size = std::max(14.0f, 0.026f * h);
+    labels.push_back(
+        {0.5f * w, h - 3.2f * size, options_.notice, size, 0xd8e4f0ffu, true, 0x000000aau});
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
+  glViewport(0, 0, frame.width, frame.height);
+  ui_->drawLabels(frame.width, frame.height, labels);
+  return true;
+}
+
+}  // namespace cb

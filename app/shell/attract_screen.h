@@ -1,0 +1,84 @@
+// The kiosk's attract loop (issue 11): while nobody paints, a recorded session journal is
+// replayed into a session of its own at the pace it was painted (times `speed`), the camera
+// slowly orbiting, with the invitation over it; when the journal has played, the finished cloud
+// keeps orbiting for `hold_s`, then the replay starts again on an empty sky. Every timer reads
+// the injected Clock. The kiosk screen (kiosk_screen.h) hands control to the visitor on the
+// first pen proximity, mouse or key, and restarts this loop after the idle reset.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/brush/brush_config.h"
+#include "app/mapping/mapping_config.h"
+#include "app/render/volume_renderer.h"
+#include "app/scene/light.h"
+#include "app/session/paint_session.h"
+#include "app/shell/screen.h"
+#include "app/shell/ui_overlay.h"
+#include "drivers/core/clock.h"
+#include "drivers/core/journal.h"
+
+namespace cb {
+
+struct AttractOptions {
+  float orbit_degrees_per_second = 6.0f;
+  double hold_s = 10.0;  // the finished cloud orbits this long before the replay restarts
+  double speed = 1.0;    // journal seconds per clock second
+  int grid = 0;          // volume resolution of the replay (0: the journal's)
+  BrushConfig brush;
+  MappingConfig mapping;
+  RenderOptions render;          // scale: the orbit's resolution scale
+  Light light;                   // until the journal sets its own
+  std::string invitation, hint;  // big and small lines in the middle of the screen
+  std::string notice;            // a small line at the bottom (what is kept, for how long)
+};
+
+class AttractScreen : public Screen {
+ public:
+  // `journal`: the records to replay (may be empty: the empty sky orbits). `ui` draws the text
+  // (may be null: no text); not owned.
+  AttractScreen(VolumeRenderer& renderer, const Clock& clock, std::vector<JournalRecord> journal,
+                AttractOptions options, UiOverlay* ui);
+  ~AttractScreen() override;
+
+  const char* name() const override { return "attract"; }
+  void onCommand(Command, int64_t) override {}
+  std::string update(const FrameContext& frame) override;
+  bool draw(FrameContext& frame, std::string* error) override;
+  // Keeps the orbit fluid: the resolution scale shrinks when a frame is over 50 ms (20 fps) and
+  // grows back when there is room, within [0.2, 1] (as the painter's orbit does).
+  void presented(const FrameContext& frame, double frame_ms) override;
+  float scale() const { return options_.render.scale; }
+
+  // Starts the replay from the beginning at the clock's time (an empty sky).
+  void restart();
+  void setTexts(std::string invitation, std::string hint, std::string notice);
+
+  // For tests and the health status.
+  const Volume& volume() const { return session_->volume(); }
+  const Camera& shownCamera() const { return camera_; }
+  size_t recordsPlayed() const { return next_; }
+  size_t recordCount() const { return journal_.size(); }
+  long loopsCompleted() const { return loops_; }
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  VolumeRenderer& renderer_;
+  const Clock& clock_;
+  std::vector<JournalRecord> journal_;
+  AttractOptions options_;
+  UiOverlay* ui_;
+  PaintSessionSettings settings_;
+  std::unique_ptr<PaintSession> session_;
+  int64_t started_ns_ = 0;       // clock time the replay (re)started
+  int64_t finished_ns_ = -1;     // clock time the last record played (-1: still playing)
+  int64_t orbit_start_ns_ = -1;  // the orbit's time origin (kept across restarts)
+  size_t next_ = 0;
+  long loops_ = 0;
+  Camera camera_;
+  std::vector<std::string> problems_;
+};
+
+}  // namespace cb

@@ -1,0 +1,39 @@
+// Saving a visitor's finished cloud into the kiosk's gallery (issue 11): a new pseudonymous
+// entry (app/kiosk/gallery_store.h) holding the study exporters' files — the volume as
+// `cloud.vdb` + `cloud.cbvol` (app/study/volume_export.h) and its render from the visitor's last
+// view as `render.exr` + `render.png` (app/study/render_export.h) — plus `thumbnail.png`
+// (320 px wide). Then the quota and retention are enforced. Uses the kiosk's renderer and GL
+// context (the caller binds its framebuffer again).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/kiosk/gallery_store.h"
+#include "app/render/volume_renderer.h"
+#include "app/scene/camera.h"
+#include "app/scene/light.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+struct GallerySave {
+  long number = 0;
+  std::string dir;
+  std::vector<std::string> written;
+  std::string note;  // e.g. why the .vdb was skipped
+  GalleryCleanup cleanup;
+};
+
+// Render size: width × height (the display's). False with *error naming the file or stage.
+bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& volume,
+                   const Camera& camera, const Light& light, const RenderOptions& render, int width,
+                   int height, GallerySave* save, std::string* error);
+
+// The same files without a gallery entry (the operator's "export the current cloud").
+bool exportCloudFiles(VolumeRenderer& renderer, const Volume& volume, const Camera& camera,
+                      const Light& light, const RenderOptions& render, int width, int height,
+                      const std::string& dir, std::vector<std::string>* written, std::string* note,
+                      std::string* error);
+
+}  // namespace cb

@@ -1,0 +1,509 @@
+#include "app/shell/kiosk_screen.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+
+#include "app/kiosk/data_retention.h"
+#include "app/render/gl/gl.h"
+#include "app/shell/gallery_capture.h"
+#include "app/shell/keymap.h"
+#include "drivers/core/pen_source.h"
+
+namespace cb {
+namespace {
+
+bool isModifierKey(uint32_t keysym) {
+  return keysym >= 0xffe1 && keysym <= 0xffee;  // Shift, Control, Caps, Meta, Alt, Super, Hyper
+}
+
+uint32_t lowerLetter(uint32_t k) {
+  return k >= 'A' && k <= 'Z' ? k - 'A' + 'a' : k;
+}
+
+std::string utcStamp() {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+  return stamp;
+}
+
+AttractOptions attractOptions(const KioskSetup& setup) {
+  AttractOptions a;
+  a.orbit_degrees_per_second = setup.config.orbit_degrees_per_second;
+  a.hold_s = setup.config.attract_hold_seconds;
+  a.speed = setup.config.attract_speed;
+  a.grid = setup.visitor_settings.grid;
+  a.brush = setup.brush;
+  a.mapping = setup.mapping;
+  a.render = setup.render;
+  a.render.scale = setup.moving_scale;
+  a.light = setup.light;
+  return a;
+}
+
+}  // namespace
+
+const char* KioskScreen::stateName(State state) {
+  switch (state) {
+    case State::kAttract:
+      return "attract";
+    case State::kVisitor:
+      return "visitor";
+    case State::kReconnect:
+      return "reconnect";
+    case State::kOperator:
+      return "operator";
+  }
+  return "?";
+}
+
+KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen& paint,
+                         PenSource* pen, const Clock& clock, KioskSetup setup)
+    : display_(display),
+      renderer_(renderer),
+      paint_(paint),
+      pen_(pen),
+      clock_(clock),
+      setup_(std::move(setup)),
+      session_dir_(setup_.data_dir + "/sessions"),
+      attract_(renderer, clock, setup_.attract_journal, attractOptions(setup_), &ui_),
+      reconnect_(&ui_),
+      panel_(clock, setup_.config.operator_pin, &ui_),
+      gallery_(setup_.data_dir + "/gallery", setup_.config.gallery_quota_bytes,
+               setup_.config.gallery_keep_days),
+      operator_log_(setup_.data_dir + "/operator.log") {
+  std::vector<DisplayEvent> keys;
+  std::string error;
+  if (!parseKeyList(setup_.config.operator_keys, &keys, &error) || keys.size() != 1) {
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: [operator] keys '%s' is not one key combination (%s); using "
+                 "ctrl+alt+o\n",
+                 setup_.config.operator_keys.c_str(), error.c_str());
+    keys = {DisplayEvent::key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt)};
+  }
+  operator_keys_ = keys.front();
+  std::error_code ec;
+  std::filesystem::create_directories(setup_.data_dir, ec);
+  if (ec)
+    std::fprintf(stderr, "cloudbrush kiosk: data dir %s: %s\n", setup_.data_dir.c_str(),
+                 ec.message().c_str());
+  for (const std::string& problem : attract_.problems())
+    std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
+  updateTexts();
+  cleanUpOldData();
+  prepareVisitor();
+  last_input_ns_ = clock_.nowNs();
+  setState(State::kAttract);
+}
+
+KioskScreen::~KioskScreen() {
+  if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+}
+
+void KioskScreen::updateTexts() {
+  const KioskTexts& t = setup_.texts;
+  std::string notice;
+  const auto days = [](double d) { return std::to_string(long(std::lround(d))); };
+  if (setup_.config.gallery_enabled)
+    notice = t.format("gallery_notice", {{"days", days(setup_.config.gallery_keep_days)}});
+  if (setup_.record_journals)
+    notice += (notice.empty() ? "" : "\n") +
+              t.format("recording_notice", {{"days", days(setup_.config.journal_keep_days)}});
+  attract_.setTexts(t.text("invitation"), t.text("invitation_hint"), notice);
+}
+
+void KioskScreen::setState(State state) {
+  state_ = state;
+  std::string status;
+  switch (state) {
+    case State::kAttract:
+      status = "attract loop: waiting for a visitor";
+      break;
+    case State::kVisitor:
+      status = "visitor " + std::to_string(visits_) + " painting";
+      break;
+    case State::kReconnect:
+      status = "the pen was unplugged: showing \"reconnect the pen\"";
+      break;
+    case State::kOperator:
+      status = "operator panel";
+      break;
+  }
+  std::fprintf(stderr, "cloudbrush kiosk: %s\n", status.c_str());
+  if (setup_.on_status) setup_.on_status(status);
+}
+
+void KioskScreen::input(int64_t now) {
+  last_input_ns_ = now;
+  if (setup_.on_input) setup_.on_input();
+}
+
+void KioskScreen::cleanUpOldData() {
+  std::string error;
+  const auto now = std::filesystem::file_time_type::clock::now();
+  for (const std::string& path :
+       deleteFilesOlderThan(session_dir_, ".cbj", setup_.config.journal_keep_days, now, &error))
+    std::fprintf(stderr, "cloudbrush kiosk: deleted %s (older than %.0f days)\n", path.c_str(),
+                 setup_.config.journal_keep_days);
+  // The newest entry stays even when it alone is over the quota.
+  const GalleryCleanup cleanup =
+      gallery_.enforce(gallery_saved_.empty() ? -1 : gallery_saved_.back(), now, &error);
+  for (long n : cleanup.removed_for_age)
+    std::fprintf(stderr, "cloudbrush kiosk: gallery %06ld deleted (older than %.0f days)\n", n,
+                 setup_.config.gallery_keep_days);
+  for (long n : cleanup.removed_for_quota)
+    std::fprintf(stderr, "cloudbrush kiosk: gallery %06ld deleted (over the quota)\n", n);
+  if (!error.empty()) std::fprintf(stderr, "cloudbrush kiosk: cleanup: %s\n", error.c_str());
+}
+
+void KioskScreen::prepareVisitor() {
+  // A fresh session for the next visitor (no undo into the previous visitor's cloud), made while
+  // nobody waits: allocating a 256³ sky takes a while, and the hand-over must be at once.
+  auto session =
+      std::make_unique<PaintSession>(setup_.visitor_settings, setup_.brush, setup_.mapping);
+  session->setStartingLight(setup_.light);
+  session->setStartingStyle(setup_.style);
+  paint_.attachPen(pen_, session.get());
+  if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+  visitor_ = std::move(session);
+}
+
+void KioskScreen::beginVisit(int64_t now) {
+  ++visits_;
+  if (!visitor_) prepareVisitor();
+  if (setup_.record_journals) {
+    // A journal of the visitor's own.
+    std::error_code ec;
+    std::filesystem::create_directories(session_dir_, ec);
+    const std::string path =
+        session_dir_ + "/" + utcStamp() + "-visit" + std::to_string(visits_) + ".cbj";
+    journal_ = std::make_unique<JournalWriter>();
+    if (ec || !journal_->open(path)) {
+      std::fprintf(stderr, "cloudbrush kiosk: NOT RECORDING: %s: %s\n", path.c_str(),
+                   ec ? ec.message().c_str() : journal_->error().c_str());
+      journal_.reset();
+    } else {
+      visitor_->recordTo(journal_.get(), now);
+      std::printf("journal: %s\n", path.c_str());
+      std::fflush(stdout);
+    }
+  }
+  notice_.clear();
+  input(clock_.nowNs());
+  setState(State::kVisitor);
+}
+
+void KioskScreen::keepFinishedCloud(const std::string& why) {
+  if (!setup_.config.gallery_enabled || !visitor_ || !paint_.hasPaint()) return;
+  GallerySave save;
+  std::string error;
+  const auto started = std::chrono::steady_clock::now();
+  const bool ok = saveToGallery(gallery_, renderer_, visitor_->volume(), paint_.shownCamera(),
+                                visitor_->light(), setup_.render, display_.width(),
+                                display_.height(), &save, &error);
+  glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+  glViewport(0, 0, display_.width(), display_.height());
+  if (!ok) {
+    std::fprintf(stderr, "cloudbrush kiosk: gallery: NOT SAVED (%s): %s\n", why.c_str(),
+                 error.c_str());
+    return;
+  }
+  gallery_saved_.push_back(save.number);
+  uint64_t bytes = 0;
+  for (const std::string& path : save.written) {
+    std::error_code ec;
+    bytes += std::filesystem::file_size(path, ec);
+  }
+  std::fprintf(
+      stderr, "cloudbrush kiosk: gallery: %s saved as %06ld (%zu files, %.1f MB, %.0f ms)%s%s\n",
+      why.c_str(), save.number, save.written.size(), double(bytes) / 1048576.0,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count(),
+      save.note.empty() ? "" : "; ", save.note.c_str());
+  for (long n : save.cleanup.removed_for_quota)
+    std::fprintf(stderr, "cloudbrush kiosk: gallery %06ld deleted (over the quota)\n", n);
+  for (long n : save.cleanup.removed_for_age)
+    std::fprintf(stderr, "cloudbrush kiosk: gallery %06ld deleted (too old)\n", n);
+  saved_notice_ = setup_.texts.format("saved_notice", {{"number", std::to_string(save.number)}});
+  saved_notice_until_ns_ = clock_.nowNs() + 6'000'000'000;
+}
+
+void KioskScreen::endVisit(int64_t now, const std::string& why) {
+  keepFinishedCloud(why);
+  if (visitor_) visitor_->recordTo(nullptr, now);
+  if (journal_) journal_->close();
+  journal_.reset();
+  prepareVisitor();
+  ++idle_resets_;
+  std::fprintf(stderr,
+               "cloudbrush kiosk: idle reset (%s): the sky is cleared; the attract loop resumes\n",
+               why.c_str());
+  cleanUpOldData();
+  notice_.clear();
+  attract_.restart();
+  setState(State::kAttract);
+}
+
+void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
+  const int64_t now = clock_.nowNs();
+  if (pen_) {
+    const int connection = int(pen_->connection());
+    if (connection != last_connection_) {
+      const bool was_connected = last_connection_ == int(PenConnection::kConnected);
+      last_connection_ = connection;
+      const bool connected = pen_->connection() == PenConnection::kConnected;
+      if (state_ == State::kVisitor && was_connected && !connected &&
+          pen_->connection() != PenConnection::kFinished)
+        setState(State::kReconnect);
+      else if (state_ == State::kReconnect && connected)
+        setState(State::kVisitor);
+      else if (state_ == State::kOperator && before_operator_ == State::kVisitor && !connected &&
+               was_connected)
+        before_operator_ = State::kReconnect;
+    }
+  }
+  switch (state_) {
+    case State::kAttract: {
+      size_t first = 0;
+      while (first < samples.size() && !samples[first].in_proximity) ++first;
+      if (first == samples.size()) return;
+      beginVisit(now);  // the first pen proximity: the visitor's at once
+      paint_.onPenSamples(std::vector<PenSample>(samples.begin() + long(first), samples.end()));
+      return;
+    }
+    case State::kVisitor:
+    case State::kReconnect:
+      for (const PenSample& s : samples)
+        if (s.in_proximity) {
+          input(now);
+          break;
+        }
+      paint_.onPenSamples(samples);
+      return;
+    case State::kOperator:
+      return;  // the pen does nothing while the operator panel is open
+  }
+}
+
+bool KioskScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
+  if (state_ == State::kOperator) {
+    panel_.onKey(event, t_ns);
+    runOperatorActions(t_ns);
+    if (!panel_.isOpen()) {
+      input(t_ns);
+      setState(before_operator_);
+    }
+    return true;
+  }
+  const uint32_t mods = DisplayEvent::kCtrl | DisplayEvent::kAlt | DisplayEvent::kShift;
+  if (lowerLetter(event.keysym) == lowerLetter(operator_keys_.keysym) &&
+      (event.modifiers & mods) == (operator_keys_.modifiers & mods)) {
+    before_operator_ = state_;
+    panel_.askPin();
+    setState(State::kOperator);
+    logOperator("pin-asked (operator key combination typed)");
+    return true;
+  }
+  if (isModifierKey(event.keysym)) return true;
+  if (state_ == State::kAttract) {
+    beginVisit(t_ns);  // any key hands over; the key itself only wakes the painter
+    return true;
+  }
+  input(t_ns);
+  return false;
+}
+
+void KioskScreen::onCommand(Command command, int64_t t_ns) {
+  input(t_ns);
+  if (state_ == State::kVisitor) paint_.onCommand(command, t_ns);
+}
+
+void KioskScreen::onPointer(const DisplayEvent& event) {
+  const int64_t now = clock_.nowNs();
+  if (state_ == State::kOperator) return;
+  if (state_ == State::kAttract) beginVisit(now);
+  input(now);
+  paint_.onPointer(event);
+}
+
+void KioskScreen::onResize(int width, int height) {
+  paint_.onResize(width, height);
+}
+
+void KioskScreen::logOperator(const std::string& action) {
+  std::string error;
+  if (!operator_log_.write(action, &error))
+    std::fprintf(stderr, "cloudbrush kiosk: operator log: %s\n", error.c_str());
+}
+
+void KioskScreen::runOperatorActions(int64_t now) {
+  (void)now;
+  KioskConfig& c = setup_.config;
+  for (const OperatorAction& action : panel_.takeActions()) {
+    const char* name = OperatorPanelScreen::actionName(action.kind);
+    char text[256];
+    switch (action.kind) {
+      case OperatorActionKind::kOpened:
+      case OperatorActionKind::kClosed:
+        logOperator(name);
+        break;
+      case OperatorActionKind::kWrongPin:
+        std::snprintf(text, sizeof text, "%s (%d in a row)", name, int(action.value));
+        logOperator(text);
+        break;
+      case OperatorActionKind::kLockedOut:
+        std::snprintf(text, sizeof text, "%s for %.0f s", name, action.value);
+        logOperator(text);
+        break;
+      case OperatorActionKind::kIdleSeconds:
+        c.idle_seconds = action.value;
+        std::snprintf(text, sizeof text, "%s %.0f", name, c.idle_seconds);
+        logOperator(text);
+        message_ = "idle time now " + std::to_string(long(c.idle_seconds)) + " s";
+        break;
+      case OperatorActionKind::kWarningSeconds:
+        c.warning_seconds = action.value;
+        std::snprintf(text, sizeof text, "%s %.0f", name, c.warning_seconds);
+        logOperator(text);
+        message_ = "countdown now " + std::to_string(long(c.warning_seconds)) + " s";
+        break;
+      case OperatorActionKind::kToggleGallery:
+        c.gallery_enabled = !c.gallery_enabled;
+        logOperator(std::string(name) + (c.gallery_enabled ? " on" : " off"));
+        message_ = std::string("gallery ") + (c.gallery_enabled ? "on" : "off");
+        updateTexts();
+        break;
+      case OperatorActionKind::kExportCloud: {
+        if (!visitor_ || !paint_.hasPaint()) {
+          message_ = "export: the current visitor has painted nothing yet";
+          logOperator(std::string(name) + " (nothing to export)");
+          break;
+        }
+        const std::string dir = setup_.data_dir + "/exports/" + utcStamp();
+        std::vector<std::string> written;
+        std::string note, error;
+        const bool ok = exportCloudFiles(renderer_, visitor_->volume(), paint_.shownCamera(),
+                                         visitor_->light(), setup_.render, display_.width(),
+                                         display_.height(), dir, &written, &note, &error);
+        glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+        glViewport(0, 0, display_.width(), display_.height());
+        message_ = ok ? "exported " + std::to_string(written.size()) + " files to " + dir
+                      : "export FAILED: " + error;
+        logOperator(std::string(name) + " " + (ok ? dir : "FAILED: " + error));
+        break;
+      }
+      case OperatorActionKind::kCalibrate:
+        message_ =
+            "calibration is not a kiosk screen yet: stop the service\n(systemctl stop "
+            "cloudbrush-kiosk), run `cloudbrush calibrate` on this box,\nthen start it again";
+        logOperator(std::string(name) + " (told to run cloudbrush calibrate)");
+        break;
+      case OperatorActionKind::kShutdown:
+        logOperator(name);
+        quit_ = "operator shutdown";
+        break;
+    }
+  }
+}
+
+std::string KioskScreen::update(const FrameContext& frame) {
+  const int64_t now = clock_.nowNs();
+  switch (state_) {
+    case State::kOperator: {
+      panel_.update(frame);
+      runOperatorActions(now);
+      if (!panel_.isOpen()) {
+        input(now);
+        setState(before_operator_);
+      }
+      OperatorPanelValues values;
+      values.idle_seconds = setup_.config.idle_seconds;
+      values.warning_seconds = setup_.config.warning_seconds;
+      values.gallery_enabled = setup_.config.gallery_enabled;
+      values.gallery_entries = long(gallery_.entries().size());
+      values.data_dir = setup_.data_dir;
+      values.message = message_;
+      panel_.setValues(values);
+      break;
+    }
+    case State::kAttract:
+      attract_.update(frame);
+      break;
+    case State::kVisitor:
+    case State::kReconnect: {
+      const double idle = double(now - last_input_ns_) / 1e9;
+      const double left = setup_.config.idle_seconds - idle;
+      if (left <= 0.0) {
+        endVisit(now, "idle");
+        attract_.update(frame);
+        break;
+      }
+      if (left <= setup_.config.warning_seconds && paint_.hasPaint())
+        notice_ =
+            setup_.texts.format("countdown", {{"seconds", std::to_string(int(std::ceil(left)))}});
+      else if (now < saved_notice_until_ns_)
+        notice_ = saved_notice_;
+      else
+        notice_.clear();
+      const std::string quit = paint_.update(frame);
+      if (!quit.empty()) return quit;
+      break;
+    }
+  }
+  return quit_;
+}
+
+bool KioskScreen::needsFrame() const {
+  switch (state_) {
+    case State::kVisitor:
+      return paint_.needsFrame() || !notice_.empty();
+    default:
+      return true;
+  }
+}
+
+bool KioskScreen::draw(FrameContext& frame, std::string* error) {
+  if (!ui_ready_ && !ui_failed_) {
+    ui_.addGlyphs(setup_.texts.allText());
+    std::string ui_error;
+    if (ui_.init(&ui_error)) {
+      ui_ready_ = true;
+    } else {
+      ui_failed_ = true;
+      std::fprintf(stderr, "cloudbrush kiosk: visitor texts cannot be drawn: %s\n",
+                   ui_error.c_str());
+    }
+  }
+  switch (state_) {
+    case State::kAttract:
+      return attract_.draw(frame, error);
+    case State::kOperator:
+      return panel_.draw(frame, error);
+    case State::kReconnect:
+      if (!paint_.draw(frame, error)) return false;
+      reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
+                          pen_ ? pen_->statusMessage() : "");
+      return reconnect_.draw(frame, error);
+    case State::kVisitor:
+      if (!paint_.draw(frame, error)) return false;
+      if (!notice_.empty()) {
+        const float h = float(frame.height);
+        glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+        glViewport(0, 0, frame.width, frame.height);
+        ui_.drawLabels(frame.width, frame.height,
+                       {{0.5f * float(frame.width), 0.12f * h, notice_, 0.04f * h, 0xffd266ffu,
+                         true, 0x000000ccu}});
+      }
+      return true;
+  }
+  return true;
+}
+
+void KioskScreen::presented(const FrameContext& frame, double frame_ms) {
+  if (state_ == State::kVisitor) paint_.presented(frame, frame_ms);
+  if (state_ == State::kAttract) attract_.presented(frame, frame_ms);
+}
+
+}  // namespace cb

@@ -1,0 +1,137 @@
+// The exhibition kiosk's screen (issue 11): what `cloudbrush kiosk` runs in the shell's one frame
+// loop. It holds the painter (paint_screen.h, in visitor mode) and the kiosk's own screens and
+// routes input and frames to the one active:
+//
+//   attract   (attract_screen.h) a bundled journal replays with the camera orbiting and the
+//             invitation; the first pen proximity, mouse or key hands control to the visitor at
+//             once, on an empty canvas (a fresh session and journal per visitor)
+//   visitor   the painter: painting, erasing, camera, undo, "start again"; after
+//             idle_seconds without input a countdown of warning_seconds, then the cloud is kept
+//             in the gallery (when on), the visit ends and the attract loop resumes
+//   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug
+//   operator  (operator_panel_screen.h) the configured key combination, then the PIN; every
+//             action is logged to <data dir>/operator.log
+//
+// Visitor texts come from config/kiosk/texts.toml in the configured language. Everything the
+// kiosk writes goes under the data dir: sessions/ (journals, deleted after [journals] keep_days),
+// gallery/, exports/, operator.log. Every timer reads the injected Clock.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/kiosk/gallery_store.h"
+#include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_texts.h"
+#include "app/kiosk/operator_log.h"
+#include "app/shell/attract_screen.h"
+#include "app/shell/operator_panel_screen.h"
+#include "app/shell/paint_screen.h"
+#include "app/shell/reconnect_screen.h"
+#include "app/shell/ui_overlay.h"
+
+namespace cb {
+
+struct KioskSetup {
+  KioskConfig config;
+  KioskTexts texts;
+  std::string data_dir;                        // created if missing
+  std::vector<JournalRecord> attract_journal;  // may be empty (the empty sky orbits)
+  PaintSessionSettings visitor_settings;
+  BrushConfig brush;
+  MappingConfig mapping;
+  Light light;
+  std::string style = "thesis";
+  RenderOptions render;
+  float moving_scale = 0.5f;  // the attract orbit's resolution scale
+  bool record_journals = true;
+  // Told about state changes ("attract: waiting for visitors", ...) and input (health file).
+  std::function<void(const std::string& status)> on_status;
+  std::function<void()> on_input;
+};
+
+// The exit status of `cloudbrush kiosk` after the operator shut it down (the unit's
+// RestartPreventExitStatus=, so systemd does not start it again).
+inline constexpr int kOperatorShutdownExitStatus = 10;
+
+class KioskScreen : public Screen {
+ public:
+  enum class State { kAttract, kVisitor, kReconnect, kOperator };
+
+  // `paint` runs in visitor mode with `pen` attached; the kiosk attaches its visitor sessions.
+  // None owned.
+  KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen& paint, PenSource* pen,
+              const Clock& clock, KioskSetup setup);
+  ~KioskScreen() override;
+
+  const char* name() const override { return "kiosk"; }
+  void onPenSamples(const std::vector<PenSample>& samples) override;
+  void onCommand(Command command, int64_t t_ns) override;
+  bool onKey(const DisplayEvent& event, int64_t t_ns) override;
+  void onPointer(const DisplayEvent& event) override;
+  void onResize(int width, int height) override;
+  std::string update(const FrameContext& frame) override;
+  bool needsFrame() const override;
+  bool draw(FrameContext& frame, std::string* error) override;
+  void presented(const FrameContext& frame, double frame_ms) override;
+  bool allowsQuit() const override { return false; }
+
+  // The visitor is about to clear their cloud ("start again"): keep it in the gallery (when on).
+  // PaintLoopOptions::before_start_again calls this.
+  void keepFinishedCloud(const std::string& why);
+
+  State state() const { return state_; }
+  static const char* stateName(State state);
+  long idleResets() const { return idle_resets_; }
+  long visits() const { return visits_; }
+  // The current visitor's session; between visits, the fresh one the next visitor gets.
+  const PaintSession* visitorSession() const { return visitor_.get(); }
+  const AttractScreen& attract() const { return attract_; }
+  const OperatorPanelScreen& operatorPanel() const { return panel_; }
+  const KioskConfig& config() const { return setup_.config; }
+  // The countdown (or "saved as number N") shown over the painter, or "".
+  const std::string& notice() const { return notice_; }
+  const std::vector<long>& gallerySaved() const { return gallery_saved_; }
+
+ private:
+  void setState(State state);
+  void prepareVisitor();
+  void beginVisit(int64_t now);
+  void endVisit(int64_t now, const std::string& why);
+  void input(int64_t now);
+  void cleanUpOldData();
+  void runOperatorActions(int64_t now);
+  void logOperator(const std::string& action);
+  void updateTexts();
+  bool visiting() const { return state_ == State::kVisitor || state_ == State::kReconnect; }
+
+  Display& display_;
+  VolumeRenderer& renderer_;
+  PaintScreen& paint_;
+  PenSource* pen_;
+  const Clock& clock_;
+  KioskSetup setup_;
+  std::string session_dir_;
+  UiOverlay ui_;
+  bool ui_ready_ = false, ui_failed_ = false;
+  AttractScreen attract_;
+  ReconnectScreen reconnect_;
+  OperatorPanelScreen panel_;
+  DisplayEvent operator_keys_;
+  GalleryStore gallery_;
+  OperatorLog operator_log_;
+  State state_ = State::kAttract, before_operator_ = State::kAttract;
+  std::unique_ptr<JournalWriter> journal_;
+  std::unique_ptr<PaintSession> visitor_;
+  int64_t last_input_ns_ = 0;
+  int64_t saved_notice_until_ns_ = 0;
+  std::string saved_notice_;
+  int last_connection_ = -1;
+  long idle_resets_ = 0, visits_ = 0;
+  std::string notice_, quit_, message_;
+  std::vector<long> gallery_saved_;
+};
+
+}  // namespace cb

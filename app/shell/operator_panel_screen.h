@@ -1,0 +1,83 @@
+// The kiosk's operator panel (issue 11). It opens only with the key combination set in
+// config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits, typed on
+// the keyboard; three wrong PINs lock it for a minute. Open, it lists what the operator may do,
+// each on one key:
+//   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
+//   G      gallery on/off           E      export the current cloud
+//   C      calibration              X then Y  shut the kiosk down
+//   Esc    close (also after 2 min without a key)
+// The panel only asks; the kiosk screen carries the actions out and logs every one of them
+// (operator_log.h). Visitors never see it: the pen does nothing while it is open.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/shell/screen.h"
+#include "app/shell/ui_overlay.h"
+#include "drivers/core/clock.h"
+
+namespace cb {
+
+enum class OperatorActionKind {
+  kOpened,       // the PIN was right
+  kWrongPin,     // value: failures in a row
+  kLockedOut,    // too many wrong PINs
+  kClosed,       // Esc, timeout or after shutdown
+  kIdleSeconds,  // value: the new idle time
+  kWarningSeconds,
+  kToggleGallery,
+  kExportCloud,
+  kCalibrate,
+  kShutdown,
+};
+
+struct OperatorAction {
+  OperatorActionKind kind;
+  double value = 0.0;
+};
+
+// What the panel shows of the kiosk's settings.
+struct OperatorPanelValues {
+  double idle_seconds = 90.0, warning_seconds = 10.0;
+  bool gallery_enabled = false;
+  long gallery_entries = 0;
+  std::string data_dir;
+  std::string message;  // the result of the last action
+};
+
+class OperatorPanelScreen : public Screen {
+ public:
+  OperatorPanelScreen(const Clock& clock, std::string pin, UiOverlay* ui);
+  const char* name() const override { return "operator"; }
+  void onCommand(Command, int64_t) override {}
+  // Every key while the panel (or its PIN prompt) is open; always taken.
+  bool onKey(const DisplayEvent& event, int64_t t_ns) override;
+  std::string update(const FrameContext& frame) override;
+  bool draw(FrameContext& frame, std::string* error) override;
+
+  // The combination was typed: ask for the PIN.
+  void askPin();
+  bool isOpen() const { return state_ != State::kClosed; }
+  bool unlocked() const { return state_ == State::kPanel || state_ == State::kConfirmShutdown; }
+  void setValues(const OperatorPanelValues& values) { values_ = values; }
+  // Actions since the last call, in order.
+  std::vector<OperatorAction> takeActions();
+  static const char* actionName(OperatorActionKind kind);
+
+ private:
+  enum class State { kClosed, kPin, kPanel, kConfirmShutdown };
+  void close();
+  const Clock& clock_;
+  std::string pin_;
+  UiOverlay* ui_;
+  State state_ = State::kClosed;
+  std::string typed_;
+  int failures_ = 0;
+  int64_t locked_until_ns_ = 0;
+  int64_t last_key_ns_ = 0;
+  OperatorPanelValues values_;
+  std::vector<OperatorAction> actions_;
+};
+
+}  // namespace cb

@@ -1,0 +1,397 @@
+// The kiosk's screens through the shell's frame loop on EGL surfaceless (llvmpipe), with the
+// bundled config and attract journal, a scripted pen and a ManualClock that the loop's every
+// iteration moves on (no sleeping): the attract loop replaying and orbiting and handing over on
+// the first proximity, the idle countdown and reset, visitor texts in English and Chinese, the
+// operator panel behind its key combination and PIN (every action logged), the gallery with its
+// quota and journal retention, and "reconnect the pen" when the tablet goes away mid-visit.
+// CB_KEEP_FRAMES=DIR writes the frames checked, for looking.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+
+#include "app/core/config_paths.h"
+#include "app/render/image_io.h"
+#include "app/session/session_replay.h"
+#include "app/shell/frame_loop.h"
+#include "app/shell/kiosk_screen.h"
+#include "app/study/volume_export.h"
+#include "app/volume/volume_file.h"
+#include "scripted_pen_source.h"
+#include "tests/support/test_display.h"
+
+namespace cb {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kW = 640, kH = 360, kGrid = 64;
+const std::string kConfigDir = std::string(CB_SOURCE_DIR) + "/config";
+
+double density(const Volume& v) {
+  double sum = 0.0;
+  for (size_t i = 0; i < v.voxelCount(); ++i) sum += v.data()[i];
+  return sum;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void keep(const std::string& name, const ImageRgba8& image) {
+  if (const char* dir = std::getenv("CB_KEEP_FRAMES"))
+    writePng(std::string(dir) + "/" + name, image);
+}
+
+// A kiosk with the bundled settings (changed by `adjust`), the bundled attract journal, a
+// scripted pen and a data dir of its own.
+class KioskRig {
+ public:
+  explicit KioskRig(const std::string& name, std::function<void(KioskConfig&)> adjust = {},
+                    std::function<void(const std::string& data_dir)> before = {})
+      : data_dir_((fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string()),
+        pen_(kW, kH) {
+    fs::remove_all(data_dir_);
+    fs::create_directories(data_dir_);
+    if (before) before(data_dir_);
+    std::string error;
+    display_ = test::openTestDisplay(kW, kH, &error);
+    if (!display_) throw std::runtime_error(error);
+    if (!renderer_.init(&error)) throw std::runtime_error(error);
+    KioskSetup setup;
+    setup.config = loadKioskConfig(kConfigDir + "/kiosk.toml");
+    if (adjust) adjust(setup.config);
+    setup.texts = KioskTexts::load(kConfigDir + "/kiosk/texts.toml", setup.config.language,
+                                   [this](const std::string& line) { log_.push_back(line); });
+    const JournalReadResult attract = readJournal(kConfigDir + "/" + setup.config.attract_journal);
+    if (!attract.error.empty()) throw std::runtime_error(attract.error);
+    setup.attract_journal = attract.records;
+    setup.data_dir = data_dir_;
+    setup.visitor_settings = {kW, kH, kGrid};
+    setup.on_status = [this](const std::string& status) { statuses_.push_back(status); };
+    PaintLoopOptions options;
+    options.visitor_mode = true;
+    options.orbit_degrees_per_second = 0.0f;
+    options.config_dir = kConfigDir;
+    options.state_dir = data_dir_;
+    options.clock = &clock_;
+    options.before_start_again = [this] { kiosk_->keepFinishedCloud("start again"); };
+    paint_ = std::make_unique<PaintScreen>(*display_, renderer_, demo_, Light{}, options);
+    paint_->attachPen(&pen_, nullptr);
+    kiosk_ = std::make_unique<KioskScreen>(*display_, renderer_, *paint_, &pen_, clock_,
+                                           std::move(setup));
+  }
+  ~KioskRig() {
+    kiosk_.reset();
+    fs::remove_all(data_dir_);
+  }
+
+  // Runs `frames` loop iterations, the clock moving `step_s` after each; returns the quit reason.
+  std::string run(long frames, double step_s = 0.1) {
+    FrameLoopOptions options;
+    options.max_frames = frames;
+    options.clock = &clock_;
+    options.each_iteration = [&](bool) { clock_.advance(int64_t(step_s * 1e9)); };
+    options.after_draw = [&](const FrameContext&) {
+      last_frame_ = readFramebufferRgba8(display_->framebuffer(), kW, kH);
+    };
+    FrameLoop loop(*display_, &pen_);
+    FrameLoopResult result;
+    std::string error;
+    if (!loop.run(*kiosk_, options, &result, &error)) throw std::runtime_error(error);
+    return result.quit_reason;
+  }
+  // Runs until `done` (checked after every iteration) or `limit` iterations; true when done.
+  bool runUntil(const std::function<bool()>& done, long limit, double step_s) {
+    for (long i = 0; i < limit; ++i) {
+      run(1, step_s);
+      if (done()) return true;
+    }
+    return false;
+  }
+  bool key(uint32_t keysym, uint32_t modifiers = 0) {
+    return kiosk_->onKey(DisplayEvent::key(keysym, modifiers), clock_.nowNs());
+  }
+  void type(const std::string& keys) {
+    for (char c : keys) key(uint32_t(c));
+  }
+
+  KioskScreen& kiosk() { return *kiosk_; }
+  PaintScreen& paint() { return *paint_; }
+  test::ScriptedPenSource& pen() { return pen_; }
+  ManualClock& clock() { return clock_; }
+  const std::string& dataDir() const { return data_dir_; }
+  const ImageRgba8& lastFrame() const { return last_frame_; }
+  const std::vector<std::string>& textLog() const { return log_; }
+  const std::vector<std::string>& statuses() const { return statuses_; }
+
+ private:
+  std::string data_dir_;
+  std::unique_ptr<Display> display_;
+  VolumeRenderer renderer_;
+  ManualClock clock_{1'000'000'000};
+  test::ScriptedPenSource pen_;
+  Volume demo_{glm::ivec3(8)};
+  std::unique_ptr<PaintScreen> paint_;
+  std::unique_ptr<KioskScreen> kiosk_;
+  ImageRgba8 last_frame_;
+  std::vector<std::string> log_, statuses_;
+};
+
+using State = KioskScreen::State;
+
+TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
+  KioskRig rig("cb_kiosk_attract", [](KioskConfig& c) {
+    c.attract_hold_seconds = 2.0;
+    c.idle_seconds = 6.0;
+    c.warning_seconds = 3.0;
+  });
+  KioskScreen& kiosk = rig.kiosk();
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kAttract);
+  EXPECT_GT(kiosk.attract().recordCount(), 500u);
+  const glm::vec3 eye0 = kiosk.attract().shownCamera().eye;
+  // The journal replays at its own pace on the clock: half a second per frame here.
+  ASSERT_TRUE(rig.runUntil(
+      [&] { return kiosk.attract().recordsPlayed() == kiosk.attract().recordCount(); }, 200, 0.5))
+      << kiosk.attract().recordsPlayed() << " of " << kiosk.attract().recordCount();
+  EXPECT_TRUE(kiosk.attract().problems().empty()) << kiosk.attract().problems().front();
+  EXPECT_GT(density(kiosk.attract().volume()), 0.0) << "the replayed strokes became a cloud";
+  EXPECT_GT(glm::length(kiosk.attract().shownCamera().eye - eye0), 0.1f) << "the camera orbits";
+  rig.run(1, 0.0);
+  keep("kiosk_attract_replayed.png", rig.lastFrame());
+  // Held for hold_seconds, then the replay starts again on an empty sky.
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.attract().loopsCompleted() == 1; }, 20, 0.5));
+  EXPECT_EQ(density(kiosk.attract().volume()), 0.0);
+
+  // The first pen proximity hands over at once, on an empty canvas.
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  ASSERT_NE(kiosk.visitorSession(), nullptr);
+  EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0);
+  EXPECT_FALSE(kiosk.visitorSession()->history().canUndo());
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  EXPECT_GT(density(kiosk.visitorSession()->volume()), 0.0) << "the visitor painted";
+  // Left alone: the countdown, then the attract loop again.
+  ASSERT_TRUE(rig.runUntil([&] { return !kiosk.notice().empty(); }, 60, 0.25));
+  EXPECT_EQ(kiosk.notice().rfind("Still there? The sky clears in 3 s", 0), 0u) << kiosk.notice();
+  keep("kiosk_countdown_en.png", rig.lastFrame());
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 60, 0.25));
+  EXPECT_EQ(kiosk.idleResets(), 1);
+  EXPECT_LT(kiosk.attract().recordsPlayed(), kiosk.attract().recordCount()) << "replay restarted";
+  // The next visitor starts on an empty canvas and cannot undo into the previous cloud.
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0);
+  EXPECT_FALSE(kiosk.visitorSession()->history().canUndo());
+  EXPECT_EQ(kiosk.visits(), 2);
+  // Each visitor's journal is in the data dir and replays to the cloud they painted.
+  size_t journals = 0;
+  for (const auto& entry : fs::directory_iterator(rig.dataDir() + "/sessions"))
+    journals += entry.path().extension() == ".cbj";
+  EXPECT_EQ(journals, 2u);
+  EXPECT_TRUE(rig.statuses().size() >= 4u);
+}
+
+TEST(KioskScreens, VisitorTextsInEnglishAndChinese) {
+  std::map<std::string, ImageRgba8> frames;
+  for (const char* language : {"en", "zh"}) {
+    KioskRig rig(std::string("cb_kiosk_lang_") + language, [&](KioskConfig& c) {
+      c.language = language;
+      c.gallery_enabled = true;
+    });
+    rig.run(2, 0.0);
+    frames[language] = rig.lastFrame();
+    keep(std::string("kiosk_attract_") + language + ".png", rig.lastFrame());
+    EXPECT_TRUE(rig.textLog().empty()) << "every key is bundled in " << language;
+    // The reconnect screen in the same language, for looking.
+    rig.pen().hover(rig.clock().nowNs());
+    rig.run(1);
+    rig.pen().unplug();
+    rig.run(2, 0.0);
+    EXPECT_EQ(rig.kiosk().state(), KioskScreen::State::kReconnect);
+    keep(std::string("kiosk_reconnect_") + language + ".png", rig.lastFrame());
+  }
+  // The invitation band (38%..60% of the height) differs between the languages; the sky above
+  // it does not (the same replay, the same clock).
+  const auto differing = [&](int y0, int y1) {
+    long count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < kW; ++x)
+        for (int c = 0; c < 3; ++c)
+          count += std::abs(int(frames["en"].at(x, y)[c]) - int(frames["zh"].at(x, y)[c])) > 40;
+    return count;
+  };
+  EXPECT_GT(differing(int(0.38 * kH), int(0.6 * kH)), 500);
+  EXPECT_EQ(differing(0, int(0.3 * kH)), 0);
+}
+
+TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
+  KioskRig rig("cb_kiosk_operator");
+  KioskScreen& kiosk = rig.kiosk();
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  ASSERT_EQ(kiosk.state(), State::kVisitor);
+  // Visitor mode: only painting, erasing, camera, undo and start again.
+  EXPECT_FALSE(kiosk.allowsQuit());
+  kiosk.onCommand(Command::kSave, rig.clock().nowNs());
+  kiosk.onCommand(Command::kModeLight, rig.clock().nowNs());
+  EXPECT_EQ(kiosk.visitorSession()->mode(), Mode::kPaint);
+  // The PIN alone is just keys for the painter.
+  EXPECT_FALSE(rig.key('2'));
+  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  // The combination asks for the PIN; three wrong ones lock the panel for a minute.
+  EXPECT_TRUE(rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  EXPECT_EQ(kiosk.state(), State::kOperator);
+  rig.run(1, 0.0);
+  keep("kiosk_operator_pin.png", rig.lastFrame());
+  rig.type(
+      "1111"
+      "1357"
+      "0000");
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked());
+  rig.type("2468");
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked()) << "locked after three wrong PINs";
+  rig.clock().advance(61'000'000'000);
+  rig.type("2468");
+  ASSERT_TRUE(kiosk.operatorPanel().unlocked());
+  rig.type("2");  // idle +15 s
+  rig.type("3");  // countdown -5 s
+  rig.type("g");  // gallery on
+  rig.type("e");  // export the visitor's cloud
+  rig.type("c");  // calibration (says how)
+  rig.run(1, 0.0);
+  keep("kiosk_operator_panel.png", rig.lastFrame());
+  EXPECT_EQ(kiosk.config().idle_seconds, 105.0);
+  EXPECT_EQ(kiosk.config().warning_seconds, 5.0);
+  EXPECT_TRUE(kiosk.config().gallery_enabled);
+  std::vector<fs::path> exports;
+  for (const auto& entry : fs::directory_iterator(rig.dataDir() + "/exports"))
+    exports.push_back(entry.path());
+  ASSERT_EQ(exports.size(), 1u);
+  const Volume exported = loadVolume((exports[0] / "cloud.cbvol").string());
+  EXPECT_EQ(volumeChecksum(exported), volumeChecksum(kiosk.visitorSession()->volume()));
+  EXPECT_EQ(readPng((exports[0] / "render.png").string()).width, kW);
+  rig.type("x");
+  rig.type("n");  // not confirmed
+  EXPECT_EQ(rig.run(1, 0.0), "frame limit");
+  rig.type("xy");
+  EXPECT_EQ(rig.run(1, 0.0), "operator shutdown");
+  // Saving is the operator's: the visitor's Ctrl+S wrote nothing.
+  for (const auto& entry : fs::recursive_directory_iterator(rig.dataDir()))
+    EXPECT_NE(entry.path().extension(), ".vol") << entry.path();
+  const std::string log = slurp(rig.dataDir() + "/operator.log");
+  for (const char* action :
+       {"pin-asked", "wrong-pin (1 in a row)", "wrong-pin (3 in a row)", "locked-out for 60 s",
+        "panel-opened", "set-idle-seconds 105", "set-warning-seconds 5", "toggle-gallery on",
+        "export-cloud ", "calibrate", "shutdown", "panel-closed"})
+    EXPECT_NE(log.find(std::string("Z ") + action), std::string::npos) << action << "\n" << log;
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 13) << log;
+}
+
+TEST(KioskScreens, GalleryKeepsFinishedCloudsWithinQuotaAndOldJournalsGo) {
+  KioskRig rig(
+      "cb_kiosk_gallery",
+      [](KioskConfig& c) {
+        c.gallery_enabled = true;
+        c.gallery_quota_bytes = 1;  // over at once: only the newest entry stays
+        c.idle_seconds = 3.0;
+        c.warning_seconds = 1.0;
+      },
+      [](const std::string& data_dir) {
+        fs::create_directories(data_dir + "/sessions");
+        std::ofstream(data_dir + "/sessions/old.cbj") << "x";
+        fs::last_write_time(data_dir + "/sessions/old.cbj",
+                            fs::file_time_type::clock::now() - std::chrono::hours(24 * 31));
+      });
+  KioskScreen& kiosk = rig.kiosk();
+  EXPECT_FALSE(fs::exists(rig.dataDir() + "/sessions/old.cbj")) << "older than keep_days";
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  const uint64_t painted = volumeChecksum(kiosk.visitorSession()->volume());
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 60, 0.25));
+  ASSERT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+  const std::string entry = rig.dataDir() + "/gallery/000001";
+  EXPECT_EQ(volumeChecksum(loadVolume(entry + "/cloud.cbvol")), painted);
+  EXPECT_EQ(fs::exists(entry + "/cloud.vdb"), volumeExportHasVdb());
+  EXPECT_TRUE(fs::exists(entry + "/render.exr"));
+  EXPECT_EQ(readPng(entry + "/render.png").width, kW);
+  const ImageRgba8 thumbnail = readPng(entry + "/thumbnail.png");
+  EXPECT_EQ(thumbnail.width, 320);
+  EXPECT_EQ(thumbnail.height, 180);
+  keep("kiosk_gallery_thumbnail.png", thumbnail);
+  // The next visitor presses "start again" with a cloud painted: kept as number 2, and the
+  // quota removes number 1 (oldest first).
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  kiosk.onCommand(Command::kDeleteAll, rig.clock().nowNs());
+  rig.run(1);
+  EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1, 2}));
+  EXPECT_EQ(kiosk.notice(), "Your cloud is in the gallery as number 2");
+  keep("kiosk_saved_notice.png", rig.lastFrame());
+  EXPECT_FALSE(fs::exists(entry)) << "over the quota: the oldest entry went";
+  EXPECT_TRUE(fs::exists(rig.dataDir() + "/gallery/000002/thumbnail.png"));
+  EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0) << "start again cleared the sky";
+}
+
+TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
+  KioskRig rig("cb_kiosk_reconnect", [](KioskConfig& c) { c.idle_seconds = 30.0; });
+  KioskScreen& kiosk = rig.kiosk();
+  // Unplugged while nobody paints: the attract loop goes on.
+  rig.pen().unplug();
+  rig.run(1);
+  EXPECT_EQ(kiosk.state(), State::kAttract);
+  rig.pen().replug();
+  rig.run(1);
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  const uint32_t strokes = kiosk.visitorSession()->strokesMapped();
+  EXPECT_EQ(strokes, 1u);
+  rig.pen().stroke(rig.clock().nowNs(), /*lift=*/false);  // mid-stroke...
+  rig.run(1);
+  rig.pen().unplug();  // ...the cable comes out
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kReconnect);
+  rig.run(5, 1.0);
+  EXPECT_EQ(kiosk.state(), State::kReconnect) << "waits for the pen";
+  rig.pen().replug();
+  rig.run(1);
+  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  EXPECT_GT(kiosk.visitorSession()->strokesMapped(), strokes) << "painting goes on after replug";
+  // Twenty more unplug/replug cycles, some mid-stroke: each shows the screen and recovers.
+  for (int i = 0; i < 20; ++i) {
+    if (i % 2) rig.pen().stroke(rig.clock().nowNs(), /*lift=*/false);
+    rig.pen().unplug();
+    rig.run(1);
+    ASSERT_EQ(kiosk.state(), State::kReconnect) << "cycle " << i;
+    rig.pen().replug();
+    rig.run(1);
+    ASSERT_EQ(kiosk.state(), State::kVisitor) << "cycle " << i;
+  }
+  const uint32_t before = kiosk.visitorSession()->strokesMapped();
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  EXPECT_GT(kiosk.visitorSession()->strokesMapped(), before);
+}
+
+}  // namespace
+}  // namespace cb
