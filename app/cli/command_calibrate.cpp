@@ -281,6 +281,7 @@ int openInteractive(const Args& args, double timeout_s, InteractiveIo* io) {
   po.backend = args.get("backend", "auto");
   po.device = args.get("device", "");
   po.realtime = false;  // replays are fed as fast as the loop takes them
+  po.device_dir = configFile("devices");
   std::string error;
   io->pen = openPenSource(po, &error);
   if (!io->pen) {
