@@ -16,9 +16,12 @@ inline bool penHasPressure(const PenDeviceInfo& d) {
 }
 
 // Sets `s.pressure` to `level` (clamped to 0.05..1) while the tip is down, for a device without
-// pressure; returns whether it did. Samples of pens with pressure are left alone.
+// pressure; returns whether it did. Samples of pens with pressure, and samples that carry a
+// pressure anyway (a journal without its device record), are left alone.
 inline bool applyTipOnlyPressure(PenSample& s, const PenDeviceInfo& d, float level) {
-  if (penHasPressure(d) || !s.in_proximity || !(s.buttons & kPenTip)) return false;
+  if (penHasPressure(d) || s.pressure > 0.0f || s.pressure_raw != 0 || !s.in_proximity ||
+      !(s.buttons & kPenTip))
+    return false;
   s.pressure = std::clamp(level, 0.05f, 1.0f);
   return true;
 }

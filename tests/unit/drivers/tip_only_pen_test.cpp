@@ -80,8 +80,16 @@ TEST(TipOnlyPen, EvdevNodeWithoutPressurePaintsAtTheLevel) {
   ASSERT_TRUE(state.feed(ev(EV_SYN, SYN_REPORT, 0), s));
   ASSERT_TRUE(s.tipDown());
   EXPECT_EQ(s.pressure, 0.0f);
-  ASSERT_TRUE(applyTipOnlyPressure(s, info, 2.0f));
-  EXPECT_FLOAT_EQ(s.pressure, 1.0f) << "clamped";
+  PenSample strong = s;
+  ASSERT_TRUE(applyTipOnlyPressure(strong, info, 2.0f));
+  EXPECT_FLOAT_EQ(strong.pressure, 1.0f) << "clamped";
+  // A sample that carries a pressure although the device says it has none (a journal without
+  // its device record) keeps it.
+  PenSample carried = s;
+  carried.pressure_raw = 300;
+  carried.pressure = 0.3f;
+  EXPECT_FALSE(applyTipOnlyPressure(carried, info, 0.6f));
+  EXPECT_FLOAT_EQ(carried.pressure, 0.3f);
   // A pen with pressure is never overridden.
   PenDeviceInfo with = info;
   with.pressure_max = 2047;

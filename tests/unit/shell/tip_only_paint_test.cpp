@@ -50,6 +50,10 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
   ASSERT_TRUE(renderer.init(&error)) << error;
   PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
   session.setQuietMapping(true);
+  const std::string recorded = dir + "/session.cbj";
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(recorded));
+  session.recordTo(&journal, 0);
   PaintLoopOptions options;
   options.max_frames = 400;
   options.state_dir = dir + "/state";
@@ -63,6 +67,7 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+  journal.close();
   if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
     writePng(std::string(keep) + "/tip_only_pen.png",
              readFramebufferRgba8(display->framebuffer(), kW, kH));
@@ -74,6 +79,24 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
   double density = 0;
   for (size_t i = 0; i < session.volume().voxelCount(); ++i) density += session.volume().data()[i];
   EXPECT_GT(density, 0.0) << "the strokes of a pen without pressure made cloud";
+  // The session journal holds what was painted: the level while the tip was down, the device's
+  // own pressure_raw 0, and nothing while hovering.
+  const JournalReadResult read = readJournal(recorded);
+  ASSERT_TRUE(read.error.empty()) << read.error;
+  int down = 0;
+  for (const JournalRecord& r : read.records) {
+    if (r.type != JournalRecordType::kPenSample) continue;
+    const std::optional<PenSample> s = decodePenSample(r.payload);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->pressure_raw, 0);
+    if (s->tipDown()) {
+      EXPECT_FLOAT_EQ(s->pressure, 0.6f);
+      ++down;
+    } else {
+      EXPECT_EQ(s->pressure, 0.0f);
+    }
+  }
+  EXPECT_GT(down, 20);
   std::filesystem::remove_all(dir);
 }
 
