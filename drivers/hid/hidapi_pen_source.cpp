@@ -178,13 +178,25 @@ void HidapiPenSource::tryOpen() {
     lib_->exit();
     lib_->init();
   }
-  bool denied = false;
+  bool denied = false;  // a device that is a known tablet (or of the vendor asked for)
+  std::string closed;   // other HID devices this user cannot open (keyboards, mice, ...)
   std::string problems;
   for (const HidPenDevice& d : findHidPens(*lib_, options_.vendor, options_.devices.get())) {
     if (!options_.path.empty() && d.path != options_.path) continue;
-    if (d.permission_denied) denied = true;
+    // With every vendor in view, only devices a device file knows are worth a word.
+    const bool known = options_.vendor != 0 || !options_.path.empty() ||
+                       (options_.devices && options_.devices->find(d.vendor, d.product));
+    if (d.permission_denied) {
+      if (known) {
+        denied = true;
+      } else if (closed.size() < 80) {
+        char id[16];
+        std::snprintf(id, sizeof id, " %04x:%04x", d.vendor, d.product);
+        closed += id;
+      }
+    }
     if (d.protocol.empty()) {
-      problems += "; " + d.path + ": " + d.error;
+      if (known) problems += "; " + d.path + ": " + d.error;
       continue;
     }
     // Intuos4 USB ids expose several interfaces; the pen is the one with the mode report.
@@ -214,9 +226,13 @@ void HidapiPenSource::tryOpen() {
     return;
   }
   const bool hidden = !denied && lib_->backend == HidapiBackend::kHidraw && hidrawNodeDenied();
-  connection_ = denied || hidden ? PenConnection::kPermissionDenied : PenConnection::kSearching;
+  connection_ = denied || hidden || !closed.empty() ? PenConnection::kPermissionDenied
+                                                    : PenConnection::kSearching;
   if (denied)
     status_ = std::string("a tablet was found but cannot be opened: ") + kUdevRuleHint;
+  else if (!closed.empty())
+    status_ = "HID devices this user cannot open (" + closed.substr(1) +
+              "); if one is the tablet: " + kUdevRuleHint;
   else if (hidden)
     status_ = std::string("hidraw nodes exist that this user cannot open: ") + kUdevRuleHint;
   else if (status_.empty() || connection_ == PenConnection::kSearching)
