@@ -1,5 +1,9 @@
 #include "drivers/open_pen_source.h"
 
+#include <cstdio>
+
+#include "drivers/devices/device_file.h"
+
 #include "drivers/evdev/evdev_pen_source.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
@@ -17,6 +21,12 @@ std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& o, std::string*
     hid::HidapiPenSourceOptions h;
     h.backend = o.backend == "hidraw" ? hid::HidapiBackend::kHidraw : hid::HidapiBackend::kLibusb;
     h.path = o.device;
+    h.input_fuzz = o.input_fuzz;
+    if (!o.device_dir.empty()) {
+      DeviceFileLoad load = loadDeviceDirectory(o.device_dir);
+      for (const std::string& e : load.errors) std::fprintf(stderr, "cloudbrush: %s\n", e.c_str());
+      h.devices = load.database;
+    }
     return std::make_unique<hid::HidapiPenSource>(h);
   }
   if (o.backend == "replay") {

@@ -14,9 +14,15 @@ struct PenSourceOptions {
   std::string device;    // evdev node, hidapi path or journal file; empty: discover
   bool grab = false;     // evdev: exclusive grab
   bool realtime = true;  // replay pacing
+  // hidraw/libusb: the folder of device files (config/devices; the app passes
+  // configFile("devices")). Empty: none (every device gets hid-input's rules, no quirks).
+  std::string device_dir;
+  // hidraw/libusb: the input core's fuzz filter as evdev applies it (false: raw values).
+  bool input_fuzz = true;
 };
 
-// nullptr and `error` set for an unknown backend name or a replay without a file.
+// nullptr and `error` set for an unknown backend name or a replay without a file. Mistakes in
+// the device files are written to stderr as FILE:LINE:COL (that file is skipped).
 std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& options, std::string* error);
 
 }  // namespace cb

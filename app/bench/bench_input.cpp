@@ -29,6 +29,7 @@
 #include "app/bench/benches.h"
 #include "app/cli/args.h"
 #include "app/core/config_paths.h"
+#include "drivers/devices/device_file.h"
 #include "drivers/evdev/evdev_pen_state.h"
 #include "drivers/evdev/uinput_latency.h"
 #include "drivers/hid/hid_pen_decoder.h"
@@ -153,7 +154,7 @@ void decodeCorpus(const std::string& dir, double copy_ns, BenchReport& report) {
     const hid::PenLayout& l = *found.layout;
     const PenDeviceInfo info = hid::penDeviceInfo(l, 0, 0, name.c_str());
     const auto rules =
-        name.rfind("wacom-", 0) == 0 ? hid::PenDriverRules::kWacom : hid::PenDriverRules::kHidInput;
+        name.rfind("wacom-", 0) == 0 ? PenDriverRules::kWacom : PenDriverRules::kHidInput;
     std::vector<std::vector<uint8_t>> reports;
     for (const auto& st : strokeStates(std::max(info.x_max, 1), std::max(info.y_max, 1),
                                        std::max(info.pressure_max, 1)))
@@ -220,7 +221,15 @@ int benchInput(int argc, char** argv) {
   const auto states = strokeStates(info.x_max, info.y_max, info.pressure_max);
   std::vector<std::vector<uint8_t>> generic_reports, intuos4_reports;
   for (const auto& s : states) generic_reports.push_back(hid::encodePenReport(layout, s));
-  const PenDeviceInfo i4info = hid::intuos4DeviceInfo(*hid::intuos4Model(0x056A, 0x00B9));
+  // The Intuos4 6x9's ranges and tool table from the device files (config/devices).
+  const DeviceFileLoad devices = loadDeviceDirectory(configFile("devices"));
+  const DeviceEntry* i4 = devices.database->find(0x056A, 0x00B9);
+  if (!i4) {
+    std::fprintf(stderr, "bench input: no Intuos4 6x9 (056a:00b9) in %s\n",
+                 configFile("devices").c_str());
+    return 1;
+  }
+  const PenDeviceInfo i4info = i4->info;
   const auto i4states = strokeStates(i4info.x_max, i4info.y_max, i4info.pressure_max);
   intuos4_reports.push_back(hid::encodeIntuos4Enter(0x802, 0x0BADC0DE));
   for (const auto& s : i4states)
@@ -242,7 +251,7 @@ int benchInput(int argc, char** argv) {
     }
   });
   const double generic_ns = nsPerReport(generic_reports.size(), [&] {
-    hid::HidPenDecoder d(layout, info, hid::PenDriverRules::kWacom);
+    hid::HidPenDecoder d(layout, info, PenDriverRules::kWacom);
     PenSample s;
     for (const auto& r : generic_reports) {
       d.decode(r.data(), r.size(), 0, s);
@@ -250,7 +259,7 @@ int benchInput(int argc, char** argv) {
     }
   });
   const double intuos4_ns = nsPerReport(intuos4_reports.size(), [&] {
-    hid::Intuos4Decoder d(i4info);
+    hid::Intuos4Decoder d(i4info, i4->tools);
     PenSample s;
     for (const auto& r : intuos4_reports) {
       d.decode(r.data(), r.size(), 0, s);

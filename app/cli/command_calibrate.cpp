@@ -213,6 +213,7 @@ int runInteractive(const Args& args, const Settings& s, bool pressure) {
   po.backend = args.get("backend", "auto");
   po.device = args.get("device", "");
   po.realtime = false;  // replays are fed as fast as the loop takes them
+  po.device_dir = configFile("devices");
   std::string error;
   std::unique_ptr<PenSource> pen = openPenSource(po, &error);
   if (!pen) {

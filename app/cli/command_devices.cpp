@@ -2,6 +2,9 @@
 // hidapi-libusb interfaces of any vendor, libusb identity of Wacom devices) and says which are
 // pens, which are not and why, and which this user cannot open; or prints live samples like
 // `libinput debug-events`.
+#include <grp.h>
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -9,8 +12,10 @@
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/core/config_paths.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
+#include "drivers/devices/device_file.h"
 #include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/open_pen_source.h"
@@ -30,6 +35,7 @@ void printHelp() {
       "  --backend NAME   auto (evdev), evdev, hidraw, libusb, replay (default auto)\n"
       "  --device PATH    event node, hidapi path or, for replay, a journal file\n"
       "  --grab           evdev: grab the pen exclusively while watching\n"
+      "  --raw            hidraw/libusb: no input-core fuzz filter (evdev always has it)\n"
       "  --count N        stop after N samples\n"
       "  --seconds S      stop after S seconds\n"
       "  --record FILE    also write the device and its samples to a journal (replayable with\n"
@@ -48,69 +54,150 @@ void printInfo(const char* backend, const std::string& where, const PenDeviceInf
               d.tilt_res, d.distance_max);
 }
 
+// What one backend saw, for the closing summary.
+struct BackendTally {
+  std::string name, how;
+  std::string unavailable;  // why the backend could not be tried at all
+  int seen = 0, pens = 0, not_pens = 0, cannot_open = 0, denied = 0;
+  std::vector<std::string> denied_ids;  // hidraw: vid:pid of devices this user cannot open
+};
+
+bool inGroup(const char* name) {
+  const group* g = getgrnam(name);
+  if (!g) return false;
+  if (getegid() == g->gr_gid) return true;
+  gid_t groups[256];
+  const int n = getgroups(256, groups);
+  for (int i = 0; i < n; ++i)
+    if (groups[i] == g->gr_gid) return true;
+  return false;
+}
+
 // Every backend in turn, and what it saw: pens, devices that are not pens (and why), nodes
-// this user cannot open (and the error). Ends with what to do when no pen was found.
+// this user cannot open (and the error). Ends with a summary of what was tried and, when
+// something was closed to this user, how to open it.
 int listDevices() {
-  int found = 0, denied = 0;
+  const std::string device_dir = configFile("devices");
+  const DeviceFileLoad device_files = loadDeviceDirectory(device_dir);
+  std::printf("device files: %zu loaded from %s (%zu entries)\n",
+              device_files.database->files().size(), device_dir.c_str(),
+              device_files.database->entries().size());
+  for (const std::string& e : device_files.errors) std::printf("        error: %s\n", e.c_str());
+
+  std::vector<BackendTally> tally;
+  BackendTally ev;
+  ev.name = "evdev";
+  ev.how = "the kernel driver's input nodes";
   const EvdevSurvey survey = surveyEvdevNodes();
   if (!survey.dir_error.empty()) {
     std::printf("evdev   cannot list %s: %s\n", survey.dir.c_str(), survey.dir_error.c_str());
-    denied += survey.dir_permission_denied ? 1 : 0;
+    ev.unavailable = "cannot list " + survey.dir + ": " + survey.dir_error;
+    if (!survey.dir_permission_denied)
+      ev.unavailable += " (no input devices at all: a container, or a machine without evdev)";
+    ev.denied += survey.dir_permission_denied ? 1 : 0;
   } else {
     std::printf("evdev   %s: %zu event node(s)\n", survey.dir.c_str(), survey.nodes.size());
   }
+  ev.seen = static_cast<int>(survey.nodes.size());
   for (const EvdevNodeReport& n : survey.nodes) {
     switch (n.kind) {
       case EvdevNodeKind::kPen:
         printInfo("evdev", n.path, n.info, "");
-        ++found;
+        ++ev.pens;
         break;
       case EvdevNodeKind::kNotAPen:
         std::printf("        %-22s not a pen: '%s' is %s\n", n.path.c_str(), n.name.c_str(),
                     n.detail.c_str());
+        ++ev.not_pens;
         break;
       case EvdevNodeKind::kCannotOpen:
         std::printf("        %-22s cannot open: %s\n", n.path.c_str(), n.detail.c_str());
-        denied += n.permission_denied ? 1 : 0;
+        ++ev.cannot_open;
+        ev.denied += n.permission_denied ? 1 : 0;
         break;
     }
   }
+  tally.push_back(ev);
   for (hid::HidapiBackend b : {hid::HidapiBackend::kHidraw, hid::HidapiBackend::kLibusb}) {
+    BackendTally t;
+    t.name = hid::hidapiBackendName(b);
+    t.how = b == hid::HidapiBackend::kHidraw ? "hidapi, raw reports beside the kernel driver"
+                                             : "hidapi over libusb, kernel driver detached";
     std::string error;
     auto lib = hid::loadHidapi(b, &error);
     if (!lib) {
       std::printf("%-7s unavailable: %s\n", hid::hidapiBackendName(b), error.c_str());
+      t.unavailable = error;
+      tally.push_back(t);
       continue;
     }
-    const std::vector<hid::HidPenDevice> devices = hid::findHidPens(*lib, 0);  // every vendor
+    const std::vector<hid::HidPenDevice> devices =
+        hid::findHidPens(*lib, 0, device_files.database.get());  // every vendor
     std::printf("%-7s %zu HID interface(s)\n", hid::hidapiBackendName(b), devices.size());
+    t.seen = static_cast<int>(devices.size());
     for (const hid::HidPenDevice& d : devices) {
-      if (d.permission_denied) ++denied;
+      if (d.permission_denied) {
+        ++t.denied;
+        char id[16];
+        std::snprintf(id, sizeof id, "%04x:%04x", d.vendor, d.product);
+        t.denied_ids.push_back(id);
+      }
       if (d.protocol.empty()) {
         std::printf("        %-22s %04x:%04x %s (interface %d): %s%s\n", d.path.c_str(), d.vendor,
                     d.product, d.name.c_str(), d.interface,
                     d.descriptor.empty() ? "cannot read the report descriptor: " : "not a pen: ",
                     d.error.c_str());
+        ++(d.descriptor.empty() ? t.cannot_open : t.not_pens);
         continue;
       }
-      printInfo(hid::hidapiBackendName(b), d.path, d.info, "  [" + d.protocol + " protocol]");
-      ++found;
+      std::string extra = "  [" + d.protocol + " protocol";
+      if (d.has_entry) extra += ", " + d.entry.family + " (" + d.entry.where + ")";
+      printInfo(hid::hidapiBackendName(b), d.path, d.info, extra + "]");
+      ++t.pens;
     }
+    tally.push_back(t);
   }
   for (const usb::UsbDeviceIdentity& u : usb::listUsbDevices(usb::kWacomVendor)) {
     std::printf("usb     bus %03d addr %03d       %04x:%04x  %s %s serial '%s'%s\n", u.bus,
                 u.address, u.vendor, u.product, u.manufacturer.c_str(), u.product_name.c_str(),
                 u.serial.c_str(), u.opened ? "" : (" (" + u.open_error + ")").c_str());
   }
-  if (found == 0) {
-    std::printf("no pen tablet found (tried evdev, hidraw and libusb)\n");
-    if (denied == 0)
-      std::printf(
-          "nothing was closed to this user: plug the tablet in, or check `dmesg` for a "
-          "driver that refused it\n");
+
+  int found = 0, denied = 0;
+  std::printf("\ntried:\n");
+  for (const BackendTally& t : tally) {
+    found += t.pens;
+    denied += t.denied;
+    if (!t.unavailable.empty()) {
+      std::printf("  %-7s (%s): not tried: %s\n", t.name.c_str(), t.how.c_str(),
+                  t.unavailable.c_str());
+      continue;
+    }
+    std::printf(
+        "  %-7s (%s): %d seen, %d pen(s), %d not a pen, %d could not be opened%s\n", t.name.c_str(),
+        t.how.c_str(), t.seen, t.pens, t.not_pens, t.cannot_open,
+        t.denied ? (" (" + std::to_string(t.denied) + " for lack of permission)").c_str() : "");
   }
-  if (denied > 0)
-    std::printf("%d device(s) could not be opened by this user: %s\n", denied, kUdevRuleHint);
+  if (found == 0)
+    std::printf("no pen tablet found%s\n",
+                denied == 0 ? ": nothing was closed to this user; plug the tablet in, or check "
+                              "`dmesg` for a driver that refused it"
+                            : "");
+  if (denied > 0) {
+    std::printf("%d device(s) could not be opened by this user. To fix:\n  %s\n", denied,
+                kUdevRuleHint);
+    std::printf(
+        "  this user is %sin group 'input'%s\n", inGroup("input") ? "" : "NOT ",
+        inGroup("input") ? " (the rule may not be installed, or udev has not applied it)" : "");
+    for (const BackendTally& t : tally)
+      for (const std::string& id : t.denied_ids)
+        if (id.rfind("056a:", 0) != 0)
+          std::printf(
+              "  %s %s: the shipped rule opens only Wacom (056a) hidraw nodes; for this device add "
+              "to it: SUBSYSTEM==\"hidraw\", ATTRS{idVendor}==\"%s\", GROUP=\"input\", "
+              "MODE=\"0660\"\n",
+              t.name.c_str(), id.c_str(), id.substr(0, 4).c_str());
+  }
   return 0;
 }
 
@@ -129,6 +216,8 @@ int watch(Args& args) {
   o.backend = args.get("backend", "auto");
   o.device = args.get("device", "");
   o.grab = args.has("grab");
+  o.device_dir = configFile("devices");
+  o.input_fuzz = !args.has("raw");
   const long count = args.getInt("count", 0);
   const double seconds = args.getDouble("seconds", 0.0);
   if (!args.error().empty()) {
@@ -196,13 +285,13 @@ int watch(Args& args) {
 }  // namespace
 
 int commandDevices(int argc, char** argv) {
-  Args args(argc, argv, {"help", "watch", "grab"});
+  Args args(argc, argv, {"help", "watch", "grab", "raw"});
   if (args.has("help")) {
     printHelp();
     return 0;
   }
-  auto unknown =
-      args.unknown({"help", "watch", "grab", "backend", "device", "count", "seconds", "record"});
+  auto unknown = args.unknown(
+      {"help", "watch", "grab", "raw", "backend", "device", "count", "seconds", "record"});
   if (!unknown.empty()) {
     std::fprintf(stderr, "cloudbrush devices: unknown option %s (see --help)\n",
                  unknown.front().c_str());

@@ -222,6 +222,7 @@ int commandPaint(int argc, char** argv) {
     PenSourceOptions pen_options;
     pen_options.backend = backend;
     pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
+    pen_options.device_dir = configFile("devices");
     pen = openPenSource(pen_options, &error);
     if (!pen) return fail("--backend " + backend + ": " + error, 2);
   }

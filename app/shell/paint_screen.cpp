@@ -16,6 +16,7 @@
 #include "app/volume/volume_file.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/pen_source.h"
+#include "drivers/core/tip_only_pressure.h"
 
 namespace cb {
 namespace {
@@ -208,7 +209,15 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
       selectCalibration(tool_serial_);
     }
   }
-  for (const PenSample& sample : samples) feedSample(sample);
+  for (PenSample sample : samples) {  // a pen without pressure paints at the chosen level
+    applyTipOnlyPressure(sample, pen_->deviceInfo(), tip_only_pressure_);
+    feedSample(sample);
+  }
+}
+
+bool PaintScreen::tipOnlyPen() const {
+  return pen_ && pen_->connection() == PenConnection::kConnected &&
+         !penHasPressure(pen_->deviceInfo());
 }
 
 void PaintScreen::feedSample(const PenSample& sample) {
@@ -506,6 +515,10 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       } else if (session_->mode() == Mode::kPaint && mouse_) {
         mouse_->setPressure(mouse_->pressure() + (command == Command::kLarger ? 0.1f : -0.1f));
         say("mouse pressure " + std::to_string(mouse_->pressure()).substr(0, 4));
+      } else if (session_->mode() == Mode::kPaint && tipOnlyPen()) {
+        tip_only_pressure_ = std::clamp(
+            tip_only_pressure_ + (command == Command::kLarger ? 0.1f : -0.1f), 0.05f, 1.0f);
+        say("pen without pressure: strokes at " + std::to_string(tip_only_pressure_).substr(0, 4));
       } else if (session_->mode() == Mode::kLight) {
         // Warmer (−) or cooler (+): towards an evening orange or a noon white-blue.
         const Light l = session_->light();
@@ -894,6 +907,9 @@ std::string PaintScreen::statusLine() const {
     line += std::string(" | no tablet yet: plug one in (") + pen_->statusMessage() + ")";
   else if (pen_samples_ == 0)
     line += " | waiting for the pen: bring it near the tablet";
+  if (tipOnlyPen())
+    line += " | pen without pressure: strokes at " +
+            std::to_string(tip_only_pressure_).substr(0, 4) + " (-/+), erase: 4 or Menu";
   return line;
 }
 

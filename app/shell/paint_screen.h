@@ -150,6 +150,9 @@ class PaintScreen : public Screen {
   bool pointer_over_ui_ = false;
   bool mouse_down_ = false;
   std::unique_ptr<MousePen> mouse_;  // the mouse as the pen, once it was used without a tablet
+  // A connected pen without pressure (tip only) paints at this level (−/+ in Paint mode).
+  float tip_only_pressure_ = 0.6f;
+  bool tipOnlyPen() const;
   bool pointer_moved_ = false;  // a mouse event since the last frame  // the pen or mouse was over
                                 // a UI target last frame
   std::string notice_;          // shown above the status line

@@ -35,10 +35,11 @@ bool applyHidInputRange(const FieldSlot& s, int32_t raw, int32_t& value) {
 }  // namespace
 
 HidPenDecoder::HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info,
-                             PenDriverRules rules)
+                             PenDriverRules rules, std::shared_ptr<const ToolTable> tools)
     : layout_(layout),
       info_(info),
       rules_(rules),
+      tools_(std::move(tools)),
       hid_input_(PenStateUsages{layout.eraser.present, layout.invert.present, layout.tip.present,
                                 layout.pressure.present, layout.in_range.present},
                  layout.pressure.logical_min, layout.pressure.logical_max) {}
@@ -99,7 +100,7 @@ DecodeResult HidPenDecoder::decodeWacom(const uint8_t* p, size_t pn, int64_t t_n
   if ((serial >> 52) == 1) tool_id = wacomMangleToolId(tool_id);
 
   if (tool_ == PenTool::kNone && in_range)
-    tool_ = invert || wacomToolIsEraser(tool_id) ? PenTool::kEraser : PenTool::kPen;
+    tool_ = invert || (tools_ && tools_->isEraser(tool_id)) ? PenTool::kEraser : PenTool::kPen;
 
   if (!sense || tool_ == PenTool::kNone) {
     if (!sense) tool_ = PenTool::kNone;

@@ -1,7 +1,8 @@
 // Generic pen-report decoder built from a PenLayout (any digitizer whose descriptor names its
 // pen fields). It reports what the kernel driver bound to the device reports through evdev, so a
 // pen read through hidraw or libusb gives the same PenSamples as through evdev:
-// - Wacom (USB vendor 056a): the wacom driver's generic pen path (wacom_wac_pen_event /
+// - the wacom driver (config/devices/wacom-generic.toml: USB vendor 056a): its generic pen path
+// (wacom_wac_pen_event /
 //   wacom_wac_pen_report): the tool is chosen on entering range (Invert or an eraser tool id),
 //   contact is Tip Switch or Eraser, serial and tool id from Wacom's vendor usages;
 // - everyone else: hid-input's rules (drivers/hid/hid-input.c, hidinput_hid_event): values of
@@ -12,24 +13,23 @@
 #include <cstddef>
 #include <cstdint>
 
+#include <memory>
+
 #include "drivers/core/pen_sample.h"
+#include "drivers/devices/device_entry.h"
 #include "drivers/hid/decode_result.h"
 #include "drivers/hid/hid_input_tool_state.h"
 #include "drivers/hid/hid_pen_layout.h"
 
 namespace cb::hid {
 
-enum class PenDriverRules : uint8_t { kHidInput, kWacom };
-
-// The rules of the kernel driver that binds a USB/Bluetooth/I2C HID device with this vendor.
-inline PenDriverRules penDriverRulesFor(uint16_t vendor) {
-  return vendor == 0x056A ? PenDriverRules::kWacom : PenDriverRules::kHidInput;
-}
-
 class HidPenDecoder {
  public:
+  // `rules` and `tools` (Wacom rules: which tool ids are erasers) come from the device files
+  // (DeviceDatabase); a device without an entry has hid-input's rules.
   HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info,
-                PenDriverRules rules = PenDriverRules::kHidInput);
+                PenDriverRules rules = PenDriverRules::kHidInput,
+                std::shared_ptr<const ToolTable> tools = nullptr);
 
   // Decodes one report as read from hidraw / hid_read (ID byte first when numbered).
   DecodeResult decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out);
@@ -47,6 +47,7 @@ class HidPenDecoder {
   PenLayout layout_;
   PenDeviceInfo info_;
   PenDriverRules rules_;
+  std::shared_ptr<const ToolTable> tools_;
   PenTool tool_ = PenTool::kNone;  // Wacom rules: the tool chosen on entering range
   HidInputToolState hid_input_;    // hid-input rules
   PenSample state_{};              // hid-input rules: the axis values evdev holds

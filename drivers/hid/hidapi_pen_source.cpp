@@ -64,18 +64,28 @@ bool readHidrawDescriptor(const std::string& path, std::vector<uint8_t>& out, st
 
 }  // namespace
 
-bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
-                    const std::vector<uint8_t>& descriptor, HidPenDevice& device,
-                    std::unique_ptr<PenDecoder>& decoder) {
+bool makePenDecoder(const DeviceDatabase* devices, uint16_t vendor, uint16_t product,
+                    const std::string& name, const std::vector<uint8_t>& original,
+                    HidPenDevice& device, std::unique_ptr<PenDecoder>& decoder) {
+  const DeviceEntry* entry = devices ? devices->find(vendor, product) : nullptr;
+  device.has_entry = entry != nullptr;
+  device.entry = entry ? *entry : DeviceEntry{};
+  // libusb sees the device's own descriptor, hidraw the kernel driver's rewrite: the same
+  // fix-ups give both the fixed one (they apply only where the original bytes still are).
+  std::vector<uint8_t> descriptor = original;
+  device.fixups_applied = entry ? applyReportFixups(entry->fixups, descriptor) : 0;
   ParseResult parsed = parseReportDescriptor(descriptor.data(), descriptor.size());
-  if (auto model = intuos4Model(vendor, product)) {
+  const auto hasFeature = [&](uint8_t id) {
+    return parsed.descriptor && parsed.descriptor->reportBytes(ReportType::kFeature, id) != 0;
+  };
+  // This interface has the mode report (not, e.g., a pad or touch interface of the same id).
+  device.mode_report_id = entry && entry->mode_report_id && hasFeature(entry->mode_report_id)
+                              ? entry->mode_report_id
+                              : 0;
+  if (entry && entry->protocol == PenProtocol::kIntuos4) {
     device.protocol = "intuos4";
-    device.info = intuos4DeviceInfo(*model);
-    device.mode_report_id = kIntuos4ModeReport;
-    if (parsed.descriptor &&
-        parsed.descriptor->reportBytes(ReportType::kFeature, kIntuos4ModeReport) == 0)
-      device.mode_report_id = 0;  // this interface has no mode report (e.g. the pad/touch one)
-    decoder = std::make_unique<PenDecoder>(Intuos4Decoder(device.info));
+    device.info = entry->info;
+    decoder = std::make_unique<PenDecoder>(Intuos4Decoder(device.info, entry->tools));
     return true;
   }
   if (!parsed.descriptor) {
@@ -88,10 +98,11 @@ bool makePenDecoder(uint16_t vendor, uint16_t product, const std::string& name,
     return false;
   }
   device.protocol = "generic";
-  device.info = penDeviceInfo(*layout.layout, vendor, product, name.c_str());
-  device.mode_report_id = 0;  // devices with a descriptor-described pen report need no switch
+  const std::string shown = entry && !entry->name.empty() ? entry->name : name;
+  device.info = penDeviceInfo(*layout.layout, vendor, product, shown.c_str());
   decoder = std::make_unique<PenDecoder>(
-      HidPenDecoder(*layout.layout, device.info, penDriverRulesFor(vendor)));
+      HidPenDecoder(*layout.layout, device.info, entry ? entry->rules : PenDriverRules::kHidInput,
+                    entry ? entry->tools : nullptr));
   return true;
 }
 
@@ -100,7 +111,8 @@ DecodeResult decodeReport(PenDecoder& decoder, const uint8_t* report, size_t n, 
   return std::visit([&](auto& d) { return d.decode(report, n, t_ns, out); }, decoder);
 }
 
-std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor) {
+std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor,
+                                      const DeviceDatabase* devices) {
   std::vector<HidPenDevice> pens;
   hid_device_info* list = lib.enumerate(vendor, 0);
   for (hid_device_info* i = list; i; i = i->next) {
@@ -135,7 +147,7 @@ std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor) {
     if (!ok)
       d.error = error;
     else
-      makePenDecoder(d.vendor, d.product, d.name, desc, d, decoder);
+      makePenDecoder(devices, d.vendor, d.product, d.name, desc, d, decoder);
     pens.push_back(d);
   }
   lib.free_enumeration(list);
@@ -166,17 +178,29 @@ void HidapiPenSource::tryOpen() {
     lib_->exit();
     lib_->init();
   }
-  bool denied = false;
+  bool denied = false;  // a device that is a known tablet (or of the vendor asked for)
+  std::string closed;   // other HID devices this user cannot open (keyboards, mice, ...)
   std::string problems;
-  for (const HidPenDevice& d : findHidPens(*lib_, options_.vendor)) {
+  for (const HidPenDevice& d : findHidPens(*lib_, options_.vendor, options_.devices.get())) {
     if (!options_.path.empty() && d.path != options_.path) continue;
-    if (d.permission_denied) denied = true;
+    // With every vendor in view, only devices a device file knows are worth a word.
+    const bool known = options_.vendor != 0 || !options_.path.empty() ||
+                       (options_.devices && options_.devices->find(d.vendor, d.product));
+    if (d.permission_denied) {
+      if (known) {
+        denied = true;
+      } else if (closed.size() < 80) {
+        char id[16];
+        std::snprintf(id, sizeof id, " %04x:%04x", d.vendor, d.product);
+        closed += id;
+      }
+    }
     if (d.protocol.empty()) {
-      problems += "; " + d.path + ": " + d.error;
+      if (known) problems += "; " + d.path + ": " + d.error;
       continue;
     }
     // Intuos4 USB ids expose several interfaces; the pen is the one with the mode report.
-    if (d.protocol == "intuos4" && d.mode_report_id == 0) continue;
+    if (d.protocol == "intuos4" && d.entry.mode_report_id != 0 && d.mode_report_id == 0) continue;
     hid_device* dev = lib_->open_path(d.path.c_str());
     if (!dev) {
       status_ = "cannot open " + d.path + " through hidapi-" + backendName() + ": " +
@@ -185,20 +209,30 @@ void HidapiPenSource::tryOpen() {
     }
     HidPenDevice device = d;
     std::unique_ptr<PenDecoder> decoder;  // fresh decoder state for every connection
-    makePenDecoder(d.vendor, d.product, d.name, d.descriptor, device, decoder);
+    makePenDecoder(options_.devices.get(), d.vendor, d.product, d.name, d.descriptor, device,
+                   decoder);
     dev_ = dev;
     device_ = device;
     decoder_ = std::move(decoder);
+    // Intuos protocol: the exit packet zeroes every axis in evdev (InputFuzzFilter).
+    fuzz_ = InputFuzzFilter(options_.input_fuzz ? device.entry.fuzz : AxisFuzz{},
+                            device.protocol == "intuos4");
     connection_ = PenConnection::kConnected;
     status_ = "reading " + d.path + " (" + d.name + ", " + d.protocol +
               " protocol) through hidapi-" + backendName();
+    if (device.has_entry) status_ += "; device file " + device.entry.where;
+    if (fuzz_.fuzz().any()) status_ += "; input fuzz filter on";
     ensureTabletMode();
     return;
   }
   const bool hidden = !denied && lib_->backend == HidapiBackend::kHidraw && hidrawNodeDenied();
-  connection_ = denied || hidden ? PenConnection::kPermissionDenied : PenConnection::kSearching;
+  connection_ = denied || hidden || !closed.empty() ? PenConnection::kPermissionDenied
+                                                    : PenConnection::kSearching;
   if (denied)
     status_ = std::string("a tablet was found but cannot be opened: ") + kUdevRuleHint;
+  else if (!closed.empty())
+    status_ = "HID devices this user cannot open (" + closed.substr(1) +
+              "); if one is the tablet: " + kUdevRuleHint;
   else if (hidden)
     status_ = std::string("hidraw nodes exist that this user cannot open: ") + kUdevRuleHint;
   else if (status_.empty() || connection_ == PenConnection::kSearching)
@@ -207,13 +241,17 @@ void HidapiPenSource::tryOpen() {
 }
 
 void HidapiPenSource::ensureTabletMode() {
-  // An Intuos4 starts in a mouse-compatible mode; feature report 2 = 2 selects the full
+  // E.g. an Intuos4 starts in a mouse-compatible mode; feature report 2 = 2 selects the full
   // protocol. The kernel driver does this when it binds; without it (libusb) we do it here.
-  if (device_.protocol != "intuos4" || device_.mode_report_id == 0) return;
+  if (!options_.switch_mode || device_.mode_report_id == 0) return;
+  const uint8_t value = device_.entry.mode_value;
   unsigned char buf[2] = {device_.mode_report_id, 0};
   int n = lib_->get_feature_report(dev_, buf, sizeof buf);
-  if (n >= 2 && buf[1] == kIntuos4TabletMode) return;
-  const unsigned char set[2] = {device_.mode_report_id, kIntuos4TabletMode};
+  if (n >= 2 && buf[1] == value) {
+    status_ += "; already in tablet mode";
+    return;
+  }
+  const unsigned char set[2] = {device_.mode_report_id, value};
   if (lib_->send_feature_report(dev_, set, sizeof set) < 0)
     status_ += "; switching to tablet mode failed: " + narrow(lib_->error(dev_));
   else
@@ -225,7 +263,10 @@ void HidapiPenSource::closeDevice(std::vector<PenSample>* out) {
   if (out && decoder_) {
     PenSample s;
     const int64_t t = nowNs();
-    if (std::visit([&](auto& d) { return d.disconnect(t, s); }, *decoder_)) out->push_back(s);
+    if (std::visit([&](auto& d) { return d.disconnect(t, s); }, *decoder_)) {
+      fuzz_.apply(s, device_.info);
+      out->push_back(s);
+    }
   }
   lib_->close(dev_);
   dev_ = nullptr;
@@ -251,8 +292,8 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
   }
   unsigned char buf[256];
   // The idle-proximity timer is the wacom driver's; hid-generic devices have none.
-  const int64_t idle_ns = penDriverRulesFor(device_.vendor) == PenDriverRules::kWacom
-                              ? int64_t{options_.idle_proximity_timeout_ms} * 1000000
+  const int64_t idle_ns = options_.idle_proximity_timeout
+                              ? int64_t{device_.entry.idle_proximity_timeout_ms} * 1000000
                               : 0;
   int wait = timeout_ms;
   if (pen_in_proximity_ && idle_ns > 0) {  // wake in time for the idle-proximity timeout
@@ -271,7 +312,11 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     const int64_t t = nowNs();
     DecodeResult r = decodeReport(*decoder_, buf, static_cast<size_t>(n), t, s);
     if (r.status == DecodeStatus::kSample) {
-      if (r.released) out.push_back(*r.released);  // the kernel's extra proximity-out frame
+      if (r.released) {  // the kernel's extra proximity-out frame
+        fuzz_.apply(*r.released, device_.info);
+        out.push_back(*r.released);
+      }
+      fuzz_.apply(s, device_.info);
       out.push_back(s);
       pen_in_proximity_ = s.in_proximity;
     }
@@ -285,7 +330,10 @@ void HidapiPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
   }
   if (pen_in_proximity_ && idle_ns > 0 && nowNs() - last_report_ns_ >= idle_ns) {
     PenSample s;
-    if (std::visit([&](auto& d) { return d.disconnect(nowNs(), s); }, *decoder_)) out.push_back(s);
+    if (std::visit([&](auto& d) { return d.disconnect(nowNs(), s); }, *decoder_)) {
+      fuzz_.apply(s, device_.info);
+      out.push_back(s);
+    }
     pen_in_proximity_ = false;
   }
 }

@@ -1,41 +1,11 @@
 #include "drivers/hid/intuos4_decoder.h"
 
-#include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "drivers/core/pen_units.h"
 #include "drivers/hid/wacom_tool.h"
 
 namespace cb::hid {
-
-std::optional<Intuos4Model> intuos4Model(uint16_t vendor, uint16_t product) {
-  static constexpr Intuos4Model kModels[] = {
-      {0x00B8, "Wacom Intuos4 4x6", 31496, 19685},  {0x00B9, "Wacom Intuos4 6x9", 44704, 27940},
-      {0x00BA, "Wacom Intuos4 8x13", 65024, 40640}, {0x00BB, "Wacom Intuos4 12x19", 97536, 60960},
-      {0x00BC, "Wacom Intuos4 WL", 40640, 25400},
-  };
-  if (vendor != 0x056A) return std::nullopt;
-  for (const Intuos4Model& m : kModels)
-    if (m.product == product) return m;
-  return std::nullopt;
-}
-
-PenDeviceInfo intuos4DeviceInfo(const Intuos4Model& model) {
-  PenDeviceInfo d;
-  d.usb_vendor = 0x056A;
-  d.usb_product = model.product;
-  std::snprintf(d.name, sizeof d.name, "%s", model.name);
-  d.x_max = model.x_max;
-  d.y_max = model.y_max;
-  d.x_res = d.y_res = 200;  // WACOM_INTUOS3_RES, units per mm
-  d.pressure_max = 2047;    // 11 bits
-  d.tilt_min = -64;
-  d.tilt_max = 63;
-  d.tilt_res = 57 * M_PI / 180.0;  // the kernel declares 57 units per radian
-  d.distance_max = 63;
-  return d;
-}
 
 DecodeResult Intuos4Decoder::decode(const uint8_t* d, size_t n, int64_t t_ns, PenSample& out) {
   DecodeResult r;
@@ -96,7 +66,7 @@ DecodeResult Intuos4Decoder::decode(const uint8_t* d, size_t n, int64_t t_ns, Pe
     r.reason = "pen packet before the tool entered proximity";
     return r;
   }
-  if (wacomToolIsPuck(tool_id_)) {  // BTN_TOOL_MOUSE / BTN_TOOL_LENS: not a pen
+  if (tools_ && tools_->isPuck(tool_id_)) {  // BTN_TOOL_MOUSE / BTN_TOOL_LENS: not a pen
     r.status = DecodeStatus::kNoSample;
     r.reason = "tool " + std::to_string(tool_id_) + " is a mouse or lens cursor, not a pen";
     return r;
@@ -142,7 +112,7 @@ DecodeResult Intuos4Decoder::decode(const uint8_t* d, size_t n, int64_t t_ns, Pe
     default:  // position only
       break;
   }
-  s.tool = wacomToolIsEraser(tool_id_) ? PenTool::kEraser : PenTool::kPen;
+  s.tool = tools_ && tools_->isEraser(tool_id_) ? PenTool::kEraser : PenTool::kPen;
   s.tool_id = wacomMangleToolId(tool_id_);
   s.tool_serial = serial_;
   s.in_proximity = true;

@@ -19,37 +19,29 @@
 //   all 32 (bits 28..31 from byte 3).
 //
 // The tablet starts in a mouse-compatible mode; the host switches it to this protocol by
-// setting feature report 2 to the value 2 (kIntuos4ModeReport / kIntuos4TabletMode).
+// setting feature report 2 to the value 2. Models, ranges, the mode switch and the tool-id
+// table are data: config/devices/wacom-intuos4.toml (and wacom-intuos5.toml).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
+#include <memory>
 
 #include "drivers/core/pen_sample.h"
+#include "drivers/devices/device_entry.h"
 #include "drivers/hid/decode_result.h"
 
 namespace cb::hid {
 
 inline constexpr uint8_t kIntuos4PenReportId = 2;
 inline constexpr size_t kIntuos4PacketBytes = 10;
-inline constexpr uint8_t kIntuos4ModeReport = 2;
-inline constexpr uint8_t kIntuos4TabletMode = 2;
-
-// Sizes of the Intuos4 family as the kernel's wacom_features table lists them (USB id 056a:xx).
-struct Intuos4Model {
-  uint16_t product;
-  const char* name;
-  int32_t x_max, y_max;
-};
-std::optional<Intuos4Model> intuos4Model(uint16_t vendor, uint16_t product);
-// Ranges and resolutions the kernel gives an Intuos4 pen (200 units/mm, 2047 pressure levels,
-// tilt -64..63 at 57 units per radian, distance 0..63).
-PenDeviceInfo intuos4DeviceInfo(const Intuos4Model& model);
 
 class Intuos4Decoder {
  public:
-  explicit Intuos4Decoder(const PenDeviceInfo& info) : info_(info) {}
+  // `info`: the model's ranges (DeviceEntry::info); `tools`: which tool ids are erasers, mice
+  // and lens cursors (null: every tool is a pen).
+  Intuos4Decoder(const PenDeviceInfo& info, std::shared_ptr<const ToolTable> tools)
+      : info_(info), tools_(std::move(tools)) {}
   DecodeResult decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out);
   bool disconnect(int64_t t_ns, PenSample& out);
   // The last rotation (ABS_Z, Art Pen: -900..899) and airbrush wheel (ABS_WHEEL, 0..1023)
@@ -59,6 +51,7 @@ class Intuos4Decoder {
 
  private:
   PenDeviceInfo info_;
+  std::shared_ptr<const ToolTable> tools_;
   int32_t rotation_ = 0, wheel_ = 0;
   uint32_t tool_id_ = 0;  // 0: no tool has entered
   uint32_t serial_ = 0;

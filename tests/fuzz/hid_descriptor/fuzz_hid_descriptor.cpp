@@ -22,8 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // Decode an all-ones and an all-zeros report of the right length under both drivers' rules;
   // under hid-input's rules every axis value lies in its logical range (clamped or ignored).
   cb::PenDeviceInfo info = cb::hid::penDeviceInfo(layout, 0x056A, 0, "fuzz");
-  for (cb::hid::PenDriverRules rules :
-       {cb::hid::PenDriverRules::kHidInput, cb::hid::PenDriverRules::kWacom}) {
+  for (cb::PenDriverRules rules : {cb::PenDriverRules::kHidInput, cb::PenDriverRules::kWacom}) {
     cb::hid::HidPenDecoder decoder(layout, info, rules);
     for (uint8_t fill : {uint8_t{0xFF}, uint8_t{0x00}}) {
       std::vector<uint8_t> report(layout.report_bytes, fill);
@@ -31,7 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       cb::PenSample s;
       if (decoder.decode(report.data(), report.size(), 0, s).status !=
               cb::hid::DecodeStatus::kSample ||
-          rules != cb::hid::PenDriverRules::kHidInput || !s.in_proximity)
+          rules != cb::PenDriverRules::kHidInput || !s.in_proximity)
         continue;
       const cb::hid::FieldSlot& x = layout.x;
       if (x.logical_min < x.logical_max && s.x_raw != 0 &&

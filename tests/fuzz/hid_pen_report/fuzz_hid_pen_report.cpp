@@ -28,7 +28,7 @@ const cb::hid::PenLayout& layout() {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const cb::hid::PenLayout& l = layout();
   cb::hid::HidPenDecoder decoder(l, cb::hid::penDeviceInfo(l, 0x056A, 0x0357, "fuzz"),
-                                 cb::hid::PenDriverRules::kWacom);
+                                 cb::PenDriverRules::kWacom);
   cb::PenSample s;
   // The whole input as one report, then as a stream of length-prefixed reports.
   cb::hid::DecodeResult r = decoder.decode(data, size, 0, s);

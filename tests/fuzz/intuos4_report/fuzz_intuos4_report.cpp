@@ -7,7 +7,16 @@
 #include "drivers/hid/intuos4_decoder.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  cb::hid::Intuos4Decoder decoder(cb::hid::intuos4DeviceInfo(*cb::hid::intuos4Model(0x056A, 0xB9)));
+  // The Intuos4 6x9's ranges (config/devices/wacom-intuos4.toml) and no tool table.
+  cb::PenDeviceInfo info{};
+  info.x_max = 44704;
+  info.y_max = 27940;
+  info.x_res = info.y_res = 200;
+  info.pressure_max = 2047;
+  info.tilt_min = -64;
+  info.tilt_max = 63;
+  info.distance_max = 63;
+  cb::hid::Intuos4Decoder decoder(info, nullptr);
   cb::PenSample s;
   // Fixed 10-byte packets first (the well-formed path), then length-prefixed chunks.
   for (size_t pos = 0; pos + 10 <= size; pos += 10) {

@@ -1,5 +1,7 @@
 #include "tests/hil/tablet/corpus_phase.h"
 
+#include "tests/hil/tablet/hil_devices.h"
+
 #include <linux/input.h>
 
 #include <cstdio>
@@ -101,7 +103,7 @@ void runDevice(const std::string& fixtures, const CorpusDevice& dev, Checker& ch
   // Without an In Range usage hid-input maps no BTN_TOOL_PEN: the node is no pen for evdev.
   const bool kernel_pen = dev.ranges.count("inrange") == 1;
   EvdevPenSource evdev({});
-  hid::HidapiPenSource hidraw({hid::HidapiBackend::kHidraw, dev.vendor, "", 100});
+  hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, dev.vendor));
   const bool evdev_ok = kernel_pen && waitConnected(evdev, 5000);
   if (kernel_pen) check(evdev_ok, label + ": evdev finds the pen node: " + evdev.statusMessage());
   if (!check(waitConnected(hidraw, 5000),

@@ -10,7 +10,7 @@ load-modules
 mount -t configfs none /sys/kernel/config 2>/dev/null
 export CB_HIL_UHID_TRACE=1
 phases=$(sed -n 's/.*cbhil.phases=\([^ ]*\).*/\1/p' /proc/cmdline | tr ',' ' ')
-/hil/cb_tablet_hil_vm /hil/fixtures $phases
+/hil/cb_tablet_hil_vm /hil/fixtures /hil/devices $phases
 echo "CB-HIL EXIT $?"
 sync
 poweroff -f

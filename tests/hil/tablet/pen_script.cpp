@@ -1,14 +1,13 @@
 #include "tests/hil/tablet/pen_script.h"
 
 #include "drivers/core/pen_units.h"
-#include "drivers/hid/wacom_tool.h"
 
 namespace cb::hil {
 
 std::vector<PenStep> penScript(int32_t x_max, int32_t y_max, int32_t pressure_max,
                                int32_t distance_max) {
   std::vector<PenStep> steps;
-  const uint32_t kSerial = 0x0BADC0DE, kPen = 0x802, kEraser = 0x80A;
+  const uint32_t kSerial = 0x0BADC0DE, kPen = 0x802, kEraser = kScriptEraserToolId;
   PenStep s;
   s.serial = kSerial;
   s.tool_type = kPen;
@@ -100,7 +99,7 @@ bool expectedSample(const PenStep& s, const PenDeviceInfo& info, bool intuos4, P
   if (contact) e.buttons |= kPenTip;
   if (s.barrel) e.buttons |= kPenStylus1;
   if (s.barrel2) e.buttons |= kPenStylus2;
-  e.tool = (s.invert || hid::wacomToolIsEraser(s.tool_type)) ? PenTool::kEraser : PenTool::kPen;
+  e.tool = (s.invert || s.tool_type == kScriptEraserToolId) ? PenTool::kEraser : PenTool::kPen;
   e.tool_id = s.tool_type;
   e.tool_serial = s.serial;
   e.in_proximity = true;

@@ -19,6 +19,10 @@ using hid::encodeIntuos4Pen;
 using hid::encodePenReport;
 
 // Steps spanning the full ranges of a pen with the given maxima.
+// The eraser end the script uses (a Wacom Intuos4 pen's eraser, 0x80a); the decoders must
+// classify it from the device files' tool table.
+inline constexpr uint32_t kScriptEraserToolId = 0x80A;
+
 std::vector<PenStep> penScript(int32_t x_max, int32_t y_max, int32_t pressure_max,
                                int32_t distance_max);
 

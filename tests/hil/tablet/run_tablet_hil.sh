@@ -24,7 +24,7 @@ out=$(
     --module hid-generic --module dummy_hcd --module libcomposite --module usb_f_hid \
     --binary "$binary:/hil/cb_tablet_hil_vm" \
     --binary "$libdir/libhidapi-hidraw.so.0" --binary "$libdir/libhidapi-libusb.so.0" \
-    --file "$fixtures:/hil/fixtures"
+    --file "$fixtures:/hil/fixtures" --file "$here/../../../config/devices:/hil/devices"
 )
 eval "$(echo "$out" | grep -E '^(KVER|VMLINUZ|INITRD)=')"
 echo "tablet HIL: Debian kernel $KVER (qemu TCG)"

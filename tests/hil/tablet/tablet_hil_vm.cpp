@@ -3,7 +3,7 @@
 // backend and both hidapi backends report what was injected. Prints "CB-HIL CHECK ok|FAIL ..."
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
-//   cb_tablet_hil_vm FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]
+//   cb_tablet_hil_vm FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]
 #include <fcntl.h>
 #include <grp.h>
 #include <linux/input.h>
@@ -23,6 +23,7 @@
 
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_units.h"
+#include "drivers/devices/device_file.h"
 #include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/evdev/evdev_pen_source.h"
 #include "drivers/evdev/uinput_latency.h"
@@ -31,6 +32,7 @@
 #include "drivers/hid/intuos4_decoder.h"
 #include "drivers/usb/usb_devices.h"
 #include "tests/hil/tablet/corpus_phase.h"
+#include "tests/hil/tablet/hil_devices.h"
 #include "tests/hil/tablet/intuos4_handbuilt.h"
 #include "tests/hil/tablet/pen_script.h"
 #include "tests/hil/tablet/uhid_device.h"
@@ -223,7 +225,7 @@ void phaseUhidPth660(const std::string& fixtures) {
       !check(ok, "uhid: evdev finds the wacom Pen node: " + evdev.statusMessage()))
     return;
   figure("uhid_create_to_evdev_ms", (nowNs() - t0) / 1e6);
-  hid::HidapiPenSource hidraw({hid::HidapiBackend::kHidraw, 0x056A, ""});
+  hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
   if (bool ok = waitConnected(hidraw, 5000);
       !check(ok, "uhid: hidapi-hidraw opens the tablet: " + hidraw.statusMessage()))
     return;
@@ -250,7 +252,7 @@ void phaseUhidPth660(const std::string& fixtures) {
         std::string verdict = "setuid failed";
         if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) {
           EvdevPenSource e({});
-          hid::HidapiPenSource h({hid::HidapiBackend::kHidraw, 0x056A, ""});
+          hid::HidapiPenSource h(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
           verdict = std::string(penConnectionName(e.connection())) + "|" + e.statusMessage() + "|" +
                     penConnectionName(h.connection()) + "|" + h.statusMessage();
         }
@@ -355,7 +357,8 @@ void phaseUhidIntuos4() {
   // The descriptor is HAND-BUILT (no real Intuos4 descriptor is available): see
   // intuos4_handbuilt.h. The kernel picks the Intuos4 protocol from the USB id 056a:00b9.
   UhidDevice dev;
-  dev.setFeature(hid::kIntuos4ModeReport, {0});  // powers up in mouse mode
+  constexpr uint8_t kModeReport = 2, kTabletMode = 2;  // config/devices/wacom-intuos4.toml
+  dev.setFeature(kModeReport, {0});                    // powers up in mouse mode
   std::string error;
   if (!check(dev.create("Wacom Intuos4 6x9", handBuiltIntuos4Descriptor(), BUS_USB, 0x056A, 0x00B9,
                         &error),
@@ -365,26 +368,70 @@ void phaseUhidIntuos4() {
   if (bool ok = waitConnected(evdev, 5000);
       !check(ok, "intuos4: evdev finds the pen: " + evdev.statusMessage()))
     return;
-  // Information only: whether this kernel switches the mode itself depends on its version and
-  // on how the device is attached; the backend below must not rely on it.
+  // The kernel's wacom driver sets feature 2 := 2 itself after binding (wacom_query_tablet_data,
+  // retried until a GET returns 2), about a second later. A check that merely sees a SET 2=2
+  // cannot tell that switch from the backend's, so first let the kernel's finish: wait for its
+  // SET (up to 4 s), then until no SET has come for 1.5 s.
+  {
+    const int64_t start = nowNs();
+    size_t seen = 0;
+    int64_t last_change = start;
+    while (nowNs() - start < 8'000'000'000) {
+      const size_t n = dev.setReports().size();
+      if (n != seen) seen = n, last_change = nowNs();
+      const bool kernel_done = n > 0 || nowNs() - start > 4'000'000'000;
+      if (kernel_done && nowNs() - last_change > 1'500'000'000) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
   std::string kernel_sets;
   for (const auto& r : dev.setReports())
     if (!r.empty())
       kernel_sets += " " + std::to_string(r[0]) + (r.size() > 1 ? "=" + std::to_string(r[1]) : "");
-  std::printf("  intuos4: SET_REPORTs from the kernel's wacom driver at bind:%s\n",
+  std::printf("  intuos4: SET_REPORTs from the kernel's wacom driver after binding:%s\n",
               kernel_sets.empty() ? " none" : kernel_sets.c_str());
-  // Back to mouse mode: our hidraw backend must notice and switch it itself.
-  dev.setFeature(hid::kIntuos4ModeReport, {0});
+  // Back to mouse mode. Control: a hidraw backend told not to switch must leave it there for as
+  // long as the switching backend below takes, and longer (nothing else switches it now). If
+  // this fails, the kernel is still switching and the next check would prove nothing.
+  dev.setFeature(kModeReport, {0});
+  const size_t sets_before_control = dev.setReports().size();
+  {
+    hid::HidapiPenSourceOptions quiet = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
+    quiet.switch_mode = false;
+    hid::HidapiPenSource control(quiet);
+    waitConnected(control, 5000);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const auto f = dev.feature(kModeReport);
+    check(dev.setReports().size() == sets_before_control && !f.empty() && f[0] == 0,
+          "intuos4: control: a hidraw backend that does not switch leaves mode 0, no SET_REPORT "
+          "for 1.5 s (" +
+              std::to_string(dev.setReports().size() - sets_before_control) +
+              " arrived): " + control.statusMessage());
+  }
+  // The backend under test switches inside its constructor (tryOpen -> ensureTabletMode); the
+  // SET must arrive while it runs, and be the only one.
   const size_t sets_before = dev.setReports().size();
-  hid::HidapiPenSource hidraw({hid::HidapiBackend::kHidraw, 0x056A, ""});
+  const int64_t open_start = nowNs();
+  hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
+  const int64_t open_end = nowNs();
   if (bool ok = waitConnected(hidraw, 5000);
       !check(ok, "intuos4: hidapi-hidraw opens it: " + hidraw.statusMessage()))
     return;
+  {
+    const auto sets = dev.setReports();
+    const auto times = dev.setReportTimes();
+    bool inside = sets.size() == sets_before + 1;
+    for (size_t i = sets_before; i < sets.size() && inside; ++i)
+      inside = times[i] >= open_start && times[i] <= open_end && sets[i].size() >= 2 &&
+               sets[i][0] == kModeReport && sets[i][1] == kTabletMode;
+    const auto f = dev.feature(kModeReport);
+    check(inside && !f.empty() && f[0] == kTabletMode,
+          "intuos4: hidraw backend switched the tablet to mode 2 itself (" +
+              std::to_string(sets.size() - sets_before) + " SET_REPORT(s), within the " +
+              std::to_string((open_end - open_start) / 1000000) +
+              " ms the backend took to open): " + hidraw.statusMessage());
+  }
   check(hidraw.device().protocol == "intuos4", "intuos4: hidraw backend uses the Intuos4 decoder");
-  auto sets = dev.setReports();
-  check(sets.size() > sets_before && sets.back().size() >= 2 && sets.back()[0] == 2 &&
-            sets.back()[1] == 2,
-        "intuos4: hidraw backend switched the tablet to mode 2: " + hidraw.statusMessage());
   const PenDeviceInfo info = evdev.deviceInfo();
   std::printf("  evdev : %s\n  hidraw: %s\n", describeInfo(info).c_str(),
               describeInfo(hidraw.deviceInfo()).c_str());
@@ -417,7 +464,7 @@ void phaseGadget(const std::string& fixtures) {
     if (bool ok = waitConnected(evdev, 10000);
         !check(ok, "gadget: evdev finds the USB tablet: " + evdev.statusMessage()))
       return;
-    hid::HidapiPenSource hidraw({hid::HidapiBackend::kHidraw, 0x056A, ""});
+    hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
     if (bool ok = waitConnected(hidraw, 5000);
         !check(ok, "gadget: hidapi-hidraw opens it: " + hidraw.statusMessage()))
       return;
@@ -442,7 +489,7 @@ void phaseGadget(const std::string& fixtures) {
               false, evdev_info, inject, {&evdev, &hidraw});
   }
   // The libusb backend: hidapi detaches the kernel driver and talks to the endpoint itself.
-  hid::HidapiPenSource libusb({hid::HidapiBackend::kLibusb, 0x056A, ""});
+  hid::HidapiPenSource libusb(hidOptions(hid::HidapiBackend::kLibusb, 0x056A));
   if (bool ok = waitConnected(libusb, 5000);
       !check(ok, "gadget: hidapi-libusb opens the tablet: " + libusb.statusMessage()))
     return;
@@ -493,13 +540,21 @@ void phaseLatency() {
 
 int main(int argc, char** argv) {
   using namespace cb::hil;
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s FIXTURE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]\n",
+  if (argc < 3) {
+    std::fprintf(stderr,
+                 "usage: %s FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]\n",
                  argv[0]);
     return 2;
   }
   const std::string fixtures = argv[1];
-  std::vector<std::string> phases(argv + 2, argv + argc);
+  {
+    const cb::DeviceFileLoad load = cb::loadDeviceDirectory(argv[2]);
+    check(load.errors.empty() && !load.database->entries().empty(),
+          "device files load from " + std::string(argv[2]) +
+              (load.errors.empty() ? "" : ": " + load.errors.front()));
+    hilDevices() = load.database;
+  }
+  std::vector<std::string> phases(argv + 3, argv + argc);
   if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency", "corpus"};
   for (const std::string& p : phases) {
     std::printf("CB-HIL PHASE %s\n", p.c_str());

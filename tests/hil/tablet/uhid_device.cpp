@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "drivers/core/clock.h"
+
 namespace cb::hil {
 
 bool UhidDevice::create(const std::string& name, const std::vector<uint8_t>& descriptor,
@@ -70,6 +72,11 @@ std::vector<uint8_t> UhidDevice::feature(uint8_t id) {
   return features_[id];
 }
 
+std::vector<int64_t> UhidDevice::setReportTimes() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return set_report_times_;
+}
+
 std::vector<std::vector<uint8_t>> UhidDevice::setReports() {
   std::lock_guard<std::mutex> lock(mutex_);
   return set_reports_;
@@ -109,6 +116,7 @@ void UhidDevice::serve() {
       const uint8_t* d = ev.u.set_report.data;
       const size_t n = ev.u.set_report.size;
       set_reports_.emplace_back(d, d + n);
+      set_report_times_.push_back(MonotonicClock().nowNs());
       if (n >= 1) features_[ev.u.set_report.rnum] = std::vector<uint8_t>(d + 1, d + n);
       (void)!write(fd_, &reply, sizeof reply);
     }

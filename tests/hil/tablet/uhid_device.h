@@ -25,6 +25,9 @@ class UhidDevice {
   std::vector<uint8_t> feature(uint8_t id);
   // Every SET_REPORT the kernel sent: report ID then data.
   std::vector<std::vector<uint8_t>> setReports();
+  // When each of them arrived (CLOCK_MONOTONIC ns, read as the request reached user space; the
+  // requester — a kernel driver or a hidraw HIDIOCSFEATURE — waits for our reply).
+  std::vector<int64_t> setReportTimes();
   bool started() const { return started_; }
 
  private:
@@ -35,6 +38,7 @@ class UhidDevice {
   std::mutex mutex_;
   std::map<uint8_t, std::vector<uint8_t>> features_;
   std::vector<std::vector<uint8_t>> set_reports_;
+  std::vector<int64_t> set_report_times_;
 };
 
 }  // namespace cb::hil

@@ -3,6 +3,8 @@
 // in Linux 6.1 and later); the descriptors and reports are written out by hand.
 #include <gtest/gtest.h>
 
+#include "tests/unit/drivers/fixtures.h"
+
 #include <vector>
 
 #include "drivers/hid/hid_pen_decoder.h"
@@ -273,8 +275,10 @@ TEST(HidInputRules, PressureWithoutTipSwitchTouchesPastAnEighth) {
 // The Wacom driver keeps its own rules (wacom_wac_pen_report): Eraser is contact, the tool is
 // fixed on entering range; values are not clamped.
 TEST(HidInputRules, WacomRulesAreKeptForWacomDevices) {
-  EXPECT_EQ(penDriverRulesFor(0x056A), PenDriverRules::kWacom);
-  EXPECT_EQ(penDriverRulesFor(0x28BD), PenDriverRules::kHidInput);
+  // config/devices/wacom-generic.toml gives every Wacom the wacom driver's rules; a vendor
+  // without a device file gets hid-input's.
+  EXPECT_EQ(test::shippedDevices().rulesFor(0x056A, 0x0357), PenDriverRules::kWacom);
+  EXPECT_EQ(test::shippedDevices().rulesFor(0x28BD, 0x093A), PenDriverRules::kHidInput);
   Parsed p = parsePen(cat({kPenApplication,
                            {0x09, 0x20, 0xA1, 0x00},
                            stateBits4(0x42, 0x44, 0x45, 0x32),

@@ -65,7 +65,7 @@ TEST(HidPenCorpus, ScriptedMotionDecodesFieldByField) {
     EXPECT_EQ(l.eraser.present, dev.ranges.count("eraser") == 1);
     EXPECT_EQ(l.invert.present, dev.ranges.count("invert") == 1);
 
-    HidPenDecoder decoder(l, info, penDriverRulesFor(dev.vendor));
+    HidPenDecoder decoder(l, info, test::shippedDevices().rulesFor(dev.vendor, dev.product));
     int64_t t = 0;
     for (const hil::CorpusStep& st : dev.steps) {
       SCOPED_TRACE("pen_corpus_reports.txt:" + std::to_string(st.line) + " " + st.name);

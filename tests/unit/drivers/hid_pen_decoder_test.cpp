@@ -25,7 +25,8 @@ class HidPenDecoderTest : public ::testing::Test {
 };
 
 TEST_F(HidPenDecoderTest, DecodesTheWholePenScript) {
-  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom);
+  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
+                        test::shippedEntry(0x056A, 0x0357).tools);
   PenSample previous{};
   int samples = 0;
   for (const hil::PenStep& step :
@@ -44,7 +45,8 @@ TEST_F(HidPenDecoderTest, DecodesTheWholePenScript) {
 }
 
 TEST_F(HidPenDecoderTest, UnitConversion) {
-  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom);
+  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
+                        test::shippedEntry(0x056A, 0x0357).tools);
   hil::PenStep s;
   s.x = 44800;  // the far edge: 224 mm at 200 units/mm
   s.y = 200;
@@ -71,7 +73,8 @@ TEST_F(HidPenDecoderTest, UnitConversion) {
 }
 
 TEST_F(HidPenDecoderTest, RejectsShortOversizedAndForeignReports) {
-  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom);
+  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
+                        test::shippedEntry(0x056A, 0x0357).tools);
   hil::PenStep s;
   auto report = hil::encodePenReport(layout_, s);
   PenSample out;
@@ -89,7 +92,8 @@ TEST_F(HidPenDecoderTest, RejectsShortOversizedAndForeignReports) {
 }
 
 TEST_F(HidPenDecoderTest, DisconnectMidStrokeEndsTheStroke) {
-  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom);
+  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
+                        test::shippedEntry(0x056A, 0x0357).tools);
   hil::PenStep s;
   s.tip = true;
   s.pressure = 4000;
@@ -109,7 +113,8 @@ TEST_F(HidPenDecoderTest, DisconnectMidStrokeEndsTheStroke) {
 }
 
 TEST_F(HidPenDecoderTest, InvertSelectsTheEraserUntilProximityOut) {
-  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom);
+  HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
+                        test::shippedEntry(0x056A, 0x0357).tools);
   hil::PenStep s;
   s.invert = true;
   s.serial = 9;

@@ -4,18 +4,23 @@
 
 #include "drivers/core/pen_units.h"
 #include "tests/hil/tablet/pen_script.h"
+#include "tests/unit/drivers/fixtures.h"
 
 namespace cb::hid {
 namespace {
 
+// The Intuos4 6x9 (PTK-640) as config/devices/wacom-intuos4.toml describes it.
 PenDeviceInfo info() {
-  return intuos4DeviceInfo(*intuos4Model(0x056A, 0x00B9));
+  return test::shippedEntry(0x056A, 0x00B9).info;
+}
+std::shared_ptr<const ToolTable> tools() {
+  return test::shippedEntry(0x056A, 0x00B9).tools;
 }
 
 TEST(Intuos4Decoder, ModelsAndRanges) {
-  ASSERT_TRUE(intuos4Model(0x056A, 0x00B9));
-  EXPECT_FALSE(intuos4Model(0x056A, 0x0357));
-  EXPECT_FALSE(intuos4Model(0x1234, 0x00B9));
+  EXPECT_EQ(test::shippedEntry(0x056A, 0x00B9).protocol, PenProtocol::kIntuos4);
+  EXPECT_EQ(test::shippedEntry(0x056A, 0x0357).protocol, PenProtocol::kDescriptor);
+  EXPECT_EQ(test::shippedDevices().find(0x1234, 0x00B9), nullptr);
   PenDeviceInfo d = info();
   EXPECT_EQ(d.x_max, 44704);
   EXPECT_EQ(d.pressure_max, 2047);  // 11 bits
@@ -23,7 +28,7 @@ TEST(Intuos4Decoder, ModelsAndRanges) {
 }
 
 TEST(Intuos4Decoder, HandAssembledPackets) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   // Enter: tool id 0x802 (general pen), serial 0x12345678.
   const uint8_t enter[10] = {0x02, 0xC2, 0x80, 0x21, 0x23, 0x45, 0x67, 0x80, 0x00, 0x00};
@@ -61,7 +66,7 @@ TEST(Intuos4Decoder, HandAssembledPackets) {
 // packet type reports X, Y and distance; type 5 is the rotation of an Art Pen (ABS_Z), the
 // pressure, tilt and buttons of the previous general packet stay.
 TEST(Intuos4Decoder, ArtPenRotationPacketsMoveThePen) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   // Enter: Art Pen 0x10804, serial 0xF2345678.
   const uint8_t enter[10] = {0x02, 0xC2, 0x80, 0x4F, 0x23, 0x45, 0x67, 0x81, 0x00, 0x00};
@@ -102,7 +107,7 @@ TEST(Intuos4Decoder, ArtPenRotationPacketsMoveThePen) {
 // wacom_intuos_general(), case 0x0a "airbrush second packet": ABS_WHEEL and the tilts, with X,
 // Y and distance; pressure stays. Tool id bits 12..15 (byte 8) make 0x1480a, an eraser.
 TEST(Intuos4Decoder, AirbrushSecondPacketAndHighToolBits) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   // Airbrush 0x10902, serial 1.
   const uint8_t airbrush[10] = {0x02, 0xC2, 0x90, 0x20, 0x00, 0x00, 0x00, 0x11, 0x00, 0x00};
@@ -134,7 +139,7 @@ TEST(Intuos4Decoder, AirbrushSecondPacketAndHighToolBits) {
 
 // wacom_intuos_get_tool_type(): 0x806 is the Intuos4 mouse (BTN_TOOL_MOUSE), not a pen.
 TEST(Intuos4Decoder, MouseToolsGiveNoPenSamples) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   const uint8_t mouse[10] = {0x02, 0xC2, 0x80, 0x60, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00};
   dec.decode(mouse, 10, 1, s);
@@ -146,7 +151,7 @@ TEST(Intuos4Decoder, MouseToolsGiveNoPenSamples) {
 
 TEST(Intuos4Decoder, RoundTripsThePenScript) {
   const PenDeviceInfo d = info();
-  Intuos4Decoder dec(d);
+  Intuos4Decoder dec(d, tools());
   PenSample previous{};
   bool was_in = false;
   int samples = 0;
@@ -170,7 +175,7 @@ TEST(Intuos4Decoder, RoundTripsThePenScript) {
 }
 
 TEST(Intuos4Decoder, EraserToolAndInRangeLeaving) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   const auto enter = hil::encodeIntuos4Enter(0x80A, 42);  // general pen, eraser end
   dec.decode(enter.data(), enter.size(), 0, s);
@@ -190,7 +195,7 @@ TEST(Intuos4Decoder, EraserToolAndInRangeLeaving) {
 }
 
 TEST(Intuos4Decoder, RejectsWrongLengthsAndOtherReports) {
-  Intuos4Decoder dec(info());
+  Intuos4Decoder dec(info(), tools());
   PenSample s;
   const uint8_t pkt[12] = {0x02, 0xE0};
   DecodeResult r = dec.decode(pkt, 9, 0, s);

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Coverage-guided fuzzing with ASan/UBSan for a fixed time per target (ctest `fuzz_sanitized`,
+# label fuzz): configures a clang build with -DCLOUDBRUSH_FUZZ=ON under WORK_DIR (once; ccache
+# when present), builds only the given targets, and runs each with libFuzzer's
+# -max_total_time=SECONDS on a scratch copy of its corpus (tests/fuzz/NAME/corpus is read, never
+# written). A crash, leak, sanitizer report or timeout fails; its input is kept under
+# WORK_DIR/artifacts/TARGET/.
+#
+#   run_sanitized_fuzzers.sh SOURCE_DIR WORK_DIR SECONDS TARGET...
+set -euo pipefail
+src=${1:?source dir}; work=${2:?work dir}; secs=${3:?seconds per target}; shift 3
+if ! command -v clang++ >/dev/null; then
+  echo "*** SKIPPED: clang++ is not installed; no sanitized fuzzing ran (config/setup.sh) ***" >&2
+  exit 77
+fi
+mkdir -p "$work"
+build=$work/build
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+start=$(date +%s)
+if [ ! -f "$build/build.ninja" ]; then
+  if ! CC=clang CXX=clang++ cmake -S "$src" -B "$build" -G Ninja -DCLOUDBRUSH_FUZZ=ON \
+      -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" >"$work/configure.log" 2>&1; then
+    tail -30 "$work/configure.log"
+    echo "sanitized fuzzing: configuring the clang build failed ($work/configure.log)" >&2
+    exit 1
+  fi
+fi
+if ! ninja -C "$build" "$@" >"$work/build.log" 2>&1; then
+  tail -40 "$work/build.log"
+  echo "sanitized fuzzing: building the targets failed ($work/build.log)" >&2
+  exit 1
+fi
+echo "sanitized fuzzing: clang -fsanitize=fuzzer,address,undefined build ready in $(( $(date +%s) - start )) s"
+passed=0; failed=0
+for t in "$@"; do
+  seed=$(dirname "$(find "$src/tests/fuzz" -name "$t.cpp" | head -1)")/corpus
+  bin=$(find "$build/tests/fuzz" -type f -name "$t" -perm -u+x | head -1)
+  scratch=$work/corpus/$t; artifacts=$work/artifacts/$t/
+  rm -rf "$scratch"; mkdir -p "$scratch" "$artifacts"
+  log=$work/$t.log
+  if "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -artifact_prefix="$artifacts" "$scratch" "$seed" >"$log" 2>&1; then
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+    echo "fuzz $t: ok, ${runs:-?} inputs in $secs s, ${cov:-?} edges covered"
+    passed=$((passed + 1))
+  else
+    echo "fuzz $t: FAILED (log $log, input kept in $artifacts)"
+    grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$log" | head -20 || tail -20 "$log"
+    failed=$((failed + 1))
+  fi
+done
+echo "sanitized fuzzing: $passed passed, $failed failed ($(( $(date +%s) - start )) s in all)"
+[ "$failed" -eq 0 ]
