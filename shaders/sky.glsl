@@ -13,9 +13,19 @@ uniform sampler2D u_sky_image;  // RGBA8, row 0 = the image's top row
 uniform vec2 u_sky_image_size;  // texels
 uniform vec2 u_sky_frame_size;  // pixels of the frame the image covers
 
+// The cartoon's sky is posterised in its parameters (not per channel, which would shift hues):
+// the gradient in 5 bands, the sun's glow and the cloud layer in 3 levels.
+float posterise(float v, float levels) {
+#if CB_SKY_POSTERISE
+  return floor(v * levels + 0.5) / levels;
+#else
+  return v;
+#endif
+}
+
 vec3 skyGradient(vec3 dir) {
-  float t = pow(1.0 - max(dir.y, 0.0), 3.0);
-  float glow = pow(max(dot(dir, u_sky_sun_dir), 0.0), 24.0);
+  float t = posterise(pow(1.0 - max(dir.y, 0.0), 3.0), 5.0);
+  float glow = posterise(pow(max(dot(dir, u_sky_sun_dir), 0.0), 24.0), 3.0);
   return mix(u_sky_zenith, u_sky_horizon, t) + u_sky_glow * glow * u_sky_sun_colour;
 }
 
@@ -31,12 +41,12 @@ vec3 skyColour(vec3 dir, vec2 pixel) {
 #if CB_SKY_KIND == 2
   // The far cloud layer on the plane y = 1, fading into the haze towards the horizon.
   vec2 uv = dir.xz / max(dir.y, 1e-3) * u_sky_lic_scale;
-  float o = texture(u_sky_layer, uv).r * smoothstep(0.03, 0.3, dir.y);
+  float o = posterise(texture(u_sky_layer, uv).r * smoothstep(0.03, 0.3, dir.y), 3.0);
   c = mix(c, 0.92 * u_sky_sun_colour + 0.08 * u_sky_horizon, 0.85 * o);
 #endif
 #endif
-#if CB_SKY_POSTERISE
-  c = floor(c * 5.0 + 0.5) / 5.0;
+#if CB_SKY_POSTERISE && CB_SKY_KIND == 3
+  c = floor(c * 5.0 + 0.5) / 5.0;  // a picture: per channel
 #endif
   return clamp(c, 0.0, 1.0);
 }

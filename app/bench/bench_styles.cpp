@@ -115,8 +115,9 @@ int benchStyles(int argc, char** argv) {
     std::fprintf(stderr, "cloudbrush bench styles: bad arguments %s\n", args.error().c_str());
     return 2;
   }
-  std::printf("bench styles: %dx%d, cumulus %d³, reference camera, %d frames per style, sky %s\n",
-              width, height, n, frames, skyKindName(sky.kind));
+  std::printf("bench styles: %dx%d, cumulus %d³, %s camera, %d frames per style, sky %s\n", width,
+              height, n, args.has("camera") ? "the given" : "reference", frames,
+              skyKindName(sky.kind));
   BenchReport report("styles");
   const Volume cumulus = makeBundledCumulus(glm::ivec3(n), 1);
 

@@ -42,9 +42,25 @@ glm::vec3 imageBilinear(const ImageRgba8& image, glm::vec2 t) {
                   glm::mix(at(x, y + 1), at(x + 1, y + 1), f.x), f.y);
 }
 
+// The cartoon's posterising of a parameter into `levels` steps (sky.glsl's posterise).
+float posterise(const SkyScene& s, float v, float levels) {
+  return s.style == RenderStyle::kCartoon ? std::floor(v * levels + 0.5f) / levels : v;
+}
+
+float gradientT(glm::vec3 dir) {
+  return std::pow(1.0f - std::max(dir.y, 0.0f), 3.0f);
+}
+float glowAmount(const SkyScene& s, glm::vec3 dir) {
+  return std::pow(std::max(glm::dot(dir, s.sun_dir), 0.0f), 24.0f);
+}
+float layerOpacity(const SkyScene& s, glm::vec3 dir) {
+  const glm::vec2 uv = glm::vec2(dir.x, dir.z) / std::max(dir.y, 1e-3f) * s.settings.lic_scale;
+  return licBilinear(*s.lic, s.settings.lic_size, uv) * smoothStep(0.03f, 0.3f, dir.y);
+}
+
 glm::vec3 gradient(const SkyScene& s, glm::vec3 dir) {
-  const float t = std::pow(1.0f - std::max(dir.y, 0.0f), 3.0f);
-  const float glow = std::pow(std::max(glm::dot(dir, s.sun_dir), 0.0f), 24.0f);
+  const float t = posterise(s, gradientT(dir), 5.0f);
+  const float glow = posterise(s, glowAmount(s, dir), 3.0f);
   return glm::mix(s.settings.zenith, s.settings.horizon, t) +
          s.settings.sun_glow * glow * s.sun_colour;
 }
@@ -72,10 +88,7 @@ glm::vec3 skyColour(const SkyScene& s, glm::vec3 dir, glm::vec2 pixel) {
     case SkyKind::kLic: {
       c = gradient(s, dir);
       if (s.lic && dir.y > 0.0f) {
-        const glm::vec2 uv =
-            glm::vec2(dir.x, dir.z) / std::max(dir.y, 1e-3f) * s.settings.lic_scale;
-        const float o =
-            licBilinear(*s.lic, s.settings.lic_size, uv) * smoothStep(0.03f, 0.3f, dir.y);
+        const float o = posterise(s, layerOpacity(s, dir), 3.0f);
         c = glm::mix(c, 0.92f * s.sun_colour + 0.08f * s.settings.horizon, 0.85f * o);
       }
       break;
@@ -87,9 +100,21 @@ glm::vec3 skyColour(const SkyScene& s, glm::vec3 dir, glm::vec2 pixel) {
                                         s.frame_width, s.frame_height, pixel));
       break;
   }
-  if (s.style == RenderStyle::kCartoon)
-    c = glm::floor(c * kSkyPosteriseLevels + 0.5f) / kSkyPosteriseLevels;
+  if (s.style == RenderStyle::kCartoon && s.settings.kind == SkyKind::kImage)
+    c = glm::floor(c * 5.0f + 0.5f) / 5.0f;  // a picture: per channel
   return glm::clamp(c, 0.0f, 1.0f);
+}
+
+bool skyNearPosteriseStep(const SkyScene& s, glm::vec3 dir, float margin) {
+  if (s.style != RenderStyle::kCartoon) return false;
+  auto near = [&](float v, float levels) {
+    const float x = v * levels + 0.5f;
+    return std::abs(x - std::round(x)) < margin * levels;
+  };
+  bool result = near(gradientT(dir), 5.0f) || near(glowAmount(s, dir), 3.0f);
+  if (s.settings.kind == SkyKind::kLic && s.lic && dir.y > 0.0f)
+    result = result || near(layerOpacity(s, dir), 3.0f);
+  return result;
 }
 
 glm::vec3 skyAmbientColour(const SkySettings& settings) {

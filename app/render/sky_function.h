@@ -8,7 +8,8 @@
 //              o = lic(uv) · smoothstep(0.03, 0.3, dir.y) (it fades into the haze at the horizon),
 //              colour mix(g, 0.92·sun + 0.08·horizon, 0.85·o)
 //   image      the PNG scaled to cover the frame, centred, bilinear
-//   cartoon    every kind posterised: round(c·5)/5 per channel
+//   cartoon    posterised in its parameters: (1 − dir.y)³ in 5 bands, the glow and the layer's
+//              opacity in 3 levels (round(v·n)/n); an image per channel in 5 levels
 #pragma once
 
 #include <cstdint>
@@ -21,8 +22,6 @@
 #include "app/render/sky_settings.h"
 
 namespace cb {
-
-inline constexpr float kSkyPosteriseLevels = 5.0f;
 
 struct SkyScene {
   SkySettings settings;
@@ -41,6 +40,10 @@ glm::vec3 skyColour(const SkyScene& scene, glm::vec3 dir, glm::vec2 pixel);
 // centres at i + ½) shown at `pixel` of a frame_width×frame_height frame.
 glm::vec2 skyImageTexel(int image_width, int image_height, int frame_width, int frame_height,
                         glm::vec2 pixel);
+
+// For tests: true when a posterised (cartoon) parameter at dir lies within `margin` of a step,
+// where the GPU's filtering may round it the other way.
+bool skyNearPosteriseStep(const SkyScene& scene, glm::vec3 dir, float margin);
 
 // The colour the physical style's ambient term takes from the sky: the gradient halfway up.
 glm::vec3 skyAmbientColour(const SkySettings& settings);
