@@ -3,6 +3,7 @@
 // hidden behind an opaque cloud; the paper styles keep their paper unless asked.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -103,6 +104,22 @@ void renderWithSky(SkyKind kind, RenderStyle style, SkyFrame* out,
   options.sky.lic_length = 12;
   options.sky.lic_scale = 0.1f;  // texels magnified near the zenith: no mip level in play
   options.sky.lic_coverage = 0.6f;
+  if (kind == SkyKind::kImage) {
+    // A 40×30 picture with a different colour in every texel (orientation and scaling show).
+    auto image = std::make_shared<ImageRgba8>();
+    image->width = 40;
+    image->height = 30;
+    image->pixels.resize(40 * 30 * 4);
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) {
+        uint8_t* p = image->at(x, y);
+        p[0] = uint8_t(x * 6);
+        p[1] = uint8_t(y * 8);
+        p[2] = uint8_t((x * 37 + y * 91) % 256);
+        p[3] = 255;
+      }
+    options.sky.image = image;
+  }
   RenderTarget target;
   ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
   Camera camera;
@@ -211,6 +228,7 @@ INSTANTIATE_TEST_SUITE_P(KindsAndStyles, SkyBehindTheCloud,
                          ::testing::Values(SkyCase{SkyKind::kColour, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kLic, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kColour, RenderStyle::kPhysical},
+                      SkyCase{SkyKind::kImage, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kLic, RenderStyle::kCartoon}),
                          [](const ::testing::TestParamInfo<SkyCase>& info) {
                            return std::string(skyKindName(info.param.kind)) + "_" +
