@@ -46,7 +46,9 @@ vec3 skyColour(vec3 dir, vec2 pixel) {
 #endif
 #endif
 #if CB_SKY_POSTERISE && CB_SKY_KIND == 3
-  c = floor(c * 5.0 + 0.5) / 5.0;  // a picture: per channel
+  // A picture: its luminance in 5 bands, hues kept (per channel would shift them).
+  float luma = dot(c, vec3(0.2126, 0.7152, 0.0722));
+  c *= (floor(luma * 5.0 + 0.5) / 5.0) / max(luma, 1e-3);
 #endif
   return clamp(c, 0.0, 1.0);
 }

@@ -100,12 +100,16 @@ glm::vec3 skyColour(const SkyScene& s, glm::vec3 dir, glm::vec2 pixel) {
                                         s.frame_width, s.frame_height, pixel));
       break;
   }
-  if (s.style == RenderStyle::kCartoon && s.settings.kind == SkyKind::kImage)
-    c = glm::floor(c * 5.0f + 0.5f) / 5.0f;  // a picture: per channel
+  if (s.style == RenderStyle::kCartoon && s.settings.kind == SkyKind::kImage) {
+    // A picture: its luminance in 5 bands, hues kept.
+    const float luma = glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+    c *= (std::floor(luma * 5.0f + 0.5f) / 5.0f) / std::max(luma, 1e-3f);
+  }
   return glm::clamp(c, 0.0f, 1.0f);
 }
 
 bool skyNearPosteriseStep(const SkyScene& s, glm::vec3 dir, float margin) {
+  // (An image's luminance bands depend on the pixel, not dir: not covered here.)
   if (s.style != RenderStyle::kCartoon) return false;
   auto near = [&](float v, float levels) {
     const float x = v * levels + 0.5f;

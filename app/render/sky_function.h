@@ -9,7 +9,7 @@
 //              colour mix(g, 0.92·sun + 0.08·horizon, 0.85·o)
 //   image      the PNG scaled to cover the frame, centred, bilinear
 //   cartoon    posterised in its parameters: (1 − dir.y)³ in 5 bands, the glow and the layer's
-//              opacity in 3 levels (round(v·n)/n); an image per channel in 5 levels
+//              opacity in 3 levels (round(v·n)/n); an image's luminance in 5 levels
 #pragma once
 
 #include <cstdint>
