@@ -17,8 +17,12 @@ const vec3 kOutline = vec3(0.10, 0.12, 0.22);
 const vec3 kCel[4] =
     vec3[4](vec3(0.50, 0.57, 0.78), vec3(0.68, 0.75, 0.90), vec3(0.86, 0.90, 0.97), vec3(1.0));
 
+// Style parameters (render_style_params.h, config/render.toml [style.cartoon]); defaults:
+uniform vec3 u_cel_thresholds;  // 0.2, 0.45, 0.75: d between the four tones
+uniform float u_outline_width;  // 0.3: outline where |N·V| < this, soft from half of it
+
 int celBand(float d) {
-  return d < 0.2 ? 0 : d < 0.45 ? 1 : d < 0.75 ? 2 : 3;
+  return d < u_cel_thresholds.x ? 0 : d < u_cel_thresholds.y ? 1 : d < u_cel_thresholds.z ? 2 : 3;
 }
 
 vec4 shadeSurface(SurfaceSample s) {
@@ -26,7 +30,8 @@ vec4 shadeSurface(SurfaceSample s) {
   if (!s.hit) return vec4(kOutline * near_miss, near_miss);
   float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
   vec3 cel = kCel[celBand(d)] * u_light_colour;
-  float outline = 1.0 - smoothstep(0.15, 0.3, abs(dot(s.normal, s.view)));
+  float outline =
+      1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
   float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));
   return vec4(mix(cel, kOutline, max(outline, 0.8 * inner)), 1.0);
 }

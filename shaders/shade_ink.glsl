@@ -14,8 +14,9 @@
 // taken from the density field on both sides of the silhouette.
 uniform vec3 u_light_dir;  // towards the sun, unit
 
-const float kSilhouetteThreshold = 0.5;  // seed 001 §4.1.1
-const float kWash = 0.35;  // darkest interior wash: clouds are mostly paper, lightly washed
+// Style parameters (render_style_params.h, config/render.toml [style.ink]); defaults:
+uniform float u_ink_line_width;  // silhouette threshold on N·V, 0.5 (seed 001 §4.1.1)
+uniform float u_ink_wash;        // darkest interior wash, 0.35: clouds are mostly paper
 
 float inkBand(float d) {
 #if CB_MOVING
@@ -30,7 +31,7 @@ vec4 shadeSurface(SurfaceSample s) {
   if (!s.hit) return vec4(0.0, near_miss, 0.0, near_miss);
   float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
   float edge = abs(dot(s.normal, s.view));
-  float x = 3.0 * edge / kSilhouetteThreshold;
-  float silhouette = edge < kSilhouetteThreshold ? exp(-0.5 * x * x) : 0.0;
-  return vec4(kWash * inkBand(d), silhouette, 0.0, 1.0);
+  float x = 3.0 * edge / u_ink_line_width;
+  float silhouette = edge < u_ink_line_width ? exp(-0.5 * x * x) : 0.0;
+  return vec4(u_ink_wash * inkBand(d), silhouette, 0.0, 1.0);
 }

@@ -35,13 +35,15 @@ uniform vec3 u_noise_repeat;       // noise repeats per volume texture coordinat
 uniform float u_erosion;           // κ_e
 uniform sampler1D u_light_table;   // 256 × (L(τ), L(bτ), L(b²τ), e^(−τ/8)) by 8-bit T
 
-const float kReflection = 0.55;  // κ₁
-const float kScattering = 0.45;  // κ₂
-const float kForwardG = 0.6, kBackG = -0.3, kForwardWeight = 0.75;
+// Style parameters (render_style_params.h, config/render.toml [style.physical]); defaults:
+uniform float u_reflection;  // κ₁ = 0.55
+uniform float u_scattering;  // κ₂ = 0.45
+uniform vec3 u_phase_lobes;  // forward g = 0.6, back g = −0.3, forward weight 0.75
+uniform int u_octaves;       // 3 (1..3)
+uniform float u_ambient;     // κ_a = 0.5
+uniform float u_exposure;    // 1.6
 const float kOctaveAttenuation = 0.5;  // a: weight of each further octave
 const float kOctavePhase = 0.5;        // c: anisotropy scale per octave
-const float kAmbient = 0.5;
-const float kExposure = 1.6;
 
 float henyeyGreenstein4Pi(float cos_theta, float g) {
   float denom = 1.0 + g * g - 2.0 * g * cos_theta;
@@ -56,15 +58,17 @@ void styleBeginRay(vec3 dir) {
   float phase[3];
   float g = 1.0;
   for (int i = 0; i < 3; ++i) {
-    phase[i] = mix(henyeyGreenstein4Pi(cos_theta, kBackG * g),
-                   henyeyGreenstein4Pi(cos_theta, kForwardG * g), kForwardWeight);
+    phase[i] = mix(henyeyGreenstein4Pi(cos_theta, u_phase_lobes.y * g),
+                   henyeyGreenstein4Pi(cos_theta, u_phase_lobes.x * g), u_phase_lobes.z);
     g *= kOctavePhase;
   }
-  // Emitted = sun·(κ₁·L₀ + κ₂·Σ aⁱ·Pᵢ·Lᵢ) + sky·κ_a·e^(−τ/8).
-  sunOctave0 = u_light_colour * (kReflection + kScattering * phase[0]);
-  sunOctave1 = u_light_colour * (kScattering * kOctaveAttenuation * phase[1]);
-  sunOctave2 = u_light_colour * (kScattering * kOctaveAttenuation * kOctaveAttenuation * phase[2]);
-  skyWeight = u_sky_colour * kAmbient;
+  // Emitted = sun·(κ₁·L₀ + κ₂·Σ aⁱ·Pᵢ·Lᵢ) + sky·κ_a·e^(−τ/8), octaves beyond u_octaves off.
+  float a1 = u_octaves > 1 ? kOctaveAttenuation : 0.0;
+  float a2 = u_octaves > 2 ? kOctaveAttenuation * kOctaveAttenuation : 0.0;
+  sunOctave0 = u_light_colour * (u_reflection + u_scattering * phase[0]);
+  sunOctave1 = u_light_colour * (u_scattering * a1 * phase[1]);
+  sunOctave2 = u_light_colour * (u_scattering * a2 * phase[2]);
+  skyWeight = u_sky_colour * u_ambient;
 }
 
 float styleDensity(float density, vec3 texcoord) {
@@ -80,5 +84,5 @@ vec3 shadeSample(float density, float transmittance) {
 vec3 styleEndRay(vec3 colour, float transmittance) {
   float opacity = 1.0 - transmittance;
   vec3 emitted = colour / max(opacity, 1e-4);
-  return (vec3(1.0) - exp(-kExposure * emitted)) * opacity;
+  return (vec3(1.0) - exp(-u_exposure * emitted)) * opacity;
 }

@@ -5,12 +5,14 @@
 // Tone is 1 − d with d = N·L times 0.35 + 0.65·T (T the light volume's transmittance); the outline
 // and the inner surface's silhouette are those of the cartoon style (shade_cartoon.glsl).
 uniform vec3 u_light_dir;  // towards the sun, unit
+uniform float u_outline_width;  // [style.sketch] outline_width, 0.3 (as the cartoon's)
 
 vec4 shadeSurface(SurfaceSample s) {
   float near_miss = smoothstep(0.6 * u_iso, u_iso, s.max_density);
   if (!s.hit) return vec4(0.0, near_miss, 0.0, near_miss);
   float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
-  float outline = 1.0 - smoothstep(0.15, 0.3, abs(dot(s.normal, s.view)));
+  float outline =
+      1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
   float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));
   return vec4(1.0 - d, max(outline, 0.7 * inner), 0.0, 1.0);
 }

@@ -8,10 +8,26 @@
 //  CB_COMPOSE_SKETCH (seed 003, Fig. 2 and 6): pencil hatching, one more stroke direction per
 //    tone level (r), wobbling and grainy, and the outline strokes (g), on drawing paper.
 // Paper and strokes are functions of the output pixel, so they stay put while the cloud moves.
+// CB_OVER_SKY ([style.ink] / [style.sketch] sky = true): the paper shows only inside the cloud
+// (coverage a) and the output is premultiplied, blended over the sky drawn first (sky_pass.h):
+//   C = (1 − grey)·ink + grey·a·paper + grey·(1 − a)·sky,  so  α = 1 − grey·(1 − a).
 layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;
 uniform sampler2D u_bleed;   // ink: u_image with its silhouette blurred along x
 uniform vec2 u_output_size;  // pixels
+uniform int u_radius;        // ink: bleeding half width (ink_bleed.frag.glsl)
+uniform float u_sigma;       // ink: bleeding σ, pixels
+
+// Lays `stroke` (1 = full stroke colour) over `paper`; with CB_OVER_SKY the paper covers only the
+// cloud and the rest stays transparent (premultiplied) for the sky beneath.
+vec4 layOn(vec3 paper, vec3 stroke_colour, float paper_share, float coverage) {
+#if CB_OVER_SKY
+  return vec4((1.0 - paper_share) * stroke_colour + paper_share * coverage * paper,
+              1.0 - paper_share * (1.0 - coverage));
+#else
+  return vec4(mix(stroke_colour, paper, paper_share), 1.0);
+#endif
+}
 
 float hash(vec2 p) {
   uvec2 q = uvec2(ivec2(floor(p)) + 65536);
@@ -31,8 +47,6 @@ float valueNoise(vec2 p) {
 
 #if CB_COMPOSE_INK
 const vec3 kInkTone = vec3(0.07, 0.07, 0.09);
-const float kBleedWeights[4] = float[4](1.0, 0.7788008, 0.3678794, 0.1053992);  // ink_bleed
-const float kBleedNorm = 1.0 / 3.5041589;
 
 // Xuan paper: warm off-white with long fibres (noise stretched along x) and a fine grain.
 vec3 xuanPaper(vec2 p) {
@@ -59,17 +73,21 @@ void main() {
 #if CB_COMPOSE_INK
 #if CB_BLEED
   vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
-  float silhouette = kBleedWeights[0] * texture(u_bleed, uv).g;
-  for (int i = 1; i < 4; ++i)
-    silhouette += kBleedWeights[i] * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).g +
-                                      texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).g);
-  silhouette *= kBleedNorm;
+  float silhouette = texture(u_bleed, uv).g, norm = 1.0;
+  float inv_two_sigma2 = 1.0 / (2.0 * u_sigma * u_sigma);
+  for (int i = 1; i <= u_radius; ++i) {
+    float w = exp(-float(i * i) * inv_two_sigma2);
+    silhouette += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).g +
+                       texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).g);
+    norm += 2.0 * w;
+  }
+  silhouette /= norm;
 #else
   float silhouette = image.g;
 #endif
   float ink = 1.0 - (1.0 - image.r) * (1.0 - silhouette);
   float grey = smoothstep(0.1, 0.92, 1.0 - ink);
-  o_colour = vec4(mix(kInkTone, xuanPaper(p), grey), 1.0);
+  o_colour = layOn(xuanPaper(p), kInkTone, grey, image.a);
 #elif CB_COMPOSE_SKETCH
   float wobble = (valueNoise(p * 0.03) - 0.5) * 5.0;
   float tone = image.r;
@@ -79,7 +97,7 @@ void main() {
   float grain = 0.65 + 0.35 * valueNoise(p * vec2(0.6, 0.08));
   float stroke = max(image.g * (0.75 + 0.25 * grain), 0.5 * hatch * grain);
   vec3 paper = vec3(0.97, 0.96, 0.93) * (0.97 + 0.03 * hash(p));
-  o_colour = vec4(mix(paper, kGraphite, stroke), 1.0);
+  o_colour = layOn(paper, kGraphite, 1.0 - stroke, image.a);
 #else
   o_colour = image;
 #endif

@@ -296,8 +296,9 @@ int commandPaint(int argc, char** argv) {
 
   if (headless) {
     HeadlessRenderResult result;
-    if (!renderHeadless(*display, renderer, volume, light, args.get("out-dir", "out"),
-                        "cloudbrush-cumulus", loop_options.print_stats, &result, &error))
+    if (!renderHeadless(*display, renderer, volume, light, loop_options.render,
+                        args.get("out-dir", "out"), "cloudbrush-cumulus", loop_options.print_stats,
+                        &result, &error))
       return fail(error);
     if (loop_options.print_stats) std::fprintf(stderr, "%s\n", result.stats.summary().c_str());
     for (const std::string& path : result.written) std::printf("%s\n", path.c_str());

@@ -10,8 +10,9 @@
 namespace cb {
 
 bool renderHeadless(Display& display, VolumeRenderer& renderer, const Volume& volume,
-                    const Light& light, const std::string& out_dir, const std::string& stem,
-                    bool collect_stats, HeadlessRenderResult* result, std::string* error) {
+                    const Light& light, const RenderOptions& base, const std::string& out_dir,
+                    const std::string& stem, bool collect_stats, HeadlessRenderResult* result,
+                    std::string* error) {
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) {
@@ -24,7 +25,10 @@ bool renderHeadless(Display& display, VolumeRenderer& renderer, const Volume& vo
   if (!target.create(display.width(), display.height(), RenderTarget::Format::kRgba32F, error))
     return false;
   renderer.sync(volume, light);
-  RenderOptions options;
+  RenderOptions options = base;  // render.toml's style, sky, background and ray-cast settings
+  options.scale = 1.0f;
+  options.moving = false;
+  options.region = glm::ivec4(0);
   options.collect_stats = collect_stats;
   options.finish = true;
   renderer.render(Camera::reference(), display.width(), display.height(), target.fbo(), options);

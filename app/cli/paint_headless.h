@@ -20,7 +20,8 @@ struct HeadlessRenderResult {
 // Renders `volume` lit by `light` at the display's size into `out_dir` (created if missing) as
 // `<stem>.png` and `<stem>.exr`. False with a message naming the file or stage that failed.
 bool renderHeadless(Display& display, VolumeRenderer& renderer, const Volume& volume,
-                    const Light& light, const std::string& out_dir, const std::string& stem,
-                    bool collect_stats, HeadlessRenderResult* result, std::string* error);
+                    const Light& light, const RenderOptions& base, const std::string& out_dir,
+                    const std::string& stem, bool collect_stats, HeadlessRenderResult* result,
+                    std::string* error);
 
 }  // namespace cb

@@ -62,12 +62,18 @@ void writePng(const std::string& path, const ImageRgba8& image) {
   png_destroy_write_struct(&png, &info);
 }
 
-ImageRgba8 readPng(const std::string& path) {
+ImageRgba8 readPng(const std::string& path, int64_t max_pixels) {
   png_image img;
   std::memset(&img, 0, sizeof img);
   img.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&img, path.c_str()))
     fail(path, std::string("cannot read PNG: ") + img.message);
+  // Only the header has been read: refuse an image too large before allocating for it.
+  if (max_pixels > 0 && int64_t(img.width) * int64_t(img.height) > max_pixels) {
+    png_image_free(&img);
+    fail(path, "PNG is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                   ", more than the " + std::to_string(max_pixels) + " pixels allowed here");
+  }
   img.format = PNG_FORMAT_RGBA;
   if (img.width > kMaxPngSide || img.height > kMaxPngSide) {
     png_image_free(&img);

@@ -33,7 +33,8 @@ struct ImageRgbaF {
 // the header's size against kMaxPngSide before it allocates the pixels.
 inline constexpr uint32_t kMaxPngSide = 16384;
 void writePng(const std::string& path, const ImageRgba8& image);
-ImageRgba8 readPng(const std::string& path);
+// readPng refuses (before decoding) an image of more than max_pixels pixels when max_pixels > 0.
+ImageRgba8 readPng(const std::string& path, int64_t max_pixels = 0);
 // Write a float RGBA OpenEXR file (32-bit float channels, ZIP compression).
 void writeExr(const std::string& path, const ImageRgbaF& image);
 // writePng or writeExr by the extension (.png / .exr); anything else is an error.

@@ -1,10 +1,16 @@
 #include "app/render/render_config.h"
 
+#include <cstdio>
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include <toml++/toml.h>
 
 #include "app/core/toml_file.h"
+#include "app/scene/sun_position.h"
 
 namespace cb {
 namespace {
@@ -47,6 +53,237 @@ bool readVec(const toml::table& root, const std::string& path, const char* secti
   return true;
 }
 
+// The newer settings warn and keep their default instead of stopping the program:
+// "FILE:LINE:COL: key what; using the default D".
+class Lenient {
+ public:
+  Lenient(const std::string& path, std::vector<std::string>* warnings)
+      : path_(path), warnings_(warnings) {}
+
+  std::string where(const toml::node& n) const {
+    const toml::source_region& r = n.source();
+    return path_ + ":" + std::to_string(r.begin.line) + ":" + std::to_string(r.begin.column);
+  }
+  void warn(const toml::node& n, const std::string& key, const std::string& what,
+            const std::string& fallback) {
+    note(where(n) + ": " + key + " " + what + "; using " + fallback);
+  }
+  void note(const std::string& line) {
+    warnings_->push_back(line);
+    std::fprintf(stderr, "cloudbrush: %s\n", line.c_str());
+  }
+  static std::string number(double v) {
+    std::ostringstream o;
+    o << v;
+    return o.str();
+  }
+
+  void real(const toml::table* t, const std::string& table, const char* key, float lo, float hi,
+            float* out) {
+    const toml::node* n = t ? t->get(key) : nullptr;
+    if (!n) return;
+    auto v = n->value<double>();
+    const std::string range = "[" + number(lo) + ", " + number(hi) + "]";
+    if (!v || !(*v >= lo && *v <= hi))
+      warn(*n, table + "." + key, v ? "must be in " + range : "must be a number in " + range,
+           "the default " + number(*out));
+    else
+      *out = float(*v);
+  }
+  void integer(const toml::table* t, const std::string& table, const char* key, int64_t lo,
+               int64_t hi, int* out) {
+    const toml::node* n = t ? t->get(key) : nullptr;
+    if (!n) return;
+    auto v = n->value_exact<int64_t>();
+    const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    if (!v || *v < lo || *v > hi)
+      warn(*n, table + "." + key, "must be a whole number in " + range,
+           "the default " + std::to_string(*out));
+    else
+      *out = int(*v);
+  }
+  void boolean(const toml::table* t, const std::string& table, const char* key, bool* out) {
+    const toml::node* n = t ? t->get(key) : nullptr;
+    if (!n) return;
+    auto v = n->value_exact<bool>();
+    if (!v)
+      warn(*n, table + "." + key, "must be true or false",
+           std::string("the default ") + (*out ? "true" : "false"));
+    else
+      *out = *v;
+  }
+  // Three numbers in [lo, hi] (colours, thresholds).
+  void vec3(const toml::table* t, const std::string& table, const char* key, float lo, float hi,
+            glm::vec3* out) {
+    const toml::node* n = t ? t->get(key) : nullptr;
+    if (!n) return;
+    const toml::array* a = n->as_array();
+    glm::vec3 v(0.0f);
+    bool ok = a && a->size() == 3;
+    for (size_t i = 0; ok && i < 3; ++i) {
+      auto x = (*a)[i].value<double>();
+      ok = x && *x >= lo && *x <= hi;
+      if (ok) v[int(i)] = float(*x);
+    }
+    if (!ok)
+      warn(*n, table + "." + key,
+           "must be an array of 3 numbers in [" + number(lo) + ", " + number(hi) + "]",
+           "the default [" + number((*out)[0]) + ", " + number((*out)[1]) + ", " +
+               number((*out)[2]) + "]");
+    else
+      *out = v;
+  }
+  // Keys a table may hold; anything else is reported (a typo would otherwise pass silently).
+  void onlyKeys(const toml::table* t, const std::string& table,
+                std::initializer_list<const char*> keys) {
+    if (!t) return;
+    for (const auto& [k, node] : *t) {
+      bool known = false;
+      for (const char* key : keys) known |= k.str() == key;
+      if (known) continue;
+      std::string list;
+      for (const char* key : keys) list += (list.empty() ? "" : ", ") + std::string(key);
+      warn(node, table + "." + std::string(k.str()), "is not a setting (known: " + list + ")",
+           "nothing from it");
+    }
+  }
+
+ private:
+  std::string path_;
+  std::vector<std::string>* warnings_;
+};
+
+const toml::table* subTable(const toml::table& root, const char* section, const char* name) {
+  const toml::table* s = root[section].as_table();
+  return s ? (*s)[name].as_table() : nullptr;
+}
+
+void readStyleParams(const toml::table& root, Lenient& in, StyleParams* p) {
+  const toml::table* t = subTable(root, "style", "physical");
+  in.onlyKeys(t, "style.physical",
+              {"reflection", "scattering", "forward_g", "back_g", "forward_weight", "octaves",
+               "ambient", "exposure", "erosion"});
+  in.real(t, "style.physical", "reflection", 0.0f, 4.0f, &p->physical.reflection);
+  in.real(t, "style.physical", "scattering", 0.0f, 4.0f, &p->physical.scattering);
+  in.real(t, "style.physical", "forward_g", -0.95f, 0.95f, &p->physical.forward_g);
+  in.real(t, "style.physical", "back_g", -0.95f, 0.95f, &p->physical.back_g);
+  in.real(t, "style.physical", "forward_weight", 0.0f, 1.0f, &p->physical.forward_weight);
+  in.integer(t, "style.physical", "octaves", 1, 3, &p->physical.octaves);
+  in.real(t, "style.physical", "ambient", 0.0f, 4.0f, &p->physical.ambient);
+  in.real(t, "style.physical", "exposure", 0.1f, 10.0f, &p->physical.exposure);
+  in.real(t, "style.physical", "erosion", 0.0f, 1.0f, &p->physical.erosion);
+  t = subTable(root, "style", "ink");
+  in.onlyKeys(t, "style.ink", {"wash", "line_width", "bleed_sigma", "sky"});
+  in.real(t, "style.ink", "wash", 0.0f, 1.0f, &p->ink.wash);
+  in.real(t, "style.ink", "line_width", 0.05f, 1.0f, &p->ink.line_width);
+  in.real(t, "style.ink", "bleed_sigma", 0.3f, float(kMaxInkBleedRadius) / 2.1213f,
+          &p->ink.bleed_sigma);
+  in.boolean(t, "style.ink", "sky", &p->ink.sky);
+  t = subTable(root, "style", "cartoon");
+  in.onlyKeys(t, "style.cartoon", {"band_thresholds", "outline_width"});
+  glm::vec3 bands = p->cartoon.band_thresholds;
+  in.vec3(t, "style.cartoon", "band_thresholds", 0.0f, 1.0f, &bands);
+  if (bands.x < bands.y && bands.y < bands.z)
+    p->cartoon.band_thresholds = bands;
+  else
+    in.warn(*t->get("band_thresholds"), "style.cartoon.band_thresholds",
+            "must rise from the first to the third", "the default");
+  in.real(t, "style.cartoon", "outline_width", 0.02f, 1.0f, &p->cartoon.outline_width);
+  t = subTable(root, "style", "sketch");
+  in.onlyKeys(t, "style.sketch", {"outline_width", "sky"});
+  in.real(t, "style.sketch", "outline_width", 0.02f, 1.0f, &p->sketch.outline_width);
+  in.boolean(t, "style.sketch", "sky", &p->sketch.sky);
+}
+
+void readSky(const toml::table& root, const std::string& path, Lenient& in, SkySettings* sky) {
+  const toml::table* t = root["sky"].as_table();
+  if (!t) return;
+  in.onlyKeys(t, "sky",
+              {"kind", "zenith", "horizon", "sun_glow", "image", "lic_seed", "lic_size",
+               "lic_length", "lic_coverage", "lic_scale"});
+  in.vec3(t, "sky", "zenith", 0.0f, 1.0f, &sky->zenith);
+  in.vec3(t, "sky", "horizon", 0.0f, 1.0f, &sky->horizon);
+  in.real(t, "sky", "sun_glow", 0.0f, 4.0f, &sky->sun_glow);
+  int seed = int(sky->lic_seed & 0x7fffffff);
+  in.integer(t, "sky", "lic_seed", 0, 0x7fffffff, &seed);
+  sky->lic_seed = uint32_t(seed);
+  in.integer(t, "sky", "lic_size", 16, 4096, &sky->lic_size);
+  in.integer(t, "sky", "lic_length", 1, 256, &sky->lic_length);
+  in.real(t, "sky", "lic_coverage", 0.0f, 1.0f, &sky->lic_coverage);
+  in.real(t, "sky", "lic_scale", 0.01f, 100.0f, &sky->lic_scale);
+  const toml::node* kind = t->get("kind");
+  if (kind) {
+    auto name = kind->value<std::string>();
+    SkyKind k;
+    if (!name || !parseSkyKind(*name, &k))
+      in.warn(*kind, "sky.kind", "must be one of none|colour|lic|image", "the default \"none\"");
+    else
+      sky->kind = k;
+  }
+  const toml::node* image = t->get("image");
+  if (image) {
+    auto file = image->value<std::string>();
+    if (!file)
+      in.warn(*image, "sky.image", "must be a file name (a PNG)", "no image");
+    else
+      // Relative to the config file's folder, so a config can ship its picture beside it.
+      sky->image_path = std::filesystem::path(*file).is_absolute()
+                            ? *file
+                            : (std::filesystem::path(path).parent_path() / *file).string();
+  }
+  if (sky->kind != SkyKind::kImage) return;
+  const toml::node& at = image ? *image : kind ? *kind : *static_cast<const toml::node*>(t);
+  if (sky->image_path.empty()) {
+    in.warn(at, "sky.kind", "is \"image\" but sky.image names no PNG", "the sky kind \"none\"");
+    sky->kind = SkyKind::kNone;
+    return;
+  }
+  try {
+    sky->image = std::make_shared<const ImageRgba8>(readPng(sky->image_path, kMaxSkyImagePixels));
+  } catch (const std::exception& e) {
+    in.warn(at, "sky.image", std::string("cannot be used: ") + e.what(), "the sky kind \"none\"");
+    sky->kind = SkyKind::kNone;
+  }
+}
+
+// [light] time_of_day (+ latitude, day_of_year): the sun of that hour; it wins over direction.
+void readTimeOfDay(const toml::table& root, Lenient& in, bool direction_given, Light* light) {
+  const toml::table* t = root["light"].as_table();
+  const toml::node* n = t ? t->get("time_of_day") : nullptr;
+  if (!n) return;
+  float latitude = kDefaultLatitudeDeg;
+  int day = kDefaultDayOfYear;
+  in.real(t, "light", "latitude", -90.0f, 90.0f, &latitude);
+  in.integer(t, "light", "day_of_year", 1, 366, &day);
+  auto text = n->value<std::string>();
+  float hours = 0.0f;
+  if (!text || !parseTimeOfDay(text->c_str(), &hours)) {
+    in.warn(*n, "light.time_of_day", "must be \"HH:MM\" (00:00 to 23:59)",
+            direction_given ? "light.direction" : "the default sun direction");
+    return;
+  }
+  SunPosition sun = sunPosition(hours, latitude, day);
+  char where[128];
+  std::snprintf(where, sizeof where,
+                "%s at latitude %g, day %d: sun elevation %.1f°, azimuth %.1f°", text->c_str(),
+                double(latitude), day, double(sun.elevation_deg), double(sun.azimuth_deg));
+  if (sun.elevation_deg < 1.0f) {
+    // Below the horizon the clouds would be lit from underneath, in the dark: keep the azimuth
+    // and put the sun just above the horizon.
+    const float az = sun.azimuth_deg * 0.017453292519943295f, el = 0.017453292519943295f;
+    sun.direction =
+        glm::vec3(std::cos(el) * std::sin(az), std::sin(el), -std::cos(el) * std::cos(az));
+    in.note(in.where(*n) + ": light.time_of_day " + where +
+            " is below the horizon; lighting from 1° above it");
+    sun.elevation_deg = 1.0f;
+  } else {
+    in.note(in.where(*n) + ": light.time_of_day " + where +
+            (direction_given ? " (it wins over light.direction)" : ""));
+  }
+  light->direction = sun.direction;
+  light->colour *= sunTransmittance(sun.elevation_deg);
+}
+
 }  // namespace
 
 RenderConfig loadRenderConfig(const std::string& path) {
@@ -71,8 +308,11 @@ RenderConfig loadRenderConfig(const std::string& path) {
   glm::vec3 towards(0.0f);
   if (readVec<3>(root, path, "light", "position", &towards) && glm::length(towards) > 0.0f)
     c.light.direction = Light::directionTowards(towards);
-  if (readVec<3>(root, path, "light", "direction", &towards) && glm::length(towards) > 0.0f)
+  bool direction_given = false;
+  if (readVec<3>(root, path, "light", "direction", &towards) && glm::length(towards) > 0.0f) {
     c.light.direction = Light::directionTowards(towards);
+    direction_given = true;
+  }
   readVec<3>(root, path, "light", "colour", &c.light.colour);
   read(root, path, "light", "extinction", &c.light.extinction);
   if (!(o.step_voxels >= 0.1f && o.step_voxels <= 8.0f))
@@ -84,6 +324,10 @@ RenderConfig loadRenderConfig(const std::string& path) {
     bad(path, "motion.moving_scale", "must be in [0.05, 1]");
   if (!(c.light.extinction >= 0.0f && c.light.extinction <= 1.0f))
     bad(path, "light.extinction", "must be in [0, 1]");
+  Lenient lenient(path, &c.warnings);
+  readTimeOfDay(root, lenient, direction_given, &c.light);
+  readStyleParams(root, lenient, &c.options.style_params);
+  readSky(root, path, lenient, &c.options.sky);
   return c;
 }
 

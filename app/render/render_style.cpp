@@ -1,5 +1,8 @@
 #include "app/render/render_style.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace cb {
 
 const char* renderStyleName(RenderStyle style) {
@@ -59,7 +62,17 @@ bool hasScreenSpacePass(RenderStyle style) {
 int screenSpaceReach(RenderStyle style) {
   // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side. Sketch's pass reads
   // only its own pixel (paper and hatching are functions of the pixel's position).
-  return style == RenderStyle::kInk ? 3 : 0;
+  return screenSpaceReach(style, StyleParams{});
+}
+
+int screenSpaceReach(RenderStyle style, const StyleParams& params) {
+  return style == RenderStyle::kInk ? inkBleedRadius(params.ink.bleed_sigma) : 0;
+}
+
+int inkBleedRadius(float sigma) {
+  // ±2.12σ holds 97% of the Gaussian's weight; the seed's σ = √2 gives 2.9995 → 3.
+  const int r = int(std::ceil(2.1213f * sigma - 1e-3f));
+  return std::clamp(r, 1, kMaxInkBleedRadius);
 }
 
 }  // namespace cb

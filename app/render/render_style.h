@@ -19,6 +19,8 @@
 #include <string>
 #include <string_view>
 
+#include "app/render/render_style_params.h"
+
 namespace cb {
 
 enum class RenderStyle { kThesis, kPhysical, kInk, kCartoon, kSketch };
@@ -49,5 +51,7 @@ bool hasScreenSpacePass(RenderStyle style);
 // dilated by r on every side (clipped to the frame), then run the screen-space pass over R only.
 // A pixel of R then reads only freshly cast pixels, so it equals a full-frame render.
 int screenSpaceReach(RenderStyle style);
+// The same for a style with these parameters (ink: the bleeding kernel of ink.bleed_sigma).
+int screenSpaceReach(RenderStyle style, const StyleParams& params);
 
 }  // namespace cb

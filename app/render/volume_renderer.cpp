@@ -11,6 +11,7 @@
 #include "app/render/detail_noise.h"
 #include "app/render/physical_light_table.h"
 #include "app/render/shader_program.h"
+#include "app/render/sky_function.h"
 
 namespace cb {
 namespace {
@@ -24,17 +25,16 @@ constexpr float kInnerDepthFraction = 0.06f;  // searched behind the hit, of the
 // 256³): the shape's normal, not the rim noise's.
 constexpr float kGradientFraction = 1.0f / 64.0f;
 // Physical style: the fBm cube spans this many voxels (its finest octave: ~1 voxel per cell)
-// and erodes edges by this much (κ_e in shade_physical.glsl).
+// (its erosion κ_e is a style parameter, PhysicalStyleParams::erosion).
 constexpr float kDetailNoisePeriodVoxels = 32.0f;
-constexpr float kDetailErosion = 0.6f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
 // The variant of style_compose.frag.glsl: ink (with or without bleeding) or sketch.
-std::string composeDefines(bool ink, bool bleed) {
+std::string composeDefines(bool ink, bool bleed, bool over_sky) {
   return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
          "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
-         (bleed ? "1" : "0") + "\n";
+         (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") + "\n";
 }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -173,9 +173,11 @@ bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
   if (ok && hasScreenSpacePass(options.style)) {
     const bool ink = options.style == RenderStyle::kInk;
     const bool bleed = ink && !options.moving;
-    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed)) != 0 &&
+    const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
+    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky)) != 0 &&
          (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
   }
+  if (ok && !sky_.prepare(options.sky, options.style, &error_)) ok = false;
   if (!ok) *error = error_;
   return ok;
 }
@@ -213,7 +215,9 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
                                        glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
   const bool ink = options.style == RenderStyle::kInk;
   const bool bleed = ink && !options.moving;
-  GLuint compose = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed));
+  const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
+  GLuint compose =
+      fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky));
   if (!compose) {
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;
@@ -247,20 +251,43 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
     glUseProgram(blur);
     glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
     glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
+    glUniform1i(glGetUniformLocation(blur, "u_radius"),
+                inkBleedRadius(options.style_params.ink.bleed_sigma));
+    glUniform1f(glGetUniformLocation(blur, "u_sigma"), options.style_params.ink.bleed_sigma);
     glBindTextureUnit(0, image);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
   glViewport(0, 0, width, height);
   if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
+  if (over_sky) drawSkyUnder(width, height, width, height, options);
   glUseProgram(compose);
+  glUniform1i(glGetUniformLocation(compose, "u_radius"),
+              inkBleedRadius(options.style_params.ink.bleed_sigma));
+  glUniform1f(glGetUniformLocation(compose, "u_sigma"), options.style_params.ink.bleed_sigma);
   glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
   glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
   glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));
   glBindTextureUnit(0, image);
   glBindTextureUnit(1, bleed ? bleed_.texture() : image);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
   glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+}
+
+bool VolumeRenderer::drawSkyUnder(int w, int h, int width, int height,
+                                  const RenderOptions& options) {
+  if (!SkyPass::shows(options.sky, options.style, options.style_params)) return false;
+  std::string err;
+  if (!sky_.draw(frame_camera_, w, h, width, height, options.sky, options.style, synced_light_,
+                 &err)) {
+    std::fprintf(stderr, "cloudbrush: render: sky: %s\n", err.c_str());
+    return false;
+  }
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // C = C_src + (1 − α_src)·C_sky
+  return true;
 }
 
 void VolumeRenderer::allocateTextures(glm::ivec3 dims) {
@@ -473,7 +500,11 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   // A screen-space style casts into an image of its own (ink amounts, not colours) and its pass
   // draws the target; the ray cast then sees a transparent black background.
   GLuint draw_fbo = screen_space ? style_image_.fbo() : reduced ? low_res_.fbo() : target_fbo;
-  const glm::vec4 background = screen_space ? glm::vec4(0.0f) : options.background;
+  // With a sky the ray cast writes the cloud alone (premultiplied, α = 1 − T), blended over it.
+  const bool sky_under =
+      !screen_space && SkyPass::shows(options.sky, options.style, options.style_params);
+  const glm::vec4 background = screen_space || sky_under ? glm::vec4(0.0f) : options.background;
+  frame_camera_ = camera;
   stats_.width = w;
   stats_.height = h;
 
@@ -492,7 +523,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glm::ivec2 hi = glm::min(glm::ivec2(r.x + r.z + grow_x, r.y + r.w + grow_y), glm::ivec2(w, h));
     return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
   };
-  const int reach = screenSpaceReach(options.style);
+  const int reach = screenSpaceReach(options.style, options.style_params);
   const glm::ivec4 out_rect = clipToFrame(options.region, 0, 0);
   const glm::ivec4 cast_rect = clipToFrame(options.region, reach, reach);
   const glm::ivec4 bleed_rect = clipToFrame(options.region, 0, reach);  // the first axis is x
@@ -508,11 +539,6 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
       glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
     }
     glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
-    if (!eye_near_occupied_) {
-      glEnable(GL_STENCIL_TEST);
-      glStencilFunc(GL_EQUAL, 1, 0xFF);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    }
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
     if (partial) {
@@ -521,6 +547,12 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     }
   }
   glViewport(0, 0, w, h);
+  if (sky_under) drawSkyUnder(w, h, width, height, options);
+  if (skip && !eye_near_occupied_) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
   glUseProgram(program_);
   glm::mat4 inv = glm::inverse(view_proj);
   auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
@@ -545,13 +577,30 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
   // Style uniforms (a stage that does not declare one ignores it: location −1).
   glUniform3fv(loc("u_light_dir"), 1, glm::value_ptr(synced_light_.direction));
-  glUniform3fv(loc("u_sky_colour"), 1, glm::value_ptr(glm::vec3(options.background)));
+  glUniform3fv(
+      loc("u_sky_colour"), 1,
+      glm::value_ptr(sky_under ? skyAmbientColour(options.sky) : glm::vec3(options.background)));
   glUniform1f(loc("u_iso"), kIsoDensity);
   glUniform1f(loc("u_inner_iso"), kInnerIsoDensity);
   glUniform1f(loc("u_gradient_voxels"),
               std::max(1.0f, kGradientFraction * float(std::max({dims_.x, dims_.y, dims_.z}))));
   glUniform1f(loc("u_inner_depth"),
               kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
+  // Each style's parameters (render_style_params.h).
+  const StyleParams& sp = options.style_params;
+  const PhysicalStyleParams& ph = sp.physical;
+  glUniform1f(loc("u_reflection"), ph.reflection);
+  glUniform1f(loc("u_scattering"), ph.scattering);
+  glUniform3f(loc("u_phase_lobes"), ph.forward_g, ph.back_g, ph.forward_weight);
+  glUniform1i(loc("u_octaves"), std::clamp(ph.octaves, 1, 3));
+  glUniform1f(loc("u_ambient"), ph.ambient);
+  glUniform1f(loc("u_exposure"), ph.exposure);
+  glUniform1f(loc("u_ink_wash"), sp.ink.wash);
+  glUniform1f(loc("u_ink_line_width"), sp.ink.line_width);
+  glUniform3fv(loc("u_cel_thresholds"), 1, glm::value_ptr(sp.cartoon.band_thresholds));
+  glUniform1f(loc("u_outline_width"), options.style == RenderStyle::kSketch
+                                          ? sp.sketch.outline_width
+                                          : sp.cartoon.outline_width);
   if (options.style == RenderStyle::kPhysical) {
     ensurePhysicalTextures();
     glUniform1i(loc("u_detail_noise"), 3);
@@ -559,7 +608,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBindTextureUnit(4, light_table_texture_);
     glUniform3fv(loc("u_noise_repeat"), 1,
                  glm::value_ptr(glm::vec3(dims_) / kDetailNoisePeriodVoxels));
-    glUniform1f(loc("u_erosion"), kDetailErosion);
+    glUniform1f(loc("u_erosion"), ph.erosion);
     glBindTextureUnit(3, detail_noise_texture_);
   }
   glBindTextureUnit(0, volume_texture_);
@@ -568,6 +617,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_STENCIL_TEST);
+  glDisable(GL_BLEND);
 
   if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
   if (screen_space) {

@@ -24,6 +24,8 @@
 #include "app/render/occupancy_pyramid.h"
 #include "app/render/render_style.h"
 #include "app/render/render_target.h"
+#include "app/render/sky_pass.h"
+#include "app/render/sky_settings.h"
 #include "app/scene/camera.h"
 #include "app/scene/light.h"
 #include "app/volume/volume.h"
@@ -48,6 +50,10 @@ struct RenderOptions {
   // How density and light become colour (render_style.h): the thesis's curve by default. The
   // iso-surface styles ignore extinction_per_voxel and termination_transmittance.
   RenderStyle style = RenderStyle::kThesis;
+  // Each style's parameters (render_style_params.h, config/render.toml [style.NAME]).
+  StyleParams style_params;
+  // The sky behind the cloud (sky_settings.h); kind none keeps the flat `background`.
+  SkySettings sky;
   // The view is moving (orbit, drag): styles may shade more simply (ink: the seed's two bands,
   // no bleeding). Set it together with scale < 1; clear both when the view comes to rest.
   bool moving = false;
@@ -125,6 +131,10 @@ class VolumeRenderer {
                          const RenderOptions& options, bool partial, glm::ivec4 bleed_rect,
                          glm::ivec4 out_rect);
   void ensurePhysicalTextures();
+  // The sky hook: draws options.sky into the bound framebuffer and sets the blending that
+  // composites what is drawn next over it (premultiplied "over"). False when the style shows
+  // no sky (then nothing is drawn).
+  bool drawSkyUnder(int w, int h, int width, int height, const RenderOptions& options);
   void allocateTextures(glm::ivec3 dims);
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
@@ -160,6 +170,8 @@ class VolumeRenderer {
   bool eye_near_occupied_ = false;
   RenderStats stats_;
   std::string error_;
+  SkyPass sky_;
+  Camera frame_camera_;  // the camera of the frame being rendered (for the sky)
 };
 
 // Packs density (clamped to [0,1]) and transmittance into 8-bit RG pairs for the voxels of `box`

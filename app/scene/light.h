@@ -1,7 +1,9 @@
 // The sun (thesis §4.5): a directional light. The direction (a unit vector pointing towards the
 // sun) is what the light mode sets, journals and undoes; it does not depend on where the volume
 // is, so growing or moving the sky changes no lighting. The light ball the user drags only sets
-// this direction (seen from a fixed scene origin).
+// this direction (seen from a fixed scene origin). config/render.toml's `[light] time_of_day`
+// sets direction and colour from the sun of that hour (sun_position.h) instead; either way the
+// renderer recomputes the light volume when the direction changes.
 #pragma once
 
 #include <glm/glm.hpp>

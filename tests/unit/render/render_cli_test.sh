@@ -50,5 +50,17 @@ for style in physical ink cartoon sketch; do
   fi
 done
 expect_error "bad style" "thesis|physical|ink|cartoon|sketch" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/x.png" --style watercolour
+# [sky] in the config: the export shows it (differs from the flat background); a sky image that
+# is missing still renders (with the flat background) and says which file and line.
+printf '[sky]\nkind = "lic"\nlic_size = 64\n' >"$DIR/sky.toml"
+expect_ok "lic sky" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/sky.png" --size 64x40 --config "$DIR/sky.toml"
+if cmp -s "$DIR/s-thesis.png" "$DIR/sky.png"; then
+  echo "FAIL: [sky] kind lic rendered the flat background"; fails=$((fails+1))
+fi
+printf '[sky]\nkind = "image"\nimage = "missing-sky.png"\n' >"$DIR/nosky.toml"
+expect_ok "missing sky image falls back" "$CB" render --volume "$DIR/v.cbvol" --out "$DIR/nosky.png" --size 64x40 --config "$DIR/nosky.toml"
+if ! grep -q "nosky.toml:3:9: sky.image cannot be used: .*missing-sky.png" "$DIR/out"; then
+  echo "FAIL: missing sky image: no FILE:LINE:COL message"; cat "$DIR/out"; fails=$((fails+1))
+fi
 [ "$fails" -eq 0 ] && echo "render CLI: all checks passed"
 exit "$fails"

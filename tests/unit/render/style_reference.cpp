@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include "app/render/sky_function.h"
+#include "app/render/sky_pass.h"
 
 namespace cb {
 namespace {
@@ -88,21 +92,43 @@ float hg4Pi(float cos_theta, float g) {
 // Seed 004: L = T·(1 + κ_s·τ) per octave of optical depth bⁱτ; emission
 // sun·(κ₁L₀ + κ₂·Σ aⁱ·Pᵢ·Lᵢ) + sky·κ_a·e^(−τ/8); two-lobe HG with g scaled by cⁱ.
 glm::vec3 physicalEmission(const ReferenceScene& s, float t, float cos_theta) {
+  const PhysicalStyleParams& p = s.options.style_params.physical;
   const float tau = -std::log(std::max(t, 1.0f / 512.0f));
   auto grid = [](float x) { return std::exp(-x) * (1 + 0.6f * x); };
   float scattered = 0.0f, weight = 1.0f, g = 1.0f, depth = 1.0f;
-  for (int i = 0; i < 3; ++i) {
-    float phase = 0.25f * hg4Pi(cos_theta, -0.3f * g) + 0.75f * hg4Pi(cos_theta, 0.6f * g);
+  for (int i = 0; i < p.octaves; ++i) {
+    float phase = (1 - p.forward_weight) * hg4Pi(cos_theta, p.back_g * g) +
+                  p.forward_weight * hg4Pi(cos_theta, p.forward_g * g);
     scattered += weight * phase * grid(depth * tau);
     weight *= 0.5f;
     g *= 0.5f;
     depth *= 0.5f;
   }
-  glm::vec3 sky = glm::vec3(s.options.background) * 0.5f * std::exp(-tau / 8.0f);
-  return s.light.colour * (0.55f * grid(tau) + 0.45f * scattered) + sky;
+  const glm::vec3 ambient_colour =
+      SkyPass::shows(s.options.sky, s.options.style, s.options.style_params)
+          ? skyAmbientColour(s.options.sky)
+          : glm::vec3(s.options.background);
+  glm::vec3 sky = ambient_colour * p.ambient * std::exp(-tau / 8.0f);
+  return s.light.colour * (p.reflection * grid(tau) + p.scattering * scattered) + sky;
 }
 
-glm::vec4 compositedPixel(const ReferenceScene& s, const Ray& r) {
+// What shows behind the cloud at pixel (x, y from the bottom): the flat background or the sky.
+glm::vec4 behind(const ReferenceScene& s, const Ray& r, int x, int y_from_bottom) {
+  if (!SkyPass::shows(s.options.sky, s.options.style, s.options.style_params))
+    return s.options.background;
+  SkyScene sky;
+  sky.settings = s.options.sky;
+  sky.style = s.options.style;
+  sky.sun_dir = s.light.direction;
+  sky.sun_colour = s.light.colour;
+  sky.lic = s.sky_lic;
+  sky.frame_width = s.width;
+  sky.frame_height = s.height;
+  return glm::vec4(skyColour(sky, glm::normalize(r.dir_world), glm::vec2(x, y_from_bottom) + 0.5f),
+                   1.0f);
+}
+
+glm::vec4 compositedPixel(const ReferenceScene& s, const Ray& r, glm::vec4 background) {
   const bool physical = s.options.style == RenderStyle::kPhysical;
   const float cos_theta = glm::dot(glm::normalize(r.dir_world), s.light.direction);
   const glm::vec3 repeat = glm::vec3(s.dims) / 32.0f;  // kDetailNoisePeriodVoxels
@@ -112,7 +138,10 @@ glm::vec4 compositedPixel(const ReferenceScene& s, const Ray& r) {
   for (int k = 0; k < r.n && transmittance >= s.options.termination_transmittance; ++k) {
     glm::vec3 tc = r.base + float(k) * r.delta;
     float d = fetch(s, tc, 0), t = fetch(s, tc, 1);
-    if (physical) d = std::max(d - 0.6f * fetchNoise(s.noise, tc * repeat) * (1 - d), 0.0f);
+    if (physical)
+      d = std::max(
+          d - s.options.style_params.physical.erosion * fetchNoise(s.noise, tc * repeat) * (1 - d),
+          0.0f);
     float alpha = 1.0f - std::exp(-sigma_step * d);  // Beer–Lambert over the step
     glm::vec3 e = physical ? physicalEmission(s, t, cos_theta) : thesisEmission(s, t);
     colour += transmittance * alpha * e;
@@ -121,9 +150,10 @@ glm::vec4 compositedPixel(const ReferenceScene& s, const Ray& r) {
   if (physical) {
     float opacity = 1.0f - transmittance;
     glm::vec3 emitted = colour / std::max(opacity, 1e-4f);
-    colour = (glm::vec3(1.0f) - glm::exp(-1.6f * emitted)) * opacity;
+    colour =
+        (glm::vec3(1.0f) - glm::exp(-s.options.style_params.physical.exposure * emitted)) * opacity;
   }
-  glm::vec4 bg = s.options.background;
+  const glm::vec4 bg = background;
   return glm::vec4(colour + transmittance * glm::vec3(bg),
                    1 - transmittance + transmittance * bg.a);
 }
@@ -194,21 +224,23 @@ bool near(float v, std::initializer_list<float> thresholds, float eps) {
 
 // Seed 003: four cel tones by d = N·L·(0.35 + 0.65·T), outline where |N·V| < 0.3, inner-surface
 // silhouette.
-glm::vec4 cartoonPixel(const ReferenceScene& s, const Surface& f, bool* ambiguous,
+glm::vec4 cartoonPixel(const ReferenceScene& s, const Surface& f, glm::vec3 bg, bool* ambiguous,
                        bool* sensitive) {
   const glm::vec3 outline_colour(0.10f, 0.12f, 0.22f);
-  const glm::vec3 bg(s.options.background);
+  const CartoonStyleParams& p = s.options.style_params.cartoon;
+  const glm::vec3 th = p.band_thresholds;
   if (!f.hit) {
     float nm = smoothStep(0.6f * kReferenceIso, kReferenceIso, f.max_density);
     *sensitive |= nm > 0.0f && nm < 1.0f;
     return glm::vec4(outline_colour * nm + (1 - nm) * bg, 1.0f);
   }
   float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * (0.35f + 0.65f * f.light_t);
-  *ambiguous |= near(d, {0.2f, 0.45f, 0.75f}, 0.01f);
+  *ambiguous |= near(d, {th.x, th.y, th.z}, 0.01f);
   const glm::vec3 tones[4] = {
       {0.50f, 0.57f, 0.78f}, {0.68f, 0.75f, 0.90f}, {0.86f, 0.90f, 0.97f}, {1.0f, 1.0f, 1.0f}};
-  glm::vec3 cel = tones[d < 0.2f ? 0 : d < 0.45f ? 1 : d < 0.75f ? 2 : 3] * s.light.colour;
-  float outline = 1 - smoothStep(0.15f, 0.3f, std::abs(glm::dot(f.normal, f.view)));
+  glm::vec3 cel = tones[d < th.x ? 0 : d < th.y ? 1 : d < th.z ? 2 : 3] * s.light.colour;
+  float outline =
+      1 - smoothStep(0.5f * p.outline_width, p.outline_width, std::abs(glm::dot(f.normal, f.view)));
   float inner = 1 - smoothStep(0.03f, 0.06f, std::abs(f.inner_max - kReferenceInnerIso));
   *sensitive |= outlineSensitive(f);
   return glm::vec4(glm::mix(cel, outline_colour, std::max(outline, 0.8f * inner)), 1.0f);
@@ -229,11 +261,12 @@ glm::vec4 inkAmounts(const ReferenceScene& s, const Surface& f, bool* band_ambig
     *band_ambiguous |= near(d, {0.25f, 0.55f, 0.8f}, 0.01f);
     band = d <= 0.25f ? 1.0f : d <= 0.55f ? 0.7f : d <= 0.8f ? 0.4f : 0.1f;
   }
+  const InkStyleParams& p = s.options.style_params.ink;
   float edge = std::abs(glm::dot(f.normal, f.view));
   *sensitive |= outlineSensitive(f);
-  float x = 3.0f * edge / 0.5f;
-  float silhouette = edge < 0.5f ? std::exp(-0.5f * x * x) : 0.0f;
-  return glm::vec4(quantise8(0.35f * band), quantise8(silhouette), 0, 1);
+  float x = 3.0f * edge / p.line_width;
+  float silhouette = edge < p.line_width ? std::exp(-0.5f * x * x) : 0.0f;
+  return glm::vec4(quantise8(p.wash * band), quantise8(silhouette), 0, 1);
 }
 
 glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensitive) {
@@ -241,7 +274,8 @@ glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensiti
   *sensitive |= outlineSensitive(f) || (nm > 0.0f && nm < 1.0f);
   if (!f.hit) return glm::vec4(0, quantise8(nm), 0, quantise8(nm));
   float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * (0.35f + 0.65f * f.light_t);
-  float outline = 1 - smoothStep(0.15f, 0.3f, std::abs(glm::dot(f.normal, f.view)));
+  const float width = s.options.style_params.sketch.outline_width;
+  float outline = 1 - smoothStep(0.5f * width, width, std::abs(glm::dot(f.normal, f.view)));
   float inner = 1 - smoothStep(0.03f, 0.06f, std::abs(f.inner_max - kReferenceInnerIso));
   return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.7f * inner)), 0, 1);
 }
@@ -283,7 +317,8 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
   const int yb = s.height - 1 - y;
   const RenderStyle style = s.options.style;
   if (!drawsIsoSurface(style)) {
-    out.rgba = compositedPixel(s, makeRay(s, x, yb));
+    const Ray r = makeRay(s, x, yb);
+    out.rgba = compositedPixel(s, r, behind(s, r, x, yb));
     return out;
   }
   auto surfaceAt = [&](int px, int py_bottom) {
@@ -293,26 +328,35 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
   };
   const glm::vec2 p = glm::vec2(x, yb) + 0.5f;  // gl_FragCoord
   if (style == RenderStyle::kCartoon) {
-    out.rgba = cartoonPixel(s, surfaceAt(x, yb), &out.ambiguous, &out.sensitive);
+    const glm::vec3 bg(behind(s, makeRay(s, x, yb), x, yb));
+    out.rgba = cartoonPixel(s, surfaceAt(x, yb), bg, &out.ambiguous, &out.sensitive);
   } else if (style == RenderStyle::kInk) {
     glm::vec4 centre = inkAmounts(s, surfaceAt(x, yb), &out.ambiguous, &out.sensitive);
     float silhouette = centre.g;
     if (!s.options.moving) {
-      // Separable Gaussian, width 7, e^(−x²/4) (seed 001 §3.3.5): x into an 8-bit target,
-      // then y.
-      const float w[4] = {1.0f, std::exp(-0.25f), std::exp(-1.0f), std::exp(-2.25f)};
-      const float norm = 1.0f / (w[0] + 2 * (w[1] + w[2] + w[3]));
+      // Separable Gaussian e^(−x²/(2σ²)) over ±R (seed 001 §3.3.5; σ² = 2, R = 3 by default):
+      // x into an 8-bit target, then y.
+      const float sigma = s.options.style_params.ink.bleed_sigma;
+      const int R = inkBleedRadius(sigma);
+      float w[kMaxInkBleedRadius + 1];
+      float sum = 0.0f;
+      for (int i = 0; i <= R; ++i) {
+        w[i] = std::exp(-float(i * i) / (2 * sigma * sigma));
+        sum += i ? 2 * w[i] : w[i];
+      }
+      const float norm = 1.0f / sum;
       // A neighbour's wash band does not reach this pixel (only its silhouette ink bleeds).
-      float g[7][7];
+      const int n = 2 * R + 1;
+      std::vector<float> g(size_t(n * n));
       bool band_ambiguous = false;
-      for (int j = -3; j <= 3; ++j)
-        for (int i = -3; i <= 3; ++i)
-          g[j + 3][i + 3] =
+      for (int j = -R; j <= R; ++j)
+        for (int i = -R; i <= R; ++i)
+          g[size_t((j + R) * n + i + R)] =
               inkAmounts(s, surfaceAt(x + i, yb + j), &band_ambiguous, &out.sensitive).g;
       silhouette = 0.0f;
-      for (int j = -3; j <= 3; ++j) {
+      for (int j = -R; j <= R; ++j) {
         float row = 0.0f;
-        for (int i = -3; i <= 3; ++i) row += w[std::abs(i)] * g[j + 3][i + 3];
+        for (int i = -R; i <= R; ++i) row += w[std::abs(i)] * g[size_t((j + R) * n + i + R)];
         silhouette += w[std::abs(j)] * quantise8(row * norm);
       }
       silhouette *= norm;

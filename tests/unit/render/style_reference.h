@@ -27,6 +27,8 @@ struct ReferenceScene {
   int width = 0, height = 0;
   RenderOptions options;
   DetailNoise noise;  // the physical style's fBm cube
+  // options.sky's LIC layer (makeLicSkyTexture with its settings) when options.sky.kind is lic.
+  const std::vector<uint8_t>* sky_lic = nullptr;
 };
 
 // Iso-surface constants the renderer uses (volume_renderer.cpp).
@@ -45,6 +47,9 @@ struct ReferencePixel {
 
 // The final colour of pixel (x, y), y = 0 at the top, for options.style. For ink and sketch this
 // includes the screen-space pass (and, for ink when still, the bleeding over the neighbours).
+// What shows behind the cloud is options.background or, when the style shows options.sky, the
+// sky (sky_function.h), composited under the cloud with its transmittance. Ink and sketch with
+// their sky parameter on are not modelled (their paper is).
 ReferencePixel referencePixel(const ReferenceScene& scene, int x, int y);
 
 }  // namespace cb
