@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "app/render/volume_renderer.h"
 #include "app/scene/light.h"
@@ -19,5 +20,10 @@ struct RenderConfig {
 // std::runtime_error naming the file, the key and the problem for a parse error, a wrong type or
 // an out-of-range value.
 RenderConfig loadRenderConfig(const std::string& path);
+// Every field as render.toml text that the parsers read back (floats with 9 significant digits):
+// the render settings in force, as a journal records them.
+std::string formatRenderConfig(const RenderConfig& config);
+// The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
+RenderConfig parseRenderConfigText(std::string_view text, const std::string& name);
 
 }  // namespace cb
