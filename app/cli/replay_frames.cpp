@@ -1,5 +1,6 @@
 #include "app/cli/replay_frames.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -37,8 +38,10 @@ bool ReplayFrameWriter::open(const JournalReadResult& journal, std::string* erro
   if (ec) return *error = "--frames " + dir_ + ": " + ec.message(), false;
   int64_t t_last = 0;
   bool first = true;
+  // The time line is the pen's: sample times are the device's (kernel) clock, which other
+  // records share when painting live but not when the pen itself was a replay.
   for (const JournalRecord& r : journal.records) {
-    if (r.t_ns <= 0) continue;  // starting-state records are stamped 0
+    if (r.type != JournalRecordType::kPenSample) continue;
     if (first) t_first_ = r.t_ns, first = false;
     t_last = std::max(t_last, r.t_ns);
   }
@@ -70,8 +73,8 @@ void ReplayFrameWriter::beforeRecord(size_t index, const PaintSession& session) 
     }
   }
   const bool at_end = index >= journal_->records.size();
+  if (!at_end && journal_->records[index].type != JournalRecordType::kPenSample) return;
   const int64_t t = at_end ? INT64_MAX : journal_->records[index].t_ns;
-  if (t <= 0 && !at_end) return;
   while (written_ < total_ && (at_end || t_first_ + int64_t(double(written_) * 1e9 / fps_) < t)) {
     writeFrame(session);
     if (!error_.empty()) return;
@@ -90,32 +93,52 @@ void ReplayFrameWriter::writeFrame(const PaintSession& session) {
   const std::string path = (std::filesystem::path(dir_) / name).string();
   const Camera& camera = session.camera();
   const Light& light = session.light();
-  const bool same = session.volume().generation() == shown_generation_ &&
-                    std::memcmp(&camera, &shown_camera_, sizeof camera) == 0 &&
-                    std::memcmp(&light, &shown_light_, sizeof light) == 0 && !last_path_.empty();
+  const bool scene_changed = session.volume().generation() != shown_generation_ ||
+                             std::memcmp(&camera, &shown_camera_, sizeof camera) != 0 ||
+                             std::memcmp(&light, &shown_light_, sizeof light) != 0 ||
+                             last_path_.empty();
+  const bool ink = session.engine().inStroke();
   std::error_code ec;
   std::filesystem::remove(path, ec);
-  if (same) {
+  if (!scene_changed && !ink && !last_had_ink_) {
     std::filesystem::create_hard_link(last_path_, path, ec);
     if (ec) std::filesystem::copy_file(last_path_, path, ec);
     if (ec) return void(error_ = path + ": " + ec.message());
   } else {
-    gl_->renderer->sync(session.volume(), light);
-    RenderOptions options = config_.options;
-    if (const std::optional<RenderStyle> style = parseRenderStyle(session.styleName()))
-      options.style = *style;
-    options.finish = true;
-    gl_->renderer->render(camera, width_, height_, gl_->target->fbo(), options);
+    if (scene_changed) {
+      gl_->renderer->sync(session.volume(), light);
+      RenderOptions options = config_.options;
+      if (const std::optional<RenderStyle> style = parseRenderStyle(session.styleName()))
+        options.style = *style;
+      options.finish = true;
+      gl_->renderer->render(camera, width_, height_, gl_->target->fbo(), options);
+      scene_ = gl_->target->readRgba8();
+      ++rendered_;
+      shown_generation_ = session.volume().generation();
+      shown_camera_ = camera;
+      shown_light_ = light;
+    }
+    ImageRgba8 frame = scene_;
+    if (ink) {
+      // The live footprint over the still scene, as the painter shows it (white ink at 85%,
+      // app/render/footprint_overlay.h), scaled from footprint pixels to the frame.
+      const Footprint& f = session.engine().footprint();
+      for (int y = 0; y < frame.height && f.width > 0; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+          const float a =
+              0.85f *
+              std::clamp(f.at(x * f.width / frame.width, y * f.height / frame.height), 0.0f, 1.0f);
+          uint8_t* p = frame.at(x, y);
+          for (int c = 0; c < 3; ++c) p[c] = uint8_t(std::lround(p[c] + a * (255.0f - p[c])));
+        }
+    }
     try {
-      writePng(path, gl_->target->readRgba8());
+      writePng(path, frame);
     } catch (const ImageIoError& e) {
       return void(error_ = e.what());
     }
-    ++rendered_;
-    shown_generation_ = session.volume().generation();
-    shown_camera_ = camera;
-    shown_light_ = light;
   }
+  last_had_ink_ = ink;
   last_path_ = path;
   ++written_;
 }
