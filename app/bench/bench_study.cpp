@@ -204,9 +204,9 @@ int benchStudy(int argc, char** argv) {
     {
       // Baseline first, then with fsync, into files of the same size in the same directory.
       const JournalWriteTimes plain =
-          timeJournalWrites((dir / "journal-nofsync.cbj").string(), 8, false);
+          timeJournalWrites((dir / "journal-nofsync.cbj").string(), 50, false);
       const JournalWriteTimes synced =
-          timeJournalWrites((dir / "journal-fsync.cbj").string(), 8, true);
+          timeJournalWrites((dir / "journal-fsync.cbj").string(), 50, true);
       const double per_sample = median(synced.sample_ns),
                    per_sample_plain = median(plain.sample_ns);
       std::printf(
