@@ -1,6 +1,8 @@
 #include "app/session/session_resume.h"
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace cb {
 
@@ -10,12 +12,29 @@ bool resumeOrStartSession(const std::string& path, const PaintSessionSettings& s
   *out = ResumedSession{};
   std::error_code ec;
   JournalReadResult read;
-  if (std::filesystem::exists(path, ec)) read = readJournal(path);
+  if (std::filesystem::exists(path, ec)) {
+    read = readJournal(path);
+    if (read.version == 0) {
+      // Only the remains of a journal whose creation was cut short may be started over.
+      std::ifstream in(path, std::ios::binary);
+      const std::string head((std::istreambuf_iterator<char>(in)), {});
+      if (head.size() >= 8 || std::string("CBJOURNL").compare(0, head.size(), head) != 0) {
+        *error = read.error + "; not resuming, and not overwriting it";
+        return false;
+      }
+    }
+  }
   bool has_session = false;
   for (const JournalRecord& record : read.records)
     if (record.type == JournalRecordType::kSession) has_session = true;
+  if (!has_session && !read.records.empty()) {
+    *error = path + ": holds " + std::to_string(read.records.size()) +
+             " journal records but no painting session (a pen recording?); not resuming, and "
+             "not overwriting it";
+    return false;
+  }
   if (!has_session) {
-    // Nothing to resume (a new file, or one cut before its Session record): start afresh.
+    // Nothing to resume (a new file, or one cut before its first record): start afresh.
     if (!journal->open(path)) return *error = journal->error(), false;
     out->session = std::make_unique<PaintSession>(settings, brush, mapping);
     return true;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -169,6 +170,23 @@ TEST(SessionRecord, AResumedSessionEndsWithTheUninterruptedVolume) {
                                     &error));
   EXPECT_NE(error.find("320x180"), std::string::npos) << error;
   EXPECT_EQ(std::filesystem::file_size(path), size);
+  // Nor is a file that is not a session's journal overwritten: a pen recording, a text file.
+  const std::string pen_only = tempPath("pen_only.cbj");
+  {
+    JournalWriter writer;
+    ASSERT_TRUE(writer.open(pen_only));
+    writer.appendPenSample(referenceSamples().front());
+  }
+  const std::string text = tempPath("notes.txt");
+  std::ofstream(text) << "not a journal";
+  for (const std::string& other_file : {pen_only, text}) {
+    const auto before = std::filesystem::file_size(other_file);
+    EXPECT_FALSE(resumeOrStartSession(other_file, testSettings(), BrushConfig{}, MappingConfig{},
+                                      &journal, &resumed, &error));
+    EXPECT_NE(error.find("not overwriting"), std::string::npos) << error;
+    EXPECT_EQ(std::filesystem::file_size(other_file), before);
+    std::filesystem::remove(other_file);
+  }
   std::filesystem::remove(path);
   std::filesystem::remove(tempPath("whole.cbj"));
 }
