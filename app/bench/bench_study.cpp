@@ -3,7 +3,9 @@
 // linear EXR + PNG; the pen-trace exports (InkML, samples/strokes/events CSV) and the HTML report
 // for 20 synthetic sessions with 20 participants' answers. Baselines, measured in the same run:
 // writing the volume's bytes with one fwrite (the floor for any volume file), and reading the 20
-// journals (the floor for anything made from them). Files go to a temporary directory that is
+// journals (the floor for anything made from them). The journal's durability (issue 10): the
+// cost of writing one pen sample, and the stall of the fsync at each stroke end (p50, p99),
+// against the same writes with a flush but no fsync. Files go to a temporary directory that is
 // removed afterwards. Never fails on a missed target.
 #include <unistd.h>
 
@@ -76,6 +78,38 @@ void writeSyntheticJournal(const std::string& path, int rounds, uint32_t seed) {
       }
     }
   journal.close();
+}
+
+struct JournalWriteTimes {
+  std::vector<double> sample_ns;      // per appended sample
+  std::vector<double> stroke_end_ms;  // per stroke end: the sync (or only the flush)
+};
+
+// Writes the reference strokes `rounds` times as the painter does: one append per sample, and
+// at each stroke end an fsync (`fsync_at_stroke_end`) or nothing more than the flush every
+// append already makes (the baseline).
+JournalWriteTimes timeJournalWrites(const std::string& path, int rounds, bool fsync_at_stroke_end) {
+  JournalWriteTimes times;
+  JournalWriter journal;
+  if (!journal.open(path)) throw std::runtime_error(journal.error());
+  const PenDeviceInfo tablet = syntheticTablet(kScreenW, kScreenH);
+  const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kScreenW, kScreenH);
+  int64_t t = 1'000'000;
+  for (int r = 0; r < rounds; ++r)
+    for (const SyntheticStroke& stroke : strokes) {
+      for (const PenSample& s : syntheticPenSamples(stroke, tablet, kScreenW, kScreenH, 200.0, t)) {
+        const auto t0 = Clock::now();
+        journal.appendPenSample(s);
+        times.sample_ns.push_back(
+            std::chrono::duration<double, std::nano>(Clock::now() - t0).count());
+        t = s.t_ns + 5'000'000;
+      }
+      const auto t0 = Clock::now();
+      if (fsync_at_stroke_end) journal.sync();
+      times.stroke_end_ms.push_back(msSince(t0));
+    }
+  journal.close();
+  return times;
 }
 
 std::string syntheticAnswers(int participants) {
@@ -166,6 +200,31 @@ int benchStudy(int argc, char** argv) {
         medianMs(int(repeats), [&] { exportRender(frame, dir.string(), "frame"); });
     std::printf("render export 1280x720 EXR + PNG %.1f ms\n", render_ms);
     report.figure("render_exr_png_export_ms", render_ms);
+
+    {
+      // Baseline first, then with fsync, into files of the same size in the same directory.
+      const JournalWriteTimes plain =
+          timeJournalWrites((dir / "journal-nofsync.cbj").string(), 50, false);
+      const JournalWriteTimes synced =
+          timeJournalWrites((dir / "journal-fsync.cbj").string(), 50, true);
+      const double per_sample = median(synced.sample_ns),
+                   per_sample_plain = median(plain.sample_ns);
+      std::printf(
+          "journal: %zu samples, %zu strokes: write %.0f ns/sample (median; p99 %.0f ns); fsync "
+          "at stroke end p50 %.3f ms, p99 %.3f ms; without fsync %.0f ns/sample, stroke end "
+          "p50 %.4f ms, p99 %.4f ms\n",
+          synced.sample_ns.size(), synced.stroke_end_ms.size(), per_sample,
+          percentile(synced.sample_ns, 99), percentile(synced.stroke_end_ms, 50),
+          percentile(synced.stroke_end_ms, 99), per_sample_plain,
+          percentile(plain.stroke_end_ms, 50), percentile(plain.stroke_end_ms, 99));
+      report.figure("journal_write_ns_per_sample", per_sample);
+      report.figure("journal_write_p99_ns", percentile(synced.sample_ns, 99));
+      report.figure("stroke_end_fsync_p50_ms", percentile(synced.stroke_end_ms, 50));
+      report.figure("stroke_end_fsync_p99_ms", percentile(synced.stroke_end_ms, 99));
+      report.baseline("journal_write_ns_per_sample_no_fsync", per_sample_plain);
+      report.baseline("stroke_end_no_fsync_p50_ms", percentile(plain.stroke_end_ms, 50));
+      report.baseline("stroke_end_no_fsync_p99_ms", percentile(plain.stroke_end_ms, 99));
+    }
 
     std::vector<std::string> journals;
     for (long s = 0; s < session_count; ++s) {

@@ -103,6 +103,11 @@ bool parseBrushKind(const std::string& name, BrushKind* kind) {
   return true;
 }
 
+namespace {
+bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConfig* c,
+                     std::vector<std::string>* errors);
+}  // namespace
+
 bool loadBrushConfig(const std::string& path, BrushConfig* c, std::vector<std::string>* errors) {
   toml::table root;
   try {
@@ -111,6 +116,24 @@ bool loadBrushConfig(const std::string& path, BrushConfig* c, std::vector<std::s
     errors->push_back(where(path, e.source()) + ": " + std::string(e.description()));
     return false;
   }
+  return brushConfigFrom(root, path, c, errors);
+}
+
+bool parseBrushConfigText(std::string_view text, const std::string& name, BrushConfig* c,
+                          std::vector<std::string>* errors) {
+  toml::table root;
+  try {
+    root = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    errors->push_back(where(name, e.source()) + ": " + std::string(e.description()));
+    return false;
+  }
+  return brushConfigFrom(root, name, c, errors);
+}
+
+namespace {
+bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConfig* c,
+                     std::vector<std::string>* errors) {
   Reader r(path, errors);
   r.kind(root, "brush", &c->default_brush);
   if (const toml::table* t = r.section(root, "stroke")) {
@@ -182,6 +205,63 @@ bool loadBrushConfig(const std::string& path, BrushConfig* c, std::vector<std::s
     return false;
   }
   return r.ok();
+}
+}  // namespace
+
+std::string formatBrushConfig(const BrushConfig& c) {
+  std::ostringstream o;
+  char buf[64];
+  const auto num = [&](const char* key, double v) {
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    o << key << " = " << buf << "\n";
+  };
+  const auto integer = [&](const char* key, long long v) { o << key << " = " << v << "\n"; };
+  o << "brush = \"" << brushKindName(c.default_brush) << "\"\n\n[stroke]\n";
+  num("down_pressure", c.stroke.down_pressure);
+  num("up_pressure", c.stroke.up_pressure);
+  num("spacing_px", c.stroke.spacing_px);
+  num("footprint_scale", c.stroke.footprint_scale);
+  integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
+  integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
+  o << "\n[dispersion]\n";
+  num("slow_speed_px_s", c.dispersion.slow_speed_px_s);
+  num("fast_speed_px_s", c.dispersion.fast_speed_px_s);
+  num("max_dispersion", c.dispersion.max_dispersion);
+  num("speed_smoothing_ms", c.dispersion.speed_smoothing_ms);
+  num("noise_scale_px", c.dispersion.noise_scale_px);
+  o << "\n[brush2d]\n";
+  num("min_diameter_px", c.brush2d.min_diameter_px);
+  num("max_diameter_px", c.brush2d.max_diameter_px);
+  integer("texture_size", c.brush2d.texture_size);
+  integer("bristles", c.brush2d.bristles);
+  integer("texture_seed", c.brush2d.texture_seed);
+  o << "\n[brush3d]\n";
+  num("diameter_px", c.brush3d.diameter_px);
+  integer("ink_volume_size", c.brush3d.ink_volume_size);
+  integer("ink_seed", c.brush3d.ink_seed);
+  integer("sample_size", c.brush3d.sample_size);
+  num("slab_thickness", c.brush3d.slab_thickness);
+  num("absorption", c.brush3d.absorption);
+  num("max_tilt_deg", c.brush3d.max_tilt_deg);
+  num("pressure_quantum", c.brush3d.pressure_quantum);
+  num("tilt_quantum_deg", c.brush3d.tilt_quantum_deg);
+  integer("cache_entries", c.brush3d.cache_entries);
+  o << "\n[skeleton]\n";
+  num("segment_length_px", c.skeleton.segment_length_px);
+  num("time_step_ms", c.skeleton.time_step_ms);
+  integer("constraint_iterations", c.skeleton.constraint_iterations);
+  num("gravity_px_s2", c.skeleton.gravity_px_s2);
+  num("damping", c.skeleton.damping);
+  num("press_depth", c.skeleton.press_depth);
+  num("paper_softness_px", c.skeleton.paper_softness_px);
+  integer("bristles", c.skeleton.bristles);
+  num("bristle_spread_px", c.skeleton.bristle_spread_px);
+  num("bristle_splay", c.skeleton.bristle_splay);
+  num("bristle_radius_px", c.skeleton.bristle_radius_px);
+  integer("bristle_points", c.skeleton.bristle_points);
+  integer("max_steps_per_sample", c.skeleton.max_steps_per_sample);
+  integer("seed", c.skeleton.seed);
+  return o.str();
 }
 
 BrushConfig loadDefaultBrushConfig() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/brush/stroke_result.h"
@@ -82,6 +83,12 @@ struct BrushConfig {
 // values; fields that were bad keep their defaults.
 bool loadBrushConfig(const std::string& path, BrushConfig* config,
                      std::vector<std::string>* errors);
+// The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
+bool parseBrushConfigText(std::string_view text, const std::string& name, BrushConfig* config,
+                          std::vector<std::string>* errors);
+// Every field as brush.toml text that the parsers read back to the same values (floats with 9
+// significant digits): the brush in force, as a journal records it.
+std::string formatBrushConfig(const BrushConfig& config);
 // The shipped config/brush.toml (config_paths.h), or defaults with a message on stderr.
 BrushConfig loadDefaultBrushConfig();
 

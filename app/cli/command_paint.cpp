@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
+#include "app/session/session_resume.h"
 #include "app/shell/attract_journal.h"
 #include "app/shell/keymap.h"
 #include "app/shell/kiosk_screen.h"
@@ -39,6 +41,7 @@
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
 #include "drivers/open_pen_source.h"
+#include "drivers/replay/replay_pen_source.h"
 
 namespace cb {
 namespace {
@@ -74,6 +77,14 @@ constexpr const char* kUsage =
     "  --journal FILE      with --backend replay: the session journal to play as the pen\n"
     "  --session-dir DIR   where session journals go (default <state dir>/sessions)\n"
     "  --no-record         do not journal this session\n"
+    "  --sync-udp [HOST:]PORT\n"
+    "                      send task and stroke boundaries as UDP datagrams (JOURNAL.md, Sync\n"
+    "                      records; default host 127.0.0.1; off by default)\n"
+    "  --resume FILE       journal the session to FILE; when FILE already holds a session (the\n"
+    "                      painter crashed or was stopped), replay it to rebuild the cloud, the\n"
+    "                      history and the settings, and carry on after its last whole record\n"
+    "                      (with --backend replay, the pen continues after the last sample FILE\n"
+    "                      holds)\n"
     "  --open FILE         start from a saved cloud (a .vol of the session's grid)\n"
     "  --kiosk             exhibition mode (what `cloudbrush kiosk` runs; settings in\n"
     "                      config/kiosk.toml): the attract loop replays a journal until a pen\n"
@@ -129,7 +140,7 @@ int commandPaint(int argc, char** argv) {
        "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
        "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
        "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery"});
+       "language",   "gallery", "resume",       "sync-udp"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -194,6 +205,9 @@ int commandPaint(int argc, char** argv) {
         2);
   if (backend == "replay" && !args.has("journal"))
     return fail("--backend replay needs --journal FILE", 2);
+  const std::string resume_path = args.get("resume", "");
+  if (!resume_path.empty() && args.has("no-record"))
+    return fail("--resume records into its file; it cannot go with --no-record", 2);
 
   std::string choice_note;
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
@@ -231,7 +245,9 @@ int commandPaint(int argc, char** argv) {
   MappingConfig mapping;
   PaintSessionSettings settings;
   BrushConfig brush;
-  if (pen || kiosk) {  // a kiosk without a tablet still paints with a mouse and resets
+  bool resuming = false;          // --resume found a session in its file
+  int64_t resumed_after_ns = -1;  // the resumed journal's last pen sample
+  if (pen || kiosk) {             // a kiosk without a tablet still paints with a mouse and resets
     try {
       if (std::filesystem::exists(configFile("mapping.toml")))
         mapping = loadMappingConfig(configFile("mapping.toml"));
@@ -246,8 +262,40 @@ int commandPaint(int argc, char** argv) {
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
   }
   if (kiosk && args.has("open")) return fail("--open is not a kiosk option", 2);
+  if (kiosk && !resume_path.empty()) return fail("--resume is not a kiosk option", 2);
   if (pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
-    session = std::make_unique<PaintSession>(settings, brush, mapping);
+    if (!resume_path.empty()) {
+      // Issue 10: restarting on the same session resumes it from its journal.
+      ResumedSession resumed;
+      if (!resumeOrStartSession(resume_path, settings, brush, mapping, &journal, &resumed, &error))
+        return fail("--resume: " + error, 2);
+      session = std::move(resumed.session);
+      resuming = resumed.resumed;
+      if (!resumed.warning.empty())
+        std::fprintf(stderr, "cloudbrush: resume: %s\n", resumed.warning.c_str());
+      if (resuming) {
+        resumed_after_ns = resumed.last_sample_ns;
+        std::printf(
+            "resumed %s: %zu records, %zu pen samples, %u strokes; recording on after byte "
+            "%llu\n",
+            resume_path.c_str(), resumed.replay.records_applied, resumed.replay.pen_samples,
+            resumed.replay.strokes_mapped,
+            static_cast<unsigned long long>(std::filesystem::file_size(resume_path)));
+        std::fflush(stdout);
+        loop_options.orbit_degrees_per_second = 0.0f;  // the view stays where the session left it
+      }
+    } else {
+      session = std::make_unique<PaintSession>(settings, brush, mapping);
+    }
+  }
+  SyncMarkerSender sync_sender;
+  if (args.has("sync-udp")) {
+    if (!sync_sender.open(args.get("sync-udp", ""), &error)) return fail("--sync-udp: " + error, 2);
+    if (session) session->setSyncSender(&sync_sender);
+  }
+  if (session && !resuming) {
+    // The render settings in force, journalled with the brush and mapping (issue 10).
+    session->setRenderSettings(formatRenderConfig(render_config), 0);
     session->setStartingLight(light);
     session->setStartingStyle(renderStyleName(render_config.options.style));
     if (args.has("open")) {
@@ -266,8 +314,23 @@ int commandPaint(int argc, char** argv) {
   const std::string session_dir =
       args.get("session-dir", (kiosk ? data_dir : stateDir()) + "/sessions");
   const bool record = !args.has("no-record");
+  if (resuming && backend == "replay" && resumed_after_ns >= 0) {
+    // The recorded pen carries on after the last sample the resumed session holds.
+    JournalReadResult input = readJournal(args.get("journal", ""));
+    std::vector<JournalRecord> rest;
+    for (JournalRecord& r : input.records)
+      if (r.type != JournalRecordType::kPenSample || r.t_ns > resumed_after_ns)
+        rest.push_back(std::move(r));
+    pen = std::make_unique<ReplayPenSource>(std::move(rest), ReplayOptions{});
+  }
   const auto start_journal = [&]() {
-    if (!record || !session) return;  // the kiosk journals each visitor itself
+    if (!record || !session || resuming) return;  // the kiosk journals each visitor itself
+    if (!resume_path.empty()) {
+      session->recordTo(&journal, 0);  // a new session in the --resume file
+      std::printf("journal: %s\n", resume_path.c_str());
+      std::fflush(stdout);
+      return;
+    }
     std::error_code ec;
     std::filesystem::create_directories(session_dir, ec);
     char stamp[32];
@@ -371,6 +434,16 @@ int commandPaint(int argc, char** argv) {
       if (kiosk_screen) kiosk_screen->keepFinishedCloud("start again");
     };
   }
+  // Durability (issue 10): the journal syncs at every stroke end (PaintSession) and, from the
+  // frame loop, whenever records older than a second are not yet on the disk.
+  {
+    const std::function<void(bool)> service = loop_options.each_iteration;
+    loop_options.each_iteration = [&journal, &clock, service](bool presented) {
+      if (journal.isOpen() && !journal.syncIfDue(clock.nowNs()))
+        std::fprintf(stderr, "cloudbrush: journal: %s\n", journal.error().c_str());
+      if (service) service(presented);
+    };
+  }
   PaintLoop loop(*display, renderer, volume, light, loop_options);
   if (pen) loop.attachPen(pen.get(), session.get());
   if (kiosk) {
@@ -438,7 +511,7 @@ int commandPaint(int argc, char** argv) {
         summary.median_painting_frame_ms, summary.painting_frames);
   // (The kiosk's visitors each have a journal of their own; no one checksum stands for them.)
   const PaintSession* painted = session.get();
-  if (painted && summary.pen_samples > 0)
+  if (painted && (summary.pen_samples > 0 || resuming))
     std::printf(
         "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "
         "same)\n",

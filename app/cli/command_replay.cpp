@@ -1,14 +1,17 @@
 // `cloudbrush replay SESSION.cbj`: re-runs a recorded painting session headlessly through the
-// PaintSession (app/session/session_replay.h) and reports the resulting volume's checksum; optionally
-// writes the volume and a lit render of it from the session's last paint view.
+// PaintSession (app/session/session_replay.h) and reports the resulting volume's checksum;
+// optionally writes the volume and a lit render of it from the session's last paint view.
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/replay_frames.h"
 #include "app/core/config_paths.h"
 #include "app/core/parallel_for.h"
 #include "app/mapping/mapping_config.h"
@@ -27,15 +30,20 @@ constexpr const char* kReplayHelp =
     "usage: cloudbrush replay SESSION.cbj [OPTIONS]\n"
     "\n"
     "Re-runs a recorded session journal without a display: raw pen samples go through the\n"
-    "calibration recorded in the journal, the brush (config/brush.toml) and the mapping\n"
-    "(config/mapping.toml) exactly as while painting. Prints the volume checksum; the same\n"
-    "journal gives the same checksum on any thread count. A damaged journal replays its intact\n"
-    "part, says where it broke and exits with status 3.\n"
+    "calibration, brush, mapping and render settings recorded in the journal, exactly as\n"
+    "while painting, whatever the local config (journals from before recorded settings use\n"
+    "config/brush.toml and config/mapping.toml). Prints the volume checksum; the same journal\n"
+    "gives the same checksum on any thread count. A damaged journal replays its intact part,\n"
+    "says where it broke and exits with status 3.\n"
     "\n"
     "options:\n"
     "  --out-volume FILE   write the resulting volume (.cbvol, see `cloudbrush render`)\n"
     "  --render FILE.png   write a lit render from the session's last paint view\n"
-    "  --size WxH          render size (default 1280x720)\n"
+    "  --frames DIR        write one PNG per frame of the session's time line (frame_000000.png,\n"
+    "                      ...) as fast as possible, headless; progress on stderr. A video:\n"
+    "                      ffmpeg -framerate 30 -i DIR/frame_%06d.png -pix_fmt yuv420p out.mp4\n"
+    "  --fps N             frames per second of journal time for --frames (default 30)\n"
+    "  --size WxH          render and frame size (default 1280x720)\n"
     "  --threads N         worker threads (default: CLOUDBRUSH_THREADS or all cores)\n"
     "  --help              this text\n";
 
@@ -44,16 +52,25 @@ int fail(const std::string& message, int code = 1) {
   return code;
 }
 
+// The render settings recorded in the journal (any local render.toml is ignored then), else
+// the local ones, as before Settings records.
+bool renderConfigFor(const PaintSession& session, RenderConfig* config, std::string* error) {
+  try {
+    if (!session.renderSettings().empty())
+      *config = parseRenderConfigText(session.renderSettings(), "the journal's render.toml");
+    else if (const std::string path = configFile("render.toml"); std::filesystem::exists(path))
+      *config = loadRenderConfig(path);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
+  return true;
+}
+
 int renderPng(const PaintSession& session, const std::string& path, int width, int height) {
   RenderConfig config;
-  const std::string config_path = configFile("render.toml");
-  if (std::filesystem::exists(config_path)) {
-    try {
-      config = loadRenderConfig(config_path);
-    } catch (const std::exception& e) {
-      return fail(e.what());
-    }
-  }
+  std::string config_error;
+  if (!renderConfigFor(session, &config, &config_error)) return fail(config_error);
   EglContext ctx;
   std::string error;
   if (!createSurfacelessContext(&ctx, &error)) return fail(error);
@@ -89,7 +106,8 @@ int commandReplay(int argc, char** argv) {
     std::fputs(kReplayHelp, stdout);
     return 0;
   }
-  const auto unknown = args.unknown({"help", "out-volume", "render", "size", "threads"});
+  const auto unknown =
+      args.unknown({"help", "out-volume", "render", "size", "threads", "frames", "fps"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() != 2)
     return fail("expected one journal file: cloudbrush replay SESSION.cbj (see --help)", 2);
@@ -125,8 +143,21 @@ int commandReplay(int argc, char** argv) {
       return fail(e.what());
     }
   }
+  const std::string frames_dir = args.get("frames", "");
+  const double fps = args.getDouble("fps", 30.0);
+  if (!args.error().empty()) return fail(args.error(), 2);
+  if (!(fps > 0.0 && fps <= 240.0)) return fail("--fps: expected a number in (0, 240]", 2);
+  std::unique_ptr<ReplayFrameWriter> frames;
+  std::function<void(size_t, const PaintSession&)> before_record;
+  if (!frames_dir.empty()) {
+    frames = std::make_unique<ReplayFrameWriter>(frames_dir, width, height, fps);
+    std::string error;
+    if (!frames->open(journal, &error)) return fail(error);
+    before_record = [&](size_t index, const PaintSession& s) { frames->beforeRecord(index, s); };
+  }
   const auto start = std::chrono::steady_clock::now();
-  const SessionReplay replay = replaySession(journal, loadDefaultBrushConfig(), mapping);
+  const SessionReplay replay =
+      replaySession(journal, loadDefaultBrushConfig(), mapping, {}, before_record);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const std::string& problem : replay.problems)
@@ -143,6 +174,15 @@ int commandReplay(int argc, char** argv) {
       "on %d threads\n",
       replay.records_applied, replay.pen_samples, replay.strokes_mapped, dims.x, dims.y, dims.z, ms,
       workerThreads());
+  if (frames) {
+    if (!frames->error().empty()) return fail("--frames: " + frames->error());
+    std::printf("frames: %ld PNGs in %s (%ld rendered, the rest unchanged) at %.0f fps\n",
+                frames->framesWritten(), frames_dir.c_str(), frames->framesRendered(), fps);
+    frames.reset();  // its GL context goes before the --render one is made
+  }
+  std::printf("settings: %s\n", replay.recorded_settings
+                                    ? "brush and mapping as recorded in the journal"
+                                    : "brush and mapping from the local config (none recorded)");
   std::printf("volume checksum: %016" PRIx64 "\n", volumeChecksum(session.volume()));
 
   if (const std::string out = args.get("out-volume", ""); !out.empty()) {

@@ -13,4 +13,13 @@ toml::table parseTomlFileOrThrow(const std::string& path) {
   }
 }
 
+toml::table parseTomlTextOrThrow(std::string_view text, const std::string& name) {
+  try {
+    return toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw std::runtime_error(name + ":" + std::to_string(e.source().begin.line) + ": " +
+                             std::string(e.description()));
+  }
+}
+
 }  // namespace cb

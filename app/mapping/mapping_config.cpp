@@ -1,5 +1,6 @@
 #include "app/mapping/mapping_config.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -108,8 +109,68 @@ void validate(const MappingConfig& c) {
   require(c.noise.octaves >= 1 && c.noise.octaves <= 8, "noise.octaves", "must be in 1..8");
 }
 
+namespace {
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path);
+}  // namespace
+
+std::string formatMappingConfig(const MappingConfig& c) {
+  std::string o;
+  char buf[64];
+  const auto num = [&](const char* key, double v) {
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    o += std::string(key) + " = " + buf + "\n";
+  };
+  const auto integer = [&](const char* key, long long v) {
+    o += std::string(key) + " = " + std::to_string(v) + "\n";
+  };
+  const auto flag = [&](const char* key, bool v) {
+    o += std::string(key) + " = " + (v ? "true" : "false") + "\n";
+  };
+  o += std::string("[mapping]\nmethod = \"") + toString(c.method) + "\"\n\n[circles]\n";
+  integer("initial_diameter_px", c.circles.initial_diameter_px);
+  integer("min_radius_px", c.circles.min_radius_px);
+  integer("directions", c.circles.directions);
+  num("accept_white_ratio", c.circles.accept_white_ratio);
+  num("drop_empty_ratio", c.circles.drop_empty_ratio);
+  num("white_threshold", c.circles.white_threshold);
+  num("empty_threshold", c.circles.empty_threshold);
+  flag("white_relative_to_peak", c.circles.white_relative_to_peak);
+  flag("reseed_along_path", c.circles.reseed_along_path);
+  flag("empty_test_on_smallest", c.circles.empty_test_on_smallest);
+  o += "\n[spheres]\n";
+  num("density", c.spheres.density);
+  num("edge_softness", c.spheres.edge_softness);
+  num("noise_erosion", c.spheres.noise_erosion);
+  num("noise_modulation", c.spheres.noise_modulation);
+  o += "\n[edges]\n";
+  integer("samples_per_pixel", c.edges.samples_per_pixel);
+  num("depth_sigma_of_radius", c.edges.depth_sigma_of_radius);
+  num("lateral_sigma_px", c.edges.lateral_sigma_px);
+  num("min_depth_sigma_voxels", c.edges.min_depth_sigma_voxels);
+  num("density_scale", c.edges.density_scale);
+  o += "\n[ray_marching]\n";
+  num("density", c.ray_marching.density);
+  o += "\n[sheet]\n";
+  num("sigma_voxels", c.sheet.sigma_voxels);
+  num("erosion", c.sheet.erosion);
+  o += "\n[noise]\n";
+  integer("seed", c.noise.seed);
+  integer("size", c.noise.size);
+  num("period_voxels", c.noise.period_voxels);
+  integer("octaves", c.noise.octaves);
+  return o;
+}
+
 MappingConfig loadMappingConfig(const std::string& path) {
-  toml::table root = parseTomlFileOrThrow(path);
+  return mappingConfigFrom(parseTomlFileOrThrow(path), path);
+}
+
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name) {
+  return mappingConfigFrom(parseTomlTextOrThrow(text, name), name);
+}
+
+namespace {
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path) {
   MappingConfig c;
   if (auto m = root["mapping"]["method"].value<std::string>()) {
     if (!parseMappingMethod(*m, &c.method))
@@ -149,5 +210,6 @@ MappingConfig loadMappingConfig(const std::string& path) {
   }
   return c;
 }
+}  // namespace
 
 }  // namespace cb

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace cb {
 
@@ -92,6 +93,11 @@ struct MappingConfig {
 // std::runtime_error naming the file, key and problem for a parse error, a wrong type or an
 // out-of-range value.
 MappingConfig loadMappingConfig(const std::string& path);
+// The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name);
+// Every field as mapping.toml text that loadMappingConfig reads back to the same values (floats
+// with 9 significant digits): the mapping in force, as a journal records it.
+std::string formatMappingConfig(const MappingConfig& config);
 // Checks ranges; throws std::invalid_argument naming the field.
 void validate(const MappingConfig& config);
 

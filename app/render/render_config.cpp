@@ -286,8 +286,53 @@ void readTimeOfDay(const toml::table& root, Lenient& in, bool direction_given, L
 
 }  // namespace
 
+namespace {
+RenderConfig renderConfigFrom(const toml::table& root, const std::string& path);
+}  // namespace
+
+std::string formatRenderConfig(const RenderConfig& c) {
+  std::string o;
+  char buf[64];
+  const auto num = [&](const char* key, double v) {
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    o += std::string(key) + " = " + buf + "\n";
+  };
+  const auto vec = [&](const char* key, const float* v, int n) {
+    o += std::string(key) + " = [";
+    for (int i = 0; i < n; ++i) {
+      std::snprintf(buf, sizeof buf, "%s%.9g", i ? ", " : "", double(v[i]));
+      o += buf;
+    }
+    o += "]\n";
+  };
+  const RenderOptions& r = c.options;
+  o += "[raycast]\n";
+  num("step_voxels", r.step_voxels);
+  num("extinction_per_voxel", r.extinction_per_voxel);
+  num("termination_transmittance", r.termination_transmittance);
+  o += std::string("skip_empty_space = ") + (r.skip_empty_space ? "true" : "false") + "\n";
+  o += std::string("brick_stepping = ") + (r.brick_stepping ? "true" : "false") + "\n";
+  o += "\n[background]\n";
+  vec("colour", &r.background.x, 4);
+  o += std::string("\n[style]\nname = \"") + renderStyleName(r.style) + "\"\n\n[motion]\n";
+  num("moving_scale", c.moving_scale);
+  o += "\n[light]\n";
+  vec("direction", &c.light.direction.x, 3);
+  vec("colour", &c.light.colour.x, 3);
+  num("extinction", c.light.extinction);
+  return o;
+}
+
 RenderConfig loadRenderConfig(const std::string& path) {
-  toml::table root = parseTomlFileOrThrow(path);
+  return renderConfigFrom(parseTomlFileOrThrow(path), path);
+}
+
+RenderConfig parseRenderConfigText(std::string_view text, const std::string& name) {
+  return renderConfigFrom(parseTomlTextOrThrow(text, name), name);
+}
+
+namespace {
+RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) {
   RenderConfig c;
   RenderOptions& o = c.options;
   read(root, path, "raycast", "step_voxels", &o.step_voxels);
@@ -330,5 +375,6 @@ RenderConfig loadRenderConfig(const std::string& path) {
   readSky(root, path, lenient, &c.options.sky);
   return c;
 }
+}  // namespace
 
 }  // namespace cb

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/render/volume_renderer.h"
@@ -27,5 +28,10 @@ struct RenderConfig {
 // default used; a sky image that cannot be read (missing, not a PNG, too large) falls back to
 // the sky kind "none".
 RenderConfig loadRenderConfig(const std::string& path);
+// Every field as render.toml text that the parsers read back (floats with 9 significant digits):
+// the render settings in force, as a journal records them.
+std::string formatRenderConfig(const RenderConfig& config);
+// The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
+RenderConfig parseRenderConfigText(std::string_view text, const std::string& name);
 
 }  // namespace cb

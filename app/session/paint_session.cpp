@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <sstream>
 
 #include "app/scene/paint_camera.h"
@@ -10,6 +11,7 @@
 #include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
 #include "app/volume/volume_file.h"
+#include "drivers/core/journal_records.h"
 
 namespace cb {
 namespace {
@@ -95,6 +97,8 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
 PaintSession::PaintSession(const PaintSessionSettings& settings, const BrushConfig& brush,
                            const MappingConfig& mapping)
     : settings_(settings),
+      brush_config_(brush),
+      mapping_config_(mapping),
       footprint_w_(std::max(
           1, int(std::lround(settings.screen_width * double(brush.stroke.footprint_scale))))),
       footprint_h_(std::max(
@@ -116,6 +120,13 @@ void PaintSession::journalText(JournalRecordType type, int64_t t_ns, const std::
 void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
   journal_ = journal;
   journalText(JournalRecordType::kSession, t_ns, formatSessionSettings(settings_));
+  journalText(JournalRecordType::kSettings, t_ns,
+              formatSettingsRecord("brush.toml", formatBrushConfig(brush_config_)));
+  journalText(JournalRecordType::kSettings, t_ns,
+              formatSettingsRecord("mapping.toml", formatMappingConfig(mapping_config_)));
+  if (!render_settings_.empty())
+    journalText(JournalRecordType::kSettings, t_ns,
+                formatSettingsRecord("render.toml", render_settings_));
   journalText(JournalRecordType::kCalibration, t_ns, formatCalibrationProfile(profile_));
   if (journal_ && device_) {
     const std::vector<uint8_t> payload = encodeDeviceInfo(*device_);
@@ -144,7 +155,33 @@ void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
   }
 }
 
+void PaintSession::setRenderSettings(const std::string& render_toml, int64_t t_ns) {
+  if (render_toml == render_settings_) return;
+  render_settings_ = render_toml;
+  journalText(JournalRecordType::kSettings, t_ns, formatSettingsRecord("render.toml", render_toml));
+}
+
+void PaintSession::markSync(const std::string& kind, const std::string& label, int64_t t_ns) {
+  SyncMarker marker;
+  marker.seq = ++sync_seq_;
+  marker.kind = kind;
+  marker.mono_ns = t_ns;
+  timespec wall{};
+  clock_gettime(CLOCK_REALTIME, &wall);
+  marker.wall_ns = int64_t(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
+  marker.label = label;
+  const std::string text = formatSyncMarker(marker);
+  if (sync_sender_) sync_sender_->send(text);
+  journalText(JournalRecordType::kSync, t_ns, text);
+}
+
+void PaintSession::resumeRecordingTo(JournalWriter* journal) {
+  journal_ = journal;
+  resuming_ = true;
+}
+
 void PaintSession::setDevice(const PenDeviceInfo& device, int64_t t_ns) {
+  if (resuming_ && device_ && encodeDeviceInfo(*device_) == encodeDeviceInfo(device)) return;
   device_ = device;
   calibrator_.reset();
   if (journal_) {
@@ -155,6 +192,7 @@ void PaintSession::setDevice(const PenDeviceInfo& device, int64_t t_ns) {
 }
 
 void PaintSession::setCalibration(const CalibrationProfile& profile, int64_t t_ns) {
+  if (resuming_ && formatCalibrationProfile(profile_) == formatCalibrationProfile(profile)) return;
   profile_ = profile;
   calibrator_.reset();
   journalText(JournalRecordType::kCalibration, t_ns, formatCalibrationProfile(profile));
@@ -168,7 +206,7 @@ void PaintSession::recordStep(const SceneState& before, const std::string& label
   history_.record(volume_, before, scene_, label);
 }
 
-void PaintSession::mapFinishedStroke(SampleOutcome* outcome) {
+void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
   StrokeResult stroke;
   while (engine_.takeFinishedStroke(&stroke)) {
     // §6: the finished footprint becomes voxels, max-merged; the stroke index seeds the noise.
@@ -177,7 +215,18 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome) {
     outcome->stroke_index = stroke.stroke_index;
     ++strokes_mapped_;
     recordStep(scene_, "stroke " + std::to_string(stroke.stroke_index));
+    // A measurement, not an input: replay skips it and measures its own.
+    journalText(JournalRecordType::kStrokeMapped, t_ns,
+                formatStrokeMapped(stroke.stroke_index, outcome->mapping.timings.total_ms));
+    markSync("stroke_end", std::to_string(stroke.stroke_index), t_ns);
+    syncJournal();
   }
+}
+
+void PaintSession::syncJournal() {
+  // Issue 10: every completed stroke is on the disk before the next one begins.
+  if (journal_ && !journal_->sync())
+    std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
 }
 
 float PaintSession::rubOutDiameterAt(float pressure) const {
@@ -217,6 +266,7 @@ bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::
 
 SampleOutcome PaintSession::feed(const PenSample& sample) {
   SampleOutcome outcome;
+  resuming_ = false;
   if (journal_ && !journal_->appendPenSample(sample))
     std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
   if (!device_) {
@@ -242,6 +292,8 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
     const bool was_in_stroke = engine_.inStroke();
     outcome.changed = engine_.feedCalibrated(m);
     outcome.stroke_began = !was_in_stroke && engine_.inStroke();
+    if (outcome.stroke_began)
+      markSync("stroke_begin", std::to_string(engine_.nextStrokeIndex() - 1), m.t_ns);
     if (engine_.inStroke()) {
       // §7.7.5 problem 3: a stroke left open ends by itself (times from the samples, so a
       // replay ends the same strokes).
@@ -265,7 +317,7 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
         outcome.auto_ended = true;
       }
     }
-    mapFinishedStroke(&outcome);
+    mapFinishedStroke(&outcome, m.t_ns);
   } else if (mode_ == Mode::kErase && erase_tool_ == EraseTool::kRubOut) {
     // §3.5.2: while the tip is down, a cylinder along the view through the canvas's height
     // range, its diameter from the pressure.
@@ -281,6 +333,7 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
     if (rubbing_ && (m.contact_ended || !m.contact)) {
       rubbing_ = false;
       recordStep(scene_, "rub-out");
+      syncJournal();
     }
   }
   return outcome;
@@ -294,12 +347,13 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     PaintSession& s;
     std::string* error;
     const SceneState& before;
+    int64_t t_ns;
     bool operator()(const ui::SetMode& c) {
       if (s.engine_.inStroke() && c.mode != Mode::kPaint) {
         // The stroke in progress ends where it is, as if the pen lifted.
         SampleOutcome outcome;
         s.engine_.finishStroke();
-        s.mapFinishedStroke(&outcome);
+        s.mapFinishedStroke(&outcome, t_ns);
       }
       if (s.rubbing_) {
         s.rubbing_ = false;
@@ -405,7 +459,7 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
       return true;
     }
   };
-  if (!std::visit(Applier{*this, error, before}, change)) return false;
+  if (!std::visit(Applier{*this, error, before, t_ns}, change)) return false;
   const UiRecordText record = formatUiChange(change);
   journalText(record.type, t_ns, record.text);
   return true;
@@ -469,6 +523,33 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (!parseUiChange(record.type, record.text(), &change, error)) return false;
       return apply(change, record.t_ns, error);
     }
+    case JournalRecordType::kSettings: {
+      std::string name, body;
+      if (!parseSettingsRecord(record.text(), &name, &body, error)) return false;
+      if (name == "render.toml") {
+        setRenderSettings(body, record.t_ns);
+        return true;
+      }
+      const std::string in_force = name == "brush.toml"     ? formatBrushConfig(brush_config_)
+                                   : name == "mapping.toml" ? formatMappingConfig(mapping_config_)
+                                                            : std::string();
+      if (in_force.empty()) return true;  // a config this version does not record: skipped
+      if (body != in_force) {
+        *error = "settings record " + name +
+                 " differs from the settings this session was made with (replaySession makes "
+                 "the session from the recorded ones)";
+        return false;
+      }
+      journalText(record.type, record.t_ns, std::string(record.text()));
+      return true;
+    }
+    case JournalRecordType::kSync:
+      // An output of the session, made again as it runs; the numbering carries on after it.
+      if (const std::optional<SyncMarker> marker = parseSyncMarker(record.text()))
+        sync_seq_ = std::max(sync_seq_, marker->seq);
+      return true;
+    case JournalRecordType::kStrokeMapped:
+      return true;  // a measurement of the recording run; this run measures its own
     case JournalRecordType::kMarker:
       if (record.text().rfind("opened ", 0) == 0) {
         // The session opened a saved cloud here: replay needs that file where it was.

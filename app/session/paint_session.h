@@ -25,6 +25,7 @@
 #include "app/scene/canvas.h"
 #include "app/scene/light.h"
 #include "app/session/history.h"
+#include "app/session/sync_marker_sender.h"
 #include "app/session/ui_change.h"
 #include "app/volume/volume.h"
 #include "calibration/calibration_profile.h"
@@ -79,6 +80,29 @@ class PaintSession {
   // Records everything from now on into `journal` (not owned; null stops recording). Writes
   // the Session record at once, and the device and calibration when already set.
   void recordTo(JournalWriter* journal, int64_t t_ns);
+  // Carries on recording a resumed session (session_resume.h) into `journal`, which already holds
+  // its starting state: nothing is written now. Until the next pen sample, a setDevice or
+  // setCalibration that repeats what is in force (the painter selects the pen again as it
+  // starts) is not a change: the calibrator keeps its state, as in the session before the crash.
+  void resumeRecordingTo(JournalWriter* journal);
+
+  // The configuration in force, journalled as Settings records (JOURNAL.md): brush.toml and
+  // mapping.toml as this session was made with, render.toml as set here (the painter's render
+  // settings; the volume does not depend on them). recordTo writes all three; setting the render
+  // settings while recording writes them again. A replay uses the recorded brush and mapping,
+  // not the replaying machine's (session_replay.h).
+  const BrushConfig& brushConfig() const { return brush_config_; }
+  const MappingConfig& mappingConfig() const { return mapping_config_; }
+  void setRenderSettings(const std::string& render_toml, int64_t t_ns);
+  const std::string& renderSettings() const { return render_settings_; }  // empty: none recorded
+
+  // Sync markers (issue 10): task and stroke boundaries, journalled as Sync records and, when a
+  // sender is set (not owned; null: none), sent as UDP datagrams. The session marks stroke_begin
+  // and stroke_end (label: the stroke index) itself; the study runner marks its tasks
+  // (task_begin / task_end, label: the task's name).
+  void setSyncSender(SyncMarkerSender* sender) { sync_sender_ = sender; }
+  void markSync(const std::string& kind, const std::string& label, int64_t t_ns);
+  uint64_t syncMarkers() const { return sync_seq_; }
 
   // The pen that samples come from and the calibration to apply to them. Either change builds a
   // fresh Calibrator at the next sample (filters restart).
@@ -151,10 +175,14 @@ class PaintSession {
  private:
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
-  void mapFinishedStroke(SampleOutcome* outcome);
+  void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
+  void syncJournal();  // fsync at a stroke's end (paint or rub-out)
   void recordStep(const SceneState& before, const std::string& label);
 
   PaintSessionSettings settings_;
+  BrushConfig brush_config_;
+  MappingConfig mapping_config_;
+  std::string render_settings_;
   int footprint_w_, footprint_h_;
   Volume volume_;
   StrokeEngine engine_;
@@ -179,6 +207,9 @@ class PaintSession {
   uint32_t strokes_mapped_ = 0;
   uint64_t samples_without_device_ = 0;
   JournalWriter* journal_ = nullptr;
+  bool resuming_ = false;  // resumeRecordingTo until the first sample
+  SyncMarkerSender* sync_sender_ = nullptr;
+  uint64_t sync_seq_ = 0;  // the last sync marker's sequence number
 };
 
 }  // namespace cb

@@ -2,28 +2,57 @@
 
 #include <cstring>
 
+#include "drivers/core/journal_records.h"
+
 namespace cb {
 
-SessionReplay replaySession(const JournalReadResult& journal, const BrushConfig& brush,
-                            const MappingConfig& mapping,
-                            const PaintSessionSettings& settings_fallback) {
+SessionReplay replaySession(
+    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
+    const PaintSessionSettings& settings_fallback,
+    const std::function<void(size_t index, const PaintSession& session)>& before_record) {
   SessionReplay replay;
   replay.journal_error = journal.error;
   PaintSessionSettings settings = settings_fallback;
+  BrushConfig recorded_brush = brush;
+  MappingConfig recorded_mapping = mapping;
+  bool have_session = false;
   for (size_t i = 0; i < journal.records.size(); ++i) {
     const JournalRecord& record = journal.records[i];
     if (record.type == JournalRecordType::kPenSample) break;
-    if (record.type == JournalRecordType::kSession) {
-      std::string error;
+    std::string error;
+    if (record.type == JournalRecordType::kSession && !have_session) {
+      have_session = true;
       if (!parseSessionSettings(record.text(), &settings, &error))
         replay.problems.push_back("record " + std::to_string(i) + ": " + error);
-      break;
+    } else if (record.type == JournalRecordType::kSettings) {
+      // The brush and mapping in force while painting (journals from before Settings records
+      // replay with the caller's, as they always did).
+      std::string name, body;
+      std::vector<std::string> errors;
+      if (!parseSettingsRecord(record.text(), &name, &body, &error)) {
+        replay.problems.push_back("record " + std::to_string(i) + ": " + error);
+      } else if (name == "brush.toml") {
+        recorded_brush = BrushConfig{};
+        if (!parseBrushConfigText(body, "record " + std::to_string(i) + " (brush.toml)",
+                                  &recorded_brush, &errors))
+          for (const std::string& e : errors) replay.problems.push_back(e);
+        replay.recorded_settings = true;
+      } else if (name == "mapping.toml") {
+        try {
+          recorded_mapping =
+              parseMappingConfigText(body, "record " + std::to_string(i) + " (mapping.toml)");
+        } catch (const std::exception& e) {
+          replay.problems.push_back(e.what());
+        }
+        replay.recorded_settings = true;
+      }
     }
   }
-  replay.session = std::make_unique<PaintSession>(settings, brush, mapping);
+  replay.session = std::make_unique<PaintSession>(settings, recorded_brush, recorded_mapping);
   replay.session->setQuietMapping(true);
   for (size_t i = 0; i < journal.records.size(); ++i) {
     const JournalRecord& record = journal.records[i];
+    if (before_record) before_record(i, *replay.session);
     std::string error;
     if (!replay.session->applyRecord(record, nullptr, &error)) {
       replay.problems.push_back("record " + std::to_string(i) + " (t " +
@@ -33,6 +62,7 @@ SessionReplay replaySession(const JournalReadResult& journal, const BrushConfig&
     ++replay.records_applied;
     if (record.type == JournalRecordType::kPenSample) ++replay.pen_samples;
   }
+  if (before_record) before_record(journal.records.size(), *replay.session);
   replay.strokes_mapped = replay.session->strokesMapped();
   return replay;
 }

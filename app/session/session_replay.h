@@ -1,11 +1,14 @@
 // Replaying a session journal headlessly (DESIGN.md "One data flow"): the records are applied in
 // order to a fresh PaintSession made from the journal's Session record, so raw samples pass
 // through the calibration that was in force at that moment (the journal's Calibration records,
-// never the local config). Brush and mapping parameters come from the caller (config/brush.toml,
-// config/mapping.toml). A corrupt or torn journal replays its intact prefix; the problem is
-// reported with the reader's byte offset.
+// never the local config). Brush and mapping parameters come from the journal's Settings records
+// (the configuration in force while painting), so a journal replays the same with any local
+// config; journals from before those records take them from the caller (config/brush.toml,
+// config/mapping.toml), as they always did. A corrupt or torn journal replays its intact prefix;
+// the problem is reported with the reader's byte offset.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,15 +23,21 @@ struct SessionReplay {
   size_t records_applied = 0;
   size_t pen_samples = 0;
   uint32_t strokes_mapped = 0;
+  bool recorded_settings = false;     // brush and mapping came from the journal, not the caller
   std::string journal_error;          // the reader's message (file, byte offset) or empty
   std::vector<std::string> problems;  // records that could not be applied ("record N: ...")
   bool complete() const { return journal_error.empty() && problems.empty(); }
 };
 
-// `settings_fallback` is used when the journal has no Session record before its first sample.
-SessionReplay replaySession(const JournalReadResult& journal, const BrushConfig& brush,
-                            const MappingConfig& mapping,
-                            const PaintSessionSettings& settings_fallback = {});
+// `settings_fallback` is used when the journal has no Session record before its first sample;
+// `brush` and `mapping` when it has no Settings records.
+// `before_record`, when given, is called with each record's index before it is applied, and
+// with journal.records.size() at the end, while the session shows the state up to there (frame
+// output: `cloudbrush replay --frames`).
+SessionReplay replaySession(
+    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
+    const PaintSessionSettings& settings_fallback = {},
+    const std::function<void(size_t index, const PaintSession& session)>& before_record = {});
 
 // FNV-1a 64 over the volume's dims and raw float bytes: equal sums mean equal volumes.
 uint64_t volumeChecksum(const Volume& volume);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "calibration/tilt.h"
+#include "drivers/core/journal_records.h"
 
 namespace cb {
 namespace {
@@ -63,6 +65,22 @@ std::vector<StrokeMeasures> measureStrokes(const SessionTrace& trace) {
     strokes.push_back(m);
     i = end;
   }
+  // Mapping times: the first StrokeMapped record between a stroke's first sample and the next
+  // stroke's (the painter maps at its own, calibrated lift, a few samples after the raw one).
+  if (!trace.sample_records.empty())
+    for (size_t k = 0; k < strokes.size(); ++k) {
+      const size_t from = trace.sample_records[strokes[k].first_sample];
+      const size_t to =
+          k + 1 < strokes.size() ? trace.sample_records[strokes[k + 1].first_sample] : SIZE_MAX;
+      for (const TraceEvent& e : trace.events) {
+        if (e.type != JournalRecordType::kStrokeMapped || e.record_index <= from ||
+            e.record_index >= to)
+          continue;
+        if (const std::optional<StrokeMappedRecord> r = parseStrokeMapped(e.text))
+          strokes[k].mapping_ms = r->mapping_ms;
+        break;
+      }
+    }
   return strokes;
 }
 

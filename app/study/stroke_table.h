@@ -28,7 +28,8 @@ struct StrokeMeasures {
   std::optional<double> speed_mm_s;  // path length / duration; none for a one-sample stroke
   std::string brush;  // from the last "brush=" UI record before the stroke; "" when none
   std::string mode;   // from the last Mode record before the stroke; "" when none
-  // Time the mapping of this stroke took; the journal does not record it yet, so always none.
+  // Time the painter's mapping of this stroke took (the first StrokeMapped record after the
+  // stroke began and before the next one began); none in journals without those records.
   std::optional<double> mapping_ms;
 };
 

@@ -36,6 +36,12 @@ std::string eventKindName(JournalRecordType type) {
       return "device";
     case JournalRecordType::kPenSample:
       return "sample";
+    case JournalRecordType::kSettings:
+      return "settings";
+    case JournalRecordType::kStrokeMapped:
+      return "stroke_mapped";
+    case JournalRecordType::kSync:
+      return "sync";
   }
   return "type-" + std::to_string(static_cast<uint32_t>(type));
 }

@@ -1,10 +1,14 @@
 #include "drivers/core/journal.h"
 
 #include <array>
+#include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace cb {
@@ -14,6 +18,22 @@ constexpr char kMagic[8] = {'C', 'B', 'J', 'O', 'U', 'R', 'N', 'L'};
 constexpr size_t kHeaderSize = 16;
 constexpr size_t kRecordHead = 16;  // type, length, t_ns
 constexpr uint32_t kMaxPayload = 64u << 20;
+
+int64_t monotonicNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// The directory entry of a new file reaches the disk only when its directory is synced.
+void syncParentDirectory(const std::string& path) {
+  std::string dir = std::filesystem::path(path).parent_path().string();
+  if (dir.empty()) dir = ".";
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
 
 class ByteWriter {
  public:
@@ -132,12 +152,57 @@ bool JournalWriter::open(const std::string& path) {
     error_ = "journal " + path + ": cannot create: " + std::strerror(errno);
     return false;
   }
+  if (!writeHeader()) return false;
+  syncParentDirectory(path);
+  return true;
+}
+
+bool JournalWriter::writeHeader() {
   ByteWriter w;
   for (char c : kMagic) w.put(c);
   w.put(kJournalVersion), w.put(uint32_t(0));
-  if (std::fwrite(w.bytes.data(), 1, w.bytes.size(), file_) != w.bytes.size() ||
-      std::fflush(file_) != 0) {
-    error_ = "journal " + path + ": cannot write header: " + std::strerror(errno);
+  if (std::fwrite(w.bytes.data(), 1, w.bytes.size(), file_) != w.bytes.size() || !sync()) {
+    error_ = "journal " + path_ + ": cannot write header: " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
+bool JournalWriter::openForAppend(const std::string& path, std::string* warning) {
+  close();
+  warning->clear();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec) || std::filesystem::file_size(path, ec) < kHeaderSize)
+    return open(path);
+  const JournalReadResult read = readJournal(path);
+  if (read.version == 0 || read.version > kJournalVersion) {
+    error_ =
+        read.error.empty() ? "journal " + path + ": not a journal this version writes" : read.error;
+    return false;
+  }
+  path_ = path;
+  file_ = std::fopen(path.c_str(), "r+b");
+  if (!file_) {
+    error_ = "journal " + path + ": cannot open for appending: " + std::strerror(errno);
+    return false;
+  }
+  if (!read.error.empty()) {
+    // Cut the torn tail so the next record follows the last whole one.
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (::ftruncate(fileno(file_), off_t(read.intact_bytes)) != 0) {
+      error_ = "journal " + path + ": cannot cut its damaged tail: " + std::strerror(errno);
+      std::fclose(file_);
+      file_ = nullptr;
+      return false;
+    }
+    *warning = read.error + "; cut " + std::to_string(size - read.intact_bytes) +
+               " bytes after the last whole record (byte " + std::to_string(read.intact_bytes) +
+               ")";
+  }
+  if (std::fseek(file_, long(read.intact_bytes), SEEK_SET) != 0 || !sync()) {
+    error_ = "journal " + path + ": cannot seek to its end: " + std::strerror(errno);
+    std::fclose(file_);
+    file_ = nullptr;
     return false;
   }
   return true;
@@ -157,7 +222,9 @@ bool JournalWriter::append(JournalRecordType type, int64_t t_ns, const uint8_t* 
     error_ = "journal " + path_ + ": write failed: " + std::strerror(errno);
     return false;
   }
-  return true;
+  const int64_t now = monotonicNs();
+  if (unsynced_since_ns_ < 0) unsynced_since_ns_ = now;
+  return syncIfDue(now);
 }
 
 bool JournalWriter::appendPenSample(const PenSample& s) {
@@ -167,7 +234,18 @@ bool JournalWriter::appendPenSample(const PenSample& s) {
 
 bool JournalWriter::sync() {
   if (!file_) return false;
-  return std::fflush(file_) == 0 && fsync(fileno(file_)) == 0;
+  if (std::fflush(file_) != 0 || ::fsync(fileno(file_)) != 0) {
+    error_ = "journal " + path_ + ": sync failed: " + std::strerror(errno);
+    return false;
+  }
+  unsynced_since_ns_ = -1;
+  ++syncs_;
+  return true;
+}
+
+bool JournalWriter::syncIfDue(int64_t now_ns, int64_t interval_ns) {
+  if (!file_ || unsynced_since_ns_ < 0 || now_ns - unsynced_since_ns_ < interval_ns) return true;
+  return sync();
 }
 
 void JournalWriter::close() {
@@ -193,6 +271,7 @@ JournalReadResult parseJournal(const uint8_t* data, size_t n, const std::string&
   if (out.version == 0 || out.version > kJournalVersion)
     return fail(8, "unsupported journal version " + std::to_string(out.version));
   size_t pos = kHeaderSize;
+  out.intact_bytes = pos;
   while (pos < n) {
     if (n - pos < kRecordHead + 4) return fail(pos, "truncated record header");
     ByteReader r(data + pos, kRecordHead);
@@ -204,8 +283,7 @@ JournalReadResult parseJournal(const uint8_t* data, size_t n, const std::string&
     uint32_t stored_crc;
     std::memcpy(&stored_crc, data + pos + kRecordHead + len, 4);
     if (crc32(data + pos, kRecordHead + len) != stored_crc) return fail(pos, "checksum mismatch");
-    if (type >= uint32_t(JournalRecordType::kPenSample) &&
-        type <= uint32_t(JournalRecordType::kMarker)) {
+    if (type >= uint32_t(JournalRecordType::kPenSample) && type <= kLastJournalRecordType) {
       JournalRecord rec;
       rec.type = JournalRecordType(type);
       rec.t_ns = t_ns;
@@ -215,6 +293,7 @@ JournalReadResult parseJournal(const uint8_t* data, size_t n, const std::string&
       ++out.skipped_unknown;
     }
     pos += kRecordHead + len + 4;
+    out.intact_bytes = pos;
   }
   return out;
 }

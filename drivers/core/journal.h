@@ -23,14 +23,18 @@ namespace cb {
 inline constexpr uint32_t kJournalVersion = 1;
 
 enum class JournalRecordType : uint32_t {
-  kPenSample = 1,    // payload: encodePenSample()
-  kDevice = 2,       // payload: encodeDeviceInfo()
-  kCalibration = 3,  // payload: calibration profile in force from now on (TOML text)
-  kUi = 4,           // payload: UI change, "key=value" text (camera, canvas, light, brush, ...)
-  kMode = 5,         // payload: mode name (paint, erase, light, camera, canvas, ...)
-  kSession = 6,      // payload: session metadata (TOML text: protocol, participant, task, ...)
-  kMarker = 7,       // payload: free text marker (task start/end, stroke boundaries, notes)
+  kPenSample = 1,     // payload: encodePenSample()
+  kDevice = 2,        // payload: encodeDeviceInfo()
+  kCalibration = 3,   // payload: calibration profile in force from now on (TOML text)
+  kUi = 4,            // payload: UI change, "key=value" text (camera, canvas, light, brush, ...)
+  kMode = 5,          // payload: mode name (paint, erase, light, camera, canvas, ...)
+  kSession = 6,       // payload: session metadata (TOML text: protocol, participant, task, ...)
+  kMarker = 7,        // payload: free text marker (notes, "opened PATH")
+  kSettings = 8,      // payload: one config file in force (TOML; first line "# NAME.toml")
+  kStrokeMapped = 9,  // payload: a recorded measurement of one mapped stroke (TOML; not input)
+  kSync = 10,         // payload: a sync marker (task or stroke boundary), as sent over UDP
 };
+inline constexpr uint32_t kLastJournalRecordType = 10;
 
 struct JournalRecord {
   JournalRecordType type{};
@@ -64,15 +68,38 @@ class JournalWriter {
     return append(type, t_ns, reinterpret_cast<const uint8_t*>(text.data()), text.size());
   }
   bool appendPenSample(const PenSample& s);
-  // Pushes buffered records to the OS (each append already flushes the stdio buffer).
+  // Re-opens an existing journal to carry on appending after its last whole record: a torn or
+  // corrupt tail (a crash mid-write) is cut off, and *warning names the file, the byte offset
+  // and what was cut (empty when the file was whole). A missing file, or one too short to hold
+  // a header, is created as open() does. False with error() for a file that is not a journal
+  // of a version this writer writes (it is left untouched).
+  bool openForAppend(const std::string& path, std::string* warning);
+
+  // Durability (issue 10: a crash or power cut loses at most the last second). Every append
+  // hands its record to the OS at once (fflush), so killing the process loses nothing written;
+  // sync() also forces it to the disk (fsync). The painter syncs at every stroke end, and
+  // syncIfDue() syncs when records written more than `interval_ns` ago are not yet on disk: it
+  // is called by append() itself and by the frame loop's timer (no thread: deterministic).
+  // Times are CLOCK_MONOTONIC ns.
   bool sync();
+  bool syncIfDue(int64_t now_ns, int64_t interval_ns = kJournalSyncIntervalNs);
+  static constexpr int64_t kJournalSyncIntervalNs = 1'000'000'000;
+  uint64_t syncCount() const { return syncs_; }
+  bool hasUnsyncedRecords() const { return unsynced_since_ns_ >= 0; }
+  bool isOpen() const { return file_ != nullptr; }
+  const std::string& path() const { return path_; }
+
   void close();
   const std::string& error() const { return error_; }
 
  private:
+  bool writeHeader();
+
   std::FILE* file_ = nullptr;
   std::string path_;
   std::string error_;
+  int64_t unsynced_since_ns_ = -1;  // monotonic time of the oldest record not yet fsynced
+  uint64_t syncs_ = 0;
 };
 
 struct JournalReadResult {
@@ -82,6 +109,8 @@ struct JournalReadResult {
   // what was wrong. Records before the fault are still returned.
   std::string error;
   uint64_t skipped_unknown = 0;  // records of types this version does not know
+  // Bytes from the start of the file through the last whole record: where an append resumes.
+  uint64_t intact_bytes = 0;
 };
 
 // Parses a journal held in memory (the file reader and the fuzz target share this).

@@ -1,5 +1,6 @@
 #include "drivers/core/journal.h"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,6 +119,83 @@ TEST(Journal, UnknownRecordTypesAreSkippedNotFatal) {
   EXPECT_TRUE(r.error.empty());
   EXPECT_EQ(r.skipped_unknown, 1u);
   EXPECT_EQ(r.records.size(), 1u);
+  std::filesystem::remove(path);
+}
+
+int64_t steadyNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Issue 10: records older than a second reach the disk at the next timer tick or append; newer
+// ones wait for the stroke end (sync) or the second to pass.
+TEST(Journal, SyncIfDueSyncsOnlyRecordsOlderThanTheInterval) {
+  const std::string path = tempPath("cb_journal_sync.cbj");
+  JournalWriter w;
+  ASSERT_TRUE(w.open(path));
+  const uint64_t after_open = w.syncCount();
+  EXPECT_FALSE(w.hasUnsyncedRecords());
+  const int64_t before = steadyNs();
+  ASSERT_TRUE(w.appendPenSample(sampleAt(1)));
+  EXPECT_TRUE(w.hasUnsyncedRecords());
+  EXPECT_TRUE(w.syncIfDue(before + 500'000'000));  // half a second: not yet
+  EXPECT_EQ(w.syncCount(), after_open);
+  EXPECT_TRUE(w.hasUnsyncedRecords());
+  EXPECT_TRUE(w.syncIfDue(steadyNs() + JournalWriter::kJournalSyncIntervalNs));
+  EXPECT_EQ(w.syncCount(), after_open + 1);
+  EXPECT_FALSE(w.hasUnsyncedRecords());
+  EXPECT_TRUE(w.syncIfDue(steadyNs() + 10 * JournalWriter::kJournalSyncIntervalNs));
+  EXPECT_EQ(w.syncCount(), after_open + 1) << "nothing new to sync";
+  ASSERT_TRUE(w.sync());
+  EXPECT_EQ(w.syncCount(), after_open + 2);
+  w.close();
+  std::filesystem::remove(path);
+}
+
+// A crash mid-record leaves a torn tail: reading keeps every whole record and says where it
+// broke; re-opening for append cuts the tail and the next records follow the last whole one.
+TEST(Journal, OpenForAppendCutsATornTailAndCarriesOn) {
+  const std::string path = tempPath("cb_journal_append.cbj");
+  {
+    JournalWriter w;
+    ASSERT_TRUE(w.open(path));
+    for (int i = 0; i < 5; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
+  }
+  const auto whole = std::filesystem::file_size(path);
+  std::filesystem::resize_file(path, whole - 30);  // inside the fifth record
+  const JournalReadResult torn = readJournal(path);
+  EXPECT_EQ(torn.records.size(), 4u);
+  EXPECT_NE(torn.error.find("byte "), std::string::npos) << torn.error;
+  EXPECT_EQ(torn.intact_bytes, whole - (16 + 82 + 4));
+  {
+    JournalWriter w;
+    std::string warning;
+    ASSERT_TRUE(w.openForAppend(path, &warning)) << w.error();
+    EXPECT_NE(warning.find("cut 72 bytes"), std::string::npos) << warning;
+    for (int i = 10; i < 13; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
+  }
+  const JournalReadResult resumed = readJournal(path);
+  EXPECT_TRUE(resumed.error.empty()) << resumed.error;
+  ASSERT_EQ(resumed.records.size(), 7u);
+  EXPECT_EQ(decodePenSample(resumed.records[3].payload)->x_raw, 103);
+  EXPECT_EQ(decodePenSample(resumed.records[4].payload)->x_raw, 110);
+  EXPECT_EQ(resumed.intact_bytes, std::filesystem::file_size(path));
+  {
+    // A whole journal re-opens without a warning; a foreign file is refused and left alone.
+    JournalWriter w;
+    std::string warning = "x";
+    ASSERT_TRUE(w.openForAppend(path, &warning)) << w.error();
+    EXPECT_TRUE(warning.empty()) << warning;
+  }
+  const std::string foreign = tempPath("cb_journal_foreign.txt");
+  std::ofstream(foreign) << "a shopping list, not a journal";
+  JournalWriter w;
+  std::string warning;
+  EXPECT_FALSE(w.openForAppend(foreign, &warning));
+  EXPECT_NE(w.error().find("bad magic"), std::string::npos) << w.error();
+  EXPECT_EQ(std::filesystem::file_size(foreign), 30u);
+  std::filesystem::remove(foreign);
   std::filesystem::remove(path);
 }
 

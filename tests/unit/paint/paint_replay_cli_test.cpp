@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -154,6 +155,79 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
                              "--journal '" + pen_journal + "' --keys b,f00");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.out.find("--keys: key 'f00'"), std::string::npos) << bad.out;
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 10: the journal carries the brush, mapping and render settings in force, so `cloudbrush
+// replay` gives the same volume with a deliberately different local config; a journal without
+// them (as before) does take the local config. --frames writes one PNG per frame.
+TEST(PaintReplayCli, ReplayIgnoresADifferentLocalConfigAndWritesFrames) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_replay_cfg_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/config");
+  const std::string journal = dir + "/session.cbj";
+  ASSERT_NO_FATAL_FAILURE(recordPenJournal(journal, gentleCurve(640, 360)));
+  std::ofstream(dir + "/config/brush.toml") << "brush = \"2d\"\n[brush3d]\ndiameter_px = 30\n"
+                                               "absorption = 5\n[brush2d]\nmax_diameter_px = 12\n";
+  std::ofstream(dir + "/config/mapping.toml") << "[spheres]\ndensity = 0.5\n[noise]\nseed = 99\n";
+  const std::string bin = CB_CLOUDBRUSH_BIN;
+  const std::string tuned = "CLOUDBRUSH_CONFIG_DIR='" + dir + "/config' ";
+  const CommandRun here = run("'" + bin + "' replay '" + journal + "'");
+  const CommandRun there = run(tuned + "'" + bin + "' replay '" + journal + "'");
+  ASSERT_EQ(here.status, 0) << here.out;
+  ASSERT_EQ(there.status, 0) << there.out;
+  const std::string sum = capture(here.out, "volume checksum: ([0-9a-f]{16})");
+  ASSERT_FALSE(sum.empty()) << here.out;
+  EXPECT_EQ(capture(there.out, "volume checksum: ([0-9a-f]{16})"), sum) << there.out;
+  EXPECT_NE(there.out.find("as recorded in the journal"), std::string::npos) << there.out;
+
+  // The same journal without its Settings records, as journals were before: the local config
+  // decides, so the tuned one gives another volume.
+  const std::string old = dir + "/old.cbj";
+  {
+    JournalWriter writer;
+    ASSERT_TRUE(writer.open(old)) << writer.error();
+    for (const JournalRecord& r : readJournal(journal).records)
+      if (r.type != JournalRecordType::kSettings)
+        writer.append(r.type, r.t_ns, r.payload.data(), r.payload.size());
+  }
+  const CommandRun old_here = run("'" + bin + "' replay '" + old + "'");
+  const CommandRun old_there = run(tuned + "'" + bin + "' replay '" + old + "'");
+  EXPECT_NE(old_there.out.find("from the local config"), std::string::npos) << old_there.out;
+  EXPECT_NE(capture(old_there.out, "volume checksum: ([0-9a-f]{16})"),
+            capture(old_here.out, "volume checksum: ([0-9a-f]{16})"))
+      << "the tuned local config is read for a journal without recorded settings";
+
+  // Frames: one PNG per 1/10 s of the pen's time line, the last showing the lit stroke.
+  const CommandRun frames = run(tuned + "'" + bin + "' replay '" + journal + "' --frames '" + dir +
+                                "/frames' --fps 10 --size 160x90");
+  ASSERT_EQ(frames.status, 0) << frames.out;
+  std::vector<int64_t> times;
+  for (const JournalRecord& r : readJournal(journal).records)
+    if (r.type == JournalRecordType::kPenSample) times.push_back(r.t_ns);
+  ASSERT_FALSE(times.empty());
+  const long expected = long((times.back() - times.front()) / 100'000'000) + 1;
+  long pngs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/frames")) {
+    std::ifstream png(entry.path(), std::ios::binary);
+    char magic[4] = {};
+    png.read(magic, 4);
+    EXPECT_EQ(std::string(magic + 1, 3), "PNG") << entry.path();
+    ++pngs;
+  }
+  EXPECT_EQ(pngs, expected);
+  EXPECT_GT(pngs, 5);
+  EXPECT_NE(frames.out.find("(100%)"), std::string::npos) << frames.out;
+  EXPECT_EQ(capture(frames.out, "volume checksum: ([0-9a-f]{16})"), sum) << frames.out;
+  char last[40];
+  std::snprintf(last, sizeof last, "/frames/frame_%06ld.png", expected - 1);
+  EXPECT_TRUE(std::filesystem::exists(dir + last));
+  if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
+    std::filesystem::copy(dir + "/frames", std::string(keep) + "/replay_frames",
+                          std::filesystem::copy_options::recursive |
+                              std::filesystem::copy_options::overwrite_existing);
   std::filesystem::remove_all(dir);
 }
 
