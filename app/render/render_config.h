@@ -10,8 +10,8 @@
 namespace cb {
 
 struct RenderConfig {
-  RenderOptions options;       // options.scale stays 1 (full resolution when still)
-  float moving_scale = 0.25f;  // options.scale while the camera moves
+  RenderOptions options;      // options.scale stays 1 (full resolution when still)
+  float moving_scale = 0.5f;  // options.scale while the camera moves
   Light light;
 };
 

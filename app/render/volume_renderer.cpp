@@ -486,27 +486,46 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
   const bool skip = options.skip_empty_space;
   // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
-  const bool partial = options.region.z > 0 && options.region.w > 0 && !reduced;
-  auto clipToFrame = [&](glm::ivec4 r, int grow_x, int grow_y) {
-    glm::ivec2 lo = glm::max(glm::ivec2(r.x - grow_x, r.y - grow_y), glm::ivec2(0));
-    glm::ivec2 hi = glm::min(glm::ivec2(r.x + r.z + grow_x, r.y + r.w + grow_y), glm::ivec2(w, h));
+  const bool partial = options.region.z > 0 && options.region.w > 0;
+  auto clipTo = [](glm::ivec2 lo, glm::ivec2 hi, int cw, int ch) {
+    lo = glm::max(lo, glm::ivec2(0));
+    hi = glm::min(hi, glm::ivec2(cw, ch));
     return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
   };
+  auto grow = [&](glm::ivec4 r, int gx, int gy) {
+    return clipTo(glm::ivec2(r.x - gx, r.y - gy), glm::ivec2(r.x + r.z + gx, r.y + r.w + gy), w, h);
+  };
+  // out_rect: the target pixels rewritten. image_rect: the ray-cast image's pixels they read —
+  // the same at full size; at a reduced one, the rectangle scaled down and grown by a pixel for
+  // the bilinear upscale's neighbours.
+  const glm::ivec4 out_rect =
+      clipTo(glm::ivec2(options.region.x, options.region.y),
+             glm::ivec2(options.region.x + options.region.z, options.region.y + options.region.w),
+             width, height);
+  glm::ivec4 image_rect = out_rect;
+  if (reduced) {
+    const glm::vec2 s(float(w) / float(width), float(h) / float(height));
+    const glm::ivec2 lo = glm::ivec2(glm::floor(glm::vec2(out_rect.x, out_rect.y) * s)) - 1;
+    const glm::ivec2 hi =
+        glm::ivec2(glm::ceil(glm::vec2(out_rect.x + out_rect.z, out_rect.y + out_rect.w) * s)) + 1;
+    image_rect = clipTo(lo, hi, w, h);
+  }
   const int reach = screenSpaceReach(options.style);
-  const glm::ivec4 out_rect = clipToFrame(options.region, 0, 0);
-  const glm::ivec4 cast_rect = clipToFrame(options.region, reach, reach);
-  const glm::ivec4 bleed_rect = clipToFrame(options.region, 0, reach);  // the first axis is x
+  const glm::ivec4 cast_rect = grow(image_rect, reach, reach);
+  const glm::ivec4 bleed_rect = grow(image_rect, 0, reach);  // the first blur axis is x
+  stats_.pixels_cast = partial ? (long long)cast_rect.z * cast_rect.w : (long long)w * h;
+  if (partial) {
+    // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+  }
   if (skip) {
-    drawRayBounds(camera, view_proj, w, h);  // whole frame: it costs per triangle, not pixel
+    drawRayBounds(camera, view_proj, w, h);  // costs per triangle, and per pixel in the scissor
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    if (partial) {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
-    }
     glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     if (!eye_near_occupied_) {
       glEnable(GL_STENCIL_TEST);
@@ -515,10 +534,6 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     }
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
-    if (partial) {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
-    }
   }
   glViewport(0, 0, w, h);
   glUseProgram(program_);
