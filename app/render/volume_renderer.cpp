@@ -48,6 +48,14 @@ uint8_t toUnorm8(float v) {
 
 }  // namespace
 
+void VolumeRenderer::deleteTargets(FrameTargets* t) {
+  if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+  if (t->bounds) glDeleteTextures(1, &t->bounds);
+  if (t->frame) glDeleteTextures(1, &t->frame);
+  if (t->stencil) glDeleteRenderbuffers(1, &t->stencil);
+  *t = FrameTargets{};
+}
+
 void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
                          std::vector<uint8_t>* packed) {
   VoxelBox b = box.intersect(volume.bounds());
@@ -115,10 +123,9 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_program_) glDeleteProgram(bounds_program_);
   if (bounds_vao_) glDeleteVertexArrays(1, &bounds_vao_);
   if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
-  if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
-  if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
-  if (frame_texture_) glDeleteTextures(1, &frame_texture_);
-  if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
+  FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+  deleteTargets(&current);
+  deleteTargets(&spare_targets_);
   if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
   if (light_table_texture_) glDeleteTextures(1, &light_table_texture_);
 }
@@ -378,25 +385,36 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
 
 void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
   if (bounds_w_ != w || bounds_h_ != h) {
-    if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
-    if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
-    if (frame_texture_) glDeleteTextures(1, &frame_texture_);
-    if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
-    glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
-    glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glCreateTextures(GL_TEXTURE_2D, 1, &frame_texture_);
-    glTextureStorage2D(frame_texture_, 1, GL_RGBA8, w, h);
-    glCreateRenderbuffers(1, &stencil_buffer_);
-    glNamedRenderbufferStorage(stencil_buffer_, GL_DEPTH24_STENCIL8, w, h);
-    glCreateFramebuffers(1, &bounds_fbo_);
-    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, frame_texture_, 0);
-    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT1, bounds_texture_, 0);
-    glNamedFramebufferRenderbuffer(bounds_fbo_, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                                   stencil_buffer_);
-    bounds_w_ = w;
-    bounds_h_ = h;
+    // The painter alternates two sizes (a pen-up frame at the moving scale, then the full one):
+    // the previous size's targets are kept as the spare instead of being reallocated.
+    FrameTargets current{bounds_fbo_,     bounds_texture_, frame_texture_,
+                         stencil_buffer_, bounds_w_,       bounds_h_};
+    std::swap(current, spare_targets_);
+    if (current.w == w && current.h == h) {
+      bounds_fbo_ = current.fbo;
+      bounds_texture_ = current.bounds;
+      frame_texture_ = current.frame;
+      stencil_buffer_ = current.stencil;
+      bounds_w_ = w;
+      bounds_h_ = h;
+    } else {
+      deleteTargets(&current);
+      glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
+      glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
+      glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glCreateTextures(GL_TEXTURE_2D, 1, &frame_texture_);
+      glTextureStorage2D(frame_texture_, 1, GL_RGBA8, w, h);
+      glCreateRenderbuffers(1, &stencil_buffer_);
+      glNamedRenderbufferStorage(stencil_buffer_, GL_DEPTH24_STENCIL8, w, h);
+      glCreateFramebuffers(1, &bounds_fbo_);
+      glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, frame_texture_, 0);
+      glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT1, bounds_texture_, 0);
+      glNamedFramebufferRenderbuffer(bounds_fbo_, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                     stencil_buffer_);
+      bounds_w_ = w;
+      bounds_h_ = h;
+    }
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
   const GLenum bounds_only = GL_COLOR_ATTACHMENT1;  // fragment output 0 -> the bounds texture

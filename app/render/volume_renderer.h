@@ -161,6 +161,12 @@ class VolumeRenderer {
   // (llvmpipe tests stencil before shading), then the colour is blitted to the target.
   GLuint bounds_fbo_ = 0, bounds_texture_ = 0, frame_texture_ = 0, stencil_buffer_ = 0;
   int bounds_w_ = 0, bounds_h_ = 0;
+  struct FrameTargets {
+    GLuint fbo = 0, bounds = 0, frame = 0, stencil = 0;
+    int w = 0, h = 0;
+  };
+  FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)
+  static void deleteTargets(FrameTargets* targets);
   bool eye_near_occupied_ = false;
   RenderStats stats_;
   std::string error_;

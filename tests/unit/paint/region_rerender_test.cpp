@@ -1,11 +1,11 @@
 // Pen-up re-rendering of only the changed pixels (changed_region.h, RenderOptions::region): a
-// real stroke painted through a PaintSession (hybrid mapping into the bundled cumulus at 128³),
+// real stroke painted through a PaintSession (hybrid mapping at 128³) next to an earlier one,
 // then the rectangle the sync's dirty and light boxes project to re-rendered over the frame
 // from before the stroke. It must equal a full re-render within 1/255 per channel at every
 // pixel — at the painter's default camera, and with a low sun and a camera from the side, where
-// the stroke's shadow on the cumulus lies outside the stroke's own projection (so the light box
-// is what makes it right: without it the test sees stale shadow). At half scale the region
-// equals a full half-scale frame inside the rectangle and keeps the old frame outside.
+// the stroke's shadow on the first stroke's cloud lies outside the stroke's own projection (so the
+// light box is what makes it right: without it the test sees stale shadow). At half scale the
+// region equals a full half-scale frame inside the rectangle and keeps the old frame outside.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +19,6 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
-#include "app/volume/scene_generators.h"
 #include "tests/unit/render/gl_test_context.h"
 
 namespace cb {
@@ -44,17 +43,39 @@ bool inside(const ScreenRegion& r, int x, int y_up) {
                            y_up < r.rect.y + r.rect.w);
 }
 
-// A short stroke in the middle of the screen, painted into `session` (pen down ... lift).
-void paintShortStroke(PaintSession* session) {
+// The first stroke: a long horizontal band on the left half of the screen (the cloud the second
+// stroke's shadow falls on in the side view).
+SyntheticStroke receiverStroke() {
   SyntheticStroke stroke;
   stroke.control_points = {
-      {0.42f * kW, 0.45f * kH}, {0.5f * kW, 0.4f * kH}, {0.58f * kW, 0.47f * kH}};
-  stroke.pressure = [](float f) { return 0.5f + 0.4f * f * (1.0f - f); };
+      {0.12f * kW, 0.55f * kH}, {0.3f * kW, 0.5f * kH}, {0.46f * kW, 0.55f * kH}};
+  stroke.pressure = [](float) { return 0.9f; };
+  return stroke;
+}
+
+// The second stroke: short, right of the first.
+SyntheticStroke shortStroke() {
+  SyntheticStroke stroke;
+  stroke.control_points = {
+      {0.6f * kW, 0.5f * kH}, {0.66f * kW, 0.47f * kH}, {0.72f * kW, 0.5f * kH}};
+  stroke.pressure = [](float f) { return 0.6f + 0.3f * f * (1.0f - f); };
+  return stroke;
+}
+
+// Paints `stroke` into `session` (pen down ... lift) and returns the box it changed.
+VoxelBox paint(PaintSession* session, const SyntheticStroke& stroke, int64_t t0_ns) {
   const PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  session->setDevice(tablet, 0);
-  for (const PenSample& s : syntheticPenSamples(stroke, tablet, kW, kH, 200.0, 1'000'000'000))
+  session->setDevice(tablet, t0_ns);
+  const uint64_t generation = session->volume().generation();
+  const uint32_t mapped = session->strokesMapped();
+  for (const PenSample& s : syntheticPenSamples(stroke, tablet, kW, kH, 200.0, t0_ns))
     session->feed(s);
-  ASSERT_EQ(session->strokesMapped(), 1u);
+  EXPECT_EQ(session->strokesMapped(), mapped + 1);
+  return session->volume().dirtySince(generation);
+}
+
+glm::vec3 worldCentre(const Volume& volume, const VoxelBox& box) {
+  return volume.voxelToWorld(glm::vec3(box.lo + box.hi) * 0.5f);
 }
 
 struct Case {
@@ -71,13 +92,26 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
   session.setQuietMapping(true);
   std::string error;
-  ASSERT_TRUE(session.replaceVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), 0, "cumulus", &error))
-      << error;
+  const VoxelBox receiver = paint(&session, receiverStroke(), 1'000'000'000);
+  ASSERT_FALSE(receiver.empty());
   Light light;
   Camera camera = session.camera();  // the painter's default view
   if (c.side_view) {
-    light.direction = glm::normalize(glm::vec3(1.0f, 0.25f, 0.0f));  // low, from +x
-    camera.eye = camera.target + glm::vec3(0.0f, 0.35f, 3.2f);       // from the front: x across
+    // Where the second stroke will land (painted once in a scratch session), then a low sun
+    // behind it as seen from the first, so its shadow falls on the first stroke's cloud, and a
+    // camera looking across the line between them.
+    PaintSession scratch_session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+    scratch_session.setQuietMapping(true);
+    const glm::vec3 c2 = worldCentre(session.volume(), paint(&scratch_session, shortStroke(), 0));
+    const glm::vec3 c1 = worldCentre(session.volume(), receiver);
+    glm::vec3 across = c2 - c1;
+    across.y = 0.0f;
+    light.direction = glm::normalize(glm::normalize(across) + glm::vec3(0.0f, 0.15f, 0.0f));
+    camera.target = 0.5f * (c1 + c2);
+    camera.eye =
+        camera.target +
+        3.0f * glm::normalize(glm::cross(glm::normalize(across), glm::vec3(0.0f, 1.0f, 0.0f))) +
+        glm::vec3(0.0f, 0.4f, 0.0f);
   }
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;
@@ -93,7 +127,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   renderer.render(camera, kW, kH, half.fbo(), options);
   const ImageRgba8 before = full.readRgba8();
 
-  paintShortStroke(&session);
+  paint(&session, shortStroke(), 5'000'000'000);
   const SyncStats sync = renderer.sync(volume, light);
   ASSERT_FALSE(sync.dirty.empty());
   const ScreenRegion region =
