@@ -88,18 +88,19 @@ bool parseSizes(const std::string& text, std::vector<Size>* sizes) {
 
 // Figures of one size in one child process.
 struct Row {
-  double fresh_ms = -1, fresh_first_ms = -1, fresh_cpu_ms = -1;
+  double fresh_ms = -1, fresh_first_ms = -1, fresh_cpu_ms = -1, fresh_paint_view_ms = -1;
   double orbit_fps = -1, orbit_scale = -1;
   double painting_ms = -1;
   double lit_ms = -1, full_ms = -1, lit_pixels = -1, full_pixels = -1;  // region path
   double lit_base_ms = -1, full_base_ms = -1;                           // whole-frame baseline
-  double mapping_ms = -1;
+  double mapping_ms = -1, sync_ms = -1, lit_render_ms = -1, full_render_ms = -1;
 };
 
 // The painter with the replayed reference strokes over the bundled cumulus.
 struct PaintRun {
   double painting_ms = -1, lit_ms = -1, full_ms = -1, mapping_ms = -1;
   double lit_pixels = -1, full_pixels = -1;
+  double lit_render_ms = -1, full_render_ms = -1, sync_ms = -1;  // parts: ray cast, sync
 };
 
 std::string writeStrokeJournal(const std::string& dir, Size size, int strokes) {
@@ -146,10 +147,17 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
   const std::string dir = std::filesystem::path(journal).parent_path().string();
   options.config_dir = dir + "/config";  // nothing there: built-in calibration
   options.state_dir = dir + "/state";
-  std::vector<double> lit_pixels, full_pixels;
+  std::vector<double> lit_pixels, full_pixels, lit_render, full_render, sync;
   options.on_frame = [&](const PaintFrameInfo& info) {
-    if (info.first_lit_after_lift) lit_pixels.push_back(double(info.rendered_pixels));
-    if (info.refined_after_lift) full_pixels.push_back(double(info.rendered_pixels));
+    if (info.first_lit_after_lift) {
+      lit_pixels.push_back(double(info.rendered_pixels));
+      lit_render.push_back(info.render_ms);
+      sync.push_back(info.sync_ms);
+    }
+    if (info.refined_after_lift) {
+      full_pixels.push_back(double(info.rendered_pixels));
+      full_render.push_back(info.render_ms);
+    }
   };
   const Light light;
   PaintLoop loop(display, renderer, cumulus, light, options);
@@ -165,6 +173,9 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
   run.mapping_ms = medianOr(summary.mapping_ms);
   run.lit_pixels = medianOr(lit_pixels);
   run.full_pixels = medianOr(full_pixels);
+  run.lit_render_ms = medianOr(lit_render);
+  run.full_render_ms = medianOr(full_render);
+  run.sync_ms = medianOr(sync);
   return run;
 }
 
@@ -220,8 +231,20 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
       }
       row.fresh_ms = median(fresh);
       row.fresh_cpu_ms = median(cpu);
-      std::printf("  %s: fresh frame %.1f ms (process CPU %.1f ms; first frame %.1f ms)\n",
-                  size.name().c_str(), row.fresh_ms, row.fresh_cpu_ms, row.fresh_first_ms);
+      // The same at the painter's starting view (framed on the drawable region: the cumulus
+      // fills more of the screen), which the pen-up figures below are drawn from.
+      const Camera paint_view = initialPaintCamera(PaintSessionSettings{size.w, size.h, grid});
+      fresh.clear();
+      for (int i = 0; i < std::max(1, n / 2); ++i) {
+        renderer.render(paint_view, size.w, size.h, target.fbo(), still);
+        fresh.push_back(renderer.lastStats().frame_ms);
+      }
+      row.fresh_paint_view_ms = median(fresh);
+      std::printf(
+          "  %s: fresh frame %.1f ms (process CPU %.1f ms; first frame %.1f ms); at the painter's "
+          "starting view %.1f ms\n",
+          size.name().c_str(), row.fresh_ms, row.fresh_cpu_ms, row.fresh_first_ms,
+          row.fresh_paint_view_ms);
       std::fflush(stdout);
 
       // The painter's orbit: its own loop and moving-scale policy, no pen.
@@ -251,13 +274,18 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
         row.lit_pixels = region.lit_pixels;
         row.full_pixels = region.full_pixels;
         row.mapping_ms = region.mapping_ms;
+        row.sync_ms = region.sync_ms;
+        row.lit_render_ms = region.lit_render_ms;
+        row.full_render_ms = region.full_render_ms;
         row.lit_base_ms = whole.lit_ms;
         row.full_base_ms = whole.full_ms;
         std::printf(
-            "  %s: painting %.1f ms/frame; pen-up -> lit %.1f ms, -> full %.1f ms (mapping %.1f) "
-            "with the region (%.0f / %.0f pixels cast); whole frame: %.1f, %.1f ms\n",
-            size.name().c_str(), row.painting_ms, row.lit_ms, row.full_ms, row.mapping_ms,
-            row.lit_pixels, row.full_pixels, row.lit_base_ms, row.full_base_ms);
+            "  %s: painting %.1f ms/frame; pen-up -> lit %.1f ms (mapping %.1f, sync %.1f, ray "
+            "cast %.1f), -> full %.1f ms (ray cast %.1f) with the region (%.0f / %.0f pixels "
+            "cast); whole frame: %.1f, %.1f ms\n",
+            size.name().c_str(), row.painting_ms, row.lit_ms, row.mapping_ms, row.sync_ms,
+            row.lit_render_ms, row.full_ms, row.full_render_ms, row.lit_pixels, row.full_pixels,
+            row.lit_base_ms, row.full_base_ms);
         std::fflush(stdout);
       }
     }
@@ -265,6 +293,7 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
     report.figure(k + "fresh_ms", row.fresh_ms);
     report.figure(k + "fresh_first_ms", row.fresh_first_ms);
     report.figure(k + "fresh_cpu_ms", row.fresh_cpu_ms);
+    report.figure(k + "fresh_paint_view_ms", row.fresh_paint_view_ms);
     report.figure(k + "orbit_fps", row.orbit_fps);
     report.figure(k + "orbit_scale", row.orbit_scale);
     report.figure(k + "painting_ms", row.painting_ms);
@@ -273,6 +302,9 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
     report.figure(k + "lit_pixels_cast", row.lit_pixels);
     report.figure(k + "full_pixels_cast", row.full_pixels);
     report.figure(k + "mapping_ms", row.mapping_ms);
+    report.figure(k + "sync_ms", row.sync_ms);
+    report.figure(k + "lit_ray_cast_ms", row.lit_render_ms);
+    report.figure(k + "full_ray_cast_ms", row.full_render_ms);
     report.baseline(k + "pen_up_to_lit_ms", row.lit_base_ms);
     report.baseline(k + "pen_up_to_full_ms", row.full_base_ms);
   }

@@ -49,7 +49,7 @@ struct PaintFrameInfo {
   double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
   double mapping_ms = 0.0;            // of which: the stroke mapper (StrokeMapper::map)
   double sync_ms = 0.0;               // renderer sync: occupancy, light, pack, upload
-  double render_ms = 0.0;             // ray casting the scene (to glFinish)
+  double render_ms = 0.0;             // ray casting the scene (to glFinish; also when refined)
   double composite_ms = 0.0;          // the scene to the display (a blit on the lit frame)
   // The frame after the first lit one re-renders the scene at full resolution.
   bool refined_after_lift = false;

@@ -666,7 +666,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
       render_scale = options.scale;
     }
     unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : ScreenRegion{};
-    if (lit_pending_) {
+    if (lit_pending_ || refine) {
       glFinish();
       render_ms = msSince(synced);
     }
@@ -702,6 +702,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
   } else if (refine) {
     info->refined_after_lift = true;
     info->pen_up_to_refined_ms = since_lift;
+    info->render_ms = render_ms;
     info->rendered_pixels = rendered_pixels;
     info->render_scale = render_scale;
   }
