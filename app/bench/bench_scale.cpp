@@ -44,11 +44,12 @@ namespace cb {
 namespace {
 
 const char kHelp[] =
-    "usage: cloudbrush bench scale [--sizes WxH,...] [--threads N,...] [--frames N]\n"
+    "usage: cloudbrush bench scale [--sizes WxH,...] [--threads N,...] [--frames N] [--grid N]\n"
     "  --sizes LIST    screen sizes (default 1280x720,1920x1080,3840x2160)\n"
     "  --threads LIST  thread counts, each in a child process (default 1,2)\n"
     "  --frames N      timed fresh frames per size, median (default 5; 2 at 3840x2160)\n"
     "  --grid N        volume N^3 (default 256, the painter's)\n"
+    "  (--child runs one thread count in this process; the parent starts it)\n"
     "Targets at 1920x1080 with 2 threads (issue 15): fresh frame <= 100 ms, orbit >= 30 fps at\n"
     "scale >= 0.5, painting >= 60 fps, pen-up -> first lit <= 100 ms, -> full resolution <= 150 "
     "ms.\n";
