@@ -619,6 +619,7 @@ bool PaintScreen::paintingSetUp(std::string* error) {
     // do that now rather than inside the first pen-up -> lit frame.
     RenderOptions warm_up = options_.render;
     warm_up.scale = moving_scale_;
+    warm_up.moving = warm_up.scale < 1.0f;  // the lit frame's program variant, compiled now
     renderer_.sync(shownVolume(), shownLight());
     renderer_.render(shownCamera(), display_.width(), display_.height(), scene_.fbo(), warm_up);
     drawn_.reset();
@@ -645,7 +646,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     options.style = key.style;
     options.collect_stats = show_stats_;
     const bool dragging = drag_camera_ || drag_light_;
-    options.scale = (lit_pending_ || dragging) ? moving_scale_ : 1.0f;
+    options.scale = (lit_pending_ || dragging) && !refine ? moving_scale_ : 1.0f;
     options.moving = options.scale < 1.0f;
     // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
     // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
