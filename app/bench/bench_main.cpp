@@ -31,6 +31,8 @@ const Bench kBenches[] = {
      benchStudy},
     {"tools", "picture -> cloud, model -> cloud, morph in-betweens, each vs a baseline",
      benchTools},
+    {"scale", "1280x720 .. 3840x2160 on 1 and 2 threads: frame, orbit, painting, pen-up",
+     benchScale},
 };
 
 }  // namespace

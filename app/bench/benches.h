@@ -11,4 +11,5 @@ int benchHistory(int argc, char** argv);
 int benchStyles(int argc, char** argv);
 int benchStudy(int argc, char** argv);
 int benchTools(int argc, char** argv);
+int benchScale(int argc, char** argv);
 }  // namespace cb

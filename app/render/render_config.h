@@ -13,8 +13,8 @@ namespace cb {
 
 struct RenderConfig {
   RenderOptions options;  // options.scale stays 1 (full resolution when still); .sky, .style_params
-  float moving_scale = 0.25f;  // options.scale while the camera moves
-  Light light;                 // with [light] time_of_day: the sun of that hour (sun_position.h)
+  float moving_scale = 0.5f;  // options.scale while the camera moves
+  Light light;                // with [light] time_of_day: the sun of that hour (sun_position.h)
   // Problems that fell back to a default, each "FILE:LINE:COL: key what; using …" (also
   // printed on stderr as they are found), and notes such as which of two light settings won.
   std::vector<std::string> warnings;

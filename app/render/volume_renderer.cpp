@@ -48,6 +48,14 @@ uint8_t toUnorm8(float v) {
 
 }  // namespace
 
+void VolumeRenderer::deleteTargets(FrameTargets* t) {
+  if (t->fbo) glDeleteFramebuffers(1, &t->fbo);
+  if (t->bounds) glDeleteTextures(1, &t->bounds);
+  if (t->frame) glDeleteTextures(1, &t->frame);
+  if (t->stencil) glDeleteRenderbuffers(1, &t->stencil);
+  *t = FrameTargets{};
+}
+
 void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
                          std::vector<uint8_t>* packed) {
   VoxelBox b = box.intersect(volume.bounds());
@@ -115,10 +123,9 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_program_) glDeleteProgram(bounds_program_);
   if (bounds_vao_) glDeleteVertexArrays(1, &bounds_vao_);
   if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
-  if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
-  if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
-  if (frame_texture_) glDeleteTextures(1, &frame_texture_);
-  if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
+  FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+  deleteTargets(&current);
+  deleteTargets(&spare_targets_);
   if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
   if (light_table_texture_) glDeleteTextures(1, &light_table_texture_);
 }
@@ -405,25 +412,36 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
 
 void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
   if (bounds_w_ != w || bounds_h_ != h) {
-    if (bounds_fbo_) glDeleteFramebuffers(1, &bounds_fbo_);
-    if (bounds_texture_) glDeleteTextures(1, &bounds_texture_);
-    if (frame_texture_) glDeleteTextures(1, &frame_texture_);
-    if (stencil_buffer_) glDeleteRenderbuffers(1, &stencil_buffer_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
-    glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
-    glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glCreateTextures(GL_TEXTURE_2D, 1, &frame_texture_);
-    glTextureStorage2D(frame_texture_, 1, GL_RGBA8, w, h);
-    glCreateRenderbuffers(1, &stencil_buffer_);
-    glNamedRenderbufferStorage(stencil_buffer_, GL_DEPTH24_STENCIL8, w, h);
-    glCreateFramebuffers(1, &bounds_fbo_);
-    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, frame_texture_, 0);
-    glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT1, bounds_texture_, 0);
-    glNamedFramebufferRenderbuffer(bounds_fbo_, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                                   stencil_buffer_);
-    bounds_w_ = w;
-    bounds_h_ = h;
+    // The painter alternates two sizes (a pen-up frame at the moving scale, then the full one):
+    // the previous size's targets are kept as the spare instead of being reallocated.
+    FrameTargets current{bounds_fbo_,     bounds_texture_, frame_texture_,
+                         stencil_buffer_, bounds_w_,       bounds_h_};
+    std::swap(current, spare_targets_);
+    if (current.w == w && current.h == h) {
+      bounds_fbo_ = current.fbo;
+      bounds_texture_ = current.bounds;
+      frame_texture_ = current.frame;
+      stencil_buffer_ = current.stencil;
+      bounds_w_ = w;
+      bounds_h_ = h;
+    } else {
+      deleteTargets(&current);
+      glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
+      glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
+      glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(bounds_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glCreateTextures(GL_TEXTURE_2D, 1, &frame_texture_);
+      glTextureStorage2D(frame_texture_, 1, GL_RGBA8, w, h);
+      glCreateRenderbuffers(1, &stencil_buffer_);
+      glNamedRenderbufferStorage(stencil_buffer_, GL_DEPTH24_STENCIL8, w, h);
+      glCreateFramebuffers(1, &bounds_fbo_);
+      glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT0, frame_texture_, 0);
+      glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT1, bounds_texture_, 0);
+      glNamedFramebufferRenderbuffer(bounds_fbo_, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                     stencil_buffer_);
+      bounds_w_ = w;
+      bounds_h_ = h;
+    }
   }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
   const GLenum bounds_only = GL_COLOR_ATTACHMENT1;  // fragment output 0 -> the bounds texture
@@ -517,34 +535,49 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
   const bool skip = options.skip_empty_space;
   // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
-  const bool partial = options.region.z > 0 && options.region.w > 0 && !reduced;
-  auto clipToFrame = [&](glm::ivec4 r, int grow_x, int grow_y) {
-    glm::ivec2 lo = glm::max(glm::ivec2(r.x - grow_x, r.y - grow_y), glm::ivec2(0));
-    glm::ivec2 hi = glm::min(glm::ivec2(r.x + r.z + grow_x, r.y + r.w + grow_y), glm::ivec2(w, h));
+  const bool partial = options.region.z > 0 && options.region.w > 0;
+  auto clipTo = [](glm::ivec2 lo, glm::ivec2 hi, int cw, int ch) {
+    lo = glm::max(lo, glm::ivec2(0));
+    hi = glm::min(hi, glm::ivec2(cw, ch));
     return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
   };
+  auto grow = [&](glm::ivec4 r, int gx, int gy) {
+    return clipTo(glm::ivec2(r.x - gx, r.y - gy), glm::ivec2(r.x + r.z + gx, r.y + r.w + gy), w, h);
+  };
+  // out_rect: the target pixels rewritten. image_rect: the ray-cast image's pixels they read —
+  // the same at full size; at a reduced one, the rectangle scaled down and grown by a pixel for
+  // the bilinear upscale's neighbours.
+  const glm::ivec4 out_rect =
+      clipTo(glm::ivec2(options.region.x, options.region.y),
+             glm::ivec2(options.region.x + options.region.z, options.region.y + options.region.w),
+             width, height);
+  glm::ivec4 image_rect = out_rect;
+  if (reduced) {
+    const glm::vec2 s(float(w) / float(width), float(h) / float(height));
+    const glm::ivec2 lo = glm::ivec2(glm::floor(glm::vec2(out_rect.x, out_rect.y) * s)) - 1;
+    const glm::ivec2 hi =
+        glm::ivec2(glm::ceil(glm::vec2(out_rect.x + out_rect.z, out_rect.y + out_rect.w) * s)) + 1;
+    image_rect = clipTo(lo, hi, w, h);
+  }
   const int reach = screenSpaceReach(options.style, options.style_params);
-  const glm::ivec4 out_rect = clipToFrame(options.region, 0, 0);
-  const glm::ivec4 cast_rect = clipToFrame(options.region, reach, reach);
-  const glm::ivec4 bleed_rect = clipToFrame(options.region, 0, reach);  // the first axis is x
+  const glm::ivec4 cast_rect = grow(image_rect, reach, reach);
+  const glm::ivec4 bleed_rect = grow(image_rect, 0, reach);  // the first blur axis is x
+  stats_.pixels_cast = partial ? (long long)cast_rect.z * cast_rect.w : (long long)w * h;
+  if (partial) {
+    // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+  }
   if (skip) {
-    drawRayBounds(camera, view_proj, w, h);  // whole frame: it costs per triangle, not pixel
+    drawRayBounds(camera, view_proj, w, h);  // costs per triangle, and per pixel in the scissor
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    if (partial) {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
-    }
     glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
-    if (partial) {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
-    }
   }
   glViewport(0, 0, w, h);
   if (sky_under) drawSkyUnder(w, h, width, height, options);

@@ -59,18 +59,22 @@ struct RenderOptions {
   bool moving = false;
   // Re-render only this rectangle of the target (x, y, width, height in pixels, origin at the
   // bottom left like glScissor) and leave the rest of the target as it is; a zero width or
-  // height means the whole frame. Only at scale 1 (otherwise the whole frame is drawn), and the
-  // previous frame must have come from this renderer at the same size and style, because
-  // screen-space styles keep their ray-cast image between frames: a style whose pass reads r =
-  // screenSpaceReach(style) pixels around each pixel has R dilated by r ray cast, its first
-  // blur axis run over R dilated by r across that axis, and only R finished, so every pixel of
-  // R reads only fresh pixels and equals a full-frame render (tested).
+  // height means the whole frame (changed_region.h computes the rectangle a volume change
+  // needs). At scale < 1 the rectangle is ray cast at the reduced size (grown by one pixel for
+  // the bilinear upscale) and upscaled into R only. The previous frame must have come from this
+  // renderer at the same size and style, because screen-space styles keep their ray-cast image
+  // between frames: a style whose pass reads r = screenSpaceReach(style) pixels around each
+  // pixel has R dilated by r ray cast, its first blur axis run over R dilated by r across that
+  // axis, and only R finished, so every pixel of R reads only fresh pixels and equals a
+  // full-frame render (tested). The ray bounds are rasterised inside the cast rectangle only.
   glm::ivec4 region{0};
 };
 
 struct RenderStats {
   int width = 0, height = 0;  // the resolution actually ray cast
-  bool has_samples = false;   // collect_stats was on
+  long long pixels_cast =
+      0;  // pixels of that image inside the cast rectangle (all without a region)
+  bool has_samples = false;  // collect_stats was on
   uint64_t samples_total = 0;
   uint32_t samples_max = 0;
   double samples_mean = 0.0;  // per pixel
@@ -167,6 +171,12 @@ class VolumeRenderer {
   // (llvmpipe tests stencil before shading), then the colour is blitted to the target.
   GLuint bounds_fbo_ = 0, bounds_texture_ = 0, frame_texture_ = 0, stencil_buffer_ = 0;
   int bounds_w_ = 0, bounds_h_ = 0;
+  struct FrameTargets {
+    GLuint fbo = 0, bounds = 0, frame = 0, stencil = 0;
+    int w = 0, h = 0;
+  };
+  FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)
+  static void deleteTargets(FrameTargets* targets);
   bool eye_near_occupied_ = false;
   RenderStats stats_;
   std::string error_;

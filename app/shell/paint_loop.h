@@ -14,8 +14,10 @@
 // Modes, keys and the pen menu: see paint_screen.h.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -49,11 +51,15 @@ struct PaintFrameInfo {
   double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
   double mapping_ms = 0.0;            // of which: the stroke mapper (StrokeMapper::map)
   double sync_ms = 0.0;               // renderer sync: occupancy, light, pack, upload
-  double render_ms = 0.0;             // ray casting the scene (to glFinish)
+  double render_ms = 0.0;             // ray casting the scene (to glFinish; also when refined)
   double composite_ms = 0.0;          // the scene to the display (a blit on the lit frame)
   // The frame after the first lit one re-renders the scene at full resolution.
   bool refined_after_lift = false;
   double pen_up_to_refined_ms = 0.0;
+  // The scene render of this frame (lit or refined): pixels ray cast (RenderStats::pixels_cast,
+  // of the image at render_scale) and that scale; 0 when the scene was not re-rendered.
+  long long rendered_pixels = 0;
+  float render_scale = 0.0f;
 };
 
 struct PaintLoopOptions {
@@ -63,8 +69,11 @@ struct PaintLoopOptions {
   // Resolution scale while moving; adapted each frame towards target_frame_ms within
   // [min_moving_scale, 1].
   float moving_scale = 0.5f;
-  float min_moving_scale = 0.2f;
-  double target_frame_ms = 50.0;      // 20 fps
+  float min_moving_scale = 0.5f;           // issue 15: never below half resolution
+  double target_frame_ms = 1000.0 / 30.0;  // 30 fps
+  // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
+  // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
+  bool region_rerender = true;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame
@@ -103,6 +112,20 @@ struct PaintLoopSummary {
   std::vector<double> pen_up_to_refined_ms;  // per mapped stroke: lift -> full-resolution frame
   double median_pen_up_to_lit_ms() const;
 };
+
+// The painter's moving-resolution policy (orbit): after a moving frame that took frame_ms, the
+// next scale shrinks by 10% when over target_frame_ms and grows by 5% below 70% of it, within
+// [min_moving_scale, 1].
+inline float nextMovingScale(float scale, double frame_ms, const PaintLoopOptions& options) {
+  if (frame_ms > options.target_frame_ms) return std::max(options.min_moving_scale, scale * 0.9f);
+  if (frame_ms < 0.7 * options.target_frame_ms) return std::min(1.0f, scale * 1.05f);
+  return scale;
+}
+// The scale an orbit frame is rendered at: quantised to 1/20 so the renderer's reduced-size
+// target is not reallocated every frame, never below min_moving_scale.
+inline float orbitRenderScale(float scale, const PaintLoopOptions& options) {
+  return std::max(options.min_moving_scale, std::round(scale * 20.0f) / 20.0f);
+}
 
 class PaintScreen;
 

@@ -655,6 +655,7 @@ bool PaintScreen::paintingSetUp(std::string* error) {
     // do that now rather than inside the first pen-up -> lit frame.
     RenderOptions warm_up = options_.render;
     warm_up.scale = moving_scale_;
+    warm_up.moving = warm_up.scale < 1.0f;  // the lit frame's program variant, compiled now
     renderer_.sync(shownVolume(), shownLight());
     renderer_.render(shownCamera(), display_.width(), display_.height(), scene_.fbo(), warm_up);
     drawn_.reset();
@@ -669,8 +670,10 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
   const SceneKey key = currentKey();
   const bool stale = !drawn_ || !(*drawn_ == key);
   const bool refine = refine_pending_ && !stale;
+  long long rendered_pixels = 0;
+  float render_scale = 0.0f;
   if (stale || refine) {
-    renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
+    const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
     const auto synced = std::chrono::steady_clock::now();
     sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
     // Right after a lift, and while a drag moves the view or the light, the scene is shown at
@@ -679,16 +682,34 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     options.style = key.style;
     options.collect_stats = show_stats_;
     const bool dragging = drag_camera_ || drag_light_;
-    options.scale = (lit_pending_ || dragging) ? moving_scale_ : 1.0f;
+    options.scale = (lit_pending_ || dragging) && !refine ? moving_scale_ : 1.0f;
     options.moving = options.scale < 1.0f;
-    renderer_.render(key.camera, w, h, scene_.fbo(), options);
-    if (lit_pending_) {
+    // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
+    // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
+    // a full-resolution frame also redoes what is still at the reduced resolution.
+    ScreenRegion region = ScreenRegion::wholeFrame(w, h);
+    if (refine)
+      region = {};
+    else if (drawn_ && options_.region_rerender && !key.stats &&
+             SceneKey{drawn_->volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
+                      drawn_->style} == key)
+      region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, renderer_.occupancy(),
+                                   key.style);
+    if (options.scale >= 1.0f) region = region.unite(unrefined_);
+    if (!region.empty()) {
+      options.region = region.renderRegion();
+      renderer_.render(key.camera, w, h, scene_.fbo(), options);
+      rendered_pixels = renderer_.lastStats().pixels_cast;
+      render_scale = options.scale;
+    }
+    unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : ScreenRegion{};
+    if (lit_pending_ || refine) {
       glFinish();
       render_ms = msSince(synced);
     }
     overlay_.invalidate();
     drawn_ = key;
-    refine_pending_ = options.scale < 1.0f;
+    refine_pending_ = !unrefined_.empty();
   }
   if (lit_pending_) {
     // The footprint was just cleared, so the frame is the scene alone: a blit instead of the
@@ -712,10 +733,15 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     info->sync_ms = sync_ms;
     info->render_ms = render_ms;
     info->composite_ms = msSince(render_start) - sync_ms - render_ms;
+    info->rendered_pixels = rendered_pixels;
+    info->render_scale = render_scale;
     lit_pending_ = false;
   } else if (refine) {
     info->refined_after_lift = true;
     info->pen_up_to_refined_ms = since_lift;
+    info->render_ms = render_ms;
+    info->rendered_pixels = rendered_pixels;
+    info->render_scale = render_scale;
   }
 }
 
@@ -808,9 +834,7 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
     render_options.style = currentStyle();
     render_options.moving = orbiting_;
     // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
-    render_options.scale =
-        orbiting_ ? std::max(options_.min_moving_scale, std::round(moving_scale_ * 20.0f) / 20.0f)
-                  : 1.0f;
+    render_options.scale = orbiting_ ? orbitRenderScale(moving_scale_, options_) : 1.0f;
     render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
@@ -840,11 +864,8 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   if (orbiting_ && frame.frame > 0) {
     moving_frame_ms_.push_back(frame_ms);
     // Keep the orbit fluid: shrink the resolution when a frame is over budget, grow it back
-    // when there is room (≥ 20 fps is the target, issue 2).
-    if (frame_ms > options_.target_frame_ms)
-      moving_scale_ = std::max(options_.min_moving_scale, moving_scale_ * 0.9f);
-    else if (frame_ms < 0.7 * options_.target_frame_ms)
-      moving_scale_ = std::min(1.0f, moving_scale_ * 1.05f);
+    // when there is room (≥ 30 fps at scale ≥ 0.5 is the target, issue 15).
+    moving_scale_ = nextMovingScale(moving_scale_, frame_ms, options_);
   }
 }
 

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "app/render/changed_region.h"
 #include "app/render/footprint_overlay.h"
 #include "app/render/hud_overlay.h"
 #include "app/render/render_style.h"
@@ -138,6 +139,7 @@ class PaintScreen : public Screen {
   RenderStyle currentStyle() const;
   bool lit_pending_ = false;
   bool refine_pending_ = false;
+  ScreenRegion unrefined_;  // the part of scene_ still at the reduced resolution
   std::chrono::steady_clock::time_point lift_time_;
   double lift_mapping_ms_ = 0.0;
   size_t texels_this_frame_ = 0;

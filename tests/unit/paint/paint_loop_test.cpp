@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -73,6 +74,8 @@ struct Frames {
   std::array<double, 4> parts{};  // mapping, sync, render, composite
   ImageRgba8 refined;             // the next frame, at full resolution
   double pen_up_to_refined_ms = 0.0;
+  long long lit_pixels = 0, refined_pixels = 0;  // ray cast for those two frames
+  float lit_scale = 0.0f;
 };
 
 TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
@@ -124,12 +127,15 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
     if (info.refined_after_lift) {
       frames.refined = readFramebufferRgba8(display->framebuffer(), kW, kH);
       frames.pen_up_to_refined_ms = info.pen_up_to_refined_ms;
+      frames.refined_pixels = info.rendered_pixels;
     }
     if (info.first_lit_after_lift) {
       frames.first_lit = readFramebufferRgba8(display->framebuffer(), kW, kH);
       frames.have_lit = true;
       frames.pen_up_to_lit_ms = info.pen_up_to_lit_ms;
       frames.parts = {info.mapping_ms, info.sync_ms, info.render_ms, info.composite_ms};
+      frames.lit_pixels = info.rendered_pixels;
+      frames.lit_scale = info.render_scale;
     }
   };
   const Light light;
@@ -199,6 +205,19 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   EXPECT_GT(refined_cloud, cloud / 2);
   EXPECT_LT(refined_cloud, cloud * 2);
   std::printf("pen-up -> full-resolution lit frame: %.1f ms\n", frames.pen_up_to_refined_ms);
+  // The pen-up path re-renders only the pixels whose rays cross what the stroke changed
+  // (changed_region.h): fewer than the frame, at the reduced scale and then at full resolution.
+  const long long reduced_frame =
+      (long long)std::lround(kW * frames.lit_scale) * std::lround(kH * frames.lit_scale);
+  std::printf("pixels ray cast: lit frame %lld of %lld (scale %.2f), refined %lld of %d\n",
+              frames.lit_pixels, reduced_frame, double(frames.lit_scale), frames.refined_pixels,
+              kW * kH);
+  EXPECT_GE(frames.lit_scale, 0.5f);
+  EXPECT_LT(frames.lit_scale, 1.0f);
+  EXPECT_GT(frames.lit_pixels, 0);
+  EXPECT_LT(frames.lit_pixels, reduced_frame);
+  EXPECT_GT(frames.refined_pixels, 0);
+  EXPECT_LT(frames.refined_pixels, (long long)kW * kH);
   EXPECT_GT(summary.painting_frames, 20);
   std::printf("painting: median %.2f ms/frame over %ld frames while drawing (target <= 16.7)\n",
               summary.median_painting_frame_ms, summary.painting_frames);
