@@ -20,7 +20,6 @@ namespace {
 PaintLoopOptions paintOptionsFor(PaintLoopOptions options) {
   options.orbit_degrees_per_second = 0.0f;  // a study paints from the start: no attract orbit
   options.visitor_mode = false;
-  options.idle_reset_s = 0.0;
   options.max_frames = 0;
   options.max_seconds = 0.0;
   options.initial_keys.clear();

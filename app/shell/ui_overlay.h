@@ -38,8 +38,8 @@ struct UiLabel {
   float size_px = 28.0f;
   uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
   bool centred = false;
-  float wrap_width = 0.0f;  // > 0: lines wrap at this width (pixels; not with `centred`)
   uint32_t background_rgba = 0;  // a box behind the text when its alpha is not 0
+  float wrap_width = 0.0f;       // > 0: lines wrap at this width (pixels; not with `centred`)
 };
 
 class UiOverlay {
