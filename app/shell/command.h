@@ -38,6 +38,11 @@ enum class Command {
   kGoodView,         // G: the nearest view that is not edge-on to the canvas
   kOpen,             // Ctrl+O: open the last saved cloud (--open FILE opens any)
   kNextStyle,        // T: the next render style (thesis, physical, ink, cartoon, sketch)
+  kMorph,            // F: morph the cloud into a saved cloud (animation_preview.h)
+  kWind,             // W: start / stop the wind
+  kWindDirection,    // D: turn the wind (eight compass directions)
+  kApplyAnimation,   // A: apply the morph or wind shown (one undo step)
+  kLeaveAnimation,   // X: leave the morph or wind without applying
   kCount
 };
 

@@ -7,21 +7,40 @@
 namespace cb {
 namespace {
 
-constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
-                                         "mode-canvas",    "mode-paint",
-                                         "mode-erase",     "mode-light",
-                                         "menu",           "next-brush",
-                                         "next-mapping",   "reset-camera",
-                                         "view-top",       "view-front",
-                                         "view-left",      "view-perspective",
-                                         "space",          "smaller",
-                                         "larger",         "raise",
-                                         "lower",          "next-erase-tool",
-                                         "toggle-circles", "toggle-stats",
-                                         "delete-all",     "undo",
-                                         "redo",           "save",
-                                         "good-view",      "open",
-                                         "next-style"};
+constexpr const char* kCommandNames[] = {"quit",
+                                         "mode-camera",
+                                         "mode-canvas",
+                                         "mode-paint",
+                                         "mode-erase",
+                                         "mode-light",
+                                         "menu",
+                                         "next-brush",
+                                         "next-mapping",
+                                         "reset-camera",
+                                         "view-top",
+                                         "view-front",
+                                         "view-left",
+                                         "view-perspective",
+                                         "space",
+                                         "smaller",
+                                         "larger",
+                                         "raise",
+                                         "lower",
+                                         "next-erase-tool",
+                                         "toggle-circles",
+                                         "toggle-stats",
+                                         "delete-all",
+                                         "undo",
+                                         "redo",
+                                         "save",
+                                         "good-view",
+                                         "open",
+                                         "next-style",
+                                         "morph",
+                                         "wind",
+                                         "wind-direction",
+                                         "apply-animation",
+                                         "leave-animation"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -87,6 +106,16 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kGoodView;
     case 't':
       return Command::kNextStyle;
+    case 'f':
+      return Command::kMorph;
+    case 'w':
+      return Command::kWind;
+    case 'd':
+      return Command::kWindDirection;
+    case 'a':
+      return Command::kApplyAnimation;
+    case 'x':
+      return Command::kLeaveAnimation;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -242,6 +271,16 @@ std::string keyLabel(Command command) {
       return "Ctrl+O";
     case Command::kNextStyle:
       return "T";
+    case Command::kMorph:
+      return "F";
+    case Command::kWind:
+      return "W";
+    case Command::kWindDirection:
+      return "D";
+    case Command::kApplyAnimation:
+      return "A";
+    case Command::kLeaveAnimation:
+      return "X";
     default:
       return "";
   }

@@ -9,6 +9,7 @@
 
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
+#include "app/shell/animation_preview.h"
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
 #include "app/shell/mouse_pen.h"
@@ -105,6 +106,7 @@ void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
 }
 
 const Volume& PaintScreen::shownVolume() const {
+  if (animation_ && animation_->active()) return animation_->shown();
   return pen_connected_once_ ? session_->volume() : volume_;
 }
 
@@ -555,6 +557,13 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
       break;
     }
+    case Command::kMorph:
+    case Command::kWind:
+    case Command::kWindDirection:
+    case Command::kApplyAnimation:
+    case Command::kLeaveAnimation:
+      onAnimationCommand(command, t_ns);
+      break;
     case Command::kCount:
       break;
   }
@@ -594,11 +603,13 @@ std::string PaintScreen::update(const FrameContext& frame) {
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
   if (orbiting_) orbit_degrees_ += options_.orbit_degrees_per_second * float(frame.since_last_s);
+  advanceAnimation(frame);
   return "";
 }
 
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
+  if (animationPlaying()) return true;
   if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
   if (options_.idle_reset_s > 0.0) return true;   // the kiosk's countdown and attract loop
   if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
@@ -643,7 +654,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     options.style = key.style;
     options.collect_stats = show_stats_;
     const bool dragging = drag_camera_ || drag_light_;
-    options.scale = (lit_pending_ || dragging) ? moving_scale_ : 1.0f;
+    options.scale = (lit_pending_ || dragging || animationPlaying()) ? moving_scale_ : 1.0f;
     options.moving = options.scale < 1.0f;
     renderer_.render(key.camera, w, h, scene_.fbo(), options);
     if (lit_pending_) {
@@ -828,6 +839,7 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   state.can_undo = session_ && session_->history().canUndo();
   state.can_redo = session_ && session_->history().canRedo();
   state.visitor = options_.visitor_mode;
+  state.animation = animation_ && animation_->active();
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
   const std::vector<Command> tapped =
@@ -858,6 +870,7 @@ std::string PaintScreen::statusLine() const {
                   double(s.eraseDiameter(s.eraseTool())));
     line += text;
   }
+  if (animation_ && animation_->active()) line += " | " + animation_->status();
   if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
   if (mouse_ && !(pen_ && pen_->connection() == PenConnection::kConnected))
     line += " | mouse as pen, pressure " + std::to_string(mouse_->pressure()).substr(0, 4);

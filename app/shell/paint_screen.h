@@ -37,6 +37,7 @@
 
 namespace cb {
 
+class AnimationPreview;
 class MousePen;
 class PenSource;
 class UiOverlay;
@@ -74,6 +75,8 @@ class PaintScreen : public Screen {
   const UiOverlay* ui() const { return ui_.get(); }
   // The view being shown (a drag preview, the auto-rotation, or the session's camera).
   Camera shownCamera() const;
+  // The morph or wind shown, if any (tests).
+  const AnimationPreview* animation() const { return animation_.get(); }
 
  private:
   void handleEvent(const PenEvent& event, const MappedSample& mapped);
@@ -90,6 +93,11 @@ class PaintScreen : public Screen {
   void drawUi(const FrameContext& frame);
   void selectCalibration(uint64_t tool_serial);
   Camera presetView(Command command) const;
+  // Morph and wind (paint_screen_animation.cpp).
+  void onAnimationCommand(Command command, int64_t t_ns);
+  void advanceAnimation(const FrameContext& frame);
+  bool animationPlaying() const;
+  std::unique_ptr<AnimationPreview> animation_;
 
   Display& display_;
   VolumeRenderer& renderer_;
