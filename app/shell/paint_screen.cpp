@@ -834,6 +834,8 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   UiOverlayState state;
   state.status = statusLine();
   state.notice = notice_;
+  // A morph or wind shown says what it is and how to apply or leave it.
+  if (notice_.empty() && animation_ && animation_->active()) state.notice = animation_->status();
   state.menu_open = menu_open_;
   state.mode = session_ ? int(session_->mode()) : 2;
   state.can_undo = session_ && session_->history().canUndo();
@@ -870,7 +872,6 @@ std::string PaintScreen::statusLine() const {
                   double(s.eraseDiameter(s.eraseTool())));
     line += text;
   }
-  if (animation_ && animation_->active()) line += " | " + animation_->status();
   if (s.engine().inStroke()) line += " | stroke open: lift the pen to make the cloud";
   if (mouse_ && !(pen_ && pen_->connection() == PenConnection::kConnected))
     line += " | mouse as pen, pressure " + std::to_string(mouse_->pressure()).substr(0, 4);

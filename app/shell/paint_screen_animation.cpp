@@ -78,7 +78,7 @@ void PaintScreen::advanceAnimation(const FrameContext& frame) {
   }
   // A morph's t moves with the clock (a long frame counts at most 0.25 s); the wind takes one
   // step per frame. The frames are drawn at the moving scale, refined when it stops.
-  animation_->advance(std::min(frame.since_last_s, 0.25));
+  animation_->advanceTo(frame.now_ns);
 }
 
 }  // namespace cb

@@ -1,5 +1,6 @@
 #include "app/tools/cloud_animation.h"
 
+#include "app/core/parallel_for.h"
 #include "app/tools/tool_error.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
@@ -26,6 +27,31 @@ Volume loadMorphTarget(const std::string& source, const Volume& like) {
                         std::to_string(target.dims().y) + "x" + std::to_string(target.dims().z) +
                         " cloud does not fit this " + std::to_string(like.dims().x) + "³ sky");
   return target;
+}
+
+Volume halfResolution(const Volume& volume) {
+  const glm::ivec3 d = volume.dims();
+  const glm::ivec3 h = (d + 1) / 2;
+  Volume half(h, volume.worldMin(), volume.worldMax());
+  parallelFor(size_t(h.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    for (int z = int(z_begin); z < int(z_end); ++z)
+      for (int y = 0; y < h.y; ++y)
+        for (int x = 0; x < h.x; ++x) {
+          float sum = 0.0f;
+          int n = 0;
+          for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+              for (int i = 0; i < 2; ++i) {
+                const glm::ivec3 p(2 * x + i, 2 * y + j, 2 * z + k);
+                if (p.x >= d.x || p.y >= d.y || p.z >= d.z) continue;
+                sum += volume.at(p.x, p.y, p.z);
+                ++n;
+              }
+          half.data()[half.index(x, y, z)] = sum / float(n);
+        }
+  });
+  half.markDirty(half.bounds());
+  return half;
 }
 
 int WindRun::steps() const {

@@ -224,6 +224,44 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
   EXPECT_FALSE(preview.active());
 }
 
+// At half resolution the display copy is an eighth of the voxels; apply commits the frame at
+// full resolution from the same t / steps (what replay computes), and the copy resembles it.
+TEST(CloudAnimation, AHalfResolutionCopyAppliesTheFullResolutionFrame) {
+  SessionFixture f("half");
+  PaintSession& s = *f.session;
+  const Volume source = s.volume();
+  std::string error;
+  AnimationPreview preview;
+  preview.setHalfResolution(true);
+  ASSERT_TRUE(preview.startMorph(s, f.target_path, 1.0, &error)) << error;
+  EXPECT_EQ(preview.shown().dims(), glm::ivec3(kGrid / 2));
+  preview.advance(0.4);
+  const Volume full_morph = CloudMorph(source, f.clouds.target).frame(0.4f);
+  const Volume half_of_full = halfResolution(full_morph);
+  double diff = 0, mass = 0;
+  for (size_t i = 0; i < half_of_full.voxelCount(); ++i) {
+    diff += std::abs(half_of_full.data()[i] - preview.shown().data()[i]);
+    mass += half_of_full.data()[i];
+  }
+  EXPECT_LT(diff, 0.5 * mass) << "the copy shows roughly the full frame";
+  ASSERT_TRUE(preview.apply(&s, 1000, &error)) << error;
+  EXPECT_TRUE(sameBytes(s.volume(), full_morph));
+
+  preview.toggleWind(s);
+  for (int i = 0; i < 4; ++i) preview.advance(0.05);
+  EXPECT_EQ(preview.shown().dims(), glm::ivec3(kGrid / 2));
+  Volume full_wind = s.volume();
+  blowWind(std::get<ui::ApplyWind>(preview.change()).run, &full_wind);
+  ASSERT_TRUE(preview.apply(&s, 2000, &error)) << error;
+  EXPECT_TRUE(sameBytes(s.volume(), full_wind));
+  f.journal.close();
+  const SessionReplay replay =
+      replaySession(readJournal(f.journal_path), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete());
+  EXPECT_TRUE(sameBytes(replay.session->volume(), full_wind));
+}
+
 TEST(CloudAnimation, RecordsRoundTripAndBadOnesAreNamed) {
   ui::ApplyMorph morph{"/tmp/a,b.vol", 0x0123456789abcdefULL, 0.3f};
   UiChange parsed;
