@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -20,12 +21,15 @@
 #include "app/render/image_io.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
+#include "app/session/paint_session.h"
+#include "app/shell/animation_preview.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/tools/procedural_mesh.h"
 #include "app/tools/wind.h"
+#include "app/volume/volume_file.h"
 
 namespace cb {
 namespace {
@@ -207,11 +211,13 @@ int benchTools(int argc, char** argv) {
         options.moving = true;
         options.finish = true;
         const Light light;
-        std::vector<double> sync_ms, render_ms;
+        std::vector<double> sync_ms, render_ms, cpu_ms;
         auto played = [&](const std::function<const Volume&()>& next, std::vector<double>* total) {
           sync_ms.clear();
           render_ms.clear();
+          cpu_ms.clear();
           for (int r = 0; r < frames + 1; ++r) {
+            const std::clock_t c0 = std::clock();
             const auto t0 = std::chrono::steady_clock::now();
             const Volume& v = next();
             const auto t1 = std::chrono::steady_clock::now();
@@ -224,23 +230,45 @@ int benchTools(int argc, char** argv) {
             total->push_back(ms(t3 - t0).count());
             sync_ms.push_back(ms(t2 - t1).count());
             render_ms.push_back(ms(t3 - t2).count());
+            // Process CPU time (llvmpipe's threads included): on an idle 2-core machine a
+            // frame takes at least half of it.
+            cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
           }
         };
-        // Morph, as played (frameInto on one shown volume) and as first written (a fresh
-        // one-thread frame each time).
-        std::vector<double> morph_played, morph_played_base;
-        Volume played_volume = a;
-        VoxelBox played_box = played_volume.bounds();
-        int k = 0;
-        played(
-            [&]() -> const Volume& {
-              played_box = plan->frameInto(0.2f + 0.05f * float(k++), &played_volume, played_box);
-              return played_volume;
-            },
-            &morph_played);
-        const double morph_sync = median(sync_ms), morph_render = median(render_ms);
+        // The painter's path (AnimationPreview on a session holding the picture's cloud): the
+        // display copy at half resolution (the default at 256³) and at full resolution; the
+        // baseline is the first version (a fresh one-thread frame at full resolution).
+        PaintSession session(PaintSessionSettings{1280, 720, a.dims().x}, BrushConfig{},
+                             MappingConfig{});
+        std::string session_error;
+        session.replaceVolume(a, 0, "bench", &session_error);
+        const std::string target_path = (dir / "cloudbrush-bench-morph-target.vol").string();
+        saveVolume(b, target_path);
+        struct Played {
+          double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0;
+        };
+        auto playPreview = [&](bool morph, bool half) {
+          AnimationPreview preview;
+          preview.setHalfResolution(half);
+          if (morph)
+            preview.startMorph(session, target_path, 5.0, &session_error);
+          else
+            preview.toggleWind(session);
+          std::vector<double> total;
+          played(
+              [&]() -> const Volume& {
+                preview.advance(0.05);
+                return preview.shown();
+              },
+              &total);
+          Played result{median(total), median(sync_ms), median(render_ms), median(cpu_ms), 0};
+          result.apply = timeMs([&] { preview.fullFrame(session); });
+          return result;
+        };
+        const Played morph_half = playPreview(true, true), morph_full = playPreview(true, false);
+        std::vector<double> morph_played_base;
         Volume fresh;
-        k = 0;
+        int k = 0;
         played(
             [&]() -> const Volume& {
               fresh = plan->frameOneThreadReference(0.2f + 0.05f * float(k++));
@@ -248,47 +276,57 @@ int benchTools(int argc, char** argv) {
             },
             &morph_played_base);
         std::printf(
-            "morph played at 1280x720, scale 0.5: %.1f ms per frame = %.1f fps (in-between + "
-            "sync %.1f + render %.1f; baseline, first version: %.1f ms = %.1f fps; target >= 20 "
-            "fps)\n",
-            median(morph_played), 1000.0 / median(morph_played), morph_sync, morph_render,
-            median(morph_played_base), 1000.0 / median(morph_played_base));
-        report.figure("morph_played_ms", median(morph_played));
-        report.figure("morph_played_fps", 1000.0 / median(morph_played));
-        report.figure("morph_played_sync_ms", morph_sync);
-        report.figure("morph_played_render_ms", morph_render);
+            "morph played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
+            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
+            "computes the full frame in %.1f ms); full-resolution copy: %.1f ms = %.1f fps "
+            "(sync %.1f, render %.1f); baseline, first version: %.1f ms = %.1f fps; target >= "
+            "20 fps\n",
+            morph_half.ms, 1000.0 / morph_half.ms, morph_half.sync, morph_half.render,
+            morph_half.cpu, morph_half.apply, morph_full.ms, 1000.0 / morph_full.ms,
+            morph_full.sync, morph_full.render, median(morph_played_base),
+            1000.0 / median(morph_played_base));
+        report.figure("morph_played_ms", morph_half.ms);
+        report.figure("morph_played_fps", 1000.0 / morph_half.ms);
+        report.figure("morph_played_sync_ms", morph_half.sync);
+        report.figure("morph_played_render_ms", morph_half.render);
+        report.figure("morph_played_cpu_ms", morph_half.cpu);
+        report.figure("morph_apply_full_frame_ms", morph_half.apply);
+        report.figure("morph_played_full_res_ms", morph_full.ms);
+        report.figure("morph_played_full_res_sync_ms", morph_full.sync);
         report.baseline("morph_played_first_version_ms", median(morph_played_base));
-        // Wind, as played (one step per frame).
-        std::vector<double> wind_played, wind_played_base;
-        for (bool every_voxel : {false, true}) {
+
+        const Played wind_half = playPreview(false, true), wind_full = playPreview(false, false);
+        std::vector<double> wind_played_base;
+        {
           Volume cloud = a;
-          WindSolver wind(cloud.worldMin(), cloud.worldMax());
-          wind.setUniformWind({0.25f, 0.0f, 0.0f});
-          wind.addForce({0.0f, 1.5f, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
+          WindSolver solver(cloud.worldMin(), cloud.worldMax());
+          solver.setUniformWind({WindRun{}.speed, 0.0f, 0.0f});
+          solver.addForce({0.0f, WindRun{}.gust, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
           played(
               [&]() -> const Volume& {
-                wind.stepVelocity(kWindStepSeconds);
-                if (every_voxel)
-                  wind.advectDensityEveryVoxel(kWindStepSeconds, &cloud);
-                else
-                  wind.advectDensity(kWindStepSeconds, &cloud);
+                solver.stepVelocity(kWindStepSeconds);
+                solver.advectDensityEveryVoxel(kWindStepSeconds, &cloud);
                 return cloud;
               },
-              every_voxel ? &wind_played_base : &wind_played);
-          if (!every_voxel) {
-            report.figure("wind_played_sync_ms", median(sync_ms));
-            report.figure("wind_played_render_ms", median(render_ms));
-            std::printf("wind played: sync %.1f ms, render %.1f ms\n", median(sync_ms),
-                        median(render_ms));
-          }
+              &wind_played_base);
         }
         std::printf(
-            "wind played at 1280x720, scale 0.5: %.1f ms per frame = %.1f fps (baseline, first "
-            "version: %.1f ms = %.1f fps; target >= 15 fps)\n",
-            median(wind_played), 1000.0 / median(wind_played), median(wind_played_base),
-            1000.0 / median(wind_played_base));
-        report.figure("wind_played_ms", median(wind_played));
-        report.figure("wind_played_fps", 1000.0 / median(wind_played));
+            "wind played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
+            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
+            "recomputes its %d steps at full resolution in %.1f ms); full-resolution copy: "
+            "%.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, first version: %.1f ms = "
+            "%.1f fps; target >= 15 fps\n",
+            wind_half.ms, 1000.0 / wind_half.ms, wind_half.sync, wind_half.render, wind_half.cpu,
+            frames + 1, wind_half.apply, wind_full.ms, 1000.0 / wind_full.ms, wind_full.sync,
+            wind_full.render, median(wind_played_base), 1000.0 / median(wind_played_base));
+        report.figure("wind_played_ms", wind_half.ms);
+        report.figure("wind_played_fps", 1000.0 / wind_half.ms);
+        report.figure("wind_played_sync_ms", wind_half.sync);
+        report.figure("wind_played_render_ms", wind_half.render);
+        report.figure("wind_played_cpu_ms", wind_half.cpu);
+        report.figure("wind_apply_full_frame_ms", wind_half.apply);
+        report.figure("wind_played_full_res_ms", wind_full.ms);
+        report.figure("wind_played_full_res_sync_ms", wind_full.sync);
         report.baseline("wind_played_first_version_ms", median(wind_played_base));
       }
     }

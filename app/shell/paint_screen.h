@@ -10,7 +10,9 @@
 //   5 Light   drag the light ball: the sun's direction from the scene origin; −/+ warmer/cooler
 //
 // M or the pen's upper side button opens the pen menu (every command); Ctrl+Z / Ctrl+Y undo and
-// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics.
+// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics. F morphs the
+// cloud into a saved cloud, W starts / stops the wind and D turns it; A applies what plays, X
+// leaves it (animation_preview.h).
 //
 // Every change goes to the PaintSession as a typed UI change (app/session/ui_change.h), so it
 // is journalled and replays. Drags show a preview and commit one change when the pen lifts.

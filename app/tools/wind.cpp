@@ -147,19 +147,26 @@ void WindSolver::project() {
   const float diagonal = 2.0f * (inv_h2.x + inv_h2.y + inv_h2.z);
   for (int iteration = 0; iteration < params_.pressure_iterations; ++iteration) {
     parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
-      auto p = [&](int i, int j, int k) {
-        if (i < 0 || j < 0 || k < 0 || i >= n.x || j >= n.y || k >= n.z) return 0.0f;
-        return pressure_[index(i, j, k)];
+      // Rows of the neighbours; a row outside the grid reads zeros (p = 0 outside).
+      const std::vector<float> zeros(size_t(n.x), 0.0f);
+      auto row = [&](int j, int k) -> const float* {
+        if (j < 0 || k < 0 || j >= n.y || k >= n.z) return zeros.data();
+        return pressure_.data() + index(0, j, k);
       };
       for (int z = int(z_begin); z < int(z_end); ++z)
-        for (int y = 0; y < n.y; ++y)
+        for (int y = 0; y < n.y; ++y) {
+          const float* c = row(y, z);
+          const float *ym = row(y - 1, z), *yp = row(y + 1, z);
+          const float *zm = row(y, z - 1), *zp = row(y, z + 1);
+          const float* div = divergence_.data() + index(0, y, z);
+          float* out = scratch_pressure_.data() + index(0, y, z);
           for (int x = 0; x < n.x; ++x) {
-            const float neighbours = (p(x - 1, y, z) + p(x + 1, y, z)) * inv_h2.x +
-                                     (p(x, y - 1, z) + p(x, y + 1, z)) * inv_h2.y +
-                                     (p(x, y, z - 1) + p(x, y, z + 1)) * inv_h2.z;
-            scratch_pressure_[index(x, y, z)] =
-                (neighbours - divergence_[index(x, y, z)]) / diagonal;
+            const float xm = x > 0 ? c[x - 1] : 0.0f, xp = x + 1 < n.x ? c[x + 1] : 0.0f;
+            const float neighbours =
+                (xm + xp) * inv_h2.x + (ym[x] + yp[x]) * inv_h2.y + (zm[x] + zp[x]) * inv_h2.z;
+            out[x] = (neighbours - div[x]) / diagonal;
           }
+        }
     });
     pressure_.swap(scratch_pressure_);
   }
