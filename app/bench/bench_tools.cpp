@@ -253,7 +253,7 @@ int benchTools(int argc, char** argv) {
           if (morph)
             preview.startMorph(session, target_path, 5.0, &session_error);
           else
-            preview.toggleWind(session);
+            preview.toggleWind(session, &session_error);
           std::vector<double> total;
           played(
               [&]() -> const Volume& {

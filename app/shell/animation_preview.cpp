@@ -58,12 +58,15 @@ bool AnimationPreview::startMorph(const PaintSession& session, const std::string
   return true;
 }
 
-void AnimationPreview::toggleWind(const PaintSession& session) {
+bool AnimationPreview::toggleWind(const PaintSession& session, std::string* error) {
   if (kind_ == Kind::kWind) {
     playing_ = !playing_;
     last_advance_ns_ = -1;
-    return;
+    return true;
   }
+  const Volume& cloud = session.volume();
+  if (std::all_of(cloud.data(), cloud.data() + cloud.voxelCount(), [](float v) { return v == 0; }))
+    return *error = "wind: the cloud is empty - paint or open one first", false;
   leave();
   kind_ = Kind::kWind;
   playing_ = true;
@@ -75,6 +78,7 @@ void AnimationPreview::toggleWind(const PaintSession& session) {
   base_dims_ = session.volume().dims();
   base_instance_ = session.volume().instanceId();
   base_generation_ = session.volume().generation();
+  return true;
 }
 
 void AnimationPreview::nextWindDirection() {

@@ -33,8 +33,9 @@ class AnimationPreview {
   bool startMorph(const PaintSession& session, const std::string& target_source, double seconds,
                   std::string* error);
   // Starts the wind (towards the current direction) on a copy of the session's cloud, or
-  // pauses / resumes it when it is already shown.
-  void toggleWind(const PaintSession& session);
+  // pauses / resumes it when it is already shown. False with *error (nothing started) when the
+  // cloud is empty.
+  bool toggleWind(const PaintSession& session, std::string* error);
   // The next of eight compass directions; a running wind turns from the next step.
   void nextWindDirection();
   // Advances a playing animation by a frame: the morph by `seconds` of its time, the wind by

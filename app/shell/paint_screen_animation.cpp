@@ -43,7 +43,7 @@ void PaintScreen::onAnimationCommand(Command command, int64_t t_ns) {
       break;
     }
     case Command::kWind:
-      animation_->toggleWind(*session_);
+      if (!animation_->toggleWind(*session_, &error)) return say(error);
       say(animation_->status());
       break;
     case Command::kWindDirection:

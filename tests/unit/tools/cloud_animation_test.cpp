@@ -142,11 +142,11 @@ TEST(CloudAnimation, ApplyIsOneStepUndoRestoresAndTheJournalReplaysOnAnyThreadCo
   EXPECT_EQ(volumeChecksum(s.volume()), shown_morph) << "the frame shown was committed";
 
   preview.nextWindDirection();
-  preview.toggleWind(s);
+  ASSERT_TRUE(preview.toggleWind(s, &error)) << error;
   for (int i = 0; i < 5; ++i) preview.advance(0.05);
   preview.nextWindDirection();
   for (int i = 0; i < 3; ++i) preview.advance(0.05);
-  preview.toggleWind(s);  // stopped: nothing moves
+  ASSERT_TRUE(preview.toggleWind(s, &error));  // stopped: nothing moves
   EXPECT_FALSE(preview.advance(0.05));
   EXPECT_EQ(preview.windSteps(), 8);
   const uint64_t shown_wind = volumeChecksum(preview.shown());
@@ -195,7 +195,7 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
   preview.advance(0.5);
   EXPECT_FALSE(sameBytes(preview.shown(), before));
   preview.leave();
-  preview.toggleWind(s);
+  ASSERT_TRUE(preview.toggleWind(s, &error)) << error;
   for (int i = 0; i < 3; ++i) preview.advance(0.05);
   EXPECT_FALSE(sameBytes(preview.shown(), before));
   preview.leave();
@@ -221,6 +221,8 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
   PaintSession empty(PaintSessionSettings{320, 180, kGrid}, BrushConfig{}, MappingConfig{});
   EXPECT_FALSE(preview.startMorph(empty, f.target_path, 1.0, &error));
   EXPECT_NE(error.find("no density"), std::string::npos) << error;
+  EXPECT_FALSE(preview.toggleWind(empty, &error));
+  EXPECT_NE(error.find("the cloud is empty"), std::string::npos) << error;
   EXPECT_FALSE(preview.active());
 }
 
@@ -247,7 +249,7 @@ TEST(CloudAnimation, AHalfResolutionCopyAppliesTheFullResolutionFrame) {
   ASSERT_TRUE(preview.apply(&s, 1000, &error)) << error;
   EXPECT_TRUE(sameBytes(s.volume(), full_morph));
 
-  preview.toggleWind(s);
+  ASSERT_TRUE(preview.toggleWind(s, &error)) << error;
   for (int i = 0; i < 4; ++i) preview.advance(0.05);
   EXPECT_EQ(preview.shown().dims(), glm::ivec3(kGrid / 2));
   Volume full_wind = s.volume();
