@@ -777,16 +777,17 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
     renderer_.sync(shownVolume(), shownLight());
     RenderOptions render_options = options_.render;
     render_options.style = currentStyle();
-    render_options.moving = orbiting_;
+    const bool moving = orbiting_ || animationPlaying();
+    render_options.moving = moving;
     // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
     render_options.scale =
-        orbiting_ ? std::max(options_.min_moving_scale, std::round(moving_scale_ * 20.0f) / 20.0f)
-                  : 1.0f;
+        moving ? std::max(options_.min_moving_scale, std::round(moving_scale_ * 20.0f) / 20.0f)
+               : 1.0f;
     render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
                      render_options);
-    if (!orbiting_) {
+    if (!moving) {
       refined_ = true;
       ++refined_frames_;
       drawn_ = currentKey();
