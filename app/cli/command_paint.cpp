@@ -102,6 +102,9 @@ constexpr const char* kUsage =
     "                      (`cloudbrush kiosk` only, alone) write the bundled attract journal\n"
     "  --place FILE        make a cloud from a picture (.png) or a model (.obj, .ply, .gltf)\n"
     "                      at the canvas, seen from the starting view\n"
+    "  --morph-to FILE     F morphs the cloud into this saved cloud (default: the newest saved\n"
+    "                      cloud of the state dir, else the bundled cumulus)\n"
+    "  --morph-seconds S   how long the morph plays (default 5)\n"
     "  --help              this text\n"
     "\n"
     "keys: Esc/q quit, Space pauses the orbit, S shows ray-sample statistics (histogram bars,\n"
@@ -140,7 +143,7 @@ int commandPaint(int argc, char** argv) {
        "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
        "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
        "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery", "resume",       "sync-udp"});
+       "language",   "gallery", "resume",       "sync-udp",        "morph-to", "morph-seconds"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -161,6 +164,10 @@ int commandPaint(int argc, char** argv) {
   loop_options.max_frames = args.getInt("frames", 0);
   loop_options.max_seconds = args.getDouble("seconds", 0.0);
   loop_options.print_stats = args.has("stats");
+  loop_options.morph_target = args.get("morph-to", "");
+  loop_options.morph_seconds = args.getDouble("morph-seconds", 5.0);
+  if (!(loop_options.morph_seconds > 0.0 && loop_options.morph_seconds <= 3600.0))
+    return fail("--morph-seconds: expected a time in (0, 3600] seconds", 2);
   const bool kiosk = args.has("kiosk");
   KioskConfig kiosk_config;
   if (kiosk) {

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <sstream>
 
 #include "app/scene/paint_camera.h"
+#include "app/session/session_replay.h"
+#include "app/tools/cloud_animation.h"
+#include "app/tools/cloud_morph.h"
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
@@ -246,6 +250,42 @@ bool PaintSession::vacuumCentre(const MappedSample& sample, glm::vec3* centre) c
   return true;
 }
 
+void PaintSession::takeFrame(const Volume& frame) {
+  // Only the box where the bytes differ is marked, so the history keeps a small delta.
+  const glm::ivec3 d = volume_.dims();
+  VoxelBox changed;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y) {
+      const float* a = volume_.data() + volume_.index(0, y, z);
+      const float* b = frame.data() + frame.index(0, y, z);
+      if (std::memcmp(a, b, sizeof(float) * size_t(d.x)) == 0) continue;
+      int lo = 0, hi = d.x;
+      while (std::memcmp(a + lo, b + lo, sizeof(float)) == 0) ++lo;
+      while (std::memcmp(a + hi - 1, b + hi - 1, sizeof(float)) == 0) --hi;
+      changed = changed.unite({{lo, y, z}, {hi, y + 1, z + 1}});
+    }
+  std::memcpy(volume_.data(), frame.data(), sizeof(float) * volume_.voxelCount());
+  volume_.markDirty(changed);
+}
+
+bool PaintSession::commitAnimation(const UiChange& change, const Volume& shown, int64_t t_ns,
+                                   std::string* error) {
+  const bool morph = std::holds_alternative<ui::ApplyMorph>(change);
+  if (!morph && !std::holds_alternative<ui::ApplyWind>(change))
+    return *error = "apply: not an animation", false;
+  if (shown.dims() != volume_.dims() || shown.worldMin() != volume_.worldMin() ||
+      shown.worldMax() != volume_.worldMax())
+    return *error = "apply: the animated cloud does not fit this sky; the cloud is unchanged",
+           false;
+  if (engine_.inStroke()) return *error = "apply: a stroke is being painted", false;
+  const SceneState before = scene_;
+  takeFrame(shown);
+  recordStep(before, morph ? "morph" : "wind");
+  const UiRecordText record = formatUiChange(change);
+  journalText(record.type, t_ns, record.text);
+  return true;
+}
+
 bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
                                  std::string* error) {
   if (volume.dims() != volume_.dims() || volume.worldMin() != volume_.worldMin() ||
@@ -424,6 +464,34 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
                false;
       }
       s.recordStep(before, c.model ? "model" : "picture");
+      return true;
+    }
+    bool operator()(const ui::ApplyMorph& c) {
+      if (s.engine_.inStroke()) return *error = "morph: a stroke is being painted", false;
+      try {
+        const Volume target = loadMorphTarget(c.target, s.volume_);
+        const uint64_t checksum = volumeChecksum(target);
+        if (checksum != c.target_checksum) {
+          char text[96];
+          std::snprintf(text, sizeof text, " (checksum %016llx, recorded %016llx)",
+                        (unsigned long long)checksum, (unsigned long long)c.target_checksum);
+          return *error = "morph: the target " + c.target + " is not the cloud morphed into" +
+                          text + "; the cloud is unchanged",
+                 false;
+        }
+        s.takeFrame(CloudMorph(s.volume_, target).frame(c.t));
+      } catch (const std::exception& e) {
+        return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
+      }
+      s.recordStep(before, "morph");
+      return true;
+    }
+    bool operator()(const ui::ApplyWind& c) {
+      if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
+      Volume blown = s.volume_;
+      blowWind(c.run, &blown);
+      s.takeFrame(blown);
+      s.recordStep(before, "wind");
       return true;
     }
     bool operator()(const ui::SetStyle& c) {

@@ -119,6 +119,14 @@ class PaintSession {
   // cannot apply now (undo with nothing to undo, ...); nothing is journalled then.
   bool apply(const UiChange& change, int64_t t_ns, std::string* error = nullptr);
 
+  // The painter's animations (issue 14): a morph or wind animated on a copy of the cloud is
+  // committed as the frame shown. `change` (ui::ApplyMorph or ui::ApplyWind) names how to
+  // recompute it, `shown` is the frame; the cloud becomes `shown` as one history step and one
+  // journal record (replay recomputes the frame from the record through apply()). False with
+  // *error, nothing changed, when `shown` does not fit the cloud or a stroke is open.
+  bool commitAnimation(const UiChange& change, const Volume& shown, int64_t t_ns,
+                       std::string* error);
+
   // Where the vacuum sphere sits for a pen at this sample (§3.5.1, Fig. 3.5): x/z where the
   // pen's ray meets the canvas mid-plane, the height from the pressure (0 = the bottom of the
   // volume, 1 = its top). False when the ray misses the plane.
@@ -178,6 +186,7 @@ class PaintSession {
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
   void syncJournal();  // fsync at a stroke's end (paint or rub-out)
   void recordStep(const SceneState& before, const std::string& label);
+  void takeFrame(const Volume& frame);
 
   PaintSessionSettings settings_;
   BrushConfig brush_config_;

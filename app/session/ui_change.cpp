@@ -117,6 +117,21 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::SetStyle& c) const {
       return {JournalRecordType::kUi, "style=" + c.name};
     }
+    UiRecordText operator()(const ui::ApplyMorph& c) const {
+      char checksum[24];
+      std::snprintf(checksum, sizeof checksum, "%016llx", (unsigned long long)c.target_checksum);
+      return {JournalRecordType::kUi,
+              "morph=" + formatFloats(&c.t, 1) + "," + checksum + "," + c.target};
+    }
+    UiRecordText operator()(const ui::ApplyWind& c) const {
+      const float head[2] = {c.run.speed, c.run.gust};
+      std::string text = "wind=" + formatFloats(head, 2);
+      for (const WindSegment& s : c.run.segments) {
+        const float d[2] = {s.dx, s.dz};
+        text += ";" + formatFloats(d, 2) + "," + std::to_string(s.steps);
+      }
+      return {JournalRecordType::kUi, text};
+    }
     UiRecordText operator()(const ui::Undo&) const { return {JournalRecordType::kUi, "undo"}; }
     UiRecordText operator()(const ui::Redo&) const { return {JournalRecordType::kUi, "redo"}; }
     UiRecordText operator()(const ui::DeleteAll&) const {
@@ -210,6 +225,49 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   } else if (key == "place_picture" || key == "place_model") {
     if (value.empty() || value.find('\n') != std::string::npos) return bad("a file path");
     *out = ui::PlaceShape{key == "place_model", value};
+  } else if (key == "morph") {
+    // T,CHECKSUM,TARGET (the target last: a path may hold commas).
+    const size_t c1 = value.find(','), c2 = c1 == std::string::npos ? c1 : value.find(',', c1 + 1);
+    ui::ApplyMorph morph;
+    char* end = nullptr;
+    const std::string hex = c2 == std::string::npos ? "" : value.substr(c1 + 1, c2 - c1 - 1);
+    if (c2 == std::string::npos || !parseFloats(value.substr(0, c1), 1, &morph.t) ||
+        morph.t < 0.0f || morph.t > 1.0f || hex.size() != 16)
+      return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
+    morph.target_checksum = std::strtoull(hex.c_str(), &end, 16);
+    morph.target = value.substr(c2 + 1);
+    if (*end != '\0' || morph.target.empty() || morph.target.find('\n') != std::string::npos)
+      return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
+    *out = morph;
+  } else if (key == "wind") {
+    // SPEED,GUST;DX,DZ,STEPS;...
+    ui::ApplyWind wind;
+    size_t start = 0;
+    for (int part = 0; start <= value.size(); ++part) {
+      const size_t semi = value.find(';', start);
+      const std::string field =
+          value.substr(start, semi == std::string::npos ? std::string::npos : semi - start);
+      if (part == 0) {
+        if (!parseFloats(field, 2, v) || v[0] < 0.0f || v[0] > 100.0f || std::abs(v[1]) > 1000.0f)
+          return bad("SPEED,GUST;DX,DZ,STEPS;... (speed in [0, 100])");
+        wind.run.speed = v[0];
+        wind.run.gust = v[1];
+      } else {
+        const size_t last = field.rfind(',');
+        char* end = nullptr;
+        const long steps =
+            last == std::string::npos ? -1 : std::strtol(field.c_str() + last + 1, &end, 10);
+        if (last == std::string::npos || !parseFloats(field.substr(0, last), 2, v) ||
+            *end != '\0' || steps < 0 || steps > 100000)
+          return bad("SPEED,GUST;DX,DZ,STEPS;... (0..100000 steps per segment)");
+        wind.run.segments.push_back({v[0], v[1], int(steps)});
+      }
+      if (semi == std::string::npos) break;
+      start = semi + 1;
+    }
+    if (wind.run.segments.empty() || wind.run.steps() > 100000)
+      return bad("SPEED,GUST;DX,DZ,STEPS;... (at least one segment, at most 100000 steps)");
+    *out = wind;
   } else if (key == "style") {
     bool plain = !value.empty() && value.size() <= 32;
     for (char c : value) plain = plain && c >= 'a' && c <= 'z';

@@ -18,6 +18,9 @@
 //   Ui      pen_capture=on|off                    PenCapture
 //   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
+//   Ui      morph=T,CHECKSUM,TARGET               ApplyMorph (TARGET a .vol path or bundled:SEED;
+//                                                 CHECKSUM its volumeChecksum, 16 hex digits)
+//   Ui      wind=SPEED,GUST;DX,DZ,STEPS;...       ApplyWind (one DX,DZ,STEPS per segment)
 //   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
 //
 // Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
@@ -32,6 +35,7 @@
 #include "app/brush/brush_config.h"
 #include "app/mapping/mapping_config.h"
 #include "app/scene/camera.h"
+#include "app/tools/cloud_animation.h"
 #include "drivers/core/journal.h"
 
 namespace cb {
@@ -97,15 +101,26 @@ struct PlaceShape {
 struct PenCapture {
   bool captured;
 };
+// The painter's animations committed ("apply"): the morph from the cloud as it was into the
+// target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
+// recomputes the frame from the cloud before it, so the record holds only what names it.
+struct ApplyMorph {
+  std::string target;  // a saved cloud's path, or bundled:SEED
+  uint64_t target_checksum = 0;
+  float t = 0.0f;
+};
+struct ApplyWind {
+  WindRun run;
+};
 struct Undo {};
 struct Redo {};
 struct DeleteAll {};
 }  // namespace ui
 
-using UiChange =
-    std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
-                 ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
-                 ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo, ui::Redo, ui::DeleteAll>;
+using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
+                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
+                              ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
+                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

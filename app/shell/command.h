@@ -40,14 +40,19 @@ enum class Command {
   kNextStyle,        // T: the next render style (thesis, physical, ink, cartoon, sketch)
   // The study operator's (app/shell/study_run_screen.h): Ctrl+Alt so a participant's shortcut
   // never triggers one by accident (Ctrl+S is the participant's save).
-  kOperatorPause,  // Ctrl+Alt+P: pause (again: resume), with a reason
-  kOperatorSkip,   // Ctrl+Alt+S: skip the tutorial step or the stage, with a reason
-  kOperatorAbort,  // Ctrl+Alt+A: abort the session, with a reason
-  kPanDrag,        // P: a pen drag in Camera mode pans instead of orbiting (and back)
-  kPanLeft,        // Shift+Left: move the view left (Camera mode)
-  kPanRight,       // Shift+Right
-  kPanUp,          // Shift+Up
-  kPanDown,        // Shift+Down
+  kOperatorPause,   // Ctrl+Alt+P: pause (again: resume), with a reason
+  kOperatorSkip,    // Ctrl+Alt+S: skip the tutorial step or the stage, with a reason
+  kOperatorAbort,   // Ctrl+Alt+A: abort the session, with a reason
+  kPanDrag,         // P: a pen drag in Camera mode pans instead of orbiting (and back)
+  kPanLeft,         // Shift+Left: move the view left (Camera mode)
+  kPanRight,        // Shift+Right
+  kPanUp,           // Shift+Up
+  kPanDown,         // Shift+Down
+  kMorph,           // F: morph the cloud into a saved cloud (animation_preview.h)
+  kWind,            // W: start / stop the wind
+  kWindDirection,   // D: turn the wind (eight compass directions)
+  kApplyAnimation,  // A: apply the morph or wind shown (one undo step)
+  kLeaveAnimation,  // X: leave the morph or wind without applying
   kCount
 };
 

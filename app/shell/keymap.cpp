@@ -7,25 +7,48 @@
 namespace cb {
 namespace {
 
-constexpr const char* kCommandNames[] = {"quit",           "mode-camera",
-                                         "mode-canvas",    "mode-paint",
-                                         "mode-erase",     "mode-light",
-                                         "menu",           "next-brush",
-                                         "next-mapping",   "reset-camera",
-                                         "view-top",       "view-front",
-                                         "view-left",      "view-perspective",
-                                         "space",          "smaller",
-                                         "larger",         "raise",
-                                         "lower",          "next-erase-tool",
-                                         "toggle-circles", "toggle-stats",
-                                         "delete-all",     "undo",
-                                         "redo",           "save",
-                                         "good-view",      "open",
-                                         "next-style",     "operator-pause",
-                                         "operator-skip",  "operator-abort",
-                                         "pan-drag",       "pan-left",
-                                         "pan-right",      "pan-up",
-                                         "pan-down"};
+constexpr const char* kCommandNames[] = {"quit",
+                                         "mode-camera",
+                                         "mode-canvas",
+                                         "mode-paint",
+                                         "mode-erase",
+                                         "mode-light",
+                                         "menu",
+                                         "next-brush",
+                                         "next-mapping",
+                                         "reset-camera",
+                                         "view-top",
+                                         "view-front",
+                                         "view-left",
+                                         "view-perspective",
+                                         "space",
+                                         "smaller",
+                                         "larger",
+                                         "raise",
+                                         "lower",
+                                         "next-erase-tool",
+                                         "toggle-circles",
+                                         "toggle-stats",
+                                         "delete-all",
+                                         "undo",
+                                         "redo",
+                                         "save",
+                                         "good-view",
+                                         "open",
+                                         "next-style",
+                                         "operator-pause",
+                                         "operator-skip",
+                                         "operator-abort",
+                                         "pan-drag",
+                                         "pan-left",
+                                         "pan-right",
+                                         "pan-up",
+                                         "pan-down",
+                                         "morph",
+                                         "wind",
+                                         "wind-direction",
+                                         "apply-animation",
+                                         "leave-animation"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -104,6 +127,16 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kGoodView;
     case 't':
       return Command::kNextStyle;
+    case 'f':
+      return Command::kMorph;
+    case 'w':
+      return Command::kWind;
+    case 'd':
+      return Command::kWindDirection;
+    case 'a':
+      return Command::kApplyAnimation;
+    case 'x':
+      return Command::kLeaveAnimation;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -277,6 +310,16 @@ std::string keyLabel(Command command) {
       return "Shift+Up";
     case Command::kPanDown:
       return "Shift+Down";
+    case Command::kMorph:
+      return "F";
+    case Command::kWind:
+      return "W";
+    case Command::kWindDirection:
+      return "D";
+    case Command::kApplyAnimation:
+      return "A";
+    case Command::kLeaveAnimation:
+      return "X";
     default:
       return "";
   }

@@ -83,6 +83,11 @@ struct PaintLoopOptions {
   std::vector<DisplayEvent> initial_keys;
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
+  // Morph (F): the saved cloud to morph into (`--morph-to`); empty: the newest saved cloud of
+  // state_dir, else the bundled cumulus ("bundled:1", the cloud that orbits at the start).
+  // Played over morph_seconds, then held until applied (A) or left (X).
+  std::string morph_target;
+  double morph_seconds = 5.0;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
   std::function<void()> on_first_connection;            // the pen connected for the first time
   std::function<void(bool presented)> each_iteration;   // every loop iteration (kiosk watchdog)

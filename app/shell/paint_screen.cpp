@@ -9,6 +9,7 @@
 
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
+#include "app/shell/animation_preview.h"
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
 #include "app/shell/mouse_pen.h"
@@ -119,6 +120,7 @@ void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
 }
 
 const Volume& PaintScreen::shownVolume() const {
+  if (animation_ && animation_->active()) return animation_->shown();
   return pen_connected_once_ ? session_->volume() : volume_;
 }
 
@@ -614,6 +616,13 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
       break;
     }
+    case Command::kMorph:
+    case Command::kWind:
+    case Command::kWindDirection:
+    case Command::kApplyAnimation:
+    case Command::kLeaveAnimation:
+      onAnimationCommand(command, t_ns);
+      break;
     case Command::kOperatorPause:  // the study runner's (study_run_screen.h)
     case Command::kOperatorSkip:
     case Command::kOperatorAbort:
@@ -631,11 +640,13 @@ std::string PaintScreen::update(const FrameContext& frame) {
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
   if (orbiting_) orbit_degrees_ += options_.orbit_degrees_per_second * float(frame.since_last_s);
+  advanceAnimation(frame);
   return "";
 }
 
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
+  if (animationPlaying()) return true;
   if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
   if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
@@ -682,7 +693,8 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     options.style = key.style;
     options.collect_stats = show_stats_;
     const bool dragging = drag_camera_ || drag_light_;
-    options.scale = (lit_pending_ || dragging) && !refine ? moving_scale_ : 1.0f;
+    options.scale =
+        (lit_pending_ || dragging || animationPlaying()) && !refine ? moving_scale_ : 1.0f;
     options.moving = options.scale < 1.0f;
     // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
     // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
@@ -832,14 +844,15 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
     renderer_.sync(shownVolume(), shownLight());
     RenderOptions render_options = options_.render;
     render_options.style = currentStyle();
-    render_options.moving = orbiting_;
+    const bool moving = orbiting_ || animationPlaying();
+    render_options.moving = moving;
     // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
-    render_options.scale = orbiting_ ? orbitRenderScale(moving_scale_, options_) : 1.0f;
+    render_options.scale = moving ? orbitRenderScale(moving_scale_, options_) : 1.0f;
     render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
                      render_options);
-    if (!orbiting_) {
+    if (!moving) {
       refined_ = true;
       ++refined_frames_;
       drawn_ = currentKey();
@@ -884,11 +897,14 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   UiOverlayState state;
   state.status = statusLine();
   state.notice = notice_;
+  // A morph or wind shown says what it is and how to apply or leave it.
+  if (notice_.empty() && animation_ && animation_->active()) state.notice = animation_->status();
   state.menu_open = menu_open_;
   state.mode = session_ ? int(session_->mode()) : 2;
   state.can_undo = session_ && session_->history().canUndo();
   state.can_redo = session_ && session_->history().canRedo();
   state.visitor = options_.visitor_mode;
+  state.animation = animation_ && animation_->active();
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
   const std::vector<Command> tapped =

@@ -11,7 +11,9 @@
 //   5 Light   drag the light ball: the sun's direction from the scene origin; −/+ warmer/cooler
 //
 // M or the pen's upper side button opens the pen menu (every command); Ctrl+Z / Ctrl+Y undo and
-// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics.
+// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics. F morphs the
+// cloud into a saved cloud, W starts / stops the wind and D turns it; A applies what plays, X
+// leaves it (animation_preview.h).
 //
 // Every change goes to the PaintSession as a typed UI change (app/session/ui_change.h), so it
 // is journalled and replays. Drags show a preview and commit one change when the pen lifts.
@@ -39,6 +41,7 @@
 
 namespace cb {
 
+class AnimationPreview;
 class MousePen;
 class PenSource;
 class UiOverlay;
@@ -76,6 +79,8 @@ class PaintScreen : public Screen {
   const UiOverlay* ui() const { return ui_.get(); }
   // The view being shown (a drag preview, the auto-rotation, or the session's camera).
   Camera shownCamera() const;
+  // The morph or wind shown, if any (tests).
+  const AnimationPreview* animation() const { return animation_.get(); }
 
  private:
   void handleEvent(const PenEvent& event, const MappedSample& mapped);
@@ -92,6 +97,11 @@ class PaintScreen : public Screen {
   void drawUi(const FrameContext& frame);
   void selectCalibration(uint64_t tool_serial);
   Camera presetView(Command command) const;
+  // Morph and wind (paint_screen_animation.cpp).
+  void onAnimationCommand(Command command, int64_t t_ns);
+  void advanceAnimation(const FrameContext& frame);
+  bool animationPlaying() const;
+  std::unique_ptr<AnimationPreview> animation_;
 
   Display& display_;
   VolumeRenderer& renderer_;

@@ -226,6 +226,19 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
       if (i % 5) ImGui::SameLine();
       button(commands[i].command, commands[i].label, false, true);
     }
+    if (!state.visitor) {
+      // The animations (issue 14): morph into a saved cloud, wind; apply or leave what shows.
+      ImGui::Separator();
+      button(Command::kMorph, "Morph", false, true);
+      ImGui::SameLine();
+      button(Command::kWind, "Wind", false, true);
+      ImGui::SameLine();
+      button(Command::kWindDirection, "Wind dir.", false, true);
+      ImGui::SameLine();
+      button(Command::kApplyAnimation, "Apply", false, state.animation);
+      ImGui::SameLine();
+      button(Command::kLeaveAnimation, "Leave", false, state.animation);
+    }
     ImGui::Separator();
     button(Command::kUndo, "Undo\n撤销", false, state.can_undo);
     ImGui::SameLine();

@@ -27,7 +27,8 @@ struct UiOverlayState {
   bool menu_open = false;
   int mode = 2;  // Mode as an int (0 camera … 4 light), for the mode's commands
   bool can_undo = false, can_redo = false;
-  bool visitor = false;  // kiosk visitor mode: operator targets are not shown
+  bool visitor = false;    // kiosk visitor mode: operator targets are not shown
+  bool animation = false;  // a morph or wind is shown (apply and leave are enabled)
 };
 
 // A line of text drawn by drawLabels (screens without the painter's status line and menu, such

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "app/core/parallel_for.h"
 #include "app/mapping/stroke_random.h"
 #include "app/tools/tool_error.h"
 
@@ -121,6 +122,7 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
   for (auto [s, t] : pairs)
     max_dis = std::max(max_dis, glm::distance(ps[s].position, pt[t].position));
   std::vector<std::vector<uint32_t>> of_source(ps.size()), of_target(pt.size());
+  paths_.reserve(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
     const auto [s, t] = pairs[k];
     const glm::vec3 S = ps[s].position, T = pt[t].position;
@@ -139,43 +141,134 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
   }
   // Each voxel carries its density along every path of its cell, split evenly.
   auto carry = [&](const Volume& v, const std::vector<std::pair<size_t, int>>& voxels,
-                   const std::vector<std::vector<uint32_t>>& of, std::vector<uint32_t>* ids,
-                   std::vector<CarriedVoxel>* out) {
-    std::vector<uint32_t> first(of.size());
-    for (size_t c = 0; c < of.size(); ++c) {
-      first[c] = uint32_t(ids->size());
-      ids->insert(ids->end(), of[c].begin(), of[c].end());
-    }
+                   const std::vector<std::vector<uint32_t>>& of, bool from_source) {
     const glm::ivec3 d = v.dims();
     for (auto [index, particle] : voxels) {
       const int x = int(index % d.x), y = int((index / d.x) % d.y),
                 z = int(index / (size_t(d.x) * d.y));
-      const uint32_t count = uint32_t(of[particle].size());
-      out->push_back(
-          {glm::vec3(x, y, z) + 0.5f, v.data()[index] / float(count), first[particle], count});
+      const float mass = v.data()[index] / float(of[particle].size());
+      for (uint32_t k : of[particle]) {
+        const glm::vec3 anchor = from_source ? paths_[k].source : paths_[k].target;
+        items_.push_back({glm::vec3(x, y, z) + 0.5f - anchor, mass, k});
+      }
     }
   };
-  carry(source, vs, of_source, &source_path_ids_, &source_voxels_);
-  carry(target, vt, of_target, &target_path_ids_, &target_voxels_);
+  carry(source, vs, of_source, true);
+  source_items_ = items_.size();
+  carry(target, vt, of_target, false);
 }
 
 Volume CloudMorph::frame(float t) const {
+  Volume out = blank_;
+  frameInto(t, &out, {});
+  out.markDirty(out.bounds());
+  return out;
+}
+
+VoxelBox CloudMorph::frameInto(float t, Volume* out, const VoxelBox& previous) const {
+  t = std::clamp(t, 0.0f, 1.0f);
+  const glm::ivec3 dims = blank_.dims();
+  if (out->dims() != dims || out->worldMin() != blank_.worldMin() ||
+      out->worldMax() != blank_.worldMax())
+    throw ToolError(ToolErrorKind::kMismatchedVolumes,
+                    "a morph frame goes into a volume of the source's dims and world box");
+  // t = 0 carries only the source, t = 1 only the target (exact ends).
+  const size_t begin = t < 1.0f ? 0 : source_items_;
+  const size_t end = t > 0.0f ? items_.size() : source_items_;
+  const size_t count = end - begin;
+  constexpr size_t kChunk = size_t(1) << 16;
+  const size_t chunks = chunkCount(count, kChunk);
+  const size_t planes = size_t(dims.z);
+  placed_.resize(count);
+  sorted_.resize(count);
+  plane_counts_.assign(chunks * planes, 0);
+  std::vector<VoxelBox> chunk_box(chunks);
+  const glm::vec3 top(dims - 1);
+  auto baseOf = [&](glm::vec3 p) { return glm::min(glm::ivec3(glm::floor(p)), dims - 1); };
+  // 1. Place every splat at t; count them per (chunk, base plane).
+  parallelFor(count, kChunk, [&](size_t chunk, size_t b, size_t e) {
+    uint32_t* counts = &plane_counts_[chunk * planes];
+    glm::ivec3 lo(dims), hi(0);
+    for (size_t i = b; i < e; ++i) {
+      const CarriedSplat& item = items_[begin + i];
+      const bool from_source = begin + i < source_items_;
+      const glm::vec3 p =
+          glm::clamp(item.offset + paths_[item.path].at(t) - 0.5f, glm::vec3(0.0f), top);
+      placed_[i] = {p, (from_source ? 1.0f - t : t) * item.mass};
+      const glm::ivec3 base = baseOf(p);
+      ++counts[base.z];
+      lo = glm::min(lo, base);
+      hi = glm::max(hi, glm::min(base + 2, dims));
+    }
+    chunk_box[chunk] = {lo, hi};
+  });
+  // 2. Stable counting sort by base plane: plane by plane, chunk by chunk, in item order.
+  plane_start_.assign(planes + 1, 0);
+  size_t offset = 0;
+  for (size_t z = 0; z < planes; ++z) {
+    plane_start_[z] = offset;
+    for (size_t c = 0; c < chunks; ++c) {
+      const uint32_t n = plane_counts_[c * planes + z];
+      plane_counts_[c * planes + z] = uint32_t(offset);  // now: where chunk c's splats go
+      offset += n;
+    }
+  }
+  plane_start_[planes] = offset;
+  parallelFor(count, kChunk, [&](size_t chunk, size_t b, size_t e) {
+    uint32_t* next = &plane_counts_[chunk * planes];
+    for (size_t i = b; i < e; ++i) sorted_[next[baseOf(placed_[i].p).z]++] = placed_[i];
+  });
+  // 3. Clear what the previous frame wrote, then each plane adds its splats: those based one
+  // plane below (their upper corners), then its own (their lower corners).
+  float* data = out->data();
+  const size_t plane_voxels = size_t(dims.x) * dims.y;
+  const VoxelBox cleared = previous.intersect(out->bounds());
+  parallelFor(planes, 4, [&](size_t, size_t zb, size_t ze) {
+    for (size_t z = zb; z < ze; ++z) {
+      if (int(z) >= cleared.lo.z && int(z) < cleared.hi.z)
+        for (int y = cleared.lo.y; y < cleared.hi.y; ++y)
+          std::fill_n(data + z * plane_voxels + size_t(y) * dims.x + cleared.lo.x,
+                      cleared.hi.x - cleared.lo.x, 0.0f);
+      float* plane = data + z * plane_voxels;
+      for (int upper = 1; upper >= 0; --upper) {
+        if (upper && z == 0) continue;
+        const size_t from = plane_start_[z - size_t(upper)], to = plane_start_[z - upper + 1];
+        for (size_t i = from; i < to; ++i) {
+          const PlacedSplat& s = sorted_[i];
+          const glm::ivec3 base = baseOf(s.p);
+          const glm::vec3 f = s.p - glm::vec3(base);
+          const float wz = upper ? f.z : 1.0f - f.z;
+          if (wz == 0.0f) continue;
+          for (int c = 0; c < 4; ++c) {
+            const int ox = c & 1, oy = c >> 1;
+            const float w = (ox ? f.x : 1 - f.x) * (oy ? f.y : 1 - f.y) * wz;
+            if (w == 0.0f) continue;
+            const int qx = std::min(base.x + ox, dims.x - 1),
+                      qy = std::min(base.y + oy, dims.y - 1);
+            plane[size_t(qy) * dims.x + qx] += w * s.mass;
+          }
+        }
+      }
+    }
+  });
+  VoxelBox written;
+  for (const VoxelBox& b : chunk_box) written = written.unite(b);
+  out->markDirty(written.unite(cleared));
+  return written;
+}
+
+Volume CloudMorph::frameOneThreadReference(float t) const {
   t = std::clamp(t, 0.0f, 1.0f);
   Volume out = blank_;
   const glm::ivec3 dims = out.dims();
   float* data = out.data();
-  if (t < 1.0f)
-    for (const CarriedVoxel& v : source_voxels_)
-      for (uint32_t k = 0; k < v.path_count; ++k) {
-        const Path& p = paths_[source_path_ids_[v.first_path + k]];
-        splat(v.position + (p.at(t) - p.source), (1.0f - t) * v.mass, dims, data);
-      }
-  if (t > 0.0f)
-    for (const CarriedVoxel& v : target_voxels_)
-      for (uint32_t k = 0; k < v.path_count; ++k) {
-        const Path& p = paths_[target_path_ids_[v.first_path + k]];
-        splat(v.position + (p.at(t) - p.target), t * v.mass, dims, data);
-      }
+  for (size_t i = 0; i < items_.size(); ++i) {
+    const bool from_source = i < source_items_;
+    if (from_source ? t >= 1.0f : t <= 0.0f) continue;
+    const CarriedSplat& item = items_[i];
+    splat(item.offset + paths_[item.path].at(t), (from_source ? 1.0f - t : t) * item.mass, dims,
+          data);
+  }
   out.markDirty(out.bounds());
   return out;
 }

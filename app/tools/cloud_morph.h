@@ -7,7 +7,12 @@
 // path(s), mass-conserving trilinear splats: the source's voxels forward, the target's voxels
 // backward from the target, blended (1 − t)·source' + t·target'. So t = 0 and t = 1 give the
 // source and target themselves and the total density is the linear blend of the two totals
-// (up to what clamping at the volume's faces moves). Deterministic (seeded, one thread).
+// (up to what clamping at the volume's faces moves).
+//
+// A frame is computed in parallel and is still the same bytes on any thread count: the splats
+// are first placed (chunks of a fixed size), then sorted by the z plane of their base corner
+// keeping their order (a stable counting sort), and each output plane z is written by one task
+// that adds the splats based at z − 1 and then those based at z, each in that order.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +20,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/volume/box.h"
 #include "app/volume/volume.h"
 
 namespace cb {
@@ -33,7 +39,17 @@ class CloudMorph {
   CloudMorph(const Volume& source, const Volume& target, const MorphParams& params = {});
   // The in-between cloud at t in [0, 1] (clamped), on the source's grid.
   Volume frame(float t) const;
+  // The same into `out` (the source's dims and world box), reusing its storage: the planes the
+  // previous frame wrote (`previous`, as returned by the last call; empty for a zeroed volume)
+  // are cleared, the new frame is splatted, their union is marked dirty and the box holding
+  // the new frame's density is returned. For animation; calls must not overlap.
+  VoxelBox frameInto(float t, Volume* out, const VoxelBox& previous) const;
+  // The straightforward scatter of the first version: one thread, a fresh volume, every splat
+  // added in carried-voxel order (the benchmark's baseline).
+  Volume frameOneThreadReference(float t) const;
   size_t pairCount() const { return paths_.size(); }
+  // Splats per in-between frame (carried voxels times their paths).
+  size_t splatCount() const { return items_.size(); }
 
  private:
   struct Path {
@@ -43,15 +59,24 @@ class CloudMorph {
       return s * s * source + 2.0f * s * t * refine + t * t * target;
     }
   };
-  struct CarriedVoxel {
-    glm::vec3 position;  // voxel centre
-    float mass;          // density / number of paths of its cell
-    uint32_t first_path, path_count;
+  // One voxel carried along one path of its cell: at t it sits at offset + path.at(t).
+  struct CarriedSplat {
+    glm::vec3 offset;  // voxel centre minus the path's source (or target) end
+    float mass;        // density / number of paths of its cell
+    uint32_t path;
+  };
+  struct PlacedSplat {
+    glm::vec3 p;  // continuous index, clamped to the grid (voxel centres at integers)
+    float mass;
   };
   Volume blank_;
   std::vector<Path> paths_;
-  std::vector<uint32_t> source_path_ids_, target_path_ids_;
-  std::vector<CarriedVoxel> source_voxels_, target_voxels_;
+  std::vector<CarriedSplat> items_;  // the source's voxels first, then the target's
+  size_t source_items_ = 0;
+  // Scratch of frameInto (kept between frames so animation allocates nothing).
+  mutable std::vector<PlacedSplat> placed_, sorted_;
+  mutable std::vector<uint32_t> plane_counts_;  // per chunk, per z plane
+  mutable std::vector<size_t> plane_start_;     // first sorted splat of each z plane (+ end)
 };
 
 // One-shot: plan and frame.

@@ -1,8 +1,10 @@
 #include "app/tools/wind.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "app/core/parallel_for.h"
 
@@ -145,19 +147,26 @@ void WindSolver::project() {
   const float diagonal = 2.0f * (inv_h2.x + inv_h2.y + inv_h2.z);
   for (int iteration = 0; iteration < params_.pressure_iterations; ++iteration) {
     parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
-      auto p = [&](int i, int j, int k) {
-        if (i < 0 || j < 0 || k < 0 || i >= n.x || j >= n.y || k >= n.z) return 0.0f;
-        return pressure_[index(i, j, k)];
+      // Rows of the neighbours; a row outside the grid reads zeros (p = 0 outside).
+      const std::vector<float> zeros(size_t(n.x), 0.0f);
+      auto row = [&](int j, int k) -> const float* {
+        if (j < 0 || k < 0 || j >= n.y || k >= n.z) return zeros.data();
+        return pressure_.data() + index(0, j, k);
       };
       for (int z = int(z_begin); z < int(z_end); ++z)
-        for (int y = 0; y < n.y; ++y)
+        for (int y = 0; y < n.y; ++y) {
+          const float* c = row(y, z);
+          const float *ym = row(y - 1, z), *yp = row(y + 1, z);
+          const float *zm = row(y, z - 1), *zp = row(y, z + 1);
+          const float* div = divergence_.data() + index(0, y, z);
+          float* out = scratch_pressure_.data() + index(0, y, z);
           for (int x = 0; x < n.x; ++x) {
-            const float neighbours = (p(x - 1, y, z) + p(x + 1, y, z)) * inv_h2.x +
-                                     (p(x, y - 1, z) + p(x, y + 1, z)) * inv_h2.y +
-                                     (p(x, y, z - 1) + p(x, y, z + 1)) * inv_h2.z;
-            scratch_pressure_[index(x, y, z)] =
-                (neighbours - divergence_[index(x, y, z)]) / diagonal;
+            const float xm = x > 0 ? c[x - 1] : 0.0f, xp = x + 1 < n.x ? c[x + 1] : 0.0f;
+            const float neighbours =
+                (xm + xp) * inv_h2.x + (ym[x] + yp[x]) * inv_h2.y + (zm[x] + zp[x]) * inv_h2.z;
+            out[x] = (neighbours - div[x]) / diagonal;
           }
+        }
     });
     pressure_.swap(scratch_pressure_);
   }
@@ -192,11 +201,130 @@ void WindSolver::stepVelocity(float dt) {
   project();
 }
 
-VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
-  const glm::vec3 vs = density->voxelSize();
+glm::ivec3 WindSolver::reachInVoxels(float dt, const Volume& density) const {
   glm::vec3 max_velocity(0);
   for (const glm::vec3& u : velocity_) max_velocity = glm::max(max_velocity, glm::abs(u));
-  const glm::ivec3 reach = glm::ivec3(glm::ceil(max_velocity * dt / vs)) + 1;
+  return glm::ivec3(glm::ceil(max_velocity * dt / density.voxelSize())) + 1;
+}
+
+VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
+  const glm::ivec3 d = density->dims();
+  const glm::ivec3 blocks = (d + kBlock - 1) / kBlock;
+  const size_t block_count = size_t(blocks.x) * blocks.y * blocks.z;
+  auto block_index = [&](glm::ivec3 b) { return (size_t(b.z) * blocks.y + b.y) * blocks.x + b.x; };
+  if (occupancy_instance_ != density->instanceId() ||
+      occupancy_generation_ != density->generation() || block_occupied_.size() != block_count) {
+    // One pass over the volume: which blocks hold density.
+    block_occupied_.assign(block_count, 0);
+    parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+      for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+        for (int z = bz * kBlock; z < std::min(d.z, (bz + 1) * kBlock); ++z)
+          for (int y = 0; y < d.y; ++y) {
+            const float* row = density->data() + density->index(0, y, z);
+            for (int x = 0; x < d.x; ++x)
+              if (row[x] != 0.0f) block_occupied_[block_index({x / kBlock, y / kBlock, bz})] = 1;
+          }
+    });
+  }
+  VoxelBox occupied;
+  for (int bz = 0; bz < blocks.z; ++bz)
+    for (int by = 0; by < blocks.y; ++by)
+      for (int bx = 0; bx < blocks.x; ++bx)
+        if (block_occupied_[block_index({bx, by, bz})])
+          occupied = occupied.unite({glm::ivec3(bx, by, bz) * kBlock,
+                                     glm::min(glm::ivec3(bx + 1, by + 1, bz + 1) * kBlock, d)});
+  if (occupied.empty()) return {};
+  const glm::vec3 vs = density->voxelSize();
+  const glm::ivec3 reach = reachInVoxels(dt, *density);
+  // A destination voxel backtraces at most `reach` voxels, and its interpolation reads one
+  // more: it can be non-zero only if an occupied block lies within that many blocks.
+  const glm::ivec3 reach_blocks = (reach + 1 + kBlock - 1) / kBlock;
+  std::vector<uint8_t> live(block_count, 0);
+  {
+    // Separable max (dilation) over the block grid, x then y then z.
+    std::vector<uint8_t> a = block_occupied_, b(block_count);
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int bz = 0; bz < blocks.z; ++bz)
+        for (int by = 0; by < blocks.y; ++by)
+          for (int bx = 0; bx < blocks.x; ++bx) {
+            const glm::ivec3 c(bx, by, bz);
+            uint8_t m = 0;
+            for (int k = -reach_blocks[axis]; k <= reach_blocks[axis] && !m; ++k) {
+              glm::ivec3 q = c;
+              q[axis] += k;
+              if (q[axis] >= 0 && q[axis] < blocks[axis]) m = a[block_index(q)];
+            }
+            b[block_index(c)] = m;
+          }
+      a.swap(b);
+    }
+    live.swap(a);
+  }
+  const VoxelBox box =
+      VoxelBox{occupied.lo - reach, occupied.hi + reach}.intersect(density->bounds());
+  const glm::ivec3 size = box.hi - box.lo;
+  scratch_density_.resize(size_t(size.x) * size.y * size.z);
+  const float fade = std::exp(-params_.dissipation * dt);
+  const glm::vec3 voxel_to_cells = vs / cell_;
+  const glm::vec3 offset_cells = 0.5f * voxel_to_cells - 0.5f;
+  const glm::vec3 step_in_voxels = dt / vs;
+  // Which blocks the new density occupies: flags only ever set to 1, from any task.
+  std::unique_ptr<std::atomic<uint8_t>[]> next_occupied(new std::atomic<uint8_t>[block_count]);
+  for (size_t i = 0; i < block_count; ++i) next_occupied[i].store(0, std::memory_order_relaxed);
+  parallelFor(size_t(size.z), 2, [&](size_t, size_t z_begin, size_t z_end) {
+    for (int z = int(z_begin); z < int(z_end); ++z)
+      for (int y = 0; y < size.y; ++y) {
+        float* out = &scratch_density_[(size_t(z) * size.y + y) * size.x];
+        const glm::ivec3 row = box.lo + glm::ivec3(0, y, z);
+        for (int x = 0; x < size.x;) {
+          const glm::ivec3 v = row + glm::ivec3(x, 0, 0);
+          const glm::ivec3 blk = v / kBlock;
+          const int run_end = std::min(size.x, (blk.x + 1) * kBlock - box.lo.x);
+          if (!live[block_index(blk)]) {
+            std::fill(out + x, out + run_end, 0.0f);
+            x = run_end;
+            continue;
+          }
+          bool any = false;
+          for (; x < run_end; ++x) {
+            const glm::ivec3 p = row + glm::ivec3(x, 0, 0);
+            const glm::vec3 u = sampleVelocityInCells(glm::vec3(p) * voxel_to_cells + offset_cells);
+            const float rho = sampleDensity(*density, glm::vec3(p) - u * step_in_voxels) * fade;
+            out[x] = rho;
+            any = any || rho != 0.0f;
+          }
+          if (any) next_occupied[block_index(blk)].store(1, std::memory_order_relaxed);
+        }
+      }
+  });
+  parallelFor(size_t(size.z), 8, [&](size_t, size_t z_begin, size_t z_end) {
+    for (int z = int(z_begin); z < int(z_end); ++z)
+      for (int y = 0; y < size.y; ++y)
+        std::copy_n(&scratch_density_[(size_t(z) * size.y + y) * size.x], size.x,
+                    density->data() + density->index(box.lo.x, box.lo.y + y, box.lo.z + z));
+  });
+  // Blocks outside the box kept their density; inside it they hold what was just written.
+  for (int bz = 0; bz < blocks.z; ++bz)
+    for (int by = 0; by < blocks.y; ++by)
+      for (int bx = 0; bx < blocks.x; ++bx) {
+        const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBlock;
+        const VoxelBox block{lo, glm::min(lo + kBlock, d)};
+        const size_t i = block_index({bx, by, bz});
+        const uint8_t now = next_occupied[i].load(std::memory_order_relaxed);
+        if (block.intersect(box) == block)
+          block_occupied_[i] = now;  // wholly rewritten
+        else if (!block.intersect(box).empty())
+          block_occupied_[i] = block_occupied_[i] | now;  // partly: a superset is safe
+      }
+  density->markDirty(box);
+  occupancy_instance_ = density->instanceId();
+  occupancy_generation_ = density->generation();
+  return box;
+}
+
+VoxelBox WindSolver::advectDensityEveryVoxel(float dt, Volume* density) {
+  const glm::vec3 vs = density->voxelSize();
+  const glm::ivec3 reach = reachInVoxels(dt, *density);
   const VoxelBox occupied = nonZeroBox(*density);
   if (occupied.empty()) return {};
   // Outside this box a voxel is 0 and traces back to zeros only: it stays 0.
@@ -226,6 +354,7 @@ VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
                     density->data() + density->index(box.lo.x, box.lo.y + y, box.lo.z + z));
   });
   density->markDirty(box);
+  occupancy_instance_ = 0;  // the block occupancy was not kept
   return box;
 }
 

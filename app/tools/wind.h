@@ -42,8 +42,14 @@ class WindSolver {
   void stepVelocity(float dt);
   // Step 3: moves the density by the current velocity for dt seconds. Only the box that can
   // change (the density's non-zero box grown by the largest displacement) is rewritten and
-  // marked dirty; it is returned.
+  // marked dirty; it is returned. Inside it, 8³ blocks whose backtraces can only reach empty
+  // blocks are written as zeros without sampling (the same bytes: the interpolation of zeros
+  // is +0); which blocks hold density is kept from the previous step when `density` is the
+  // volume that step wrote (same instance and generation), else found by one pass.
   VoxelBox advectDensity(float dt, Volume* density);
+  // The first version of step 3: every voxel of the box sampled (the benchmark's baseline and
+  // the tests' reference; the same bytes as advectDensity).
+  VoxelBox advectDensityEveryVoxel(float dt, Volume* density);
   // stepVelocity then advectDensity.
   VoxelBox step(float dt, Volume* density);
 
@@ -62,12 +68,17 @@ class WindSolver {
   glm::vec3 sampleVelocityInCells(glm::vec3 c) const;
   void divergence(std::vector<float>* out) const;
   void project();
+  glm::ivec3 reachInVoxels(float dt, const Volume& density) const;
 
   WindParams params_;
   glm::vec3 world_min_, cell_;
   std::vector<glm::vec3> velocity_, scratch_velocity_;
   std::vector<float> divergence_, pressure_, scratch_pressure_;
   HugePageVector<float> scratch_density_;
+  // Which 8³ blocks of the last density written hold a non-zero voxel.
+  static constexpr int kBlock = 8;
+  std::vector<uint8_t> block_occupied_;
+  uint64_t occupancy_instance_ = 0, occupancy_generation_ = 0;
 };
 
 }  // namespace cb

@@ -1,0 +1,94 @@
+// The painter's animations (issue 14): a morph from the cloud into a saved cloud over a set
+// time, or wind blowing it, played on a copy of the session's cloud for display. The session's
+// cloud is not touched while it plays: "apply" commits the frame shown as one history step and
+// one journal record (PaintSession::commitAnimation with ui::ApplyMorph / ui::ApplyWind, which
+// replay recomputes), and leaving without applying drops the copy, so the cloud shows as it was.
+//
+// The display copy is at half the resolution when the cloud is 128³ or more (halfResolution:
+// an eighth of the voxels to move, upload and light each frame; the morph's cells are halved
+// with it so they cover the same sky, the wind's 64³ velocity grid is the same). Apply then
+// computes the frame shown at full resolution from the record (the same t, the same steps) —
+// exactly what replay computes — and commits that.
+// A change to the session's cloud while an animation is shown (a stroke, undo, open…) leaves
+// the animation first: the copy no longer starts from the cloud.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/session/paint_session.h"
+#include "app/tools/cloud_animation.h"
+#include "app/tools/cloud_morph.h"
+
+namespace cb {
+
+class AnimationPreview {
+ public:
+  enum class Kind { kNone, kMorph, kWind };
+
+  // Plans a morph from the session's cloud into `target_source` (loadMorphTarget) played over
+  // `seconds`. False with *error (nothing started) for an empty cloud, a missing or unfitting
+  // target.
+  bool startMorph(const PaintSession& session, const std::string& target_source, double seconds,
+                  std::string* error);
+  // Starts the wind (towards the current direction) on a copy of the session's cloud, or
+  // pauses / resumes it when it is already shown. False with *error (nothing started) when the
+  // cloud is empty.
+  bool toggleWind(const PaintSession& session, std::string* error);
+  // The next of eight compass directions; a running wind turns from the next step.
+  void nextWindDirection();
+  // Advances a playing animation by a frame: the morph by `seconds` of its time, the wind by
+  // one step. True when the shown cloud changed.
+  bool advance(double seconds);
+  // advance() by the time since the previous call (a frame's monotonic time; the first call
+  // after a start counts from then, a pause longer than 0.25 s counts as 0.25 s).
+  bool advanceTo(int64_t now_ns);
+  // The record that recomputes the frame shown (valid while active()).
+  UiChange change() const;
+  // Commits the frame shown (at full resolution) to the session and ends the animation.
+  bool apply(PaintSession* session, int64_t t_ns, std::string* error);
+  // The full-resolution frame of what is shown (what apply commits).
+  Volume fullFrame(const PaintSession& session) const;
+  // Whether the display copy is at half resolution (set before starting; default: for 128³ and
+  // larger clouds).
+  void setHalfResolution(std::optional<bool> half) { half_ = half; }
+  bool atHalfResolution() const { return shown_ && shown_->dims() != base_dims_; }
+  // Ends the animation without applying.
+  void leave();
+  // Whether the session's cloud changed since the animation started from it.
+  bool stale(const PaintSession& session) const;
+
+  Kind kind() const { return kind_; }
+  bool active() const { return kind_ != Kind::kNone; }
+  bool playing() const { return active() && playing_; }
+  const Volume& shown() const { return *shown_; }
+  float morphT() const { return t_; }
+  int windSteps() const { return wind_ ? wind_->run().steps() : 0; }
+  const char* windDirectionName() const;
+  // What the status line says about the animation ("" when none).
+  std::string status() const;
+
+ private:
+  Kind kind_ = Kind::kNone;
+  bool playing_ = false;
+  std::unique_ptr<Volume> shown_;
+  uint64_t base_instance_ = 0, base_generation_ = 0;
+  int64_t last_advance_ns_ = -1;
+  std::optional<bool> half_;
+  glm::ivec3 base_dims_{0};
+  bool useHalf(const Volume& v) const { return half_.value_or(v.dims().x >= 128); }
+  // Morph
+  std::unique_ptr<CloudMorph> morph_;
+  std::unique_ptr<Volume> target_full_;
+  std::string target_;
+  uint64_t target_checksum_ = 0;
+  double seconds_ = 5.0;
+  float t_ = 0.0f;
+  VoxelBox written_;
+  // Wind
+  int direction_ = 0;  // 0 east, 1 north-east, … (x is east, −z is north)
+  std::unique_ptr<WindAnimation> wind_;
+};
+
+}  // namespace cb

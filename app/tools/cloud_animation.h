@@ -1,0 +1,65 @@
+// What the painter's animations (issue 14: morphing and wind "live in the painter") need so that
+// a committed frame can be recomputed from its journal record: the morph target by name, and a
+// wind run as its settings and step counts. The painter animates a copy of the session's cloud
+// with these; "apply" journals the record, and replay recomputes the same bytes from it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "app/tools/wind.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+// The morph target named `source`: "bundled:SEED" is the bundled cumulus
+// (app/volume/scene_generators.h) on `like`'s grid; anything else is a saved cloud's path
+// (app/volume/volume_file.h). ToolError kMismatchedVolumes when it does not fit `like`'s grid
+// and world box; the loader's error when the file cannot be read.
+Volume loadMorphTarget(const std::string& source, const Volume& like);
+
+// The display copy of an animation: half the resolution on each axis (each voxel the mean of
+// its 2×2×2, the last voxel of an odd dimension alone), the same world box, so it is one eighth
+// of the voxels to animate, upload and light. In parallel, the same bytes on any thread count.
+Volume halfResolution(const Volume& volume);
+
+// One stretch of wind: blowing horizontally towards (dx, dz) for `steps` steps.
+struct WindSegment {
+  float dx = 1.0f, dz = 0.0f;
+  int steps = 0;
+};
+// A wind run: its speed (world units per second), the updraft gust given at the start of each
+// segment (Eq. 3.5, a force falling off from the sky box's centre), and its segments in order.
+// Every step advances kWindStepSeconds, whatever the frame rate, so the step count is the time.
+struct WindRun {
+  float speed = 0.25f;
+  float gust = 1.5f;
+  std::vector<WindSegment> segments;
+  int steps() const;
+};
+constexpr float kWindStepSeconds = 1.0f / 15.0f;
+
+// The wind animation: a WindSolver (64³) over the cloud's world box, stepped one step at a time.
+class WindAnimation {
+ public:
+  WindAnimation(const Volume& like, float speed, float gust);
+  // Turns the wind towards (dx, dz) from the next step (a new segment; the velocity field
+  // becomes the uniform wind plus the gust again).
+  void setDirection(float dx, float dz);
+  // One step of kWindStepSeconds on `density`; returns the rewritten box.
+  VoxelBox step(Volume* density);
+  const WindRun& run() const { return run_; }
+
+ private:
+  void blow();
+  WindSolver solver_;
+  glm::vec3 centre_;
+  WindRun run_;
+};
+
+// Recomputes a recorded run on `density` (replay): the same bytes as the animation that made it.
+void blowWind(const WindRun& run, Volume* density);
+
+}  // namespace cb

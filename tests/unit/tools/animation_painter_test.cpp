@@ -1,0 +1,189 @@
+// Morph and wind in the painter, through the real shell on EGL surfaceless (llvmpipe): Ctrl+O
+// opens a saved cloud, a mouse tap on the pen menu's Morph target starts the morph, A applies it
+// half way; a tap on Wind starts the wind and a second tap stops it, X leaves it (the cloud as it
+// was), W blows again and A applies. The session ends with two more history steps, its journal
+// replays to the same volume on 1 and 8 threads. CB_KEEP_FRAMES=DIR keeps a morph and a wind
+// frame and the menu with its animation row.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+
+#include <gtest/gtest.h>
+#include <xkbcommon/xkbcommon-keysyms.h>
+
+#include "app/core/parallel_for.h"
+#include "app/render/image_io.h"
+#include "app/session/paint_session.h"
+#include "app/session/session_replay.h"
+#include "app/shell/animation_preview.h"
+#include "app/shell/keymap.h"
+#include "app/shell/paint_loop.h"
+#include "app/shell/paint_screen.h"
+#include "app/shell/ui_overlay.h"
+#include "app/volume/scene_generators.h"
+#include "app/volume/volume_file.h"
+
+#include "tests/support/test_display.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 480, kH = 270, kGrid = 128;
+
+void keep(const char* name, const Display& display) {
+  if (const char* dir = std::getenv("CB_KEEP_FRAMES"))
+    writePng(std::string(dir) + "/" + name, readFramebufferRgba8(display.framebuffer(), kW, kH));
+}
+
+TEST(AnimationPainter, TheMenuStartsAndStopsMorphAndWindAndApplyReplays) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_anim_painter_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir + "/state");
+  saveVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), dir + "/state/source.vol");
+  // The target: the cumulus's puffs somewhere else (a different cloud of the same sky).
+  saveVolume(makeSparsePuffs(glm::ivec3(kGrid), 5), dir + "/target.vol");
+
+  std::string error;
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
+  ASSERT_TRUE(display) << error;
+  VolumeRenderer renderer;
+  ASSERT_TRUE(renderer.init(&error)) << error;
+  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+  const std::string recorded = dir + "/session.cbj";
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(recorded));
+  session.recordTo(&journal, 0);
+
+  PaintLoopOptions options;
+  options.max_frames = 400;
+  options.orbit_degrees_per_second = 0.0f;
+  options.state_dir = dir + "/state";
+  options.config_dir = dir + "/config";
+  options.morph_target = dir + "/target.vol";
+  options.morph_seconds = 1.0;
+  ASSERT_TRUE(parseKeyList("ctrl+o,m", &options.initial_keys, &error)) << error;
+  const PaintScreen* screen = nullptr;  // set once the loop exists
+
+  // The script, one stage at a time, run after each frame is drawn.
+  int stage = 0, frames_in_stage = 0;
+  size_t steps_opened = 0;
+  uint64_t opened = 0, morphed = 0, blown = 0;
+  bool menu_stopped_wind = false;
+  const auto tap = [&](Command command) {
+    float r[4];
+    if (!screen->ui() || !screen->ui()->targetRect(command, r)) return false;
+    DisplayEvent e;
+    e.x = 0.5f * (r[0] + r[2]);
+    e.y = 0.5f * (r[1] + r[3]);
+    e.button = 1;
+    for (DisplayEvent::Kind kind :
+         {DisplayEvent::Kind::PointerMove, DisplayEvent::Kind::PointerDown,
+          DisplayEvent::Kind::PointerUp}) {
+      e.kind = kind;
+      display->injectEvent(e);
+    }
+    return true;
+  };
+  const auto key = [&](uint32_t keysym) { display->injectEvent(DisplayEvent::key(keysym)); };
+  const auto next = [&] {
+    ++stage;
+    frames_in_stage = 0;
+  };
+  options.on_frame = [&](const PaintFrameInfo&) {
+    const AnimationPreview* a = screen->animation();
+    ++frames_in_stage;
+    switch (stage) {
+      case 0:  // the menu is open on the opened cloud: tap Morph
+        if (frames_in_stage == 3) {
+          opened = volumeChecksum(session.volume());
+          steps_opened = session.history().steps();
+          keep("animation_menu.png", *display);
+          if (tap(Command::kMorph)) next();
+        }
+        break;
+      case 1:  // the morph plays; half way, A applies what is shown
+        if (a && a->active() && a->morphT() >= 0.5f) {
+          keep("animation_morph.png", *display);
+          morphed = volumeChecksum(a->fullFrame(session));
+          EXPECT_TRUE(a->atHalfResolution()) << "a 128³ cloud animates at 64³";
+          key('a');
+          next();
+        }
+        break;
+      case 2:  // applied: open the menu again
+        if (frames_in_stage == 1) key('m');
+        if (frames_in_stage == 4 && tap(Command::kWind)) next();
+        break;
+      case 3:  // the wind blows; after some steps the menu's Wind target stops it
+        if (frames_in_stage == 1) key('d');  // towards the north-east
+        if (frames_in_stage == 12) {
+          keep("animation_wind.png", *display);
+          key('m');
+        }
+        if (frames_in_stage == 15 && tap(Command::kWind)) next();
+        break;
+      case 4: {  // stopped by the menu; X leaves it, then W blows again and A applies
+        const auto& tapped = screen->tappedCommands();
+        if (std::count(tapped.begin(), tapped.end(), Command::kWind) < 2) {
+          frames_in_stage = 0;  // the tap is still on its way through the UI
+          break;
+        }
+        if (frames_in_stage == 1) {
+          menu_stopped_wind = a && a->active() && !a->playing();
+          key('m');  // the menu again, so frames keep coming while nothing moves
+          key('x');
+        }
+        if (frames_in_stage == 2) key('w');
+        if (frames_in_stage == 8 && a && a->playing()) {
+          blown = volumeChecksum(a->fullFrame(session));
+          key('a');
+        }
+        if (frames_in_stage == 10) key(XKB_KEY_Escape);
+        break;
+      }
+    }
+  };
+  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  loop.attachPen(nullptr, &session);
+  screen = &loop.screen();
+  PaintLoopSummary summary;
+  ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+  journal.close();
+
+  EXPECT_EQ(stage, 4) << "the script ran to its end (stage " << stage << ")";
+  EXPECT_EQ(summary.quit_reason, "Esc");
+  const std::vector<Command>& tapped = screen->tappedCommands();
+  EXPECT_EQ(std::count(tapped.begin(), tapped.end(), Command::kMorph), 1);
+  EXPECT_EQ(std::count(tapped.begin(), tapped.end(), Command::kWind), 2)
+      << "the menu started and stopped the wind";
+  EXPECT_TRUE(menu_stopped_wind);
+  EXPECT_NE(opened, 0u);
+  EXPECT_NE(morphed, opened) << "the morph moved the cloud";
+  EXPECT_FALSE(screen->animation()->active());
+  EXPECT_EQ(session.history().steps(), steps_opened + 2) << "one step per apply";
+  EXPECT_EQ(volumeChecksum(session.volume()), blown) << "the wind shown was applied";
+  // Undo the wind: the morph's frame as applied (the left wind did not touch it).
+  ASSERT_TRUE(session.apply(ui::Undo{}, 0, &error)) << error;
+  EXPECT_EQ(volumeChecksum(session.volume()), morphed);
+  ASSERT_TRUE(session.apply(ui::Undo{}, 0, &error)) << error;
+  EXPECT_EQ(volumeChecksum(session.volume()), opened);
+  ASSERT_TRUE(session.apply(ui::Redo{}, 0, &error)) << error;
+  ASSERT_TRUE(session.apply(ui::Redo{}, 0, &error)) << error;
+
+  const JournalReadResult read = readJournal(recorded);
+  for (int threads : {1, 8}) {
+    setWorkerThreads(threads);
+    const SessionReplay replay = replaySession(read, BrushConfig{}, MappingConfig{});
+    ASSERT_TRUE(replay.session);
+    EXPECT_TRUE(replay.complete())
+        << (replay.problems.empty() ? replay.journal_error : replay.problems[0]);
+    EXPECT_EQ(volumeChecksum(replay.session->volume()), blown) << threads << " threads";
+  }
+  setWorkerThreads(0);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cb
