@@ -170,9 +170,11 @@ void PaintSession::markSync(const std::string& kind, const std::string& label, i
   marker.seq = ++sync_seq_;
   marker.kind = kind;
   marker.mono_ns = t_ns;
-  timespec wall{};
-  clock_gettime(CLOCK_REALTIME, &wall);
-  marker.wall_ns = int64_t(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
+  if (!reproducible_record_) {
+    timespec wall{};
+    clock_gettime(CLOCK_REALTIME, &wall);
+    marker.wall_ns = int64_t(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
+  }
   marker.label = label;
   const std::string text = formatSyncMarker(marker);
   if (sync_sender_) sync_sender_->send(text);
@@ -220,8 +222,9 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
     ++strokes_mapped_;
     recordStep(scene_, "stroke " + std::to_string(stroke.stroke_index));
     // A measurement, not an input: replay skips it and measures its own.
-    journalText(JournalRecordType::kStrokeMapped, t_ns,
-                formatStrokeMapped(stroke.stroke_index, outcome->mapping.timings.total_ms));
+    if (!reproducible_record_)
+      journalText(JournalRecordType::kStrokeMapped, t_ns,
+                  formatStrokeMapped(stroke.stroke_index, outcome->mapping.timings.total_ms));
     markSync("stroke_end", std::to_string(stroke.stroke_index), t_ns);
     syncJournal();
   }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -101,6 +102,10 @@ class PaintSession {
   // and stroke_end (label: the stroke index) itself; the study runner marks its tasks
   // (task_begin / task_end, label: the task's name).
   void setSyncSender(SyncMarkerSender* sender) { sync_sender_ = sender; }
+  // Leave out of the journal what is measured at run time (each stroke's mapping time; sync
+  // markers' wall clock, written as 0), so the same input writes the same bytes: a generated
+  // journal such as the kiosk's bundled attract loop.
+  void setReproducibleRecord(bool on) { reproducible_record_ = on; }
   void markSync(const std::string& kind, const std::string& label, int64_t t_ns);
   uint64_t syncMarkers() const { return sync_seq_; }
 
@@ -217,6 +222,7 @@ class PaintSession {
   uint64_t samples_without_device_ = 0;
   JournalWriter* journal_ = nullptr;
   bool resuming_ = false;  // resumeRecordingTo until the first sample
+  bool reproducible_record_ = false;
   SyncMarkerSender* sync_sender_ = nullptr;
   uint64_t sync_seq_ = 0;  // the last sync marker's sequence number
 };

@@ -44,6 +44,7 @@ bool writeAttractJournal(const std::string& path, std::string* error) {
   settings.grid = 128;
   PaintSession recorder(settings, BrushConfig{}, MappingConfig{});
   recorder.setQuietMapping(true);
+  recorder.setReproducibleRecord(true);  // the same bytes on every run
   JournalWriter journal;
   if (!journal.open(path)) {
     *error = journal.error();
