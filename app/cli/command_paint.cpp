@@ -480,6 +480,7 @@ int commandPaint(int argc, char** argv) {
     setup.light = light;
     setup.style = renderStyleName(render_config.options.style);
     setup.render = render_config.options;
+    setup.render_settings = formatRenderConfig(render_config);
     setup.moving_scale = loop_options.moving_scale;
     setup.record_journals = record;
     setup.on_status = [&](const std::string& status) {

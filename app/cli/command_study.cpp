@@ -25,6 +25,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
+#include "app/session/sync_marker_sender.h"
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
 #include "app/shell/study_run_screen.h"
@@ -43,6 +44,7 @@
 #include "app/study/trace_csv.h"
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
+#include "drivers/core/clock.h"
 #include "drivers/open_pen_source.h"
 
 namespace cb {
@@ -59,6 +61,7 @@ const char kStudyHelp[] =
     "                            [--operator INITIALS] [--display auto|kms|x11|surfaceless]\n"
     "                            [--size WxH] [--grid N] [--backend NAME] [--pen-device PATH]\n"
     "                            [--journal FILE] [--keys LIST] [--frames N] [--seconds S]\n"
+    "                            [--sync-udp [HOST:]PORT]  (task and stroke boundaries as UDP)\n"
     "\n"
     "export   pen traces of one session or a whole study, one file per kind (sessions\n"
     "         concatenated in the order given, each row or trace group tagged with the\n"
@@ -393,7 +396,7 @@ int64_t monotonicNowNs() {
 int runStudySession(Args& args) {
   auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
                                "drm-device", "size", "grid", "backend", "pen-device", "journal",
-                               "keys", "frames", "seconds", "end-seconds"});
+                               "keys", "frames", "seconds", "end-seconds", "sync-udp"});
   if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
   if (args.positional().size() > 3)
     return fail("run: expected at most one protocol: study run [PROTOCOL.toml]", 2);
@@ -519,8 +522,16 @@ int runStudySession(Args& args) {
   settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
   settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
   PaintSession session(settings, brush, mapping);
+  // The render settings in force, journalled with the brush and mapping (drivers/core/JOURNAL.md).
+  session.setRenderSettings(formatRenderConfig(render_config), info.anchor_monotonic_ns);
   session.setStartingLight(render_config.light);
   session.setStartingStyle(renderStyleName(render_config.options.style));
+  SyncMarkerSender sync_sender;  // task and stroke boundaries for other recorders (--sync-udp)
+  if (args.has("sync-udp")) {
+    if (!sync_sender.open(args.get("sync-udp", ""), &error))
+      return fail("run: --sync-udp: " + error, 2);
+    session.setSyncSender(&sync_sender);
+  }
   JournalWriter journal;
   if (!journal.open(folder + "/session.cbj")) return fail("run: " + journal.error());
   session.recordTo(&journal, info.anchor_monotonic_ns);
@@ -540,6 +551,12 @@ int runStudySession(Args& args) {
   std::signal(SIGINT, onStudySignal);
   std::signal(SIGTERM, onStudySignal);
   loop_options.stop = &g_study_stop;
+  // Durability: the session syncs the journal at every stroke end; the loop at least once a second.
+  const MonotonicClock sync_clock;
+  loop_options.each_iteration = [&journal, &sync_clock](bool) {
+    if (journal.isOpen() && !journal.syncIfDue(sync_clock.nowNs()))
+      std::fprintf(stderr, "cloudbrush study: journal: %s\n", journal.error().c_str());
+  };
   loop_options.max_frames = frames;
   loop_options.max_seconds = seconds;
   FrameLoop loop(*display, pen.get());

@@ -164,6 +164,7 @@ void KioskScreen::prepareVisitor() {
   // nobody waits: allocating a 256³ sky takes a while, and the hand-over must be at once.
   auto session =
       std::make_unique<PaintSession>(setup_.visitor_settings, setup_.brush, setup_.mapping);
+  if (!setup_.render_settings.empty()) session->setRenderSettings(setup_.render_settings, 0);
   session->setStartingLight(setup_.light);
   session->setStartingStyle(setup_.style);
   paint_.attachPen(pen_, session.get());

@@ -45,7 +45,8 @@ struct KioskSetup {
   Light light;
   std::string style = "thesis";
   RenderOptions render;
-  float moving_scale = 0.5f;  // the attract orbit's resolution scale
+  std::string render_settings;  // render.toml in force as text, journalled (formatRenderConfig)
+  float moving_scale = 0.5f;    // the attract orbit's resolution scale
   bool record_journals = true;
   // Told about state changes ("attract: waiting for visitors", ...) and input (health file).
   std::function<void(const std::string& status)> on_status;

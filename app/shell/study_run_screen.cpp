@@ -99,6 +99,12 @@ void StudyRunScreen::flushRecords() {
     if (journal_ && !journal_->append(JournalRecordType::kMarker, r.t_ns, r.text))
       problem("journal: " + journal_->error());
     if (r.text.rfind("study.answer", 0) == 0) writeAnswers();
+    // Task boundaries also as sync markers (journal and --sync-udp; drivers/core/JOURNAL.md §10).
+    const bool begins = r.text.rfind("study.stage-begin ", 0) == 0;
+    const bool ends = r.text.rfind("study.stage-end ", 0) == 0;
+    if ((begins || ends) && r.text.find(" task=") != std::string::npos)
+      session_.markSync(begins ? "task_begin" : "task_end", r.text.substr(r.text.find(' ') + 1),
+                        r.t_ns);
   }
 }
 

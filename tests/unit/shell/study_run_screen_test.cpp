@@ -236,6 +236,13 @@ struct Rig {
       if (r.type == JournalRecordType::kMarker) out.emplace_back(r.text());
     return out;
   }
+  std::vector<std::string> syncMarkers() {
+    journal.sync();
+    std::vector<std::string> out;
+    for (const JournalRecord& r : readJournal(folder + "/session.cbj").records)
+      if (r.type == JournalRecordType::kSync) out.emplace_back(r.text());
+    return out;
+  }
 };
 
 bool anyContains(const std::vector<std::string>& lines, const std::string& part) {
@@ -374,6 +381,11 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   EXPECT_TRUE(anyContains(markers, "study.saved stage=task task=cloud1"));
   EXPECT_TRUE(anyContains(markers, "study.answer item=Q28 value=3"));
   EXPECT_TRUE(anyContains(markers, "study.end completed"));
+  // The task's boundaries reach other recorders as sync markers (JOURNAL.md §10).
+  const std::vector<std::string> sync = rig.syncMarkers();
+  EXPECT_TRUE(anyContains(sync, "kind=task_begin"));
+  EXPECT_TRUE(anyContains(sync, "kind=task_end"));
+  EXPECT_TRUE(anyContains(sync, "label=stage=task task=cloud1 position=1"));
 
   const Volume& volume = rig.session->volume();
   size_t nonzero = 0;
