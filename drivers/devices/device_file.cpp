@@ -300,12 +300,15 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
         auto s = r.integers(t, "replace", p, t.source(), 0, 255, true);
         if (!e || !s) continue;
         if (e->empty() || e->size() != s->size()) {
-          r.fail(t.get("replace")->source(), p + "replace",
+          const toml::node* replace = t.get("replace");
+          r.fail(replace ? replace->source() : t.source(), p + "replace",
                  "must have as many bytes as expect (" + std::to_string(e->size()) + ")");
           continue;
         }
         if (fx.size != 0 && fx.offset + e->size() > fx.size) {
-          r.fail(t.get("offset")->source(), p + "offset", "the bytes end past size");
+          // offset may be left out (0): then the table itself is where the problem is.
+          const toml::node* offset = t.get("offset");
+          r.fail(offset ? offset->source() : t.source(), p + "offset", "the bytes end past size");
           continue;
         }
         fx.expect.assign(e->begin(), e->end());
