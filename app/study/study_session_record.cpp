@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "app/core/json_text.h"
 #include "app/study/csv_text.h"
 
 #ifndef CB_VERSION
@@ -17,38 +18,6 @@
 
 namespace cb {
 namespace {
-
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          char hex[8];
-          std::snprintf(hex, sizeof hex, "\\u%04x", c);
-          out += hex;
-        } else {
-          out += char(c);
-        }
-    }
-  }
-  return out + "\"";
-}
 
 std::string jsonList(const std::vector<std::string>& values) {
   std::string out = "[";
