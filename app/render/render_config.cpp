@@ -305,6 +305,9 @@ std::string formatRenderConfig(const RenderConfig& c) {
     }
     o += "]\n";
   };
+  const auto integer = [&](const char* key, long long v) {
+    o += std::string(key) + " = " + std::to_string(v) + "\n";
+  };
   const RenderOptions& r = c.options;
   o += "[raycast]\n";
   num("step_voxels", r.step_voxels);
@@ -317,9 +320,46 @@ std::string formatRenderConfig(const RenderConfig& c) {
   o += std::string("\n[style]\nname = \"") + renderStyleName(r.style) + "\"\n\n[motion]\n";
   num("moving_scale", c.moving_scale);
   o += "\n[light]\n";
-  vec("direction", &c.light.direction.x, 3);
+  vec("direction", &c.light.direction.x, 3);  // after [light] time_of_day: that hour's sun
   vec("colour", &c.light.colour.x, 3);
   num("extinction", c.light.extinction);
+  const SkySettings& sky = r.sky;
+  o += std::string("\n[sky]\nkind = \"") + skyKindName(sky.kind) + "\"\n";
+  vec("zenith", &sky.zenith.x, 3);
+  vec("horizon", &sky.horizon.x, 3);
+  num("sun_glow", sky.sun_glow);
+  if (!sky.image_path.empty()) {
+    std::ostringstream quoted;  // the path as a TOML string (escaped by toml++)
+    quoted << toml::value<std::string>(sky.image_path);
+    o += "image = " + quoted.str() + "\n";
+  }
+  integer("lic_seed", sky.lic_seed);
+  integer("lic_size", sky.lic_size);
+  integer("lic_length", sky.lic_length);
+  num("lic_coverage", sky.lic_coverage);
+  num("lic_scale", sky.lic_scale);
+  const StyleParams& p = r.style_params;
+  o += "\n[style.physical]\n";
+  num("reflection", p.physical.reflection);
+  num("scattering", p.physical.scattering);
+  num("forward_g", p.physical.forward_g);
+  num("back_g", p.physical.back_g);
+  num("forward_weight", p.physical.forward_weight);
+  integer("octaves", p.physical.octaves);
+  num("ambient", p.physical.ambient);
+  num("exposure", p.physical.exposure);
+  num("erosion", p.physical.erosion);
+  o += "\n[style.ink]\n";
+  num("wash", p.ink.wash);
+  num("line_width", p.ink.line_width);
+  num("bleed_sigma", p.ink.bleed_sigma);
+  o += std::string("sky = ") + (p.ink.sky ? "true" : "false") + "\n";
+  o += "\n[style.cartoon]\n";
+  vec("band_thresholds", &p.cartoon.band_thresholds.x, 3);
+  num("outline_width", p.cartoon.outline_width);
+  o += "\n[style.sketch]\n";
+  num("outline_width", p.sketch.outline_width);
+  o += std::string("sky = ") + (p.sketch.sky ? "true" : "false") + "\n";
   return o;
 }
 

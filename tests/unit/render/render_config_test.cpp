@@ -201,5 +201,51 @@ TEST(RenderConfig, ValuesAreReadAndBadOnesNamed) {
             RenderStyle::kInk);
 }
 
+// The render settings a journal records (formatRenderConfig) read back to the same settings,
+// sky and style parameters included, so a replay renders what the participant saw.
+TEST(RenderConfig, FormattedSettingsReadBackTheSame) {
+  const std::string path = writeTemp("format.toml", R"([style]
+name = "ink"
+[light]
+time_of_day = "17:30"
+[sky]
+kind = "lic"
+zenith = [0.1, 0.2, 0.9]
+lic_seed = 2147483000
+lic_coverage = 0.7
+[style.physical]
+octaves = 2
+erosion = 0.3
+[style.ink]
+wash = 0.5
+bleed_sigma = 2.0
+sky = true
+[style.cartoon]
+band_thresholds = [0.1, 0.5, 0.9]
+[style.sketch]
+outline_width = 0.4
+)");
+  const RenderConfig a = loadRenderConfig(path);
+  const RenderConfig b = parseRenderConfigText(formatRenderConfig(a), "journal");
+  EXPECT_TRUE(b.warnings.empty()) << b.warnings.front();
+  EXPECT_EQ(b.options.style, RenderStyle::kInk);
+  EXPECT_EQ(b.light.direction, a.light.direction);  // the 17:30 sun, as a direction
+  EXPECT_EQ(b.light.colour, a.light.colour);
+  EXPECT_EQ(b.options.sky.kind, SkyKind::kLic);
+  EXPECT_EQ(b.options.sky.zenith, a.options.sky.zenith);
+  EXPECT_EQ(b.options.sky.lic_seed, 2147483000u);
+  EXPECT_EQ(b.options.sky.lic_coverage, a.options.sky.lic_coverage);
+  const StyleParams &p = a.options.style_params, &q = b.options.style_params;
+  EXPECT_EQ(q.physical.octaves, 2);
+  EXPECT_EQ(q.physical.erosion, p.physical.erosion);
+  EXPECT_EQ(q.ink.wash, p.ink.wash);
+  EXPECT_EQ(q.ink.bleed_sigma, p.ink.bleed_sigma);
+  EXPECT_TRUE(q.ink.sky);
+  EXPECT_EQ(q.cartoon.band_thresholds, p.cartoon.band_thresholds);
+  EXPECT_EQ(q.sketch.outline_width, p.sketch.outline_width);
+  EXPECT_EQ(formatRenderConfig(b), formatRenderConfig(a));
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace cb
