@@ -102,6 +102,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
 }
 
 KioskScreen::~KioskScreen() {
+  if (calibration_)  // stopped (service stop, signal) in the middle of the operator's calibration
+    logOperator(std::string(OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate)) +
+                " abandoned: the kiosk stopped (nothing saved)");
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
 }
 
