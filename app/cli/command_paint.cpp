@@ -474,6 +474,7 @@ int commandPaint(int argc, char** argv) {
                    attract.error.c_str(), attract.records.size());
     setup.attract_journal = std::move(attract.records);
     setup.data_dir = data_dir;
+    setup.config_dir = defaultConfigDir();
     setup.visitor_settings = settings;
     setup.brush = brush;
     setup.mapping = mapping;

@@ -56,6 +56,8 @@ const char* KioskScreen::stateName(State state) {
       return "reconnect";
     case State::kOperator:
       return "operator";
+    case State::kCalibrate:
+      return "calibrate";
   }
   return "?";
 }
@@ -100,6 +102,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
 }
 
 KioskScreen::~KioskScreen() {
+  if (calibration_)  // stopped (service stop, signal) in the middle of the operator's calibration
+    logOperator(std::string(OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate)) +
+                " abandoned: the kiosk stopped (nothing saved)");
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
 }
 
@@ -130,6 +135,9 @@ void KioskScreen::setState(State state) {
       break;
     case State::kOperator:
       status = "operator panel";
+      break;
+    case State::kCalibrate:
+      status = "operator calibrating the pen";
       break;
   }
   std::fprintf(stderr, "cloudbrush kiosk: %s\n", status.c_str());
@@ -260,8 +268,8 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
         setState(State::kReconnect);
       else if (state_ == State::kReconnect && connected)
         setState(State::kVisitor);
-      else if (state_ == State::kOperator && before_operator_ == State::kVisitor && !connected &&
-               was_connected)
+      else if ((state_ == State::kOperator || state_ == State::kCalibrate) &&
+               before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
     }
   }
@@ -285,10 +293,15 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
       return;
     case State::kOperator:
       return;  // the pen does nothing while the operator panel is open
+    case State::kCalibrate:
+      calibration_->onPenSamples(samples);
+      return;
   }
 }
 
 bool KioskScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
+  // Calibrating: every key becomes the flow's command (Esc cancels, Space accepts).
+  if (state_ == State::kCalibrate) return false;
   if (state_ == State::kOperator) {
     panel_.onKey(event, t_ns);
     runOperatorActions(t_ns);
@@ -318,12 +331,13 @@ bool KioskScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
 
 void KioskScreen::onCommand(Command command, int64_t t_ns) {
   input(t_ns);
+  if (state_ == State::kCalibrate) return calibration_->onCommand(command, t_ns);
   if (state_ == State::kVisitor) paint_.onCommand(command, t_ns);
 }
 
 void KioskScreen::onPointer(const DisplayEvent& event) {
   const int64_t now = clock_.nowNs();
-  if (state_ == State::kOperator) return;
+  if (state_ == State::kOperator || state_ == State::kCalibrate) return;
   if (state_ == State::kAttract) beginVisit(now);
   input(now);
   paint_.onPointer(event);
@@ -331,6 +345,7 @@ void KioskScreen::onPointer(const DisplayEvent& event) {
 
 void KioskScreen::onResize(int width, int height) {
   paint_.onResize(width, height);
+  if (calibration_) calibration_->onResize(width, height);
 }
 
 void KioskScreen::logOperator(const std::string& action) {
@@ -339,8 +354,72 @@ void KioskScreen::logOperator(const std::string& action) {
     std::fprintf(stderr, "cloudbrush kiosk: operator log: %s\n", error.c_str());
 }
 
+void KioskScreen::startCalibration(int64_t now) {
+  // As `cloudbrush calibrate` does, with the kiosk's data dir as the state dir: the profile goes
+  // to <data dir>/profiles/ (where the painter looks it up) and the session's record beside it.
+  const std::string record = setup_.data_dir + "/calibration-" + utcStamp() + ".cbj";
+  calibration_record_ = std::make_unique<JournalWriter>();
+  if (!calibration_record_->open(record)) {
+    std::fprintf(stderr, "cloudbrush kiosk: calibration record %s (continuing without one)\n",
+                 calibration_record_->error().c_str());
+    calibration_record_.reset();
+  }
+  CalibrateFlowOptions options;
+  options.config_dir = setup_.config_dir;
+  options.state_dir = setup_.data_dir;
+  options.journal = calibration_record_.get();
+  options.end_loop_when_done = false;
+  options.esc_quits = false;
+  options.log = [](const std::string& line) {
+    std::fprintf(stderr, "cloudbrush kiosk: calibrate: %s\n", line.c_str());
+  };
+  calibration_ =
+      std::make_unique<CalibrateFlowScreen>(pen_, display_.width(), display_.height(), options);
+  logOperator(std::string(OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate)) +
+              " started" + (calibration_record_ ? " (record " + record + ")" : ""));
+  input(now);
+  setState(State::kCalibrate);
+}
+
+void KioskScreen::finishCalibration(int64_t now) {
+  const CalibrateOutcome outcome = *calibration_->outcome();
+  calibration_.reset();
+  // Its programs are deleted while the last one it drew with is still in use; the panel's text
+  // would restore that (now invalid) program after drawing, a GL error. Nothing is in use now.
+  glUseProgram(0);
+  if (calibration_record_) calibration_record_->close();
+  calibration_record_.reset();
+  const std::string name = OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate);
+  switch (outcome.kind) {
+    case CalibrateOutcome::Kind::kSaved: {
+      const CalibrationProfile& p = outcome.fit->profile;
+      char fit[160];
+      std::snprintf(fit, sizeof fit, "%s, %d points, rms %.2f px, max %.2f px",
+                    pointFitKindName(p.fit_kind), p.fit_points, p.fit_rms_px, p.fit_max_px);
+      // The painter selects the new profile now (journalled in the visitor's session); a pen
+      // that is not connected gets it when it connects.
+      const bool applied = paint_.reselectCalibration();
+      logOperator(name + " saved " + outcome.saved_path + " (" + fit + ")");
+      message_ = "calibration saved (" + std::string(fit) + ")\nto " + outcome.saved_path +
+                 (applied ? "; the pen uses it now" : "; the pen uses it when it connects");
+      break;
+    }
+    case CalibrateOutcome::Kind::kCancelled:
+      logOperator(name + " cancelled (nothing saved)");
+      message_ = "calibration cancelled: nothing saved, the pen keeps its calibration";
+      break;
+    case CalibrateOutcome::Kind::kPressureRange:  // not asked for here
+    case CalibrateOutcome::Kind::kFailed:
+      logOperator(name + " FAILED: " + outcome.message);
+      message_ = "calibration FAILED: " + outcome.message;
+      break;
+  }
+  panel_.shownAgain(now);
+  input(now);
+  setState(State::kOperator);
+}
+
 void KioskScreen::runOperatorActions(int64_t now) {
-  (void)now;
   KioskConfig& c = setup_.config;
   for (const OperatorAction& action : panel_.takeActions()) {
     const char* name = OperatorPanelScreen::actionName(action.kind);
@@ -396,11 +475,8 @@ void KioskScreen::runOperatorActions(int64_t now) {
         break;
       }
       case OperatorActionKind::kCalibrate:
-        message_ =
-            "calibration is not a kiosk screen yet: stop the service\n(systemctl stop "
-            "cloudbrush-kiosk), run `cloudbrush calibrate` on this box,\nthen start it again";
-        logOperator(std::string(name) + " (told to run cloudbrush calibrate)");
-        break;
+        startCalibration(now);
+        return;  // the keys after C are the calibration's
       case OperatorActionKind::kShutdown:
         logOperator(name);
         quit_ = "operator shutdown";
@@ -412,6 +488,13 @@ void KioskScreen::runOperatorActions(int64_t now) {
 std::string KioskScreen::update(const FrameContext& frame) {
   const int64_t now = clock_.nowNs();
   switch (state_) {
+    case State::kCalibrate:
+      calibration_->update(frame);
+      if (calibration_->stage() == CalibrateFlowScreen::Stage::kDone) {
+        finishCalibration(now);
+        return update(frame);  // the panel, with the result
+      }
+      break;
     case State::kOperator: {
       panel_.update(frame);
       runOperatorActions(now);
@@ -482,6 +565,8 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
       return attract_.draw(frame, error);
     case State::kOperator:
       return panel_.draw(frame, error);
+    case State::kCalibrate:
+      return calibration_->draw(frame, error);
     case State::kReconnect:
       if (!paint_.draw(frame, error)) return false;
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
@@ -505,6 +590,7 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
 void KioskScreen::presented(const FrameContext& frame, double frame_ms) {
   if (state_ == State::kVisitor) paint_.presented(frame, frame_ms);
   if (state_ == State::kAttract) attract_.presented(frame, frame_ms);
+  if (state_ == State::kCalibrate) calibration_->presented(frame, frame_ms);
 }
 
 }  // namespace cb

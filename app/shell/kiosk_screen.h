@@ -11,10 +11,15 @@
 //   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug
 //   operator  (operator_panel_screen.h) the configured key combination, then the PIN; every
 //             action is logged to <data dir>/operator.log
+//   calibrate the operator pressed C: the calibration flow (calibrate_flow_screen.h) takes
+//             every input; Esc cancels it. The profile is saved under the data dir (where the
+//             kiosk's painter looks it up), the visitor's pen uses it at once, the result is
+//             logged and shown on the panel again
 //
 // Visitor texts come from config/kiosk/texts.toml in the configured language. Everything the
 // kiosk writes goes under the data dir: sessions/ (journals, deleted after [journals] keep_days),
-// gallery/, exports/, operator.log. Every timer reads the injected Clock.
+// gallery/, exports/, operator.log, profiles/ and calibration-<time>.cbj. Every timer reads the
+// injected Clock.
 #pragma once
 
 #include <functional>
@@ -27,6 +32,7 @@
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/operator_log.h"
 #include "app/shell/attract_screen.h"
+#include "app/shell/calibrate_flow_screen.h"
 #include "app/shell/operator_panel_screen.h"
 #include "app/shell/paint_screen.h"
 #include "app/shell/reconnect_screen.h"
@@ -37,7 +43,8 @@ namespace cb {
 struct KioskSetup {
   KioskConfig config;
   KioskTexts texts;
-  std::string data_dir;                        // created if missing
+  std::string data_dir;    // created if missing
+  std::string config_dir;  // shipped defaults (config/calibration.toml for the calibration)
   std::vector<JournalRecord> attract_journal;  // may be empty (the empty sky orbits)
   PaintSessionSettings visitor_settings;
   BrushConfig brush;
@@ -59,7 +66,7 @@ inline constexpr int kOperatorShutdownExitStatus = 10;
 
 class KioskScreen : public Screen {
  public:
-  enum class State { kAttract, kVisitor, kReconnect, kOperator };
+  enum class State { kAttract, kVisitor, kReconnect, kOperator, kCalibrate };
 
   // `paint` runs in visitor mode with `pen` attached; the kiosk attaches its visitor sessions.
   // None owned.
@@ -91,6 +98,8 @@ class KioskScreen : public Screen {
   const PaintSession* visitorSession() const { return visitor_.get(); }
   const AttractScreen& attract() const { return attract_; }
   const OperatorPanelScreen& operatorPanel() const { return panel_; }
+  // The operator's calibration while the state is kCalibrate, else null.
+  const CalibrateFlowScreen* calibration() const { return calibration_.get(); }
   const KioskConfig& config() const { return setup_.config; }
   // The countdown (or "saved as number N") shown over the painter, or "".
   const std::string& notice() const { return notice_; }
@@ -105,6 +114,8 @@ class KioskScreen : public Screen {
   void cleanUpOldData();
   void runOperatorActions(int64_t now);
   void logOperator(const std::string& action);
+  void startCalibration(int64_t now);
+  void finishCalibration(int64_t now);
   void updateTexts();
   bool visiting() const { return state_ == State::kVisitor || state_ == State::kReconnect; }
 
@@ -126,6 +137,8 @@ class KioskScreen : public Screen {
   State state_ = State::kAttract, before_operator_ = State::kAttract;
   std::unique_ptr<JournalWriter> journal_;
   std::unique_ptr<PaintSession> visitor_;
+  std::unique_ptr<CalibrateFlowScreen> calibration_;
+  std::unique_ptr<JournalWriter> calibration_record_;
   int64_t last_input_ns_ = 0;
   int64_t saved_notice_until_ns_ = 0;
   std::string saved_notice_;

@@ -191,7 +191,7 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
                   values_.gallery_enabled ? "on" : "off", values_.gallery_entries);
     add(text, line, 0xffffffffu);
     add("E       export the current cloud to " + values_.data_dir + "/exports", line, 0xffffffffu);
-    add("C       calibration", line, 0xffffffffu);
+    add("C       calibrate the pen (tap the targets; Esc cancels)", line, 0xffffffffu);
     add(state_ == State::kConfirmShutdown ? "X       shut down: press Y to confirm, any other key "
                                             "cancels"
                                           : "X       shut the kiosk down",

@@ -4,7 +4,8 @@
 // each on one key:
 //   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
 //   G      gallery on/off           E      export the current cloud
-//   C      calibration              X then Y  shut the kiosk down
+//   C      calibrate the pen (the kiosk runs the calibration screens, then shows the panel again)
+//   X then Y  shut the kiosk down
 //   Esc    close (also after 2 min without a key)
 // The panel only asks; the kiosk screen carries the actions out and logs every one of them
 // (operator_log.h). Visitors never see it: the pen does nothing while it is open.
@@ -60,6 +61,8 @@ class OperatorPanelScreen : public Screen {
   void askPin();
   bool isOpen() const { return state_ != State::kClosed; }
   bool unlocked() const { return state_ == State::kPanel || state_ == State::kConfirmShutdown; }
+  // Shown again after something that took a while (the calibration): its 2 min start anew.
+  void shownAgain(int64_t t_ns) { last_key_ns_ = t_ns; }
   void setValues(const OperatorPanelValues& values) { values_ = values; }
   // Actions since the last call, in order.
   std::vector<OperatorAction> takeActions();

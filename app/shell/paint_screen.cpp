@@ -194,6 +194,12 @@ void PaintScreen::selectCalibration(uint64_t tool_serial) {
   session_->setCalibration(selection.profile, monotonicNowNs());
 }
 
+bool PaintScreen::reselectCalibration() {
+  if (!pen_ || !session_ || pen_->connection() != PenConnection::kConnected) return false;
+  selectCalibration(tool_serial_);
+  return true;
+}
+
 void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
   if (!pen_ || !session_) return;
   const int connection = int(pen_->connection());

@@ -52,6 +52,10 @@ class PaintScreen : public Screen {
               const PaintLoopOptions& options);
   ~PaintScreen() override;
   void attachPen(PenSource* pen, PaintSession* session);
+  // Selects the pen's calibration profile again (a new one was just saved, e.g. by the kiosk's
+  // operator panel) and hands it to the session, which journals it. False without a connected
+  // pen (it is selected when the pen connects).
+  bool reselectCalibration();
 
   const char* name() const override { return "paint"; }
   void onPenSamples(const std::vector<PenSample>& samples) override;

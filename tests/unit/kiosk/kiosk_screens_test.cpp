@@ -19,10 +19,14 @@
 #include "app/core/config_paths.h"
 #include "app/render/image_io.h"
 #include "app/session/session_replay.h"
+#include "app/shell/calibrate_result_screen.h"
 #include "app/shell/frame_loop.h"
+#include "app/shell/keymap.h"
 #include "app/shell/kiosk_screen.h"
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
+#include "calibration/n_point_calibration.h"
+#include "calibration/profile_store.h"
 #include "scripted_pen_source.h"
 #include "tests/support/test_display.h"
 
@@ -73,6 +77,7 @@ class KioskRig {
     if (!attract.error.empty()) throw std::runtime_error(attract.error);
     setup.attract_journal = attract.records;
     setup.data_dir = data_dir_;
+    setup.config_dir = kConfigDir;
     setup.visitor_settings = {kW, kH, kGrid};
     setup.on_status = [this](const std::string& status) { statuses_.push_back(status); };
     PaintLoopOptions options;
@@ -97,6 +102,7 @@ class KioskRig {
     FrameLoopOptions options;
     options.max_frames = frames;
     options.clock = &clock_;
+    options.initial_keys.swap(keys_);
     options.each_iteration = [&](bool) { clock_.advance(int64_t(step_s * 1e9)); };
     options.after_draw = [&](const FrameContext&) {
       last_frame_ = readFramebufferRgba8(display_->framebuffer(), kW, kH);
@@ -121,6 +127,12 @@ class KioskRig {
   void type(const std::string& keys) {
     for (char c : keys) key(uint32_t(c));
   }
+  // Keys (keymap.h names) the frame loop delivers at the start of the next run, as from the
+  // display: the ones the kiosk does not take become commands.
+  void press(const std::string& keys) {
+    std::string error;
+    if (!parseKeyList(keys, &keys_, &error)) throw std::runtime_error(error);
+  }
 
   KioskScreen& kiosk() { return *kiosk_; }
   PaintScreen& paint() { return *paint_; }
@@ -142,6 +154,7 @@ class KioskRig {
   std::unique_ptr<KioskScreen> kiosk_;
   ImageRgba8 last_frame_;
   std::vector<std::string> log_, statuses_;
+  std::vector<DisplayEvent> keys_;
 };
 
 using State = KioskScreen::State;
@@ -269,8 +282,7 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
   rig.type("2");  // idle +15 s
   rig.type("3");  // countdown -5 s
   rig.type("g");  // gallery on
-  rig.type("e");  // export the visitor's cloud
-  rig.type("c");  // calibration (says how)
+  rig.type("e");  // export the visitor's cloud (C, the calibration, is tested below)
   rig.run(1, 0.0);
   keep("kiosk_operator_panel.png", rig.lastFrame());
   EXPECT_EQ(kiosk.config().idle_seconds, 105.0);
@@ -295,9 +307,94 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
   for (const char* action :
        {"pin-asked", "wrong-pin (1 in a row)", "wrong-pin (3 in a row)", "locked-out for 60 s",
         "panel-opened", "set-idle-seconds 105", "set-warning-seconds 5", "toggle-gallery on",
-        "export-cloud ", "calibrate", "shutdown", "panel-closed"})
+        "export-cloud ", "shutdown", "panel-closed"})
     EXPECT_NE(log.find(std::string("Z ") + action), std::string::npos) << action << "\n" << log;
-  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 13) << log;
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 12) << log;
+}
+
+// Opens the operator panel mid-visit and presses C: the calibration screens take over.
+void openPanelAndCalibrate(KioskRig& rig) {
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  ASSERT_EQ(rig.kiosk().state(), State::kVisitor);
+  rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
+  rig.type("2468");
+  ASSERT_TRUE(rig.kiosk().operatorPanel().unlocked());
+  rig.run(1, 0.0);
+  keep("kiosk_operator_panel_before_calibration.png", rig.lastFrame());
+  rig.type("c");
+  ASSERT_EQ(rig.kiosk().state(), State::kCalibrate);
+  ASSERT_NE(rig.kiosk().calibration(), nullptr);
+  rig.run(2, 0.0);
+  ASSERT_EQ(rig.kiosk().calibration()->stage(), CalibrateFlowScreen::Stage::kTargets)
+      << "the scripted tablet is connected: the targets at once";
+  keep("kiosk_calibrate_targets.png", rig.lastFrame());
+}
+
+TEST(KioskScreens, OperatorCalibratesThePenFromThePanel) {
+  KioskRig rig("cb_kiosk_calibrate");
+  KioskScreen& kiosk = rig.kiosk();
+  openPanelAndCalibrate(rig);
+  // The pen lands 9 px left of and 5 px below where it is held: the taps on the targets show it.
+  const glm::dvec2 error(-9.0, 5.0);
+  for (const glm::dvec2& t : targetLayout(9, kW, kH)) {
+    rig.pen().tap(t + error, rig.clock().nowNs());
+    rig.run(1, 0.2);
+  }
+  rig.run(1, 0.0);
+  ASSERT_EQ(kiosk.state(), State::kCalibrate);
+  ASSERT_EQ(kiosk.calibration()->stage(), CalibrateFlowScreen::Stage::kResult);
+  keep("kiosk_calibrate_result.png", rig.lastFrame());
+  const CalibrateBox accept = CalibrateResultScreen::acceptBox(kW, kH);
+  rig.pen().tap({accept.x + accept.w / 2, accept.y + accept.h / 2}, rig.clock().nowNs());
+  rig.run(2, 0.1);
+  // Back on the panel, with the result.
+  ASSERT_EQ(kiosk.state(), State::kOperator);
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
+  EXPECT_EQ(kiosk.calibration(), nullptr);
+  keep("kiosk_operator_panel_after_calibration.png", rig.lastFrame());
+  // The profile is in the data dir (where the kiosk's painter looks), correcting the error.
+  const std::string path = rig.dataDir() + "/profiles/056a-fff0.toml";
+  ASSERT_TRUE(fs::exists(path)) << "saved inside the data dir";
+  ProfileParseResult saved = readCalibrationProfile(path);
+  ASSERT_TRUE(saved.profile) << path;
+  EXPECT_EQ(saved.profile->fit_kind, PointFitKind::kHomography);
+  EXPECT_EQ(saved.profile->fit_points, 9);
+  EXPECT_LT(saved.profile->fit_max_px, 0.5);
+  for (const glm::dvec2& p : targetLayout(9, kW, kH, 0.0))
+    EXPECT_LT(glm::length(applyTransform(saved.profile->correction, p + error) - p), 0.5)
+        << p.x << "," << p.y;
+  const std::string log = slurp(rig.dataDir() + "/operator.log");
+  EXPECT_NE(log.find("Z calibrate started"), std::string::npos) << log;
+  EXPECT_NE(log.find("Z calibrate saved " + path + " (homography, 9 points, rms "),
+            std::string::npos)
+      << log;
+  // The visitor's session took the new calibration (journalled with it).
+  EXPECT_EQ(kiosk.visitorSession()->calibration().fit_points, 9);
+  // Esc closes the panel; the visitor paints on.
+  rig.press("esc");
+  rig.run(1);
+  EXPECT_EQ(kiosk.state(), State::kVisitor);
+}
+
+TEST(KioskScreens, EscCancelsTheOperatorsCalibrationAndNothingIsSaved) {
+  KioskRig rig("cb_kiosk_calibrate_esc");
+  KioskScreen& kiosk = rig.kiosk();
+  openPanelAndCalibrate(rig);
+  const std::vector<glm::dvec2> targets = targetLayout(9, kW, kH);
+  rig.pen().tap(targets[0], rig.clock().nowNs());  // one target tapped, then Esc
+  rig.run(1, 0.2);
+  rig.press("esc");
+  rig.run(2, 0.0);
+  EXPECT_EQ(kiosk.state(), State::kOperator) << "Esc cancels the calibration, not the kiosk";
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
+  keep("kiosk_operator_panel_calibration_cancelled.png", rig.lastFrame());
+  EXPECT_FALSE(fs::exists(rig.dataDir() + "/profiles"));
+  const std::string log = slurp(rig.dataDir() + "/operator.log");
+  EXPECT_NE(log.find("Z calibrate cancelled (nothing saved)"), std::string::npos) << log;
+  EXPECT_EQ(log.find("Z calibrate saved"), std::string::npos) << log;
 }
 
 TEST(KioskScreens, GalleryKeepsFinishedCloudsWithinQuotaAndOldJournalsGo) {

@@ -3,7 +3,10 @@
 // pen_source.h): the connection becomes `searching` and a proximity-out sample is appended.
 #pragma once
 
+#include <cmath>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "app/session/synthetic_session.h"
 #include "drivers/core/pen_source.h"
@@ -46,6 +49,29 @@ class ScriptedPenSource final : public PenSource {
       while (!samples.empty() && !(samples.back().buttons & kPenTip)) samples.pop_back();
     queue_.insert(queue_.end(), samples.begin(), samples.end());
     last_ = samples.back();
+  }
+  // A tap at `screen_px` (on the screen as the synthetic tablet maps it): hovering in, the tip
+  // down for 60 ms, hovering away, at 200 Hz from `t_ns`.
+  void tap(glm::dvec2 screen_px, int64_t t_ns) {
+    PenSample s{};
+    s.x_mm = screen_px.x * double(info_.x_max) / info_.x_res / w_;
+    s.y_mm = screen_px.y * double(info_.y_max) / info_.y_res / h_;
+    s.x_raw = int32_t(std::lround(s.x_mm * info_.x_res));
+    s.y_raw = int32_t(std::lround(s.y_mm * info_.y_res));
+    s.tool = PenTool::kPen;
+    s.tool_id = 0x802u;
+    s.in_proximity = true;
+    for (int i = 0; i < 32; ++i, t_ns += 5'000'000) {
+      const bool down = i >= 10 && i < 22;
+      s.t_ns = t_ns;
+      s.pressure_raw = down ? info_.pressure_max * 2 / 5 : 0;
+      s.pressure = float(s.pressure_raw) / float(info_.pressure_max);
+      s.distance_raw = down ? 0 : 10;
+      s.distance = float(s.distance_raw) / float(info_.distance_max);
+      s.buttons = down ? kPenTip : 0u;
+      queue_.push_back(s);
+    }
+    last_ = queue_.back();
   }
   void unplug() {
     connection_ = PenConnection::kSearching;
