@@ -3,8 +3,8 @@
 // hidden behind an opaque cloud; the paper styles keep their paper unless asked.
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <cstdio>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -228,7 +228,7 @@ INSTANTIATE_TEST_SUITE_P(KindsAndStyles, SkyBehindTheCloud,
                          ::testing::Values(SkyCase{SkyKind::kColour, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kLic, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kColour, RenderStyle::kPhysical},
-                      SkyCase{SkyKind::kImage, RenderStyle::kThesis},
+                                           SkyCase{SkyKind::kImage, RenderStyle::kThesis},
                                            SkyCase{SkyKind::kLic, RenderStyle::kCartoon}),
                          [](const ::testing::TestParamInfo<SkyCase>& info) {
                            return std::string(skyKindName(info.param.kind)) + "_" +
