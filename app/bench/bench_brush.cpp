@@ -29,10 +29,6 @@ namespace cb {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // The workload: the eight strokes of 永 written large in the middle of the footprint, a pressure
 // ramp, a tilt sweep and a fast gestural curve (dispersion on), all sampled at `rate_hz`.
 std::vector<std::vector<BrushInput>> workload(int w, int h, double rate_hz) {
@@ -53,12 +49,6 @@ std::vector<std::vector<BrushInput>> workload(int w, int h, double rate_hz) {
   fast.speed_px_s = 2500.0f;
   add(fast);
   return strokes;
-}
-
-double processCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 // A stroke as the tablet reports it: the contact samples, a lifting sample 5 ms later, then the

@@ -3,6 +3,7 @@
 // so results can be compared over time. Baselines are measured in the same run.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,12 @@ class BenchReport {
   std::vector<std::pair<std::string, double>> figures_, baseline_;
   std::vector<std::pair<std::string, std::string>> notes_;
 };
+
+// Wall time since t0, in ms.
+double msSince(std::chrono::steady_clock::time_point t0);
+// CPU time of the whole process so far (llvmpipe's threads included), in ms: less inflated by
+// other load on the machine than wall time.
+double processCpuMs();
 
 // Median of timing samples (copies; fine for benchmark sizes).
 double median(std::vector<double> v);

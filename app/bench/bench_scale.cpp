@@ -56,17 +56,6 @@ const char kHelp[] =
 
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-// Process CPU time (llvmpipe's threads included): less inflated by other load than wall time.
-double processCpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) / 1e6;
-}
-
 struct Size {
   int w = 0, h = 0;
   std::string name() const { return std::to_string(w) + "x" + std::to_string(h); }

@@ -39,10 +39,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
 // Median over `repeats` runs of `run`, in ms.
 template <typename Run>
 double medianMs(int repeats, Run run) {

@@ -48,12 +48,6 @@ const char kHelp[] =
 
 constexpr double kTargetRatio = 1.5;
 
-double processCpuMs() {
-  timespec t;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) / 1e6;
-}
-
 struct StyleTimes {
   std::vector<double> frame_ms, cpu_ms, moving_ms, painting_ms;
   double first_ms = 0;  // the first frame: llvmpipe compiles the style's programs
