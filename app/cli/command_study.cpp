@@ -330,6 +330,21 @@ int runReport(Args& args) {
   return 0;
 }
 
+// `study check|run [PROTOCOL.toml]`: the protocol named (default the bundled one), read whole.
+// 0, or the exit status after the error was printed.
+int loadProtocolArgument(Args& args, const std::string& verb, std::string* path,
+                         StudyProtocol* protocol) {
+  if (args.positional().size() > 3)
+    return fail(verb + ": expected at most one protocol: study " + verb + " [PROTOCOL.toml]", 2);
+  *path = args.positional().size() == 3 ? args.positional()[2] : defaultStudyProtocolPath();
+  try {
+    *protocol = loadStudyProtocol(*path);
+  } catch (const StudyProtocolError& e) {
+    return fail(verb + ": " + e.what());
+  }
+  return 0;
+}
+
 int runCheck(Args& args) {
   auto unknown = args.unknown({"help", "vocabulary"});
   if (!unknown.empty()) return fail("check: unknown option " + unknown[0] + " (see --help)", 2);
@@ -337,16 +352,9 @@ int runCheck(Args& args) {
     std::fputs(tutorialVocabularyText().c_str(), stdout);
     return 0;
   }
-  if (args.positional().size() > 3)
-    return fail("check: expected at most one protocol: study check [PROTOCOL.toml]", 2);
-  const std::string path =
-      args.positional().size() == 3 ? args.positional()[2] : defaultStudyProtocolPath();
+  std::string path;
   StudyProtocol protocol;
-  try {
-    protocol = loadStudyProtocol(path);
-  } catch (const StudyProtocolError& e) {
-    return fail(e.what());
-  }
+  if (const int code = loadProtocolArgument(args, "check", &path, &protocol)) return code;
   std::fputs(studyProtocolSummary(protocol).c_str(), stdout);
   const std::vector<std::string> missing = missingProtocolFiles(protocol);
   for (const std::string& file : missing)
@@ -398,17 +406,10 @@ int runStudySession(Args& args) {
                                "drm-device", "size", "grid", "backend", "pen-device", "journal",
                                "keys", "frames", "seconds", "end-seconds", "sync-udp"});
   if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
-  if (args.positional().size() > 3)
-    return fail("run: expected at most one protocol: study run [PROTOCOL.toml]", 2);
   // The protocol is checked completely before anything opens: no session starts on a guess.
-  const std::string path =
-      args.positional().size() == 3 ? args.positional()[2] : defaultStudyProtocolPath();
+  std::string path;
   StudyProtocol protocol;
-  try {
-    protocol = loadStudyProtocol(path);
-  } catch (const StudyProtocolError& e) {
-    return fail(std::string("run: ") + e.what());
-  }
+  if (const int code = loadProtocolArgument(args, "run", &path, &protocol)) return code;
   const std::vector<std::string> missing = missingProtocolFiles(protocol);
   for (const std::string& file : missing)
     std::fprintf(stderr, "cloudbrush study: run: %s: missing file %s\n", path.c_str(),
