@@ -319,8 +319,7 @@ int benchRender(int argc, char** argv) {
       auto fill = [&](float value) {
         for (int z = block.lo.z; z < block.hi.z; ++z)
           for (int y = block.lo.y; y < block.hi.y; ++y)
-            for (int x = block.lo.x; x < block.hi.x; ++x)
-              edited.data()[edited.index(x, y, z)] = value;
+            for (int x = block.lo.x; x < block.hi.x; ++x) edited.voxelForWrite(x, y, z) = value;
         edited.markDirty(block);
       };
       fill(0.0f);

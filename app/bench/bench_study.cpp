@@ -154,10 +154,11 @@ int benchStudy(int argc, char** argv) {
     const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)));
     std::printf("volume %ld^3 (%.1f MiB of float32)\n", grid,
                 double(volume.voxelCount()) * 4 / (1 << 20));
+    const std::vector<float> dense = volume.toDense();
     const double fwrite_ms = medianMs(int(repeats), [&] {
       std::FILE* f = std::fopen((dir / "plain.raw").c_str(), "wb");
       if (!f) throw std::runtime_error((dir / "plain.raw").string() + ": cannot create");
-      std::fwrite(volume.data(), sizeof(float), volume.voxelCount(), f);
+      std::fwrite(dense.data(), sizeof(float), dense.size(), f);
       std::fclose(f);
     });
     double vdb_ms = 0, cbvol_ms = 0;

@@ -11,7 +11,7 @@ namespace cb {
 namespace {
 
 struct EdgeSample {
-  size_t voxel;
+  glm::ivec3 voxel;
   float density;
 };
 
@@ -101,7 +101,7 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
         glm::ivec3 v(glm::floor(volume.worldToVoxel(p)));
         if (glm::any(glm::lessThan(v, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(v, dims)))
           continue;
-        out.samples.push_back({volume.index(v.x, v.y, v.z), density});
+        out.samples.push_back({v, density});
         out.box = out.box.unite({v, v + 1});
         landed = true;
       }
@@ -110,10 +110,10 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
   });
 
   // Max-merge in chunk order (max is order-free anyway; this keeps the box union ordered too).
-  float* data = volume.data();
   VoxelBox box;
   for (const ChunkOutput& c : chunks) {
-    for (const EdgeSample& s : c.samples) data[s.voxel] = std::max(data[s.voxel], s.density);
+    for (const EdgeSample& s : c.samples)
+      volume.maxMerge(s.voxel.x, s.voxel.y, s.voxel.z, s.density);
     box = box.unite(c.box);
     local.mapped_pixels += c.mapped;
     local.off_canvas_pixels += c.off_canvas;

@@ -84,7 +84,6 @@ VoxelBox mapRayMarching(const Footprint& f, const PaintViewGeometry& view, const
   // global (start + (i + 0.5)·step), so the result is independent of the chunking.
   constexpr size_t kSlab = 4;
   const glm::ivec3 dims = volume.dims();
-  float* data = volume.data();
   const float density = cfg.density;
   parallelFor(size_t(all.hi.z - all.lo.z), kSlab, [&](size_t, size_t k0, size_t k1) {
     const int z0 = all.lo.z + int(k0), z1 = all.lo.z + int(k1);
@@ -105,8 +104,7 @@ VoxelBox mapRayMarching(const Footprint& f, const PaintViewGeometry& view, const
         glm::vec3 p = s.start + s.dir * (step * (float(i) + 0.5f));
         glm::ivec3 v(glm::floor(volume.worldToVoxel(p)));
         if (v.z < z0 || v.z >= z1 || v.x < 0 || v.y < 0 || v.x >= dims.x || v.y >= dims.y) continue;
-        float& dst = data[volume.index(v.x, v.y, v.z)];
-        dst = std::max(dst, density);
+        volume.maxMerge(v.x, v.y, v.z, density);
       }
     }
   });

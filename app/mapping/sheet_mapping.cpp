@@ -67,7 +67,6 @@ VoxelBox mapSheet(const Footprint& f, const Camera& camera, const Canvas& canvas
   const int slabs = box.hi.z - box.lo.z;
   std::vector<long long> counts(size_t(slabs), 0);
   std::vector<VoxelBox> touched(static_cast<size_t>(slabs));
-  float* data = volume.data();
   parallelFor(size_t(slabs), 1, [&](size_t, size_t begin, size_t end) {
     for (size_t s = begin; s < end; ++s) {
       const int z = box.lo.z + int(s);
@@ -86,9 +85,7 @@ VoxelBox mapSheet(const Footprint& f, const Camera& camera, const Canvas& canvas
           const float erosion = 1.0f - config.erosion * (0.5f + 0.5f * noise.at(x, y, z));
           const float density = std::min(1.0f, ink * std::exp(-0.5f * d * d) * erosion);
           if (density < 1.0f / 255.0f) continue;
-          float& target = data[volume.index(x, y, z)];
-          if (density > target) {
-            target = density;
+          if (volume.maxMerge(x, y, z, density)) {
             ++counts[s];
             touched[s] = touched[s].unite({{x, y, z}, {x + 1, y + 1, z + 1}});
           }

@@ -45,7 +45,6 @@ VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTextur
   }
   if (all.empty()) return {};
   const glm::vec3 vs = volume.voxelSize(), wmin = volume.worldMin();
-  float* data = volume.data();
   const size_t depth = size_t(all.hi.z - all.lo.z);
   parallelFor(depth, 2, [&](size_t, size_t k0, size_t k1) {
     for (size_t k = k0; k < k1; ++k) {
@@ -61,13 +60,12 @@ VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTextur
           const float dy = wmin.y + (float(y) + 0.5f) * vs.y - s.centre.y;
           const float dyz2 = dy * dy + dz * dz;
           if (dyz2 >= s.radius * s.radius) continue;
-          float* row = data + volume.index(0, y, z);
           for (int x = b.lo.x; x < b.hi.x; ++x) {
             const float dx = wmin.x + (float(x) + 0.5f) * vs.x - s.centre.x;
             const float q = std::sqrt(dx * dx + dyz2) * inv_r;
             if (q >= 1.0f) continue;
             const float v = sphereDensity(q, noise.at(x, y, z), config);
-            if (v > row[x]) row[x] = v;
+            volume.maxMerge(x, y, z, v);
           }
         }
       }

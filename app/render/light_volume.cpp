@@ -256,7 +256,6 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
 
   float* T = lv.through.data();
   float* lit = lv.transmittance.data();
-  const float* density = volume.data();
   const AttenuationPair attenuation(k, f.step_length, 0.5f * (f.step_length + 1.0f));
   // The upstream point of lateral voxel (b, c) is (b + u_b, c + u_c): the same fractional
   // offsets for every voxel, so the bilinear weights are constants of the sweep.
@@ -281,6 +280,17 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
         return (r && b >= 0 && b < nb) ? r[size_t(b) * sb] : 1.0f;
       };
       const size_t base = size_t(s) * sa + size_t(cc) * sc;
+      // This row's densities [lo.x, hi.x) along b, read out of the volume's bricks.
+      thread_local std::vector<float> density_row;
+      density_row.resize(size_t(std::max(hi.x - lo.x, 0)));
+      if (hi.x > lo.x) {
+        glm::ivec3 first;
+        first[f.axis] = s;
+        first[f.c] = cc;
+        first[f.b] = lo.x;
+        volume.readLine(first, f.b, hi.x - lo.x, density_row.data());
+      }
+      const float* density = density_row.data();  // [bb - lo.x]
       int changed_lo = hi.x, changed_hi = lo.x;
       // Interior voxels need no bounds checks on b.
       const int inner_lo = std::clamp(-ob, lo.x, hi.x),
@@ -288,7 +298,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
       auto voxel = [&](int bb, float t_up) {
         size_t idx = base + size_t(bb) * sb;
         float through, own_t;
-        attenuation.attenuate(density[idx], t_up, &through, &own_t);
+        attenuation.attenuate(density[bb - lo.x], t_up, &through, &own_t);
         if constexpr (kTrack) {
           if (std::abs(through - T[idx]) > kChangeEpsilon) {
             changed_lo = std::min(changed_lo, bb);
@@ -311,8 +321,9 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
         // stays the fast one.
         thread_local std::vector<float> old_row;
         if constexpr (kTrack) old_row.assign(T + i0, T + i0 + count);
-        sweepContiguousRun(row[0] + inner_lo + ob, row[1] + inner_lo + ob, density + i0, T + i0,
-                           lit + i0, count, wb, wc, attenuation);
+        sweepContiguousRun(row[0] + inner_lo + ob, row[1] + inner_lo + ob,
+                           density + (inner_lo - lo.x), T + i0, lit + i0, count, wb, wc,
+                           attenuation);
         if constexpr (kTrack) {
           auto moved = [&](int i) {
             return std::abs(T[i0 + size_t(i)] - old_row[size_t(i)]) > kChangeEpsilon;

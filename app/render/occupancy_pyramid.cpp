@@ -22,13 +22,18 @@ uint8_t brickOccupied(const Volume& v, int brick, glm::ivec3 cell) {
   const glm::ivec3 dims = v.dims();
   glm::ivec3 lo = glm::max(cell * brick - 1, glm::ivec3(0));
   glm::ivec3 hi = glm::min(cell * brick + brick + 1, dims);
-  const float* data = v.data();
-  for (int z = lo.z; z < hi.z; ++z)
-    for (int y = lo.y; y < hi.y; ++y) {
-      const float* row = data + v.index(0, y, z);
-      for (int x = lo.x; x < hi.x; ++x)
-        if (row[x] != 0.0f) return 1;
-    }
+  // Unallocated bricks read zero: look only into allocated ones.
+  const glm::ivec3 blo = lo >> Volume::kBrickShift, bhi = (hi - 1) >> Volume::kBrickShift;
+  for (int bz = blo.z; bz <= bhi.z; ++bz)
+    for (int by = blo.y; by <= bhi.y; ++by)
+      for (int bx = blo.x; bx <= bhi.x; ++bx) {
+        if (!v.brick({bx, by, bz})) continue;
+        const VoxelBox box = v.brickBox({bx, by, bz}).intersect({lo, hi});
+        for (int z = box.lo.z; z < box.hi.z; ++z)
+          for (int y = box.lo.y; y < box.hi.y; ++y)
+            for (int x = box.lo.x; x < box.hi.x; ++x)
+              if (v.at(x, y, z) != 0.0f) return 1;
+      }
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "app/session/history.h"
 
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 
@@ -12,20 +13,24 @@ namespace {
 // few percent; higher levels cost milliseconds per step for little.
 constexpr int kZstdLevel = 1;
 
-VoxelBox brickBox(glm::ivec3 brick, const Volume& volume) {
-  const glm::ivec3 lo = brick * History::kBrickSize;
-  return VoxelBox{lo, lo + History::kBrickSize}.intersect(volume.bounds());
+static_assert(History::kBrickSize == Volume::kBrickSize,
+              "the history's deltas are the volume's bricks");
+
+// Position of voxel p of brick storage (16³, x fastest).
+size_t inBrick(glm::ivec3 p) {
+  constexpr int m = Volume::kBrickSize - 1;
+  return (size_t(p.z & m) * Volume::kBrickSize + size_t(p.y & m)) * Volume::kBrickSize +
+         size_t(p.x & m);
 }
 
-// Calls fn(brick_box) for each brick of `box`, z-major then y then x (a fixed order).
-template <typename Fn>
-void forEachBrick(const VoxelBox& box, const Volume& volume, Fn&& fn) {
-  if (box.empty()) return;
-  const glm::ivec3 lo = box.lo / History::kBrickSize;
-  const glm::ivec3 hi = (box.hi + (History::kBrickSize - 1)) / History::kBrickSize;
-  for (int z = lo.z; z < hi.z; ++z)
-    for (int y = lo.y; y < hi.y; ++y)
-      for (int x = lo.x; x < hi.x; ++x) fn(glm::ivec3(x, y, z), brickBox({x, y, z}, volume));
+// Makes `to`'s brick b hold what `from`'s holds (unallocated stays unallocated).
+void copyBrick(const Volume& from, Volume& to, glm::ivec3 b) {
+  if (const float* src = from.brick(b)) {
+    std::memcpy(to.brickForWrite(b), src, Volume::kBrickBytes);
+  } else if (float* dst = to.brick(b) ? to.brickForWrite(b) : nullptr) {
+    std::memset(dst, 0, Volume::kBrickBytes);
+    to.releaseEmptyBrick(b);
+  }
 }
 
 }  // namespace
@@ -51,32 +56,32 @@ void History::record(const Volume& volume, const SceneState& before, const Scene
   step.label = label;
   step.before = before;
   step.after = after;
-  // The XOR of each changed brick, brick after brick; unchanged bricks are skipped.
+  // The XOR of each changed brick, brick after brick (in the volume's fixed brick order), over
+  // the brick's voxels inside the volume, z then y then x; unchanged bricks are skipped.
   std::vector<uint32_t> words;
-  const VoxelBox dirty = volume.dirtySince(committed_generation_);
-  forEachBrick(dirty, volume, [&](glm::ivec3 brick, const VoxelBox& box) {
+  for (const glm::ivec3 brick : volume.changedBricksSince(committed_generation_)) {
+    const float* now = volume.brick(brick);
+    const float* old = committed_.brick(brick);
+    if (!now && !old) continue;  // zero before and after
+    const VoxelBox box = volume.brickBox(brick);
     const size_t start = words.size();
     bool changed = false;
     for (int z = box.lo.z; z < box.hi.z; ++z)
-      for (int y = box.lo.y; y < box.hi.y; ++y) {
-        const size_t row = volume.index(box.lo.x, y, z);
-        const int n = box.hi.x - box.lo.x;
-        const float* now = volume.data() + row;
-        float* old = committed_.data() + row;
-        for (int i = 0; i < n; ++i) {
-          uint32_t a, b;
-          std::memcpy(&a, now + i, 4);
-          std::memcpy(&b, old + i, 4);
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) {
+          const size_t i = inBrick({x, y, z});
+          const uint32_t a = now ? std::bit_cast<uint32_t>(now[i]) : 0u;
+          const uint32_t b = old ? std::bit_cast<uint32_t>(old[i]) : 0u;
           words.push_back(a ^ b);
           changed |= a != b;
         }
-        std::memcpy(old, now, size_t(n) * sizeof(float));  // the copy follows the cloud
-      }
-    if (changed)
+    if (changed) {
       step.bricks.push_back(brick);
-    else
+      copyBrick(volume, committed_, brick);  // the copy follows the cloud
+    } else {
       words.resize(start);
-  });
+    }
+  }
   committed_generation_ = volume.generation();
   const bool scene_changed =
       std::memcmp(&before.canvas, &after.canvas, sizeof(Canvas)) != 0 ||
@@ -118,19 +123,16 @@ void History::applyDelta(const Step& step, Volume* volume) {
   size_t k = 0;
   VoxelBox changed;
   for (const glm::ivec3 brick : step.bricks) {
-    const VoxelBox box = brickBox(brick, *volume);
+    const VoxelBox box = volume->brickBox(brick);
+    float* now = volume->brickForWrite(brick);
     for (int z = box.lo.z; z < box.hi.z; ++z)
-      for (int y = box.lo.y; y < box.hi.y; ++y) {
-        const size_t row = volume->index(box.lo.x, y, z);
-        float* now = volume->data() + row;
-        for (int i = 0; i < box.hi.x - box.lo.x; ++i, ++k) {
-          uint32_t a;
-          std::memcpy(&a, now + i, 4);
-          a ^= words[k];
-          std::memcpy(now + i, &a, 4);
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x, ++k) {
+          float& v = now[inBrick({x, y, z})];
+          v = std::bit_cast<float>(std::bit_cast<uint32_t>(v) ^ words[k]);
         }
-        std::memcpy(committed_.data() + row, now, size_t(box.hi.x - box.lo.x) * sizeof(float));
-      }
+    volume->releaseEmptyBrick(brick);  // undoing a stroke gives its memory back
+    copyBrick(*volume, committed_, brick);
     changed = changed.unite(box);
   }
   volume->markDirty(changed);

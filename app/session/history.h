@@ -7,7 +7,8 @@
 // as the baseline.
 //
 // The history keeps a copy of the cloud as of its last step, to know what a new step changed.
-// It reads the volume's dirty boxes, brick by brick, so a sparse volume can keep this interface.
+// It reads the volume's changed bricks (Volume::changedBricksSince); the copy is sparse like the
+// volume, so it costs only the bricks that hold density.
 #pragma once
 
 #include <cstddef>
@@ -56,7 +57,7 @@ class History {
   size_t undoable() const { return cursor_; }
   // Bytes of compressed deltas held, and the committed copy of the cloud.
   size_t deltaBytes() const { return delta_bytes_; }
-  size_t copyBytes() const { return committed_.voxelCount() * sizeof(float); }
+  size_t copyBytes() const { return committed_.memoryBytes(); }
 
  private:
   struct Step {

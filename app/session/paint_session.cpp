@@ -257,17 +257,18 @@ void PaintSession::takeFrame(const Volume& frame) {
   // Only the box where the bytes differ is marked, so the history keeps a small delta.
   const glm::ivec3 d = volume_.dims();
   VoxelBox changed;
+  std::vector<float> a(size_t(d.x)), b(size_t(d.x));
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y) {
-      const float* a = volume_.data() + volume_.index(0, y, z);
-      const float* b = frame.data() + frame.index(0, y, z);
-      if (std::memcmp(a, b, sizeof(float) * size_t(d.x)) == 0) continue;
+      volume_.readLine({0, y, z}, 0, d.x, a.data());
+      frame.readLine({0, y, z}, 0, d.x, b.data());
+      if (std::memcmp(a.data(), b.data(), sizeof(float) * size_t(d.x)) == 0) continue;
       int lo = 0, hi = d.x;
-      while (std::memcmp(a + lo, b + lo, sizeof(float)) == 0) ++lo;
-      while (std::memcmp(a + hi - 1, b + hi - 1, sizeof(float)) == 0) --hi;
+      while (std::memcmp(&a[size_t(lo)], &b[size_t(lo)], sizeof(float)) == 0) ++lo;
+      while (std::memcmp(&a[size_t(hi - 1)], &b[size_t(hi - 1)], sizeof(float)) == 0) --hi;
+      volume_.writeLine({0, y, z}, 0, d.x, b.data());
       changed = changed.unite({{lo, y, z}, {hi, y + 1, z + 1}});
     }
-  std::memcpy(volume_.data(), frame.data(), sizeof(float) * volume_.voxelCount());
   volume_.markDirty(changed);
 }
 

@@ -1,6 +1,7 @@
 #include "app/session/session_replay.h"
 
 #include <cstring>
+#include <vector>
 
 #include "drivers/core/journal_records.h"
 
@@ -78,8 +79,13 @@ uint64_t volumeChecksum(const Volume& volume) {
   };
   const glm::ivec3 dims = volume.dims();
   mix(&dims, sizeof dims);
-  const size_t count = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
-  mix(volume.data(), count * sizeof(float));
+  // The voxels' bytes in the dense order (x fastest), as the dense grid held them.
+  std::vector<float> row(size_t(dims.x));
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y) {
+      volume.readLine({0, y, z}, 0, dims.x, row.data());
+      mix(row.data(), row.size() * sizeof(float));
+    }
   return hash;
 }
 

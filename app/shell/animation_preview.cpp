@@ -65,7 +65,7 @@ bool AnimationPreview::toggleWind(const PaintSession& session, std::string* erro
     return true;
   }
   const Volume& cloud = session.volume();
-  if (std::all_of(cloud.data(), cloud.data() + cloud.voxelCount(), [](float v) { return v == 0; }))
+  if (!cloud.hasDensity())
     return *error = "wind: the cloud is empty - paint or open one first", false;
   leave();
   kind_ = Kind::kWind;

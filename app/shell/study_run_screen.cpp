@@ -290,8 +290,7 @@ void StudyRunScreen::observeSession() {
   const bool volume_changed = v.generation() != seen_.generation;
   if (v.generation() != empty_checked_generation_) {
     empty_checked_generation_ = v.generation();
-    cloud_empty_ =
-        std::none_of(v.data(), v.data() + v.voxelCount(), [](float d) { return d > 0.0f; });
+    cloud_empty_ = !v.hasDensity();
     if (cloud_empty_) strokes_in_cloud_ = 0;
   }
   if (session_.strokesMapped() > seen_.strokes_mapped) {

@@ -47,7 +47,7 @@ Volume halfResolution(const Volume& volume) {
                 sum += volume.at(p.x, p.y, p.z);
                 ++n;
               }
-          half.data()[half.index(x, y, z)] = sum / float(n);
+          if (sum != 0.0f) half.voxelForWrite(x, y, z) = sum / float(n);
         }
   });
   half.markDirty(half.bounds());

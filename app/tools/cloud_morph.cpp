@@ -83,7 +83,7 @@ std::vector<std::pair<int, int>> greedyPairs(const std::vector<Particle>& from,
   return pairs;
 }
 
-void splat(glm::vec3 p, float mass, glm::ivec3 dims, float* out) {
+void splat(glm::vec3 p, float mass, glm::ivec3 dims, Volume& out) {
   p = glm::clamp(p - 0.5f, glm::vec3(0.0f), glm::vec3(dims - 1));
   const glm::ivec3 b = glm::min(glm::ivec3(glm::floor(p)), dims - 1);
   const glm::vec3 f = p - glm::vec3(b);
@@ -92,7 +92,7 @@ void splat(glm::vec3 p, float mass, glm::ivec3 dims, float* out) {
     const glm::ivec3 q = glm::min(b + o, dims - 1);
     const float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
     if (w == 0.0f) continue;
-    out[(size_t(q.z) * dims.y + q.y) * dims.x + q.x] += w * mass;
+    out.voxelForWrite(q.x, q.y, q.z) += w * mass;
   }
 }
 
@@ -146,7 +146,7 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
     for (auto [index, particle] : voxels) {
       const int x = int(index % d.x), y = int((index / d.x) % d.y),
                 z = int(index / (size_t(d.x) * d.y));
-      const float mass = v.data()[index] / float(of[particle].size());
+      const float mass = v.at(x, y, z) / float(of[particle].size());
       for (uint32_t k : of[particle]) {
         const glm::vec3 anchor = from_source ? paths_[k].source : paths_[k].target;
         items_.push_back({glm::vec3(x, y, z) + 0.5f - anchor, mass, k});
@@ -220,16 +220,13 @@ VoxelBox CloudMorph::frameInto(float t, Volume* out, const VoxelBox& previous) c
   });
   // 3. Clear what the previous frame wrote, then each plane adds its splats: those based one
   // plane below (their upper corners), then its own (their lower corners).
-  float* data = out->data();
-  const size_t plane_voxels = size_t(dims.x) * dims.y;
   const VoxelBox cleared = previous.intersect(out->bounds());
+  const std::vector<float> zeros(size_t(std::max(cleared.hi.x - cleared.lo.x, 0)), 0.0f);
   parallelFor(planes, 4, [&](size_t, size_t zb, size_t ze) {
     for (size_t z = zb; z < ze; ++z) {
       if (int(z) >= cleared.lo.z && int(z) < cleared.hi.z)
         for (int y = cleared.lo.y; y < cleared.hi.y; ++y)
-          std::fill_n(data + z * plane_voxels + size_t(y) * dims.x + cleared.lo.x,
-                      cleared.hi.x - cleared.lo.x, 0.0f);
-      float* plane = data + z * plane_voxels;
+          out->writeLine({cleared.lo.x, y, int(z)}, 0, int(zeros.size()), zeros.data());
       for (int upper = 1; upper >= 0; --upper) {
         if (upper && z == 0) continue;
         const size_t from = plane_start_[z - size_t(upper)], to = plane_start_[z - upper + 1];
@@ -245,7 +242,7 @@ VoxelBox CloudMorph::frameInto(float t, Volume* out, const VoxelBox& previous) c
             if (w == 0.0f) continue;
             const int qx = std::min(base.x + ox, dims.x - 1),
                       qy = std::min(base.y + oy, dims.y - 1);
-            plane[size_t(qy) * dims.x + qx] += w * s.mass;
+            out->voxelForWrite(qx, qy, int(z)) += w * s.mass;
           }
         }
       }
@@ -261,13 +258,12 @@ Volume CloudMorph::frameOneThreadReference(float t) const {
   t = std::clamp(t, 0.0f, 1.0f);
   Volume out = blank_;
   const glm::ivec3 dims = out.dims();
-  float* data = out.data();
   for (size_t i = 0; i < items_.size(); ++i) {
     const bool from_source = i < source_items_;
     if (from_source ? t >= 1.0f : t <= 0.0f) continue;
     const CarriedSplat& item = items_[i];
     splat(item.offset + paths_[item.path].at(t), (from_source ? 1.0f - t : t) * item.mass, dims,
-          data);
+          out);
   }
   out.markDirty(out.bounds());
   return out;

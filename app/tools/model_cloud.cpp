@@ -122,8 +122,7 @@ VoxelBox meshToCloud(const TriangleMesh& input, const ToolView& view,
             density *= std::clamp(eroded / params.falloff_voxels, 0.0f, 1.0f);
           }
           if (density <= 0) continue;
-          float& dst = volume->data()[volume->index(x, y, z)];
-          dst = std::max(dst, density);
+          volume->maxMerge(x, y, z, density);
           box = box.unite({{x, y, z}, {x + 1, y + 1, z + 1}});
         }
       written[k] = box;

@@ -91,8 +91,7 @@ VoxelBox mergeSmoothedDensity(const ParticleCounts& counts, const DensitySmoothi
           const float v = b[(z * size.y + y) * size.x + x] * scale;
           if (v < smoothing.cutoff) continue;
           const glm::ivec3 p = lo + glm::ivec3(x, y, int(z));
-          float& dst = volume->data()[volume->index(p.x, p.y, p.z)];
-          dst = std::max(dst, v);
+          volume->maxMerge(p.x, p.y, p.z, v);
           box = box.unite({p, p + 1});
         }
       written[z] = box;

@@ -40,7 +40,7 @@ float sampleDensity(const Volume& volume, glm::vec3 v) {
   const glm::vec3 f = v - glm::vec3(i0);
   auto at = [&](int x, int y, int z) {
     if (x < 0 || y < 0 || z < 0 || x >= d.x || y >= d.y || z >= d.z) return 0.0f;
-    return volume.data()[volume.index(x, y, z)];
+    return volume.at(x, y, z);
   };
   const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
   const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
@@ -56,8 +56,9 @@ VoxelBox nonZeroBox(const Volume& volume) {
   parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
     for (size_t z = z_begin; z < z_end; ++z) {
       VoxelBox box;
+      std::vector<float> row(size_t(d.x));
       for (int y = 0; y < d.y; ++y) {
-        const float* row = volume.data() + volume.index(0, y, int(z));
+        volume.readLine({0, y, int(z)}, 0, d.x, row.data());
         int lo = -1, hi = -1;
         for (int x = 0; x < d.x; ++x)
           if (row[x] != 0.0f) {
@@ -217,10 +218,11 @@ VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
     // One pass over the volume: which blocks hold density.
     block_occupied_.assign(block_count, 0);
     parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+      std::vector<float> row(size_t(d.x));
       for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
         for (int z = bz * kBlock; z < std::min(d.z, (bz + 1) * kBlock); ++z)
           for (int y = 0; y < d.y; ++y) {
-            const float* row = density->data() + density->index(0, y, z);
+            density->readLine({0, y, z}, 0, d.x, row.data());
             for (int x = 0; x < d.x; ++x)
               if (row[x] != 0.0f) block_occupied_[block_index({x / kBlock, y / kBlock, bz})] = 1;
           }
@@ -300,8 +302,8 @@ VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
   parallelFor(size_t(size.z), 8, [&](size_t, size_t z_begin, size_t z_end) {
     for (int z = int(z_begin); z < int(z_end); ++z)
       for (int y = 0; y < size.y; ++y)
-        std::copy_n(&scratch_density_[(size_t(z) * size.y + y) * size.x], size.x,
-                    density->data() + density->index(box.lo.x, box.lo.y + y, box.lo.z + z));
+        density->writeLine({box.lo.x, box.lo.y + y, box.lo.z + z}, 0, size.x,
+                           &scratch_density_[(size_t(z) * size.y + y) * size.x]);
   });
   // Blocks outside the box kept their density; inside it they hold what was just written.
   for (int bz = 0; bz < blocks.z; ++bz)
@@ -350,8 +352,8 @@ VoxelBox WindSolver::advectDensityEveryVoxel(float dt, Volume* density) {
   parallelFor(size_t(size.z), 8, [&](size_t, size_t z_begin, size_t z_end) {
     for (int z = int(z_begin); z < int(z_end); ++z)
       for (int y = 0; y < size.y; ++y)
-        std::copy_n(&scratch_density_[(size_t(z) * size.y + y) * size.x], size.x,
-                    density->data() + density->index(box.lo.x, box.lo.y + y, box.lo.z + z));
+        density->writeLine({box.lo.x, box.lo.y + y, box.lo.z + z}, 0, size.x,
+                           &scratch_density_[(size_t(z) * size.y + y) * size.x]);
   });
   density->markDirty(box);
   occupancy_instance_ = 0;  // the block occupancy was not kept

@@ -88,15 +88,12 @@ void fillRegion(Volume& v, glm::vec3 lo, glm::vec3 hi, const Shape& shape) {
   glm::ivec3 a = glm::clamp(glm::ivec3(glm::floor(v.worldToVoxel(lo))), glm::ivec3(0), dims);
   glm::ivec3 b = glm::clamp(glm::ivec3(glm::ceil(v.worldToVoxel(hi))) + 1, glm::ivec3(0), dims);
   if (VoxelBox{a, b}.empty()) return;
-  float* data = v.data();
   parallelFor(size_t(b.z - a.z), 1, [&](size_t, size_t z0, size_t z1) {
     for (int z = a.z + int(z0); z < a.z + int(z1); ++z)
       for (int y = a.y; y < b.y; ++y)
         for (int x = a.x; x < b.x; ++x) {
           glm::vec3 p = v.voxelToWorld(glm::vec3(x, y, z) + 0.5f);
-          float d = std::clamp(shape(p), 0.0f, 1.0f);
-          float& out = data[v.index(x, y, z)];
-          out = std::max(out, d);
+          v.maxMerge(x, y, z, std::clamp(shape(p), 0.0f, 1.0f));
         }
   });
   v.markDirty({a, b});
@@ -190,18 +187,20 @@ Volume makeSphere(glm::ivec3 dims, glm::vec3 centre, float radius, float density
 }
 
 double filledFraction(const Volume& volume) {
-  const float* d = volume.data();
-  size_t n = volume.voxelCount();
-  const size_t grain = 1 << 16;
-  std::vector<size_t> counts(chunkCount(n, grain), 0);
-  parallelFor(n, grain, [&](size_t chunk, size_t b, size_t e) {
-    size_t c = 0;
-    for (size_t i = b; i < e; ++i) c += d[i] > 0.0f;
-    counts[chunk] = c;
+  // Unallocated bricks hold no density; count the allocated ones, brick by brick in parallel.
+  const std::vector<glm::ivec3> bricks = volume.allocatedBrickList();
+  std::vector<size_t> counts(bricks.size(), 0);
+  parallelFor(bricks.size(), 16, [&](size_t, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const float* d = volume.brick(bricks[i]);
+      size_t c = 0;
+      for (int k = 0; k < Volume::kBrickVoxels; ++k) c += d[k] > 0.0f;
+      counts[i] = c;
+    }
   });
   size_t total = 0;
   for (size_t c : counts) total += c;
-  return double(total) / double(n);
+  return double(total) / double(volume.voxelCount());
 }
 
 }  // namespace cb

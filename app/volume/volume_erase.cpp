@@ -27,11 +27,11 @@ VoxelBox scaleDensity(Volume& volume, const VoxelBox& box, Keep&& keep) {
   for (int z = box.lo.z; z < box.hi.z; ++z)
     for (int y = box.lo.y; y < box.hi.y; ++y)
       for (int x = box.lo.x; x < box.hi.x; ++x) {
-        float& d = volume.data()[volume.index(x, y, z)];
+        const float d = volume.at(x, y, z);
         if (d == 0.0f) continue;
         const float k = keep(volume.voxelToWorld(glm::vec3(x, y, z) + 0.5f));
         if (k >= 1.0f) continue;
-        d *= k;
+        volume.voxelForWrite(x, y, z) = d * k;
         changed = changed.unite({{x, y, z}, {x + 1, y + 1, z + 1}});
       }
   if (!changed.empty()) volume.markDirty(changed);

@@ -39,14 +39,25 @@ Volume allocate(const VolumeFileHeader& h, const std::string& name) {
   }
 }
 
-// Refuses non-finite densities and marks the whole volume changed.
-Volume finish(Volume v, const std::string& name) {
-  const float* d = v.data();
-  for (size_t i = 0; i < v.voxelCount(); ++i)
-    if (!std::isfinite(d[i]))
-      throw VolumeFileError(name, "non-finite density at voxel index " + std::to_string(i));
+// Refuses a non-finite density (`first_bad`: its dense index, or voxelCount() when there is
+// none) and marks the whole volume changed.
+Volume finish(Volume v, size_t first_bad, const std::string& name) {
+  if (first_bad < v.voxelCount())
+    throw VolumeFileError(name, "non-finite density at voxel index " + std::to_string(first_bad));
   v.markDirty(v.bounds());
   return v;
+}
+
+// Stores one row of voxels (x fastest) at (0, y, z), noting the first non-finite one.
+void storeRow(Volume& v, int y, int z, const float* row, size_t* first_bad) {
+  const int n = v.dims().x;
+  if (*first_bad == v.voxelCount())
+    for (int x = 0; x < n; ++x)
+      if (!std::isfinite(row[x])) {
+        *first_bad = v.index(x, y, z);
+        break;
+      }
+  v.writeLine({0, y, z}, 0, n, row);
 }
 
 }  // namespace
@@ -56,9 +67,15 @@ void saveVolume(const Volume& volume, const std::string& path) {
   if (!f)
     throw VolumeFileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
   std::string header = volumeFileHeader(volume) + "\n";
-  bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size() &&
-            std::fwrite(volume.data(), sizeof(float), volume.voxelCount(), f.get()) ==
-                volume.voxelCount();
+  bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
+  // Row by row, so a sparse sky is never made dense in memory.
+  const glm::ivec3 d = volume.dims();
+  std::vector<float> row(size_t(d.x));
+  for (int z = 0; z < d.z && ok; ++z)
+    for (int y = 0; y < d.y && ok; ++y) {
+      volume.readLine({0, y, z}, 0, d.x, row.data());
+      ok = std::fwrite(row.data(), sizeof(float), row.size(), f.get()) == row.size();
+    }
   if (!ok || std::fflush(f.get()) != 0)
     throw VolumeFileError(path, std::string("write failed: ") + std::strerror(errno));
 }
@@ -81,12 +98,24 @@ Volume readVolume(std::istream& in, const std::string& name, std::optional<uint6
     checkVolumeFileData(h, *size >= header_bytes ? *size - header_bytes : 0, name);
     checkVolumeFileLimits(h, name);
     Volume v = allocate(h, name);
-    in.read(reinterpret_cast<char*>(v.data()), std::streamsize(h.data_bytes));
-    // The file may have changed since its size was taken.
-    checkVolumeFileData(h, uint64_t(in.gcount()), name);
+    // Row by row into the bricks: only bricks holding density take memory.
+    const glm::ivec3 d = v.dims();
+    std::vector<float> row(size_t(d.x));
+    const std::streamsize row_bytes = std::streamsize(row.size() * sizeof(float));
+    uint64_t got = 0;
+    size_t first_bad = v.voxelCount();
+    for (int z = 0; z < d.z; ++z)
+      for (int y = 0; y < d.y; ++y) {
+        in.read(reinterpret_cast<char*>(row.data()), row_bytes);
+        got += uint64_t(in.gcount());
+        // The file may have changed since its size was taken.
+        if (in.gcount() != row_bytes) checkVolumeFileData(h, got, name);
+        storeRow(v, y, z, row.data(), &first_bad);
+      }
+    checkVolumeFileData(h, got, name);
     if (in.peek() != std::char_traits<char>::eof())
       checkVolumeFileData(h, h.data_bytes, name, /*at_least=*/true);
-    return finish(std::move(v), name);
+    return finish(std::move(v), first_bad, name);
   }
 
   // Unknown size (a pipe): the limits first, then the data into a buffer that grows with what
@@ -103,9 +132,17 @@ Volume readVolume(std::istream& in, const std::string& name, std::optional<uint6
   if (data.size() > h.data_bytes) checkVolumeFileData(h, h.data_bytes, name, /*at_least=*/true);
   checkVolumeFileData(h, data.size(), name);
   Volume v = allocate(h, name);
-  std::memcpy(v.data(), data.data(), h.data_bytes);
+  const glm::ivec3 d = v.dims();
+  std::vector<float> row(size_t(d.x));
+  size_t first_bad = v.voxelCount();
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y) {
+      std::memcpy(row.data(), data.data() + v.index(0, y, z) * sizeof(float),
+                  row.size() * sizeof(float));
+      storeRow(v, y, z, row.data(), &first_bad);
+    }
   data = {};
-  return finish(std::move(v), name);
+  return finish(std::move(v), first_bad, name);
 }
 
 Volume loadVolume(const std::string& path) {

@@ -4,7 +4,7 @@
 #include <exception>
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Dense.h>
+#include <openvdb/tools/Prune.h>
 
 namespace cb {
 
@@ -16,13 +16,19 @@ void saveVolumeVdb(const Volume& volume, const std::string& path) {
                          "); an OpenVDB transform needs one uniform voxel size");
   try {
     openvdb::initialize();
-    const glm::ivec3 d = volume.dims();
-    // Our voxels are x fastest, then y, then z: OpenVDB's Dense LayoutXYZ (offset i + j·mY + k·mZ).
-    const openvdb::CoordBBox bbox(openvdb::Coord(0, 0, 0),
-                                  openvdb::Coord(d.x - 1, d.y - 1, d.z - 1));
-    openvdb::tools::Dense<const float, openvdb::tools::LayoutXYZ> dense(bbox, volume.data());
+    // Brick by brick: zero voxels stay inactive background, as copyFromDense with tolerance 0
+    // leaves them, and a sparse sky is never made dense.
     openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
-    openvdb::tools::copyFromDense(dense, grid->tree(), /*tolerance=*/0.0f);
+    openvdb::FloatGrid::Accessor voxels = grid->getAccessor();
+    for (const glm::ivec3 b : volume.allocatedBrickList()) {
+      const VoxelBox box = volume.brickBox(b);
+      for (int z = box.lo.z; z < box.hi.z; ++z)
+        for (int y = box.lo.y; y < box.hi.y; ++y)
+          for (int x = box.lo.x; x < box.hi.x; ++x)
+            if (const float v = volume.at(x, y, z); v != 0.0f)
+              voxels.setValue(openvdb::Coord(x, y, z), v);
+    }
+    openvdb::tools::prune(grid->tree());
     // Integer index coordinates are voxel centres in OpenVDB, so the translation is the centre of
     // voxel (0,0,0).
     openvdb::math::Transform::Ptr xform =

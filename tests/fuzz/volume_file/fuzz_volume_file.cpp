@@ -20,8 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const cb::Volume v = cb::readVolume(in, "fuzz.cbvol", known);
       const size_t header = bytes.find('\n') + 1;
       if (header == 0 || size - header != v.voxelCount() * sizeof(float)) std::abort();
-      for (size_t i = 0; i < v.voxelCount(); ++i)
-        if (!std::isfinite(v.data()[i])) std::abort();
+      for (const float d : v.toDense())
+        if (!std::isfinite(d)) std::abort();
     } catch (const cb::VolumeFileError& e) {
       if (std::string(e.what()).find("volume file 'fuzz.cbvol': ") != 0) std::abort();
     }

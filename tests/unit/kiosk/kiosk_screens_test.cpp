@@ -39,7 +39,7 @@ const std::string kConfigDir = std::string(CB_SOURCE_DIR) + "/config";
 
 double density(const Volume& v) {
   double sum = 0.0;
-  for (size_t i = 0; i < v.voxelCount(); ++i) sum += v.data()[i];
+  for (float d : v.toDense()) sum += d;
   return sum;
 }
 

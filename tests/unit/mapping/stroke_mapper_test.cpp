@@ -66,7 +66,7 @@ TEST(StrokeMapper, ByteIdenticalOnOneTwoAndEightThreads) {
       setWorkerThreads(threads);
       Volume v(glm::ivec3(128));
       mapper().map(s, v, method);
-      results.emplace_back(v.data(), v.data() + v.voxelCount());
+      results.push_back(v.toDense());
     }
     setWorkerThreads(0);
     for (size_t i = 1; i < results.size(); ++i)
@@ -81,7 +81,7 @@ TEST(StrokeMapper, StrokeIndexSeedsTheScatter) {
   Volume va(glm::ivec3(128)), vb(glm::ivec3(128));
   mapper().map(a, va);
   mapper().map(b, vb);
-  EXPECT_NE(0, std::memcmp(va.data(), vb.data(), va.voxelCount() * 4));
+  EXPECT_NE(0, std::memcmp(va.toDense().data(), vb.toDense().data(), va.voxelCount() * 4));
 }
 
 TEST(StrokeMapper, MergesWithMaxAndMarksTheDirtyBox) {
@@ -104,13 +104,16 @@ TEST(StrokeMapper, MergesWithMaxAndMarksTheDirtyBox) {
         }
       }
   // Mapping again is a no-op under max; mapping onto a denser volume keeps it.
-  std::vector<float> once(v.data(), v.data() + v.voxelCount());
+  std::vector<float> once = v.toDense();
   mapper().map(s, v);
-  EXPECT_EQ(0, std::memcmp(once.data(), v.data(), once.size() * 4));
+  EXPECT_EQ(0, std::memcmp(once.data(), v.toDense().data(), once.size() * 4));
   Volume dense(glm::ivec3(128));
   dense.fill(1.0f);
   mapper().map(s, dense);
-  for (size_t i = 0; i < dense.voxelCount(); ++i) ASSERT_EQ(dense.data()[i], 1.0f);
+  {
+    const std::vector<float> dense_dense = dense.toDense();
+    for (size_t i = 0; i < dense.voxelCount(); ++i) ASSERT_EQ(dense_dense[i], 1.0f);
+  }
   // The overlay's circles are the last HMM stroke's.
   EXPECT_EQ(mapper().lastCircles().size(), r.circles.size());
 }
@@ -163,10 +166,16 @@ TEST(StrokeMapperBadInput, CanvasParallelToTheView) {
   Volume v(glm::ivec3(64));
   MappingReport r = mapper().map(s, v);
   EXPECT_TRUE(hasWarning(r, "parallel to the canvas"));
-  for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v.data()[i]));
+  {
+    const std::vector<float> v_dense = v.toDense();
+    for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v_dense[i]));
+  }
   MappingReport rm = mapper().map(s, v, MappingMethod::kRayMarching);
   (void)rm;
-  for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v.data()[i]));
+  {
+    const std::vector<float> v_dense = v.toDense();
+    for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v_dense[i]));
+  }
 }
 
 TEST(StrokeMapperBadInput, NaNValuesAreTreatedAsEmpty) {
@@ -175,7 +184,10 @@ TEST(StrokeMapperBadInput, NaNValuesAreTreatedAsEmpty) {
   Volume v(glm::ivec3(64));
   MappingReport r = mapper().map(s, v);
   EXPECT_TRUE(hasWarning(r, "NaN"));
-  for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v.data()[i]));
+  {
+    const std::vector<float> v_dense = v.toDense();
+    for (size_t i = 0; i < v.voxelCount(); ++i) ASSERT_TRUE(std::isfinite(v_dense[i]));
+  }
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ TEST(LightVolume, EmptyVolumeIsFullyLit) {
 
 TEST(LightVolume, AxisAlignedSweepEqualsTheProductOfAttenuations) {
   Volume v(glm::ivec3(8));
-  for (int y = 0; y < 8; ++y) v.data()[v.index(3, y, 4)] = 0.5f;
+  for (int y = 0; y < 8; ++y) v.voxelForWrite(3, y, 4) = 0.5f;
   v.markDirty(v.bounds());
   Light light;
   light.direction = Light::directionTowards(glm::vec3(0.0f, 10.0f, 0.0f));  // straight up
@@ -87,7 +87,7 @@ TEST(LightVolume, DirtyUpdateMatchesAFullRecomputeAndTouchesOnlyTheShadowSide) {
   VoxelBox block{{20, 30, 24}, {30, 38, 32}};
   for (int z = block.lo.z; z < block.hi.z; ++z)
     for (int y = block.lo.y; y < block.hi.y; ++y)
-      for (int x = block.lo.x; x < block.hi.x; ++x) v.data()[v.index(x, y, z)] = 0.8f;
+      for (int x = block.lo.x; x < block.hi.x; ++x) v.voxelForWrite(x, y, z) = 0.8f;
   v.markDirty(block);
   VoxelBox touched = sweepLightVolume(incremental, v, light, block);
   EXPECT_EQ(touched.intersect(block), block);
@@ -113,7 +113,7 @@ TEST(LightVolume, WideDirtyUpdateIsDeterministicAndMatchesAFullRecompute) {
   for (int z = block.lo.z; z < block.hi.z; ++z)
     for (int y = block.lo.y; y < block.hi.y; ++y)
       for (int x = block.lo.x; x < block.hi.x; ++x)
-        v.data()[v.index(x, y, z)] = 0.3f + 0.005f * float(x);
+        v.voxelForWrite(x, y, z) = 0.3f + 0.005f * float(x);
   v.markDirty(block);
   setWorkerThreads(1);
   VoxelBox touched_one = sweepLightVolume(one, v, light, block);

@@ -69,7 +69,7 @@ TEST(OccupancyPyramid, DirtyUpdateEqualsARebuild) {
   VoxelBox cleared{{10, 10, 10}, {30, 30, 30}};
   for (int z = 10; z < 30; ++z)
     for (int y = 10; y < 30; ++y)
-      for (int x = 10; x < 30; ++x) v.data()[v.index(x, y, z)] = 0.0f;
+      for (int x = 10; x < 30; ++x) v.voxelForWrite(x, y, z) = 0.0f;
   v.markDirty(cleared);
   VoxelBox cells = updateOccupancy(p, v, v.dirtySince(1));
   EXPECT_FALSE(cells.empty());

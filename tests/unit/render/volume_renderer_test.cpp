@@ -194,7 +194,7 @@ TEST_F(VolumeRendererTest, OnlyTheDirtyBoxIsUploadedAndItShows) {
   VoxelBox block{{28, 28, 28}, {36, 36, 36}};
   for (int z = 28; z < 36; ++z)
     for (int y = 28; y < 36; ++y)
-      for (int x = 28; x < 36; ++x) v.data()[v.index(x, y, z)] = 1.0f;
+      for (int x = 28; x < 36; ++x) v.voxelForWrite(x, y, z) = 1.0f;
   v.markDirty(block);
   SyncStats s = renderer.sync(v, Light{});
   EXPECT_EQ(s.dirty, block);
@@ -211,7 +211,7 @@ TEST_F(VolumeRendererTest, ANewVolumeAtTheSameAddressIsUploadedWhole) {
   Volume v(glm::ivec3(32));
   renderer.sync(v, Light{});
   Volume other(glm::ivec3(32));
-  other.data()[other.index(16, 16, 16)] = 1.0f;
+  other.voxelForWrite(16, 16, 16) = 1.0f;
   ASSERT_EQ(other.generation(), v.generation());
   v = std::move(other);
   SyncStats s = renderer.sync(v, Light{});

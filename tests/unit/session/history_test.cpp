@@ -18,7 +18,7 @@ bool sameBytes(const std::vector<float>& a, const std::vector<float>& b) {
 }
 
 std::vector<float> voxels(const Volume& v) {
-  return std::vector<float>(v.data(), v.data() + v.voxelCount());
+  return v.toDense();
 }
 
 // Follows the volume's dirty boxes the way the renderer does.

@@ -16,7 +16,7 @@ constexpr int kW = 320, kH = 180, kGrid = 64;
 
 double total(const Volume& v) {
   double sum = 0;
-  for (size_t i = 0; i < v.voxelCount(); ++i) sum += v.data()[i];
+  for (float d : v.toDense()) sum += d;
   return sum;
 }
 
@@ -69,11 +69,9 @@ TEST(SessionModes, OnlyPaintModePaintsAndRubOutCutsAlongTheView) {
 TEST(SessionModes, VacuumCutsASoftSphereAndNothingOutsideIt) {
   Painter p;
   Volume& v = p.session.volume();
-  for (size_t i = 0; i < v.voxelCount(); ++i) v.data()[i] = 0.5f;
-  v.markDirty(v.bounds());
+  v.fill(0.5f);
   p.apply(ui::DeleteAll{});  // a step, then refill as the base of the vacuum test
-  for (size_t i = 0; i < v.voxelCount(); ++i) v.data()[i] = 0.5f;
-  v.markDirty(v.bounds());
+  v.fill(0.5f);
   const glm::vec3 centre(0.1f, 0.2f, -0.1f);
   p.apply(ui::VacuumCut{centre, 0.4f});
   const auto at = [&](glm::vec3 w) {

@@ -61,7 +61,7 @@ void expectMatchesGolden(const std::string& name, const ImageRgba8& image) {
 
 double density(const Volume& v) {
   double sum = 0;
-  for (size_t i = 0; i < v.voxelCount(); ++i) sum += v.data()[i];
+  for (float d : v.toDense()) sum += d;
   return sum;
 }
 
@@ -213,16 +213,14 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   EXPECT_NE(session.selectedBrush(), before);
   walk.pen(counts[0]);  // 9
   EXPECT_EQ(session.strokesMapped(), 1u);
-  const std::vector<float> after_left(session.volume().data(),
-                                      session.volume().data() + session.volume().voxelCount());
+  const std::vector<float> after_left = session.volume().toDense();
   EXPECT_GT(density(session.volume()), 0.0);
   walk.keys("c");       // 10
   walk.keys("c");       // 11
   walk.pen(counts[1]);  // 12
   EXPECT_EQ(session.strokesMapped(), 2u);
   walk.keys("ctrl+z");  // 13
-  EXPECT_TRUE(std::equal(after_left.begin(), after_left.end(), session.volume().data()))
-      << "undo removed exactly the right stroke";
+  EXPECT_TRUE(after_left == session.volume().toDense()) << "undo removed exactly the right stroke";
   walk.keys("4");  // 14
   EXPECT_EQ(session.mode(), Mode::kErase);
   shoot("mode_erase");

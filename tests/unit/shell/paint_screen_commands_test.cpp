@@ -185,7 +185,7 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
   EXPECT_FALSE(loop.screen().menuOpen()) << "a choice closes the menu";
   EXPECT_EQ(session.strokesMapped(), 0u) << "neither the tap nor the light-mode drag painted";
   double density = 0;
-  for (size_t i = 0; i < session.volume().voxelCount(); ++i) density += session.volume().data()[i];
+  for (float d : session.volume().toDense()) density += d;
   EXPECT_EQ(density, 0.0);
   const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session);

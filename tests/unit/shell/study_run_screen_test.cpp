@@ -389,7 +389,7 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
 
   const Volume& volume = rig.session->volume();
   size_t nonzero = 0;
-  for (size_t i = 0; i < volume.voxelCount(); ++i) nonzero += volume.data()[i] != 0.0f;
+  for (float d : volume.toDense()) nonzero += d != 0.0f;
   ASSERT_GT(nonzero, 0u);
   openvdb::initialize();
   openvdb::io::File vdb(rig.folder + "/tasks/cloud1.vdb");

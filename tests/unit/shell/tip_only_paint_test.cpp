@@ -77,7 +77,7 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
       << status;
   EXPECT_GT(session.strokesMapped(), 0u);
   double density = 0;
-  for (size_t i = 0; i < session.volume().voxelCount(); ++i) density += session.volume().data()[i];
+  for (float d : session.volume().toDense()) density += d;
   EXPECT_GT(density, 0.0) << "the strokes of a pen without pressure made cloud";
   // The session journal holds what was painted: the level while the tip was down, the device's
   // own pressure_raw 0, and nothing while hovering.

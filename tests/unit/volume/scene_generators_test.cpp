@@ -11,7 +11,7 @@ namespace {
 
 bool sameBytes(const Volume& a, const Volume& b) {
   return a.dims() == b.dims() &&
-         std::memcmp(a.data(), b.data(), a.voxelCount() * sizeof(float)) == 0;
+         std::memcmp(a.toDense().data(), b.toDense().data(), a.voxelCount() * sizeof(float)) == 0;
 }
 
 TEST(SceneGenerators, BundledCumulusFillsRoughlyThirtyPercent) {
