@@ -33,6 +33,7 @@ const Bench kBenches[] = {
      benchTools},
     {"scale", "1280x720 .. 3840x2160 on 1 and 2 threads: frame, orbit, painting, pen-up",
      benchScale},
+    {"sky", "the sparse volume's bytes for 1x, 4x, 16x sky area, against the dense grid", benchSky},
 };
 
 }  // namespace

@@ -12,4 +12,5 @@ int benchStyles(int argc, char** argv);
 int benchStudy(int argc, char** argv);
 int benchTools(int argc, char** argv);
 int benchScale(int argc, char** argv);
+int benchSky(int argc, char** argv);
 }  // namespace cb
