@@ -34,7 +34,14 @@ VoxelBox scaleDensity(Volume& volume, const VoxelBox& box, Keep&& keep) {
         volume.voxelForWrite(x, y, z) = d * k;
         changed = changed.unite({{x, y, z}, {x + 1, y + 1, z + 1}});
       }
-  if (!changed.empty()) volume.markDirty(changed);
+  if (changed.empty()) return changed;
+  volume.markDirty(changed);
+  // Bricks the erase emptied give their memory back (they read zero either way).
+  const glm::ivec3 lo = changed.lo >> Volume::kBrickShift,
+                   hi = (changed.hi - 1) >> Volume::kBrickShift;
+  for (int bz = lo.z; bz <= hi.z; ++bz)
+    for (int by = lo.y; by <= hi.y; ++by)
+      for (int bx = lo.x; bx <= hi.x; ++bx) volume.releaseEmptyBrick({bx, by, bz});
   return changed;
 }
 

@@ -1,5 +1,6 @@
 // The two erase styles of thesis §3.5 as free functions over the volume (OpenVDB tools style).
-// Both return the voxel box they changed (already marked dirty) and change nothing outside it.
+// Both return the voxel box they changed (already marked dirty) and change nothing outside it;
+// bricks they leave all zero are released (Volume::releaseEmptyBrick).
 #pragma once
 
 #include <glm/glm.hpp>
