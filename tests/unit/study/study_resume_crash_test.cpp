@@ -367,10 +367,8 @@ TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOn
   EXPECT_NE(json.find("\"task:second\", \"questionnaire\""), std::string::npos) << json;
   // A recorded pen has no serial to report, and the offscreen display no refresh: both null,
   // each with the reason.
-  EXPECT_NE(json.find("\"serial\": null, \"serial_note\": \"replay: "), std::string::npos)
-      << json;
-  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "),
-            std::string::npos)
+  EXPECT_NE(json.find("\"serial\": null, \"serial_note\": \"replay: "), std::string::npos) << json;
+  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "), std::string::npos)
       << json;
   const test::CommandRun replay =
       test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal);

@@ -80,8 +80,7 @@ TEST(StudyRunCli, TheBundledProtocolAsksForItsOperatorAndVenueThenRecords) {
   EXPECT_NE(json.find("\"status\": \"running\""), std::string::npos) << "stopped at consent";
   EXPECT_NE(json.find("\"platform\": \"surfaceless\""), std::string::npos) << json;
   // An offscreen buffer has no refresh rate: null, and why (not a made-up number).
-  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "),
-            std::string::npos)
+  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "), std::string::npos)
       << json;
   EXPECT_NE(readText(folder + "/questionnaire.csv").find("P01,NA,NA"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(folder + "/session.cbj"));
