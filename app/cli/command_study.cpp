@@ -3,6 +3,7 @@
 // of one or many sessions; `study volume` exports a saved volume; `study report` writes the
 // offline HTML report of questionnaire answers; `study check` validates a study protocol;
 // `study withdraw` deletes one participant's data.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -10,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -25,6 +27,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
+#include "app/session/session_resume.h"
 #include "app/session/sync_marker_sender.h"
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
@@ -46,6 +49,7 @@
 #include "app/volume/volume_file.h"
 #include "drivers/core/clock.h"
 #include "drivers/open_pen_source.h"
+#include "drivers/replay/replay_pen_source.h"
 
 namespace cb {
 namespace {
@@ -62,6 +66,7 @@ const char kStudyHelp[] =
     "                            [--size WxH] [--grid N] [--backend NAME] [--pen-device PATH]\n"
     "                            [--journal FILE] [--keys LIST] [--frames N] [--seconds S]\n"
     "                            [--sync-udp [HOST:]PORT]  (task and stroke boundaries as UDP)\n"
+    "                            [--resume FOLDER] [--end-seconds S]\n"
     "\n"
     "export   pen traces of one session or a whole study, one file per kind (sessions\n"
     "         concatenated in the order given, each row or trace group tagged with the\n"
@@ -109,7 +114,16 @@ const char kStudyHelp[] =
     "         demographics.csv and tasks/TASK.{vdb,cbvol,exr,png}; its path is printed first.\n"
     "         --participant N picks participant N (id and task order; default: the first\n"
     "         number whose id has no folder in DIR); --venue is required when the protocol\n"
-    "         names more than one, --operator when it requires one.\n";
+    "         names more than one, --operator when it requires one.\n"
+    "         --resume FOLDER runs the session in FOLDER; when its journal already holds one (a\n"
+    "         crash, a power cut), it is carried on: the journal is replayed (the cloud, the\n"
+    "         stage, the tutorial step, the answers, the operator's pause, the stage clock,\n"
+    "         which does not count the time the runner was down) and recording goes on after\n"
+    "         its last whole record; protocol, participant, venue and operator are the\n"
+    "         session's own. Use the same --size and --grid. With --backend replay the\n"
+    "         session's clock is the recording's time line, and a resumed run's pen carries on\n"
+    "         after the last sample the journal holds. --end-seconds: how long the closing\n"
+    "         page shows (default 8).\n";
 
 int fail(const std::string& message, int code = 1) {
   std::fprintf(stderr, "cloudbrush study: %s\n", message.c_str());
@@ -401,15 +415,67 @@ int64_t monotonicNowNs() {
       .count();
 }
 
+// What a session folder's journal holds for `study run --resume`.
+struct FolderJournal {
+  JournalReadResult read;
+  std::optional<StudySessionInfo> info;  // its study.info marker (none: nothing to resume)
+  std::vector<StudyRunRecord> markers;   // its other study.* markers, in order
+  std::vector<size_t> marker_record;     // each marker's index in read.records
+  int64_t last_record_ns = 0, last_sample_ns = -1;
+};
+
+FolderJournal readFolderJournal(const std::string& path) {
+  FolderJournal f;
+  f.read = readJournal(path);
+  for (size_t i = 0; i < f.read.records.size(); ++i) {
+    const JournalRecord& r = f.read.records[i];
+    f.last_record_ns = i == 0 ? r.t_ns : std::max(f.last_record_ns, r.t_ns);
+    if (r.type == JournalRecordType::kPenSample) f.last_sample_ns = r.t_ns;
+    if (r.type != JournalRecordType::kMarker) continue;
+    const std::string text(r.payload.begin(), r.payload.end());
+    StudySessionInfo info;
+    if (!f.info && parseStudyInfoMarker(text, &info)) {
+      f.info = info;
+    } else if (text.rfind("study.", 0) == 0) {
+      f.markers.push_back({r.t_ns, text});
+      f.marker_record.push_back(i);
+    }
+  }
+  return f;
+}
+
 int runStudySession(Args& args) {
   auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
                                "drm-device", "size", "grid", "backend", "pen-device", "journal",
-                               "keys", "frames", "seconds", "end-seconds", "sync-udp"});
+                               "keys", "frames", "seconds", "end-seconds", "sync-udp", "resume"});
   if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
+  // --resume FOLDER: a session folder; when its journal holds a session, it is carried on.
+  const std::string resume_folder = args.get("resume", "");
+  const std::string resume_journal = resume_folder + "/session.cbj";
+  FolderJournal previous;
+  std::error_code ec;
+  if (!resume_folder.empty() && std::filesystem::exists(resume_journal, ec)) {
+    previous = readFolderJournal(resume_journal);
+    if (!previous.info && (!previous.markers.empty() || previous.last_sample_ns >= 0))
+      return fail("run: --resume: " + resume_journal +
+                  " holds pen samples or markers but no study.info record (not a study "
+                  "session?); not resuming, and not overwriting it");
+  }
+  const bool resuming = previous.info.has_value();
   // The protocol is checked completely before anything opens: no session starts on a guess.
+  // A resumed session reads the protocol it was started with, unless one is named.
   std::string path;
   StudyProtocol protocol;
-  if (const int code = loadProtocolArgument(args, "run", &path, &protocol)) return code;
+  if (resuming && args.positional().size() < 3) {
+    path = previous.info->protocol_file;
+    try {
+      protocol = loadStudyProtocol(path);
+    } catch (const StudyProtocolError& e) {
+      return fail(std::string("run: --resume: ") + e.what());
+    }
+  } else if (const int code = loadProtocolArgument(args, "run", &path, &protocol)) {
+    return code;
+  }
   const std::vector<std::string> missing = missingProtocolFiles(protocol);
   for (const std::string& file : missing)
     std::fprintf(stderr, "cloudbrush study: run: %s: missing file %s\n", path.c_str(),
@@ -420,9 +486,13 @@ int runStudySession(Args& args) {
   info.protocol_version = protocol.version;
   info.protocol_file = std::filesystem::absolute(path).string();
   info.operator_initials = args.get("operator", "");
+  info.venue = args.get("venue", protocol.venues.size() == 1 ? protocol.venues[0].id : "");
+  if (resuming) {  // who, where and when come from the session's own record
+    info.operator_initials = previous.info->operator_initials;
+    info.venue = previous.info->venue;
+  }
   if (protocol.operator_required && info.operator_initials.empty())
     return fail("run: " + path + ": the protocol requires the operator: --operator INITIALS", 2);
-  info.venue = args.get("venue", protocol.venues.size() == 1 ? protocol.venues[0].id : "");
   if (!protocol.venues.empty()) {
     std::string ids;
     bool known = false;
@@ -463,30 +533,47 @@ int runStudySession(Args& args) {
   const std::string backend = args.get("backend", "auto");
   if (backend == "replay" && !args.has("journal"))
     return fail("run: --backend replay needs --journal FILE", 2);
+  // A recorded pen: read now, so the session's clock can follow its time line (below).
+  JournalReadResult pen_input;
+  if (backend == "replay") {
+    pen_input = readJournal(args.get("journal", ""));
+    if (pen_input.version == 0) return fail("run: --journal: " + pen_input.error, 2);
+  }
 
   // The session folder, before the display: a folder that cannot be written stops here.
-  const std::string data_dir = args.get("data-dir", stateDir() + "/study");
-  std::error_code ec;
-  std::filesystem::create_directories(data_dir, ec);
-  if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
-  const int number =
-      participant > 0 ? int(participant) : nextFreeParticipantNumber(data_dir, [&](int n) {
-        return protocol.participant_ids.idFor(n);
-      });
-  info.participant_number = number;
-  info.participant_id = protocol.participant_ids.idFor(number);
+  std::string folder;
+  if (resuming) {
+    folder = resume_folder;
+    info.participant_number = previous.info->participant_number;
+    info.participant_id = protocol.participant_ids.idFor(info.participant_number);
+    info.anchor_monotonic_ns = previous.info->anchor_monotonic_ns;
+    info.anchor_unix_ns = previous.info->anchor_unix_ns;
+  } else {
+    const std::string data_dir = resume_folder.empty()
+                                     ? args.get("data-dir", stateDir() + "/study")
+                                     : std::filesystem::path(resume_folder).parent_path().string();
+    std::filesystem::create_directories(data_dir.empty() ? "." : data_dir, ec);
+    if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
+    info.participant_number =
+        participant > 0 ? int(participant) : nextFreeParticipantNumber(data_dir, [&](int n) {
+          return protocol.participant_ids.idFor(n);
+        });
+    info.participant_id = protocol.participant_ids.idFor(info.participant_number);
+    info.anchor_monotonic_ns = monotonicNowNs();
+    info.anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                              std::chrono::system_clock::now().time_since_epoch())
+                              .count();
+    folder = resume_folder.empty()
+                 ? data_dir + "/" + studySessionFolderName(info.participant_id, info.anchor_unix_ns)
+                 : resume_folder;
+    if (resume_folder.empty() && std::filesystem::exists(folder))
+      return fail("run: " + folder + " exists already (one session per folder)");
+    std::filesystem::create_directories(folder, ec);
+    if (ec) return fail("run: " + folder + ": " + ec.message());
+  }
+  const int number = info.participant_number;
   for (const StudyTask* task : protocol.tasksForParticipant(number))
     info.task_order.push_back(task->id);
-  info.anchor_monotonic_ns = monotonicNowNs();
-  info.anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                            std::chrono::system_clock::now().time_since_epoch())
-                            .count();
-  const std::string folder =
-      data_dir + "/" + studySessionFolderName(info.participant_id, info.anchor_unix_ns);
-  if (std::filesystem::exists(folder))
-    return fail("run: " + folder + " exists already (one session per folder)");
-  std::filesystem::create_directories(folder, ec);
-  if (ec) return fail("run: " + folder + ": " + ec.message());
   std::printf("session folder: %s\nparticipant: %s (number %d)\n", folder.c_str(),
               info.participant_id.c_str(), number);
   std::fflush(stdout);
@@ -497,6 +584,7 @@ int runStudySession(Args& args) {
   info.display_platform = display->platformName();
   info.display_width = display->width();
   info.display_height = display->height();
+  info.refresh_hz = display->refreshHz(&info.refresh_note);
   RenderConfig render_config;
   MappingConfig mapping;
   try {
@@ -507,14 +595,6 @@ int runStudySession(Args& args) {
   } catch (const std::exception& e) {
     return fail(std::string("run: ") + e.what());
   }
-  std::unique_ptr<PenSource> pen;
-  if (backend != "none") {
-    PenSourceOptions pen_options;
-    pen_options.backend = backend;
-    pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
-    pen = openPenSource(pen_options, &error);
-    if (!pen) return fail("run: --backend " + backend + ": " + error, 2);
-  }
   PaintSessionSettings settings;
   settings.screen_width = display->width();
   settings.screen_height = display->height();
@@ -522,36 +602,123 @@ int runStudySession(Args& args) {
   const BrushConfig brush = loadDefaultBrushConfig();
   settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
   settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
-  PaintSession session(settings, brush, mapping);
-  // The render settings in force, journalled with the brush and mapping (drivers/core/JOURNAL.md).
-  session.setRenderSettings(formatRenderConfig(render_config), info.anchor_monotonic_ns);
-  session.setStartingLight(render_config.light);
-  session.setStartingStyle(renderStyleName(render_config.options.style));
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  const std::string journal_path = folder + "/session.cbj";
+  ResumedSession resumed;
+  if (resuming) {
+    // The journal replayed into the session (the settings recorded in it), appended to after
+    // its last whole record.
+    if (!resumeOrStartSession(journal_path, settings, brush, mapping, &journal, &resumed, &error))
+      return fail("run: --resume: " + error, 2);
+    if (!resumed.warning.empty())
+      std::fprintf(stderr, "cloudbrush study: resume: %s\n", resumed.warning.c_str());
+    session = std::move(resumed.session);
+  } else {
+    session = std::make_unique<PaintSession>(settings, brush, mapping);
+  }
+  // The session's clock: the monotonic clock, or with a recorded pen the recording's own time
+  // line (a TimelineClock from `origin`), so that frames, the runner's timers and its records
+  // keep to the pen's time and a resumed run carries on from the last record's time. (Made
+  // just before the loop, so starting up does not run the clock on.)
+  std::optional<int64_t> origin;
+  if (backend == "replay") {
+    origin = previous.last_record_ns;
+    if (!resuming)
+      for (const JournalRecord& r : pen_input.records)
+        if (r.type == JournalRecordType::kPenSample) {
+          origin = r.t_ns;
+          break;
+        }
+    if (!resuming) info.anchor_monotonic_ns = *origin;
+  } else if (resuming && monotonicNowNs() < previous.last_record_ns) {
+    // The machine restarted since (its monotonic clock began again): carry on from the record.
+    origin = previous.last_record_ns;
+  }
+  if (!resuming) {
+    // The render settings in force, journalled with the brush and mapping
+    // (drivers/core/JOURNAL.md).
+    session->setRenderSettings(formatRenderConfig(render_config), info.anchor_monotonic_ns);
+    session->setStartingLight(render_config.light);
+    session->setStartingStyle(renderStyleName(render_config.options.style));
+    if (!journal.open(journal_path)) return fail("run: " + journal.error());
+    session->recordTo(&journal, info.anchor_monotonic_ns);
+    if (!journal.append(JournalRecordType::kMarker, info.anchor_monotonic_ns,
+                        formatStudyInfoMarker(info)))
+      return fail("run: " + journal.error());
+  }
   SyncMarkerSender sync_sender;  // task and stroke boundaries for other recorders (--sync-udp)
   if (args.has("sync-udp")) {
     if (!sync_sender.open(args.get("sync-udp", ""), &error))
       return fail("run: --sync-udp: " + error, 2);
-    session.setSyncSender(&sync_sender);
+    session->setSyncSender(&sync_sender);
   }
-  JournalWriter journal;
-  if (!journal.open(folder + "/session.cbj")) return fail("run: " + journal.error());
-  session.recordTo(&journal, info.anchor_monotonic_ns);
   VolumeRenderer renderer;
   if (!renderer.init(&error)) return fail("run: " + error);
+  std::unique_ptr<Clock> clock;
+  if (origin)
+    clock = std::make_unique<TimelineClock>(*origin);
+  else
+    clock = std::make_unique<MonotonicClock>();
+  const int64_t start_ns = resuming ? clock->nowNs() : info.anchor_monotonic_ns;
+  std::unique_ptr<PenSource> pen;
+  if (backend == "replay") {
+    // A resumed session's pen carries on after the last sample its journal holds.
+    std::vector<JournalRecord> rest;
+    for (JournalRecord& r : pen_input.records)
+      if (r.type != JournalRecordType::kPenSample || r.t_ns > previous.last_sample_ns)
+        rest.push_back(std::move(r));
+    ReplayOptions replay;
+    replay.timeline = true;
+    pen = std::make_unique<ReplayPenSource>(std::move(rest), replay, clock.get());
+  } else if (backend != "none") {
+    PenSourceOptions pen_options;
+    pen_options.backend = backend;
+    pen_options.device = args.get("pen-device", "");
+    pen = openPenSource(pen_options, &error);
+    if (!pen) return fail("run: --backend " + backend + ": " + error, 2);
+  }
 
-  StudyRunState state(protocol, number, info.anchor_monotonic_ns);
+  StudyRunState state(
+      protocol, number,
+      previous.markers.empty() ? info.anchor_monotonic_ns : previous.markers.front().t_ns);
   StudyRunOptions options;
+  if (resuming) {
+    if (!state.restore(previous.markers, &error))
+      return fail("run: --resume: " + journal_path + ": " + error);
+    state.resumedAfter(previous.last_record_ns, start_ns);
+    // The stage's setup (a task's empty sky) is done again when nothing was painted since the
+    // stage began (the journal may have lost the setup itself).
+    const int begin = state.restoredStageBegin();
+    bool painted_since = false;
+    if (begin >= 0)
+      for (size_t i = previous.marker_record[size_t(begin)] + 1; i < previous.read.records.size();
+           ++i)
+        painted_since =
+            painted_since || previous.read.records[i].type == JournalRecordType::kPenSample;
+    options.set_up_stage = !painted_since;
+    options.resumed = true;
+    options.last_mapped = resumed.replay.last_mapped;
+    std::printf(
+        "resumed %s: %zu records, %zu pen samples, %u strokes, %zu study records; stage %s\n",
+        folder.c_str(), resumed.replay.records_applied, resumed.replay.pen_samples,
+        resumed.replay.strokes_mapped, previous.markers.size(), studyStageName(state.stage()));
+    std::fflush(stdout);
+  }
   options.folder = folder;
   options.info = info;
+  options.start_ns = start_ns;
   options.end_seconds = end_seconds;
   options.paint.render = render_config.options;
   options.paint.moving_scale = render_config.moving_scale;
   options.paint.config_dir = defaultConfigDir();
   options.paint.state_dir = stateDir();
-  StudyRunScreen screen(*display, renderer, session, pen.get(), &journal, state, options);
+  options.paint.clock = clock.get();
+  StudyRunScreen screen(*display, renderer, *session, pen.get(), &journal, state, options);
   std::signal(SIGINT, onStudySignal);
   std::signal(SIGTERM, onStudySignal);
   loop_options.stop = &g_study_stop;
+  loop_options.clock = clock.get();
   // Durability: the session syncs the journal at every stroke end; the loop at least once a second.
   const MonotonicClock sync_clock;
   loop_options.each_iteration = [&journal, &sync_clock](bool) {
@@ -569,6 +736,8 @@ int runStudySession(Args& args) {
               result.quit_reason.c_str(), result.frames, result.seconds,
               studyStageName(state.stage()),
               state.aborted() ? (", aborted: " + state.abortReason()).c_str() : "");
+  std::printf("cloudbrush study: volume checksum %016llx\n",
+              static_cast<unsigned long long>(volumeChecksum(session->volume())));
   for (const std::string& problem : screen.problems())
     std::fprintf(stderr, "cloudbrush study: problem: %s\n", problem.c_str());
   return screen.problems().empty() ? 0 : 1;

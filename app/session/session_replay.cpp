@@ -55,13 +55,18 @@ SessionReplay replaySession(
     const JournalRecord& record = journal.records[i];
     if (before_record) before_record(i, *replay.session);
     std::string error;
-    if (!replay.session->applyRecord(record, nullptr, &error)) {
+    SampleOutcome outcome;
+    const bool sample = record.type == JournalRecordType::kPenSample;
+    if (!replay.session->applyRecord(record, sample ? &outcome : nullptr, &error)) {
       replay.problems.push_back("record " + std::to_string(i) + " (t " +
                                 std::to_string(record.t_ns) + " ns): " + error);
       continue;
     }
     ++replay.records_applied;
-    if (record.type == JournalRecordType::kPenSample) ++replay.pen_samples;
+    if (sample) {
+      ++replay.pen_samples;
+      replay.last_mapped = outcome.mapped;
+    }
   }
   if (before_record) before_record(journal.records.size(), *replay.session);
   replay.strokes_mapped = replay.session->strokesMapped();

@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,10 @@ struct SessionReplay {
   size_t records_applied = 0;
   size_t pen_samples = 0;
   uint32_t strokes_mapped = 0;
-  bool recorded_settings = false;     // brush and mapping came from the journal, not the caller
-  std::string journal_error;          // the reader's message (file, byte offset) or empty
-  std::vector<std::string> problems;  // records that could not be applied ("record N: ...")
+  bool recorded_settings = false;  // brush and mapping came from the journal, not the caller
+  std::optional<MappedSample> last_mapped;  // the last pen sample as the session mapped it
+  std::string journal_error;                // the reader's message (file, byte offset) or empty
+  std::vector<std::string> problems;        // records that could not be applied ("record N: ...")
   bool complete() const { return journal_error.empty() && problems.empty(); }
 };
 

@@ -16,6 +16,7 @@
 #include "app/shell/ui_overlay.h"
 #include "app/volume/volume_file.h"
 #include "calibration/profile_store.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 #include "drivers/core/tip_only_pressure.h"
 
@@ -112,8 +113,8 @@ void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
     drag_light_.reset();
     refined_ = false;
     if (mouse_ && session) {
-      session->setDevice(mouse_->device(), monotonicNowNs());
-      session->setCalibration(CalibrationProfile{}, monotonicNowNs());
+      session->setDevice(mouse_->device(), clockNs());
+      session->setCalibration(CalibrationProfile{}, clockNs());
     }
   }
   session_ = session;
@@ -183,15 +184,20 @@ void PaintScreen::warnIfEdgeOn() {
   }
 }
 
+int64_t PaintScreen::clockNs() const {
+  // The frame loop's clock (a study replay runs on the recording's time line), else monotonic.
+  return options_.clock ? options_.clock->nowNs() : monotonicNowNs();
+}
+
 void PaintScreen::selectCalibration(uint64_t tool_serial) {
   const PenDeviceInfo& device = pen_->deviceInfo();
-  session_->setDevice(device, monotonicNowNs());
+  session_->setDevice(device, clockNs());
   ProfileSelection selection =
       selectProfile(device, tool_serial, options_.config_dir, options_.state_dir);
   for (const std::string& message : selection.messages)
     std::fprintf(stderr, "cloudbrush: calibration: %s\n", message.c_str());
   std::fprintf(stderr, "cloudbrush: calibration from %s\n", selection.source.c_str());
-  session_->setCalibration(selection.profile, monotonicNowNs());
+  session_->setCalibration(selection.profile, clockNs());
 }
 
 bool PaintScreen::reselectCalibration() {
@@ -289,8 +295,8 @@ void PaintScreen::onPointer(const DisplayEvent& event) {
   if (!session_ || tablet) return;
   if (!mouse_) {
     mouse_ = std::make_unique<MousePen>(display_.width(), display_.height());
-    session_->setDevice(mouse_->device(), monotonicNowNs());
-    session_->setCalibration(CalibrationProfile{}, monotonicNowNs());
+    session_->setDevice(mouse_->device(), clockNs());
+    session_->setCalibration(CalibrationProfile{}, clockNs());
     if (!pen_connected_once_) {
       pen_connected_once_ = true;
       if (options_.on_first_connection) options_.on_first_connection();
@@ -301,7 +307,7 @@ void PaintScreen::onPointer(const DisplayEvent& event) {
                   double(mouse_->pressure()));
     say(text);
   }
-  feedSample(mouse_->sample(event, monotonicNowNs()));
+  feedSample(mouse_->sample(event, clockNs()));
 }
 
 void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped) {

@@ -100,6 +100,7 @@ class PaintScreen : public Screen {
   bool drawOverlays(std::string* error);
   void drawUi(const FrameContext& frame);
   void selectCalibration(uint64_t tool_serial);
+  int64_t clockNs() const;  // now on the frame loop's clock
   Camera presetView(Command command) const;
   // Morph and wind (paint_screen_animation.cpp).
   void onAnimationCommand(Command command, int64_t t_ns);

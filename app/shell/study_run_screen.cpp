@@ -73,15 +73,36 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
       paint_(std::make_unique<PaintScreen>(display, renderer, session.volume(), session.light(),
                                            paintOptionsFor(options.paint))) {
   paint_->attachPen(pen, &session);
-  now_ns_ = options.info.anchor_monotonic_ns;
+  now_ns_ = options.resumed ? options.start_ns : options.info.anchor_monotonic_ns;
   circles_shown_ = options.paint.show_circles_overlay;
   last_stage_ = state_.stage();
   last_task_ = state_.position().order;
-  stage_name_ = studyStageName(state_.stage());
   seen_.strokes_mapped = session_.strokesMapped();
   seen_.undoable = session_.history().undoable();
   seen_.brush = session_.selectedBrush();
   flushRecords();
+  if (options.resumed) {
+    // Carry on where the journal ends: the task's picture, its setup when the journal lost it,
+    // and the closing page's timer.
+    const Volume& v = session_.volume();
+    cloud_empty_ =
+        std::none_of(v.data(), v.data() + v.voxelCount(), [](float d) { return d > 0.0f; });
+    empty_checked_generation_ = v.generation();
+    strokes_in_cloud_ = cloud_empty_ ? 0 : int64_t(session_.strokesMapped());
+    if (state_.stage() == StudyStageKind::kTask) {
+      if (options.set_up_stage) setUpTask(now_ns_);
+      std::string error;
+      if (!loadReferenceImage(&error)) problem("reference image: " + error);
+    }
+    if (state_.done()) done_since_ = now_ns_;
+    if (options.last_mapped && !isPaintingStage(state_.stage())) {
+      // A tap under way on a form: the pen is down on its target.
+      pen_events_.derive(*options.last_mapped, &events_);
+      for (const PenEvent& event : events_)
+        if (event.kind == PenEvent::Kind::kDown) tap(event.x, event.y, true, now_ns_);
+      events_.clear();
+    }
+  }
   writeAnswers();
   writeSessionJson();
 }
@@ -121,9 +142,12 @@ void StudyRunScreen::writeSessionJson() {
   StudySessionInfo info = options_.info;
   info.status = !state_.done() ? "running" : state_.aborted() ? "aborted" : "completed";
   info.abort_reason = state_.abortReason();
-  if (pen_ && pen_->connection() == PenConnection::kConnected) info.device = pen_->deviceInfo();
+  if (pen_ && pen_->connection() == PenConnection::kConnected) {
+    info.device = pen_->deviceInfo();
+    info.device_serial = pen_->serialNumber(&info.device_serial_note);
+  }
   info.calibration_toml = formatCalibrationProfile(session_.calibration());
-  info.stages_completed = stages_completed_;
+  info.stages_completed = state_.stagesCompleted();
   std::string error;
   if (!writeFileAtomically(options_.folder + "/session.json", formatStudySessionJson(info), &error))
     problem(error);
@@ -163,12 +187,16 @@ bool StudyRunScreen::loadReferenceImage(std::string* error) {
   }
 }
 
+void StudyRunScreen::setUpTask(int64_t t_ns) {
+  // Each task starts from an empty sky in Paint mode at the painter's starting view (§7.5: one
+  // cloud per picture).
+  std::string error;
+  if (session_.history().canUndo() || !cloud_empty_) session_.apply(ui::DeleteAll{}, t_ns, &error);
+  session_.apply(ui::SetMode{Mode::kPaint}, t_ns, &error);
+  session_.apply(ui::SetCamera{initialPaintCamera(session_.settings())}, t_ns, &error);
+}
+
 void StudyRunScreen::enterStage(int64_t t_ns) {
-  // The stage that just ended.
-  if (!stage_name_.empty()) stages_completed_.push_back(stage_name_);
-  stage_name_ = studyStageName(state_.stage());
-  if (const StudyTask* task = state_.task()) stage_name_ += ":" + task->id;
-  if (state_.done()) stage_name_.clear();
   last_stage_ = state_.stage();
   last_task_ = state_.position().order;
   last_step_ = -1;
@@ -176,13 +204,8 @@ void StudyRunScreen::enterStage(int64_t t_ns) {
   message_.clear();
   pressed_.reset();
   if (state_.stage() == StudyStageKind::kTask) {
-    // Each task starts from an empty sky in Paint mode at the painter's starting view (§7.5:
-    // one cloud per picture).
+    setUpTask(t_ns);
     std::string error;
-    if (session_.history().canUndo() || !cloud_empty_)
-      session_.apply(ui::DeleteAll{}, t_ns, &error);
-    session_.apply(ui::SetMode{Mode::kPaint}, t_ns, &error);
-    session_.apply(ui::SetCamera{initialPaintCamera(session_.settings())}, t_ns, &error);
     if (!loadReferenceImage(&error)) problem("reference image: " + error);
   }
   if (state_.done()) {
@@ -351,6 +374,10 @@ void StudyRunScreen::formSample(const PenSample& sample) {
 }
 
 void StudyRunScreen::tap(float x, float y, bool down, int64_t t_ns) {
+  // Before the first frame (a resumed run whose pen is already on the form), the page the
+  // participant had in front of them.
+  if (page_.targets.empty() && page_.labels.empty())
+    page_ = currentPage(display_.width(), display_.height());
   const StudyTarget* target = page_.hit(x, y);
   if (down) {
     if (target)
@@ -496,14 +523,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
   return "";
 }
 
-bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
-  const int w = frame.width, h = frame.height;
-  if (isPaintingStage(state_.stage())) {
-    if (!paint_->draw(frame, error)) return false;
-  } else {
-    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    glClearNamedFramebufferfv(display_.framebuffer(), GL_COLOR, 0, black);
-  }
+StudyPage StudyRunScreen::currentPage(int width, int height) const {
   StudyPageInput input;
   input.typed = typed_;
   input.message = message_;
@@ -519,7 +539,18 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
           c.text() + " (now " + valueText(c, s) + (conditionHolds(c, s) ? ", done)" : ", not yet)");
     }
   }
-  page_ = buildStudyPage(state_, input, w, h);
+  return buildStudyPage(state_, input, width, height);
+}
+
+bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
+  const int w = frame.width, h = frame.height;
+  if (isPaintingStage(state_.stage())) {
+    if (!paint_->draw(frame, error)) return false;
+  } else {
+    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    glClearNamedFramebufferfv(display_.framebuffer(), GL_COLOR, 0, black);
+  }
+  page_ = currentPage(w, h);
   if (!hud_ready_) {
     if (!hud_.init(error)) return false;
     hud_ready_ = true;

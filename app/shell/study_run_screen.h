@@ -38,6 +38,7 @@
 #include "app/study/study_run_state.h"
 #include "app/study/study_session_record.h"
 #include "app/study/tutorial_condition.h"
+#include "calibration/mapped_sample.h"
 
 namespace cb {
 
@@ -50,6 +51,15 @@ struct StudyRunOptions {
   PaintLoopOptions paint;    // the painter's options (render, config and state dirs)
   StudySessionInfo info;     // session.json's fixed part (protocol, participant, venue, ...)
   double end_seconds = 8.0;  // the closing page shows this long, then the loop ends
+  // A resumed session (the state restored from the journal, the session replayed from it):
+  // the stage is shown as it was; `set_up_stage` when the journal lost the stage's setup (a task
+  // starts from an empty sky, Paint mode, the starting view), which is then done again.
+  bool resumed = false;
+  bool set_up_stage = false;
+  int64_t start_ns = 0;  // the clock's time as the screen starts (the anchor when not resumed)
+  // The journal's last pen sample as the session mapped it: a tap on a form that was under way
+  // (tip down) goes on from there.
+  std::optional<MappedSample> last_mapped;
 };
 
 class StudyRunScreen : public Screen {
@@ -80,11 +90,13 @@ class StudyRunScreen : public Screen {
  private:
   void activate(const StudyTarget& target, int64_t t_ns);
   void formSample(const PenSample& sample);
+  StudyPage currentPage(int width, int height) const;
   void tap(float x, float y, bool down, int64_t t_ns);
   void selectCalibration();
   void flushRecords();
   void afterStateChange(int64_t t_ns);
   void enterStage(int64_t t_ns);
+  void setUpTask(int64_t t_ns);
   void saveTask(int64_t t_ns);
   void writeAnswers();
   void writeSessionJson();
@@ -143,8 +155,6 @@ class StudyRunScreen : public Screen {
   std::string image_path_;
   float image_aspect_ = 0.0f;
 
-  std::string stage_name_;  // of the stage being shown (`task:ID` for tasks)
-  std::vector<std::string> stages_completed_;
   std::vector<std::string> problems_;
 };
 

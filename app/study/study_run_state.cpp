@@ -5,20 +5,22 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 
 #include "app/study/csv_text.h"
+#include "app/study/study_marker_text.h"
 
 namespace cb {
 namespace {
 
 std::string quoted(const std::string& text) {
-  if (!text.empty() && text.find_first_of(" \"=\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
+  return studyMarkerValue(text);
+}
+
+std::optional<OperatorAction> operatorActionFrom(const std::string& name) {
+  for (OperatorAction a : {OperatorAction::kPause, OperatorAction::kSkip, OperatorAction::kAbort})
+    if (name == operatorActionName(a)) return a;
+  return std::nullopt;
 }
 
 std::string na(const std::optional<std::string>& v) {
@@ -145,6 +147,12 @@ std::string StudyRunState::stageLabel() const {
 }
 
 void StudyRunState::enterStage(size_t index, int64_t t_ns) {
+  if (entered_) {  // the stage being left (none when the constructor enters the first)
+    std::string name = studyStageName(stage());
+    if (const StudyTask* t = task()) name += ":" + t->id;
+    stages_completed_.push_back(name);
+  }
+  entered_ = true;
   stage_index_ = index;
   stage_start_ns_ = t_ns;
   suspended_ns_ = 0;
@@ -184,13 +192,19 @@ bool StudyRunState::observeTutorial(const TutorialState& state, int64_t t_ns) {
   const TutorialStep& step = protocol_.tutorial[size_t(tutorial_step_)];
   for (const TutorialCondition& c : step.expect)
     if (!conditionHolds(c, state)) return false;
+  completeTutorialStep(t_ns);
+  return true;
+}
+
+void StudyRunState::completeTutorialStep(int64_t t_ns) {
+  if (stage() != StudyStageKind::kTutorial || paused_ || choosing() || closing()) return;
+  const TutorialStep& step = protocol_.tutorial[size_t(tutorial_step_)];
   record(t_ns, "study.tutorial-step done step=" + std::to_string(step.number) +
                    " seconds=" + csvDouble(stageSeconds(t_ns)));
   if (++tutorial_step_ >= int(protocol_.tutorial.size())) {
     tutorial_step_ = int(protocol_.tutorial.size()) - 1;
     endPaintingStage(t_ns, "all steps done");
   }
-  return true;
 }
 
 void StudyRunState::answerItem(int value, int64_t t_ns) {
@@ -444,6 +458,120 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
                       : "All done. Thank you for taking part!";
   }
   return "";
+}
+
+void StudyRunState::resumedAfter(int64_t last_record_ns, int64_t t_ns) {
+  const int64_t down = std::max<int64_t>(0, t_ns - last_record_ns);
+  if (!suspended_since_) suspended_ns_ += down;  // (a pause already stopped the clock)
+  record(t_ns, "study.resume down_ns=" + std::to_string(down) + " " + stageLabel());
+}
+
+bool StudyRunState::applyInput(const StudyRunRecord& r, std::string* error) {
+  const StudyMarkerFields m = parseStudyMarker(r.text);
+  const int64_t t = r.t_ns;
+  const auto index_of = [&](const auto& list, const std::string& id) {
+    for (size_t i = 0; i < list.size(); ++i)
+      if (list[i].id == id) return int(i);
+    return -1;
+  };
+  const auto missing = [&](const std::string& id) {
+    return *error = "`" + r.text + "`: the protocol has no " + id, false;
+  };
+  const bool na = m.isNa("value");
+  if (m.event == "study.consent") {
+    agree(t);
+  } else if (m.event == "study.stage-end") {
+    if (closing())
+      closeStage(t);
+    else
+      proceed(t);
+  } else if (m.event == "study.tutorial-step" && !m.words.empty() && m.words[0] == "done") {
+    completeTutorialStep(t);
+  } else if (m.event == "study.answer" && m.has("item")) {
+    const int i = index_of(protocol_.items, m.get("item"));
+    if (i < 0) return missing("item " + m.get("item"));
+    if (stage() == StudyStageKind::kQuestionnaire) item_index_ = i;
+    if (na)
+      skipItem(t);
+    else
+      answerItem(std::atoi(m.get("value").c_str()), t);
+  } else if (m.event == "study.answer" && m.has("field")) {
+    const int i = index_of(protocol_.demographics, m.get("field"));
+    if (i < 0) return missing("demographic field " + m.get("field"));
+    if (stage() == StudyStageKind::kDemographics) field_index_ = i;
+    if (na) {
+      skipField(t);
+    } else if (const std::string refused = answerField(m.get("value"), t); !refused.empty()) {
+      return *error = "`" + r.text + "`: " + refused, false;
+    }
+  } else if (m.event == "study.answer" && m.has("free_text")) {
+    const int i = index_of(protocol_.free_text, m.get("free_text"));
+    if (i < 0) return missing("free-text question " + m.get("free_text"));
+    if (stage() == StudyStageKind::kFreeText) free_text_index_ = i;
+    answerFreeText(na ? std::string() : m.get("value"), t);
+  } else if (m.event == "study.operator-request" && operatorActionFrom(m.get("action"))) {
+    requestOperator(*operatorActionFrom(m.get("action")), t);
+  } else if (m.event == "study.operator" && m.get("action") == "resume") {
+    if (paused_) requestOperator(OperatorAction::kPause, t);
+  } else if (m.event == "study.operator" && operatorActionFrom(m.get("action"))) {
+    const std::vector<std::string>& reasons = operatorReasons(*operatorActionFrom(m.get("action")));
+    const auto it = std::find(reasons.begin(), reasons.end(), m.get("reason"));
+    if (it == reasons.end()) return *error = "`" + r.text + "`: not one of the reasons", false;
+    chooseReason(int(it - reasons.begin()), t);
+  } else if (m.event == "study.operator-cancel") {
+    cancelChoice(t);
+  } else if (m.event == "study.stage-closing") {
+    if (isPaintingStage(stage()) && !closing()) endPaintingStage(t, m.get("why"));
+  } else if (m.event == "study.saved") {
+    std::vector<std::string> files;
+    std::string list = m.get("files");
+    for (size_t at = 0; at <= list.size();) {
+      const size_t comma = std::min(list.find(',', at), list.size());
+      if (comma > at) files.push_back(list.substr(at, comma - at));
+      at = comma + 1;
+    }
+    closeStage(t, files);
+  } else if (m.event == "study.resume") {
+    const int64_t down = std::atoll(m.get("down_ns").c_str());
+    resumedAfter(t - down, t);
+  } else {
+    return *error = "`" + r.text + "` is not a record the runner makes", false;
+  }
+  return true;
+}
+
+bool StudyRunState::restore(const std::vector<StudyRunRecord>& records, std::string* error) {
+  std::deque<StudyRunRecord> expected;  // made by the state machine, not yet met in `records`
+  for (StudyRunRecord& r : takeRecords()) expected.push_back(std::move(r));
+  for (size_t i = 0; i < records.size(); ++i) {
+    const StudyRunRecord& r = records[i];
+    const std::string where =
+        "study record " + std::to_string(i + 1) + " (" + studyStageName(stage()) + ")";
+    if (!expected.empty()) {
+      if (expected.front().text != r.text) {
+        *error = where + ": the journal holds `" + r.text + "` where this protocol makes `" +
+                 expected.front().text + "`";
+        return false;
+      }
+      expected.pop_front();
+      if (r.text.rfind("study.stage-begin ", 0) == 0) restored_stage_begin_ = int(i);
+      continue;
+    }
+    if (!applyInput(r, error)) return *error = where + ": " + *error, false;
+    std::vector<StudyRunRecord> made = takeRecords();
+    if (made.empty() || made.front().text != r.text) {
+      *error = where + ": `" + r.text + "` " +
+               (made.empty() ? std::string("does not apply here")
+                             : "comes out as `" + made.front().text + "`");
+      return false;
+    }
+    expected.assign(std::make_move_iterator(made.begin() + 1), std::make_move_iterator(made.end()));
+  }
+  for (const StudyRunRecord& r : expected)
+    if (r.text.rfind("study.stage-begin ", 0) == 0) restored_stage_begin_ = -1;
+  records_.assign(std::make_move_iterator(expected.begin()),
+                  std::make_move_iterator(expected.end()));
+  return true;
 }
 
 std::string StudyRunState::questionnaireCsv() const {

@@ -18,6 +18,13 @@
 // (the whole session) each ask for a reason from a short list (operatorReasons) before acting.
 // Every stage change, tutorial step, answer and operator action is a record (takeRecords) that
 // the runner writes to the session journal as a Marker, text `study.EVENT key=value ...`.
+//
+// Resuming (issue 10: restarting on the same session folder resumes it): restore() rebuilds the
+// state from those records as the journal holds them. The inputs among them (consent, continue,
+// a tutorial step done, answers, the operator's requests and reasons, time up, saved files, a
+// restart) are applied again at their recorded times; every other record must then be the one
+// the state machine makes itself, so a journal of another protocol or participant is refused.
+// resumedAfter() stops the stage clock over the time the runner was down.
 #pragma once
 
 #include <cstdint>
@@ -83,6 +90,8 @@ class StudyRunState {
   void proceed(int64_t t_ns);  // participant id and introduction: "Continue"
   // Tutorial: the live session state; true when the current step's check held and it advanced.
   bool observeTutorial(const TutorialState& state, int64_t t_ns);
+  // The current tutorial step is done (its check held): the next step, or the stage closes.
+  void completeTutorialStep(int64_t t_ns);
   int tutorialStep() const { return tutorial_step_; }  // 0-based, while in the tutorial
   // Questionnaire: answer `value` (1..scale) to the current item, then the next item.
   void answerItem(int value, int64_t t_ns);
@@ -125,6 +134,22 @@ class StudyRunState {
 
   std::vector<StudyRunRecord> takeRecords();
 
+  // --- resuming
+  // Re-applies `records` (a session journal's `study.*` markers, in order, the first being the
+  // `study.session` record this constructor makes) to a state just constructed for the same
+  // protocol and participant at the first record's time. Records the state machine made but the
+  // journal lost (a crash between them) are queued again for takeRecords(). False with *error
+  // naming the record that does not fit.
+  bool restore(const std::vector<StudyRunRecord>& records, std::string* error);
+  // After restore(): the index in its records of the current stage's `study.stage-begin`, or -1
+  // when the journal lost it (the runner has not set the stage up yet).
+  int restoredStageBegin() const { return restored_stage_begin_; }
+  // The runner restarted at `t_ns` after its last durable record at `last_record_ns`: the stage
+  // clock does not count the time it was down (recorded as `study.resume down_ns=N`).
+  void resumedAfter(int64_t last_record_ns, int64_t t_ns);
+  // Stages that ended, in order: `consent`, ..., `task:ID` (session.json's stages_completed).
+  const std::vector<std::string>& stagesCompleted() const { return stages_completed_; }
+
   // --- answers
   const std::vector<std::optional<int>>& itemAnswers() const { return items_; }
   const std::vector<std::optional<std::string>>& fieldAnswers() const { return fields_; }
@@ -142,6 +167,7 @@ class StudyRunState {
   void endPaintingStage(int64_t t_ns, const std::string& why);
   void suspend(int64_t t_ns);
   void resume(int64_t t_ns);
+  bool applyInput(const StudyRunRecord& record, std::string* error);
   std::string stageLabel() const;
 
   const StudyProtocol& protocol_;
@@ -164,6 +190,9 @@ class StudyRunState {
   std::vector<std::optional<int>> items_;
   std::vector<std::optional<std::string>> fields_, free_texts_;
   std::vector<StudyRunRecord> records_;
+  std::vector<std::string> stages_completed_;
+  bool entered_ = false;
+  int restored_stage_begin_ = -1;  // the first stage was entered (later entries leave one)
   std::string empty_;
 };
 

@@ -5,12 +5,14 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
 
 #include "app/core/json_text.h"
 #include "app/study/csv_text.h"
+#include "app/study/study_marker_text.h"
 
 #ifndef CB_VERSION
 #define CB_VERSION "unknown"
@@ -40,6 +42,33 @@ const char* cloudbrushVersion() {
   return CB_VERSION;
 }
 
+std::string formatStudyInfoMarker(const StudySessionInfo& info) {
+  return "study.info protocol_file=" + studyMarkerValue(info.protocol_file) +
+         " protocol=" + studyMarkerValue(info.protocol_name) +
+         " version=" + studyMarkerValue(info.protocol_version) +
+         " participant=" + studyMarkerValue(info.participant_id) +
+         " number=" + std::to_string(info.participant_number) +
+         " venue=" + studyMarkerValue(info.venue) +
+         " operator=" + studyMarkerValue(info.operator_initials) +
+         " monotonic_ns=" + std::to_string(info.anchor_monotonic_ns) +
+         " wall_clock_unix_ns=" + std::to_string(info.anchor_unix_ns);
+}
+
+bool parseStudyInfoMarker(const std::string& text, StudySessionInfo* info) {
+  const StudyMarkerFields m = parseStudyMarker(text);
+  if (m.event != "study.info" || !m.has("protocol_file") || !m.has("number")) return false;
+  info->protocol_file = m.get("protocol_file");
+  info->protocol_name = m.get("protocol");
+  info->protocol_version = m.get("version");
+  info->participant_id = m.get("participant");
+  info->participant_number = std::atoi(m.get("number").c_str());
+  info->venue = m.get("venue");
+  info->operator_initials = m.get("operator");
+  info->anchor_monotonic_ns = std::atoll(m.get("monotonic_ns").c_str());
+  info->anchor_unix_ns = std::atoll(m.get("wall_clock_unix_ns").c_str());
+  return true;
+}
+
 std::string studySessionFolderName(const std::string& participant_id, int64_t unix_ns) {
   return participant_id + "-" + utcText(unix_ns, "%Y%m%dT%H%M%SZ");
 }
@@ -62,13 +91,16 @@ std::string formatStudySessionJson(const StudySessionInfo& info) {
       "},\n";
   if (info.device) {
     const PenDeviceInfo& d = *info.device;
+    const std::string& d_serial = info.device_serial;
     char ids[32];
     std::snprintf(ids, sizeof ids, "\"%04x\", \"usb_product\": \"%04x\"", d.usb_vendor,
                   d.usb_product);
     j += "  \"device\": {\"name\": " + jsonString(d.name) + ", \"usb_vendor\": " + ids +
-         ", \"serial\": null, \"x_max\": " + std::to_string(d.x_max) +
-         ", \"y_max\": " + std::to_string(d.y_max) + ", \"x_res_per_mm\": " + csvDouble(d.x_res) +
-         ", \"y_res_per_mm\": " + csvDouble(d.y_res) +
+         ", \"serial\": " +
+         (d_serial.empty() ? "null, \"serial_note\": " + jsonString(info.device_serial_note)
+                           : jsonString(d_serial)) +
+         ", \"x_max\": " + std::to_string(d.x_max) + ", \"y_max\": " + std::to_string(d.y_max) +
+         ", \"x_res_per_mm\": " + csvDouble(d.x_res) + ", \"y_res_per_mm\": " + csvDouble(d.y_res) +
          ", \"pressure_max\": " + std::to_string(d.pressure_max) +
          ", \"tilt_min\": " + std::to_string(d.tilt_min) +
          ", \"tilt_max\": " + std::to_string(d.tilt_max) +
@@ -79,8 +111,10 @@ std::string formatStudySessionJson(const StudySessionInfo& info) {
   j += "  \"calibration\": " + jsonString(info.calibration_toml) + ",\n";
   j += "  \"display\": {\"platform\": " + jsonString(info.display_platform) +
        ", \"width\": " + std::to_string(info.display_width) +
-       ", \"height\": " + std::to_string(info.display_height) +
-       ", \"refresh_hz\": " + csvDouble(info.refresh_hz) + "},\n";
+       ", \"height\": " + std::to_string(info.display_height) + ", \"refresh_hz\": " +
+       (info.refresh_hz ? csvDouble(*info.refresh_hz)
+                        : "null, \"refresh_note\": " + jsonString(info.refresh_note)) +
+       "},\n";
   j += "  \"clock_anchor\": {\"monotonic_ns\": " + std::to_string(info.anchor_monotonic_ns) +
        ", \"wall_clock_utc\": " + jsonString(utcText(info.anchor_unix_ns, "%Y-%m-%dT%H:%M:%S")) +
        ", \"wall_clock_unix_ns\": " + std::to_string(info.anchor_unix_ns) + "},\n";

@@ -9,10 +9,12 @@
 //
 // session.json fields: format (1), status ("running" | "completed" | "aborted"), abort_reason,
 // protocol {name, version, file}, participant {id, number}, venue, operator, software {name,
-// version}, device {name, usb_vendor, usb_product, serial (null: the drivers do not read it
-// yet), x_max, y_max, x_res_per_mm, y_res_per_mm, pressure_max, tilt_min, tilt_max,
-// distance_max} or null before a pen connected, calibration (the profile in force, TOML text),
-// display {platform, width, height, refresh_hz (0: unknown)}, clock_anchor {monotonic_ns,
+// version}, device {name, usb_vendor, usb_product, serial (what the device reports, PenSource::
+// serialNumber; null when it reports none, with serial_note saying why), x_max, y_max,
+// x_res_per_mm, y_res_per_mm, pressure_max, tilt_min, tilt_max, distance_max} or null before a
+// pen connected, calibration (the profile in force, TOML text), display {platform, width,
+// height, refresh_hz (the mode's rate, Display::refreshHz; null when there is none, with
+// refresh_note saying why)}, clock_anchor {monotonic_ns,
 // wall_clock_utc, wall_clock_unix_ns} (the same instant on both clocks: journal times are
 // monotonic), task_order [ids], stages_completed [names].
 #pragma once
@@ -35,16 +37,25 @@ struct StudySessionInfo {
   int participant_number = 0;
   std::string venue, operator_initials;
   std::optional<PenDeviceInfo> device;
+  std::string device_serial, device_serial_note;  // "" serial: none, the note says why
   std::string calibration_toml;
   std::string display_platform;
   int display_width = 0, display_height = 0;
-  double refresh_hz = 0.0;
+  std::optional<double> refresh_hz;
+  std::string refresh_note;  // why refresh_hz is null
   int64_t anchor_monotonic_ns = 0, anchor_unix_ns = 0;
   std::vector<std::string> task_order, stages_completed;
 };
 
 // This build's version (CMake's project version).
 const char* cloudbrushVersion();
+
+// The session's fixed facts as a journal marker, written first, so a restarted runner finds them
+// in the journal alone: `study.info protocol_file=PATH protocol=NAME version=V participant=ID
+// number=N venue=V operator=O monotonic_ns=T wall_clock_unix_ns=T` (study_marker_text.h).
+std::string formatStudyInfoMarker(const StudySessionInfo& info);
+// Fills those fields of *info from such a marker; false when `text` is not one.
+bool parseStudyInfoMarker(const std::string& text, StudySessionInfo* info);
 
 // `<id>-<UTC time of unix_ns>`.
 std::string studySessionFolderName(const std::string& participant_id, int64_t unix_ns);

@@ -31,6 +31,13 @@ class PenSource {
   virtual const PenDeviceInfo& deviceInfo() const = 0;
   // What the source is doing, for the UI: device path, or why it cannot open one.
   virtual std::string statusMessage() const = 0;
+  // The serial number the connected device reports (evdev: the input device's `uniq`, which
+  // usbhid fills from the USB iSerialNumber; hidapi: the HID serial string), or "" with
+  // *why_none saying why there is none to report.
+  virtual std::string serialNumber(std::string* why_none) const {
+    if (why_none) *why_none = std::string(backendName()) + ": the backend reads no serial";
+    return "";
+  }
 };
 
 inline const char* penConnectionName(PenConnection c) {

@@ -86,6 +86,7 @@ void EvdevPenSource::tryOpen() {
   dev_ = dev;
   path_ = path;
   info_ = evdevPenInfo(dev);
+  serial_ = libevdev_get_uniq(dev) ? libevdev_get_uniq(dev) : "";
   state_ = std::make_unique<EvdevPenState>(info_);
   seedState();
   connection_ = PenConnection::kConnected;
@@ -100,6 +101,16 @@ void EvdevPenSource::seedState() {
                         BTN_TOOL_BRUSH, BTN_TOOL_AIRBRUSH, BTN_TOOL_RUBBER})
     if (libevdev_has_event_code(dev_, EV_KEY, code))
       state_->setKey(code, libevdev_get_event_value(dev_, EV_KEY, code) != 0);
+}
+
+std::string EvdevPenSource::serialNumber(std::string* why_none) const {
+  if (connection_ != PenConnection::kConnected) {
+    if (why_none) *why_none = "evdev: no device connected";
+    return "";
+  }
+  if (serial_.empty() && why_none)
+    *why_none = "evdev: " + path_ + " reports no serial (its uniq is empty)";
+  return serial_;
 }
 
 void EvdevPenSource::closeDevice(std::vector<PenSample>* out) {

@@ -32,6 +32,7 @@ class EvdevPenSource final : public PenSource {
   void poll(int timeout_ms, std::vector<PenSample>& out) override;
   PenConnection connection() const override { return connection_; }
   const PenDeviceInfo& deviceInfo() const override { return info_; }
+  std::string serialNumber(std::string* why_none) const override;
   std::string statusMessage() const override { return status_; }
   const std::string& devicePath() const { return path_; }
   uint64_t resyncCount() const { return resyncs_; }
@@ -45,6 +46,7 @@ class EvdevPenSource final : public PenSource {
   EvdevPenSourceOptions options_;
   PenConnection connection_ = PenConnection::kSearching;
   PenDeviceInfo info_{};
+  std::string serial_;  // the device's `uniq` as it opened
   std::string status_ = "searching for a pen in /dev/input";
   std::string path_;
   int fd_ = -1;

@@ -111,6 +111,16 @@ DecodeResult decodeReport(PenDecoder& decoder, const uint8_t* report, size_t n, 
   return std::visit([&](auto& d) { return d.decode(report, n, t_ns, out); }, decoder);
 }
 
+std::string HidapiPenSource::serialNumber(std::string* why_none) const {
+  if (connection_ != PenConnection::kConnected) {
+    if (why_none) *why_none = std::string(backendName()) + ": no device connected";
+    return "";
+  }
+  if (device_.serial.empty() && why_none)
+    *why_none = std::string(backendName()) + ": " + device_.name + " reports no serial string";
+  return device_.serial;
+}
+
 std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor,
                                       const DeviceDatabase* devices) {
   std::vector<HidPenDevice> pens;
@@ -122,6 +132,7 @@ std::vector<HidPenDevice> findHidPens(HidapiLibrary& lib, uint16_t vendor,
     d.product = i->product_id;
     d.interface = i->interface_number;
     d.name = narrow(i->manufacturer_string);
+    d.serial = narrow(i->serial_number);
     const std::string product = narrow(i->product_string);
     if (!product.empty()) d.name += (d.name.empty() ? "" : " ") + product;
     if (d.name.empty()) {  // hidapi-libusb may not read the strings; name the USB id instead

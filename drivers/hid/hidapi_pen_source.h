@@ -52,6 +52,7 @@ struct HidPenDevice {
   uint16_t vendor = 0, product = 0;
   int interface = -1;
   std::string name;
+  std::string serial;  // the HID serial string ("" when the device reports none)
   PenDeviceInfo info{};
   std::string protocol;  // "intuos4" or "generic"
   DeviceEntry entry;     // the device files' entry (a default one when there is none)
@@ -86,6 +87,7 @@ class HidapiPenSource final : public PenSource {
   PenConnection connection() const override { return connection_; }
   const PenDeviceInfo& deviceInfo() const override { return device_.info; }
   std::string statusMessage() const override { return status_; }
+  std::string serialNumber(std::string* why_none) const override;
   const HidPenDevice& device() const { return device_; }
   uint64_t rejectedReports() const { return rejected_; }
   const std::string& lastRejection() const { return last_rejection_; }

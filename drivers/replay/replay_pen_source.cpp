@@ -44,14 +44,15 @@ void ReplayPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
     for (size_t i = 0; i < options_.batch && next_ < samples_.size(); ++i)
       out.push_back(samples_[next_++]);
   } else {
-    if (start_ns_ < 0) start_ns_ = clock_->nowNs();
+    if (start_ns_ < 0) start_ns_ = options_.timeline ? samples_.front().t_ns : clock_->nowNs();
     const int64_t t0 = samples_.front().t_ns;
     auto due = [&](size_t i) { return start_ns_ + (samples_[i].t_ns - t0); };
     if (next_ < samples_.size() && due(next_) > clock_->nowNs() && timeout_ms != 0) {
       int64_t wait_ns = due(next_) - clock_->nowNs();
       if (timeout_ms > 0 && wait_ns > int64_t{timeout_ms} * 1000000)
         wait_ns = int64_t{timeout_ms} * 1000000;
-      if (clock_ == &default_clock_) std::this_thread::sleep_for(std::chrono::nanoseconds(wait_ns));
+      if (clock_ == &default_clock_ || options_.timeline)
+        std::this_thread::sleep_for(std::chrono::nanoseconds(wait_ns));
     }
     while (next_ < samples_.size() && due(next_) <= clock_->nowNs())
       out.push_back(samples_[next_++]);

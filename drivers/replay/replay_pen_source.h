@@ -17,6 +17,9 @@ struct ReplayOptions {
   bool realtime = true;  // false: every poll returns the next batch at once
   bool loop = false;     // start again at the end (attract loop)
   size_t batch = 256;    // samples per poll when not realtime
+  // realtime: the clock reads the recording's own time line (a TimelineClock), so each sample
+  // plays when the clock reaches its t_ns; false: the first sample plays at the first poll.
+  bool timeline = false;
 };
 
 class ReplayPenSource final : public PenSource {
@@ -32,6 +35,10 @@ class ReplayPenSource final : public PenSource {
   PenConnection connection() const override { return connection_; }
   const PenDeviceInfo& deviceInfo() const override { return info_; }
   std::string statusMessage() const override { return status_; }
+  std::string serialNumber(std::string* why_none) const override {
+    if (why_none) *why_none = "replay: a journal's device record holds no serial";
+    return "";
+  }
   size_t sampleCount() const { return samples_.size(); }
 
  private:

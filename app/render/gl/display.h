@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,6 +85,10 @@ class Display {
   virtual bool present(std::string* error) = 0;
   // Input and window events since the last call (never blocks).
   virtual std::vector<DisplayEvent> pollEvents() = 0;
+  // The refresh rate the display's mode runs at (KMS: the mode's pixel clock over its total
+  // size), or nullopt with *why_unknown saying why there is none to report (an offscreen
+  // buffer has no refresh; the X11 window does not query the server's mode).
+  virtual std::optional<double> refreshHz(std::string* why_unknown) const = 0;
   // Tests and scripted runs: queues `event` for the next pollEvents() of the surfaceless display
   // (the platform without a keyboard; KMS and X11 read their real input and ignore the queue).
   void injectEvent(const DisplayEvent& event) { injected_.push_back(event); }

@@ -72,6 +72,10 @@ class SurfacelessDisplay final : public Display {
   }
 
   // No keyboard: only what injectEvent() queued, in order.
+  std::optional<double> refreshHz(std::string* why_unknown) const override {
+    if (why_unknown) *why_unknown = "surfaceless: an offscreen buffer, no display refresh";
+    return std::nullopt;
+  }
   std::vector<DisplayEvent> pollEvents() override {
     std::vector<DisplayEvent> events;
     events.swap(injected_);

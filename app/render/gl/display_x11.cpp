@@ -96,6 +96,10 @@ class X11Display final : public Display {
     return true;
   }
 
+  std::optional<double> refreshHz(std::string* why_unknown) const override {
+    if (why_unknown) *why_unknown = "x11: a window; the X server's mode (RandR) is not queried";
+    return std::nullopt;
+  }
   std::vector<DisplayEvent> pollEvents() override {
     std::vector<DisplayEvent> events;
     while (XPending(x_)) {

@@ -17,38 +17,40 @@
 namespace cb::hil {
 
 QemuVm::QemuVm(const std::string& kernel, const std::string& initrd, const std::string& device,
+               const std::string& work_dir)
+    : QemuVm(kernel, initrd, Options{device, {"-vga", "none", "-device", device}, false},
+             work_dir) {}
+
+QemuVm::QemuVm(const std::string& kernel, const std::string& initrd, const Options& options,
                const std::string& work_dir) {
-  serial_log_ = work_dir + "/serial-" + device + ".log";
-  monitor_socket_ = work_dir + "/monitor-" + device + ".sock";
+  serial_log_ = work_dir + "/serial-" + options.name + ".log";
+  monitor_socket_ = work_dir + "/monitor-" + options.name + ".sock";
   unlink(serial_log_.c_str());
   unlink(monitor_socket_.c_str());
   // no_timer_check: on a loaded host TCG can be too slow for the kernel's IO-APIC timer check,
   // which then panics at boot ("IO-APIC + timer doesn't work").
-  const std::vector<std::string> args = {"qemu-system-x86_64",
-                                         "-accel",
-                                         "tcg",
-                                         "-m",
-                                         "1024",
-                                         "-smp",
-                                         "2",
-                                         "-display",
-                                         "none",
-                                         "-vga",
-                                         "none",
-                                         "-device",
-                                         device,
-                                         "-kernel",
-                                         kernel,
-                                         "-initrd",
-                                         initrd,
-                                         "-append",
-                                         "console=ttyS0 quiet panic=-1 no_timer_check",
-                                         "-serial",
-                                         "file:" + serial_log_,
-                                         "-monitor",
-                                         "unix:" + monitor_socket_ + ",server,nowait",
-                                         "-no-reboot",
-                                         "-nodefaults"};
+  std::vector<std::string> args = {"qemu-system-x86_64",
+                                   "-accel",
+                                   "tcg",
+                                   "-m",
+                                   "1024",
+                                   "-smp",
+                                   "2",
+                                   "-display",
+                                   "none",
+                                   "-kernel",
+                                   kernel,
+                                   "-initrd",
+                                   initrd,
+                                   "-append",
+                                   "console=ttyS0 quiet panic=-1 no_timer_check",
+                                   "-serial",
+                                   "file:" + serial_log_,
+                                   "-monitor",
+                                   "unix:" + monitor_socket_ + ",server,nowait",
+                                   "-nodefaults"};
+  if (!options.reboot) args.push_back("-no-reboot");
+  args.insert(args.end(), options.args.begin(), options.args.end());
   pid_ = fork();
   if (pid_ == 0) {
     std::vector<char*> argv;
@@ -88,21 +90,39 @@ void QemuVm::readNewLines() {
 
 std::string QemuVm::waitForLine(const std::string& marker, const std::string& failure,
                                 int timeout_seconds) {
-  size_t checked = 0;
+  return waitForLine(marker, failure, timeout_seconds, 0, nullptr);
+}
+
+bool QemuVm::running() {
+  int status = 0;
+  if (pid_ > 0 && waitpid(pid_, &status, WNOHANG) == pid_) pid_ = -1;
+  readNewLines();
+  return pid_ > 0;
+}
+
+std::string QemuVm::waitForLine(const std::string& marker, const std::string& failure,
+                                int timeout_seconds, size_t from, size_t* at) {
+  size_t checked = from;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);
   while (std::chrono::steady_clock::now() < deadline) {
     readNewLines();
     for (; checked < lines_.size(); ++checked) {
       const std::string& line = lines_[checked];
-      if (line.find(marker) != std::string::npos) return line;
-      if (!failure.empty() && line.find(failure) != std::string::npos) return line;
+      if (line.find(marker) != std::string::npos ||
+          (!failure.empty() && line.find(failure) != std::string::npos)) {
+        if (at) *at = checked;
+        return line;
+      }
     }
     int status = 0;
     if (pid_ > 0 && waitpid(pid_, &status, WNOHANG) == pid_) {
       pid_ = -1;  // the guest powered off; read what is left once more
       readNewLines();
       for (; checked < lines_.size(); ++checked)
-        if (lines_[checked].find(marker) != std::string::npos) return lines_[checked];
+        if (lines_[checked].find(marker) != std::string::npos) {
+          if (at) *at = checked;
+          return lines_[checked];
+        }
       return "";
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -14,6 +14,16 @@ class QemuVm {
   // the serial log and the monitor socket.
   QemuVm(const std::string& kernel, const std::string& initrd, const std::string& device,
          const std::string& work_dir);
+  // Any guest: `name` names the serial log and monitor socket, `args` are added to qemu's (disks,
+  // devices), `reboot` lets a reset or a guest reboot start the guest again (the display tests
+  // end on one: -no-reboot).
+  struct Options {
+    std::string name;
+    std::vector<std::string> args;
+    bool reboot = false;
+  };
+  QemuVm(const std::string& kernel, const std::string& initrd, const Options& options,
+         const std::string& work_dir);
   ~QemuVm();
   QemuVm(const QemuVm&) = delete;
   QemuVm& operator=(const QemuVm&) = delete;
@@ -23,6 +33,11 @@ class QemuVm {
   // the timeout passes (returns ""). Every line read is kept in lines().
   std::string waitForLine(const std::string& marker, const std::string& failure,
                           int timeout_seconds);
+  // The same from console line `from` on; *at (if given) is the index of the line returned.
+  std::string waitForLine(const std::string& marker, const std::string& failure,
+                          int timeout_seconds, size_t from, size_t* at);
+  // Whether qemu is still running (reads the console so far).
+  bool running();
   const std::vector<std::string>& lines() const { return lines_; }
   // Runs one monitor command and returns its output (up to the next prompt).
   bool monitor(const std::string& command, std::string* output, std::string* error);

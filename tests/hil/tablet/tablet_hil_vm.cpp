@@ -235,6 +235,14 @@ void phaseUhidPth660(const std::string& fixtures) {
   check(std::string(info.name).find("Pen") != std::string::npos, "uhid: evdev node is the Pen");
   check(sameInfo(info, hidraw.deviceInfo()),
         "uhid: ranges and resolutions from the descriptor equal the kernel's absinfo");
+  // The serial the device reports (UHID_CREATE2's uniq; session.json's device.serial).
+  std::string why;
+  const std::string evdev_serial = evdev.serialNumber(&why);
+  check(evdev_serial == "cb-hil",
+        "uhid: evdev reports the device's serial: '" + evdev_serial + "' " + why);
+  const std::string hidraw_serial = hidraw.serialNumber(&why);
+  check(hidraw_serial == "cb-hil",
+        "uhid: hidapi-hidraw reports the device's serial: '" + hidraw_serial + "' " + why);
 
   auto inject = [&](const PenStep& s, bool) {
     return dev.input(encodePenReport(*layout.layout, s));

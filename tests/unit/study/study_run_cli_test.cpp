@@ -79,6 +79,9 @@ TEST(StudyRunCli, TheBundledProtocolAsksForItsOperatorAndVenueThenRecords) {
   EXPECT_NE(json.find("\"operator\": \"XY\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"status\": \"running\""), std::string::npos) << "stopped at consent";
   EXPECT_NE(json.find("\"platform\": \"surfaceless\""), std::string::npos) << json;
+  // An offscreen buffer has no refresh rate: null, and why (not a made-up number).
+  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "), std::string::npos)
+      << json;
   EXPECT_NE(readText(folder + "/questionnaire.csv").find("P01,NA,NA"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(folder + "/session.cbj"));
   // The next run is participant 2 (the next free id), with that participant's task order.

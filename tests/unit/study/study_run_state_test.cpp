@@ -218,5 +218,128 @@ TEST(StudyRunState, OperatorPausesSkipsAndAbortsWithReasons) {
   for (const auto& a : answers.answers[0]) EXPECT_FALSE(a.has_value());
 }
 
+// What a restored state must agree on with the original at time t.
+std::string snapshot(const StudyRunState& s, int64_t t) {
+  std::ostringstream o;
+  o << studyStageName(s.stage()) << " task=" << (s.task() ? s.task()->id : "-")
+    << " step=" << s.tutorialStep() << " item=" << s.itemIndex() << " field=" << s.fieldIndex()
+    << " text=" << s.freeTextIndex() << " paused=" << s.paused() << " choosing=" << s.choosing()
+    << " closing=" << s.closingWhy() << " seconds=" << s.stageSeconds(t)
+    << " aborted=" << s.aborted() << "\n"
+    << s.questionnaireCsv() << s.demographicsCsv();
+  for (const std::string& name : s.stagesCompleted()) o << name << ",";
+  for (const auto& text : s.freeTextAnswers()) o << "\nfree text: " << text.value_or("<none>");
+  return o.str();
+}
+
+// Resuming (issue 10): a state restored from any prefix of a session's records is the state the
+// session was in when it wrote them, and the records it made but the journal lost are made again.
+TEST(StudyRunState, RestoredFromItsRecordsTheSessionCarriesOnWhereItWas) {
+  StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
+  int64_t t = 100 * kSecond;
+  StudyRunState s(p, 3, t);
+  std::vector<StudyRunRecord> records;
+  struct Checkpoint {
+    size_t records;
+    int64_t t;
+    std::string state;
+  };
+  std::vector<Checkpoint> checkpoints;
+  const auto step = [&] {
+    for (StudyRunRecord& r : s.takeRecords()) records.push_back(r);
+    checkpoints.push_back({records.size(), t, snapshot(s, t)});
+  };
+  step();
+  s.agree(t += kSecond), step();
+  s.proceed(t += kSecond), step();
+  s.requestOperator(OperatorAction::kSkip, t += kSecond), step();  // the introduction
+  s.chooseReason(1, t += kSecond), step();
+  for (size_t i = 0; i < p.tutorial.size(); ++i) {
+    if (i == 3) {
+      s.requestOperator(OperatorAction::kAbort, t += kSecond), step();
+      s.cancelChoice(t += kSecond), step();
+      s.requestOperator(OperatorAction::kSkip, t += kSecond), step();
+      s.chooseReason(2, t += kSecond), step();
+      continue;
+    }
+    TutorialState state;
+    for (const TutorialCondition& c : p.tutorial[i].expect) satisfy(c, &state);
+    s.observeTutorial(state, t += 3 * kSecond), step();
+  }
+  s.closeStage(t += kSecond), step();
+  ASSERT_EQ(s.stage(), StudyStageKind::kFreeDrawing);
+  s.tick(t += 100 * kSecond), step();
+  s.requestOperator(OperatorAction::kPause, t += kSecond), step();
+  s.chooseReason(0, t += 5 * kSecond), step();
+  s.requestOperator(OperatorAction::kPause, t += 60 * kSecond), step();  // resume
+  t += 3600 * kSecond;
+  s.resumedAfter(t - 3600 * kSecond, t), step();  // the runner was down an hour
+  EXPECT_DOUBLE_EQ(s.secondsLeft(t), 499.0) << "neither the pause nor the hour down counts";
+  s.tick(t += 600 * kSecond), step();  // time up
+  ASSERT_TRUE(s.closing());
+  s.closeStage(t += kSecond), step();
+  for (int i = 0; i < s.taskCount(); ++i) {
+    ASSERT_EQ(s.stage(), StudyStageKind::kTask);
+    s.tick(t += 601 * kSecond), step();
+    s.closeStage(t += kSecond, {"session.cbj", "tasks/" + s.task()->id + ".vdb"}), step();
+  }
+  ASSERT_EQ(s.answerField("29", t += kSecond), ""), step();
+  s.skipField(t += kSecond), step();
+  ASSERT_EQ(s.answerField("a lot, \"really\"", t += kSecond), ""), step();
+  for (size_t i = 0; i < p.items.size(); ++i) {
+    if (i == 6) s.previousItem(t), s.answerItem(5, t += kSecond), step();  // Q6 changed
+    if (i == 9)
+      s.skipItem(t += kSecond), step();
+    else
+      s.answerItem(int(i % 5) + 1, t += kSecond), step();
+  }
+  s.answerFreeText("NA", t += kSecond), step();  // typed: not a missing answer
+  ASSERT_TRUE(s.done());
+
+  for (const Checkpoint& c : checkpoints) {
+    StudyRunState restored(p, 3, records.front().t_ns);
+    const std::vector<StudyRunRecord> prefix(records.begin(), records.begin() + long(c.records));
+    std::string error;
+    ASSERT_TRUE(restored.restore(prefix, &error)) << error;
+    EXPECT_EQ(snapshot(restored, c.t), c.state) << "after " << c.records << " records";
+    EXPECT_TRUE(restored.takeRecords().empty()) << "a whole journal leaves nothing to make";
+  }
+  // A journal cut between the records one input made: restored, those are made again.
+  for (size_t cut = 1; cut < records.size(); ++cut) {
+    StudyRunState restored(p, 3, records.front().t_ns);
+    std::string error;
+    ASSERT_TRUE(restored.restore({records.begin(), records.begin() + long(cut)}, &error)) << error;
+    const std::vector<StudyRunRecord> again = restored.takeRecords();
+    for (size_t i = 0; i < again.size(); ++i) {
+      ASSERT_LT(cut + i, records.size());
+      EXPECT_EQ(again[i].text, records[cut + i].text) << "cut at " << cut;
+    }
+  }
+  // The answers as given (Q6 changed, Q10 skipped, the free text the word NA).
+  const std::string& last = checkpoints.back().state;
+  EXPECT_NE(last.find("P03,1,2,3,4,5,5,2,3,4,NA,1,"), std::string::npos) << last;
+  EXPECT_NE(last.find("P03,29,NA,\"a lot, \"\"really\"\"\","), std::string::npos) << last;
+  EXPECT_NE(last.find("free text: NA"), std::string::npos) << last;
+
+  // Another participant's journal (another task order), or another protocol, is refused.
+  StudyRunState other(p, 4, records.front().t_ns);
+  std::string error;
+  EXPECT_FALSE(other.restore(records, &error));
+  EXPECT_NE(error.find("study record 1"), std::string::npos) << error;
+  StudyProtocol renamed = p;
+  renamed.version = "2099.1";
+  StudyRunState elsewhere(renamed, 3, records.front().t_ns);
+  EXPECT_FALSE(elsewhere.restore(records, &error));
+  // A record the runner never makes is named.
+  size_t at_participant = 0;
+  while (records[at_participant].text.rfind("study.stage-begin stage=participant", 0) != 0)
+    ++at_participant;
+  std::vector<StudyRunRecord> forged(records.begin(), records.begin() + long(at_participant) + 1);
+  forged.push_back({t, "study.answer item=Q1 value=5"});  // at the participant page
+  StudyRunState forged_state(p, 3, records.front().t_ns);
+  EXPECT_FALSE(forged_state.restore(forged, &error));
+  EXPECT_NE(error.find("does not apply here"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace cb

@@ -1,0 +1,384 @@
+// Crash test for study sessions (issue 10, "Evidence"): a recorded pen session is replayed into
+// the real study runner (`cloudbrush study run --display surfaceless --backend replay --resume
+// FOLDER`), which is killed with SIGKILL at seeded random points and restarted on the same
+// folder each time. Every restart resumes the session (stage, task, answers, clock); no pen
+// sample, completed stroke or answer is ever lost or doubled; and at the end the folder holds
+// what an uninterrupted run leaves: the same questionnaire answers, the same stage and answer
+// records, the same task volumes, and the same final volume (also from `cloudbrush replay` of
+// the resumed journal). The seed is printed (CB_CRASH_SEED=N repeats a run); CB_CRASH_KILLS sets
+// the number of kills (ctest: 5 in CI, 20 in the `slow` variant).
+//
+// The protocol is a short one written here: consent, the participant's code, an introduction,
+// a one-step tutorial (an empty sky), 1.8 s of free drawing, two tasks of 3.6 s (a stroke
+// each), three Likert items. The pen
+// taps the runner's own targets (laid out by app/shell/study_page.h for this screen size).
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/session/synthetic_session.h"
+#include "app/shell/study_page.h"
+#include "app/study/protocol.h"
+#include "app/study/study_run_state.h"
+#include "drivers/core/journal.h"
+
+#include "tests/support/command_run.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 512, kH = 288;
+constexpr int64_t kSecond = 1'000'000'000, kT0 = 5 * kSecond;
+
+const char kProtocol[] = R"(
+[study]
+name = "Crash test"
+version = "1"
+[consent]
+text = "This session is killed and restarted many times. Do you agree?"
+[participants]
+id_scheme = "counter"
+prefix = "C"
+digits = 2
+[[venue]]
+id = "lab"
+name = "The test's machine"
+[operator]
+required = false
+[introduction]
+text = "Two short paintings, then three questions."
+[tutorial]
+minutes = 10
+[[tutorial.step]]
+instruction = "Start from an empty sky."
+expect = ["cloud_empty == true"]
+[free_drawing]
+text = "Nothing to draw yet: a moment to get ready."
+minutes = 0.03
+[tasks]
+order = "fixed"
+minutes = 0.06
+[[task]]
+id = "first"
+title = "First cloud"
+image = "images/cloud1_duck.png"
+save = ["journal", "volume_raw"]
+[[task]]
+id = "second"
+title = "Second cloud"
+image = "images/cloud2_photo1.png"
+save = ["journal", "volume_raw"]
+[questionnaire]
+scale = ["strongly disagree", "disagree", "neutral", "agree", "strongly agree"]
+[[item]]
+id = "Q1"
+text = "The session went on where it stopped."
+[[item]]
+id = "Q2"
+text = "Nothing was lost."
+[[item]]
+id = "Q3"
+text = "I would paint again."
+)";
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string capture(const std::string& text, const std::string& pattern) {
+  std::smatch match;
+  return std::regex_search(text, match, std::regex(pattern)) ? match[1].str() : std::string();
+}
+
+// One raw sample of the synthetic tablet at screen pixel (x, y).
+PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, bool tip,
+                   bool proximity) {
+  PenSample s;
+  s.t_ns = t_ns;
+  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / kW;
+  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / kH;
+  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
+  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
+  s.pressure_raw = tip ? int32_t(0.6f * float(tablet.pressure_max)) : 0;
+  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
+  s.distance_raw = tip ? 0 : 10;
+  s.distance = float(s.distance_raw) / float(tablet.distance_max);
+  s.buttons = tip ? kPenTip : 0u;
+  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
+  s.tool_id = proximity ? 0x802u : 0u;
+  s.in_proximity = proximity;
+  return s;
+}
+
+class PenScript {
+ public:
+  explicit PenScript(const PenDeviceInfo& tablet) : tablet_(tablet) {}
+  // A tap in the middle of `target` at `t`.
+  void tap(const StudyTarget* target, int64_t t) {
+    ASSERT_TRUE(target);
+    const float x = 0.5f * (target->x0 + target->x1), y = 0.5f * (target->y0 + target->y1);
+    const int64_t dt = 5'000'000;
+    for (int i = 0; i < 3; ++i) add(sampleAt(tablet_, x, y, t += dt, false, true));
+    for (int i = 0; i < 4; ++i) add(sampleAt(tablet_, x, y, t += dt, true, true));
+    for (int i = 0; i < 2; ++i) add(sampleAt(tablet_, x, y, t += dt, false, true));
+    add(sampleAt(tablet_, x, y, t += dt, false, false));
+  }
+  // Reference stroke `which` (referencePaintStrokes) from `t`; returns when it ended.
+  int64_t stroke(size_t which, int64_t t) {
+    for (const PenSample& s :
+         syntheticPenSamples(referencePaintStrokes(kW, kH)[which], tablet_, kW, kH, 200.0, t)) {
+      add(s);
+      t = s.t_ns;
+    }
+    return t;
+  }
+  void add(const PenSample& s) {
+    EXPECT_GT(s.t_ns, last_) << "samples in time order";
+    last_ = s.t_ns;
+    samples_.push_back(s);
+  }
+  const std::vector<PenSample>& samples() const { return samples_; }
+
+ private:
+  PenDeviceInfo tablet_;
+  std::vector<PenSample> samples_;
+  int64_t last_ = 0;
+};
+
+// The pen of one participant: consent at 1 s, the code at 1.8 s, the introduction at 2.6 s (the
+// tutorial step holds at once; the free drawing's 1.8 s pass without the pen), one stroke in
+// the first task (from 5.3 s; the task runs from about 4.45 s to 8.05 s), another in the second
+// (from 8.9 s; it ends at about 11.65 s), the three answers at 12.6, 13.4 and 14.2 s. Every
+// stage change falls in most of a second without pen samples, so where a kill lands cannot move
+// a sample across one.
+void recordPen(const StudyProtocol& protocol, const std::string& path) {
+  const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  PenScript pen(tablet);
+  StudyRunState layout(protocol, 1, 0);
+  const auto page = [&] { return buildStudyPage(layout, StudyPageInput{}, kW, kH); };
+  const auto at = [](double seconds) { return kT0 + int64_t(seconds * 1e9); };
+  pen.tap(page().find(StudyTargetAction::kAgree), at(1.0));
+  layout.agree(0);
+  pen.tap(page().find(StudyTargetAction::kContinue), at(1.8));
+  layout.proceed(0);
+  ASSERT_EQ(layout.stage(), StudyStageKind::kIntroduction);
+  pen.tap(page().find(StudyTargetAction::kContinue), at(2.6));
+  layout.proceed(0);
+  EXPECT_LT(pen.stroke(0, at(5.3)), at(7.0)) << "the first task's stroke ends a second early";
+  EXPECT_LT(pen.stroke(1, at(8.9)), at(10.6)) << "the second task's stroke ends a second early";
+  layout.completeTutorialStep(0);
+  layout.closeStage(0);
+  for (int i = 0; i < 3; ++i) {  // free drawing, the two tasks
+    layout.tick(7 * kSecond * (i + 1));
+    layout.closeStage(7 * kSecond * (i + 1));
+  }
+  ASSERT_EQ(layout.stage(), StudyStageKind::kQuestionnaire);
+  const int answers[3] = {4, 2, 5};
+  for (int i = 0; i < 3; ++i) {
+    pen.tap(page().find(StudyTargetAction::kAnswer, answers[i]), at(12.6 + 0.8 * i));
+    layout.answerItem(answers[i], 0);
+  }
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(path)) << journal.error();
+  const std::vector<uint8_t> device = encodeDeviceInfo(tablet);
+  ASSERT_TRUE(journal.append(JournalRecordType::kDevice, kT0, device.data(), device.size()));
+  for (const PenSample& s : pen.samples()) ASSERT_TRUE(journal.appendPenSample(s));
+}
+
+struct JournalCounts {
+  std::vector<int64_t> sample_times;  // every pen sample, in order
+  int strokes = 0;                    // tip-down runs that ended with the tip up
+  std::vector<std::string> answers;   // study.answer records
+  std::vector<std::string> stages;    // study.stage-begin, study.saved and study.answer records
+};
+
+JournalCounts countJournal(const std::string& path) {
+  JournalCounts c;
+  const JournalReadResult journal = readJournal(path);
+  bool down = false;
+  for (const JournalRecord& r : journal.records) {
+    if (r.type == JournalRecordType::kPenSample) {
+      const PenSample s = *decodePenSample(r.payload);
+      c.sample_times.push_back(s.t_ns);
+      const bool tip = (s.buttons & kPenTip) != 0;
+      if (down && !tip) ++c.strokes;
+      down = tip;
+    } else if (r.type == JournalRecordType::kMarker) {
+      const std::string text(r.text());
+      if (text.rfind("study.answer ", 0) == 0) c.answers.push_back(text);
+      if (text.rfind("study.answer ", 0) == 0 || text.rfind("study.stage-begin ", 0) == 0 ||
+          text.rfind("study.saved ", 0) == 0)
+        c.stages.push_back(text);
+    }
+  }
+  return c;
+}
+
+pid_t spawn(const std::string& command, const std::string& log) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const std::string line = "exec " + command + " > '" + log + "' 2>&1";
+    ::execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+bool exited(pid_t pid) {
+  siginfo_t info{};
+  return ::waitid(P_PID, id_t(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
+TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOne) {
+  const auto started = std::chrono::steady_clock::now();
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_study_crash_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
+  const std::string protocol_path = dir + "/crash.toml";
+  std::ofstream(protocol_path) << kProtocol;
+  const StudyProtocol protocol = loadStudyProtocol(protocol_path);
+  const std::string pen = dir + "/pen.cbj";
+  ASSERT_NO_FATAL_FAILURE(recordPen(protocol, pen));
+  const JournalCounts source = countJournal(pen);
+  ASSERT_EQ(source.strokes, 6 + 2) << "six taps and two strokes";
+
+  const auto command = [&](const std::string& folder) {
+    return std::string(CB_CLOUDBRUSH_BIN) + " study run " + protocol_path +
+           " --display surfaceless --size " + std::to_string(kW) + "x" + std::to_string(kH) +
+           " --grid 64 --participant 1 --backend replay --journal " + pen +
+           " --end-seconds 0.3 --seconds 90 --resume " + folder;
+  };
+  // Uninterrupted.
+  const std::string whole = dir + "/data/C01-whole";
+  const test::CommandRun reference = test::runCommand(command(whole));
+  ASSERT_EQ(reference.status, 0) << reference.out;
+  const std::string expected = capture(reference.out, "volume checksum ([0-9a-f]{16})");
+  ASSERT_FALSE(expected.empty()) << reference.out;
+  EXPECT_NE(reference.out.find("stage done"), std::string::npos) << reference.out;
+  const JournalCounts reference_counts = countJournal(whole + "/session.cbj");
+  EXPECT_EQ(reference_counts.sample_times, source.sample_times);
+  EXPECT_EQ(reference_counts.answers.size(), 3u);
+  const std::string answers = readText(whole + "/questionnaire.csv");
+  EXPECT_EQ(answers, "participant,Q1,Q2,Q3\nC01,4,2,5\n");
+
+  unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
+  if (const char* fixed = std::getenv("CB_CRASH_SEED"))
+    seed = unsigned(std::strtoul(fixed, nullptr, 10));
+  const int kills = std::getenv("CB_CRASH_KILLS") ? std::atoi(std::getenv("CB_CRASH_KILLS")) : 20;
+  std::printf("study crash test seed %u, %d kills (CB_CRASH_SEED=%u repeats it)\n", seed, kills,
+              seed);
+  std::mt19937 random(seed);
+  // One kill in five lands while the runner starts (display, renderer, the journal's replay);
+  // the others once its loop is about to run (it printed its first study record, or that it
+  // resumed), 0–2.5 s on (each restart first runs its startup and the time since the last
+  // record again).
+  std::uniform_int_distribution<int> delay_ms(0, 2500), startup_ms(0, 300), during_startup(0, 4);
+  const std::string folder = dir + "/data/C01-crashed";
+  const std::string journal = folder + "/session.cbj";
+  int killed = 0, resumes = 0, finished = 0;
+  JournalCounts before;
+  for (int i = 0; i < kills; ++i) {
+    const std::string log = dir + "/run" + std::to_string(i) + ".log";
+    const bool in_startup = during_startup(random) == 0;
+    const int wait = in_startup ? startup_ms(random) : delay_ms(random);
+    const pid_t pid = spawn(command(folder), log);
+    ASSERT_GT(pid, 0);
+    if (!in_startup)
+      for (int t = 0; t < 3000; ++t) {  // at most 30 s
+        const std::string so_far = readText(log);
+        if (so_far.find("study.session ") != std::string::npos ||
+            so_far.find("resumed ") != std::string::npos || exited(pid))
+          break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    std::this_thread::sleep_for(std::chrono::milliseconds(wait));
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    const std::string out = readText(log);
+    if (WIFSIGNALED(status))
+      ++killed;
+    else
+      ++finished;
+    if (out.find("resumed ") != std::string::npos) ++resumes;
+    const JournalCounts now =
+        std::filesystem::exists(journal) ? countJournal(journal) : JournalCounts{};
+    std::printf("kill %2d %4d ms after %s: %s; %zu samples, %d strokes, %zu answers, stage %s\n", i,
+                wait, in_startup ? "start" : "the loop ran",
+                WIFSIGNALED(status) ? "killed" : "had finished", now.sample_times.size(),
+                now.strokes, now.answers.size(),
+                now.stages.empty() ? "-" : now.stages.back().c_str());
+    EXPECT_TRUE(WIFSIGNALED(status) || WEXITSTATUS(status) == 0) << out;
+    // Nothing recorded is lost, nothing is recorded twice: the journal's samples are always the
+    // pen's first N, and its strokes and answers only grow.
+    ASSERT_LE(now.sample_times.size(), source.sample_times.size());
+    EXPECT_TRUE(
+        std::equal(now.sample_times.begin(), now.sample_times.end(), source.sample_times.begin()))
+        << "kill " << i << ": the journal's samples are not the pen's in order\n"
+        << out;
+    EXPECT_GE(now.sample_times.size(), before.sample_times.size()) << "kill " << i;
+    EXPECT_GE(now.strokes, before.strokes) << "a completed stroke was lost at kill " << i;
+    ASSERT_GE(now.answers.size(), before.answers.size()) << "an answer was lost at kill " << i;
+    EXPECT_TRUE(std::equal(before.answers.begin(), before.answers.end(), now.answers.begin()))
+        << "kill " << i;
+    before = now;
+  }
+  EXPECT_GE(killed, kills / 2) << "most runs should have been killed, not finished";
+  EXPECT_GE(resumes, kills / 4) << "restarts resumed the session";
+
+  const test::CommandRun last = test::runCommand(command(folder));
+  ASSERT_EQ(last.status, 0) << last.out;
+  EXPECT_NE(last.out.find("resumed "), std::string::npos) << last.out;
+  EXPECT_NE(last.out.find("stage done"), std::string::npos) << last.out;
+  EXPECT_EQ(capture(last.out, "volume checksum ([0-9a-f]{16})"), expected) << last.out;
+  const JournalCounts final_counts = countJournal(journal);
+  EXPECT_EQ(final_counts.sample_times, source.sample_times) << "every pen sample, once";
+  EXPECT_EQ(final_counts.strokes, source.strokes);
+  EXPECT_EQ(final_counts.stages, reference_counts.stages)
+      << "the same stages, saved files and answers as the uninterrupted run";
+  EXPECT_EQ(readText(folder + "/questionnaire.csv"), answers);
+  for (const char* task : {"first", "second"})
+    EXPECT_EQ(readText(folder + "/tasks/" + task + ".cbvol"),
+              readText(whole + "/tasks/" + task + ".cbvol"))
+        << "task " << task << "'s volume";
+  const std::string json = readText(folder + "/session.json");
+  EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"task:second\", \"questionnaire\""), std::string::npos) << json;
+  // A recorded pen has no serial to report, and the offscreen display no refresh: both null,
+  // each with the reason.
+  EXPECT_NE(json.find("\"serial\": null, \"serial_note\": \"replay: "), std::string::npos) << json;
+  EXPECT_NE(json.find("\"refresh_hz\": null, \"refresh_note\": \"surfaceless: "), std::string::npos)
+      << json;
+  const test::CommandRun replay =
+      test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal);
+  EXPECT_EQ(replay.status, 0) << replay.out;
+  EXPECT_EQ(capture(replay.out, "volume checksum: ([0-9a-f]{16})"), expected) << replay.out;
+  std::printf("%d killed, %d had finished, %d resumed; final checksum %s; %.1f s in all\n", killed,
+              finished, resumes, expected.c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  if (!HasFailure()) std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cb
