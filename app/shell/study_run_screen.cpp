@@ -85,8 +85,7 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
     // Carry on where the journal ends: the task's picture, its setup when the journal lost it,
     // and the closing page's timer.
     const Volume& v = session_.volume();
-    cloud_empty_ =
-        std::none_of(v.data(), v.data() + v.voxelCount(), [](float d) { return d > 0.0f; });
+    cloud_empty_ = !v.hasDensity();
     empty_checked_generation_ = v.generation();
     strokes_in_cloud_ = cloud_empty_ ? 0 : int64_t(session_.strokesMapped());
     if (state_.stage() == StudyStageKind::kTask) {
