@@ -471,6 +471,11 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     }
     bool operator()(const ui::ApplyMorph& c) {
       if (s.engine_.inStroke()) return *error = "morph: a stroke is being painted", false;
+      if (c.cell_blocks)
+        return *error =
+                   "morph: a morph= record of journal specification 1.1 (cells moved as "
+                   "blocks), which this version does not recompute; the cloud is unchanged",
+               false;
       try {
         const Volume target = loadMorphTarget(c.target, s.volume_);
         const uint64_t checksum = volumeChecksum(target);
@@ -492,7 +497,10 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     bool operator()(const ui::ApplyWind& c) {
       if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
       Volume blown = s.volume_;
-      blowWind(c.run, &blown);
+      if (c.step_by_step)
+        blowWindStepByStep(c.run, &blown);
+      else
+        blowWind(c.run, &blown);
       s.takeFrame(blown);
       s.recordStep(before, "wind");
       return true;

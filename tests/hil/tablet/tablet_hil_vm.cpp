@@ -205,6 +205,82 @@ std::string asNobody(const std::function<std::string()>& what) {
   return out;
 }
 
+// Slow strokes (issue 12): the input core's fuzz filter (drivers/input/input.c
+// input_defuzz_abs_event) drops or smooths small changes on evdev; the hidraw backend applies
+// the same filter by default. `reports` are injected back to back (well inside the driver's
+// 100 ms idle-proximity timer), then every source's samples up to the first out-of-proximity
+// one are compared field by field: `filtered` must give evdev's sequence exactly and lose some
+// reports (so the filter was exercised); `raw` (the filter off) must differ from evdev's, so
+// the check can fail.
+void checkSlowStroke(const std::string& label, const std::vector<std::vector<uint8_t>>& reports,
+                     const std::function<bool(const std::vector<uint8_t>&)>& send, PenSource& evdev,
+                     PenSource& filtered, PenSource& raw) {
+  std::vector<PenSample> drained;
+  for (PenSource* src : {&evdev, &filtered, &raw}) src->poll(20, drained);
+  for (const std::vector<uint8_t>& r : reports) {
+    if (!send(r)) {
+      check(false, label + ": injecting a slow-stroke report");
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(4));
+  }
+  auto read = [](PenSource& src) {
+    std::vector<PenSample> got, in;
+    const int64_t start = nowNs();
+    while (nowNs() - start < 400'000'000) src.poll(20, got);
+    for (const PenSample& g : got) {
+      if (!g.in_proximity) break;
+      in.push_back(g);
+    }
+    return in;
+  };
+  const std::vector<PenSample> ev = read(evdev), hr = read(filtered), unfiltered = read(raw);
+  size_t first_difference = 0;
+  while (first_difference < std::min(ev.size(), hr.size()) &&
+         samePenState(ev[first_difference], hr[first_difference]))
+    ++first_difference;
+  const bool same = ev.size() == hr.size() && first_difference == ev.size();
+  if (!same && first_difference < std::max(ev.size(), hr.size())) {
+    std::printf("  %s: sample %zu differs\n    evdev : %s\n    hidraw: %s\n", label.c_str(),
+                first_difference,
+                first_difference < ev.size() ? describe(ev[first_difference]).c_str() : "none",
+                first_difference < hr.size() ? describe(hr[first_difference]).c_str() : "none");
+  }
+  figure(label + "_reports", double(reports.size()));
+  figure(label + "_evdev_samples", double(ev.size()));
+  check(same, label + ": " + std::to_string(reports.size()) + " slow-stroke reports give evdev " +
+                  std::to_string(ev.size()) + " samples and filtered hidraw " +
+                  std::to_string(hr.size()) + ", equal field by field");
+  check(!ev.empty() && ev.size() < reports.size(),
+        label + ": the fuzz filter dropped some reports (" + std::to_string(ev.size()) + " of " +
+            std::to_string(reports.size()) + " delivered)");
+  bool raw_same = unfiltered.size() == ev.size();
+  for (size_t i = 0; raw_same && i < ev.size(); ++i) raw_same = samePenState(ev[i], unfiltered[i]);
+  check(!raw_same, label + ": hidraw without the filter (--raw) differs from evdev (" +
+                       std::to_string(unfiltered.size()) + " samples), so the check can fail");
+}
+
+// A slow stroke: pressed at `start`, small steps of 0–5 units on X and Y, pressure creeping by 1,
+// tilt by 1 every few reports (what a pen held nearly still gives).
+std::vector<PenStep> slowStroke(PenStep start) {
+  static const int dx[] = {0, 1, 1, 2, 1, 3, 2, 5, 1, 0, 4, 1, 2, 3, 1, 1, 6, 2, 1, 3};
+  static const int dy[] = {1, 0, 2, 1, 1, 0, 3, 1, 2, 1, 1, 5, 0, 1, 2, 4, 1, 1, 3, 0};
+  std::vector<PenStep> steps;
+  PenStep s = start;
+  s.in_range = s.sense = s.tip = true;
+  s.eraser = s.invert = false;
+  for (int i = 0; i < 40; ++i) {
+    s.x += dx[i % 20];
+    s.y += dy[(i + 7) % 20];
+    if (i % 3 == 0) s.pressure += 1;
+    if (i % 4 == 1) s.tilt_x += 1;
+    if (i % 5 == 2) s.tilt_y -= 1;
+    if (i % 6 == 3) s.distance += 1;
+    steps.push_back(s);
+  }
+  return steps;
+}
+
 void phaseUhidPth660(const std::string& fixtures) {
   const std::vector<uint8_t> desc = readFile(fixtures + "/wacom-pth660_v145.rdesc");
   auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
@@ -241,6 +317,25 @@ void phaseUhidPth660(const std::string& fixtures) {
   };
   const auto steps = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
   runScript("uhid-pth660", steps, false, info, inject, {&evdev, &hidraw});
+
+  // Slow strokes: X/Y fuzz 4 (config/devices/wacom-generic.toml, the wacom driver's generic pen
+  // path), evdev against the filtered hidraw path.
+  {
+    hid::HidapiPenSourceOptions raw_options = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
+    raw_options.input_fuzz = false;
+    hid::HidapiPenSource raw(raw_options);
+    if (check(waitConnected(raw, 5000), "uhid: a second hidraw reader without the filter opens")) {
+      std::vector<std::vector<uint8_t>> reports;
+      for (const PenStep& st : slowStroke(steps[6]))
+        reports.push_back(encodePenReport(*layout.layout, st));
+      PenStep out = steps[6];
+      out.in_range = out.sense = out.tip = false;
+      reports.push_back(encodePenReport(*layout.layout, out));
+      checkSlowStroke(
+          "uhid-pth660 slow stroke", reports,
+          [&](const std::vector<uint8_t>& r) { return dev.input(r); }, evdev, hidraw, raw);
+    }
+  }
 
   // An unprivileged user (no udev rule installed) gets a state naming the rule, not an exit.
   {
