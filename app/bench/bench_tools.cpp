@@ -94,7 +94,7 @@ void writeToolImages(const std::string& dir, const ImageRgba8& silhouette_image,
     write(morph.frame(0.25f * float(k)), name);
   }
   WindRun run;
-  for (int steps : {0, 30, 60}) {
+  for (int steps : {0, 15, 30}) {
     run.segments = {{1.0f, 0.0f, steps}};
     Volume blown = picture_cloud;
     blowWind(run, &blown);
@@ -115,7 +115,7 @@ int benchTools(int argc, char** argv) {
         "  --out-dir DIR  also write what each tool made, rendered at 640x360 from the view it\n"
         "                 was placed from: the silhouette, its cloud, the model's cloud, the\n"
         "                 morph between them at t = 0, 0.25, 0.5, 0.75, 1 and the wind after 0,\n"
-        "                 30 and 60 steps (DIR/tools-*.png)\n");
+        "                 15 and 30 steps (DIR/tools-*.png)\n");
     return 0;
   }
   const int runs = args.has("quick") ? 1 : 3;

@@ -54,6 +54,7 @@ class WindAnimation {
   // The cloud after the steps so far: `start` (the cloud when the wind started, at any
   // resolution over the same world box) carried into `out`; WindSolver::resampleDensity.
   VoxelBox show(const Volume& start, Volume* out, const VoxelBox& previous) const;
+  const WindSolver& solver() const { return solver_; }
   // One step the way journal specification 1.1 recorded wind: the velocity step, then the
   // density itself advected (WindSolver::advectDensityEveryVoxel).
   void stepDensityItself(Volume* density);

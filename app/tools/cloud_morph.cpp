@@ -180,27 +180,38 @@ void CloudMorph::carry(const Volume& cloud, bool from_source) {
   const glm::vec3 to_carried = glm::vec3(d) / glm::vec3(plan.dims());
   const float cv = float(plan.params().cell_voxels);
   const float threshold = plan.params().density_threshold;
-  auto particleAt = [&](glm::ivec3 c) {
-    if (glm::any(glm::lessThan(c, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(c, cells)))
-      return -1;
-    return side.cell_particle[(size_t(c.z) * cells.y + c.y) * cells.x + c.x];
+  // The cells' mean displacements (times 1 for a non-empty cell, 0 for an empty one) on a grid
+  // padded by one empty cell on every side, so interpolation needs no bounds checks.
+  const glm::ivec3 padded = cells + 2;
+  auto paddedIndex = [&](int x, int y, int z) {
+    return (size_t(z + 1) * padded.y + size_t(y + 1)) * padded.x + size_t(x + 1);
   };
-  auto pathCount = [&](int particle) {
-    return particle < 0 ? size_t(1) : side.particle_paths[size_t(particle)].size();
-  };
-  auto ownCell = [&](glm::vec3 x) {
-    return glm::clamp(glm::ivec3(glm::floor(x / cv)), glm::ivec3(0), cells - 1);
-  };
+  const size_t padded_count = size_t(padded.x) * padded.y * padded.z;
+  std::vector<glm::vec4> cell_u(padded_count, glm::vec4(0)), cell_v(padded_count, glm::vec4(0));
+  std::vector<uint32_t> cell_paths(size_t(cells.x) * cells.y * cells.z, 1);
+  for (int z = 0; z < cells.z; ++z)
+    for (int y = 0; y < cells.y; ++y)
+      for (int x = 0; x < cells.x; ++x) {
+        const size_t c = (size_t(z) * cells.y + y) * cells.x + x;
+        const int particle = side.cell_particle[c];
+        if (particle < 0) continue;
+        cell_u[paddedIndex(x, y, z)] = glm::vec4(side.mean_u[size_t(particle)], 1.0f);
+        cell_v[paddedIndex(x, y, z)] = glm::vec4(side.mean_v[size_t(particle)], 1.0f);
+        cell_paths[c] = uint32_t(side.particle_paths[size_t(particle)].size());
+      }
+  auto ownCell = [&](float p, int n) { return std::clamp(int(std::floor(p / cv)), 0, n - 1); };
   // Per z plane: how many splats, then where each plane's splats start.
   std::vector<size_t> plane_items(size_t(d.z) + 1, 0);
   parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
     for (int z = int(z_begin); z < int(z_end); ++z) {
+      const int cz = ownCell((float(z) + 0.5f) * to_plan.z, cells.z);
       size_t n = 0;
       for (int y = 0; y < d.y; ++y) {
+        const int cy = ownCell((float(y) + 0.5f) * to_plan.y, cells.y);
+        const uint32_t* paths = &cell_paths[(size_t(cz) * cells.y + cy) * cells.x];
         const float* row = cloud.data() + cloud.index(0, y, z);
         for (int x = 0; x < d.x; ++x)
-          if (row[x] > threshold)
-            n += pathCount(particleAt(ownCell((glm::vec3(x, y, z) + 0.5f) * to_plan)));
+          if (row[x] > threshold) n += paths[ownCell((float(x) + 0.5f) * to_plan.x, cells.x)];
       }
       plane_items[size_t(z) + 1] = n;
     }
@@ -209,49 +220,77 @@ void CloudMorph::carry(const Volume& cloud, bool from_source) {
   for (int z = 0; z < d.z; ++z) plane_items[size_t(z) + 1] += plane_items[size_t(z)];
   items_.resize(first + plane_items[size_t(d.z)]);
   parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    // One row's cells blended over y and z (the trilinear weights of the two rows and planes
+    // of cell centres around it), so each voxel only blends two of them along x.
+    std::vector<glm::vec4> row_u(size_t(padded.x)), row_v(size_t(padded.x));
     for (int z = int(z_begin); z < int(z_end); ++z) {
+      const float pz = (float(z) + 0.5f) * to_plan.z;
+      const float gz = pz / cv - 0.5f;
+      const int cz0 = int(std::floor(gz));
+      const float fz = gz - float(cz0);
+      const int own_z = ownCell(pz, cells.z);
+      const float win_z = std::clamp(2.0f - 4.0f * std::abs(pz / cv - (float(own_z) + 0.5f)),
+                                     0.0f, 1.0f);
       CarriedSplat* out = items_.data() + first + plane_items[size_t(z)];
       for (int y = 0; y < d.y; ++y) {
         const float* row = cloud.data() + cloud.index(0, y, z);
+        bool any = false;
+        for (int x = 0; x < d.x && !any; ++x) any = row[x] > threshold;
+        if (!any) continue;
+        const float py = (float(y) + 0.5f) * to_plan.y;
+        const float gy = py / cv - 0.5f;
+        const int cy0 = int(std::floor(gy));
+        const float fy = gy - float(cy0);
+        const int own_y = ownCell(py, cells.y);
+        const float win_yz =
+            win_z *
+            std::clamp(2.0f - 4.0f * std::abs(py / cv - (float(own_y) + 0.5f)), 0.0f, 1.0f);
+        for (int cx = -1; cx <= cells.x; ++cx) {
+          const glm::vec4 u = (1 - fz) * ((1 - fy) * cell_u[paddedIndex(cx, cy0, cz0)] +
+                                          fy * cell_u[paddedIndex(cx, cy0 + 1, cz0)]) +
+                              fz * ((1 - fy) * cell_u[paddedIndex(cx, cy0, cz0 + 1)] +
+                                    fy * cell_u[paddedIndex(cx, cy0 + 1, cz0 + 1)]);
+          const glm::vec4 v = (1 - fz) * ((1 - fy) * cell_v[paddedIndex(cx, cy0, cz0)] +
+                                          fy * cell_v[paddedIndex(cx, cy0 + 1, cz0)]) +
+                              fz * ((1 - fy) * cell_v[paddedIndex(cx, cy0, cz0 + 1)] +
+                                    fy * cell_v[paddedIndex(cx, cy0 + 1, cz0 + 1)]);
+          row_u[size_t(cx + 1)] = u;
+          row_v[size_t(cx + 1)] = v;
+        }
+        const int* own_row = &side.cell_particle[(size_t(own_z) * cells.y + own_y) * cells.x];
         for (int x = 0; x < d.x; ++x) {
           const float m = row[x];
           if (m <= threshold) continue;
-          const glm::vec3 xp = (glm::vec3(x, y, z) + 0.5f) * to_plan;
-          // The cells' mean displacements, trilinear between the centres of non-empty cells.
-          const glm::vec3 g = xp / cv - 0.5f;
-          const glm::ivec3 c0 = glm::ivec3(glm::floor(g));
-          const glm::vec3 f = g - glm::vec3(c0);
-          glm::vec3 field_u(0), field_v(0);
-          float weight = 0;
-          for (int c = 0; c < 8; ++c) {
-            const glm::ivec3 o(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-            const int particle = particleAt(c0 + o);
-            if (particle < 0) continue;
-            const float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
-            field_u += w * side.mean_u[size_t(particle)];
-            field_v += w * side.mean_v[size_t(particle)];
-            weight += w;
-          }
-          if (weight > 0) field_u /= weight, field_v /= weight;
-          const glm::ivec3 own = ownCell(xp);
-          const int particle = particleAt(own);
+          const float px = (float(x) + 0.5f) * to_plan.x;
+          const float gx = px / cv - 0.5f;
+          const int cx0 = int(std::floor(gx));
+          const float fx = gx - float(cx0);
+          const glm::vec4 u = (1 - fx) * row_u[size_t(cx0 + 1)] + fx * row_u[size_t(cx0 + 2)];
+          const glm::vec4 v = (1 - fx) * row_v[size_t(cx0 + 1)] + fx * row_v[size_t(cx0 + 2)];
+          // w: the weight of the non-empty cells (> 0 whenever the voxel's own cell is one).
+          const glm::vec3 field_u = u.w > 0 ? glm::vec3(u) / u.w : glm::vec3(0);
+          const glm::vec3 field_v = v.w > 0 ? glm::vec3(v) / v.w : glm::vec3(0);
+          const int own_x = ownCell(px, cells.x);
+          const int particle = own_row[own_x];
           const glm::vec3 at0(x, y, z);
           if (particle < 0) {  // a coarse voxel of a cell empty at full resolution
             *out++ = {at0, field_u * to_carried, field_v * to_carried, m};
             continue;
           }
           // The window on the path's own departure: 1 in the inner half, 0 on the faces.
-          const glm::vec3 u = xp / cv - (glm::vec3(own) + 0.5f);
-          const glm::vec3 w3 = glm::clamp(2.0f - 4.0f * glm::abs(u), 0.0f, 1.0f);
-          const float window = w3.x * w3.y * w3.z;
+          const float window =
+              win_yz *
+              std::clamp(2.0f - 4.0f * std::abs(px / cv - (float(own_x) + 0.5f)), 0.0f, 1.0f);
           const std::vector<uint32_t>& paths = side.particle_paths[size_t(particle)];
           const float mass = m / float(paths.size());
+          const glm::vec3 mean_u = side.mean_u[size_t(particle)];
+          const glm::vec3 mean_v = side.mean_v[size_t(particle)];
           for (uint32_t k : paths) {
             const MorphPlan::Path& p = plan.paths()[k];
             const glm::vec3 pu = from_source ? p.refine - p.source : p.source - p.target;
             const glm::vec3 pv = from_source ? p.target - p.source : p.refine - p.target;
-            *out++ = {at0, (field_u + window * (pu - side.mean_u[size_t(particle)])) * to_carried,
-                      (field_v + window * (pv - side.mean_v[size_t(particle)])) * to_carried, mass};
+            *out++ = {at0, (field_u + window * (pu - mean_u)) * to_carried,
+                      (field_v + window * (pv - mean_v)) * to_carried, mass};
           }
         }
       }

@@ -230,8 +230,8 @@ void WindSolver::step(float dt) {
   advectFlowMap(dt);
 }
 
-VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out,
-                                     const VoxelBox& previous) const {
+VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const VoxelBox& previous,
+                                     bool every_block) const {
   if (out->dims() != start.dims() || out->worldMin() != start.worldMin() ||
       out->worldMax() != start.worldMax())
     throw ToolError(ToolErrorKind::kMismatchedVolumes,
@@ -303,6 +303,7 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out,
           const glm::ivec3 src_lo = glm::ivec3(glm::floor(glm::vec3(lo) + d_min / vs)) - 1;
           const glm::ivec3 src_hi = glm::ivec3(glm::floor(glm::vec3(hi - 1) + d_max / vs)) + 2;
           live[block_index({bx, by, bz})] =
+              every_block ||
               anyOccupied(glm::ivec3(glm::floor(glm::vec3(src_lo) / float(kBlock))),
                           glm::ivec3(glm::floor(glm::vec3(src_hi - 1) / float(kBlock))) + 1);
         }

@@ -63,6 +63,7 @@ TEST(AttractMorph, TheReplayedCloudMorphsIntoGalleryCloudsThenTheLoopStartsAgain
   options.morph_seconds = 2.0;
   options.gallery_dir = dir;
   options.gallery_morphs = 2;
+  options.render.scale = 1.0f;  // sharp frames for looking (the kiosk adapts its scale)
   ManualClock clock(1'000'000'000);
   AttractScreen screen(renderer, clock, journal.records, options, nullptr);
   FrameContext frame{*display, kW, kH};
