@@ -372,7 +372,7 @@ int benchTools(int argc, char** argv) {
         std::printf(
             "morph played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
             "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
-            "carries the full clouds along the plan and frames them in %.1f ms, baseline "
+            "frames the full clouds carried at the start in %.1f ms, baseline "
             "re-planning as the first version did and replay does: %.1f ms); full-resolution "
             "copy: %.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, one-thread fresh "
             "frames: %.1f ms = %.1f fps; target >= 20 fps\n",

@@ -27,11 +27,13 @@ bool AnimationPreview::startMorph(const PaintSession& session, const std::string
     // One plan from the full-resolution clouds: the display copy moves along the same paths as
     // the frame apply commits (and replay recomputes).
     auto plan = std::make_shared<const MorphPlan>(session.volume(), *target);
-    std::unique_ptr<CloudMorph> carried;
+    std::unique_ptr<CloudMorph> carried, full;
     std::unique_ptr<Volume> shown;
     if (half) {
       shown = std::make_unique<Volume>(halfResolution(session.volume()));
       carried = std::make_unique<CloudMorph>(plan, *shown, halfResolution(*target));
+      // The full-resolution clouds carried now, so apply only frames them.
+      full = std::make_unique<CloudMorph>(plan, session.volume(), *target);
     } else {
       shown = std::make_unique<Volume>(session.volume());
       carried = std::make_unique<CloudMorph>(plan, session.volume(), *target);
@@ -40,7 +42,7 @@ bool AnimationPreview::startMorph(const PaintSession& session, const std::string
     morph_ = std::move(carried);
     shown_ = std::move(shown);
     target_checksum_ = volumeChecksum(*target);
-    target_full_ = std::move(target);
+    morph_full_ = std::move(full);
     target_ = target_source;
   } catch (const std::exception& e) {
     *error = std::string("morph: ") + e.what() + "; nothing started";
@@ -123,8 +125,7 @@ UiChange AnimationPreview::change() const {
 
 Volume AnimationPreview::fullFrame(const PaintSession& session) const {
   if (!atHalfResolution()) return *shown_;
-  if (kind_ == Kind::kMorph)
-    return CloudMorph(morph_->plan(), session.volume(), *target_full_).frame(t_);
+  if (kind_ == Kind::kMorph) return morph_full_->frame(t_);
   // The wind's steps are done: its flow map carries the full-resolution cloud in one pass.
   Volume blown = session.volume();
   wind_->show(session.volume(), &blown, blown.bounds());
@@ -153,7 +154,7 @@ void AnimationPreview::leave() {
   shown_.reset();
   start_.reset();
   morph_.reset();
-  target_full_.reset();
+  morph_full_.reset();
   wind_.reset();
   t_ = 0.0f;
 }

@@ -6,7 +6,8 @@
 //
 // The display copy is at half the resolution when the cloud is 128³ or more (halfResolution:
 // an eighth of the voxels to move, upload and light each frame). The morph is planned once from
-// the full-resolution clouds and the copy is carried along the same paths; the wind's 64³
+// the full-resolution clouds, and both they and the copy are carried along its paths when the
+// morph starts (so apply only frames the full clouds: no re-planning); the wind's 64³
 // velocity grid and flow map are the same at any resolution. Apply then computes the frame
 // shown at full resolution — the morph's frame at the same t from the same plan, the wind's
 // flow map resampling the full cloud once — which is exactly what replay computes from the
@@ -83,7 +84,7 @@ class AnimationPreview {
   bool useHalf(const Volume& v) const { return half_.value_or(v.dims().x >= 128); }
   // Morph
   std::unique_ptr<CloudMorph> morph_;
-  std::unique_ptr<Volume> target_full_;
+  std::unique_ptr<CloudMorph> morph_full_;  // the full-resolution clouds along the same plan
   std::string target_;
   uint64_t target_checksum_ = 0;
   double seconds_ = 5.0;
