@@ -229,8 +229,8 @@ void CloudMorph::carry(const Volume& cloud, bool from_source) {
       const int cz0 = int(std::floor(gz));
       const float fz = gz - float(cz0);
       const int own_z = ownCell(pz, cells.z);
-      const float win_z = std::clamp(2.0f - 4.0f * std::abs(pz / cv - (float(own_z) + 0.5f)),
-                                     0.0f, 1.0f);
+      const float win_z =
+          std::clamp(2.0f - 4.0f * std::abs(pz / cv - (float(own_z) + 0.5f)), 0.0f, 1.0f);
       CarriedSplat* out = items_.data() + first + plane_items[size_t(z)];
       for (int y = 0; y < d.y; ++y) {
         const float* row = cloud.data() + cloud.index(0, y, z);
@@ -243,8 +243,7 @@ void CloudMorph::carry(const Volume& cloud, bool from_source) {
         const float fy = gy - float(cy0);
         const int own_y = ownCell(py, cells.y);
         const float win_yz =
-            win_z *
-            std::clamp(2.0f - 4.0f * std::abs(py / cv - (float(own_y) + 0.5f)), 0.0f, 1.0f);
+            win_z * std::clamp(2.0f - 4.0f * std::abs(py / cv - (float(own_y) + 0.5f)), 0.0f, 1.0f);
         for (int cx = -1; cx <= cells.x; ++cx) {
           const glm::vec4 u = (1 - fz) * ((1 - fy) * cell_u[paddedIndex(cx, cy0, cz0)] +
                                           fy * cell_u[paddedIndex(cx, cy0 + 1, cz0)]) +
