@@ -11,6 +11,7 @@
 #include "app/session/session_replay.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
+#include "app/tools/cloud_morph_cells.h"
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
@@ -471,11 +472,6 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     }
     bool operator()(const ui::ApplyMorph& c) {
       if (s.engine_.inStroke()) return *error = "morph: a stroke is being painted", false;
-      if (c.cell_blocks)
-        return *error =
-                   "morph: a morph= record of journal specification 1.1 (cells moved as "
-                   "blocks), which this version does not recompute; the cloud is unchanged",
-               false;
       try {
         const Volume target = loadMorphTarget(c.target, s.volume_);
         const uint64_t checksum = volumeChecksum(target);
@@ -487,7 +483,9 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
                           text + "; the cloud is unchanged",
                  false;
         }
-        s.takeFrame(CloudMorph(s.volume_, target).frame(c.t));
+        // A `morph=` record (specification 1.1) is recomputed the way it was made.
+        s.takeFrame(c.cell_blocks ? morphCellBlocks(s.volume_, target, c.t)
+                                  : CloudMorph(s.volume_, target).frame(c.t));
       } catch (const std::exception& e) {
         return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
       }

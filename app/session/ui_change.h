@@ -106,8 +106,8 @@ struct PenCapture {
 // target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
 // recomputes the frame from the cloud before it, so the record holds only what names it.
 // Records of journal specification 1.1 (`morph=`, `wind=`) were made by the first versions: a
-// morph moving each cell rigidly, wind advecting the density step by step. Wind is recomputed
-// that way still; the cell-block morph is not (replay names it and leaves the cloud unchanged).
+// morph moving each cell rigidly, wind advecting the density step by step. Both are recomputed
+// that way still (morphCellBlocks, blowWindStepByStep), so old journals replay to their volume.
 struct ApplyMorph {
   std::string target;  // a saved cloud's path, or bundled:SEED
   uint64_t target_checksum = 0;

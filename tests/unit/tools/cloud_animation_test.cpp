@@ -1,10 +1,12 @@
 // The painter's animations without a display: the morph's in-between is the same bytes on 1 and
 // 8 threads and when played frame after frame into one volume; the wind's flow map skips empty
 // blocks without changing a byte, and a recorded wind run recomputes what the animation showed
-// (a specification 1.1 record still replays step by step); in a
+// (a specification 1.1 record still replays step by step, and a 1.1 morph record replays
+// to the checksum the version that recorded it printed); in a
 // session, applying a morph or wind is one history step and one journal record, undo gives back
 // the bytes from before, leaving without applying leaves the cloud as it was, and the journal
 // replays to the same volume on 1 and 8 threads.
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
@@ -16,6 +18,7 @@
 #include "app/shell/animation_preview.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
+#include "app/tools/cloud_morph_cells.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
 
@@ -226,14 +229,21 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
       << replay.problems[0];
   EXPECT_TRUE(sameBytes(replay.session->volume(), before)) << "the cloud is unchanged";
 
-  // A specification 1.1 morph record (cells moved as blocks) is named, not recomputed.
+  // A specification 1.1 morph record (cells moved as blocks) is recomputed that way: it
+  // changes the cloud, into what the cell-block morph makes and not what morph2 makes.
   const Volume kept = replay.session->volume();
+  const Volume target = loadVolume(f.target_path);
+  char checksum[24];
+  std::snprintf(checksum, sizeof checksum, "%016llx", (unsigned long long)volumeChecksum(target));
   UiChange old_morph;
-  ASSERT_TRUE(parseUiChange(JournalRecordType::kUi, "morph=0.5,0123456789abcdef," + f.target_path,
-                            &old_morph, &error));
-  EXPECT_FALSE(replay.session->apply(old_morph, 5000, &error));
-  EXPECT_NE(error.find("specification 1.1"), std::string::npos) << error;
-  EXPECT_TRUE(sameBytes(replay.session->volume(), kept)) << "the cloud is unchanged";
+  ASSERT_TRUE(parseUiChange(JournalRecordType::kUi,
+                            "morph=0.5," + std::string(checksum) + "," + f.target_path, &old_morph,
+                            &error));
+  ASSERT_TRUE(replay.session->apply(old_morph, 5000, &error)) << error;
+  const Volume cells = morphCellBlocks(kept, target, 0.5f);
+  EXPECT_TRUE(sameBytes(replay.session->volume(), cells));
+  EXPECT_FALSE(sameBytes(cells, CloudMorph(kept, target).frame(0.5f)));
+  EXPECT_FALSE(sameBytes(cells, kept));
 
   // Nothing to morph: an empty cloud says so and starts nothing.
   PaintSession empty(PaintSessionSettings{320, 180, kGrid}, BrushConfig{}, MappingConfig{});
@@ -316,6 +326,21 @@ TEST(CloudAnimation, RecordsRoundTripAndBadOnesAreNamed) {
     EXPECT_FALSE(parseUiChange(JournalRecordType::kUi, bad, &parsed, &error)) << bad;
     EXPECT_NE(error.find("expected"), std::string::npos) << error;
   }
+}
+
+// A journal recorded by the build of main at 9e22266 (journal specification 1.1; how it was
+// made: tests/fixtures/journals/README.md): five attract strokes at grid 64, then a `morph=`
+// record into the bundled cumulus at t = 0.5. That build's `cloudbrush replay` printed
+// 96c12f9a08904563; this one must recompute the same bytes.
+TEST(CloudAnimation, ASpecification11MorphJournalReplaysToTheChecksumItsVersionPrinted) {
+  const JournalReadResult journal =
+      readJournal(std::string(CB_SOURCE_DIR) + "/tests/fixtures/journals/morph_spec_1_1.cbj");
+  const SessionReplay replay = replaySession(journal, BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete()) << (replay.problems.empty() ? replay.journal_error
+                                                             : replay.problems[0]);
+  EXPECT_EQ(replay.strokes_mapped, 5u);
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), 0x96c12f9a08904563ull);
 }
 
 }  // namespace
