@@ -16,6 +16,7 @@
 
 #include "app/bench/bench_report.h"
 #include "app/bench/benches.h"
+#include "app/cli/args.h"
 #include "app/core/parallel_for.h"
 #include "app/render/gl/egl_context.h"
 #include "app/render/image_io.h"
@@ -60,10 +61,65 @@ std::vector<uint8_t> silhouette(int w, int h) {
   return rgba;
 }
 
+// What each tool made, rendered by the product's renderer at 640x360 (full resolution, thesis
+// style, default light): the picture and its cloud seen from the view it was placed from, the
+// model's cloud from there, the morph between them and the wind on the picture's cloud.
+void writeToolImages(const std::string& dir, const ImageRgba8& silhouette_image,
+                     const Volume& picture_cloud, const Volume& model_cloud, const Camera& camera) {
+  constexpr int kW = 640, kH = 360;
+  std::filesystem::create_directories(dir);
+  VolumeRenderer renderer;
+  RenderTarget target;
+  std::string error;
+  if (!renderer.init(&error) || !target.create(kW, kH, RenderTarget::Format::kRgba8, &error)) {
+    std::printf("images: %s\n", error.c_str());
+    return;
+  }
+  const Light light;
+  RenderOptions options;
+  options.finish = true;
+  auto write = [&](const Volume& v, const std::string& name) {
+    renderer.sync(v, light);
+    renderer.render(camera, kW, kH, target.fbo(), options);
+    writePng(dir + "/" + name, target.readRgba8());
+    std::printf("wrote %s/%s\n", dir.c_str(), name.c_str());
+  };
+  writePng(dir + "/tools-picture-input.png", silhouette_image);
+  write(picture_cloud, "tools-picture-cloud.png");
+  write(model_cloud, "tools-model-cloud.png");
+  const CloudMorph morph(picture_cloud, model_cloud);
+  for (int k = 0; k <= 4; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "tools-morph-t%03d.png", 25 * k);
+    write(morph.frame(0.25f * float(k)), name);
+  }
+  WindRun run;
+  for (int steps : {0, 15, 30}) {
+    run.segments = {{1.0f, 0.0f, steps}};
+    Volume blown = picture_cloud;
+    blowWind(run, &blown);
+    char name[64];
+    std::snprintf(name, sizeof name, "tools-wind-%02d-steps.png", steps);
+    write(blown, name);
+  }
+}
+
 }  // namespace
 
 int benchTools(int argc, char** argv) {
-  const int runs = argc > 1 && std::string(argv[1]) == "--quick" ? 1 : 3;
+  Args args(argc, argv, {"help", "quick"});
+  if (args.has("help")) {
+    std::printf(
+        "usage: cloudbrush bench tools [--quick] [--out-dir DIR]\n"
+        "  --quick        one run of each figure instead of three\n"
+        "  --out-dir DIR  also write what each tool made, rendered at 640x360 from the view it\n"
+        "                 was placed from: the silhouette, its cloud, the model's cloud, the\n"
+        "                 morph between them at t = 0, 0.25, 0.5, 0.75, 1 and the wind after 0,\n"
+        "                 15 and 30 steps (DIR/tools-*.png)\n");
+    return 0;
+  }
+  const int runs = args.has("quick") ? 1 : 3;
+  const std::string out_dir = args.get("out-dir", "");
   BenchReport report("tools");
   const auto dir = std::filesystem::temp_directory_path();
   ToolView view;
@@ -124,6 +180,7 @@ int benchTools(int argc, char** argv) {
   modelToCloud(obj, view, ModelCloudParams{}, &b);
   std::unique_ptr<CloudMorph> plan;
   const double plan_ms = timeMs([&] { plan = std::make_unique<CloudMorph>(a, b); });
+  const double carry_ms = timeMs([&] { CloudMorph again(plan->plan(), a, b); });
   const int frames = runs == 1 ? 3 : 6;
   std::vector<double> frame, frame_base, fade;
   const std::vector<float> dense_a = a.toDense(), dense_b = b.toDense();  // the cross-fade's grids
@@ -135,65 +192,89 @@ int benchTools(int argc, char** argv) {
     frame_base.push_back(timeMs([&] { plan->frameOneThreadReference(t); }));
     fade.push_back(timeMs([&] {
       Volume out(a.dims());
-      std::vector<float> mixed(dense_a.size());
-      for (size_t i = 0; i < mixed.size(); ++i) mixed[i] = (1 - t) * dense_a[i] + t * dense_b[i];
-      out.assignDense(mixed.data());
+      std::vector<float> blend(dense_a.size());
+      for (size_t i = 0; i < blend.size(); ++i) blend[i] = (1 - t) * dense_a[i] + t * dense_b[i];
+      out.assignDense(blend.data());
     }));
   }
   std::printf(
-      "morph 256^3: plan %.1f ms (%zu particle pairs, %zu splats), in-between %.1f ms "
-      "(baseline, first version: one thread, fresh volume: %.1f ms; per-voxel cross-fade: "
-      "%.1f ms)\n",
-      plan_ms, plan->pairCount(), plan->splatCount(), median(frame), median(frame_base),
+      "morph 256^3: plan and carry %.1f ms (carry alone %.1f; %zu particle pairs, %zu "
+      "splats), in-between %.1f ms (baseline, one thread, fresh volume: %.1f ms; per-voxel "
+      "cross-fade: %.1f ms)\n",
+      plan_ms, carry_ms, plan->pairCount(), plan->splatCount(), median(frame), median(frame_base),
       median(fade));
   report.figure("morph_plan_ms", plan_ms);
+  report.figure("morph_carry_ms", carry_ms);
   report.figure("morph_inbetween_ms", median(frame));
   report.figure("morph_pairs", double(plan->pairCount()));
   report.figure("morph_splats", double(plan->splatCount()));
   report.baseline("morph_inbetween_first_version_ms", median(frame_base));
   report.baseline("crossfade_inbetween_ms", median(fade));
 
-  // Wind: a breeze plus an updraft gust (the painter's WindAnimation) on the picture's cloud.
-  auto windSteps = [&](bool every_voxel, std::vector<double>* velocity_ms,
-                       std::vector<double>* density_ms, Volume* out) {
-    Volume cloud = a;
-    WindSolver wind(cloud.worldMin(), cloud.worldMax());
+  // Wind: a breeze plus an updraft gust on the picture's cloud. A step moves the 64³ velocity
+  // and its flow map; the density shown is the start resampled once through the map. Baseline
+  // in the same run: the first version, the density itself advected every step (every voxel
+  // of its box sampled).
+  auto windSolver = [&](const Volume& like) {
+    WindSolver wind(like.worldMin(), like.worldMax());
     wind.setUniformWind({0.25f, 0.0f, 0.0f});
     wind.addForce({0.0f, 1.5f, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
-    for (int r = 0; r < frames + 1; ++r) {  // the first step faults the scratch grid in
-      const double v = timeMs([&] { wind.stepVelocity(kWindStepSeconds); });
-      const double d = timeMs([&] {
-        if (every_voxel)
-          wind.advectDensityEveryVoxel(kWindStepSeconds, &cloud);
-        else
-          wind.advectDensity(kWindStepSeconds, &cloud);
-      });
-      if (r == 0) continue;
-      velocity_ms->push_back(v);
-      density_ms->push_back(d);
-    }
-    *out = cloud;
+    return wind;
   };
-  std::vector<double> wind_velocity, wind_density, wind_velocity_base, wind_density_base;
-  Volume blown, blown_base;
-  windSteps(false, &wind_velocity, &wind_density, &blown);
-  windSteps(true, &wind_velocity_base, &wind_density_base, &blown_base);
-  const std::vector<float> blown_dense = blown.toDense(), blown_base_dense = blown_base.toDense();
-  const bool same = std::memcmp(blown_dense.data(), blown_base_dense.data(),
-                                blown_dense.size() * sizeof(float)) == 0;
-  const double wind_step = median(wind_velocity) + median(wind_density);
+  std::vector<double> wind_velocity, wind_map, wind_resample, wind_velocity_base, wind_density_base;
+  {
+    WindSolver wind = windSolver(a);
+    Volume shown = a;
+    VoxelBox written = shown.bounds();
+    for (int r = 0; r < frames + 1; ++r) {  // the first step faults the scratch grids in
+      const double v = timeMs([&] { wind.stepVelocity(kWindStepSeconds); });
+      const double m = timeMs([&] { wind.advectFlowMap(kWindStepSeconds); });
+      const double d = timeMs([&] { written = wind.resampleDensity(a, &shown, written); });
+      if (r == 0) continue;
+      wind_velocity.push_back(v);
+      wind_map.push_back(m);
+      wind_resample.push_back(d);
+    }
+    WindSolver base = windSolver(a);
+    Volume cloud = a;
+    for (int r = 0; r < frames + 1; ++r) {
+      const double v = timeMs([&] { base.stepVelocity(kWindStepSeconds); });
+      const double d = timeMs([&] { base.advectDensityEveryVoxel(kWindStepSeconds, &cloud); });
+      if (r == 0) continue;
+      wind_velocity_base.push_back(v);
+      wind_density_base.push_back(d);
+    }
+  }
+  const double wind_step = median(wind_velocity) + median(wind_map) + median(wind_resample);
   const double wind_step_base = median(wind_velocity_base) + median(wind_density_base);
   std::printf(
-      "wind step 64^3 velocity driving 256^3 density: %.1f ms (velocity %.1f, density %.1f; "
-      "baseline, first version sampling every voxel: %.1f ms, density %.1f; same bytes: %s)\n",
-      wind_step, median(wind_velocity), median(wind_density), wind_step_base,
-      median(wind_density_base), same ? "yes" : "NO");
+      "wind step 64^3 velocity driving 256^3 density: %.1f ms (velocity %.1f, flow map %.1f, "
+      "density resampled %.1f; baseline, first version advecting the density every step: "
+      "%.1f ms, density %.1f)\n",
+      wind_step, median(wind_velocity), median(wind_map), median(wind_resample), wind_step_base,
+      median(wind_density_base));
   report.figure("wind_step_ms", wind_step);
   report.figure("wind_velocity_ms", median(wind_velocity));
-  report.figure("wind_density_ms", median(wind_density));
-  report.figure("wind_same_bytes_as_first_version", same ? 1.0 : 0.0);
+  report.figure("wind_flow_map_ms", median(wind_map));
+  report.figure("wind_density_ms", median(wind_resample));
   report.baseline("wind_step_first_version_ms", wind_step_base);
   report.baseline("wind_density_first_version_ms", median(wind_density_base));
+
+  // A long run recomputed at full resolution (replay; apply needs only the last resampling):
+  // 150 steps, 10 s of wind, against the first version's step-by-step advection.
+  {
+    WindRun run;
+    run.segments = {{1.0f, 0.0f, 100}, {0.0f, -1.0f, 50}};
+    Volume blown = a, stepwise = a;
+    const double replay_ms = timeMs([&] { blowWind(run, &blown); });
+    const double stepwise_ms = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+    std::printf(
+        "wind run of %d steps recomputed at 256^3: %.1f ms (baseline, the density advected "
+        "step by step: %.1f ms)\n",
+        run.steps(), replay_ms, stepwise_ms);
+    report.figure("wind_150_steps_replay_ms", replay_ms);
+    report.baseline("wind_150_steps_step_by_step_ms", stepwise_ms);
+  }
 
   // As the painter plays them: generate + sync + render at 1280x720, scale 0.5.
   EglContext ctx;
@@ -247,7 +328,7 @@ int benchTools(int argc, char** argv) {
         const std::string target_path = (dir / "cloudbrush-bench-morph-target.vol").string();
         saveVolume(b, target_path);
         struct Played {
-          double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0;
+          double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0, replay = 0, apply_base = 0;
         };
         auto playPreview = [&](bool morph, bool half) {
           AnimationPreview preview;
@@ -263,8 +344,20 @@ int benchTools(int argc, char** argv) {
                 return preview.shown();
               },
               &total);
-          Played result{median(total), median(sync_ms), median(render_ms), median(cpu_ms), 0};
+          Played result{median(total), median(sync_ms), median(render_ms), median(cpu_ms)};
           result.apply = timeMs([&] { preview.fullFrame(session); });
+          // Replay recomputes it from the record; the baseline is the first version's apply
+          // (a morph re-planned at full resolution; wind advecting the density step by step).
+          if (morph) {
+            result.replay =
+                timeMs([&] { CloudMorph(session.volume(), b).frame(preview.morphT()); });
+            result.apply_base = result.replay;
+          } else {
+            const WindRun run = std::get<ui::ApplyWind>(preview.change()).run;
+            Volume blown = session.volume(), stepwise = session.volume();
+            result.replay = timeMs([&] { blowWind(run, &blown); });
+            result.apply_base = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+          }
           return result;
         };
         const Played morph_half = playPreview(true, true), morph_full = playPreview(true, false);
@@ -280,12 +373,13 @@ int benchTools(int argc, char** argv) {
         std::printf(
             "morph played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
             "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
-            "computes the full frame in %.1f ms); full-resolution copy: %.1f ms = %.1f fps "
-            "(sync %.1f, render %.1f); baseline, first version: %.1f ms = %.1f fps; target >= "
-            "20 fps\n",
+            "frames the full clouds carried at the start in %.1f ms, baseline "
+            "re-planning as the first version did and replay does: %.1f ms); full-resolution "
+            "copy: %.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, one-thread fresh "
+            "frames: %.1f ms = %.1f fps; target >= 20 fps\n",
             morph_half.ms, 1000.0 / morph_half.ms, morph_half.sync, morph_half.render,
-            morph_half.cpu, morph_half.apply, morph_full.ms, 1000.0 / morph_full.ms,
-            morph_full.sync, morph_full.render, median(morph_played_base),
+            morph_half.cpu, morph_half.apply, morph_half.apply_base, morph_full.ms,
+            1000.0 / morph_full.ms, morph_full.sync, morph_full.render, median(morph_played_base),
             1000.0 / median(morph_played_base));
         report.figure("morph_played_ms", morph_half.ms);
         report.figure("morph_played_fps", 1000.0 / morph_half.ms);
@@ -293,6 +387,7 @@ int benchTools(int argc, char** argv) {
         report.figure("morph_played_render_ms", morph_half.render);
         report.figure("morph_played_cpu_ms", morph_half.cpu);
         report.figure("morph_apply_full_frame_ms", morph_half.apply);
+        report.baseline("morph_apply_replanned_ms", morph_half.apply_base);
         report.figure("morph_played_full_res_ms", morph_full.ms);
         report.figure("morph_played_full_res_sync_ms", morph_full.sync);
         report.baseline("morph_played_first_version_ms", median(morph_played_base));
@@ -314,24 +409,29 @@ int benchTools(int argc, char** argv) {
         }
         std::printf(
             "wind played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
-            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
-            "recomputes its %d steps at full resolution in %.1f ms); full-resolution copy: "
+            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply of its "
+            "%d steps resamples the full cloud once in %.1f ms, replay with the steps %.1f ms, "
+            "baseline advecting the full density step by step %.1f ms); full-resolution copy: "
             "%.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, first version: %.1f ms = "
             "%.1f fps; target >= 15 fps\n",
             wind_half.ms, 1000.0 / wind_half.ms, wind_half.sync, wind_half.render, wind_half.cpu,
-            frames + 1, wind_half.apply, wind_full.ms, 1000.0 / wind_full.ms, wind_full.sync,
-            wind_full.render, median(wind_played_base), 1000.0 / median(wind_played_base));
+            frames + 1, wind_half.apply, wind_half.replay, wind_half.apply_base, wind_full.ms,
+            1000.0 / wind_full.ms, wind_full.sync, wind_full.render, median(wind_played_base),
+            1000.0 / median(wind_played_base));
         report.figure("wind_played_ms", wind_half.ms);
         report.figure("wind_played_fps", 1000.0 / wind_half.ms);
         report.figure("wind_played_sync_ms", wind_half.sync);
         report.figure("wind_played_render_ms", wind_half.render);
         report.figure("wind_played_cpu_ms", wind_half.cpu);
         report.figure("wind_apply_full_frame_ms", wind_half.apply);
+        report.figure("wind_replay_full_frame_ms", wind_half.replay);
+        report.baseline("wind_apply_step_by_step_ms", wind_half.apply_base);
         report.figure("wind_played_full_res_ms", wind_full.ms);
         report.figure("wind_played_full_res_sync_ms", wind_full.sync);
         report.baseline("wind_played_first_version_ms", median(wind_played_base));
       }
     }
+    if (!out_dir.empty()) writeToolImages(out_dir, image, a, b, view.camera);
     destroyGlContext(&ctx);
   }
   report.print();

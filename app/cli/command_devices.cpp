@@ -7,6 +7,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
 #include "drivers/devices/device_file.h"
+#include "drivers/devices/udev_rules.h"
 #include "drivers/evdev/evdev_node_survey.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/open_pen_source.h"
@@ -29,8 +31,11 @@ volatile std::sig_atomic_t g_stop = 0;
 void printHelp() {
   std::printf(
       "usage: cloudbrush devices [--watch] [--backend NAME] [--device PATH] [--grab]\n"
-      "                          [--count N] [--seconds S] [--record FILE]\n\n"
+      "                          [--count N] [--seconds S] [--record FILE]\n"
+      "       cloudbrush devices --udev-rules\n\n"
       "Lists pen tablets: backend, name, USB id, ranges and resolutions.\n\n"
+      "  --udev-rules     print the udev rules that open every device the device files name\n"
+      "                   to group input (config/udev/70-cloudbrush-tablet.rules is this)\n"
       "  --watch          print live samples from one pen (Ctrl-C stops)\n"
       "  --backend NAME   auto (evdev), evdev, hidraw, libusb, replay (default auto)\n"
       "  --device PATH    event node, hidapi path or, for replay, a journal file\n"
@@ -190,13 +195,17 @@ int listDevices() {
         "  this user is %sin group 'input'%s\n", inGroup("input") ? "" : "NOT ",
         inGroup("input") ? " (the rule may not be installed, or udev has not applied it)" : "");
     for (const BackendTally& t : tally)
-      for (const std::string& id : t.denied_ids)
-        if (id.rfind("056a:", 0) != 0)
-          std::printf(
-              "  %s %s: the shipped rule opens only Wacom (056a) hidraw nodes; for this device add "
-              "to it: SUBSYSTEM==\"hidraw\", ATTRS{idVendor}==\"%s\", GROUP=\"input\", "
-              "MODE=\"0660\"\n",
-              t.name.c_str(), id.c_str(), id.substr(0, 4).c_str());
+      for (const std::string& id : t.denied_ids) {
+        const unsigned vendor = unsigned(std::strtoul(id.substr(0, 4).c_str(), nullptr, 16));
+        const unsigned product = unsigned(std::strtoul(id.substr(5, 4).c_str(), nullptr, 16));
+        if (device_files.database->find(uint16_t(vendor), uint16_t(product))) continue;
+        std::printf(
+            "  %s %s: no device file names it, so the shipped rule does not open it; add a "
+            "file to %s and install the rules `cloudbrush devices --udev-rules` prints, or add: "
+            "SUBSYSTEM==\"hidraw\", ATTRS{idVendor}==\"%s\", GROUP=\"input\", "
+            "MODE=\"0660\"\n",
+            t.name.c_str(), id.c_str(), device_dir.c_str(), id.substr(0, 4).c_str());
+      }
   }
   return 0;
 }
@@ -285,17 +294,23 @@ int watch(Args& args) {
 }  // namespace
 
 int commandDevices(int argc, char** argv) {
-  Args args(argc, argv, {"help", "watch", "grab", "raw"});
+  Args args(argc, argv, {"help", "watch", "grab", "raw", "udev-rules"});
   if (args.has("help")) {
     printHelp();
     return 0;
   }
-  auto unknown = args.unknown(
-      {"help", "watch", "grab", "raw", "backend", "device", "count", "seconds", "record"});
+  auto unknown = args.unknown({"help", "watch", "grab", "raw", "udev-rules", "backend", "device",
+                               "count", "seconds", "record"});
   if (!unknown.empty()) {
     std::fprintf(stderr, "cloudbrush devices: unknown option %s (see --help)\n",
                  unknown.front().c_str());
     return 2;
+  }
+  if (args.has("udev-rules")) {
+    const DeviceFileLoad files = loadDeviceDirectory(configFile("devices"));
+    for (const std::string& e : files.errors) std::fprintf(stderr, "error: %s\n", e.c_str());
+    std::fputs(udevRules(*files.database).c_str(), stdout);
+    return files.errors.empty() ? 0 : 1;
   }
   return args.has("watch") ? watch(args) : listDevices();
 }

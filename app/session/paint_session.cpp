@@ -11,6 +11,7 @@
 #include "app/session/session_replay.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
+#include "app/tools/cloud_morph_cells.h"
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
@@ -483,7 +484,9 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
                           text + "; the cloud is unchanged",
                  false;
         }
-        s.takeFrame(CloudMorph(s.volume_, target).frame(c.t));
+        // A `morph=` record (specification 1.1) is recomputed the way it was made.
+        s.takeFrame(c.cell_blocks ? morphCellBlocks(s.volume_, target, c.t)
+                                  : CloudMorph(s.volume_, target).frame(c.t));
       } catch (const std::exception& e) {
         return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
       }
@@ -493,7 +496,10 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     bool operator()(const ui::ApplyWind& c) {
       if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
       Volume blown = s.volume_;
-      blowWind(c.run, &blown);
+      if (c.step_by_step)
+        blowWindStepByStep(c.run, &blown);
+      else
+        blowWind(c.run, &blown);
       s.takeFrame(blown);
       s.recordStep(before, "wind");
       return true;

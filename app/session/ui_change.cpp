@@ -120,12 +120,12 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::ApplyMorph& c) const {
       char checksum[24];
       std::snprintf(checksum, sizeof checksum, "%016llx", (unsigned long long)c.target_checksum);
-      return {JournalRecordType::kUi,
-              "morph=" + formatFloats(&c.t, 1) + "," + checksum + "," + c.target};
+      return {JournalRecordType::kUi, std::string(c.cell_blocks ? "morph=" : "morph2=") +
+                                          formatFloats(&c.t, 1) + "," + checksum + "," + c.target};
     }
     UiRecordText operator()(const ui::ApplyWind& c) const {
       const float head[2] = {c.run.speed, c.run.gust};
-      std::string text = "wind=" + formatFloats(head, 2);
+      std::string text = (c.step_by_step ? "wind=" : "wind2=") + formatFloats(head, 2);
       for (const WindSegment& s : c.run.segments) {
         const float d[2] = {s.dx, s.dz};
         text += ";" + formatFloats(d, 2) + "," + std::to_string(s.steps);
@@ -225,7 +225,7 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   } else if (key == "place_picture" || key == "place_model") {
     if (value.empty() || value.find('\n') != std::string::npos) return bad("a file path");
     *out = ui::PlaceShape{key == "place_model", value};
-  } else if (key == "morph") {
+  } else if (key == "morph" || key == "morph2") {
     // T,CHECKSUM,TARGET (the target last: a path may hold commas).
     const size_t c1 = value.find(','), c2 = c1 == std::string::npos ? c1 : value.find(',', c1 + 1);
     ui::ApplyMorph morph;
@@ -236,12 +236,14 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
       return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
     morph.target_checksum = std::strtoull(hex.c_str(), &end, 16);
     morph.target = value.substr(c2 + 1);
+    morph.cell_blocks = key == "morph";
     if (*end != '\0' || morph.target.empty() || morph.target.find('\n') != std::string::npos)
       return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
     *out = morph;
-  } else if (key == "wind") {
+  } else if (key == "wind" || key == "wind2") {
     // SPEED,GUST;DX,DZ,STEPS;...
     ui::ApplyWind wind;
+    wind.step_by_step = key == "wind";
     size_t start = 0;
     for (int part = 0; start <= value.size(); ++part) {
       const size_t semi = value.find(';', start);

@@ -18,9 +18,10 @@
 //   Ui      pen_capture=on|off                    PenCapture
 //   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
-//   Ui      morph=T,CHECKSUM,TARGET               ApplyMorph (TARGET a .vol path or bundled:SEED;
+//   Ui      morph2=T,CHECKSUM,TARGET              ApplyMorph (TARGET a .vol path or bundled:SEED;
 //                                                 CHECKSUM its volumeChecksum, 16 hex digits)
-//   Ui      wind=SPEED,GUST;DX,DZ,STEPS;...       ApplyWind (one DX,DZ,STEPS per segment)
+//   Ui      wind2=SPEED,GUST;DX,DZ,STEPS;...      ApplyWind (one DX,DZ,STEPS per segment)
+//   Ui      morph=… | wind=…                      the same, as specification 1.1 wrote them
 //   Ui      undo | redo | delete_all              Undo, Redo, DeleteAll
 //
 // Floats are written with 9 significant digits, so parse(format(x)) == x bit for bit.
@@ -104,13 +105,18 @@ struct PenCapture {
 // The painter's animations committed ("apply"): the morph from the cloud as it was into the
 // target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
 // recomputes the frame from the cloud before it, so the record holds only what names it.
+// Records of journal specification 1.1 (`morph=`, `wind=`) were made by the first versions: a
+// morph moving each cell rigidly, wind advecting the density step by step. Both are recomputed
+// that way still (morphCellBlocks, blowWindStepByStep), so old journals replay to their volume.
 struct ApplyMorph {
   std::string target;  // a saved cloud's path, or bundled:SEED
   uint64_t target_checksum = 0;
   float t = 0.0f;
+  bool cell_blocks = false;  // a `morph=` record (specification 1.1)
 };
 struct ApplyWind {
   WindRun run;
+  bool step_by_step = false;  // a `wind=` record (specification 1.1)
 };
 struct Undo {};
 struct Redo {};

@@ -24,22 +24,25 @@ bool AnimationPreview::startMorph(const PaintSession& session, const std::string
   const bool half = useHalf(session.volume());
   try {
     auto target = std::make_unique<Volume>(loadMorphTarget(target_source, session.volume()));
-    MorphParams params;
-    std::unique_ptr<CloudMorph> plan;
+    // One plan from the full-resolution clouds: the display copy moves along the same paths as
+    // the frame apply commits (and replay recomputes).
+    auto plan = std::make_shared<const MorphPlan>(session.volume(), *target);
+    std::unique_ptr<CloudMorph> carried, full;
     std::unique_ptr<Volume> shown;
     if (half) {
-      params.cell_voxels = std::max(1, params.cell_voxels / 2);  // the same cells of the sky
       shown = std::make_unique<Volume>(halfResolution(session.volume()));
-      plan = std::make_unique<CloudMorph>(*shown, halfResolution(*target), params);
+      carried = std::make_unique<CloudMorph>(plan, *shown, halfResolution(*target));
+      // The full-resolution clouds carried now, so apply only frames them.
+      full = std::make_unique<CloudMorph>(plan, session.volume(), *target);
     } else {
       shown = std::make_unique<Volume>(session.volume());
-      plan = std::make_unique<CloudMorph>(session.volume(), *target, params);
+      carried = std::make_unique<CloudMorph>(plan, session.volume(), *target);
     }
     leave();
-    morph_ = std::move(plan);
+    morph_ = std::move(carried);
     shown_ = std::move(shown);
     target_checksum_ = volumeChecksum(*target);
-    target_full_ = std::move(target);
+    morph_full_ = std::move(full);
     target_ = target_source;
   } catch (const std::exception& e) {
     *error = std::string("morph: ") + e.what() + "; nothing started";
@@ -70,8 +73,10 @@ bool AnimationPreview::toggleWind(const PaintSession& session, std::string* erro
   leave();
   kind_ = Kind::kWind;
   playing_ = true;
-  shown_ = std::make_unique<Volume>(useHalf(session.volume()) ? halfResolution(session.volume())
+  start_ = std::make_unique<Volume>(useHalf(session.volume()) ? halfResolution(session.volume())
                                                               : session.volume());
+  shown_ = std::make_unique<Volume>(*start_);
+  written_ = shown_->bounds();
   wind_ = std::make_unique<WindAnimation>(*shown_, WindRun{}.speed, WindRun{}.gust);
   const glm::vec2 d = directionXZ(direction_);
   wind_->setDirection(d.x, d.y);
@@ -101,7 +106,8 @@ bool AnimationPreview::advance(double seconds) {
     if (t_ >= 1.0f) playing_ = false;  // holds the target until applied or left
     return true;
   }
-  wind_->step(shown_.get());
+  wind_->step();
+  written_ = wind_->show(*start_, shown_.get(), written_);
   return true;
 }
 
@@ -119,9 +125,10 @@ UiChange AnimationPreview::change() const {
 
 Volume AnimationPreview::fullFrame(const PaintSession& session) const {
   if (!atHalfResolution()) return *shown_;
-  if (kind_ == Kind::kMorph) return CloudMorph(session.volume(), *target_full_).frame(t_);
+  if (kind_ == Kind::kMorph) return morph_full_->frame(t_);
+  // The wind's steps are done: its flow map carries the full-resolution cloud in one pass.
   Volume blown = session.volume();
-  blowWind(wind_->run(), &blown);
+  wind_->show(session.volume(), &blown, blown.bounds());
   return blown;
 }
 
@@ -145,8 +152,9 @@ void AnimationPreview::leave() {
   last_advance_ns_ = -1;
   playing_ = false;
   shown_.reset();
+  start_.reset();
   morph_.reset();
-  target_full_.reset();
+  morph_full_.reset();
   wind_.reset();
   t_ = 0.0f;
 }

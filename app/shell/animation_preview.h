@@ -5,10 +5,13 @@
 // replay recomputes), and leaving without applying drops the copy, so the cloud shows as it was.
 //
 // The display copy is at half the resolution when the cloud is 128³ or more (halfResolution:
-// an eighth of the voxels to move, upload and light each frame; the morph's cells are halved
-// with it so they cover the same sky, the wind's 64³ velocity grid is the same). Apply then
-// computes the frame shown at full resolution from the record (the same t, the same steps) —
-// exactly what replay computes — and commits that.
+// an eighth of the voxels to move, upload and light each frame). The morph is planned once from
+// the full-resolution clouds, and both they and the copy are carried along its paths when the
+// morph starts (so apply only frames the full clouds: no re-planning); the wind's 64³
+// velocity grid and flow map are the same at any resolution. Apply then computes the frame
+// shown at full resolution — the morph's frame at the same t from the same plan, the wind's
+// flow map resampling the full cloud once — which is exactly what replay computes from the
+// record, and commits that.
 // A change to the session's cloud while an animation is shown (a stroke, undo, open…) leaves
 // the animation first: the copy no longer starts from the cloud.
 #pragma once
@@ -73,6 +76,7 @@ class AnimationPreview {
   Kind kind_ = Kind::kNone;
   bool playing_ = false;
   std::unique_ptr<Volume> shown_;
+  std::unique_ptr<Volume> start_;  // the wind's starting display copy
   uint64_t base_instance_ = 0, base_generation_ = 0;
   int64_t last_advance_ns_ = -1;
   std::optional<bool> half_;
@@ -80,7 +84,7 @@ class AnimationPreview {
   bool useHalf(const Volume& v) const { return half_.value_or(v.dims().x >= 128); }
   // Morph
   std::unique_ptr<CloudMorph> morph_;
-  std::unique_ptr<Volume> target_full_;
+  std::unique_ptr<CloudMorph> morph_full_;  // the full-resolution clouds along the same plan
   std::string target_;
   uint64_t target_checksum_ = 0;
   double seconds_ = 5.0;

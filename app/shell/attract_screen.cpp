@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/kiosk/gallery_store.h"
 #include "app/render/gl/gl.h"
 #include "app/render/render_style.h"
 
@@ -42,6 +43,8 @@ void AttractScreen::restart() {
   if (orbit_start_ns_ < 0) orbit_start_ns_ = started_ns_;
   finished_ns_ = journal_.empty() ? started_ns_ : -1;
   next_ = 0;
+  morph_.reset();
+  morphs_ = 0;
   camera_ = session_->camera();
 }
 
@@ -54,7 +57,10 @@ void AttractScreen::setTexts(std::string invitation, std::string hint, std::stri
 std::string AttractScreen::update(const FrameContext& frame) {
   (void)frame;
   const int64_t now = clock_.nowNs();
-  if (finished_ns_ < 0) {
+  if (morph_ && morph_->playing()) {
+    morph_->advanceTo(now);
+    if (!morph_->playing()) finished_ns_ = now;  // the gallery cloud holds, then goes on
+  } else if (finished_ns_ < 0) {
     // Every record due by now, at the journal's pace: record time since the first record,
     // against clock time since the start, times the speed.
     const int64_t t0 = journal_.front().t_ns;
@@ -71,13 +77,51 @@ std::string AttractScreen::update(const FrameContext& frame) {
     }
     if (next_ == journal_.size()) finished_ns_ = now;
   } else if (!journal_.empty() && double(now - finished_ns_) / 1e9 >= options_.hold_s) {
-    ++loops_;
-    restart();
+    if (morph_ && morph_->active()) {
+      // The gallery cloud shown becomes the session's (t = 1: the cloud itself).
+      std::string error;
+      if (!morph_->apply(session_.get(), now, &error)) problems_.push_back("attract: " + error);
+      morph_.reset();
+    }
+    if (!startNextMorph()) {
+      ++loops_;
+      restart();
+    }
   }
   const float degrees =
       options_.orbit_degrees_per_second * float(double(now - orbit_start_ns_) / 1e9);
   camera_ = session_->camera().orbited(degrees);
   return "";
+}
+
+const Volume& AttractScreen::shownVolume() const {
+  return morphing() ? morph_->shown() : session_->volume();
+}
+
+bool AttractScreen::startNextMorph() {
+  if (options_.gallery_dir.empty() || morphs_ >= options_.gallery_morphs) return false;
+  // Newest first: the entry below the last one shown, else (wrapping) the newest.
+  const std::vector<GalleryEntry> entries = GalleryStore(options_.gallery_dir, 0, 0.0).entries();
+  std::vector<const GalleryEntry*> order;
+  for (auto it = entries.rbegin(); it != entries.rend(); ++it)
+    if (last_gallery_ < 0 || it->number < last_gallery_) order.push_back(&*it);
+  for (auto it = entries.rbegin(); it != entries.rend(); ++it)
+    if (last_gallery_ >= 0 && it->number >= last_gallery_) order.push_back(&*it);
+  for (const GalleryEntry* entry : order) {
+    last_gallery_ = entry->number;
+    auto morph = std::make_unique<AnimationPreview>();
+    std::string error;
+    const std::string cloud = entry->path + "/cloud.cbvol";
+    if (!morph->startMorph(*session_, cloud, options_.morph_seconds, &error)) {
+      if (problems_.size() < 20) problems_.push_back("attract: gallery " + cloud + ": " + error);
+      continue;
+    }
+    morph_ = std::move(morph);
+    morph_->advanceTo(clock_.nowNs());  // the morph's time starts now
+    ++morphs_;
+    return true;
+  }
+  return false;
 }
 
 void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
@@ -91,7 +135,7 @@ void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
 
 bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
-  renderer_.sync(session_->volume(), session_->light());
+  renderer_.sync(shownVolume(), session_->light());
   RenderOptions render = options_.render;
   // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
   render.scale = std::max(0.2f, std::round(render.scale * 20.0f) / 20.0f);

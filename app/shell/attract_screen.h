@@ -1,7 +1,12 @@
 // The kiosk's attract loop (issue 11): while nobody paints, a recorded session journal is
 // replayed into a session of its own at the pace it was painted (times `speed`), the camera
 // slowly orbiting, with the invitation over it; when the journal has played, the finished cloud
-// keeps orbiting for `hold_s`, then the replay starts again on an empty sky. Every timer reads
+// keeps orbiting for `hold_s`. Then, when the kiosk keeps a gallery, the cloud morphs (issue 14,
+// app/tools/cloud_morph.h, played as the painter plays it: AnimationPreview) into up to
+// `gallery_morphs` visitors' clouds in turn — newest first, each loop going on from the last
+// one shown — each over `morph_seconds` and held for `hold_s`; then the replay starts again on
+// an empty sky. A gallery cloud that cannot be read or does not fit the sky is skipped and
+// named in problems(). Every timer reads
 // the injected Clock. The kiosk screen (kiosk_screen.h) hands control to the visitor on the
 // first pen proximity, mouse or key, and restarts this loop after the idle reset.
 #pragma once
@@ -15,6 +20,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/scene/light.h"
 #include "app/session/paint_session.h"
+#include "app/shell/animation_preview.h"
 #include "app/shell/screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/core/clock.h"
@@ -33,6 +39,9 @@ struct AttractOptions {
   Light light;                   // until the journal sets its own
   std::string invitation, hint;  // big and small lines in the middle of the screen
   std::string notice;            // a small line at the bottom (what is kept, for how long)
+  std::string gallery_dir;       // the kiosk's gallery (app/kiosk/gallery_store.h); "": none
+  int gallery_morphs = 2;        // gallery clouds morphed into per loop
+  double morph_seconds = 6.0;    // each morph's length
 };
 
 class AttractScreen : public Screen {
@@ -62,6 +71,11 @@ class AttractScreen : public Screen {
   size_t recordsPlayed() const { return next_; }
   size_t recordCount() const { return journal_.size(); }
   long loopsCompleted() const { return loops_; }
+  // The cloud shown: the replayed session's, or a morph's frame while one plays.
+  const Volume& shownVolume() const;
+  bool morphing() const { return morph_ && morph_->active(); }
+  int morphsThisLoop() const { return morphs_; }
+  long lastGalleryShown() const { return last_gallery_; }
   const std::vector<std::string>& problems() const { return problems_; }
 
  private:
@@ -79,6 +93,11 @@ class AttractScreen : public Screen {
   long loops_ = 0;
   Camera camera_;
   std::vector<std::string> problems_;
+  // Morphs into gallery clouds after the replay.
+  bool startNextMorph();
+  std::unique_ptr<AnimationPreview> morph_;
+  int morphs_ = 0;          // begun in this loop
+  long last_gallery_ = -1;  // number of the gallery entry last morphed into (-1: none yet)
 };
 
 }  // namespace cb

@@ -41,6 +41,8 @@ AttractOptions attractOptions(const KioskSetup& setup) {
   a.render = setup.render;
   a.render.scale = setup.moving_scale;
   a.light = setup.light;
+  // After the replay the attract loop morphs into visitors' clouds (attract_screen.h).
+  if (setup.config.gallery_enabled) a.gallery_dir = setup.data_dir + "/gallery";
   return a;
 }
 

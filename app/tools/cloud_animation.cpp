@@ -85,17 +85,38 @@ void WindAnimation::blow() {
   solver_.addForce({0.0f, run_.gust, 0.0f}, centre_, 0.25f * size.x, 0.1f);
 }
 
-VoxelBox WindAnimation::step(Volume* density) {
+void WindAnimation::step() {
   if (run_.segments.empty()) setDirection(1.0f, 0.0f);
   ++run_.segments.back().steps;
-  return solver_.step(kWindStepSeconds, density);
+  solver_.step(kWindStepSeconds);
+}
+
+VoxelBox WindAnimation::show(const Volume& start, Volume* out, const VoxelBox& previous) const {
+  return solver_.resampleDensity(start, out, previous);
+}
+
+void WindAnimation::stepDensityItself(Volume* density) {
+  if (run_.segments.empty()) setDirection(1.0f, 0.0f);
+  ++run_.segments.back().steps;
+  solver_.stepVelocity(kWindStepSeconds);
+  solver_.advectDensityEveryVoxel(kWindStepSeconds, density);
 }
 
 void blowWind(const WindRun& run, Volume* density) {
   WindAnimation wind(*density, run.speed, run.gust);
   for (const WindSegment& s : run.segments) {
     wind.setDirection(s.dx, s.dz);
-    for (int i = 0; i < s.steps; ++i) wind.step(density);
+    for (int i = 0; i < s.steps; ++i) wind.step();
+  }
+  const Volume start = *density;
+  wind.show(start, density, density->bounds());
+}
+
+void blowWindStepByStep(const WindRun& run, Volume* density) {
+  WindAnimation wind(*density, run.speed, run.gust);
+  for (const WindSegment& s : run.segments) {
+    wind.setDirection(s.dx, s.dz);
+    for (int i = 0; i < s.steps; ++i) wind.stepDensityItself(density);
   }
 }
 

@@ -41,15 +41,23 @@ struct WindRun {
 };
 constexpr float kWindStepSeconds = 1.0f / 15.0f;
 
-// The wind animation: a WindSolver (64³) over the cloud's world box, stepped one step at a time.
+// The wind animation: a WindSolver (64³) over the cloud's world box, stepped one step at a time;
+// the density it shows is the starting cloud carried by the solver's flow map (wind.h).
 class WindAnimation {
  public:
   WindAnimation(const Volume& like, float speed, float gust);
   // Turns the wind towards (dx, dz) from the next step (a new segment; the velocity field
   // becomes the uniform wind plus the gust again).
   void setDirection(float dx, float dz);
-  // One step of kWindStepSeconds on `density`; returns the rewritten box.
-  VoxelBox step(Volume* density);
+  // One step of kWindStepSeconds (velocity and flow map; no voxel is touched).
+  void step();
+  // The cloud after the steps so far: `start` (the cloud when the wind started, at any
+  // resolution over the same world box) carried into `out`; WindSolver::resampleDensity.
+  VoxelBox show(const Volume& start, Volume* out, const VoxelBox& previous) const;
+  const WindSolver& solver() const { return solver_; }
+  // One step the way journal specification 1.1 recorded wind: the velocity step, then the
+  // density itself advected (WindSolver::advectDensityEveryVoxel).
+  void stepDensityItself(Volume* density);
   const WindRun& run() const { return run_; }
 
  private:
@@ -59,7 +67,11 @@ class WindAnimation {
   WindRun run_;
 };
 
-// Recomputes a recorded run on `density` (replay): the same bytes as the animation that made it.
+// Recomputes a recorded run on `density` (replay and apply): the steps on the coarse grid, then
+// one resampling; the same bytes as the animation shows at that resolution.
 void blowWind(const WindRun& run, Volume* density);
+// A run recorded by journal specification 1.1 (`wind=`), recomputed as it was then: each step
+// advecting the density itself.
+void blowWindStepByStep(const WindRun& run, Volume* density);
 
 }  // namespace cb

@@ -11,46 +11,41 @@
 namespace cb {
 namespace {
 
-struct Particle {
-  glm::vec3 position;  // density-weighted cell centre, voxel coordinates
-};
-
-// Particles (one per non-empty cell) and each non-empty voxel's cell → particle index.
-void cellParticles(const Volume& v, const MorphParams& p, std::vector<Particle>* particles,
-                   std::vector<std::pair<size_t, int>>* voxel_particle) {
+// One particle per non-empty cell (its density-weighted centre) and each cell's particle index
+// (−1 for an empty cell). Cell layers are summed in parallel, each voxel in x, y, z order.
+void cellParticles(const Volume& v, const MorphParams& p, glm::ivec3 cells,
+                   std::vector<glm::vec3>* particles, std::vector<int>* cell_particle) {
   const glm::ivec3 d = v.dims();
-  const glm::ivec3 cells = (d + p.cell_voxels - 1) / p.cell_voxels;
-  std::vector<glm::dvec4> acc(size_t(cells.x) * cells.y * cells.z, glm::dvec4(0));
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y)
-      for (int x = 0; x < d.x; ++x) {
-        const float m = v.at(x, y, z);
-        if (m <= p.density_threshold) continue;
-        const glm::ivec3 c = glm::ivec3(x, y, z) / p.cell_voxels;
-        acc[(size_t(c.z) * cells.y + c.y) * cells.x + c.x] +=
-            glm::dvec4(glm::dvec3(x + 0.5, y + 0.5, z + 0.5) * double(m), m);
-      }
-  std::vector<int> id(acc.size(), -1);
+  const int cv = p.cell_voxels;
+  const size_t layer = size_t(cells.x) * cells.y;
+  std::vector<glm::dvec4> acc(layer * cells.z, glm::dvec4(0));
+  parallelFor(size_t(cells.z), 1, [&](size_t, size_t cz_begin, size_t cz_end) {
+    std::vector<float> row(size_t(d.x));
+    for (size_t cz = cz_begin; cz < cz_end; ++cz)
+      for (int z = int(cz) * cv; z < std::min(d.z, int(cz + 1) * cv); ++z)
+        for (int y = 0; y < d.y; ++y) {
+          v.readLine({0, y, z}, 0, d.x, row.data());
+          glm::dvec4* cell_row = &acc[cz * layer + size_t(y / cv) * cells.x];
+          for (int x = 0; x < d.x; ++x) {
+            const float m = row[x];
+            if (m <= p.density_threshold) continue;
+            cell_row[x / cv] += glm::dvec4(glm::dvec3(x + 0.5, y + 0.5, z + 0.5) * double(m), m);
+          }
+        }
+  });
+  cell_particle->assign(acc.size(), -1);
   for (size_t i = 0; i < acc.size(); ++i)
     if (acc[i].w > 0) {
-      id[i] = int(particles->size());
-      particles->push_back({glm::vec3(glm::dvec3(acc[i]) / acc[i].w)});
+      (*cell_particle)[i] = int(particles->size());
+      particles->push_back(glm::vec3(glm::dvec3(acc[i]) / acc[i].w));
     }
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y)
-      for (int x = 0; x < d.x; ++x) {
-        if (v.at(x, y, z) <= p.density_threshold) continue;
-        const glm::ivec3 c = glm::ivec3(x, y, z) / p.cell_voxels;
-        voxel_particle->push_back(
-            {v.index(x, y, z), id[(size_t(c.z) * cells.y + c.y) * cells.x + c.x]});
-      }
 }
 
 // §3.3.1 for |from| ≤ |to|: rounds in which each `from` particle, in order, takes its nearest
 // unpaired `to` particle, while at least |from| remain; the rest each join their nearest
 // `from` particle (the seed's reverse mapping). Pairs are (from index, to index).
-std::vector<std::pair<int, int>> greedyPairs(const std::vector<Particle>& from,
-                                             const std::vector<Particle>& to) {
+std::vector<std::pair<int, int>> greedyPairs(const std::vector<glm::vec3>& from,
+                                             const std::vector<glm::vec3>& to) {
   std::vector<std::pair<int, int>> pairs;
   std::vector<uint8_t> taken(to.size(), 0);
   size_t left = to.size();
@@ -60,7 +55,7 @@ std::vector<std::pair<int, int>> greedyPairs(const std::vector<Particle>& from,
       int best_j = -1;
       for (size_t j = 0; j < to.size(); ++j) {
         if (taken[j]) continue;
-        const glm::vec3 d = to[j].position - from[i].position;
+        const glm::vec3 d = to[j] - from[i];
         const float d2 = glm::dot(d, d);
         if (d2 < best) best = d2, best_j = int(j);
       }
@@ -74,7 +69,7 @@ std::vector<std::pair<int, int>> greedyPairs(const std::vector<Particle>& from,
     float best = std::numeric_limits<float>::infinity();
     int best_i = 0;
     for (size_t i = 0; i < from.size(); ++i) {
-      const glm::vec3 d = to[j].position - from[i].position;
+      const glm::vec3 d = to[j] - from[i];
       const float d2 = glm::dot(d, d);
       if (d2 < best) best = d2, best_i = int(i);
     }
@@ -83,8 +78,10 @@ std::vector<std::pair<int, int>> greedyPairs(const std::vector<Particle>& from,
   return pairs;
 }
 
-void splat(glm::vec3 p, float mass, glm::ivec3 dims, Volume& out) {
-  p = glm::clamp(p - 0.5f, glm::vec3(0.0f), glm::vec3(dims - 1));
+// A trilinear splat at continuous index p (voxel centres at integers), clamped to the grid.
+void splat(glm::vec3 p, float mass, Volume* out) {
+  const glm::ivec3 dims = out->dims();
+  p = glm::clamp(p, glm::vec3(0.0f), glm::vec3(dims - 1));
   const glm::ivec3 b = glm::min(glm::ivec3(glm::floor(p)), dims - 1);
   const glm::vec3 f = p - glm::vec3(b);
   for (int c = 0; c < 8; ++c) {
@@ -92,22 +89,25 @@ void splat(glm::vec3 p, float mass, glm::ivec3 dims, Volume& out) {
     const glm::ivec3 q = glm::min(b + o, dims - 1);
     const float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
     if (w == 0.0f) continue;
-    out.voxelForWrite(q.x, q.y, q.z) += w * mass;
+    out->voxelForWrite(q.x, q.y, q.z) += w * mass;
   }
 }
 
 }  // namespace
 
-CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphParams& params)
-    : blank_(source.dims(), source.worldMin(), source.worldMax()) {
+MorphPlan::MorphPlan(const Volume& source, const Volume& target, const MorphParams& params)
+    : params_(params),
+      dims_(source.dims()),
+      cells_((source.dims() + params.cell_voxels - 1) / params.cell_voxels),
+      world_min_(source.worldMin()),
+      world_max_(source.worldMax()) {
   if (source.dims() != target.dims() || source.worldMin() != target.worldMin() ||
       source.worldMax() != target.worldMax())
     throw ToolError(ToolErrorKind::kMismatchedVolumes,
                     "source and target must share dims and world box");
-  std::vector<Particle> ps, pt;
-  std::vector<std::pair<size_t, int>> vs, vt;
-  cellParticles(source, params, &ps, &vs);
-  cellParticles(target, params, &pt, &vt);
+  std::vector<glm::vec3> ps, pt;
+  cellParticles(source, params, cells_, &ps, &source_.cell_particle);
+  cellParticles(target, params, cells_, &pt, &target_.cell_particle);
   if (ps.empty() || pt.empty())
     throw ToolError(ToolErrorKind::kEmptyVolume,
                     ps.empty() ? "the source has no density" : "the target has no density");
@@ -119,13 +119,13 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
   }
   // Eq. (10.1)–(10.3): refining points, farther from the chord for shorter paths.
   float max_dis = 0;
-  for (auto [s, t] : pairs)
-    max_dis = std::max(max_dis, glm::distance(ps[s].position, pt[t].position));
-  std::vector<std::vector<uint32_t>> of_source(ps.size()), of_target(pt.size());
+  for (auto [s, t] : pairs) max_dis = std::max(max_dis, glm::distance(ps[s], pt[t]));
+  source_.particle_paths.resize(ps.size());
+  target_.particle_paths.resize(pt.size());
   paths_.reserve(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
     const auto [s, t] = pairs[k];
-    const glm::vec3 S = ps[s].position, T = pt[t].position;
+    const glm::vec3 S = ps[s], T = pt[t];
     StrokeRandom rng(params.seed, k);
     const glm::vec3 st = T - S;
     const float dis = glm::length(st);
@@ -136,26 +136,178 @@ CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphPa
     perp = len > 0 ? perp / len : glm::vec3(0);
     const float h = float(rng.uniform()) * (max_dis - dis) * params.refine_scale;
     paths_.push_back({S, 0.5f * (S + T) + perp * h, T});
-    of_source[s].push_back(uint32_t(k));
-    of_target[t].push_back(uint32_t(k));
+    source_.particle_paths[s].push_back(uint32_t(k));
+    target_.particle_paths[t].push_back(uint32_t(k));
   }
-  // Each voxel carries its density along every path of its cell, split evenly.
-  auto carry = [&](const Volume& v, const std::vector<std::pair<size_t, int>>& voxels,
-                   const std::vector<std::vector<uint32_t>>& of, bool from_source) {
-    const glm::ivec3 d = v.dims();
-    for (auto [index, particle] : voxels) {
-      const int x = int(index % d.x), y = int((index / d.x) % d.y),
-                z = int(index / (size_t(d.x) * d.y));
-      const float mass = v.at(x, y, z) / float(of[particle].size());
-      for (uint32_t k : of[particle]) {
-        const glm::vec3 anchor = from_source ? paths_[k].source : paths_[k].target;
-        items_.push_back({glm::vec3(x, y, z) + 0.5f - anchor, mass, k});
+  // Each particle's mean displacement vectors (U, V of the header) over its paths.
+  for (bool from_source : {true, false}) {
+    Side& side = from_source ? source_ : target_;
+    side.mean_u.assign(side.particle_paths.size(), glm::vec3(0));
+    side.mean_v.assign(side.particle_paths.size(), glm::vec3(0));
+    for (size_t i = 0; i < side.particle_paths.size(); ++i) {
+      for (uint32_t k : side.particle_paths[i]) {
+        const Path& p = paths_[k];
+        side.mean_u[i] += from_source ? p.refine - p.source : p.source - p.target;
+        side.mean_v[i] += from_source ? p.target - p.source : p.refine - p.target;
+      }
+      const float n = float(std::max<size_t>(1, side.particle_paths[i].size()));
+      side.mean_u[i] /= n;
+      side.mean_v[i] /= n;
+    }
+  }
+}
+
+CloudMorph::CloudMorph(const Volume& source, const Volume& target, const MorphParams& params)
+    : CloudMorph(std::make_shared<const MorphPlan>(source, target, params), source, target) {}
+
+CloudMorph::CloudMorph(std::shared_ptr<const MorphPlan> plan, const Volume& source,
+                       const Volume& target)
+    : plan_(std::move(plan)), blank_(source.dims(), source.worldMin(), source.worldMax()) {
+  for (const Volume* v : {&source, &target})
+    if (v->dims() != source.dims() || glm::any(glm::greaterThan(v->dims(), plan_->dims())) ||
+        v->worldMin() != plan_->worldMin() || v->worldMax() != plan_->worldMax())
+      throw ToolError(ToolErrorKind::kMismatchedVolumes,
+                      "a morph carries clouds on its planned grid or a coarser one over the same "
+                      "world box");
+  carry(source, true);
+  source_items_ = items_.size();
+  carry(target, false);
+}
+
+void CloudMorph::carry(const Volume& cloud, bool from_source) {
+  const MorphPlan& plan = *plan_;
+  const MorphPlan::Side& side = plan.side(from_source);
+  const glm::ivec3 d = cloud.dims(), cells = plan.cells();
+  const glm::vec3 to_plan = glm::vec3(plan.dims()) / glm::vec3(d);
+  const glm::vec3 to_carried = glm::vec3(d) / glm::vec3(plan.dims());
+  const float cv = float(plan.params().cell_voxels);
+  const float threshold = plan.params().density_threshold;
+  // The cells' mean displacements (times 1 for a non-empty cell, 0 for an empty one) on a grid
+  // padded by one empty cell on every side, so interpolation needs no bounds checks.
+  const glm::ivec3 padded = cells + 2;
+  auto paddedIndex = [&](int x, int y, int z) {
+    return (size_t(z + 1) * padded.y + size_t(y + 1)) * padded.x + size_t(x + 1);
+  };
+  const size_t padded_count = size_t(padded.x) * padded.y * padded.z;
+  std::vector<glm::vec4> cell_u(padded_count, glm::vec4(0)), cell_v(padded_count, glm::vec4(0));
+  std::vector<uint32_t> cell_paths(size_t(cells.x) * cells.y * cells.z, 1);
+  for (int z = 0; z < cells.z; ++z)
+    for (int y = 0; y < cells.y; ++y)
+      for (int x = 0; x < cells.x; ++x) {
+        const size_t c = (size_t(z) * cells.y + y) * cells.x + x;
+        const int particle = side.cell_particle[c];
+        if (particle < 0) continue;
+        cell_u[paddedIndex(x, y, z)] = glm::vec4(side.mean_u[size_t(particle)], 1.0f);
+        cell_v[paddedIndex(x, y, z)] = glm::vec4(side.mean_v[size_t(particle)], 1.0f);
+        cell_paths[c] = uint32_t(side.particle_paths[size_t(particle)].size());
+      }
+  auto ownCell = [&](float p, int n) { return std::clamp(int(std::floor(p / cv)), 0, n - 1); };
+  // Per z plane: how many splats, then where each plane's splats start.
+  std::vector<size_t> plane_items(size_t(d.z) + 1, 0);
+  parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    std::vector<float> row(size_t(d.x));
+    for (int z = int(z_begin); z < int(z_end); ++z) {
+      const int cz = ownCell((float(z) + 0.5f) * to_plan.z, cells.z);
+      size_t n = 0;
+      for (int y = 0; y < d.y; ++y) {
+        const int cy = ownCell((float(y) + 0.5f) * to_plan.y, cells.y);
+        const uint32_t* paths = &cell_paths[(size_t(cz) * cells.y + cy) * cells.x];
+        cloud.readLine({0, y, z}, 0, d.x, row.data());
+        for (int x = 0; x < d.x; ++x)
+          if (row[x] > threshold) n += paths[ownCell((float(x) + 0.5f) * to_plan.x, cells.x)];
+      }
+      plane_items[size_t(z) + 1] = n;
+    }
+  });
+  const size_t first = items_.size();
+  for (int z = 0; z < d.z; ++z) plane_items[size_t(z) + 1] += plane_items[size_t(z)];
+  items_.resize(first + plane_items[size_t(d.z)]);
+  parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    // One row's cells blended over y and z (the trilinear weights of the two rows and planes
+    // of cell centres around it), so each voxel only blends two of them along x.
+    std::vector<glm::vec4> row_u(size_t(padded.x)), row_v(size_t(padded.x));
+    std::vector<float> row(size_t(d.x));
+    for (int z = int(z_begin); z < int(z_end); ++z) {
+      const float pz = (float(z) + 0.5f) * to_plan.z;
+      const float gz = pz / cv - 0.5f;
+      const int cz0 = int(std::floor(gz));
+      const float fz = gz - float(cz0);
+      const int own_z = ownCell(pz, cells.z);
+      const float win_z =
+          std::clamp(2.0f - 4.0f * std::abs(pz / cv - (float(own_z) + 0.5f)), 0.0f, 1.0f);
+      CarriedSplat* out = items_.data() + first + plane_items[size_t(z)];
+      for (int y = 0; y < d.y; ++y) {
+        cloud.readLine({0, y, z}, 0, d.x, row.data());
+        bool any = false;
+        for (int x = 0; x < d.x && !any; ++x) any = row[x] > threshold;
+        if (!any) continue;
+        const float py = (float(y) + 0.5f) * to_plan.y;
+        const float gy = py / cv - 0.5f;
+        const int cy0 = int(std::floor(gy));
+        const float fy = gy - float(cy0);
+        const int own_y = ownCell(py, cells.y);
+        const float win_yz =
+            win_z * std::clamp(2.0f - 4.0f * std::abs(py / cv - (float(own_y) + 0.5f)), 0.0f, 1.0f);
+        for (int cx = -1; cx <= cells.x; ++cx) {
+          const glm::vec4 u = (1 - fz) * ((1 - fy) * cell_u[paddedIndex(cx, cy0, cz0)] +
+                                          fy * cell_u[paddedIndex(cx, cy0 + 1, cz0)]) +
+                              fz * ((1 - fy) * cell_u[paddedIndex(cx, cy0, cz0 + 1)] +
+                                    fy * cell_u[paddedIndex(cx, cy0 + 1, cz0 + 1)]);
+          const glm::vec4 v = (1 - fz) * ((1 - fy) * cell_v[paddedIndex(cx, cy0, cz0)] +
+                                          fy * cell_v[paddedIndex(cx, cy0 + 1, cz0)]) +
+                              fz * ((1 - fy) * cell_v[paddedIndex(cx, cy0, cz0 + 1)] +
+                                    fy * cell_v[paddedIndex(cx, cy0 + 1, cz0 + 1)]);
+          row_u[size_t(cx + 1)] = u;
+          row_v[size_t(cx + 1)] = v;
+        }
+        const int* own_row = &side.cell_particle[(size_t(own_z) * cells.y + own_y) * cells.x];
+        for (int x = 0; x < d.x; ++x) {
+          const float m = row[x];
+          if (m <= threshold) continue;
+          const float px = (float(x) + 0.5f) * to_plan.x;
+          const float gx = px / cv - 0.5f;
+          const int cx0 = int(std::floor(gx));
+          const float fx = gx - float(cx0);
+          const glm::vec4 u = (1 - fx) * row_u[size_t(cx0 + 1)] + fx * row_u[size_t(cx0 + 2)];
+          const glm::vec4 v = (1 - fx) * row_v[size_t(cx0 + 1)] + fx * row_v[size_t(cx0 + 2)];
+          // w: the weight of the non-empty cells (> 0 whenever the voxel's own cell is one).
+          const glm::vec3 field_u = u.w > 0 ? glm::vec3(u) / u.w : glm::vec3(0);
+          const glm::vec3 field_v = v.w > 0 ? glm::vec3(v) / v.w : glm::vec3(0);
+          const int own_x = ownCell(px, cells.x);
+          const int particle = own_row[own_x];
+          const glm::vec3 at0(x, y, z);
+          if (particle < 0) {  // a coarse voxel of a cell empty at full resolution
+            *out++ = {at0, field_u * to_carried, field_v * to_carried, m};
+            continue;
+          }
+          // The window on the path's own departure: 1 in the inner half, 0 on the faces.
+          const float window =
+              win_yz *
+              std::clamp(2.0f - 4.0f * std::abs(px / cv - (float(own_x) + 0.5f)), 0.0f, 1.0f);
+          const std::vector<uint32_t>& paths = side.particle_paths[size_t(particle)];
+          const float mass = m / float(paths.size());
+          const glm::vec3 mean_u = side.mean_u[size_t(particle)];
+          const glm::vec3 mean_v = side.mean_v[size_t(particle)];
+          for (uint32_t k : paths) {
+            const MorphPlan::Path& p = plan.paths()[k];
+            const glm::vec3 pu = from_source ? p.refine - p.source : p.source - p.target;
+            const glm::vec3 pv = from_source ? p.target - p.source : p.refine - p.target;
+            *out++ = {at0, (field_u + window * (pu - mean_u)) * to_carried,
+                      (field_v + window * (pv - mean_v)) * to_carried, mass};
+          }
+        }
       }
     }
-  };
-  carry(source, vs, of_source, true);
-  source_items_ = items_.size();
-  carry(target, vt, of_target, false);
+  });
+}
+
+glm::vec3 CloudMorph::place(size_t i, float t) const {
+  const CarriedSplat& s = items_[i];
+  const float a = 1.0f - t;
+  const bool from_source = i < source_items_;
+  const float c1 = from_source ? 2.0f * a * t : a * a;
+  const float c2 = from_source ? t * t : 2.0f * a * t;
+  return s.at0 + c1 * s.u + c2 * s.v;
 }
 
 Volume CloudMorph::frame(float t) const {
@@ -190,11 +342,9 @@ VoxelBox CloudMorph::frameInto(float t, Volume* out, const VoxelBox& previous) c
     uint32_t* counts = &plane_counts_[chunk * planes];
     glm::ivec3 lo(dims), hi(0);
     for (size_t i = b; i < e; ++i) {
-      const CarriedSplat& item = items_[begin + i];
       const bool from_source = begin + i < source_items_;
-      const glm::vec3 p =
-          glm::clamp(item.offset + paths_[item.path].at(t) - 0.5f, glm::vec3(0.0f), top);
-      placed_[i] = {p, (from_source ? 1.0f - t : t) * item.mass};
+      const glm::vec3 p = glm::clamp(place(begin + i, t), glm::vec3(0.0f), top);
+      placed_[i] = {p, (from_source ? 1.0f - t : t) * items_[begin + i].mass};
       const glm::ivec3 base = baseOf(p);
       ++counts[base.z];
       lo = glm::min(lo, base);
@@ -257,13 +407,10 @@ VoxelBox CloudMorph::frameInto(float t, Volume* out, const VoxelBox& previous) c
 Volume CloudMorph::frameOneThreadReference(float t) const {
   t = std::clamp(t, 0.0f, 1.0f);
   Volume out = blank_;
-  const glm::ivec3 dims = out.dims();
   for (size_t i = 0; i < items_.size(); ++i) {
     const bool from_source = i < source_items_;
     if (from_source ? t >= 1.0f : t <= 0.0f) continue;
-    const CarriedSplat& item = items_[i];
-    splat(item.offset + paths_[item.path].at(t), (from_source ? 1.0f - t : t) * item.mass, dims,
-          out);
+    splat(place(i, t), (from_source ? 1.0f - t : t) * items_[i].mass, &out);
   }
   out.markDirty(out.bounds());
   return out;

@@ -1,12 +1,11 @@
 #include "app/tools/wind.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <memory>
 
 #include "app/core/parallel_for.h"
+#include "app/tools/tool_error.h"
 
 namespace cb {
 namespace {
@@ -54,9 +53,9 @@ VoxelBox nonZeroBox(const Volume& volume) {
   const glm::ivec3 d = volume.dims();
   std::vector<VoxelBox> slab(size_t(d.z));
   parallelFor(size_t(d.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    std::vector<float> row(size_t(d.x));
     for (size_t z = z_begin; z < z_end; ++z) {
       VoxelBox box;
-      std::vector<float> row(size_t(d.x));
       for (int y = 0; y < d.y; ++y) {
         volume.readLine({0, y, int(z)}, 0, d.x, row.data());
         int lo = -1, hi = -1;
@@ -84,6 +83,8 @@ WindSolver::WindSolver(glm::vec3 world_min, glm::vec3 world_max, const WindParam
   const size_t n = size_t(params.grid.x) * params.grid.y * params.grid.z;
   velocity_.assign(n, glm::vec3(0));
   scratch_velocity_.assign(n, glm::vec3(0));
+  displacement_.assign(n, glm::vec3(0));
+  scratch_displacement_.assign(n, glm::vec3(0));
   divergence_.assign(n, 0.0f);
   pressure_.assign(n, 0.0f);
   scratch_pressure_.assign(n, 0.0f);
@@ -208,120 +209,158 @@ glm::ivec3 WindSolver::reachInVoxels(float dt, const Volume& density) const {
   return glm::ivec3(glm::ceil(max_velocity * dt / density.voxelSize())) + 1;
 }
 
-VoxelBox WindSolver::advectDensity(float dt, Volume* density) {
-  const glm::ivec3 d = density->dims();
+void WindSolver::advectFlowMap(float dt) {
+  const glm::ivec3 n = params_.grid;
+  // D(x) ← D(x − u(x)·dt) − u(x)·dt: the air at x came from x − u·dt one step ago, and from
+  // there back to the start by the displacement found there.
+  parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    for (int z = int(z_begin); z < int(z_end); ++z)
+      for (int y = 0; y < n.y; ++y)
+        for (int x = 0; x < n.x; ++x) {
+          const glm::vec3 u = velocity_[index(x, y, z)];
+          scratch_displacement_[index(x, y, z)] =
+              sampleClamped(displacement_, n, glm::vec3(x, y, z) - u * dt / cell_) - u * dt;
+        }
+  });
+  displacement_.swap(scratch_displacement_);
+  elapsed_ += dt;
+}
+
+void WindSolver::step(float dt) {
+  stepVelocity(dt);
+  advectFlowMap(dt);
+}
+
+VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const VoxelBox& previous,
+                                     bool every_block) const {
+  if (out->dims() != start.dims() || out->worldMin() != start.worldMin() ||
+      out->worldMax() != start.worldMax())
+    throw ToolError(ToolErrorKind::kMismatchedVolumes,
+                    "wind: the density shown must have the starting density's dims and box");
+  constexpr int kBlock = 8;
+  const glm::ivec3 d = start.dims(), n = params_.grid;
   const glm::ivec3 blocks = (d + kBlock - 1) / kBlock;
-  const size_t block_count = size_t(blocks.x) * blocks.y * blocks.z;
   auto block_index = [&](glm::ivec3 b) { return (size_t(b.z) * blocks.y + b.y) * blocks.x + b.x; };
-  if (occupancy_instance_ != density->instanceId() ||
-      occupancy_generation_ != density->generation() || block_occupied_.size() != block_count) {
-    // One pass over the volume: which blocks hold density.
-    block_occupied_.assign(block_count, 0);
-    parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
-      std::vector<float> row(size_t(d.x));
-      for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
-        for (int z = bz * kBlock; z < std::min(d.z, (bz + 1) * kBlock); ++z)
-          for (int y = 0; y < d.y; ++y) {
-            density->readLine({0, y, z}, 0, d.x, row.data());
-            for (int x = 0; x < d.x; ++x)
-              if (row[x] != 0.0f) block_occupied_[block_index({x / kBlock, y / kBlock, bz})] = 1;
-          }
-    });
-  }
-  VoxelBox occupied;
-  for (int bz = 0; bz < blocks.z; ++bz)
-    for (int by = 0; by < blocks.y; ++by)
-      for (int bx = 0; bx < blocks.x; ++bx)
-        if (block_occupied_[block_index({bx, by, bz})])
-          occupied = occupied.unite({glm::ivec3(bx, by, bz) * kBlock,
-                                     glm::min(glm::ivec3(bx + 1, by + 1, bz + 1) * kBlock, d)});
-  if (occupied.empty()) return {};
-  const glm::vec3 vs = density->voxelSize();
-  const glm::ivec3 reach = reachInVoxels(dt, *density);
-  // A destination voxel backtraces at most `reach` voxels, and its interpolation reads one
-  // more: it can be non-zero only if an occupied block lies within that many blocks.
-  const glm::ivec3 reach_blocks = (reach + 1 + kBlock - 1) / kBlock;
-  std::vector<uint8_t> live(block_count, 0);
-  {
-    // Separable max (dilation) over the block grid, x then y then z.
-    std::vector<uint8_t> a = block_occupied_, b(block_count);
-    for (int axis = 0; axis < 3; ++axis) {
-      for (int bz = 0; bz < blocks.z; ++bz)
-        for (int by = 0; by < blocks.y; ++by)
-          for (int bx = 0; bx < blocks.x; ++bx) {
-            const glm::ivec3 c(bx, by, bz);
-            uint8_t m = 0;
-            for (int k = -reach_blocks[axis]; k <= reach_blocks[axis] && !m; ++k) {
-              glm::ivec3 q = c;
-              q[axis] += k;
-              if (q[axis] >= 0 && q[axis] < blocks[axis]) m = a[block_index(q)];
-            }
-            b[block_index(c)] = m;
-          }
-      a.swap(b);
-    }
-    live.swap(a);
-  }
-  const VoxelBox box =
-      VoxelBox{occupied.lo - reach, occupied.hi + reach}.intersect(density->bounds());
-  const glm::ivec3 size = box.hi - box.lo;
-  scratch_density_.resize(size_t(size.x) * size.y * size.z);
-  const float fade = std::exp(-params_.dissipation * dt);
+  const size_t block_count = size_t(blocks.x) * blocks.y * blocks.z;
+  // Which blocks of the start hold density, as a summed-volume table for box queries.
+  std::vector<uint8_t> occupied(block_count, 0);
+  parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+    std::vector<float> row(size_t(d.x));
+    for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+      for (int z = bz * kBlock; z < std::min(d.z, (bz + 1) * kBlock); ++z)
+        for (int y = 0; y < d.y; ++y) {
+          start.readLine({0, y, z}, 0, d.x, row.data());
+          for (int x = 0; x < d.x; ++x)
+            if (row[x] != 0.0f) occupied[block_index({x / kBlock, y / kBlock, bz})] = 1;
+        }
+  });
+  const glm::ivec3 t = blocks + 1;
+  std::vector<uint32_t> table(size_t(t.x) * t.y * t.z, 0);
+  auto at = [&](int x, int y, int z) -> uint32_t& {
+    return table[(size_t(z) * t.y + y) * t.x + x];
+  };
+  for (int z = 1; z < t.z; ++z)
+    for (int y = 1; y < t.y; ++y)
+      for (int x = 1; x < t.x; ++x)
+        at(x, y, z) = occupied[block_index({x - 1, y - 1, z - 1})] + at(x - 1, y, z) +
+                      at(x, y - 1, z) + at(x, y, z - 1) - at(x - 1, y - 1, z) -
+                      at(x - 1, y, z - 1) - at(x, y - 1, z - 1) + at(x - 1, y - 1, z - 1);
+  auto anyOccupied = [&](glm::ivec3 lo, glm::ivec3 hi) {  // blocks [lo, hi)
+    lo = glm::max(lo, glm::ivec3(0));
+    hi = glm::min(hi, blocks);
+    if (glm::any(glm::lessThanEqual(hi, lo))) return false;
+    const int64_t sum = int64_t(at(hi.x, hi.y, hi.z)) - at(lo.x, hi.y, hi.z) -
+                        at(hi.x, lo.y, hi.z) - at(hi.x, hi.y, lo.z) + at(lo.x, lo.y, hi.z) +
+                        at(lo.x, hi.y, lo.z) + at(hi.x, lo.y, lo.z) - at(lo.x, lo.y, lo.z);
+    return sum > 0;
+  };
+  const glm::vec3 vs = start.voxelSize();
   const glm::vec3 voxel_to_cells = vs / cell_;
   const glm::vec3 offset_cells = 0.5f * voxel_to_cells - 0.5f;
-  const glm::vec3 step_in_voxels = dt / vs;
-  // Which blocks the new density occupies: flags only ever set to 1, from any task.
-  std::unique_ptr<std::atomic<uint8_t>[]> next_occupied(new std::atomic<uint8_t>[block_count]);
-  for (size_t i = 0; i < block_count; ++i) next_occupied[i].store(0, std::memory_order_relaxed);
-  parallelFor(size_t(size.z), 2, [&](size_t, size_t z_begin, size_t z_end) {
-    for (int z = int(z_begin); z < int(z_end); ++z)
-      for (int y = 0; y < size.y; ++y) {
-        float* out = &scratch_density_[(size_t(z) * size.y + y) * size.x];
-        const glm::ivec3 row = box.lo + glm::ivec3(0, y, z);
-        for (int x = 0; x < size.x;) {
-          const glm::ivec3 v = row + glm::ivec3(x, 0, 0);
-          const glm::ivec3 blk = v / kBlock;
-          const int run_end = std::min(size.x, (blk.x + 1) * kBlock - box.lo.x);
-          if (!live[block_index(blk)]) {
-            std::fill(out + x, out + run_end, 0.0f);
-            x = run_end;
+  const float fade = float(std::exp(-double(params_.dissipation) * elapsed_));
+  // A destination block is live when the samples of its voxels can reach an occupied block:
+  // the displacement there is a convex combination of the cells it interpolates, so its range
+  // bounds where they land (one more voxel for the trilinear read).
+  std::vector<uint8_t> live(block_count, 0), nonzero(block_count, 0);
+  parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+    for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+      for (int by = 0; by < blocks.y; ++by)
+        for (int bx = 0; bx < blocks.x; ++bx) {
+          const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBlock;
+          const glm::ivec3 hi = glm::min(lo + kBlock, d);
+          const glm::vec3 c_lo = glm::clamp(glm::vec3(lo) * voxel_to_cells + offset_cells,
+                                            glm::vec3(0), glm::vec3(n - 1));
+          const glm::vec3 c_hi = glm::clamp(glm::vec3(hi - 1) * voxel_to_cells + offset_cells,
+                                            glm::vec3(0), glm::vec3(n - 1));
+          const glm::ivec3 k_lo = glm::ivec3(glm::floor(c_lo)),
+                           k_hi = glm::min(glm::ivec3(glm::floor(c_hi)) + 1, n - 1);
+          glm::vec3 d_min(std::numeric_limits<float>::infinity()), d_max(-d_min);
+          for (int z = k_lo.z; z <= k_hi.z; ++z)
+            for (int y = k_lo.y; y <= k_hi.y; ++y)
+              for (int x = k_lo.x; x <= k_hi.x; ++x) {
+                const glm::vec3 disp = displacement_[index(x, y, z)];
+                d_min = glm::min(d_min, disp);
+                d_max = glm::max(d_max, disp);
+              }
+          const glm::ivec3 src_lo = glm::ivec3(glm::floor(glm::vec3(lo) + d_min / vs)) - 1;
+          const glm::ivec3 src_hi = glm::ivec3(glm::floor(glm::vec3(hi - 1) + d_max / vs)) + 2;
+          live[block_index({bx, by, bz})] =
+              every_block ||
+              anyOccupied(glm::ivec3(glm::floor(glm::vec3(src_lo) / float(kBlock))),
+                          glm::ivec3(glm::floor(glm::vec3(src_hi - 1) / float(kBlock))) + 1);
+        }
+  });
+  const VoxelBox cleared = previous.intersect(out->bounds());
+  const std::vector<float> zeros(size_t(kBlock), 0.0f);
+  parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+    float row[kBlock];
+    for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+      for (int by = 0; by < blocks.y; ++by)
+        for (int bx = 0; bx < blocks.x; ++bx) {
+          const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBlock;
+          const VoxelBox block{lo, glm::min(lo + kBlock, d)};
+          const size_t b = block_index({bx, by, bz});
+          if (!live[b]) {
+            const VoxelBox clear = block.intersect(cleared);
+            for (int z = clear.lo.z; z < clear.hi.z; ++z)
+              for (int y = clear.lo.y; y < clear.hi.y; ++y)
+                out->writeLine({clear.lo.x, y, z}, 0, clear.hi.x - clear.lo.x, zeros.data());
             continue;
           }
           bool any = false;
-          for (; x < run_end; ++x) {
-            const glm::ivec3 p = row + glm::ivec3(x, 0, 0);
-            const glm::vec3 u = sampleVelocityInCells(glm::vec3(p) * voxel_to_cells + offset_cells);
-            const float rho = sampleDensity(*density, glm::vec3(p) - u * step_in_voxels) * fade;
-            out[x] = rho;
-            any = any || rho != 0.0f;
-          }
-          if (any) next_occupied[block_index(blk)].store(1, std::memory_order_relaxed);
+          for (int z = block.lo.z; z < block.hi.z; ++z)
+            for (int y = block.lo.y; y < block.hi.y; ++y) {
+              for (int x = block.lo.x; x < block.hi.x; ++x) {
+                const glm::vec3 v(x, y, z);
+                const glm::vec3 disp =
+                    sampleClamped(displacement_, n, v * voxel_to_cells + offset_cells);
+                const float rho = sampleDensity(start, v + disp / vs) * fade;
+                row[x - block.lo.x] = rho;
+                any = any || rho != 0.0f;
+              }
+              out->writeLine({block.lo.x, y, z}, 0, block.hi.x - block.lo.x, row);
+            }
+          nonzero[b] = any;
         }
-      }
   });
-  parallelFor(size_t(size.z), 8, [&](size_t, size_t z_begin, size_t z_end) {
-    for (int z = int(z_begin); z < int(z_end); ++z)
-      for (int y = 0; y < size.y; ++y)
-        density->writeLine({box.lo.x, box.lo.y + y, box.lo.z + z}, 0, size.x,
-                           &scratch_density_[(size_t(z) * size.y + y) * size.x]);
-  });
-  // Blocks outside the box kept their density; inside it they hold what was just written.
+  VoxelBox written;
   for (int bz = 0; bz < blocks.z; ++bz)
     for (int by = 0; by < blocks.y; ++by)
-      for (int bx = 0; bx < blocks.x; ++bx) {
-        const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBlock;
-        const VoxelBox block{lo, glm::min(lo + kBlock, d)};
-        const size_t i = block_index({bx, by, bz});
-        const uint8_t now = next_occupied[i].load(std::memory_order_relaxed);
-        if (block.intersect(box) == block)
-          block_occupied_[i] = now;  // wholly rewritten
-        else if (!block.intersect(box).empty())
-          block_occupied_[i] = block_occupied_[i] | now;  // partly: a superset is safe
-      }
-  density->markDirty(box);
-  occupancy_instance_ = density->instanceId();
-  occupancy_generation_ = density->generation();
-  return box;
+      for (int bx = 0; bx < blocks.x; ++bx)
+        if (nonzero[block_index({bx, by, bz})]) {
+          const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kBlock;
+          written = written.unite({lo, glm::min(lo + kBlock, d)});
+        }
+  VoxelBox dirty = written.unite(cleared);
+  for (size_t b = 0; b < block_count; ++b)
+    if (live[b]) {
+      const glm::ivec3 bi(int(b % blocks.x), int((b / blocks.x) % blocks.y),
+                          int(b / (size_t(blocks.x) * blocks.y)));
+      const glm::ivec3 lo = bi * kBlock;
+      dirty = dirty.unite({lo, glm::min(lo + kBlock, d)});
+    }
+  if (!dirty.empty()) out->markDirty(dirty);
+  return written;
 }
 
 VoxelBox WindSolver::advectDensityEveryVoxel(float dt, Volume* density) {
@@ -356,13 +395,7 @@ VoxelBox WindSolver::advectDensityEveryVoxel(float dt, Volume* density) {
                            &scratch_density_[(size_t(z) * size.y + y) * size.x]);
   });
   density->markDirty(box);
-  occupancy_instance_ = 0;  // the block occupancy was not kept
   return box;
-}
-
-VoxelBox WindSolver::step(float dt, Volume* density) {
-  stepVelocity(dt);
-  return advectDensity(dt, density);
 }
 
 }  // namespace cb

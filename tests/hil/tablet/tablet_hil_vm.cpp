@@ -205,6 +205,88 @@ std::string asNobody(const std::function<std::string()>& what) {
   return out;
 }
 
+// Slow strokes (issue 12): the input core's fuzz filter (drivers/input/input.c
+// input_defuzz_abs_event) drops or smooths small changes on evdev; the hidraw backend applies
+// the same filter by default. `reports` are injected back to back (well inside the driver's
+// 100 ms idle-proximity timer), then every source's samples up to the first out-of-proximity
+// one are compared field by field: `filtered` must give evdev's sequence exactly; `raw` (the
+// filter off) must differ from evdev's, so the check can fail. (The wacom driver sends
+// MSC_SERIAL with every report, so evdev gets a frame for each even when the filter holds every
+// axis: reports are not dropped, values are held or smoothed.)
+void checkSlowStroke(const std::string& label, const std::vector<std::vector<uint8_t>>& reports,
+                     size_t pen_reports,
+                     const std::function<bool(const std::vector<uint8_t>&)>& send, PenSource& evdev,
+                     PenSource& filtered, PenSource& raw) {
+  std::vector<PenSample> drained;
+  for (PenSource* src : {&evdev, &filtered, &raw}) src->poll(20, drained);
+  for (const std::vector<uint8_t>& r : reports) {
+    if (!send(r)) {
+      check(false, label + ": injecting a slow-stroke report");
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(4));
+  }
+  auto read = [](PenSource& src) {
+    std::vector<PenSample> got, in;
+    const int64_t start = nowNs();
+    while (nowNs() - start < 400'000'000) src.poll(20, got);
+    for (const PenSample& g : got) {
+      if (!g.in_proximity) break;
+      in.push_back(g);
+    }
+    return in;
+  };
+  const std::vector<PenSample> ev = read(evdev), hr = read(filtered), unfiltered = read(raw);
+  size_t first_difference = 0;
+  while (first_difference < std::min(ev.size(), hr.size()) &&
+         samePenState(ev[first_difference], hr[first_difference]))
+    ++first_difference;
+  const bool same = ev.size() == hr.size() && first_difference == ev.size();
+  if (!same && first_difference < std::max(ev.size(), hr.size())) {
+    std::printf("  %s: sample %zu differs\n    evdev : %s\n    hidraw: %s\n", label.c_str(),
+                first_difference,
+                first_difference < ev.size() ? describe(ev[first_difference]).c_str() : "none",
+                first_difference < hr.size() ? describe(hr[first_difference]).c_str() : "none");
+  }
+  figure(label + "_reports", double(reports.size()));
+  figure(label + "_evdev_samples", double(ev.size()));
+  check(same, label + ": " + std::to_string(reports.size()) + " slow-stroke reports give evdev " +
+                  std::to_string(ev.size()) + " samples and filtered hidraw " +
+                  std::to_string(hr.size()) + ", equal field by field");
+  // With the filter off, the same reports must come out differently (held or smoothed
+  // positions and tilts), so the comparison above can fail.
+  size_t differing = unfiltered.size() == ev.size() ? 0 : std::max(ev.size(), unfiltered.size());
+  for (size_t i = 0; unfiltered.size() == ev.size() && i < ev.size(); ++i)
+    differing += samePenState(ev[i], unfiltered[i]) ? 0 : 1;
+  figure(label + "_samples_changed_by_the_filter", double(differing));
+  check(!ev.empty() && ev.size() <= pen_reports && differing > 0,
+        label + ": without the filter (--raw) hidraw differs from evdev in " +
+            std::to_string(differing) + " of " + std::to_string(ev.size()) + " samples (" +
+            std::to_string(pen_reports) + " reports in proximity), so the check can fail");
+}
+
+// A slow stroke: pressed at `start`, small steps of 0–6 units on X and Y (many of at most 1,
+// which fuzz 4 drops), pressure creeping by 1 and tilt and distance by 1 now and then (what a
+// pen held nearly still gives).
+std::vector<PenStep> slowStroke(PenStep start) {
+  static const int dx[] = {0, 1, 1, 2, 0, 3, 1, 5, 1, 0, 4, 1, 2, 3, 0, 1, 6, 2, 1, 3};
+  static const int dy[] = {1, 0, 1, 1, 1, 0, 3, 0, 2, 1, 0, 5, 1, 1, 2, 4, 0, 1, 3, 1};
+  std::vector<PenStep> steps;
+  PenStep s = start;
+  s.in_range = s.sense = s.tip = true;
+  s.eraser = s.invert = false;
+  for (int i = 0; i < 40; ++i) {
+    s.x += dx[i % 20];
+    s.y += dy[(i + 7) % 20];
+    if (i % 7 == 0) s.pressure += 1;
+    if (i % 9 == 4) s.tilt_x += 1;
+    if (i % 11 == 2) s.tilt_y -= 1;
+    if (i % 13 == 6) s.distance += 1;
+    steps.push_back(s);
+  }
+  return steps;
+}
+
 void phaseUhidPth660(const std::string& fixtures) {
   const std::vector<uint8_t> desc = readFile(fixtures + "/wacom-pth660_v145.rdesc");
   auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
@@ -249,6 +331,25 @@ void phaseUhidPth660(const std::string& fixtures) {
   };
   const auto steps = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
   runScript("uhid-pth660", steps, false, info, inject, {&evdev, &hidraw});
+
+  // Slow strokes: X/Y fuzz 4 (config/devices/wacom-generic.toml, the wacom driver's generic pen
+  // path), evdev against the filtered hidraw path.
+  {
+    hid::HidapiPenSourceOptions raw_options = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
+    raw_options.input_fuzz = false;
+    hid::HidapiPenSource raw(raw_options);
+    if (check(waitConnected(raw, 5000), "uhid: a second hidraw reader without the filter opens")) {
+      std::vector<std::vector<uint8_t>> reports;
+      for (const PenStep& st : slowStroke(steps[6]))
+        reports.push_back(encodePenReport(*layout.layout, st));
+      PenStep out = steps[6];
+      out.in_range = out.sense = out.tip = false;
+      reports.push_back(encodePenReport(*layout.layout, out));
+      checkSlowStroke(
+          "uhid-pth660 slow stroke", reports, reports.size() - 1,
+          [&](const std::vector<uint8_t>& r) { return dev.input(r); }, evdev, hidraw, raw);
+    }
+  }
 
   // An unprivileged user (no udev rule installed) gets a state naming the rule, not an exit.
   {
@@ -449,8 +550,27 @@ void phaseUhidIntuos4() {
     if (entering && !dev.input(encodeIntuos4Enter(s.tool_type, s.serial))) return false;
     return dev.input(encodeIntuos4Pen(s));
   };
-  runScript("intuos4", penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max),
-            true, info, inject, {&evdev, &hidraw});
+  const auto script = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
+  runScript("intuos4", script, true, info, inject, {&evdev, &hidraw});
+
+  // Slow strokes: the Intuos protocol's fuzz (config/devices/wacom-intuos4.toml: X/Y 4, tilt
+  // and distance 1), evdev against the filtered hidraw path.
+  {
+    hid::HidapiPenSourceOptions raw_options = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
+    raw_options.input_fuzz = false;
+    raw_options.switch_mode = false;  // already in tablet mode
+    hid::HidapiPenSource raw(raw_options);
+    if (check(waitConnected(raw, 5000), "intuos4: a second hidraw reader without the filter")) {
+      const PenStep start = script[6];
+      std::vector<std::vector<uint8_t>> reports = {
+          encodeIntuos4Enter(start.tool_type, start.serial)};
+      for (const PenStep& st : slowStroke(start)) reports.push_back(encodeIntuos4Pen(st));
+      reports.push_back(encodeIntuos4Exit());
+      checkSlowStroke(
+          "intuos4 slow stroke", reports, reports.size() - 2,
+          [&](const std::vector<uint8_t>& r) { return dev.input(r); }, evdev, hidraw, raw);
+    }
+  }
   dev.destroy();
 }
 

@@ -31,7 +31,7 @@ protocol = "descriptor"
 TEST(DeviceFiles, ShippedFilesLoadCleanly) {
   const DeviceFileLoad load = loadDeviceDirectory(std::string(CB_SOURCE_DIR) + "/config/devices");
   EXPECT_TRUE(load.errors.empty()) << load.errors.front();
-  EXPECT_EQ(load.database->files().size(), 4u);
+  EXPECT_EQ(load.database->files().size(), 13u);
   // Intuos4: the model table that was compiled into the decoder, now data.
   const DeviceEntry* i4 = load.database->find(0x056A, 0x00BB);
   ASSERT_NE(i4, nullptr);
@@ -63,8 +63,16 @@ TEST(DeviceFiles, ShippedFilesLoadCleanly) {
   EXPECT_FALSE(pth->product.has_value());
   EXPECT_EQ(pth->fuzz.position, 4);
   EXPECT_EQ(pth->fuzz.tilt, 0);
-  // Nobody else has an entry: hid-input's rules.
-  EXPECT_EQ(load.database->find(0x28BD, 0x093A), nullptr);
+  // A vendor without a file has no entry: hid-input's rules.
+  EXPECT_EQ(load.database->find(0x1234, 0x5678), nullptr);
+  // The corpus's other pens are listed (for the udev rules) with hid-input's rules, no quirks.
+  const DeviceEntry* xppen = load.database->find(0x28BD, 0x093A);
+  ASSERT_NE(xppen, nullptr);
+  EXPECT_EQ(xppen->rules, PenDriverRules::kHidInput);
+  EXPECT_EQ(xppen->protocol, PenProtocol::kDescriptor);
+  EXPECT_FALSE(xppen->fuzz.any());
+  EXPECT_TRUE(xppen->fixups.empty());
+  EXPECT_EQ(load.database->find(0x28BD, 0x0001), nullptr) << "only the models listed";
 }
 
 // Each mistake names file, line and column, and what is wrong; the file adds nothing.

@@ -4,10 +4,12 @@
 
 #include <filesystem>
 
+#include "app/core/parallel_for.h"
 #include "app/render/image_io.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
+#include "app/tools/procedural_mesh.h"
 
 namespace cb {
 namespace {
@@ -212,14 +214,29 @@ TEST(SessionModes, APlacedPictureIsAnEditLikeAStroke) {
     EXPECT_EQ(total(p.session.volume()), 0.0);
     p.apply(ui::Redo{});
     EXPECT_EQ(total(p.session.volume()), placed);
+    // A model too, and a bad one refused by name with the cloud untouched.
+    writeObj(dir + "/torus.obj", makeDisplacedTorus(0.5f, 0.2f, 0.1f, 32, 24));
+    TriangleMesh open = makeDisplacedTorus(0.5f, 0.2f, 0.0f, 16, 12);
+    open.triangles.pop_back();
+    writeObj(dir + "/open.obj", open);
+    const Volume before_bad = p.session.volume();
+    EXPECT_FALSE(p.session.apply(ui::PlaceShape{true, dir + "/open.obj"}, 0, &error));
+    EXPECT_NE(error.find("open.obj"), std::string::npos) << error;
+    EXPECT_EQ(volumeChecksum(p.session.volume()), volumeChecksum(before_bad));
+    p.apply(ui::PlaceShape{true, dir + "/torus.obj"});
+    EXPECT_GT(total(p.session.volume()), placed);
     journal.close();
     sum = volumeChecksum(p.session.volume());
   }
-  const SessionReplay replay =
-      replaySession(readJournal(journal_path), BrushConfig{}, MappingConfig{});
-  ASSERT_TRUE(replay.session);
-  EXPECT_TRUE(replay.complete()) << (replay.problems.empty() ? "" : replay.problems[0]);
-  EXPECT_EQ(volumeChecksum(replay.session->volume()), sum);
+  for (int threads : {1, 8}) {
+    setWorkerThreads(threads);
+    const SessionReplay replay =
+        replaySession(readJournal(journal_path), BrushConfig{}, MappingConfig{});
+    ASSERT_TRUE(replay.session);
+    EXPECT_TRUE(replay.complete()) << (replay.problems.empty() ? "" : replay.problems[0]);
+    EXPECT_EQ(volumeChecksum(replay.session->volume()), sum) << threads << " threads";
+  }
+  setWorkerThreads(0);
   std::filesystem::remove_all(dir);
 }
 

@@ -1,5 +1,6 @@
 // Model → cloud: the generated ~70k-triangle torus, through an OBJ file and Assimp, fills the
-// model's inside and stays inside it; open and degenerate meshes are refused by name.
+// model's inside and stays inside it; open, degenerate, unreadable and huge mesh files are
+// refused by name, leaving the volume untouched.
 #include "app/tools/model_cloud.h"
 
 #include <cmath>
@@ -131,6 +132,13 @@ TEST(ModelCloud, OpenAndDegenerateMeshesAreRefusedByName) {
   std::ofstream(garbage) << "ply\nformat nonsense\n";
   expectRefused(garbage, ToolErrorKind::kMeshUnreadable);
   expectRefused(tempPath("missing.obj"), ToolErrorKind::kUnreadableFile);
+
+  // A huge file is refused from its size, before Assimp reads a byte (a sparse file: no disk).
+  const std::string huge = tempPath("huge.obj");
+  std::ofstream(huge) << "v 0 0 0\n";
+  std::filesystem::resize_file(huge, uintmax_t(kMaxMeshFileBytes) + 1);
+  expectRefused(huge, ToolErrorKind::kMeshFileTooLarge);
+  std::filesystem::remove(huge);
 }
 
 }  // namespace
