@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 #include "app/render/image_io.h"
 #include "app/shell/attract_screen.h"
