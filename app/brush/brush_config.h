@@ -61,7 +61,7 @@ struct SkeletonParams {
   float press_depth = 0.85f;       // pressure 1 lowers the rod by this fraction of the spine
   float paper_softness_px = 2.0f;  // bristles may sink this far below the paper
   int bristles = 40;
-  float bristle_spread_px = 5.0f;  // radius of the bristle bundle at the ferrule
+  float bristle_spread_px = 10.0f;  // radius of the bristle bundle at the ferrule
   float bristle_splay = 1.5f;      // extra spread of the tip at full pressure
   float bristle_radius_px = 0.9f;
   int bristle_points = 12;         // Bezier evaluation points per bristle

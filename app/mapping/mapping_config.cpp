@@ -93,6 +93,8 @@ void validate(const MappingConfig& c) {
           "spheres.noise_erosion", "must be in [0,1)");
   require(c.spheres.noise_modulation >= 0.0f && c.spheres.noise_modulation <= 1.0f,
           "spheres.noise_modulation", "must be in [0,1]");
+  require(c.spheres.outline_chord_voxels >= 0.0f && c.spheres.outline_chord_voxels <= 64.0f,
+          "spheres.outline_chord_voxels", "must be in [0, 64]");
   require(c.edges.samples_per_pixel >= 1 && c.edges.samples_per_pixel <= 64,
           "edges.samples_per_pixel", "must be in 1..64");
   require(c.edges.depth_sigma_of_radius >= 0.0f, "edges.depth_sigma_of_radius", "must be >= 0");
@@ -142,6 +144,7 @@ std::string formatMappingConfig(const MappingConfig& c) {
   num("edge_softness", c.spheres.edge_softness);
   num("noise_erosion", c.spheres.noise_erosion);
   num("noise_modulation", c.spheres.noise_modulation);
+  num("outline_chord_voxels", c.spheres.outline_chord_voxels);
   o += "\n[edges]\n";
   integer("samples_per_pixel", c.edges.samples_per_pixel);
   num("depth_sigma_of_radius", c.edges.depth_sigma_of_radius);
@@ -191,6 +194,7 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
   read(root, path, "spheres", "edge_softness", &c.spheres.edge_softness);
   read(root, path, "spheres", "noise_erosion", &c.spheres.noise_erosion);
   read(root, path, "spheres", "noise_modulation", &c.spheres.noise_modulation);
+  read(root, path, "spheres", "outline_chord_voxels", &c.spheres.outline_chord_voxels);
   read(root, path, "edges", "samples_per_pixel", &c.edges.samples_per_pixel);
   read(root, path, "edges", "depth_sigma_of_radius", &c.edges.depth_sigma_of_radius);
   read(root, path, "edges", "lateral_sigma_px", &c.edges.lateral_sigma_px);
