@@ -11,8 +11,6 @@
 namespace cb {
 
 struct StrokeParams {
-  float down_pressure = 0.02f;   // tip-down when pressure rises to this (until calibration's
-  float up_pressure = 0.01f;     // hysteresis lands) and tip-up when it falls below this
   float spacing_px = 1.5f;       // arc-length step between dabs of the texture brushes
   float footprint_scale = 1.0f;  // footprint pixels per screen pixel of the paint view
   // An open stroke ends by itself when held still / touched only lightly this long (0 = never);
@@ -62,7 +60,7 @@ struct SkeletonParams {
   float paper_softness_px = 2.0f;  // bristles may sink this far below the paper
   int bristles = 40;
   float bristle_spread_px = 10.0f;  // radius of the bristle bundle at the ferrule
-  float bristle_splay = 1.5f;      // extra spread of the tip at full pressure
+  float bristle_splay = 1.5f;       // extra spread of the tip at full pressure
   float bristle_radius_px = 0.9f;
   int bristle_points = 12;         // Bezier evaluation points per bristle
   int max_steps_per_sample = 250;  // caps work after a long pause

@@ -345,7 +345,7 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
         still_anchor_ = at;
         still_since_ns_ = m.t_ns;
       }
-      if (m.pressure >= 0.05f)
+      if (!m.light_contact)  // the calibration's contact decision (calibration/mapped_sample.h)
         light_since_ns_ = -1;
       else if (light_since_ns_ < 0)
         light_since_ns_ = m.t_ns;
