@@ -137,7 +137,11 @@ int benchHistory(int argc, char** argv) {
     }
   }
   // Erase (a vacuum cut at the scene's centre) and a light change, to the lit frame.
-  std::vector<double> erase_frame, light_frame;
+  // A light-ball drag frame (the light volume swept at half resolution per axis, as the painter
+  // does while dragging) and the release frame after it (the full sweep), beside the full-
+  // resolution light change measured the same way.
+  std::vector<double> erase_frame, light_frame, light_drag_frame, light_release_frame;
+  std::vector<double> light_sweep_ms, light_drag_sweep_ms;
   for (int i = 0; i < 5; ++i) {
     auto start = Clock::now();
     session.apply(ui::VacuumCut{glm::vec3(0.1f * float(i - 2), 0.0f, 0.0f), 0.15f}, t, &error);
@@ -149,9 +153,24 @@ int benchHistory(int argc, char** argv) {
     session.apply(
         ui::SetLight{glm::normalize(l.direction + glm::vec3(0.05f, 0.0f, 0.0f)), l.colour}, t,
         &error);
-    renderer.sync(session.volume(), session.light());
+    light_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
     frame();
     light_frame.push_back(msSince(start));
+
+    renderer.setLightPreviewDivisor(2);
+    start = Clock::now();
+    const Light m = session.light();
+    session.apply(
+        ui::SetLight{glm::normalize(m.direction + glm::vec3(0.0f, 0.0f, 0.05f)), m.colour}, t,
+        &error);
+    light_drag_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
+    frame();
+    light_drag_frame.push_back(msSince(start));
+    renderer.setLightPreviewDivisor(1);
+    start = Clock::now();
+    renderer.sync(session.volume(), session.light());
+    frame();
+    light_release_frame.push_back(msSince(start));
   }
 
   // Baseline: the thesis's whole-volume zlib snapshot per step.
@@ -184,6 +203,11 @@ int benchHistory(int argc, char** argv) {
   std::printf("erase (vacuum) → lit frame %.1f ms; light change → lit frame %.1f ms (≤ 200)\n",
               median(erase_frame), median(light_frame));
   std::printf(
+      "light drag frame (light volume at 1/2 per axis) %.1f ms, its sweep %.1f ms; full sweep "
+      "%.1f ms; release → full lit frame %.1f ms\n",
+      median(light_drag_frame), median(light_drag_sweep_ms), median(light_sweep_ms),
+      median(light_release_frame));
+  std::printf(
       "history after %d strokes: %.1f MB (target ≤ 256 MB); zlib snapshots would hold "
       "%.1f MB (%.1f MB each)\n",
       strokes, delta_mb + copy_mb, zlib_mb_per_step * strokes, zlib_mb_per_step);
@@ -199,6 +223,10 @@ int benchHistory(int argc, char** argv) {
   report.figure("redo_first_frame_ms", median(redo_frame));
   report.figure("erase_lit_frame_ms", median(erase_frame));
   report.figure("light_lit_frame_ms", median(light_frame));
+  report.figure("light_drag_frame_ms", median(light_drag_frame));
+  report.figure("light_drag_sweep_ms", median(light_drag_sweep_ms));
+  report.figure("light_release_frame_ms", median(light_release_frame));
+  report.baseline("light_full_sweep_ms", median(light_sweep_ms));
   report.figure("history_mb", delta_mb + copy_mb);
   report.figure("history_delta_mb", delta_mb);
   report.figure("rss_growth_mb", rss_growth);
