@@ -142,7 +142,8 @@ int benchHistory(int argc, char** argv) {
   // resolution light change measured the same way.
   std::vector<double> erase_frame, light_frame, light_drag_frame, light_release_frame;
   std::vector<double> light_sweep_ms, light_drag_sweep_ms;
-  for (int i = 0; i < 5; ++i) {
+  std::vector<double> light_sync_cpu_ms, light_drag_sync_cpu_ms;  // CPU of all threads (load-proof)
+  for (int i = 0; i < 9; ++i) {
     auto start = Clock::now();
     session.apply(ui::VacuumCut{glm::vec3(0.1f * float(i - 2), 0.0f, 0.0f), 0.15f}, t, &error);
     renderer.sync(session.volume(), session.light());
@@ -153,7 +154,9 @@ int benchHistory(int argc, char** argv) {
     session.apply(
         ui::SetLight{glm::normalize(l.direction + glm::vec3(0.05f, 0.0f, 0.0f)), l.colour}, t,
         &error);
+    double cpu0 = processCpuMs();
     light_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
+    light_sync_cpu_ms.push_back(processCpuMs() - cpu0);
     frame();
     light_frame.push_back(msSince(start));
 
@@ -163,7 +166,9 @@ int benchHistory(int argc, char** argv) {
     session.apply(
         ui::SetLight{glm::normalize(m.direction + glm::vec3(0.0f, 0.0f, 0.05f)), m.colour}, t,
         &error);
+    cpu0 = processCpuMs();
     light_drag_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
+    light_drag_sync_cpu_ms.push_back(processCpuMs() - cpu0);
     frame();
     light_drag_frame.push_back(msSince(start));
     renderer.setLightPreviewDivisor(1);
@@ -203,10 +208,10 @@ int benchHistory(int argc, char** argv) {
   std::printf("erase (vacuum) → lit frame %.1f ms; light change → lit frame %.1f ms (≤ 200)\n",
               median(erase_frame), median(light_frame));
   std::printf(
-      "light drag frame (light volume at 1/2 per axis) %.1f ms, its sweep %.1f ms; full sweep "
-      "%.1f ms; release → full lit frame %.1f ms\n",
-      median(light_drag_frame), median(light_drag_sweep_ms), median(light_sweep_ms),
-      median(light_release_frame));
+      "light drag frame (light volume at 1/2 per axis) %.1f ms, its sweep %.1f ms, sync CPU %.1f "
+      "ms; full sweep %.1f ms, sync CPU %.1f ms; release → full lit frame %.1f ms\n",
+      median(light_drag_frame), median(light_drag_sweep_ms), median(light_drag_sync_cpu_ms),
+      median(light_sweep_ms), median(light_sync_cpu_ms), median(light_release_frame));
   std::printf(
       "history after %d strokes: %.1f MB (target ≤ 256 MB); zlib snapshots would hold "
       "%.1f MB (%.1f MB each)\n",
@@ -226,6 +231,8 @@ int benchHistory(int argc, char** argv) {
   report.figure("light_drag_frame_ms", median(light_drag_frame));
   report.figure("light_drag_sweep_ms", median(light_drag_sweep_ms));
   report.figure("light_release_frame_ms", median(light_release_frame));
+  report.figure("light_drag_sync_cpu_ms", median(light_drag_sync_cpu_ms));
+  report.baseline("light_sync_cpu_ms", median(light_sync_cpu_ms));
   report.baseline("light_full_sweep_ms", median(light_sweep_ms));
   report.figure("history_mb", delta_mb + copy_mb);
   report.figure("history_delta_mb", delta_mb);

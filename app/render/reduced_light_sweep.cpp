@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "app/core/parallel_for.h"
 
@@ -44,42 +45,48 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
       1.0f - std::pow(1.0f - std::min(light.extinction, 1.0f), float(divisor));
   sweepLightVolume(coarse_light_, coarse_, coarse_light, coarse_.bounds());
 
-  // Trilinear interpolation of the coarse transmittance at every voxel centre.
+  // Trilinear interpolation of the coarse transmittance at every voxel centre, row by row: the
+  // four coarse rows around a fine row are blended in y and z once, then each voxel in x.
   lv.dims = dims;
   lv.direction = lightDirectionInVoxels(volume, light);
   lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
   lv.transmittance.resize(volume.voxelCount());
-  const float inv = 1.0f / float(divisor);
-  const auto axis = [&](int i, int n, int* i0, int* i1, float* t) {
-    const float c = std::clamp((float(i) + 0.5f) * inv - 0.5f, 0.0f, float(n - 1));
-    *i0 = int(c);
-    *i1 = std::min(*i0 + 1, n - 1);
-    *t = c - float(*i0);
+  struct Tap {
+    int i0, i1;
+    float t;
   };
+  const auto taps = [&](int n_fine, int n_coarse) {
+    std::vector<Tap> out(static_cast<size_t>(n_fine));
+    for (int i = 0; i < n_fine; ++i) {
+      const float c =
+          std::clamp((float(i) + 0.5f) / float(divisor) - 0.5f, 0.0f, float(n_coarse - 1));
+      const int i0 = int(c);
+      out[size_t(i)] = {i0, std::min(i0 + 1, n_coarse - 1), c - float(i0)};
+    }
+    return out;
+  };
+  const std::vector<Tap> tx = taps(dims.x, cdims.x), ty = taps(dims.y, cdims.y),
+                         tz = taps(dims.z, cdims.z);
   const float* T = coarse_light_.transmittance.data();
-  const auto at = [&](int x, int y, int z) {
-    return T[(size_t(z) * size_t(cdims.y) + size_t(y)) * size_t(cdims.x) + size_t(x)];
-  };
+  const size_t crow = size_t(cdims.x), cslice = crow * size_t(cdims.y);
   float* out = lv.transmittance.data();
   parallelFor(size_t(dims.z), 1, [&](size_t, size_t z0, size_t z1) {
+    std::vector<float> blended(crow);
     for (int z = int(z0); z < int(z1); ++z) {
-      int z_0, z_1;
-      float tz;
-      axis(z, cdims.z, &z_0, &z_1, &tz);
+      const Tap& a = tz[size_t(z)];
       for (int y = 0; y < dims.y; ++y) {
-        int y_0, y_1;
-        float ty;
-        axis(y, cdims.y, &y_0, &y_1, &ty);
+        const Tap& b = ty[size_t(y)];
+        const float* r00 = T + size_t(a.i0) * cslice + size_t(b.i0) * crow;
+        const float* r01 = T + size_t(a.i0) * cslice + size_t(b.i1) * crow;
+        const float* r10 = T + size_t(a.i1) * cslice + size_t(b.i0) * crow;
+        const float* r11 = T + size_t(a.i1) * cslice + size_t(b.i1) * crow;
+        for (size_t x = 0; x < crow; ++x)
+          blended[x] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
+                       (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
         float* row = out + volume.index(0, y, z);
         for (int x = 0; x < dims.x; ++x) {
-          int x_0, x_1;
-          float tx;
-          axis(x, cdims.x, &x_0, &x_1, &tx);
-          const float c00 = at(x_0, y_0, z_0) * (1 - tx) + at(x_1, y_0, z_0) * tx;
-          const float c10 = at(x_0, y_1, z_0) * (1 - tx) + at(x_1, y_1, z_0) * tx;
-          const float c01 = at(x_0, y_0, z_1) * (1 - tx) + at(x_1, y_0, z_1) * tx;
-          const float c11 = at(x_0, y_1, z_1) * (1 - tx) + at(x_1, y_1, z_1) * tx;
-          row[x] = (c00 * (1 - ty) + c10 * ty) * (1 - tz) + (c01 * (1 - ty) + c11 * ty) * tz;
+          const Tap& c = tx[size_t(x)];
+          row[x] = blended[size_t(c.i0)] * (1 - c.t) + blended[size_t(c.i1)] * c.t;
         }
       }
     }
