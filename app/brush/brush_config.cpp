@@ -49,6 +49,13 @@ class Reader {
     }
     *out = Int(*v);
   }
+  void flag(const toml::table& t, const char* section, const char* key, bool* out) {
+    const toml::node* n = t.get(key);
+    if (!n) return;
+    std::optional<bool> v = n->value<bool>();
+    if (!v) return fail(*n, section, key, "expected true or false");
+    *out = *v;
+  }
   void kind(const toml::table& t, const char* key, BrushKind* out) {
     const toml::node* n = t.get(key);
     if (!n) return;
@@ -139,11 +146,13 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
   if (const toml::table* t = r.section(root, "stroke")) {
     // stroke.down_pressure / up_pressure are retired: pen contact is the calibration's
     // hysteresis alone (calibration profile pressure.contact_down/up). Older brush.toml files
-    // and journals' Settings records still carry them; they are ignored.
+    // and journals' Settings records still carry them; they are ignored (the painter never
+    // used them: its strokes always followed the calibration's contact).
     r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
     r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
     r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
     r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
+    r.flag(*t, "stroke", "auto_end_light_by_hysteresis", &c->stroke.auto_end_light_by_hysteresis);
   }
   if (const toml::table* t = r.section(root, "dispersion")) {
     DispersionParams& d = c->dispersion;
@@ -214,6 +223,8 @@ std::string formatBrushConfig(const BrushConfig& c) {
   num("footprint_scale", c.stroke.footprint_scale);
   integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
   integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
+  o << "auto_end_light_by_hysteresis = "
+    << (c.stroke.auto_end_light_by_hysteresis ? "true" : "false") << "\n";
   o << "\n[dispersion]\n";
   num("slow_speed_px_s", c.dispersion.slow_speed_px_s);
   num("fast_speed_px_s", c.dispersion.fast_speed_px_s);

@@ -17,6 +17,10 @@ struct StrokeParams {
   // the painter copies these into its session (app/session, journalled there).
   int auto_end_still_ms = 2000;
   int auto_end_light_ms = 800;
+  // What "touched only lightly" is: true, held down by the calibration's contact hysteresis
+  // alone (MappedSample::light_contact); false, the calibrated pressure under 5% (journals
+  // recorded before this key, app/session/recorded_settings.h).
+  bool auto_end_light_by_hysteresis = true;
 };
 
 // Speed -> ink dispersion (thesis §5.1.2, mechanism 3): at or below slow_speed the ink is laid

@@ -80,10 +80,11 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
         // P_t: where a sphere about P_S touches the ray, taken at P_S's view depth. Next to the
         // sphere this is the ray's closest point to P_S (§6.6.2); for a pixel far off to the
         // side the closest point slides towards the camera and the cloud would grow a tail
-        // along the paint view's rays.
+        // along the paint view's rays. Without edges.tangent_at_sphere_depth (journals
+        // recorded before it): the closest point, as §6.6.2 writes it.
         const float along = glm::dot(d, in.view->forward());
         const float t =
-            along > 0.0f
+            cfg.tangent_at_sphere_depth && along > 0.0f
                 ? std::max(0.0f, (in.view->depthOf(s.centre) - in.view->depthOf(o)) / along)
                 : std::max(0.0f, glm::dot(s.centre - o, d));
         tangent_point = o + d * t;

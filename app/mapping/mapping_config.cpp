@@ -112,7 +112,7 @@ void validate(const MappingConfig& c) {
 }
 
 namespace {
-MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path);
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path, MappingConfig c);
 }  // namespace
 
 std::string formatMappingConfig(const MappingConfig& c) {
@@ -151,6 +151,7 @@ std::string formatMappingConfig(const MappingConfig& c) {
   num("lateral_sigma_px", c.edges.lateral_sigma_px);
   num("min_depth_sigma_voxels", c.edges.min_depth_sigma_voxels);
   num("density_scale", c.edges.density_scale);
+  flag("tangent_at_sphere_depth", c.edges.tangent_at_sphere_depth);
   o += "\n[ray_marching]\n";
   num("density", c.ray_marching.density);
   o += "\n[sheet]\n";
@@ -165,16 +166,16 @@ std::string formatMappingConfig(const MappingConfig& c) {
 }
 
 MappingConfig loadMappingConfig(const std::string& path) {
-  return mappingConfigFrom(parseTomlFileOrThrow(path), path);
+  return mappingConfigFrom(parseTomlFileOrThrow(path), path, MappingConfig{});
 }
 
-MappingConfig parseMappingConfigText(std::string_view text, const std::string& name) {
-  return mappingConfigFrom(parseTomlTextOrThrow(text, name), name);
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name,
+                                     const MappingConfig& absent) {
+  return mappingConfigFrom(parseTomlTextOrThrow(text, name), name, absent);
 }
 
 namespace {
-MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path) {
-  MappingConfig c;
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path, MappingConfig c) {
   if (auto m = root["mapping"]["method"].value<std::string>()) {
     if (!parseMappingMethod(*m, &c.method))
       throw std::runtime_error(path + ": mapping.method '" + *m +
@@ -198,6 +199,7 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
   read(root, path, "edges", "samples_per_pixel", &c.edges.samples_per_pixel);
   read(root, path, "edges", "depth_sigma_of_radius", &c.edges.depth_sigma_of_radius);
   read(root, path, "edges", "lateral_sigma_px", &c.edges.lateral_sigma_px);
+  read(root, path, "edges", "tangent_at_sphere_depth", &c.edges.tangent_at_sphere_depth);
   read(root, path, "edges", "min_depth_sigma_voxels", &c.edges.min_depth_sigma_voxels);
   read(root, path, "edges", "density_scale", &c.edges.density_scale);
   read(root, path, "ray_marching", "density", &c.ray_marching.density);

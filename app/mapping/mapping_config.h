@@ -65,6 +65,10 @@ struct EdgeMappingConfig {
   // seen from the paint view stays where the footprint put it.
   float lateral_sigma_px = 0.5f;
   float density_scale = 2.0f;  // voxel density = footprint value * scale (clamped to 1)
+  // Where P_t, the point where a sphere about P_S touches the pixel's ray, is taken: true, at
+  // P_S's view depth (no tail along the paint view's rays); false, the ray's closest point to
+  // P_S (§6.6.2 as written; journals recorded before this key replay with false).
+  bool tangent_at_sphere_depth = true;
 };
 
 struct RayMarchingConfig {
@@ -98,7 +102,10 @@ struct MappingConfig {
 // out-of-range value.
 MappingConfig loadMappingConfig(const std::string& path);
 // The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
-MappingConfig parseMappingConfigText(std::string_view text, const std::string& name);
+// Keys the text lacks keep `absent`'s values (app/session/recorded_settings.h passes the values
+// that reproduce the version that wrote the text).
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name,
+                                     const MappingConfig& absent = MappingConfig{});
 // Every field as mapping.toml text that loadMappingConfig reads back to the same values (floats
 // with 9 significant digits): the mapping in force, as a journal records it.
 std::string formatMappingConfig(const MappingConfig& config);
