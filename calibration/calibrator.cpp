@@ -75,6 +75,8 @@ MappedSample Calibrator::process(const PenSample& s) {
   const float corrected = nib_.correct(s.pressure);
   out.pressure_corrected = s.in_proximity ? corrected : 0.0f;
   out.pressure = out.contact ? curve_.apply(range_.apply(corrected)) : 0.0f;
+  out.light_contact =
+      out.contact && device_.pressure_max > 0 && corrected < contact_.thresholds().down;
 
   // Position.
   double x = s.x_mm, y = s.y_mm;

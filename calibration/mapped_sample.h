@@ -28,6 +28,10 @@ struct MappedSample {
   bool contact = false;
   bool contact_began = false;  // this sample put the pen down
   bool contact_ended = false;  // this sample lifted it (also on proximity out while down)
+  // In contact only through the hysteresis: the pressure is below the down threshold (a pen
+  // resting lightly; it would not have gone down at this pressure). Never for pens without
+  // pressure. The painter ends a stroke left resting lightly (§7.7.5 problem 3).
+  bool light_contact = false;
 
   bool in_proximity = false;
   bool proximity_began = false;

@@ -51,17 +51,36 @@ std::vector<std::vector<BrushInput>> workload(int w, int h, double rate_hz) {
   return strokes;
 }
 
+// A pen sample of the workload and whether the pen touches (the contact the calibration's
+// hysteresis would report; the engine does not decide it).
+struct ReportedSample {
+  BrushInput input;
+  bool contact = false;
+};
+
 // A stroke as the tablet reports it: the contact samples, a lifting sample 5 ms later, then the
 // pen hovering for 50 ms (10 samples at 200 Hz, pressure 0) before the next stroke.
-std::vector<BrushInput> withLiftAndHover(const std::vector<BrushInput>& stroke) {
-  std::vector<BrushInput> out = stroke;
+std::vector<ReportedSample> withLiftAndHover(const std::vector<BrushInput>& stroke) {
+  std::vector<ReportedSample> out;
+  for (const BrushInput& in : stroke) out.push_back({in, true});
   BrushInput hover = stroke.back();
   hover.pressure = 0.0f;
   for (int i = 1; i <= 11; ++i) {
     hover.t_ns += 5000000;
-    out.push_back(hover);
+    out.push_back({hover, false});
   }
   return out;
+}
+
+// Drives the engine's explicit contact calls from a reported sample: tip-down, move, tip-up
+// (the stroke is queued for takeFinishedStroke), hover.
+FootprintRect feedReported(StrokeEngine& engine, const ReportedSample& s) {
+  if (s.contact) return engine.inStroke() ? engine.addSample(s.input) : engine.beginStroke(s.input);
+  if (engine.inStroke())
+    engine.finishStroke();
+  else
+    engine.prepareNextStroke();
+  return {};
 }
 
 struct SampleCosts {
@@ -81,10 +100,10 @@ SampleCosts timeBrush(const BrushConfig& base, BrushKind kind, bool cached_3d, i
   if (auto* b3 = dynamic_cast<Brush3D*>(&brush)) b3->setCaching(cached_3d);
   SampleCosts costs;
   for (const std::vector<BrushInput>& stroke : strokes) {
-    for (const BrushInput& in : withLiftAndHover(stroke)) {
+    for (const ReportedSample& in : withLiftAndHover(stroke)) {
       double c0 = processCpuMs();
       Clock::time_point t0 = Clock::now();
-      engine.feed(in);
+      feedReported(engine, in);
       costs.ms.push_back(msSince(t0));
       costs.cpu_ms.push_back(processCpuMs() - c0);
     }
@@ -153,9 +172,9 @@ bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int v
       BrushConfig config = base;
       config.default_brush = BrushKind::k3D;
       StrokeEngine engine(config, w, h);
-      std::vector<BrushInput> samples;
+      std::vector<ReportedSample> samples;
       for (const auto& s : workload(w, h, 200.0)) {
-        std::vector<BrushInput> reported = withLiftAndHover(s);
+        std::vector<ReportedSample> reported = withLiftAndHover(s);
         samples.insert(samples.end(), reported.begin(), reported.end());
       }
       // After a camera move the whole frame is composited once.
@@ -174,14 +193,14 @@ bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int v
       const int64_t frame_ns = 16666667;
       OverlayCursor cursor;
       for (int f = 0; f < frames; ++f) {
-        int64_t until = samples.front().t_ns + int64_t(f + 1) * frame_ns;
+        int64_t until = samples.front().input.t_ns + int64_t(f + 1) * frame_ns;
         Clock::time_point t0 = Clock::now();
-        while (next < samples.size() && samples[next].t_ns <= until) {
-          FootprintRect r = engine.feed(samples[next]);
+        while (next < samples.size() && samples[next].input.t_ns <= until) {
+          FootprintRect r = feedReported(engine, samples[next]);
           if (engine.inStroke() && !was_in_stroke) overlay.beginFootprint(w, h);
           was_in_stroke = engine.inStroke();
           if (engine.inStroke()) texels += overlay.upload(engine.footprint(), r);
-          cursor.screen_px = samples[next].footprint_px;
+          cursor.screen_px = samples[next].input.footprint_px;
           ++next;
           StrokeResult done;
           engine.takeFinishedStroke(&done);

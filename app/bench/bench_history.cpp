@@ -137,8 +137,13 @@ int benchHistory(int argc, char** argv) {
     }
   }
   // Erase (a vacuum cut at the scene's centre) and a light change, to the lit frame.
-  std::vector<double> erase_frame, light_frame;
-  for (int i = 0; i < 5; ++i) {
+  // A light-ball drag frame (the light volume swept at half resolution per axis, as the painter
+  // does while dragging) and the release frame after it (the full sweep), beside the full-
+  // resolution light change measured the same way.
+  std::vector<double> erase_frame, light_frame, light_drag_frame, light_release_frame;
+  std::vector<double> light_sweep_ms, light_drag_sweep_ms;
+  std::vector<double> light_sync_cpu_ms, light_drag_sync_cpu_ms;  // CPU of all threads (load-proof)
+  for (int i = 0; i < 9; ++i) {
     auto start = Clock::now();
     session.apply(ui::VacuumCut{glm::vec3(0.1f * float(i - 2), 0.0f, 0.0f), 0.15f}, t, &error);
     renderer.sync(session.volume(), session.light());
@@ -149,9 +154,28 @@ int benchHistory(int argc, char** argv) {
     session.apply(
         ui::SetLight{glm::normalize(l.direction + glm::vec3(0.05f, 0.0f, 0.0f)), l.colour}, t,
         &error);
-    renderer.sync(session.volume(), session.light());
+    double cpu0 = processCpuMs();
+    light_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
+    light_sync_cpu_ms.push_back(processCpuMs() - cpu0);
     frame();
     light_frame.push_back(msSince(start));
+
+    renderer.setLightPreviewDivisor(2);
+    start = Clock::now();
+    const Light m = session.light();
+    session.apply(
+        ui::SetLight{glm::normalize(m.direction + glm::vec3(0.0f, 0.0f, 0.05f)), m.colour}, t,
+        &error);
+    cpu0 = processCpuMs();
+    light_drag_sweep_ms.push_back(renderer.sync(session.volume(), session.light()).light_ms);
+    light_drag_sync_cpu_ms.push_back(processCpuMs() - cpu0);
+    frame();
+    light_drag_frame.push_back(msSince(start));
+    renderer.setLightPreviewDivisor(1);
+    start = Clock::now();
+    renderer.sync(session.volume(), session.light());
+    frame();
+    light_release_frame.push_back(msSince(start));
   }
 
   // Baseline: the thesis's whole-volume zlib snapshot per step.
@@ -186,6 +210,11 @@ int benchHistory(int argc, char** argv) {
   std::printf("erase (vacuum) → lit frame %.1f ms; light change → lit frame %.1f ms (≤ 200)\n",
               median(erase_frame), median(light_frame));
   std::printf(
+      "light drag frame (light volume at 1/2 per axis) %.1f ms, its sweep %.1f ms, sync CPU %.1f "
+      "ms; full sweep %.1f ms, sync CPU %.1f ms; release → full lit frame %.1f ms\n",
+      median(light_drag_frame), median(light_drag_sweep_ms), median(light_drag_sync_cpu_ms),
+      median(light_sweep_ms), median(light_sync_cpu_ms), median(light_release_frame));
+  std::printf(
       "history after %d strokes: %.1f MB (target ≤ 256 MB); zlib snapshots would hold "
       "%.1f MB (%.1f MB each)\n",
       strokes, delta_mb + copy_mb, zlib_mb_per_step * strokes, zlib_mb_per_step);
@@ -201,6 +230,12 @@ int benchHistory(int argc, char** argv) {
   report.figure("redo_first_frame_ms", median(redo_frame));
   report.figure("erase_lit_frame_ms", median(erase_frame));
   report.figure("light_lit_frame_ms", median(light_frame));
+  report.figure("light_drag_frame_ms", median(light_drag_frame));
+  report.figure("light_drag_sweep_ms", median(light_drag_sweep_ms));
+  report.figure("light_release_frame_ms", median(light_release_frame));
+  report.figure("light_drag_sync_cpu_ms", median(light_drag_sync_cpu_ms));
+  report.baseline("light_sync_cpu_ms", median(light_sync_cpu_ms));
+  report.baseline("light_full_sweep_ms", median(light_sweep_ms));
   report.figure("history_mb", delta_mb + copy_mb);
   report.figure("history_delta_mb", delta_mb);
   report.figure("rss_growth_mb", rss_growth);

@@ -49,6 +49,13 @@ class Reader {
     }
     *out = Int(*v);
   }
+  void flag(const toml::table& t, const char* section, const char* key, bool* out) {
+    const toml::node* n = t.get(key);
+    if (!n) return;
+    std::optional<bool> v = n->value<bool>();
+    if (!v) return fail(*n, section, key, "expected true or false");
+    *out = *v;
+  }
   void kind(const toml::table& t, const char* key, BrushKind* out) {
     const toml::node* n = t.get(key);
     if (!n) return;
@@ -137,12 +144,15 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
   Reader r(path, errors);
   r.kind(root, "brush", &c->default_brush);
   if (const toml::table* t = r.section(root, "stroke")) {
-    r.number(*t, "stroke", "down_pressure", &c->stroke.down_pressure, 0.0, 1.0);
-    r.number(*t, "stroke", "up_pressure", &c->stroke.up_pressure, 0.0, 1.0);
+    // stroke.down_pressure / up_pressure are retired: pen contact is the calibration's
+    // hysteresis alone (calibration profile pressure.contact_down/up). Older brush.toml files
+    // and journals' Settings records still carry them; they are ignored (the painter never
+    // used them: its strokes always followed the calibration's contact).
     r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
     r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
     r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
     r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
+    r.flag(*t, "stroke", "auto_end_light_by_hysteresis", &c->stroke.auto_end_light_by_hysteresis);
   }
   if (const toml::table* t = r.section(root, "dispersion")) {
     DispersionParams& d = c->dispersion;
@@ -190,14 +200,6 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
     r.integer(*t, "skeleton", "max_steps_per_sample", &s.max_steps_per_sample, 1, 100000);
     r.integer(*t, "skeleton", "seed", &s.seed, 0, 0xffffffffll);
   }
-  if (c->stroke.up_pressure > c->stroke.down_pressure) {
-    errors->push_back(path +
-                      ": stroke.up_pressure must not exceed stroke.down_pressure; both "
-                      "reset to defaults");
-    c->stroke.up_pressure = StrokeParams{}.up_pressure;
-    c->stroke.down_pressure = StrokeParams{}.down_pressure;
-    return false;
-  }
   if (c->brush2d.max_diameter_px < c->brush2d.min_diameter_px) {
     errors->push_back(path + ": brush2d.max_diameter_px is below min_diameter_px; both reset");
     c->brush2d.min_diameter_px = Brush2DParams{}.min_diameter_px;
@@ -217,12 +219,12 @@ std::string formatBrushConfig(const BrushConfig& c) {
   };
   const auto integer = [&](const char* key, long long v) { o << key << " = " << v << "\n"; };
   o << "brush = \"" << brushKindName(c.default_brush) << "\"\n\n[stroke]\n";
-  num("down_pressure", c.stroke.down_pressure);
-  num("up_pressure", c.stroke.up_pressure);
   num("spacing_px", c.stroke.spacing_px);
   num("footprint_scale", c.stroke.footprint_scale);
   integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
   integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
+  o << "auto_end_light_by_hysteresis = "
+    << (c.stroke.auto_end_light_by_hysteresis ? "true" : "false") << "\n";
   o << "\n[dispersion]\n";
   num("slow_speed_px_s", c.dispersion.slow_speed_px_s);
   num("fast_speed_px_s", c.dispersion.fast_speed_px_s);

@@ -11,14 +11,16 @@
 namespace cb {
 
 struct StrokeParams {
-  float down_pressure = 0.02f;   // tip-down when pressure rises to this (until calibration's
-  float up_pressure = 0.01f;     // hysteresis lands) and tip-up when it falls below this
   float spacing_px = 1.5f;       // arc-length step between dabs of the texture brushes
   float footprint_scale = 1.0f;  // footprint pixels per screen pixel of the paint view
   // An open stroke ends by itself when held still / touched only lightly this long (0 = never);
   // the painter copies these into its session (app/session, journalled there).
   int auto_end_still_ms = 2000;
   int auto_end_light_ms = 800;
+  // What "touched only lightly" is: true, held down by the calibration's contact hysteresis
+  // alone (MappedSample::light_contact); false, the calibrated pressure under 5% (journals
+  // recorded before this key, app/session/recorded_settings.h).
+  bool auto_end_light_by_hysteresis = true;
 };
 
 // Speed -> ink dispersion (thesis §5.1.2, mechanism 3): at or below slow_speed the ink is laid
@@ -61,8 +63,8 @@ struct SkeletonParams {
   float press_depth = 0.85f;       // pressure 1 lowers the rod by this fraction of the spine
   float paper_softness_px = 2.0f;  // bristles may sink this far below the paper
   int bristles = 40;
-  float bristle_spread_px = 5.0f;  // radius of the bristle bundle at the ferrule
-  float bristle_splay = 1.5f;      // extra spread of the tip at full pressure
+  float bristle_spread_px = 10.0f;  // radius of the bristle bundle at the ferrule
+  float bristle_splay = 1.5f;       // extra spread of the tip at full pressure
   float bristle_radius_px = 0.9f;
   int bristle_points = 12;         // Bezier evaluation points per bristle
   int max_steps_per_sample = 250;  // caps work after a long pause

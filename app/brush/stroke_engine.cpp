@@ -76,22 +76,6 @@ StrokeResult StrokeEngine::endStroke() {
   return result;
 }
 
-FootprintRect StrokeEngine::feed(const BrushInput& input) {
-  // A NaN pressure cannot decide contact; let the sanitiser count and drop it.
-  bool valid_pressure = input.pressure == input.pressure;
-  if (!in_stroke_) {
-    if (valid_pressure && input.pressure >= config_.stroke.down_pressure) return beginStroke(input);
-    if (!valid_pressure) ++stats_.dropped_non_finite;
-    prepareNextStroke();  // hovering: get the next stroke ready
-    return {};
-  }
-  if (valid_pressure && input.pressure < config_.stroke.up_pressure) {
-    finished_.push_back(endStroke());
-    return {};
-  }
-  return addSample(input);
-}
-
 FootprintRect StrokeEngine::feedCalibrated(const MappedSample& sample) {
   BrushInput in = brushInputFromCalibrated(sample, config_.stroke.footprint_scale);
   FootprintRect changed;

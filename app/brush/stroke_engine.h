@@ -1,8 +1,9 @@
 // The stroke lifecycle (thesis §3.4, §5.3.1 Fig. 5.6): tip-down starts a stroke with a fresh,
 // never-cleared footprint; each pen sample is repaired or dropped (brush_input.h), recorded in
 // the path and handed to the brush; tip-up ends the stroke and yields a StrokeResult for the
-// mapping. Contact is either driven explicitly (beginStroke/addSample/endStroke, for the
-// calibration's hysteresis) or by feed() with the simple pressure thresholds of config.
+// mapping. The engine never decides contact itself: it is driven explicitly
+// (beginStroke/addSample/endStroke) or by the calibration's hysteresis (feedCalibrated), the one
+// decision the pen events (app/shell/pen_events.h) are derived from too.
 #pragma once
 
 #include <cstdint>
@@ -38,9 +39,6 @@ class StrokeEngine {
     if (in_stroke_) finished_.push_back(endStroke());
   }
 
-  // Threshold contact: down at stroke.down_pressure, up below stroke.up_pressure. Finished
-  // strokes are queued for takeFinishedStroke().
-  FootprintRect feed(const BrushInput& input);
   bool takeFinishedStroke(StrokeResult* out);
 
   // Calibrated contact (calibration/'s hysteresis): contact_began starts a stroke, contact
@@ -50,7 +48,7 @@ class StrokeEngine {
 
   // Readies the next stroke's zeroed footprint and noise pattern while the pen is up, so tip-down
   // costs no allocation (≈1 ms at 1280×720). Done at construction and on hover samples through
-  // feed()/feedCalibrated(); call it yourself when driving contact explicitly. Idempotent.
+  // feedCalibrated(); call it yourself when driving contact explicitly. Idempotent.
   void prepareNextStroke();
 
   bool inStroke() const { return in_stroke_; }

@@ -77,8 +77,16 @@ VoxelBox mapEdges(const EdgeMappingInput& in, const EdgeMappingConfig& cfg, Volu
       previous_nearest = nearest;
       if (nearest >= 0) {
         const MappedSphere& s = (*in.spheres)[size_t(nearest)];
-        // P_t: the point of the ray closest to P_S, where a sphere about P_S touches the ray.
-        float t = std::max(0.0f, glm::dot(s.centre - o, d));
+        // P_t: where a sphere about P_S touches the ray, taken at P_S's view depth. Next to the
+        // sphere this is the ray's closest point to P_S (§6.6.2); for a pixel far off to the
+        // side the closest point slides towards the camera and the cloud would grow a tail
+        // along the paint view's rays. Without edges.tangent_at_sphere_depth (journals
+        // recorded before it): the closest point, as §6.6.2 writes it.
+        const float along = glm::dot(d, in.view->forward());
+        const float t =
+            cfg.tangent_at_sphere_depth && along > 0.0f
+                ? std::max(0.0f, (in.view->depthOf(s.centre) - in.view->depthOf(o)) / along)
+                : std::max(0.0f, glm::dot(s.centre - o, d));
         tangent_point = o + d * t;
         depth_sigma = s.radius * cfg.depth_sigma_of_radius;
       } else {

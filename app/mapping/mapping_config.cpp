@@ -93,6 +93,8 @@ void validate(const MappingConfig& c) {
           "spheres.noise_erosion", "must be in [0,1)");
   require(c.spheres.noise_modulation >= 0.0f && c.spheres.noise_modulation <= 1.0f,
           "spheres.noise_modulation", "must be in [0,1]");
+  require(c.spheres.outline_chord_voxels >= 0.0f && c.spheres.outline_chord_voxels <= 64.0f,
+          "spheres.outline_chord_voxels", "must be in [0, 64]");
   require(c.edges.samples_per_pixel >= 1 && c.edges.samples_per_pixel <= 64,
           "edges.samples_per_pixel", "must be in 1..64");
   require(c.edges.depth_sigma_of_radius >= 0.0f, "edges.depth_sigma_of_radius", "must be >= 0");
@@ -110,7 +112,7 @@ void validate(const MappingConfig& c) {
 }
 
 namespace {
-MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path);
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path, MappingConfig c);
 }  // namespace
 
 std::string formatMappingConfig(const MappingConfig& c) {
@@ -142,12 +144,14 @@ std::string formatMappingConfig(const MappingConfig& c) {
   num("edge_softness", c.spheres.edge_softness);
   num("noise_erosion", c.spheres.noise_erosion);
   num("noise_modulation", c.spheres.noise_modulation);
+  num("outline_chord_voxels", c.spheres.outline_chord_voxels);
   o += "\n[edges]\n";
   integer("samples_per_pixel", c.edges.samples_per_pixel);
   num("depth_sigma_of_radius", c.edges.depth_sigma_of_radius);
   num("lateral_sigma_px", c.edges.lateral_sigma_px);
   num("min_depth_sigma_voxels", c.edges.min_depth_sigma_voxels);
   num("density_scale", c.edges.density_scale);
+  flag("tangent_at_sphere_depth", c.edges.tangent_at_sphere_depth);
   o += "\n[ray_marching]\n";
   num("density", c.ray_marching.density);
   o += "\n[sheet]\n";
@@ -162,16 +166,16 @@ std::string formatMappingConfig(const MappingConfig& c) {
 }
 
 MappingConfig loadMappingConfig(const std::string& path) {
-  return mappingConfigFrom(parseTomlFileOrThrow(path), path);
+  return mappingConfigFrom(parseTomlFileOrThrow(path), path, MappingConfig{});
 }
 
-MappingConfig parseMappingConfigText(std::string_view text, const std::string& name) {
-  return mappingConfigFrom(parseTomlTextOrThrow(text, name), name);
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name,
+                                     const MappingConfig& absent) {
+  return mappingConfigFrom(parseTomlTextOrThrow(text, name), name, absent);
 }
 
 namespace {
-MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path) {
-  MappingConfig c;
+MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path, MappingConfig c) {
   if (auto m = root["mapping"]["method"].value<std::string>()) {
     if (!parseMappingMethod(*m, &c.method))
       throw std::runtime_error(path + ": mapping.method '" + *m +
@@ -191,9 +195,11 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
   read(root, path, "spheres", "edge_softness", &c.spheres.edge_softness);
   read(root, path, "spheres", "noise_erosion", &c.spheres.noise_erosion);
   read(root, path, "spheres", "noise_modulation", &c.spheres.noise_modulation);
+  read(root, path, "spheres", "outline_chord_voxels", &c.spheres.outline_chord_voxels);
   read(root, path, "edges", "samples_per_pixel", &c.edges.samples_per_pixel);
   read(root, path, "edges", "depth_sigma_of_radius", &c.edges.depth_sigma_of_radius);
   read(root, path, "edges", "lateral_sigma_px", &c.edges.lateral_sigma_px);
+  read(root, path, "edges", "tangent_at_sphere_depth", &c.edges.tangent_at_sphere_depth);
   read(root, path, "edges", "min_depth_sigma_voxels", &c.edges.min_depth_sigma_voxels);
   read(root, path, "edges", "density_scale", &c.edges.density_scale);
   read(root, path, "ray_marching", "density", &c.ray_marching.density);

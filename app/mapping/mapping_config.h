@@ -41,7 +41,7 @@ struct CircleGrowthConfig {
   // Where the Empty Test is made. The thesis tests the initial (largest) circle, which drops
   // every direction on a stroke thinner than the initial diameter; testing the smallest circle
   // lets circles follow thin strokes too, at the price of more, smaller circles.
-  bool empty_test_on_smallest = false;
+  bool empty_test_on_smallest = true;
 };
 
 struct SphereMappingConfig {
@@ -49,6 +49,10 @@ struct SphereMappingConfig {
   float edge_softness = 0.2f;      // fraction of the radius over which density fades to 0
   float noise_erosion = 0.2f;      // how far (fraction of radius) noise eats into the surface
   float noise_modulation = 0.35f;  // interior density = density * (1 - m + m * noise)
+  // The paint view's ray through a circle's outline crosses this much of its sphere, in voxels
+  // (sphereFillRadius): a sphere filled to the circle's own radius is seen edge-on there and its
+  // rim is translucent, so a thin stroke's cloud looks thinner than its ink.
+  float outline_chord_voxels = 2.5f;
 };
 
 struct EdgeMappingConfig {
@@ -56,11 +60,15 @@ struct EdgeMappingConfig {
   float depth_sigma_of_radius = 1.0f / 3.0f;  // σ along the view ray = R_S / 3 (§6.6.2)
   // Floor for that σ, in voxels: a pixel next to a tiny circle still gets enough depth to be
   // seen from the paint view.
-  float min_depth_sigma_voxels = 2.0f;
+  float min_depth_sigma_voxels = 0.75f;
   // σ across the view ray, in footprint pixels at the sample's depth: small, so the silhouette
   // seen from the paint view stays where the footprint put it.
   float lateral_sigma_px = 0.5f;
-  float density_scale = 1.0f;  // voxel density = footprint value * scale
+  float density_scale = 2.0f;  // voxel density = footprint value * scale (clamped to 1)
+  // Where P_t, the point where a sphere about P_S touches the pixel's ray, is taken: true, at
+  // P_S's view depth (no tail along the paint view's rays); false, the ray's closest point to
+  // P_S (§6.6.2 as written; journals recorded before this key replay with false).
+  bool tangent_at_sphere_depth = true;
 };
 
 struct RayMarchingConfig {
@@ -94,7 +102,10 @@ struct MappingConfig {
 // out-of-range value.
 MappingConfig loadMappingConfig(const std::string& path);
 // The same from TOML text in memory (a journal's recorded settings); `name` stands for the file.
-MappingConfig parseMappingConfigText(std::string_view text, const std::string& name);
+// Keys the text lacks keep `absent`'s values (app/session/recorded_settings.h passes the values
+// that reproduce the version that wrote the text).
+MappingConfig parseMappingConfigText(std::string_view text, const std::string& name,
+                                     const MappingConfig& absent = MappingConfig{});
 // Every field as mapping.toml text that loadMappingConfig reads back to the same values (floats
 // with 9 significant digits): the mapping in force, as a journal records it.
 std::string formatMappingConfig(const MappingConfig& config);

@@ -36,7 +36,10 @@ VoxelBox fillSpheres(const std::vector<MappedSphere>& spheres, const NoiseTextur
   // The filled spheres: the circle's sphere widened so its noise-eroded surface straddles the
   // circle's outline in the paint view instead of lying inside it (see sphereFillRadius).
   std::vector<MappedSphere> filled = spheres;
-  for (MappedSphere& s : filled) s.radius = sphereFillRadius(s.radius, config);
+  const glm::vec3 voxel = volume.voxelSize();
+  const float voxel_size = std::min({voxel.x, voxel.y, voxel.z});
+  for (MappedSphere& s : filled)
+    if (s.radius > 0.0f) s.radius = sphereFillRadius(s.radius, voxel_size, config);
   std::vector<VoxelBox> boxes(filled.size());
   VoxelBox all;
   for (size_t i = 0; i < filled.size(); ++i) {

@@ -4,6 +4,7 @@
 // sphere's surface is eroded irregularly and its interior density varies.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -46,8 +47,16 @@ inline float sphereDensity(float q, float n, const SphereMappingConfig& c) {
 // fall below the circle fill threshold"). Filled to r / (1 − erosion/2), the eroded surface
 // lies on the circle's outline where the noise is at its middle, outside it where the noise is
 // low and inside where it is high.
-inline float sphereFillRadius(float circle_radius, const SphereMappingConfig& c) {
-  return circle_radius / (1.0f - 0.5f * c.noise_erosion);
+// Widened further so the paint view's ray through the circle's outline still crosses a chord
+// of `outline_chord_voxels` (c): r' = √(r² + (c/2)²). Seen from the paint view the sphere is then
+// opaque out to the circle instead of fading inside it; on a large sphere this changes nothing,
+// on a stroke a few voxels thick it is what keeps the cloud as wide as the ink. A chord of 0
+// (journals recorded before the key) is exactly the older r / (1 − erosion/2).
+inline float sphereFillRadius(float circle_radius, float voxel_size, const SphereMappingConfig& c) {
+  const float half_chord = 0.5f * c.outline_chord_voxels * voxel_size;
+  if (half_chord == 0.0f) return circle_radius / (1.0f - 0.5f * c.noise_erosion);
+  return std::sqrt(circle_radius * circle_radius + half_chord * half_chord) /
+         (1.0f - 0.5f * c.noise_erosion);
 }
 
 // Max-merges the spheres into the volume (parallel over z slabs; each voxel is written by one

@@ -358,7 +358,20 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
 
   t0 = std::chrono::steady_clock::now();
   if (fresh) light_volume_ = LightVolume{};
-  st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty);
+  const bool light_unchanged = synced_light_.direction == light.direction &&
+                               synced_light_.extinction == light.extinction && !fresh;
+  const bool stale = light_is_preview_ ? !light_unchanged || !st.dirty.empty()
+                                       : !light_volume_.matches(volume, light);
+  if (light_preview_divisor_ > 1 && stale) {
+    // The light moves while it is dragged: a coarse sweep, recomputed in full at release.
+    st.light_box = reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
+    light_is_preview_ = true;
+  } else if (light_preview_divisor_ > 1 && light_is_preview_) {
+    st.light_box = {};  // the same preview light: nothing to redo
+  } else {
+    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty);
+    light_is_preview_ = false;
+  }
   st.light_ms = msSince(t0);
 
   st.uploaded = st.dirty.unite(st.light_box);

@@ -22,6 +22,7 @@
 #include "app/render/gl/gl.h"
 #include "app/render/light_volume.h"
 #include "app/render/occupancy_pyramid.h"
+#include "app/render/reduced_light_sweep.h"
 #include "app/render/render_style.h"
 #include "app/render/render_target.h"
 #include "app/render/sky_pass.h"
@@ -110,6 +111,13 @@ class VolumeRenderer {
   // everything; after replacing a volume's contents without markDirty (never do
   // that) call invalidate().
   SyncStats sync(const Volume& volume, const Light& light);
+  // While the light is dragged: a light change is swept on a grid `divisor` times coarser per
+  // axis (2: the thesis's 128³ for 256³; reduced_light_sweep.h); 1, the default, sweeps at full
+  // resolution. A light volume made coarse is recomputed in full by the first sync after the
+  // divisor returns to 1, even if the light did not change again.
+  void setLightPreviewDivisor(int divisor) { light_preview_divisor_ = divisor < 1 ? 1 : divisor; }
+  // True while the light volume on the GPU is a reduced-resolution preview.
+  bool lightIsPreview() const { return light_is_preview_; }
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
   // renders into an internal smaller target and blits it up.
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
@@ -153,6 +161,9 @@ class VolumeRenderer {
   Light synced_light_;
   std::vector<uint8_t> packed_;  // RG8 per voxel: density, transmittance
   LightVolume light_volume_;
+  ReducedLightSweep reduced_light_;
+  int light_preview_divisor_ = 1;
+  bool light_is_preview_ = false;
   OccupancyPyramid occupancy_;
   std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;

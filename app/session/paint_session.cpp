@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/scene/paint_camera.h"
+#include "app/session/recorded_settings.h"
 #include "app/session/session_replay.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
@@ -347,7 +348,11 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
         still_anchor_ = at;
         still_since_ns_ = m.t_ns;
       }
-      if (m.pressure >= 0.05f)
+      // Light: held down by the calibration's hysteresis alone (calibration/mapped_sample.h),
+      // or, for journals recorded before stroke.auto_end_light_by_hysteresis, under 5%.
+      const bool light_touch =
+          brush_config_.stroke.auto_end_light_by_hysteresis ? m.light_contact : m.pressure < 0.05f;
+      if (!light_touch)
         light_since_ns_ = -1;
       else if (light_since_ns_ < 0)
         light_since_ns_ = m.t_ns;
@@ -608,11 +613,27 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
         setRenderSettings(body, record.t_ns);
         return true;
       }
-      const std::string in_force = name == "brush.toml"     ? formatBrushConfig(brush_config_)
-                                   : name == "mapping.toml" ? formatMappingConfig(mapping_config_)
-                                                            : std::string();
-      if (in_force.empty()) return true;  // a config this version does not record: skipped
-      if (body != in_force) {
+      // Compared as read back (recorded_settings.h): an older text lacks keys added since, or
+      // carries retired ones, yet stands for the same settings.
+      std::string in_force, recorded;
+      if (name == "brush.toml") {
+        BrushConfig parsed;
+        std::vector<std::string> errors;
+        if (!parseRecordedBrush(body, name, &parsed, &errors))
+          return *error = errors.empty() ? name : errors.front(), false;
+        in_force = formatBrushConfig(brush_config_);
+        recorded = formatBrushConfig(parsed);
+      } else if (name == "mapping.toml") {
+        try {
+          recorded = formatMappingConfig(parseRecordedMapping(body, name));
+        } catch (const std::exception& e) {
+          return *error = e.what(), false;
+        }
+        in_force = formatMappingConfig(mapping_config_);
+      } else {
+        return true;  // a config this version does not record: skipped
+      }
+      if (recorded != in_force) {
         *error = "settings record " + name +
                  " differs from the settings this session was made with (replaySession makes "
                  "the session from the recorded ones)";

@@ -46,8 +46,8 @@ struct PaintSessionSettings {
   int format = 2;
   // A stroke still open after this long ends by itself (thesis §7.7.5 problem 3: strokes left
   // open by a pen resting on the tablet). Held still (moving < 2 px) or touching only lightly
-  // (pressure under 5%) for the time given; 0 disables. Journalled with the session, so
-  // replay ends the same strokes.
+  // (held down by the contact hysteresis alone, MappedSample::light_contact) for the time given;
+  // 0 disables. Journalled with the session, so replay ends the same strokes.
   int auto_end_still_ms = 2000;
   int auto_end_light_ms = 800;
 };

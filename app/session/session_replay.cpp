@@ -3,6 +3,7 @@
 #include <cstring>
 #include <vector>
 
+#include "app/session/recorded_settings.h"
 #include "drivers/core/journal_records.h"
 
 namespace cb {
@@ -33,15 +34,14 @@ SessionReplay replaySession(
       if (!parseSettingsRecord(record.text(), &name, &body, &error)) {
         replay.problems.push_back("record " + std::to_string(i) + ": " + error);
       } else if (name == "brush.toml") {
-        recorded_brush = BrushConfig{};
-        if (!parseBrushConfigText(body, "record " + std::to_string(i) + " (brush.toml)",
-                                  &recorded_brush, &errors))
+        if (!parseRecordedBrush(body, "record " + std::to_string(i) + " (brush.toml)",
+                                &recorded_brush, &errors))
           for (const std::string& e : errors) replay.problems.push_back(e);
         replay.recorded_settings = true;
       } else if (name == "mapping.toml") {
         try {
           recorded_mapping =
-              parseMappingConfigText(body, "record " + std::to_string(i) + " (mapping.toml)");
+              parseRecordedMapping(body, "record " + std::to_string(i) + " (mapping.toml)");
         } catch (const std::exception& e) {
           replay.problems.push_back(e.what());
         }

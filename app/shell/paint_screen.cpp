@@ -691,7 +691,10 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
   double sync_ms = 0.0, render_ms = 0.0;
   const auto render_start = std::chrono::steady_clock::now();
   const SceneKey key = currentKey();
-  const bool stale = !drawn_ || !(*drawn_ == key);
+  // While the light ball is dragged the light volume is swept at half resolution per axis (the
+  // thesis's 128³ for 256³); at release the first frame recomputes it in full.
+  renderer_.setLightPreviewDivisor(drag_light_ ? 2 : 1);
+  const bool stale = !drawn_ || !(*drawn_ == key) || (renderer_.lightIsPreview() && !drag_light_);
   const bool refine = refine_pending_ && !stale;
   long long rendered_pixels = 0;
   float render_scale = 0.0f;

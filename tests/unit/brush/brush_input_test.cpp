@@ -86,32 +86,31 @@ TEST(BrushInputSanitizer, BadSamplesNeverReachTheFootprint) {
   }
 }
 
-TEST(StrokeEngine, ThresholdContactStartsAndEndsStrokes) {
+// The engine never decides contact from pressure (the calibration's hysteresis does, once):
+// explicit tip-down, moves and tip-up drive the stroke, whatever the pressure.
+TEST(StrokeEngine, ExplicitContactStartsAndEndsStrokes) {
   BrushConfig config;
   config.default_brush = BrushKind::k2D;
   StrokeEngine engine(config, 128, 64);
   engine.setNextStrokeIndex(41);
   BrushInput hover{{20.0f, 30.0f}, 0.005f, 0.0f, 0.0f, 0};
-  EXPECT_TRUE(engine.feed(hover).empty());
+  engine.prepareNextStroke();
   EXPECT_FALSE(engine.inStroke());
   BrushInput down = hover;
   down.pressure = 0.5f;
   down.t_ns = 5000000;
-  EXPECT_FALSE(engine.feed(down).empty());
+  EXPECT_FALSE(engine.beginStroke(down).empty());
   EXPECT_TRUE(engine.inStroke());
   BrushInput move = down;
   move.footprint_px.x = 60.0f;
   move.t_ns = 10000000;
-  engine.feed(move);
-  BrushInput between = move;  // between the up and down thresholds: still in contact
-  between.pressure = 0.015f;
-  between.t_ns = 15000000;
-  engine.feed(between);
+  engine.addSample(move);
+  BrushInput light = move;  // a light touch is still a touch: only the caller lifts the pen
+  light.pressure = 0.005f;
+  light.t_ns = 15000000;
+  engine.addSample(light);
   EXPECT_TRUE(engine.inStroke());
-  BrushInput up = move;
-  up.pressure = 0.0f;
-  up.t_ns = 20000000;
-  engine.feed(up);
+  engine.finishStroke();
   EXPECT_FALSE(engine.inStroke());
   StrokeResult result;
   ASSERT_TRUE(engine.takeFinishedStroke(&result));

@@ -155,8 +155,9 @@ TEST(BrushProperties, ChangesStayInsideTheReturnedRectangle) {
     std::vector<BrushInput> samples = sampleStroke(gentleCurve(256, 160), 200.0);
     Footprint before(256, 160);
     size_t changed_outside = 0, changed_total = 0;
-    for (const BrushInput& in : samples) {
-      FootprintRect r = engine.feed(in);
+    for (size_t i = 0; i < samples.size(); ++i) {
+      const FootprintRect r =
+          i == 0 ? engine.beginStroke(samples[i]) : engine.addSample(samples[i]);
       const Footprint& now = engine.footprint();
       for (int y = 0; y < now.height; ++y)
         for (int x = 0; x < now.width; ++x)

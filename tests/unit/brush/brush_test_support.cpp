@@ -4,17 +4,23 @@
 #include <fstream>
 #include <sstream>
 
+#include "calibration/contact_hysteresis.h"
+
 namespace cb::test {
 
 StrokeResult paintStroke(StrokeEngine* engine, const std::vector<BrushInput>& samples) {
-  for (const BrushInput& in : samples) engine->feed(in);
-  BrushInput lift = samples.back();
-  lift.pressure = 0.0f;
-  lift.t_ns += 5000000;
-  engine->feed(lift);
-  StrokeResult result;
-  engine->takeFinishedStroke(&result);
-  return result;
+  // Contact as calibration/'s hysteresis decides it (the engine decides none), with the
+  // thresholds the committed goldens were painted with: down at 2 %, up below 1 %.
+  ContactHysteresis contact(ContactThresholds{0.02f, 0.01f});
+  engine->prepareNextStroke();
+  for (const BrushInput& in : samples) {
+    const bool was_down = contact.down();
+    if (contact.update(in.pressure))
+      was_down ? engine->addSample(in) : engine->beginStroke(in);
+    else if (was_down)
+      break;  // lifted
+  }
+  return engine->endStroke();
 }
 
 int inkedPixels(const Footprint& fp, float threshold) {

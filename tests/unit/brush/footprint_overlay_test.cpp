@@ -100,7 +100,8 @@ TEST(FootprintOverlay, BrushRectanglesKeepTheTextureEqualToTheFootprint) {
                   float(i - 30),
                   0.0f,
                   int64_t(i) * 5000000};
-    uploaded += overlay.upload(engine.footprint(), engine.feed(in));
+    uploaded +=
+        overlay.upload(engine.footprint(), i == 0 ? engine.beginStroke(in) : engine.addSample(in));
   }
   RenderTarget scene, frame;
   ASSERT_TRUE(scene.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
@@ -149,15 +150,14 @@ TEST(FootprintOverlay, IncrementalFramesEqualAFullComposite) {
     for (int i = 0; i < 40; ++i) {
       BrushInput in{
           {20.0f + 3.0f * i, 30.0f + 40.0f * stroke}, 0.6f, 0.0f, 0.0f, int64_t(i) * 5000000};
-      FootprintRect r = engine.feed(in);
+      FootprintRect r = i == 0 ? engine.beginStroke(in) : engine.addSample(in);
       if (i == 0) overlay.beginFootprint(kW, kH);
       overlay.upload(engine.footprint(), r);
       cursor.screen_px = in.footprint_px;
       overlay.draw(scene.texture(), frame.fbo(), kW, kH, cursor);
       if (stroke == 1 && i > 0) composited += overlay.lastCompositedPixels();
     }
-    BrushInput lift{{0.0f, 0.0f}, 0.0f, 0.0f, 0.0f, 400000000};
-    engine.feed(lift);
+    engine.finishStroke();  // tip-up
   }
   ImageRgba8 incremental = frame.readRgba8();
   overlay.invalidate();

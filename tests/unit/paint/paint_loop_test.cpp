@@ -185,7 +185,14 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
     cloud_on_ink += (g_scene_mask.empty() || g_scene_mask[i / 4]) && differs(frames.first_lit, 8) &&
                     differs(frames.during_stroke, 24);
   }
-  EXPECT_GT(cloud_on_ink, cloud / 2) << "most cloud pixels should be where the ink was";
+  // Where the ink was, there is cloud; and the cloud is not somewhere else. At this test's 128³
+  // a 30-px stroke is 3 voxels wide: the spheres are widened so they are opaque out to the ink
+  // (app/mapping/README.md, outline_chord_voxels), which leaves a faint halo about a voxel
+  // (~10 px) wide on each side that this any-visible-change count includes. Measured: the
+  // whole ink shows cloud, 48 % of the changed pixels lie on the ink (61 % before the
+  // widening, when the rim was translucent).
+  EXPECT_GT(cloud_on_ink, ink * 9 / 10) << "the ink should show cloud";
+  EXPECT_GT(cloud_on_ink, cloud * 2 / 5) << "most cloud pixels should be near where the ink was";
 
   std::printf(
       "ink frames %ld, ink pixels %ld, voxels %ld in the dirty box, cloud pixels %ld "

@@ -167,6 +167,40 @@ TEST(SessionReplay, TornJournalReplaysItsIntactPrefixAndSaysWhere) {
   std::filesystem::remove(torn);
 }
 
+// Journals recorded by main at 9e22266 (before spheres.outline_chord_voxels,
+// edges.tangent_at_sphere_depth and stroke.auto_end_light_by_hysteresis; their brush texts still
+// carry stroke.down_pressure/up_pressure) replay to the volume that version made: keys their
+// recorded texts lack take the values of app/session/recorded_settings.h, not today's defaults.
+// Where the files come from: tests/unit/paint/README.md.
+TEST(SessionReplay, JournalsFrom9e22266ReplayToTheirOldChecksums) {
+  setWorkerThreads(2);
+  const std::string dir = std::string(CB_SOURCE_DIR) + "/tests/unit/paint/";
+  const struct {
+    const char* file;
+    uint64_t checksum;  // printed by `cloudbrush replay FILE` built at 9e22266
+  } journals[] = {{"attract_9e22266.cbj", 0xafd262bae80f2025ull},
+                  {"attract_painted_at_grid256.cbj", 0xae66946f7e893a52ull}};
+  for (const auto& j : journals) {
+    SCOPED_TRACE(j.file);
+    const SessionReplay replay = replayFile(dir + j.file);
+    ASSERT_TRUE(replay.session);
+    EXPECT_TRUE(replay.recorded_settings);
+    EXPECT_TRUE(replay.complete())
+        << replay.journal_error << (replay.problems.empty() ? "" : replay.problems[0]);
+    EXPECT_EQ(replay.strokes_mapped, 5u);
+    const MappingConfig& m = replay.session->mappingConfig();
+    EXPECT_EQ(m.spheres.outline_chord_voxels, 0.0f);
+    EXPECT_FALSE(m.edges.tangent_at_sphere_depth);
+    EXPECT_FALSE(replay.session->brushConfig().stroke.auto_end_light_by_hysteresis);
+    EXPECT_EQ(volumeChecksum(replay.session->volume()), j.checksum);
+  }
+  // A local config lacking those keys gets today's defaults, not the recorded texts' values.
+  const MappingConfig local = parseMappingConfigText("[spheres]\ndensity = 1.0\n", "local");
+  EXPECT_EQ(local.spheres.outline_chord_voxels, MappingConfig{}.spheres.outline_chord_voxels);
+  EXPECT_TRUE(local.edges.tangent_at_sphere_depth);
+  setWorkerThreads(0);
+}
+
 }  // namespace
 }  // namespace cb
 

@@ -237,5 +237,35 @@ TEST_F(VolumeRendererTest, ReducedScaleRendersAndUpscales) {
   EXPECT_FALSE(isBackground(half.at(c.x, c.y), opt));
 }
 
+// Dragging the light ball: light changes are swept at half resolution per axis while the divisor
+// is 2; when it returns to 1 the next sync recomputes the light volume in full, even though the
+// light did not move again, and the frame shows exactly what a plain full sync shows.
+TEST_F(VolumeRendererTest, ALightDragIsSweptCoarseAndTheReleaseInFull) {
+  Volume v = makeBundledCumulus(glm::ivec3(64), 1);
+  Light light;
+  renderer.sync(v, light);
+  EXPECT_FALSE(renderer.lightIsPreview());
+  renderer.setLightPreviewDivisor(2);
+  light.direction = Light::directionTowards(glm::vec3(-3.0f, 2.0f, 1.0f));
+  EXPECT_EQ(renderer.sync(v, light).light_box, v.bounds());
+  EXPECT_TRUE(renderer.lightIsPreview());
+  EXPECT_TRUE(renderer.sync(v, light).light_box.empty()) << "the same drag light: no new sweep";
+  const std::vector<float> coarse = renderer.lightVolume().transmittance;
+  renderer.setLightPreviewDivisor(1);
+  EXPECT_EQ(renderer.sync(v, light).light_box, v.bounds()) << "the release sweeps in full";
+  EXPECT_FALSE(renderer.lightIsPreview());
+  LightVolume full;
+  sweepLightVolume(full, v, light, v.bounds());
+  EXPECT_EQ(renderer.lightVolume().transmittance, full.transmittance);
+  EXPECT_NE(coarse, full.transmittance);
+  const Camera cam = Camera::reference();
+  const ImageRgba8 released = renderImage(renderer, cam, RenderOptions{});
+  VolumeRenderer plain;
+  std::string err;
+  ASSERT_TRUE(plain.init(&err)) << err;
+  plain.sync(v, light);
+  EXPECT_EQ(maxChannelDifference(released, renderImage(plain, cam, RenderOptions{})), 0);
+}
+
 }  // namespace
 }  // namespace cb

@@ -180,6 +180,40 @@ TEST(SessionModes, AStrokeHeldStillEndsByItself) {
   EXPECT_EQ(session.strokesMapped(), 1u);
 }
 
+// A pen moving on while resting lightly (held down only by the calibration's contact hysteresis,
+// MappedSample::light_contact) ends its stroke after auto_end_light_ms; pressing at the down
+// threshold and above does not. Contact and lightness come from the one contact decision.
+TEST(SessionModes, AStrokeTouchedOnlyLightlyEndsByItself) {
+  for (const float share : {0.03f, 0.08f}) {  // of the pressure range: under / over contact_down
+    Painter p;
+    const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+    std::vector<PenSample> samples = syntheticPenSamples(stroke, p.tablet, kW, kH, 200.0, p.t);
+    size_t first = samples.size(), last = 0;
+    for (size_t i = 0; i < samples.size(); ++i)
+      if (samples[i].tipDown()) first = std::min(first, i), last = i;
+    ASSERT_LT(first + 40, last);
+    const size_t from = first + 4;  // light from here on: 20 ms after tip-down
+    for (size_t i = from; i <= last; ++i)
+      samples[i].pressure = share,
+      samples[i].pressure_raw = int32_t(share * float(p.tablet.pressure_max));
+    size_t ended_at = 0;
+    bool ended = false;
+    for (size_t i = 0; i < samples.size(); ++i)
+      if (p.session.feed(samples[i]).auto_ended) ended_at = i, ended = true;
+    const double light_ms = double(samples[last].t_ns - samples[from].t_ns) / 1e6;
+    ASSERT_GT(light_ms, 860.0) << "the stroke must stay light longer than auto_end_light_ms";
+    if (share < 0.05f) {
+      ASSERT_TRUE(ended) << "a light touch for " << light_ms << " ms did not end the stroke";
+      const double ms = double(samples[ended_at].t_ns - samples[from].t_ns) / 1e6;
+      EXPECT_GE(ms, 800.0);
+      EXPECT_LE(ms, 850.0);
+    } else {
+      EXPECT_FALSE(ended) << "pressing at " << share << " of the range is not a light touch";
+    }
+    EXPECT_EQ(p.session.strokesMapped(), 1u);
+  }
+}
+
 // A picture placed as a cloud is an edit like a stroke: painted from the current view, undone,
 // journalled, replayed; a bad file is refused by name and leaves the cloud as it was.
 TEST(SessionModes, APlacedPictureIsAnEditLikeAStroke) {

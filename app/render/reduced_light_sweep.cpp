@@ -1,0 +1,97 @@
+#include "app/render/reduced_light_sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "app/core/parallel_for.h"
+
+namespace cb {
+
+VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const Light& light,
+                                  int divisor) {
+  if (divisor <= 1) {
+    lv = LightVolume{};
+    return sweepLightVolume(lv, volume, light, volume.bounds());
+  }
+  const glm::ivec3 dims = volume.dims();
+  const glm::ivec3 cdims = (dims + divisor - 1) / divisor;
+  if (coarse_.dims() != cdims || coarse_.worldMin() != volume.worldMin() ||
+      coarse_.worldMax() != volume.worldMax())
+    coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());
+
+  // Block averages of the density (a block at the far edge may be partly outside).
+  const float* fine = volume.data();
+  float* coarse = coarse_.data();
+  parallelFor(size_t(cdims.z), 1, [&](size_t, size_t z0, size_t z1) {
+    for (int cz = int(z0); cz < int(z1); ++cz)
+      for (int cy = 0; cy < cdims.y; ++cy)
+        for (int cx = 0; cx < cdims.x; ++cx) {
+          const glm::ivec3 lo = glm::ivec3(cx, cy, cz) * divisor;
+          const glm::ivec3 hi = glm::min(lo + divisor, dims);
+          float sum = 0.0f;
+          for (int z = lo.z; z < hi.z; ++z)
+            for (int y = lo.y; y < hi.y; ++y) {
+              const float* row = fine + volume.index(0, y, z);
+              for (int x = lo.x; x < hi.x; ++x) sum += row[x];
+            }
+          const glm::ivec3 n = hi - lo;
+          coarse[coarse_.index(cx, cy, cz)] = sum / float(n.x * n.y * n.z);
+        }
+  });
+
+  Light coarse_light = light;
+  coarse_light.extinction =
+      1.0f - std::pow(1.0f - std::min(light.extinction, 1.0f), float(divisor));
+  sweepLightVolume(coarse_light_, coarse_, coarse_light, coarse_.bounds());
+
+  // Trilinear interpolation of the coarse transmittance at every voxel centre, row by row: the
+  // four coarse rows around a fine row are blended in y and z once, then each voxel in x.
+  lv.dims = dims;
+  lv.direction = lightDirectionInVoxels(volume, light);
+  lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
+  lv.transmittance.resize(volume.voxelCount());
+  struct Tap {
+    int i0, i1;
+    float t;
+  };
+  const auto taps = [&](int n_fine, int n_coarse) {
+    std::vector<Tap> out(static_cast<size_t>(n_fine));
+    for (int i = 0; i < n_fine; ++i) {
+      const float c =
+          std::clamp((float(i) + 0.5f) / float(divisor) - 0.5f, 0.0f, float(n_coarse - 1));
+      const int i0 = int(c);
+      out[size_t(i)] = {i0, std::min(i0 + 1, n_coarse - 1), c - float(i0)};
+    }
+    return out;
+  };
+  const std::vector<Tap> tx = taps(dims.x, cdims.x), ty = taps(dims.y, cdims.y),
+                         tz = taps(dims.z, cdims.z);
+  const float* T = coarse_light_.transmittance.data();
+  const size_t crow = size_t(cdims.x), cslice = crow * size_t(cdims.y);
+  float* out = lv.transmittance.data();
+  parallelFor(size_t(dims.z), 1, [&](size_t, size_t z0, size_t z1) {
+    std::vector<float> blended(crow);
+    for (int z = int(z0); z < int(z1); ++z) {
+      const Tap& a = tz[size_t(z)];
+      for (int y = 0; y < dims.y; ++y) {
+        const Tap& b = ty[size_t(y)];
+        const float* r00 = T + size_t(a.i0) * cslice + size_t(b.i0) * crow;
+        const float* r01 = T + size_t(a.i0) * cslice + size_t(b.i1) * crow;
+        const float* r10 = T + size_t(a.i1) * cslice + size_t(b.i0) * crow;
+        const float* r11 = T + size_t(a.i1) * cslice + size_t(b.i1) * crow;
+        for (size_t x = 0; x < crow; ++x)
+          blended[x] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
+                       (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
+        float* row = out + volume.index(0, y, z);
+        for (int x = 0; x < dims.x; ++x) {
+          const Tap& c = tx[size_t(x)];
+          row[x] = blended[size_t(c.i0)] * (1 - c.t) + blended[size_t(c.i1)] * c.t;
+        }
+      }
+    }
+  });
+  return volume.bounds();
+}
+
+}  // namespace cb
