@@ -20,25 +20,32 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
       coarse_.worldMax() != volume.worldMax())
     coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());
 
-  // Block averages of the density (a block at the far edge may be partly outside).
-  const float* fine = volume.data();
-  float* coarse = coarse_.data();
+  // Block averages of the density (a block at the far edge may be partly outside), each block
+  // summed in z, y, x order from the fine rows.
+  std::vector<float> coarse(coarse_.voxelCount());
   parallelFor(size_t(cdims.z), 1, [&](size_t, size_t z0, size_t z1) {
+    std::vector<float> row(size_t(dims.x));
+    std::vector<float> sums(size_t(cdims.x));
     for (int cz = int(z0); cz < int(z1); ++cz)
-      for (int cy = 0; cy < cdims.y; ++cy)
+      for (int cy = 0; cy < cdims.y; ++cy) {
+        const glm::ivec3 lo(0, cy * divisor, cz * divisor);
+        const glm::ivec3 hi = glm::min(lo + divisor, dims);
+        std::fill(sums.begin(), sums.end(), 0.0f);
+        for (int z = lo.z; z < hi.z; ++z)
+          for (int y = lo.y; y < hi.y; ++y) {
+            volume.readLine({0, y, z}, 0, dims.x, row.data());
+            for (int cx = 0; cx < cdims.x; ++cx)
+              for (int x = cx * divisor; x < std::min((cx + 1) * divisor, dims.x); ++x)
+                sums[size_t(cx)] += row[size_t(x)];
+          }
         for (int cx = 0; cx < cdims.x; ++cx) {
-          const glm::ivec3 lo = glm::ivec3(cx, cy, cz) * divisor;
-          const glm::ivec3 hi = glm::min(lo + divisor, dims);
-          float sum = 0.0f;
-          for (int z = lo.z; z < hi.z; ++z)
-            for (int y = lo.y; y < hi.y; ++y) {
-              const float* row = fine + volume.index(0, y, z);
-              for (int x = lo.x; x < hi.x; ++x) sum += row[x];
-            }
-          const glm::ivec3 n = hi - lo;
-          coarse[coarse_.index(cx, cy, cz)] = sum / float(n.x * n.y * n.z);
+          const int nx = std::min((cx + 1) * divisor, dims.x) - cx * divisor;
+          coarse[coarse_.index(cx, cy, cz)] =
+              sums[size_t(cx)] / float(nx * (hi.y - lo.y) * (hi.z - lo.z));
         }
+      }
   });
+  coarse_.assignDense(coarse.data());
 
   Light coarse_light = light;
   coarse_light.extinction =

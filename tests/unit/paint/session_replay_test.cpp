@@ -203,31 +203,3 @@ TEST(SessionReplay, JournalsFrom9e22266ReplayToTheirOldChecksums) {
 
 }  // namespace
 }  // namespace cb
-
-namespace cb {
-namespace {
-
-// Journals recorded before the sparse volume (issue 15) replay to the checksums they had on the
-// dense grid. The values were printed by `cloudbrush replay` built from 9e22266 (the last dense
-// commit): the bundled attract journal (128³), and the same pen painted into the default 256³
-// grid (`cloudbrush paint --display surfaceless --backend replay --journal
-// config/kiosk/attract.cbj --grid 256 --session-dir DIR --size 640x360`, kept beside this test).
-TEST(SessionReplay, JournalsFromTheDenseGridReplayToTheirOldChecksums) {
-  const struct {
-    const char* path;
-    uint64_t dense_checksum;
-  } journals[] = {
-      {"/config/kiosk/attract.cbj", 0xafd262bae80f2025ull},
-      {"/tests/unit/paint/attract_painted_at_grid256.cbj", 0xae66946f7e893a52ull},
-  };
-  for (const auto& j : journals) {
-    const SessionReplay replay = replayFile(std::string(CB_SOURCE_DIR) + j.path);
-    ASSERT_TRUE(replay.session) << j.path;
-    EXPECT_TRUE(replay.complete()) << j.path;
-    EXPECT_EQ(replay.strokes_mapped, 5u) << j.path;
-    EXPECT_EQ(volumeChecksum(replay.session->volume()), j.dense_checksum) << j.path;
-  }
-}
-
-}  // namespace
-}  // namespace cb
