@@ -271,7 +271,17 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
       else if ((state_ == State::kOperator || state_ == State::kCalibrate) &&
                before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
+      awaiting_first_sample_ = connected;
     }
+  }
+  if (awaiting_first_sample_ && !samples.empty()) {
+    // For the log and the hotplug check (tests/hil/kms): how long a (re)connected pen took to
+    // reach the screen that is showing.
+    awaiting_first_sample_ = false;
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: pen: first sample since it connected (event at %.6f s) "
+                 "reached the %s screen at %.6f s (monotonic)\n",
+                 double(samples.front().t_ns) / 1e9, stateName(state_), double(now) / 1e9);
   }
   switch (state_) {
     case State::kAttract: {

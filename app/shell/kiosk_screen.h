@@ -143,6 +143,7 @@ class KioskScreen : public Screen {
   int64_t saved_notice_until_ns_ = 0;
   std::string saved_notice_;
   int last_connection_ = -1;
+  bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
   long idle_resets_ = 0, visits_ = 0;
   std::string notice_, quit_, message_;
   std::vector<long> gallery_saved_;

@@ -2,7 +2,10 @@
 // with EGL on GBM and Mesa's llvmpipe inside the guest (the initramfs carries Mesa's libraries,
 // ≈ 90 MB compressed). Proves the GBM/KMS display end to end: the mode set and page flips of
 // EGL frames, and a qemu screendump that shows the bundled cloud — compared pixel by pixel with
-// the same frame rendered headlessly on the host.
+// the same frame rendered headlessly on the host. The card's mode is 640x400 (bochs-display
+// xres/yres): at 1280x800 the full-resolution still frame took longer than the test's limit
+// under TCG on a slower machine; a quarter of the pixels keeps it well inside.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -52,26 +55,29 @@ TEST(KmsEgl, CloudbrushShowsTheBundledCloudOnAVirtualCard) {
       0)
       << log;
 
-  // The same frame on the host: reference camera, 64³ cloud, the card's 1280x800.
+  // The same frame on the host: reference camera, 64³ cloud, the card's 640x400.
   const std::string host_dir = work + "/host-render";
   std::filesystem::remove_all(host_dir);
   std::string host_out;
   ASSERT_EQ(runCommand("env -u DISPLAY LIBGL_ALWAYS_SOFTWARE=1 '" CB_CLOUDBRUSH_BIN
-                       "' paint --display surfaceless --size 1280x800 --grid 64 --out-dir '" +
+                       "' paint --display surfaceless --size 640x400 --grid 64 --out-dir '" +
                            host_dir + "'",
                        &host_out),
             0);
   const ImageRgba8 reference = readPng(host_dir + "/cloudbrush-cumulus.png");
 
-  QemuVm vm(vmlinuz, initrd, "bochs-display", work);
+  QemuVm vm(vmlinuz, initrd, "bochs-display,xres=640,yres=400", work);
   ASSERT_TRUE(vm.started());
-  const std::string still = vm.waitForLine("ray casting 1280x800", "cloudbrush paint:", 540);
+  const auto boot = std::chrono::steady_clock::now();
+  const std::string still = vm.waitForLine("ray casting 640x400", "cloudbrush paint:", 540);
+  std::printf("the still frame reported %.0f s after qemu started (limit 540 s)\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - boot).count());
   std::string console;
   for (const std::string& l : vm.lines()) console += l + "\n";
   ASSERT_NE(still.find("ray casting"), std::string::npos) << console;
 
   // The orbiting run: EGL frames reached the screen by page flip, with flip events.
-  EXPECT_NE(console.find("cloudbrush: kms display 1280x800"), std::string::npos) << console;
+  EXPECT_NE(console.find("cloudbrush: kms display 640x400"), std::string::npos) << console;
   EXPECT_NE(console.find("cloudbrush: 3 frames in"), std::string::npos) << console;
   EXPECT_NE(console.find("cloudbrush: last page flip: vblank sequence"), std::string::npos)
       << console;

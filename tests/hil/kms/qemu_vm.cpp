@@ -18,8 +18,10 @@ namespace cb::hil {
 
 QemuVm::QemuVm(const std::string& kernel, const std::string& initrd, const std::string& device,
                const std::string& work_dir) {
-  serial_log_ = work_dir + "/serial-" + device + ".log";
-  monitor_socket_ = work_dir + "/monitor-" + device + ".sock";
+  // File names from the device's name alone ("bochs-display,xres=640" -> "bochs-display").
+  const std::string name = device.substr(0, device.find(','));
+  serial_log_ = work_dir + "/serial-" + name + ".log";
+  monitor_socket_ = work_dir + "/monitor-" + name + ".sock";
   unlink(serial_log_.c_str());
   unlink(monitor_socket_.c_str());
   // no_timer_check: on a loaded host TCG can be too slow for the kernel's IO-APIC timer check,

@@ -1,0 +1,98 @@
+// Runs INSIDE the qemu guest of kms_kiosk_test, beside `cloudbrush kiosk`: a Wacom tablet
+// (the PTH-660 fixture descriptor) plugged in and out through /dev/uhid, the kernel's own wacom
+// driver binding it each time. Per cycle: UHID_CREATE2 (its CLOCK_MONOTONIC time printed), the
+// pen hovering, a short stroke, proximity out, UHID_DESTROY; then a pause. The kiosk logs when
+// the first sample after each connection reached its screen (app/shell/kiosk_screen.cpp); the
+// host pairs the two times.
+//
+//   kiosk_pen_hotplug DESCRIPTOR.rdesc LABEL CYCLES PAUSE_MS
+//
+// Prints "KIOSK-PEN created LABEL I T_S", "KIOSK-PEN destroyed LABEL I" and "KIOSK-PEN done".
+#include <linux/input.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/core/clock.h"
+#include "drivers/hid/hid_pen_layout.h"
+#include "drivers/hid/hid_report_descriptor.h"
+#include "drivers/hid/pen_report_encoder.h"
+#include "tests/hil/tablet/uhid_device.h"
+
+int main(int argc, char** argv) {
+  using namespace cb;
+  if (argc != 5) {
+    std::fprintf(stderr, "usage: %s DESCRIPTOR LABEL CYCLES PAUSE_MS\n", argv[0]);
+    return 2;
+  }
+  std::ifstream in(argv[1], std::ios::binary);
+  const std::vector<uint8_t> desc{std::istreambuf_iterator<char>(in), {}};
+  const auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
+  if (!parsed.descriptor) {
+    std::fprintf(stderr, "KIOSK-PEN descriptor %s: %s\n", argv[1], parsed.error.c_str());
+    return 1;
+  }
+  const auto found = hid::findPenLayout(*parsed.descriptor);
+  if (!found.layout) {
+    std::fprintf(stderr, "KIOSK-PEN no pen layout in %s\n", argv[1]);
+    return 1;
+  }
+  const hid::PenLayout& layout = *found.layout;
+  const std::string label = argv[2];
+  const int cycles = std::atoi(argv[3]);
+  const int pause_ms = std::atoi(argv[4]);
+  const auto sleep_ms = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
+  for (int i = 1; i <= cycles; ++i) {
+    hil::UhidDevice dev;
+    std::string error;
+    const int64_t created = MonotonicClock().nowNs();
+    if (!dev.create("Wacom Intuos Pro M", desc, BUS_USB, 0x056A, 0x0357, &error)) {
+      std::printf("KIOSK-PEN FAIL create %s %d: %s\n", label.c_str(), i, error.c_str());
+      return 1;
+    }
+    std::printf("KIOSK-PEN created %s %d %.6f\n", label.c_str(), i, double(created) / 1e9);
+    std::fflush(stdout);
+    hid::PenReportState s;
+    s.tool_type = 0x802;
+    s.serial = 0x1234;
+    s.distance = layout.distance.logical_max / 4;
+    const int32_t xm = layout.x.logical_max, ym = layout.y.logical_max;
+    // Hovering near the middle for 1.5 s (a report every 10 ms), then a 0.5 s stroke.
+    for (int k = 0; k < 150; ++k) {
+      s.x = xm / 2 + (k % 20) * xm / 400;
+      s.y = ym / 2;
+      dev.input(hid::encodePenReport(layout, s));
+      sleep_ms(10);
+    }
+    s.tip = true;
+    s.distance = 0;
+    for (int k = 0; k < 50; ++k) {
+      const double t = k / 49.0;
+      s.x = int32_t(xm * (0.35 + 0.3 * t));
+      s.y = int32_t(ym * (0.5 + 0.05 * std::sin(6.28 * t)));
+      s.pressure = int32_t(layout.pressure.logical_max * (0.3 + 0.5 * std::sin(3.14 * t)));
+      dev.input(hid::encodePenReport(layout, s));
+      sleep_ms(10);
+    }
+    s.tip = false;
+    s.pressure = 0;
+    s.in_range = s.sense = false;
+    dev.input(hid::encodePenReport(layout, s));
+    sleep_ms(100);
+    dev.destroy();
+    std::printf("KIOSK-PEN destroyed %s %d\n", label.c_str(), i);
+    std::fflush(stdout);
+    sleep_ms(pause_ms);
+  }
+  std::printf("KIOSK-PEN done %s\n", label.c_str());
+  std::fflush(stdout);
+  return 0;
+}
