@@ -27,6 +27,9 @@
 
 #include "qemu_vm.h"
 
+// The visitor texts' font (app/shell/ui_overlay.cpp), so the guest's screens show their words.
+#define CB_UI_FONT "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc"
+
 namespace cb::hil {
 namespace {
 
@@ -69,7 +72,7 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   const std::string initrd = work + "/kms_kiosk.cpio.gz";
   std::string log;
   ASSERT_EQ(runCommand("CB_KMS_WITH_LIBS=1 CB_KMS_MODULES='evdev uhid wacom hid-generic' "
-                       "CB_KMS_FILES='" CB_SOURCE_DIR "/config:/config' bash " CB_SOURCE_DIR
+                       "CB_KMS_FILES='" CB_SOURCE_DIR "/config:/config " CB_UI_FONT ":" CB_UI_FONT "' bash " CB_SOURCE_DIR
                        "/tests/hil/kms/make_kms_initramfs.sh '" +
                            cache + "' '" + initrd + "' 'sh /bin/kiosk_guest.sh' '" +
                            CB_CLOUDBRUSH_BIN "' '" CB_KIOSK_PEN_HOTPLUG "' '" CB_SOURCE_DIR
