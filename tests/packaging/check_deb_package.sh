@@ -108,19 +108,23 @@ if in_root getent passwd cloudbrush >/dev/null; then
 else
   echo "FAIL: the postinst did not make the cloudbrush user"; fail=1
 fi
-# Headless render as the kiosk's user, with the unit's environment.
-mkdir -p "$root/tmp/render" && chroot "$root" chown cloudbrush: /tmp/render
-if in_root runuser -u cloudbrush -- env HOME=/tmp/render LIBGL_ALWAYS_SOFTWARE=1 \
-     MESA_SHADER_CACHE_DIR=/tmp/render/mesa-shader-cache sh -c \
-     'cd /tmp/render && cloudbrush --size 320x200 --grid 64 --out-dir /tmp/render/out' \
-     >"$out/render.log" 2>&1 && [ -s "$root/tmp/render/out/cloudbrush-cumulus.png" ] &&
-   [ -s "$root/tmp/render/out/cloudbrush-cumulus.exr" ]; then
-  echo "  rendered headlessly in the root: $(tr '\n' ' ' <"$out/render.log" | cut -c1-200)"
-  cp "$root/tmp/render/out/cloudbrush-cumulus.png" "$build/deb-root-render.png"
+# Headless render as the kiosk's user, with the unit's environment: its data dir made as the
+# unit's StateDirectory= makes it, Mesa's shader cache and the output inside it (purge must
+# delete them all).
+data=/var/lib/cloudbrush
+in_root install -d -m 0750 -o cloudbrush -g cloudbrush "$data"
+if in_root runuser -u cloudbrush -- env HOME="$data" CLOUDBRUSH_STATE_DIR="$data" \
+     LIBGL_ALWAYS_SOFTWARE=1 MESA_SHADER_CACHE_DIR="$data/mesa-shader-cache" sh -c \
+     "cd $data && cloudbrush --size 320x200 --grid 64 --out-dir $data/out" \
+     >"$out/render.log" 2>&1 && [ -s "$root$data/out/cloudbrush-cumulus.png" ] &&
+   [ -s "$root$data/out/cloudbrush-cumulus.exr" ]; then
+  echo "  rendered headlessly in the root as cloudbrush: $(tr '\n' ' ' <"$out/render.log" | cut -c1-160)"
+  echo "    ($(find "$root$data" -type f | wc -l) files under $data)"
+  cp "$root$data/out/cloudbrush-cumulus.png" "$build/deb-root-render.png"
 else
   echo "FAIL: cloudbrush did not render in the root:"; cat "$out/render.log"; fail=1
 fi
-rm -rf "$root/tmp/render" "$root/tmp/$(basename "$deb")"
+rm -f "$root/tmp/$(basename "$deb")"
 if in_root apt-get purge -y -qq cloudbrush >"$out/purge.log" 2>&1; then
   listing >"$out/after.txt"
   # The system user stays (postrm): adduser's backup copies of the account files may appear.

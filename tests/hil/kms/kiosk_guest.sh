@@ -7,7 +7,8 @@
 #      printed every second while it runs (the host sends Ctrl+Alt+F2, the mode keys 1-5 and quit
 #      combinations);
 #   3. once the kiosk has seen the keys: the virtual tablet plugged in 20 times while the attract
-#      loop shows (a pause longer than the idle reset between) and 20 times mid-visit;
+#      loop shows (a pause longer than the idle reset between) and 20 times mid-visit, each plug
+#      kept until the kiosk says its first sample reached the screen;
 #   4. the kiosk is stopped (SIGTERM, as systemd would) and says how it ran.
 active() { cat /sys/class/tty/tty0/active; }
 : > /dev/tty2  # allocate VT 2: the kernel switches only to allocated VTs
@@ -35,8 +36,8 @@ while ! grep -q "mode-light is for the operator" /tmp/kiosk.log && [ $i -lt 1800
 done
 echo "KIOSK-HIL keys-seen"
 sleep 12  # the quit combinations, then the idle reset (4 + 1 s) back to the attract loop
-kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc attract 20 7000
-kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc visit 20 300
+kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log attract 20 9000
+kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log visit 20 300
 kill -TERM $kiosk
 wait $kiosk
 echo "KIOSK-HIL kiosk-exit $?"

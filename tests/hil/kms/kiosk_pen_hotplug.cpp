@@ -1,11 +1,12 @@
 // Runs INSIDE the qemu guest of kms_kiosk_test, beside `cloudbrush kiosk`: a Wacom tablet
 // (the PTH-660 fixture descriptor) plugged in and out through /dev/uhid, the kernel's own wacom
 // driver binding it each time. Per cycle: UHID_CREATE2 (its CLOCK_MONOTONIC time printed), the
-// pen hovering, a short stroke, proximity out, UHID_DESTROY; then a pause. The kiosk logs when
-// the first sample after each connection reached its screen (app/shell/kiosk_screen.cpp); the
-// host pairs the two times.
+// pen hovering until the kiosk's log (KIOSK_LOG) says that the first sample after the connection
+// reached its screen (app/shell/kiosk_screen.cpp) — at most 60 s, so a frame loop slowed by
+// emulation still sees every plug — then a short stroke, proximity out, UHID_DESTROY; then a
+// pause. The host pairs the creation times with the kiosk's log lines.
 //
-//   kiosk_pen_hotplug DESCRIPTOR.rdesc LABEL CYCLES PAUSE_MS
+//   kiosk_pen_hotplug DESCRIPTOR.rdesc KIOSK_LOG LABEL CYCLES PAUSE_MS
 //
 // Prints "KIOSK-PEN created LABEL I T_S", "KIOSK-PEN destroyed LABEL I" and "KIOSK-PEN done".
 #include <linux/input.h>
@@ -29,8 +30,8 @@
 
 int main(int argc, char** argv) {
   using namespace cb;
-  if (argc != 5) {
-    std::fprintf(stderr, "usage: %s DESCRIPTOR LABEL CYCLES PAUSE_MS\n", argv[0]);
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: %s DESCRIPTOR KIOSK_LOG LABEL CYCLES PAUSE_MS\n", argv[0]);
     return 2;
   }
   std::ifstream in(argv[1], std::ios::binary);
@@ -46,9 +47,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   const hid::PenLayout& layout = *found.layout;
-  const std::string label = argv[2];
-  const int cycles = std::atoi(argv[3]);
-  const int pause_ms = std::atoi(argv[4]);
+  const std::string kiosk_log = argv[2];
+  const std::string label = argv[3];
+  const int cycles = std::atoi(argv[4]);
+  const int pause_ms = std::atoi(argv[5]);
+  // How many times the kiosk has said a (re)connected pen's first sample reached its screen.
+  const auto samples_seen = [&kiosk_log]() {
+    std::ifstream log(kiosk_log);
+    long n = 0;
+    for (std::string line; std::getline(log, line);)
+      n += line.find("first sample since it connected") != std::string::npos;
+    return n;
+  };
   const auto sleep_ms = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
   for (int i = 1; i <= cycles; ++i) {
     hil::UhidDevice dev;
@@ -60,18 +70,23 @@ int main(int argc, char** argv) {
     }
     std::printf("KIOSK-PEN created %s %d %.6f\n", label.c_str(), i, double(created) / 1e9);
     std::fflush(stdout);
+    const long seen_before = samples_seen();
     hid::PenReportState s;
     s.tool_type = 0x802;
     s.serial = 0x1234;
     s.distance = layout.distance.logical_max / 4;
     const int32_t xm = layout.x.logical_max, ym = layout.y.logical_max;
-    // Hovering near the middle for 1.5 s (a report every 10 ms), then a 0.5 s stroke.
-    for (int k = 0; k < 150; ++k) {
+    // Hovering near the middle (a report every 10 ms) until the kiosk has the pen, then a 0.5 s
+    // stroke.
+    bool seen = false;
+    for (int k = 0; k < 6000 && !seen; ++k) {
       s.x = xm / 2 + (k % 20) * xm / 400;
       s.y = ym / 2;
       dev.input(hid::encodePenReport(layout, s));
       sleep_ms(10);
+      if (k % 10 == 9) seen = samples_seen() > seen_before;
     }
+    if (!seen) std::printf("KIOSK-PEN unseen %s %d\n", label.c_str(), i);
     s.tip = true;
     s.distance = 0;
     for (int k = 0; k < 50; ++k) {

@@ -32,7 +32,8 @@ done
 if [ "${CB_KMS_WITH_LIBS:-0}" = 1 ]; then
   libdir=/usr/lib/x86_64-linux-gnu
   for lib in "$libdir"/dri/kms_swrast_dri.so "$libdir"/dri/swrast_dri.so \
-             "$libdir"/libEGL_mesa.so.0 "$libdir"/libgbm.so.1 "$libdir"/libglapi.so.0; do
+             "$libdir"/libEGL_mesa.so.0 "$libdir"/libgbm.so.1 "$libdir"/libglapi.so.0 \
+             "$libdir"/libGL.so.1; do  # libGL: Dear ImGui's GL loader dlopen()s it
     args+=(--binary "$lib")
   done
   args+=(--file /usr/share/glvnd/egl_vendor.d/50_mesa.json:/usr/share/glvnd/egl_vendor.d/50_mesa.json)
