@@ -21,7 +21,7 @@ echo "KIOSK-HIL back $(active)"
 
 export CLOUDBRUSH_CONFIG_DIR=/config MESA_SHADER_CACHE_DIR=/tmp/data/mesa-shader-cache
 mkdir -p /tmp/data
-cloudbrush kiosk --display kms --grid 32 --data-dir /tmp/data --idle-seconds 4 \
+cloudbrush kiosk --display kms --grid 32 --data-dir /tmp/data --idle-seconds 6 \
   --warning-seconds 1 </dev/tty1 >/tmp/kiosk.log 2>&1 &
 kiosk=$!
 tail -f /tmp/kiosk.log | sed 's/^/KIOSK-LOG /' &
@@ -29,14 +29,14 @@ tailer=$!
 while kill -0 $kiosk 2>/dev/null; do echo "KIOSK-HIL active $(active)"; sleep 1; done &
 while [ ! -e /tmp/data/health.json ] && kill -0 $kiosk 2>/dev/null; do sleep 0.2; done
 echo "KIOSK-HIL kiosk-up"
-# The host's keys end with 5 (Light: the operator's) and the quit combinations.
+# The host's keys end with Esc and the other quit combinations (10 s).
 i=0
-while ! grep -q "mode-light is for the operator" /tmp/kiosk.log && [ $i -lt 1800 ]; do
+while ! grep -q "quit is for the operator" /tmp/kiosk.log && [ $i -lt 3000 ]; do
   sleep 0.2; i=$((i+1))
 done
 echo "KIOSK-HIL keys-seen"
-sleep 12  # the quit combinations, then the idle reset (4 + 1 s) back to the attract loop
-kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log attract 20 9000
+sleep 20  # the other quit combinations, then the idle reset (6 + 1 s) back to the attract loop
+kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log attract 20 10000
 kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log visit 20 300
 kill -TERM $kiosk
 wait $kiosk

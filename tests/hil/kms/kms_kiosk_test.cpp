@@ -105,17 +105,23 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   // 2. The kiosk: its VT locked, the attract loop by page flip.
   ASSERT_FALSE(vm.waitForLine("KIOSK-HIL kiosk-up", "Kernel panic", 600).empty()) << console();
   EXPECT_NE(console().find("cloudbrush: kms: VT 1 locked"), std::string::npos) << console();
+  // Screendumps 5 s apart until two differ (the first frames take a while under TCG).
   const std::string shot_a = work + "/kiosk-attract-a.ppm", shot_b = work + "/kiosk-attract-b.ppm";
-  ASSERT_TRUE(vm.monitor("screendump " + shot_a, &reply, &error)) << error;
-  sleepSeconds(6.0);
-  ASSERT_TRUE(vm.monitor("screendump " + shot_b, &reply, &error)) << error;
   PpmImage a, b;
+  double brightness = 0.0, change = 0.0;
+  ASSERT_TRUE(vm.monitor("screendump " + shot_a, &reply, &error)) << error;
   ASSERT_TRUE(readPpm(shot_a, &a, &error)) << error;
-  ASSERT_TRUE(readPpm(shot_b, &b, &error)) << error;
-  EXPECT_EQ(a.width, 640);
-  EXPECT_EQ(a.height, 400);
-  const double brightness = meanBrightness(b), change = meanDifference(a, b);
-  std::printf("attract screendumps: mean brightness %.1f/255, mean change over 6 s %.2f/255\n",
+  for (int tries = 0; tries < 60 && !(change > 0.2 && brightness > 20.0); ++tries) {
+    sleepSeconds(5.0);
+    ASSERT_TRUE(vm.monitor("screendump " + shot_b, &reply, &error)) << error;
+    ASSERT_TRUE(readPpm(shot_b, &b, &error)) << error;
+    brightness = meanBrightness(b);
+    change = meanDifference(a, b);
+    if (!(change > 0.2 && brightness > 20.0)) std::rename(shot_b.c_str(), shot_a.c_str()), a = b;
+  }
+  EXPECT_EQ(b.width, 640);
+  EXPECT_EQ(b.height, 400);
+  std::printf("attract screendumps: mean brightness %.1f/255, mean change over 5 s %.2f/255\n",
               brightness, change);
   EXPECT_GT(brightness, 20.0) << "the attract loop is on the screen, not a black card";
   EXPECT_GT(change, 0.2) << "the attract loop's frames reach the screen by page flip";
@@ -124,11 +130,24 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   //    mode keys, then the quit combinations.
   const size_t before_keys = vm.lines().size();
   ASSERT_TRUE(vm.monitor("sendkey ctrl-alt-f2", &reply, &error)) << error;
+  ASSERT_FALSE(vm.waitForLine("KIOSK-LOG cloudbrush kiosk: visitor 1 painting", "", 300).empty())
+      << console();
+  // One key at a time, each after the kiosk said the last one: under TCG a frame takes seconds,
+  // and keys sent faster overflow the kernel's evdev buffer (all queued events are dropped).
   // 3 first: a visitor starts in Camera mode, where 1 changes nothing (and says nothing).
-  for (const char* key : {"3", "1", "4", "2", "5", "esc", "q", "ctrl-c", "alt-f4",
-                          "ctrl-alt-backspace", "ctrl-alt-delete"}) {
-    sleepSeconds(0.4);
+  for (const auto& [key, said] :
+       std::vector<std::pair<std::string, std::string>>{{"3", "KIOSK-LOG cloudbrush: paint"},
+                                                        {"1", "KIOSK-LOG cloudbrush: camera"},
+                                                        {"4", "KIOSK-LOG cloudbrush: erase"},
+                                                        {"2", "mode-canvas is for the operator"},
+                                                        {"5", "mode-light is for the operator"},
+                                                        {"esc", "quit is for the operator"}}) {
+    ASSERT_TRUE(vm.monitor("sendkey " + key, &reply, &error)) << error;
+    EXPECT_FALSE(vm.waitForLine(said, "", 120).empty()) << key << ": " << console();
+  }
+  for (const char* key : {"q", "ctrl-c", "alt-f4", "ctrl-alt-backspace", "ctrl-alt-delete"}) {
     ASSERT_TRUE(vm.monitor(std::string("sendkey ") + key, &reply, &error)) << error;
+    sleepSeconds(2.0);
   }
   ASSERT_FALSE(vm.waitForLine("KIOSK-HIL keys-seen", "Kernel panic", 300).empty()) << console();
   sleepSeconds(4.0);
@@ -145,15 +164,6 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   EXPECT_GE(active_lines, 3) << console();
   EXPECT_EQ(switched, 0) << "Ctrl+Alt+F2 switched the VT away from the kiosk";
   const std::string text = console();
-  // The painter says each mode change (its journal records them too).
-  const size_t paint = text.find("KIOSK-LOG cloudbrush: paint\n");
-  const size_t camera = text.find("KIOSK-LOG cloudbrush: camera\n", paint);
-  const size_t erase = text.find("KIOSK-LOG cloudbrush: erase\n", camera);
-  EXPECT_NE(paint, std::string::npos) << text;
-  EXPECT_NE(camera, std::string::npos) << "1 after 3: " << text;
-  EXPECT_NE(erase, std::string::npos) << "4 after 1: " << text;
-  EXPECT_NE(text.find("mode-canvas is for the operator"), std::string::npos) << text;
-  EXPECT_NE(text.find("mode-light is for the operator"), std::string::npos) << text;
   EXPECT_NE(text.find("quit is for the operator"), std::string::npos) << text;
 
   // 4. The tablet: 20 plugs during the attract loop, 20 mid-visit, then SIGTERM.
