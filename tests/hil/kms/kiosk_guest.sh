@@ -24,9 +24,20 @@ mkdir -p /tmp/data
 cloudbrush kiosk --display kms --grid 32 --data-dir /tmp/data --idle-seconds 6 \
   --warning-seconds 1 </dev/tty1 >/tmp/kiosk.log 2>&1 &
 kiosk=$!
-tail -f /tmp/kiosk.log | sed 's/^/KIOSK-LOG /' &
-tailer=$!
-while kill -0 $kiosk 2>/dev/null; do echo "KIOSK-HIL active $(active)"; sleep 1; done &
+# Every second while the kiosk runs: its new log lines (as KIOSK-LOG), then the active VT.
+(
+  n=0
+  while kill -0 $kiosk 2>/dev/null; do
+    m=$(wc -l </tmp/kiosk.log)
+    [ "$m" -gt "$n" ] && head -n "$m" /tmp/kiosk.log | tail -n $((m - n)) | sed 's/^/KIOSK-LOG /'
+    n=$m
+    echo "KIOSK-HIL active $(active)"
+    sleep 1
+  done
+  m=$(wc -l </tmp/kiosk.log)
+  [ "$m" -gt "$n" ] && head -n "$m" /tmp/kiosk.log | tail -n $((m - n)) | sed 's/^/KIOSK-LOG /'
+) &
+reporter=$!
 while [ ! -e /tmp/data/health.json ] && kill -0 $kiosk 2>/dev/null; do sleep 0.2; done
 echo "KIOSK-HIL kiosk-up"
 # The host's keys end with Esc and the other quit combinations (10 s).
@@ -40,6 +51,6 @@ kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log attract 20 10000
 kiosk_pen_hotplug /bin/wacom-pth660_v145.rdesc /tmp/kiosk.log visit 20 300
 kill -TERM $kiosk
 wait $kiosk
-echo "KIOSK-HIL kiosk-exit $?"
-sleep 1
-kill $tailer 2>/dev/null
+status=$?
+wait $reporter
+echo "KIOSK-HIL kiosk-exit $status"

@@ -14,13 +14,14 @@
 //     the first pen sample reaches the screen showing (attract / visitor), measured from the
 //     uhid device's creation (the figure; ≤ 1 s wanted), and the strokes are painted;
 //   - the kiosk ends on SIGTERM with its last page flip reported.
-// Screendumps are kept in <build>/tests/hil/kms/work/kiosk-*.ppm for looking.
+// Screendumps are kept in <build>/tests/hil/kms/work/kiosk/kiosk-*.ppm for looking.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -69,7 +70,10 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   std::string vmlinuz, cache;
   ASSERT_FALSE(fetchKernel(&vmlinuz, &cache).empty())
       << "fetch_kernel.sh failed (needs apt access once)";
-  const std::string work = CB_KMS_WORK;
+  // A folder of its own: QemuVm names its serial log and monitor socket after the device, and
+  // kms_flip_test / kms_egl_test boot bochs-display too (ctest -j runs them side by side).
+  const std::string work = std::string(CB_KMS_WORK) + "/kiosk";
+  std::filesystem::create_directories(work);
   const std::string initrd = work + "/kms_kiosk.cpio.gz";
   std::string log;
   ASSERT_EQ(runCommand("CB_KMS_WITH_LIBS=1 CB_KMS_MODULES='evdev uhid wacom hid-generic' "
