@@ -4,7 +4,8 @@
 // pen hovering until the kiosk's log (KIOSK_LOG) says that the first sample after the connection
 // reached its screen (app/shell/kiosk_screen.cpp) — at most 60 s, so a frame loop slowed by
 // emulation still sees every plug — then a short stroke, proximity out, UHID_DESTROY; then a
-// pause. The host pairs the creation times with the kiosk's log lines.
+// wait until the kiosk noticed the unplug, and a pause. The host pairs the creation times with
+// the kiosk's log lines.
 //
 //   kiosk_pen_hotplug DESCRIPTOR.rdesc KIOSK_LOG LABEL CYCLES PAUSE_MS
 //
@@ -52,13 +53,15 @@ int main(int argc, char** argv) {
   const int cycles = std::atoi(argv[4]);
   const int pause_ms = std::atoi(argv[5]);
   // How many times the kiosk has said a (re)connected pen's first sample reached its screen.
-  const auto samples_seen = [&kiosk_log]() {
+  const auto count_in_log = [&kiosk_log](const char* text) {
     std::ifstream log(kiosk_log);
     long n = 0;
-    for (std::string line; std::getline(log, line);)
-      n += line.find("first sample since it connected") != std::string::npos;
+    for (std::string line; std::getline(log, line);) n += line.find(text) != std::string::npos;
     return n;
   };
+  const auto samples_seen = [&]() { return count_in_log("first sample since it connected"); };
+  // The kiosk says "the pen was unplugged" (from a visit) or "pen searching" (any screen).
+  const auto unplugs_seen = [&]() { return count_in_log("cloudbrush: pen searching"); };
   const auto sleep_ms = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
   for (int i = 1; i <= cycles; ++i) {
     hil::UhidDevice dev;
@@ -102,9 +105,13 @@ int main(int argc, char** argv) {
     s.in_range = s.sense = false;
     dev.input(hid::encodePenReport(layout, s));
     sleep_ms(100);
+    const long unplugs_before = unplugs_seen();
     dev.destroy();
     std::printf("KIOSK-PEN destroyed %s %d\n", label.c_str(), i);
     std::fflush(stdout);
+    // Until the kiosk noticed (a loop slowed by emulation could otherwise miss a quick replug
+    // altogether: the pen would look connected throughout), then the pause.
+    for (int k = 0; k < 600 && unplugs_seen() == unplugs_before; ++k) sleep_ms(100);
     sleep_ms(pause_ms);
   }
   std::printf("KIOSK-PEN done %s\n", label.c_str());
