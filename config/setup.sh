@@ -27,8 +27,9 @@ packages=(
   libxml2-dev
   # virtual tablet / KMS in the loop (qemu + Debian's stock kernel)
   qemu-system-x86 busybox-static cpio
-  # packaging checks: systemd-analyze verify on the kiosk unit, the .deb (dpkg-shlibdeps, lintian)
-  systemd dpkg-dev lintian
+  # packaging checks: systemd-analyze verify on the kiosk unit, the .deb (dpkg-shlibdeps, lintian),
+  # the .deb installed into a throwaway Debian 12 root (mmdebstrap; slow label)
+  systemd dpkg-dev lintian mmdebstrap
 )
 export DEBIAN_FRONTEND=noninteractive
 missing=()

@@ -19,13 +19,10 @@
 #include "app/cli/commands.h"
 #include "app/cli/paint_headless.h"
 #include "app/core/config_paths.h"
-#include "app/kiosk/health_file_writer.h"
-#include "app/kiosk/health_tracker.h"
 #include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_service.h"
 #include "app/kiosk/kiosk_texts.h"
-#include "app/kiosk/sd_notifier.h"
 #include "app/kiosk/watchdog_interval.h"
-#include "app/kiosk/watchdog_pinger.h"
 #include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
 #include "app/render/render_config.h"
@@ -153,6 +150,7 @@ int commandPaint(int argc, char** argv) {
   if (!parseDisplayPlatform(platform, &display_options.platform))
     return fail("--display: expected auto, kms, x11 or surfaceless, got '" + platform + "'", 2);
   display_options.drm_device = args.get("drm-device", "");
+  display_options.lock_vt = args.has("kiosk");  // no VT switching out of the kiosk
   const std::string size = args.get("size", "1280x720");
   if (!parseSize(size, &display_options.width, &display_options.height))
     return fail("--size: expected WxH (1..16384 each), got '" + size + "'", 2);
@@ -404,34 +402,17 @@ int commandPaint(int argc, char** argv) {
   // Kiosk service (issue 11): READY after the first frame, watchdog pings from the loop itself
   // (a hung loop stops them and systemd restarts the service), health.json for remote checks.
   const MonotonicClock clock;
-  const SdNotifier notifier = SdNotifier::fromEnvironment();
-  std::optional<WatchdogPinger> pinger;
-  HealthTracker health(clock);
-  HealthFileWriter health_file(data_dir, health, clock);
-  bool ready_sent = false;
+  std::optional<KioskService> service;
   if (kiosk) {
     std::string watchdog_error;
-    if (const auto timeout = watchdogTimeoutFromEnvironment(&watchdog_error))
-      pinger.emplace(notifier, clock, *timeout);
-    else if (!watchdog_error.empty())
+    const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
+    if (!watchdog_error.empty())
       std::fprintf(stderr, "cloudbrush kiosk: %s\n", watchdog_error.c_str());
-    health.setDeviceState(pen ? pen->backendName() : "no tablet backend");
-    loop_options.each_iteration = [&](bool presented) {
-      std::string service_error;
-      if (presented) health.onFrame();
-      if (pen)
-        health.setDeviceState(std::string(pen->backendName()) + " " +
-                              penConnectionName(pen->connection()));
-      if (presented && !ready_sent) {
-        ready_sent = true;
-        if (!notifier.ready(&service_error) ||
-            !notifier.status("attract loop: waiting for a visitor", &service_error))
-          std::fprintf(stderr, "cloudbrush kiosk: %s\n", service_error.c_str());
-      }
-      if (pinger && !pinger->tick(&service_error))
-        std::fprintf(stderr, "cloudbrush kiosk: watchdog: %s\n", service_error.c_str());
-      if (!health_file.writeIfDue(&service_error)) health.setError(service_error);
-    };
+    service.emplace(SdNotifier::fromEnvironment(), watchdog, clock, data_dir, pen.get(),
+                    [](const std::string& problem) {
+                      std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
+                    });
+    loop_options.each_iteration = [&service](bool presented) { service->onIteration(presented); };
   }
   std::unique_ptr<KioskScreen> kiosk_screen;
   if (kiosk) {
@@ -444,11 +425,11 @@ int commandPaint(int argc, char** argv) {
   // Durability (issue 10): the journal syncs at every stroke end (PaintSession) and, from the
   // frame loop, whenever records older than a second are not yet on the disk.
   {
-    const std::function<void(bool)> service = loop_options.each_iteration;
-    loop_options.each_iteration = [&journal, &clock, service](bool presented) {
+    const std::function<void(bool)> kiosk_iteration = loop_options.each_iteration;
+    loop_options.each_iteration = [&journal, &clock, kiosk_iteration](bool presented) {
       if (journal.isOpen() && !journal.syncIfDue(clock.nowNs()))
         std::fprintf(stderr, "cloudbrush: journal: %s\n", journal.error().c_str());
-      if (service) service(presented);
+      if (kiosk_iteration) kiosk_iteration(presented);
     };
   }
   PaintLoop loop(*display, renderer, volume, light, loop_options);
@@ -484,20 +465,15 @@ int commandPaint(int argc, char** argv) {
     setup.render_settings = formatRenderConfig(render_config);
     setup.moving_scale = loop_options.moving_scale;
     setup.record_journals = record;
-    setup.on_status = [&](const std::string& status) {
-      std::string service_error;
-      if (ready_sent && !notifier.status(status, &service_error))
-        std::fprintf(stderr, "cloudbrush kiosk: %s\n", service_error.c_str());
-    };
-    setup.on_input = [&]() { health.onInput(); };
+    setup.on_status = [&service](const std::string& status) { service->onStatus(status); };
+    setup.on_input = [&service]() { service->onInput(); };
     kiosk_screen = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), pen.get(),
                                                  clock, std::move(setup));
   }
   PaintLoopSummary summary;
   const bool ran = loop.run(&g_stop, &summary, &error, kiosk_screen.get());
   if (kiosk) {
-    std::string service_error;
-    notifier.stopping(&service_error);
+    service->stopping();
     std::printf("cloudbrush kiosk: %ld visits, %ld idle resets, %zu clouds kept in the gallery\n",
                 kiosk_screen->visits(), kiosk_screen->idleResets(),
                 kiosk_screen->gallerySaved().size());

@@ -8,48 +8,56 @@
 
 namespace cb {
 
-SessionReplay replaySession(
-    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
-    const PaintSessionSettings& settings_fallback,
-    const std::function<void(size_t index, const PaintSession& session)>& before_record) {
-  SessionReplay replay;
-  replay.journal_error = journal.error;
-  PaintSessionSettings settings = settings_fallback;
-  BrushConfig recorded_brush = brush;
-  MappingConfig recorded_mapping = mapping;
+RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
+                                  const BrushConfig& brush, const MappingConfig& mapping,
+                                  const PaintSessionSettings& settings_fallback) {
+  RecordedSettings recorded{settings_fallback, brush, mapping, false, {}};
   bool have_session = false;
-  for (size_t i = 0; i < journal.records.size(); ++i) {
-    const JournalRecord& record = journal.records[i];
+  for (size_t i = 0; i < records.size(); ++i) {
+    const JournalRecord& record = records[i];
     if (record.type == JournalRecordType::kPenSample) break;
     std::string error;
     if (record.type == JournalRecordType::kSession && !have_session) {
       have_session = true;
-      if (!parseSessionSettings(record.text(), &settings, &error))
-        replay.problems.push_back("record " + std::to_string(i) + ": " + error);
+      if (!parseSessionSettings(record.text(), &recorded.settings, &error))
+        recorded.problems.push_back("record " + std::to_string(i) + ": " + error);
     } else if (record.type == JournalRecordType::kSettings) {
       // The brush and mapping in force while painting (journals from before Settings records
       // replay with the caller's, as they always did).
       std::string name, body;
       std::vector<std::string> errors;
       if (!parseSettingsRecord(record.text(), &name, &body, &error)) {
-        replay.problems.push_back("record " + std::to_string(i) + ": " + error);
+        recorded.problems.push_back("record " + std::to_string(i) + ": " + error);
       } else if (name == "brush.toml") {
         if (!parseRecordedBrush(body, "record " + std::to_string(i) + " (brush.toml)",
-                                &recorded_brush, &errors))
-          for (const std::string& e : errors) replay.problems.push_back(e);
-        replay.recorded_settings = true;
+                                &recorded.brush, &errors))
+          for (const std::string& e : errors) recorded.problems.push_back(e);
+        recorded.recorded_brush_or_mapping = true;
       } else if (name == "mapping.toml") {
         try {
-          recorded_mapping =
+          recorded.mapping =
               parseRecordedMapping(body, "record " + std::to_string(i) + " (mapping.toml)");
         } catch (const std::exception& e) {
-          replay.problems.push_back(e.what());
+          recorded.problems.push_back(e.what());
         }
-        replay.recorded_settings = true;
+        recorded.recorded_brush_or_mapping = true;
       }
     }
   }
-  replay.session = std::make_unique<PaintSession>(settings, recorded_brush, recorded_mapping);
+  return recorded;
+}
+
+SessionReplay replaySession(
+    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
+    const PaintSessionSettings& settings_fallback,
+    const std::function<void(size_t index, const PaintSession& session)>& before_record) {
+  SessionReplay replay;
+  replay.journal_error = journal.error;
+  RecordedSettings recorded = recordedSettings(journal.records, brush, mapping, settings_fallback);
+  replay.recorded_settings = recorded.recorded_brush_or_mapping;
+  replay.problems = std::move(recorded.problems);
+  replay.session =
+      std::make_unique<PaintSession>(recorded.settings, recorded.brush, recorded.mapping);
   replay.session->setQuietMapping(true);
   for (size_t i = 0; i < journal.records.size(); ++i) {
     const JournalRecord& record = journal.records[i];

@@ -31,6 +31,20 @@ struct SessionReplay {
   bool complete() const { return journal_error.empty() && problems.empty(); }
 };
 
+// The session settings, brush and mapping a journal was recorded with: its Session and Settings
+// records before the first pen sample; the fallbacks where it has none. Records that do not
+// parse are named in `problems` ("record N: ...") and leave the fallback in place.
+struct RecordedSettings {
+  PaintSessionSettings settings;
+  BrushConfig brush;
+  MappingConfig mapping;
+  bool recorded_brush_or_mapping = false;  // a Settings record gave the brush or the mapping
+  std::vector<std::string> problems;
+};
+RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
+                                  const BrushConfig& brush, const MappingConfig& mapping,
+                                  const PaintSessionSettings& settings_fallback = {});
+
 // `settings_fallback` is used when the journal has no Session record before its first sample;
 // `brush` and `mapping` when it has no Settings records.
 // `before_record`, when given, is called with each record's index before it is applied, and

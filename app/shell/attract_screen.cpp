@@ -7,6 +7,7 @@
 #include "app/kiosk/gallery_store.h"
 #include "app/render/gl/gl.h"
 #include "app/render/render_style.h"
+#include "app/session/session_replay.h"
 
 namespace cb {
 
@@ -18,17 +19,15 @@ AttractScreen::AttractScreen(VolumeRenderer& renderer, const Clock& clock,
       journal_(std::move(journal)),
       options_(std::move(options)),
       ui_(ui) {
-  // The journal's own session settings (screen, format, auto-end), so the replay is the one
-  // `cloudbrush replay` gives; the grid may be the kiosk's.
-  for (const JournalRecord& record : journal_) {
-    if (record.type == JournalRecordType::kPenSample) break;
-    if (record.type == JournalRecordType::kSession) {
-      std::string error;
-      if (!parseSessionSettings(record.text(), &settings_, &error))
-        problems_.push_back("attract journal: " + error);
-      break;
-    }
-  }
+  // The journal's own session settings (screen, format, auto-end), brush and mapping, so the
+  // replay is the one `cloudbrush replay` gives whatever the local config; the grid may be the
+  // kiosk's.
+  RecordedSettings recorded = recordedSettings(journal_, options_.brush, options_.mapping);
+  settings_ = recorded.settings;
+  options_.brush = recorded.brush;
+  options_.mapping = recorded.mapping;
+  for (const std::string& problem : recorded.problems)
+    problems_.push_back("attract journal: " + problem);
   if (options_.grid > 0) settings_.grid = options_.grid;
   restart();
 }

@@ -180,11 +180,12 @@ void KioskScreen::prepareVisitor() {
   paint_.attachPen(pen_, session.get());
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
   visitor_ = std::move(session);
+  next_visitor_pending_ = false;
 }
 
 void KioskScreen::beginVisit(int64_t now) {
   ++visits_;
-  if (!visitor_) prepareVisitor();
+  if (!visitor_ || next_visitor_pending_) prepareVisitor();
   if (setup_.record_journals) {
     // A journal of the visitor's own.
     std::error_code ec;
@@ -246,7 +247,12 @@ void KioskScreen::endVisit(int64_t now, const std::string& why) {
   if (visitor_) visitor_->recordTo(nullptr, now);
   if (journal_) journal_->close();
   journal_.reset();
-  prepareVisitor();
+  // The next visitor's session is made in the loop iteration after the attract loop's first
+  // frame (update()), not here: the attract loop's fresh session and the visitor's are each a
+  // 256³ allocation, and together with the full volume upload of that frame they stalled one
+  // iteration for seconds on a loaded machine (the watchdog pings between iterations).
+  next_visitor_pending_ = true;
+  attract_shown_ = false;
   ++idle_resets_;
   std::fprintf(stderr,
                "cloudbrush kiosk: idle reset (%s): the sky is cleared; the attract loop resumes\n",
@@ -273,7 +279,17 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
       else if ((state_ == State::kOperator || state_ == State::kCalibrate) &&
                before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
+      awaiting_first_sample_ = connected;
     }
+  }
+  if (awaiting_first_sample_ && !samples.empty()) {
+    // For the log and the hotplug check (tests/hil/kms): how long a (re)connected pen took to
+    // reach the screen that is showing.
+    awaiting_first_sample_ = false;
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: pen: first sample since it connected (event at %.6f s) "
+                 "reached the %s screen at %.6f s (monotonic)\n",
+                 double(samples.front().t_ns) / 1e9, stateName(state_), double(now) / 1e9);
   }
   switch (state_) {
     case State::kAttract: {
@@ -515,6 +531,8 @@ std::string KioskScreen::update(const FrameContext& frame) {
       break;
     }
     case State::kAttract:
+      // The next visitor's session, one loop iteration after the reset's (see endVisit).
+      if (next_visitor_pending_ && attract_shown_) prepareVisitor();
       attract_.update(frame);
       break;
     case State::kVisitor:
@@ -591,7 +609,10 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
 
 void KioskScreen::presented(const FrameContext& frame, double frame_ms) {
   if (state_ == State::kVisitor) paint_.presented(frame, frame_ms);
-  if (state_ == State::kAttract) attract_.presented(frame, frame_ms);
+  if (state_ == State::kAttract) {
+    attract_.presented(frame, frame_ms);
+    attract_shown_ = true;
+  }
   if (state_ == State::kCalibrate) calibration_->presented(frame, frame_ms);
 }
 

@@ -94,7 +94,8 @@ class KioskScreen : public Screen {
   static const char* stateName(State state);
   long idleResets() const { return idle_resets_; }
   long visits() const { return visits_; }
-  // The current visitor's session; between visits, the fresh one the next visitor gets.
+  // The current visitor's session; between visits, the fresh one the next visitor gets (made
+  // just after the attract loop's first frame following a reset; until then the last one's).
   const PaintSession* visitorSession() const { return visitor_.get(); }
   const AttractScreen& attract() const { return attract_; }
   const OperatorPanelScreen& operatorPanel() const { return panel_; }
@@ -143,6 +144,9 @@ class KioskScreen : public Screen {
   int64_t saved_notice_until_ns_ = 0;
   std::string saved_notice_;
   int last_connection_ = -1;
+  bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
+  bool next_visitor_pending_ = false;   // after an idle reset, until prepareVisitor() ran
+  bool attract_shown_ = false;          // an attract frame was presented since the reset
   long idle_resets_ = 0, visits_ = 0;
   std::string notice_, quit_, message_;
   std::vector<long> gallery_saved_;

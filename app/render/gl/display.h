@@ -37,6 +37,9 @@ struct DisplayOptions {
   std::string drm_device;
   // X11 display name; empty = $DISPLAY.
   std::string x11_display;
+  // KMS, the kiosk: the terminal on stdin takes no keys and refuses VT switches while the
+  // display is open (display_kms_vt.h); said on stderr when stdin is not a VT.
+  bool lock_vt = false;
 };
 
 // What a display reports between frames. Keys are reported, not interpreted: `keysym` is the

@@ -5,10 +5,14 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <gbm.h>
+#include <unistd.h>
 #include <xf86drm.h>
+
+#include <cstdio>
 
 #include "app/render/gl/display_kms_keyboard.h"
 #include "app/render/gl/display_kms_output.h"
+#include "app/render/gl/display_kms_vt.h"
 #include "app/render/gl/display_platforms.h"
 
 namespace cb {
@@ -81,6 +85,17 @@ class KmsDisplay final : public Display {
     }
     glViewport(0, 0, width_, height_);
     keyboards_ = std::make_unique<EvdevKeyboards>();
+    if (options.lock_vt) {
+      std::string why;
+      vt_ = VtLock::lock(STDIN_FILENO, &why);
+      if (vt_)
+        std::fprintf(stderr,
+                     "cloudbrush: kms: VT %d locked: the console takes no keys (K_OFF) and "
+                     "refuses VT switches (VT_PROCESS)\n",
+                     vt_->number());
+      else
+        std::fprintf(stderr, "cloudbrush: kms: VT switching is NOT blocked: %s\n", why.c_str());
+    }
     return true;
   }
 
@@ -167,6 +182,7 @@ class KmsDisplay final : public Display {
     return true;
   }
 
+  std::unique_ptr<VtLock> vt_;  // first: restored after everything else is closed
   KmsOutput output_;
   gbm_device* gbm_ = nullptr;
   gbm_surface* surface_ = nullptr;

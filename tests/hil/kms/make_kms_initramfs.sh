@@ -7,8 +7,9 @@
 #
 # FILEs go to /bin (with their ldd closure). With CB_KMS_WITH_LIBS=1 Mesa's EGL/GBM/DRI
 # drivers (dlopen()ed, so named here) and glvnd's vendor file are added too (the EGL-on-GBM
-# test; about 90 MB compressed). /init loads the modules, waits for /dev/dri/card0, runs
-# COMMAND and powers off.
+# test; about 90 MB compressed). CB_KMS_MODULES adds kernel modules (e.g. "evdev uhid wacom" for
+# the kiosk test's keyboard and virtual tablet), CB_KMS_FILES adds SRC:DEST files or folders.
+# /init loads the modules, waits for /dev/dri/card0, runs COMMAND and powers off.
 set -euo pipefail
 cache=${1:?usage: make_kms_initramfs.sh KERNEL_CACHE OUT.cpio.gz COMMAND FILE...}
 out=${2:?OUT}
@@ -19,7 +20,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 args=(--kernel-cache "$cache" --out "$out" --init "$work/init")
-for m in bochs virtio_pci virtio-gpu; do args+=(--module "$m"); done
+for m in bochs virtio_pci virtio-gpu ${CB_KMS_MODULES:-}; do args+=(--module "$m"); done
+for f in ${CB_KMS_FILES:-}; do args+=(--file "$f"); done
 for f in "$@"; do
   # Without debug info: a smaller initramfs, a faster boot.
   strip --strip-debug -o "$work/$(basename "$f")" "$f" 2>/dev/null || cp -L "$f" "$work/"
@@ -30,7 +32,8 @@ done
 if [ "${CB_KMS_WITH_LIBS:-0}" = 1 ]; then
   libdir=/usr/lib/x86_64-linux-gnu
   for lib in "$libdir"/dri/kms_swrast_dri.so "$libdir"/dri/swrast_dri.so \
-             "$libdir"/libEGL_mesa.so.0 "$libdir"/libgbm.so.1 "$libdir"/libglapi.so.0; do
+             "$libdir"/libEGL_mesa.so.0 "$libdir"/libgbm.so.1 "$libdir"/libglapi.so.0 \
+             "$libdir"/libGL.so.1; do  # libGL: Dear ImGui's GL loader dlopen()s it
     args+=(--binary "$lib")
   done
   args+=(--file /usr/share/glvnd/egl_vendor.d/50_mesa.json:/usr/share/glvnd/egl_vendor.d/50_mesa.json)

@@ -23,8 +23,10 @@ QemuVm::QemuVm(const std::string& kernel, const std::string& initrd, const std::
 
 QemuVm::QemuVm(const std::string& kernel, const std::string& initrd, const Options& options,
                const std::string& work_dir) {
-  serial_log_ = work_dir + "/serial-" + options.name + ".log";
-  monitor_socket_ = work_dir + "/monitor-" + options.name + ".sock";
+  // File names from the name alone ("bochs-display,xres=640" -> "bochs-display").
+  const std::string name = options.name.substr(0, options.name.find(','));
+  serial_log_ = work_dir + "/serial-" + name + ".log";
+  monitor_socket_ = work_dir + "/monitor-" + name + ".sock";
   unlink(serial_log_.c_str());
   unlink(monitor_socket_.c_str());
   // no_timer_check: on a loaded host TCG can be too slow for the kernel's IO-APIC timer check,

@@ -10,7 +10,8 @@ namespace cb::hil {
 
 class QemuVm {
  public:
-  // `device` is the display device, e.g. "bochs-display" or "virtio-gpu-pci"; `work_dir` holds
+  // `device` is the display device, e.g. "bochs-display" or "virtio-gpu-pci", with properties
+  // ("bochs-display,xres=640,yres=400": a smaller mode for TCG); `work_dir` holds
   // the serial log and the monitor socket.
   QemuVm(const std::string& kernel, const std::string& initrd, const std::string& device,
          const std::string& work_dir);

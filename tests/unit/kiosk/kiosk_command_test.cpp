@@ -11,7 +11,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 
@@ -20,6 +19,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "notify_socket_listener.h"
+#include "tests/support/strace_file_writes.h"
 
 namespace cb {
 namespace {
@@ -175,32 +175,10 @@ TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
   EXPECT_EQ(after, before);
   // Every path the process (and its threads) opened for writing, created, renamed or removed
   // is inside the data dir (devices aside: the render node is opened read-write).
-  std::istringstream trace(slurp(root + "/strace.txt"));
-  std::string line;
-  size_t writes = 0, outside = 0;
-  std::string first_outside;
-  while (std::getline(trace, line)) {
-    const bool open = line.find("open") != std::string::npos;
-    const bool writing =
-        (open &&
-         (line.find("O_WRONLY") != std::string::npos || line.find("O_RDWR") != std::string::npos ||
-          line.find("O_CREAT") != std::string::npos)) ||
-        line.find("mkdir") != std::string::npos || line.find("rename") != std::string::npos ||
-        line.find("unlink") != std::string::npos || line.find("rmdir") != std::string::npos;
-    if (!writing || line.find("= -1") != std::string::npos) continue;
-    const size_t q = line.find('"');
-    if (q == std::string::npos) continue;
-    std::string path = line.substr(q + 1, line.find('"', q + 1) - q - 1);
-    if (path.rfind("/dev/", 0) == 0) continue;
-    ++writes;
-    if (path[0] != '/') path = root + "/cwd/" + path;
-    if (path.rfind(data + "/", 0) != 0 && path.rfind(root + "/out", 0) != 0) {
-      ++outside;
-      if (first_outside.empty()) first_outside = line;
-    }
-  }
-  EXPECT_GT(writes, 5u) << "strace saw the kiosk write its files";
-  EXPECT_EQ(outside, 0u) << first_outside;
+  const test::FileWrites writes =
+      test::fileWritesOutside(slurp(root + "/strace.txt"), root + "/cwd", {data, root + "/out"});
+  EXPECT_GT(writes.writes, 5u) << "strace saw the kiosk write its files";
+  EXPECT_TRUE(writes.outside.empty()) << writes.outside.front();
   fs::remove_all(root);
 }
 

@@ -1,0 +1,120 @@
+// Runs INSIDE the qemu guest of kms_kiosk_test, beside `cloudbrush kiosk`: a Wacom tablet
+// (the PTH-660 fixture descriptor) plugged in and out through /dev/uhid, the kernel's own wacom
+// driver binding it each time. Per cycle: UHID_CREATE2 (its CLOCK_MONOTONIC time printed), the
+// pen hovering until the kiosk's log (KIOSK_LOG) says that the first sample after the connection
+// reached its screen (app/shell/kiosk_screen.cpp) — at most 60 s, so a frame loop slowed by
+// emulation still sees every plug — then a short stroke, proximity out, UHID_DESTROY; then a
+// wait until the kiosk noticed the unplug, and a pause. The host pairs the creation times with
+// the kiosk's log lines.
+//
+//   kiosk_pen_hotplug DESCRIPTOR.rdesc KIOSK_LOG LABEL CYCLES PAUSE_MS
+//
+// Prints "KIOSK-PEN created LABEL I T_S", "KIOSK-PEN destroyed LABEL I" and "KIOSK-PEN done".
+#include <linux/input.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/core/clock.h"
+#include "drivers/hid/hid_pen_layout.h"
+#include "drivers/hid/hid_report_descriptor.h"
+#include "drivers/hid/pen_report_encoder.h"
+#include "tests/hil/tablet/uhid_device.h"
+
+int main(int argc, char** argv) {
+  using namespace cb;
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: %s DESCRIPTOR KIOSK_LOG LABEL CYCLES PAUSE_MS\n", argv[0]);
+    return 2;
+  }
+  std::ifstream in(argv[1], std::ios::binary);
+  const std::vector<uint8_t> desc{std::istreambuf_iterator<char>(in), {}};
+  const auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
+  if (!parsed.descriptor) {
+    std::fprintf(stderr, "KIOSK-PEN descriptor %s: %s\n", argv[1], parsed.error.c_str());
+    return 1;
+  }
+  const auto found = hid::findPenLayout(*parsed.descriptor);
+  if (!found.layout) {
+    std::fprintf(stderr, "KIOSK-PEN no pen layout in %s\n", argv[1]);
+    return 1;
+  }
+  const hid::PenLayout& layout = *found.layout;
+  const std::string kiosk_log = argv[2];
+  const std::string label = argv[3];
+  const int cycles = std::atoi(argv[4]);
+  const int pause_ms = std::atoi(argv[5]);
+  // How many times the kiosk has said a (re)connected pen's first sample reached its screen.
+  const auto count_in_log = [&kiosk_log](const char* text) {
+    std::ifstream log(kiosk_log);
+    long n = 0;
+    for (std::string line; std::getline(log, line);) n += line.find(text) != std::string::npos;
+    return n;
+  };
+  const auto samples_seen = [&]() { return count_in_log("first sample since it connected"); };
+  // The kiosk says "the pen was unplugged" (from a visit) or "pen searching" (any screen).
+  const auto unplugs_seen = [&]() { return count_in_log("cloudbrush: pen searching"); };
+  const auto sleep_ms = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
+  for (int i = 1; i <= cycles; ++i) {
+    hil::UhidDevice dev;
+    std::string error;
+    const int64_t created = MonotonicClock().nowNs();
+    if (!dev.create("Wacom Intuos Pro M", desc, BUS_USB, 0x056A, 0x0357, &error)) {
+      std::printf("KIOSK-PEN FAIL create %s %d: %s\n", label.c_str(), i, error.c_str());
+      return 1;
+    }
+    std::printf("KIOSK-PEN created %s %d %.6f\n", label.c_str(), i, double(created) / 1e9);
+    std::fflush(stdout);
+    const long seen_before = samples_seen();
+    hid::PenReportState s;
+    s.tool_type = 0x802;
+    s.serial = 0x1234;
+    s.distance = layout.distance.logical_max / 4;
+    const int32_t xm = layout.x.logical_max, ym = layout.y.logical_max;
+    // Hovering near the middle (a report every 10 ms) until the kiosk has the pen, then a 0.5 s
+    // stroke.
+    bool seen = false;
+    for (int k = 0; k < 6000 && !seen; ++k) {
+      s.x = xm / 2 + (k % 20) * xm / 400;
+      s.y = ym / 2;
+      dev.input(hid::encodePenReport(layout, s));
+      sleep_ms(10);
+      if (k % 10 == 9) seen = samples_seen() > seen_before;
+    }
+    if (!seen) std::printf("KIOSK-PEN unseen %s %d\n", label.c_str(), i);
+    s.tip = true;
+    s.distance = 0;
+    for (int k = 0; k < 50; ++k) {
+      const double t = k / 49.0;
+      s.x = int32_t(xm * (0.35 + 0.3 * t));
+      s.y = int32_t(ym * (0.5 + 0.05 * std::sin(6.28 * t)));
+      s.pressure = int32_t(layout.pressure.logical_max * (0.3 + 0.5 * std::sin(3.14 * t)));
+      dev.input(hid::encodePenReport(layout, s));
+      sleep_ms(10);
+    }
+    s.tip = false;
+    s.pressure = 0;
+    s.in_range = s.sense = false;
+    dev.input(hid::encodePenReport(layout, s));
+    sleep_ms(100);
+    const long unplugs_before = unplugs_seen();
+    dev.destroy();
+    std::printf("KIOSK-PEN destroyed %s %d\n", label.c_str(), i);
+    std::fflush(stdout);
+    // Until the kiosk noticed (a loop slowed by emulation could otherwise miss a quick replug
+    // altogether: the pen would look connected throughout), then the pause.
+    for (int k = 0; k < 600 && unplugs_seen() == unplugs_before; ++k) sleep_ms(100);
+    sleep_ms(pause_ms);
+  }
+  std::printf("KIOSK-PEN done %s\n", label.c_str());
+  std::fflush(stdout);
+  return 0;
+}

@@ -1,0 +1,699 @@
+// The kiosk soak (issue 11): hours of kiosk time compressed by driving the kiosk headless from
+// the injectable clock. The real parts as `cloudbrush kiosk` wires them — EGL surfaceless on
+// llvmpipe, the bundled config (kiosk.toml, brush, mapping, render) and attract journal, the
+// shell's frame loop running KioskScreen over the painter, KioskService (sd_notify, watchdog
+// pings, health.json) — on a ManualClock that the director below moves on after every loop
+// iteration. Visitors are replayed sessions: strokes recorded in the bundled attract journal,
+// drawn at their recorded pace, shifted across the tablet and re-timed per visitor (seeded), with
+// undo, "start again" and a view change among them. Each cycle is attract → visitor → idle
+// countdown → reset → attract.
+//
+// Checked (exit status 1 and a FAILED line when not):
+//   - the final VmRSS (after the last reset) is within 2% of the median over the reference window
+//     (the first simulated hour after the warm-up), sampled after every reset;
+//   - the open file descriptors after every reset past the warm-up are all the same;
+//   - no frame-loop stall on the real monotonic clock (time between two loop iterations, from
+//     the first frame) reaches the watchdog's ping interval (half the unit's WatchdogSec=), so
+//     the pings could never have stopped;
+//   - every visit ended in an idle reset and every stroke was mapped;
+//   - systemd's side (a datagram socket this process binds and hands to the kiosk process as
+//     NOTIFY_SOCKET, with the unit's WATCHDOG_USEC) received READY once, STATUS at every screen
+//     change, WATCHDOG every ping interval of simulated time and STOPPING;
+//   - with --strace the kiosk process runs under `strace -f -e trace=%file`: every file it wrote,
+//     created, renamed or removed is inside its data directory.
+//
+// The kiosk runs in a child process (this program with --child): the parent plays systemd and
+// reads the strace log, so nothing it does shows in the trace.
+//
+//   build/tests/unit/kiosk/kiosk_soak --hours 8 --strace      # the long soak (README)
+#include <signal.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/brush/brush_config.h"
+#include "app/core/config_paths.h"
+#include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_service.h"
+#include "app/kiosk/kiosk_texts.h"
+#include "app/kiosk/watchdog_interval.h"
+#include "app/mapping/mapping_config.h"
+#include "app/render/gl/display.h"
+#include "app/render/render_config.h"
+#include "app/render/volume_renderer.h"
+#include "app/session/paint_session.h"
+#include "app/shell/kiosk_screen.h"
+#include "app/shell/paint_loop.h"
+#include "app/shell/paint_screen.h"
+#include "app/volume/scene_generators.h"
+#include "drivers/core/clock.h"
+#include "drivers/core/journal.h"
+#include "drivers/core/pen_source.h"
+#include "tests/support/strace_file_writes.h"
+#include "tests/unit/kiosk/notify_socket_listener.h"
+
+namespace cb {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int64_t kSecond = 1'000'000'000;
+
+struct SoakOptions {
+  double hours = 0.25;              // simulated kiosk time
+  double warmup_minutes = 10.0;     // not judged: shader cache, first allocations
+  double reference_minutes = 60.0;  // the window whose median VmRSS the final one is held to
+  int width = 1280, height = 720;   // the product's default display size
+  int grid = 256;                   // and volume
+  int strokes_per_visit = 24;
+  double attract_min_s = 60.0, attract_max_s = 300.0;  // nobody at the kiosk
+  double stroke_step_s = 0.1;  // clock step per iteration while a visitor's pen is down or near
+  double idle_step_s = 2.0;    // otherwise (attract loop, idle countdown)
+  uint32_t seed = 1;
+  std::string data_dir;  // default: a fresh temporary directory
+  bool strace = false;
+  bool child = false;
+};
+
+bool parseArgs(int argc, char** argv, SoakOptions* o, std::string* error) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+      return argv[++i];
+    };
+    try {
+      if (a == "--hours")
+        o->hours = std::stod(value());
+      else if (a == "--warmup-minutes")
+        o->warmup_minutes = std::stod(value());
+      else if (a == "--reference-minutes")
+        o->reference_minutes = std::stod(value());
+      else if (a == "--size") {
+        const std::string v = value();
+        if (std::sscanf(v.c_str(), "%dx%d", &o->width, &o->height) != 2)
+          throw std::runtime_error("--size: expected WxH, got '" + v + "'");
+      } else if (a == "--grid")
+        o->grid = std::stoi(value());
+      else if (a == "--strokes-per-visit")
+        o->strokes_per_visit = std::stoi(value());
+      else if (a == "--attract-seconds") {
+        const std::string v = value();
+        if (std::sscanf(v.c_str(), "%lf-%lf", &o->attract_min_s, &o->attract_max_s) != 2)
+          throw std::runtime_error("--attract-seconds: expected MIN-MAX, got '" + v + "'");
+      } else if (a == "--idle-step")
+        o->idle_step_s = std::stod(value());
+      else if (a == "--stroke-step")
+        o->stroke_step_s = std::stod(value());
+      else if (a == "--seed")
+        o->seed = uint32_t(std::stoul(value()));
+      else if (a == "--data-dir")
+        o->data_dir = value();
+      else if (a == "--strace")
+        o->strace = true;
+      else if (a == "--child")
+        o->child = true;
+      else
+        throw std::runtime_error("unknown option " + a);
+    } catch (const std::exception& e) {
+      *error = e.what();
+      return false;
+    }
+  }
+  if (!(o->hours > 0.0) || o->grid < 8 || o->strokes_per_visit < 1 || o->width < 64 ||
+      o->height < 64 || o->attract_max_s < o->attract_min_s || o->attract_min_s < 0.0 ||
+      !(o->idle_step_s > 0.0) || !(o->stroke_step_s > 0.0)) {
+    *error = "bad values (hours > 0, grid >= 8, strokes per visit >= 1, size >= 64x64)";
+    return false;
+  }
+  return true;
+}
+
+// ---- the replayed visitors -------------------------------------------------------------------
+
+using Stroke = std::vector<PenSample>;  // proximity in ... proximity out, t_ns from 0
+
+// The strokes of a recorded journal: each from its first sample in proximity to the first out
+// of proximity after it, timed from its first sample.
+std::vector<Stroke> strokesOf(const std::vector<JournalRecord>& records, PenDeviceInfo* info) {
+  std::vector<Stroke> strokes;
+  Stroke current;
+  bool have_info = false;
+  for (const JournalRecord& r : records) {
+    if (r.type == JournalRecordType::kDevice && !have_info) {
+      if (auto d = decodeDeviceInfo(r.payload)) *info = *d, have_info = true;
+      continue;
+    }
+    if (r.type != JournalRecordType::kPenSample) continue;
+    const std::optional<PenSample> s = decodePenSample(r.payload);
+    if (!s || (current.empty() && !s->in_proximity)) continue;
+    current.push_back(*s);
+    if (!s->in_proximity) {
+      bool touched = false;
+      for (const PenSample& p : current) touched = touched || (p.buttons & kPenTip);
+      const int64_t t0 = current.front().t_ns;
+      for (PenSample& p : current) p.t_ns -= t0;
+      if (touched) strokes.push_back(std::move(current));
+      current.clear();
+    }
+  }
+  return strokes;
+}
+
+struct TimedCommand {
+  int64_t t_ns;
+  Command command;
+};
+
+struct Visit {
+  std::vector<PenSample> samples;  // t_ns from the visit's start
+  std::vector<TimedCommand> commands;
+  int strokes = 0;
+};
+
+// Visitor `index`: strokes drawn from `pool` (seeded), each moved by an offset that keeps it on
+// the tablet, 0.5–2.5 s apart; an undo after every seventh stroke, a view change in some visits,
+// "start again" (Delete) half-way through every fourth.
+Visit makeVisit(const std::vector<Stroke>& pool, const PenDeviceInfo& info, long index, int strokes,
+                uint32_t seed) {
+  std::mt19937 rng(seed * 7919u + uint32_t(index));
+  std::uniform_int_distribution<size_t> pick(0, pool.size() - 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Visit visit;
+  int64_t t = 0;
+  for (int k = 0; k < strokes; ++k) {
+    const Stroke& stroke = pool[pick(rng)];
+    int32_t x0 = info.x_max, x1 = 0, y0 = info.y_max, y1 = 0;
+    for (const PenSample& s : stroke) {
+      x0 = std::min(x0, s.x_raw), x1 = std::max(x1, s.x_raw);
+      y0 = std::min(y0, s.y_raw), y1 = std::max(y1, s.y_raw);
+    }
+    // An offset within what keeps the stroke on the tablet.
+    const int32_t dx = int32_t(std::lround((unit(rng) - 0.5) * 0.3 * info.x_max));
+    const int32_t dy = int32_t(std::lround((unit(rng) - 0.5) * 0.3 * info.y_max));
+    const int32_t sx = std::clamp(dx, -x0, info.x_max - x1);
+    const int32_t sy = std::clamp(dy, -y0, info.y_max - y1);
+    for (PenSample s : stroke) {
+      s.t_ns += t;
+      s.x_raw += sx, s.y_raw += sy;
+      if (info.x_res > 0.0) s.x_mm = s.x_raw / info.x_res;
+      if (info.y_res > 0.0) s.y_mm = s.y_raw / info.y_res;
+      visit.samples.push_back(s);
+    }
+    t = visit.samples.back().t_ns + int64_t((0.5 + 2.0 * unit(rng)) * 1e9);
+    ++visit.strokes;
+    if (k % 7 == 6) visit.commands.push_back({t - kSecond / 4, Command::kUndo});
+    if (k == strokes / 3 && index % 3 == 1)
+      visit.commands.push_back({t - kSecond / 4, Command::kViewLeft});
+    if (k == strokes / 2 && index % 4 == 3)
+      visit.commands.push_back({t - kSecond / 4, Command::kDeleteAll});
+  }
+  return visit;
+}
+
+// A tablet whose pen plays one visit at a time at its recorded pace on the clock; connected and
+// silent in between.
+class VisitorPen final : public PenSource {
+ public:
+  VisitorPen(const Clock& clock, PenDeviceInfo info) : clock_(clock), info_(std::move(info)) {}
+  const char* backendName() const override { return "replayed visitors"; }
+  void poll(int, std::vector<PenSample>& out) override {
+    const int64_t now = clock_.nowNs();
+    for (; next_ < samples_.size() && start_ns_ + samples_[next_].t_ns <= now; ++next_) {
+      PenSample s = samples_[next_];
+      s.t_ns += start_ns_;
+      out.push_back(s);
+    }
+  }
+  PenConnection connection() const override { return PenConnection::kConnected; }
+  const PenDeviceInfo& deviceInfo() const override { return info_; }
+  std::string statusMessage() const override { return "replayed visitors"; }
+
+  void play(std::vector<PenSample> samples, int64_t start_ns) {
+    samples_ = std::move(samples);
+    next_ = 0;
+    start_ns_ = start_ns;
+  }
+  bool done() const { return next_ >= samples_.size(); }
+
+ private:
+  const Clock& clock_;
+  PenDeviceInfo info_;
+  std::vector<PenSample> samples_;
+  size_t next_ = 0;
+  int64_t start_ns_ = 0;
+};
+
+// ---- process figures -------------------------------------------------------------------------
+
+long vmRssKb() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+int openFds() {
+  int n = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator("/proc/self/fd")) ++n;
+  return n - 1;  // the directory iterator's own
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// WatchdogSec= of the bundled unit, in seconds.
+double unitWatchdogSeconds() {
+  std::ifstream in(std::string(CB_SOURCE_DIR) + "/config/systemd/cloudbrush-kiosk.service");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("WatchdogSec=", 0) == 0) return std::stod(line.substr(12));
+  throw std::runtime_error("no WatchdogSec= in config/systemd/cloudbrush-kiosk.service");
+}
+
+// ---- the kiosk (child process) ---------------------------------------------------------------
+
+std::atomic<bool> g_stop{false};
+
+struct ResetSample {
+  double sim_s;
+  long rss_kb;
+  int fds;
+};
+
+int runKiosk(const SoakOptions& o) {
+  const std::string config_dir = defaultConfigDir();
+  const auto configPath = [&](const std::string& name) { return config_dir + "/" + name; };
+  // Settings as `cloudbrush kiosk` loads them (app/cli/command_paint.cpp).
+  KioskSetup setup;
+  setup.config = loadKioskConfig(configPath("kiosk.toml"));
+  setup.texts = KioskTexts::load(
+      configPath("kiosk/texts.toml"), setup.config.language,
+      [](const std::string& line) { std::fprintf(stderr, "kiosk_soak: %s\n", line.c_str()); });
+  const RenderConfig render_config = loadRenderConfig(configPath("render.toml"));
+  const MappingConfig mapping = loadMappingConfig(configPath("mapping.toml"));
+  const BrushConfig brush = loadDefaultBrushConfig();
+  JournalReadResult attract = readJournal(configPath(setup.config.attract_journal));
+  if (!attract.error.empty()) throw std::runtime_error("attract journal: " + attract.error);
+  PenDeviceInfo tablet{};
+  const std::vector<Stroke> pool = strokesOf(attract.records, &tablet);
+  if (pool.empty() || tablet.x_max <= 0) throw std::runtime_error("no strokes to replay");
+
+  std::string error;
+  DisplayOptions display_options;
+  display_options.platform = DisplayPlatform::Surfaceless;
+  display_options.width = o.width;
+  display_options.height = o.height;
+  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  if (!display) throw std::runtime_error(error);
+  VolumeRenderer renderer;
+  if (!renderer.init(&error)) throw std::runtime_error(error);
+
+  ManualClock clock(kSecond);
+  VisitorPen pen(clock, tablet);
+  std::string watchdog_error;
+  const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
+  if (!watchdog) throw std::runtime_error("no watchdog asked for: " + watchdog_error);
+  KioskService service(SdNotifier::fromEnvironment(), watchdog, clock, o.data_dir, &pen,
+                       [](const std::string& problem) {
+                         std::fprintf(stderr, "kiosk_soak: service: %s\n", problem.c_str());
+                       });
+
+  PaintSessionSettings settings;
+  settings.screen_width = display->width();
+  settings.screen_height = display->height();
+  settings.grid = o.grid;
+  settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
+  settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+  setup.data_dir = o.data_dir;
+  setup.config_dir = config_dir;
+  setup.attract_journal = std::move(attract.records);
+  setup.visitor_settings = settings;
+  setup.brush = brush;
+  setup.mapping = mapping;
+  setup.light = render_config.light;
+  setup.style = renderStyleName(render_config.options.style);
+  setup.render = render_config.options;
+  setup.render_settings = formatRenderConfig(render_config);
+  setup.moving_scale = render_config.moving_scale;
+  setup.on_status = [&service](const std::string& status) { service.onStatus(status); };
+  setup.on_input = [&service]() { service.onInput(); };
+
+  const Volume demo = makeBundledCumulus(glm::ivec3(o.grid), 1);
+  PaintLoopOptions loop_options;
+  loop_options.render = render_config.options;
+  loop_options.moving_scale = render_config.moving_scale;
+  loop_options.visitor_mode = true;
+  loop_options.orbit_degrees_per_second = 0.0f;
+  loop_options.config_dir = config_dir;
+  loop_options.state_dir = o.data_dir;
+  loop_options.clock = &clock;
+  std::unique_ptr<KioskScreen> kiosk;
+  loop_options.before_start_again = [&kiosk]() { kiosk->keepFinishedCloud("start again"); };
+
+  // The director: after every iteration, what happens next at the kiosk, and the clock's step.
+  enum class Phase { kAttract, kVisiting, kLeft } phase = Phase::kAttract;
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<double> attract_s(o.attract_min_s, o.attract_max_s);
+  const int64_t end_ns = clock.nowNs() + int64_t(o.hours * 3600.0 * 1e9);
+  const int64_t warmup_end_ns = kSecond + int64_t(o.warmup_minutes * 60e9);
+  const int64_t reference_end_ns = warmup_end_ns + int64_t(o.reference_minutes * 60e9);
+  int64_t next_visit_ns = clock.nowNs() + int64_t(attract_s(rng) * 1e9), visit_start_ns = 0;
+  Visit visit;
+  size_t next_command = 0;
+  long visits = 0, strokes_fed = 0, strokes_mapped = 0, iterations = 0, frames = 0;
+  uint32_t visit_strokes_mapped = 0;
+  std::vector<ResetSample> resets;
+  double max_stall_s = 0.0, max_stall_at_s = 0.0, max_stall_cpu_s = 0.0, max_cpu_s = 0.0;
+  std::string max_stall_state;
+  int64_t last_real = 0, last_cpu = 0;
+  long stalls_over_2s = 0;
+  long hour_reported = 0;
+  const auto steady_start = std::chrono::steady_clock::now();
+  const auto real_s = [&]() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - steady_start).count();
+  };
+  const auto sim_s = [&]() { return double(clock.nowNs() - kSecond) / 1e9; };
+  const auto report_hour = [&](long hour) {
+    std::vector<double> rss;
+    int fd_min = 1 << 30, fd_max = 0;
+    for (const ResetSample& r : resets)
+      if (r.sim_s > double(hour - 1) * 3600.0 && r.sim_s <= double(hour) * 3600.0) {
+        rss.push_back(double(r.rss_kb));
+        fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
+      }
+    std::printf(
+        "kiosk_soak: simulated %.2f h (real %.0f s): %ld visits, %ld strokes mapped; after the "
+        "resets of this hour VmRSS median %.1f MB, fds %d..%d; longest loop stall so far %.2f s\n",
+        sim_s() / 3600.0, real_s(), visits, strokes_mapped, median(rss) / 1024.0,
+        rss.empty() ? 0 : fd_min, rss.empty() ? 0 : fd_max, max_stall_s);
+    std::fflush(stdout);
+  };
+
+  loop_options.each_iteration = [&](bool presented) {
+    service.onIteration(presented);
+    ++iterations;
+    frames += presented;
+    // Real time between iterations, from the first frame on (READY: systemd's watchdog runs).
+    const int64_t real_now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now().time_since_epoch())
+                                 .count();
+    // And the process's CPU time over the same iteration (all threads: llvmpipe's too), which
+    // says what the iteration costs when the machine is not shared.
+    timespec cpu_ts{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu_ts);
+    const int64_t cpu_now = int64_t(cpu_ts.tv_sec) * kSecond + cpu_ts.tv_nsec;
+    if (service.readySent() && last_real > 0) {
+      const double gap = double(real_now - last_real) / 1e9;
+      const double cpu = double(cpu_now - last_cpu) / 1e9;
+      max_cpu_s = std::max(max_cpu_s, cpu);
+      if (gap > 2.0 && ++stalls_over_2s <= 10)
+        std::printf("kiosk_soak: iteration of %.2f s (%.2f s of CPU) at simulated %.0f s (%s)\n",
+                    gap, cpu, sim_s(), KioskScreen::stateName(kiosk->state()));
+      if (gap > max_stall_s) {
+        max_stall_s = gap;
+        max_stall_cpu_s = cpu;
+        max_stall_at_s = sim_s();
+        max_stall_state = KioskScreen::stateName(kiosk->state());
+      }
+    }
+    last_real = service.readySent() ? real_now : 0;
+    last_cpu = cpu_now;
+    const int64_t now = clock.nowNs();
+    const KioskScreen::State state = kiosk->state();
+    switch (phase) {
+      case Phase::kAttract:
+        if (now >= next_visit_ns) {
+          visit = makeVisit(pool, tablet, visits, o.strokes_per_visit, o.seed);
+          pen.play(visit.samples, now);
+          visit_start_ns = now;
+          next_command = 0;
+          strokes_fed += visit.strokes;
+          ++visits;
+          phase = Phase::kVisiting;
+        }
+        break;
+      case Phase::kVisiting:
+        if (state == KioskScreen::State::kVisitor && kiosk->visitorSession())
+          visit_strokes_mapped = kiosk->visitorSession()->strokesMapped();
+        for (; next_command < visit.commands.size() &&
+               now - visit_start_ns >= visit.commands[next_command].t_ns;
+             ++next_command)
+          kiosk->onCommand(visit.commands[next_command].command, now);
+        if (pen.done() && next_command == visit.commands.size()) phase = Phase::kLeft;
+        break;
+      case Phase::kLeft:
+        if (state == KioskScreen::State::kVisitor && kiosk->visitorSession())
+          visit_strokes_mapped = kiosk->visitorSession()->strokesMapped();
+        if (state == KioskScreen::State::kAttract) {  // the idle reset
+          strokes_mapped += visit_strokes_mapped;
+          visit_strokes_mapped = 0;
+          resets.push_back({sim_s(), vmRssKb(), openFds()});
+          if (now >= end_ns) g_stop.store(true);
+          next_visit_ns = now + int64_t(attract_s(rng) * 1e9);
+          phase = Phase::kAttract;
+        }
+        break;
+    }
+    if (long(sim_s() / 3600.0) > hour_reported) report_hour(++hour_reported);
+    clock.advance(int64_t((phase == Phase::kVisiting ? o.stroke_step_s : o.idle_step_s) * 1e9));
+  };
+
+  PaintLoop loop(*display, renderer, demo, render_config.light, loop_options);
+  loop.attachPen(&pen, nullptr);
+  kiosk = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), &pen, clock,
+                                        std::move(setup));
+  PaintLoopSummary summary;
+  const bool ran = loop.run(&g_stop, &summary, &error, kiosk.get());
+  service.stopping();
+  if (!ran) throw std::runtime_error(error);
+
+  // Judge.
+  std::vector<std::string> failures;
+  std::vector<double> reference;
+  for (const ResetSample& r : resets)
+    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond) &&
+        r.sim_s * 1e9 <= double(reference_end_ns - kSecond))
+      reference.push_back(double(r.rss_kb));
+  const double reference_kb = median(reference);
+  const double final_kb = resets.empty() ? 0.0 : double(resets.back().rss_kb);
+  const double drift = reference_kb > 0.0 ? (final_kb - reference_kb) / reference_kb : 1.0;
+  int fd_min = 1 << 30, fd_max = 0;
+  size_t judged = 0;
+  for (const ResetSample& r : resets)
+    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond)) {
+      fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
+      ++judged;
+    }
+  const double ping_interval_s = double(watchdog->pingIntervalNs()) / 1e9;
+  if (reference.size() < 3)
+    failures.push_back("only " + std::to_string(reference.size()) +
+                       " resets in the reference window (run longer)");
+  if (std::fabs(drift) > 0.02)
+    failures.push_back("final VmRSS " + std::to_string(long(final_kb)) + " kB is " +
+                       std::to_string(drift * 100.0) + "% off the reference median " +
+                       std::to_string(long(reference_kb)) + " kB (2% allowed)");
+  if (judged == 0 || fd_max != fd_min)
+    failures.push_back("open fds after the resets past the warm-up: " + std::to_string(fd_min) +
+                       ".." + std::to_string(fd_max) + " (flat wanted)");
+  if (max_stall_s >= ping_interval_s)
+    failures.push_back("the frame loop stalled " + std::to_string(max_stall_s) + " s (" +
+                       max_stall_state + ", simulated " + std::to_string(max_stall_at_s) +
+                       " s): the watchdog's ping interval is " + std::to_string(ping_interval_s) +
+                       " s");
+  if (kiosk->idleResets() != long(resets.size()) || long(resets.size()) != visits)
+    failures.push_back(std::to_string(visits) + " visits, " + std::to_string(resets.size()) +
+                       " resets seen, " + std::to_string(kiosk->idleResets()) + " counted");
+  if (strokes_mapped != strokes_fed)
+    failures.push_back(std::to_string(strokes_fed) + " strokes replayed, " +
+                       std::to_string(strokes_mapped) + " mapped");
+  std::printf(
+      "kiosk_soak: %.2f simulated hours in %.0f s real, %ldx%d, grid %d: %ld visits, %ld idle "
+      "resets, %ld strokes mapped of %ld replayed, %ld frames in %ld iterations\n",
+      sim_s() / 3600.0, real_s(), long(display->width()), display->height(), o.grid, visits,
+      kiosk->idleResets(), strokes_mapped, strokes_fed, frames, iterations);
+  std::printf(
+      "kiosk_soak: VmRSS after the last reset %.1f MB, median over the reference window (%zu "
+      "resets, simulated %.0f-%.0f min) %.1f MB: %+.2f%% (2%% allowed)\n",
+      final_kb / 1024.0, reference.size(), o.warmup_minutes, o.warmup_minutes + o.reference_minutes,
+      reference_kb / 1024.0, drift * 100.0);
+  std::printf("kiosk_soak: open fds after %zu resets past the warm-up: %d..%d\n", judged,
+              judged ? fd_min : 0, judged ? fd_max : 0);
+  std::printf(
+      "kiosk_soak: longest frame-loop stall (real clock) %.2f s (%.2f s of process CPU; %s, "
+      "simulated %.0f s); %ld iterations over 2 s; the most CPU one iteration took %.2f s; the "
+      "watchdog pings every %.1f s\n",
+      max_stall_s, max_stall_cpu_s, max_stall_state.c_str(), max_stall_at_s, stalls_over_2s,
+      max_cpu_s, ping_interval_s);
+  for (const std::string& f : failures) std::printf("kiosk_soak: FAILED: %s\n", f.c_str());
+  std::printf(
+      "{\"soak\":\"kiosk\",\"figures\":{\"simulated_hours\":%.3f,\"real_seconds\":%.0f,"
+      "\"visits\":%ld,\"strokes\":%ld,\"frames\":%ld,\"final_rss_kb\":%ld,"
+      "\"reference_rss_kb\":%.0f,\"rss_drift_percent\":%.3f,\"fds_min\":%d,\"fds_max\":%d,"
+      "\"max_stall_s\":%.3f,\"max_stall_cpu_s\":%.3f,\"max_iteration_cpu_s\":%.3f,"
+      "\"ping_interval_s\":%.1f,\"simulated_seconds\":%.0f}}\n",
+      sim_s() / 3600.0, real_s(), visits, strokes_mapped, frames, long(final_kb), reference_kb,
+      drift * 100.0, judged ? fd_min : 0, judged ? fd_max : 0, max_stall_s, max_stall_cpu_s,
+      max_cpu_s, ping_interval_s, sim_s());
+  std::fflush(stdout);
+  kiosk.reset();
+  return failures.empty() ? 0 : 1;
+}
+
+// ---- systemd's side and the trace (parent process) -------------------------------------------
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+int runParent(int argc, char** argv, SoakOptions o) {
+  const fs::path root = fs::temp_directory_path() / ("cb_kiosk_soak_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  const bool own_data_dir = o.data_dir.empty();
+  if (own_data_dir) o.data_dir = (root / "data").string();
+  o.data_dir = fs::absolute(o.data_dir).string();
+  fs::create_directories(o.data_dir);
+  const double watchdog_s = unitWatchdogSeconds();
+  test::NotifySocketListener systemd;
+  std::map<std::string, long> received;
+  std::atomic<bool> done{false};
+  std::thread receiver([&] {
+    while (!done.load()) {
+      const std::optional<std::string> m = systemd.receive(std::chrono::milliseconds(100));
+      if (!m) continue;
+      for (std::istringstream lines(*m); !lines.eof();) {
+        std::string line;
+        std::getline(lines, line);
+        if (!line.empty()) ++received[line.substr(0, line.find('=') + 1)];
+      }
+    }
+  });
+
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) throw std::runtime_error("readlink /proc/self/exe failed");
+  self[n] = '\0';
+  std::string command = "NOTIFY_SOCKET=" + shellQuote(systemd.path()) +
+                        " WATCHDOG_USEC=" + std::to_string(long(watchdog_s * 1e6)) +
+                        " MESA_SHADER_CACHE_DIR=" + shellQuote(o.data_dir + "/mesa-shader-cache") +
+                        " LIBGL_ALWAYS_SOFTWARE=1 CLOUDBRUSH_CONFIG_DIR=" +
+                        shellQuote(std::string(CB_SOURCE_DIR) + "/config") + " ";
+  const std::string trace = (root / "strace.txt").string();
+  if (o.strace)
+    command += "strace -f -qq --seccomp-bpf -e trace=%file -o " + shellQuote(trace) + " ";
+  command += shellQuote(self);
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) != "--strace" && std::string(argv[i]) != "--data-dir")
+      command += " " + shellQuote(argv[i]);
+    else if (std::string(argv[i]) == "--data-dir")
+      ++i;
+  command += " --child --data-dir " + shellQuote(o.data_dir);
+  FILE* child = ::popen(command.c_str(), "r");
+  if (!child) throw std::runtime_error("cannot start " + command);
+  std::string last_line;
+  double simulated_s = 0.0;
+  long visits = 0;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, child)) {
+    std::fputs(buffer, stdout);
+    std::fflush(stdout);
+    last_line = buffer;
+    if (const size_t k = last_line.find("\"simulated_seconds\":"); k != std::string::npos)
+      simulated_s = std::atof(last_line.c_str() + k + 20);
+    if (const size_t k = last_line.find("\"visits\":"); k != std::string::npos)
+      visits = std::atol(last_line.c_str() + k + 9);
+  }
+  const int status = ::pclose(child);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  done.store(true);
+  receiver.join();
+
+  std::vector<std::string> failures;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    failures.push_back("the kiosk process failed (status " + std::to_string(status) + ")");
+  // systemd's side: READY once, a STATUS at every screen change, WATCHDOG every ping interval.
+  // A ping is due every half WatchdogSec of simulated time and goes out at the first loop
+  // iteration after that: at most one clock step late.
+  const double expected_pings = simulated_s / (watchdog_s / 2.0);
+  const double fewest_pings =
+      simulated_s / (watchdog_s / 2.0 + std::max(o.idle_step_s, o.stroke_step_s));
+  std::printf(
+      "kiosk_soak: NOTIFY_SOCKET received READY %ld, STATUS %ld (%ld visits), WATCHDOG %ld (%.0f "
+      "simulated s: %.0f..%.0f due), STOPPING %ld\n",
+      received["READY="], received["STATUS="], visits, received["WATCHDOG="], simulated_s,
+      std::floor(fewest_pings), expected_pings, received["STOPPING="]);
+  if (received["READY="] != 1) failures.push_back("READY=1 not received exactly once");
+  if (received["STOPPING="] != 1) failures.push_back("STOPPING=1 not received exactly once");
+  // With READY, then "visitor N painting" and "attract loop" for every visit.
+  if (received["STATUS="] < 1 + 2 * visits)
+    failures.push_back("fewer STATUS= messages than screen changes");
+  if (simulated_s <= 0.0 || double(received["WATCHDOG="]) < std::floor(fewest_pings) ||
+      double(received["WATCHDOG="]) > expected_pings + 2.0)
+    failures.push_back("WATCHDOG=1 pings do not match one per ping interval");
+  if (o.strace) {
+    std::ifstream in(trace);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const test::FileWrites writes =
+        test::fileWritesOutside(text, fs::current_path().string(), {o.data_dir});
+    std::printf("kiosk_soak: strace -f -e trace=%%file: %zu writing calls, %zu outside %s\n",
+                writes.writes, writes.outside.size(), o.data_dir.c_str());
+    for (size_t i = 0; i < writes.outside.size() && i < 10; ++i)
+      std::printf("kiosk_soak:   outside: %s\n", writes.outside[i].c_str());
+    if (writes.writes < 10) failures.push_back("strace saw too few writes (is it tracing?)");
+    if (!writes.outside.empty()) failures.push_back("files written outside the data dir");
+  }
+  for (const std::string& f : failures) std::printf("kiosk_soak: FAILED: %s\n", f.c_str());
+  std::printf("kiosk_soak: %s\n", failures.empty() ? "PASSED" : "FAILED");
+  if (failures.empty()) {
+    fs::remove_all(root);
+    if (!own_data_dir) fs::remove_all(o.data_dir);
+  } else {
+    std::printf("kiosk_soak: kept %s for looking\n", root.c_str());
+  }
+  return failures.empty() ? 0 : 1;
+}
+
+}  // namespace
+}  // namespace cb
+
+int main(int argc, char** argv) {
+  cb::SoakOptions options;
+  std::string error;
+  if (!cb::parseArgs(argc, argv, &options, &error)) {
+    std::fprintf(stderr, "kiosk_soak: %s\n", error.c_str());
+    return 2;
+  }
+  try {
+    if (options.child) {
+      std::signal(SIGTERM, [](int) { cb::g_stop.store(true); });
+      return cb::runKiosk(options);
+    }
+    return cb::runParent(argc, argv, options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kiosk_soak: %s\n", e.what());
+    return 1;
+  }
+}
