@@ -24,6 +24,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "qemu_vm.h"
+#include "tests/support/reference_journal.h"
 
 namespace cb::hil {
 namespace {
@@ -33,27 +34,6 @@ constexpr int kW = 320, kH = 180;
 std::string capture(const std::string& text, const std::string& pattern) {
   std::smatch match;
   return std::regex_search(text, match, std::regex(pattern)) ? match[1].str() : std::string();
-}
-
-// A painting session's journal: the reference strokes six times over, 0.3 s apart (about 22 s
-// of pen), recorded by a real PaintSession (Session, Settings, Device, samples, StrokeMapped).
-void recordSession(const std::string& path) {
-  PaintSession recorder({kW, kH, 16}, BrushConfig{}, MappingConfig{});
-  recorder.setQuietMapping(true);
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(path)) << journal.error();
-  recorder.recordTo(&journal, 0);
-  const PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  recorder.setDevice(tablet, 0);
-  int64_t t = 1'000'000'000;
-  for (int round = 0; round < 6; ++round)
-    for (const SyntheticStroke& stroke : referencePaintStrokes(kW, kH)) {
-      for (const PenSample& s : syntheticPenSamples(stroke, tablet, kW, kH, 200.0, t)) {
-        recorder.feed(s);
-        t = s.t_ns;
-      }
-      t += 300'000'000;
-    }
 }
 
 struct Kernel {
@@ -81,7 +61,10 @@ TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
   std::filesystem::create_directories(work);
   const std::string source = work + "/source.cbj", disk = work + "/disk.img",
                     initrd = work + "/powercut.cpio.gz", final_journal = work + "/final.cbj";
-  ASSERT_NO_FATAL_FAILURE(recordSession(source));
+  std::string error;
+  // A painting session's journal: the reference strokes six times over, 0.3 s apart (about 22 s
+  // of pen), recorded by a real PaintSession (Session, Settings, Device, samples, StrokeMapped).
+  ASSERT_TRUE(test::recordReferenceJournal(source, kW, kH, 6, &error)) << error;
   const JournalReadResult source_read = readJournal(source);
   ASSERT_TRUE(source_read.error.empty()) << source_read.error;
   std::vector<int64_t> times;

@@ -26,6 +26,7 @@
 #include "app/session/synthetic_session.h"
 
 #include "tests/support/command_run.h"
+#include "tests/support/reference_journal.h"
 
 namespace cb {
 namespace {
@@ -35,26 +36,6 @@ constexpr int kW = 320, kH = 180;
 std::string capture(const std::string& text, const std::string& pattern) {
   std::smatch match;
   return std::regex_search(text, match, std::regex(pattern)) ? match[1].str() : std::string();
-}
-
-// The pen's input: the reference strokes three times over, 0.3 s apart (about 11 s of pen).
-void recordPenJournal(const std::string& path) {
-  PaintSession recorder({kW, kH, 16}, BrushConfig{}, MappingConfig{});
-  recorder.setQuietMapping(true);
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(path)) << journal.error();
-  recorder.recordTo(&journal, 0);
-  const PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  recorder.setDevice(tablet, 0);
-  int64_t t = 1'000'000'000;
-  for (int round = 0; round < 3; ++round)
-    for (const SyntheticStroke& stroke : referencePaintStrokes(kW, kH)) {
-      for (const PenSample& s : syntheticPenSamples(stroke, tablet, kW, kH, 200.0, t)) {
-        recorder.feed(s);
-        t = s.t_ns;
-      }
-      t += 300'000'000;
-    }
 }
 
 // Strokes completed in a journal: tip-down runs of pen samples that ended with the tip up.
@@ -108,7 +89,9 @@ TEST(PaintResumeCrash, KilledTwentyTimesTheSessionResumesAndEndsWithTheSameVolum
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string pen = dir + "/pen.cbj";
-  ASSERT_NO_FATAL_FAILURE(recordPenJournal(pen));
+  std::string error;
+  // The pen's input: the reference strokes three times over, 0.3 s apart (about 11 s of pen).
+  ASSERT_TRUE(test::recordReferenceJournal(pen, kW, kH, 3, &error)) << error;
   const int source_strokes = completedStrokes(pen);
   ASSERT_EQ(source_strokes, 6);
 
