@@ -36,6 +36,7 @@
 #include "app/shell/paint_loop.h"
 #include "app/shell/paint_screen.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume_file.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
@@ -60,7 +61,9 @@ constexpr const char* kUsage =
     "  --drm-device PATH   DRM card for kms (default: the first with a connected connector)\n"
     "  --size WxH          headless image size (default 1280x720)\n"
     "  --out-dir DIR       headless output directory (default ./out)\n"
-    "  --grid N            volume resolution N³ (default 256)\n"
+    "  --grid N            voxels across the home box, N³ (default 256)\n"
+    "  --sky-span N        home boxes across the sky in x and z (default 4: a 1024x256x1024 sky\n"
+    "                      for grid 256; 1 = the thesis's one box)\n"
     "  --seed N            seed of the bundled cloud (default 1)\n"
     "  --orbit DEG         orbit speed in degrees per second (default 6; 0 = still)\n"
     "  --moving-scale F    starting resolution scale while the camera moves (default 0.5;\n"
@@ -140,7 +143,8 @@ int commandPaint(int argc, char** argv) {
        "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
        "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
        "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery", "resume",       "sync-udp",        "morph-to", "morph-seconds"});
+       "language",   "gallery", "resume",       "sync-udp",        "morph-to", "morph-seconds",
+       "sky-span"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -155,6 +159,8 @@ int commandPaint(int argc, char** argv) {
   if (!parseSize(size, &display_options.width, &display_options.height))
     return fail("--size: expected WxH (1..16384 each), got '" + size + "'", 2);
   const long grid = args.getInt("grid", 256);
+  const long sky_span = args.getInt("sky-span", kDefaultSkySpan);
+  const SkyExtent sky{int(grid), int(sky_span)};
   const long seed = args.getInt("seed", 1);
   PaintLoopOptions loop_options;
   loop_options.orbit_degrees_per_second = float(args.getDouble("orbit", 6.0));
@@ -195,6 +201,8 @@ int commandPaint(int argc, char** argv) {
   if (!args.error().empty()) return fail(args.error(), 2);
   if (grid < 8 || grid > 1024)
     return fail("--grid: expected 8..1024, got " + std::to_string(grid), 2);
+  if (const std::string problem = sky.check(); !problem.empty())
+    return fail("--sky-span: " + problem, 2);
   if (seed < 0) return fail("--seed: expected a non-negative integer", 2);
   if (loop_options.moving_scale <= 0.0f || loop_options.moving_scale > 1.0f)
     return fail("--moving-scale: expected a number in (0, 1]", 2);
@@ -262,6 +270,7 @@ int commandPaint(int argc, char** argv) {
     settings.screen_width = display->width();
     settings.screen_height = display->height();
     settings.grid = int(grid);
+    settings.sky_span = int(sky_span);
     brush = loadDefaultBrushConfig();
     settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
@@ -353,7 +362,8 @@ int commandPaint(int argc, char** argv) {
   };
   const auto generate_start = std::chrono::steady_clock::now();
   // Shown until a pen connects; then the session's volume (empty at first) is painted into.
-  const Volume demo_volume = makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed));
+  const Volume demo_volume =
+      placeInSky(makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed)), sky);
   std::fprintf(
       stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)

@@ -43,6 +43,8 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
   return "screen_width = " + std::to_string(settings.screen_width) +
          "\nscreen_height = " + std::to_string(settings.screen_height) +
          "\ngrid = " + std::to_string(settings.grid) +
+         (settings.sky_span != kLegacySkySpan ? "\nsky_span = " + std::to_string(settings.sky_span)
+                                              : std::string()) +
          "\nformat = " + std::to_string(settings.format) +
          (settings.format >= 2
               ? "\nauto_end_still_ms = " + std::to_string(settings.auto_end_still_ms) +
@@ -53,7 +55,8 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
 
 Camera initialPaintCamera(const PaintSessionSettings& settings) {
   if (settings.format < 2) return Camera::reference();
-  // The drawable region (where the canvas meets the sky box) framed to fill the screen.
+  // The home box (the one-box sky of [-1,1]³, where the bundled cloud sits) framed so that the
+  // canvas across it fills the screen; the canvas goes on past it to the sky's edges.
   const Volume box(glm::ivec3(1));
   return defaultPaintCamera(Canvas{}, box.worldMin(), box.worldMax(),
                             float(settings.screen_width) / float(settings.screen_height));
@@ -64,6 +67,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   PaintSessionSettings parsed;
   parsed.format = 1;  // records of the first landing have no format key
   parsed.auto_end_still_ms = parsed.auto_end_light_ms = 0;  // nor strokes that end by themselves
+  parsed.sky_span = kLegacySkySpan;                         // nor a sky wider than one box
   std::istringstream lines{std::string(text)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -87,6 +91,10 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
     } else if (key == "grid") {
       if (!parseInt(value, 8, 1024, &v)) return bad("8..1024");
       parsed.grid = int(v);
+    } else if (key == "sky_span") {
+      if (!parseInt(value, 1, kMaxSkySpan, &v))
+        return bad(("1.." + std::to_string(kMaxSkySpan)).c_str());
+      parsed.sky_span = int(v);
     } else if (key == "auto_end_still_ms" || key == "auto_end_light_ms") {
       if (!parseInt(value, 0, 600000, &v)) return bad("0..600000 ms");
       (key == "auto_end_still_ms" ? parsed.auto_end_still_ms : parsed.auto_end_light_ms) = int(v);
@@ -96,6 +104,8 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
       parsed.format = int(v);
     }  // other keys (participant, task, ...) belong to the study, not to the painting
   }
+  const std::string sky_problem = parsed.skyExtent().check();
+  if (!sky_problem.empty()) return *error = "session: " + sky_problem, false;
   *settings = parsed;
   return true;
 }
@@ -109,7 +119,7 @@ PaintSession::PaintSession(const PaintSessionSettings& settings, const BrushConf
           1, int(std::lround(settings.screen_width * double(brush.stroke.footprint_scale))))),
       footprint_h_(std::max(
           1, int(std::lround(settings.screen_height * double(brush.stroke.footprint_scale))))),
-      volume_(glm::ivec3(settings.grid)),
+      volume_(makeSkyVolume(settings.skyExtent())),
       engine_(brush, footprint_w_, footprint_h_),
       mapper_(mapping),
       method_(mapping.method) {
@@ -294,16 +304,21 @@ bool PaintSession::commitAnimation(const UiChange& change, const Volume& shown, 
 
 bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
                                  std::string* error) {
-  if (volume.dims() != volume_.dims() || volume.worldMin() != volume_.worldMin() ||
-      volume.worldMax() != volume_.worldMax()) {
+  const SkyExtent sky = settings_.skyExtent();
+  // A cloud of the one-box sky (grid³ over [-1,1]³) opens in the home box of a wider sky.
+  const bool home_box = isHomeBoxCloud(volume, sky);
+  if (!home_box && (volume.dims() != volume_.dims() || volume.worldMin() != volume_.worldMin() ||
+                    volume.worldMax() != volume_.worldMax())) {
+    const glm::ivec3 d = volume_.dims();
     *error = source + ": a " + std::to_string(volume.dims().x) + "x" +
              std::to_string(volume.dims().y) + "x" + std::to_string(volume.dims().z) +
-             " cloud does not fit this session's " + std::to_string(volume_.dims().x) +
-             "³ sky; the cloud is unchanged";
+             " cloud fits neither this session's " + std::to_string(d.x) + "x" +
+             std::to_string(d.y) + "x" + std::to_string(d.z) + " sky nor its " +
+             std::to_string(sky.grid) + "³ home box; the cloud is unchanged";
     return false;
   }
   if (engine_.inStroke()) return *error = "open: a stroke is being painted", false;
-  volume_ = volume;
+  volume_ = home_box ? placeInSky(volume, sky) : volume;
   history_.reset(volume_);
   opened_source_ = source;
   journalText(JournalRecordType::kMarker, t_ns, "opened " + source);
@@ -586,7 +601,7 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (!parseSessionSettings(record.text(), &recorded, error)) return false;
       if (recorded.screen_width != settings_.screen_width ||
           recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
-          recorded.format != settings_.format ||
+          recorded.sky_span != settings_.sky_span || recorded.format != settings_.format ||
           recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
           recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
         *error = "session record (" + formatSessionSettings(recorded) +

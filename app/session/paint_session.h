@@ -28,6 +28,7 @@
 #include "app/session/history.h"
 #include "app/session/sync_marker_sender.h"
 #include "app/session/ui_change.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume.h"
 #include "calibration/calibration_profile.h"
 #include "calibration/calibrator.h"
@@ -38,7 +39,12 @@ namespace cb {
 // What a session needs before the first sample; journalled as the Session record.
 struct PaintSessionSettings {
   int screen_width = 1280, screen_height = 720;  // the display the pen maps to (pixels)
-  int grid = 128;                                // volume resolution grid³
+  int grid = 128;                                // voxels along each axis of the home box
+  // Home boxes across the sky in x and z (sky_extent.h): the canvas spans the whole sky. A
+  // Session record without `sky_span` is from the one-box sky (kLegacySkySpan), so old journals
+  // replay in the box they were painted in, their strokes clipped to it as they were then.
+  int sky_span = kDefaultSkySpan;
+  SkyExtent skyExtent() const { return {grid, sky_span}; }
   // Journal format of UI changes: 1 = the first landing (no modes; the paint view is
   // Camera::reference() unless a camera_orbit record says otherwise), 2 = typed changes with
   // modes and history (the paint view starts at defaultPaintCamera()). A Session record without

@@ -1,5 +1,6 @@
 #include "app/session/session_replay.h"
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -92,13 +93,32 @@ uint64_t volumeChecksum(const Volume& volume) {
   };
   const glm::ivec3 dims = volume.dims();
   mix(&dims, sizeof dims);
-  // The voxels' bytes in the dense order (x fastest), as the dense grid held them.
-  std::vector<float> row(size_t(dims.x));
+  // The voxels' bytes in the dense order (x fastest), as the dense grid held them. FNV-1a turns
+  // a zero byte into one multiplication by its prime, so a run of n zero bytes (the unallocated
+  // bricks of a sparse sky) is one multiplication by prime^n: the same hash without reading them.
+  uint64_t zero_bytes = 0;
+  const auto flushZeros = [&] {
+    uint64_t factor = 1, base = 1099511628211ull;
+    for (uint64_t n = zero_bytes; n; n >>= 1, base *= base)
+      if (n & 1) factor *= base;
+    hash *= factor;
+    zero_bytes = 0;
+  };
+  const int b = Volume::kBrickSize;
+  std::vector<float> segment(static_cast<size_t>(b));
   for (int z = 0; z < dims.z; ++z)
-    for (int y = 0; y < dims.y; ++y) {
-      volume.readLine({0, y, z}, 0, dims.x, row.data());
-      mix(row.data(), row.size() * sizeof(float));
-    }
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; x += b) {
+        const int n = std::min(b, dims.x - x);
+        if (!volume.brick(glm::ivec3(x, y, z) / b)) {
+          zero_bytes += uint64_t(n) * sizeof(float);
+          continue;
+        }
+        flushZeros();
+        volume.readLine({x, y, z}, 0, n, segment.data());
+        mix(segment.data(), size_t(n) * sizeof(float));
+      }
+  flushZeros();
   return hash;
 }
 

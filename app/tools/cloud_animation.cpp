@@ -3,6 +3,7 @@
 #include "app/core/parallel_for.h"
 #include "app/tools/tool_error.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume_file.h"
 
 namespace cb {
@@ -16,16 +17,24 @@ Volume loadMorphTarget(const std::string& source, const Volume& like) {
     if (digits.empty() || *end != '\0' || seed > 0xffffffffUL)
       throw ToolError(ToolErrorKind::kMismatchedVolumes,
                       "morph target '" + source + "': expected bundled:SEED (a number)");
-    target = makeBundledCumulus(like.dims(), uint32_t(seed));
+    // The bundled cloud of the sky's home box, in the home box.
+    const std::optional<SkyExtent> sky = skyExtentOf(like);
+    target = sky ? placeInSky(makeBundledCumulus(glm::ivec3(sky->grid), uint32_t(seed)), *sky)
+                 : makeBundledCumulus(like.dims(), uint32_t(seed));
   } else {
     target = loadVolume(source);
+    // A cloud saved from the one-box sky morphs into the home box of a wider one.
+    const std::optional<SkyExtent> sky = skyExtentOf(like);
+    if (sky && sky->span > 1 && isHomeBoxCloud(target, *sky)) target = placeInSky(target, *sky);
   }
   if (target.dims() != like.dims() || target.worldMin() != like.worldMin() ||
       target.worldMax() != like.worldMax())
     throw ToolError(ToolErrorKind::kMismatchedVolumes,
                     "morph target " + source + ": a " + std::to_string(target.dims().x) + "x" +
                         std::to_string(target.dims().y) + "x" + std::to_string(target.dims().z) +
-                        " cloud does not fit this " + std::to_string(like.dims().x) + "³ sky");
+                        " cloud does not fit this " + std::to_string(like.dims().x) + "x" +
+                        std::to_string(like.dims().y) + "x" + std::to_string(like.dims().z) +
+                        " sky");
   return target;
 }
 

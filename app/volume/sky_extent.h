@@ -1,0 +1,56 @@
+// The sky's extent (issue 15, "A sky without walls"). The thesis's sky is one box of grid³ voxels
+// over the world box [-1,1]³ (§3.3; "limited to 256³", §8.1). The painter's sky keeps that box
+// and its voxel size as the home box, at the centre of a wider extent: `span` home boxes across
+// in x and in z (one high), so the canvas reaches past the old walls and a stroke lands wherever
+// it is drawn. The sparse volume costs memory only where cloud is painted, so a wide extent is
+// cheap until it is used.
+//
+//   span 1: the old box, grid × grid × grid over [-1,1]³ (journals recorded before the sky grew)
+//   span 4: the default, 1024 × 256 × 1024 voxels over [-4,4] × [-1,1] × [-4,4] for grid 256
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "app/volume/volume.h"
+
+namespace cb {
+
+// Home boxes across the sky in x and z for a new session (config-free: journals record theirs).
+constexpr int kDefaultSkySpan = 4;
+// A Session record without a sky span was made when the sky was one box.
+constexpr int kLegacySkySpan = 1;
+constexpr int kMaxSkySpan = 8;
+
+struct SkyExtent {
+  int grid = 256;              // voxels along each axis of the home box
+  int span = kDefaultSkySpan;  // home boxes across in x and z
+
+  glm::ivec3 dims() const { return {span * grid, grid, span * grid}; }
+  glm::vec3 worldMin() const { return {-float(span), -1.0f, -float(span)}; }
+  glm::vec3 worldMax() const { return {float(span), 1.0f, float(span)}; }
+  // The home box's first voxel in the sky's grid (its world box is [-1,1]³).
+  glm::ivec3 homeOffset() const { return {(span - 1) * grid / 2, 0, (span - 1) * grid / 2}; }
+  // An empty error when grid and span make a sky of at most kMaxVolumeDim voxels per axis and
+  // the home box sits on whole voxels; otherwise what is wrong, in words.
+  std::string check() const;
+};
+
+// The extent `volume` was made with, when it is a sky (span home boxes across, y one box high over
+// [-1,1]); std::nullopt for any other volume (a file from elsewhere, a test shape).
+std::optional<SkyExtent> skyExtentOf(const Volume& volume);
+
+// An empty sky of this extent.
+Volume makeSkyVolume(const SkyExtent& extent);
+
+// True when `volume` is a cloud of the one-box sky that fits `extent`'s home box: grid³ voxels
+// over [-1,1]³ (a cloud saved before the sky grew, the bundled cumulus).
+bool isHomeBoxCloud(const Volume& volume, const SkyExtent& extent);
+
+// `home` (a grid³ volume over [-1,1]³, such as the bundled cumulus) placed in the home box of an
+// otherwise empty sky of `extent`; home.dims() must be extent.grid³ (std::invalid_argument).
+Volume placeInSky(const Volume& home, const SkyExtent& extent);
+
+}  // namespace cb
