@@ -312,8 +312,8 @@ bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::
     const glm::ivec3 d = volume_.dims();
     *error = source + ": a " + std::to_string(volume.dims().x) + "x" +
              std::to_string(volume.dims().y) + "x" + std::to_string(volume.dims().z) +
-             " cloud fits neither this session's " + std::to_string(d.x) + "x" +
-             std::to_string(d.y) + "x" + std::to_string(d.z) + " sky nor its " +
+             " cloud does not fit this session's " + std::to_string(d.x) + "x" +
+             std::to_string(d.y) + "x" + std::to_string(d.z) + " sky, nor its " +
              std::to_string(sky.grid) + "³ home box; the cloud is unchanged";
     return false;
   }

@@ -197,16 +197,20 @@ void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max
   const glm::vec4 colour(1.0f, 1.0f, 1.0f, 0.22f);
   const float y = canvas.altitude;
   if (y < box_min.y || y > box_max.y || divisions < 1) return;
-  for (int i = 0; i <= divisions; ++i) {
-    const float f = float(i) / float(divisions);
-    const float x = box_min.x + f * (box_max.x - box_min.x);
-    const float z = box_min.z + f * (box_max.z - box_min.z);
-    const glm::vec2 pairs[2][2] = {{to_screen({x, y, box_min.z}), to_screen({x, y, box_max.z})},
-                                   {to_screen({box_min.x, y, z}), to_screen({box_max.x, y, z})}};
-    for (const auto& p : pairs)
-      if (p[0].x > -1e5f && p[1].x > -1e5f)  // both ends in front of the camera
-        items->push_back(makeHudSegment(p[0], p[1], 1.0f, colour));
-  }
+  const auto at = [&](int i, int j) {  // grid point (i, j) of the mid-plane
+    return glm::vec3(box_min.x + float(i) / float(divisions) * (box_max.x - box_min.x), y,
+                     box_min.z + float(j) / float(divisions) * (box_max.z - box_min.z));
+  };
+  // Each line cell by cell, so a line reaching behind the camera (the eye above a wide sky)
+  // keeps the cells in front of it.
+  for (int i = 0; i <= divisions; ++i)
+    for (int j = 0; j < divisions; ++j) {
+      const glm::vec2 pairs[2][2] = {{to_screen(at(i, j)), to_screen(at(i, j + 1))},
+                                     {to_screen(at(j, i)), to_screen(at(j + 1, i))}};
+      for (const auto& p : pairs)
+        if (p[0].x > -1e5f && p[1].x > -1e5f)  // both ends in front of the camera
+          items->push_back(makeHudSegment(p[0], p[1], 1.0f, colour));
+    }
 }
 
 }  // namespace cb

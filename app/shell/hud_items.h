@@ -69,7 +69,8 @@ std::vector<glm::vec2> canvasRegionOutline(const Camera& camera, const Canvas& c
 // cannot land looks different at once.
 void appendOutsideVeil(const DrawableRegion& region, std::vector<HudItem>* items);
 // Grid lines on the canvas mid-plane across the box's x/z extent, `divisions` per side, each
-// line projected by `to_screen` (world → screen pixels) and clipped to where it is in front.
+// line drawn cell by cell as projected by `to_screen` (world → screen pixels; x < -1e5 behind
+// the camera), leaving out the cells with an end behind the camera.
 void appendCanvasGrid(const Canvas& canvas, glm::vec3 box_min, glm::vec3 box_max, int divisions,
                       const std::function<glm::vec2(glm::vec3)>& to_screen,
                       std::vector<HudItem>* items);

@@ -788,9 +788,11 @@ bool PaintScreen::drawOverlays(std::string* error) {
     if ((in_range && (mode == Mode::kPaint || mode == Mode::kErase)) || mode == Mode::kCanvas) {
       const DrawableRegion region(camera, canvas, volume.worldMin(), volume.worldMax(), w, h);
       if (mode == Mode::kPaint) appendOutsideVeil(region, &items);
-      // The canvas as a grid on its mid-plane (thesis Fig. 3.4), every eighth of the sky box.
+      // The canvas as a grid on its mid-plane (thesis Fig. 3.4) across the sky, every eighth of
+      // the home box (the thesis's sky box).
       const auto to_screen = [&](glm::vec3 p) { return project(camera, p, w, h); };
-      appendCanvasGrid(canvas, volume.worldMin(), volume.worldMax(), 8, to_screen, &items);
+      const int span = session_->settings().sky_span;
+      appendCanvasGrid(canvas, volume.worldMin(), volume.worldMax(), 8 * span, to_screen, &items);
       appendCanvasOutline(region.outline(), &items);
     }
     if (mode == Mode::kErase && vacuum_centre_) {
@@ -805,8 +807,15 @@ bool PaintScreen::drawOverlays(std::string* error) {
           w, h);
       const glm::vec3 foot(vacuum_centre_->x, session_->canvas().altitude, vacuum_centre_->z);
       // §3.5.1: grids on the three axis-aligned planes through the sphere's centre.
+      // ... across a home box's width (2 world units) around the sphere, moved inside the sky:
+      // the whole sky box when the sky is one box.
+      const glm::vec3 grid_min(
+          std::clamp(vacuum_centre_->x - 1.0f, volume.worldMin().x, volume.worldMax().x - 2.0f),
+          volume.worldMin().y,
+          std::clamp(vacuum_centre_->z - 1.0f, volume.worldMin().z, volume.worldMax().z - 2.0f));
       appendAxisPlaneGrids(
-          *vacuum_centre_, volume.worldMin(), volume.worldMax(), 4,
+          *vacuum_centre_, grid_min,
+          glm::vec3(grid_min.x + 2.0f, volume.worldMax().y, grid_min.z + 2.0f), 4,
           [&](glm::vec3 p) { return project(camera, p, w, h); }, &items);
       items.push_back(makeHudRing(c, glm::length(edge - c), 2.0f, {1.0f, 0.55f, 0.2f, 0.9f}));
       items.push_back(

@@ -1,6 +1,7 @@
 // "What you paint is what you get" (issue 9), with nothing but product defaults: the default
 // paint camera (app/scene/paint_camera.h) at the painter's default 1280×720 screen, the default
-// Canvas, the default 256³ volume over [-1,1]³, config/brush.toml and config/mapping.toml as the
+// Canvas, the default sky (1024×256×1024 voxels for the painter's grid 256, its home box the
+// thesis's 256³ over [-1,1]³), config/brush.toml and config/mapping.toml as the
 // painter loads them, and each real brush through the real StrokeEngine and StrokeMapper. A
 // gentle S curve drawn across the drawable region must
 //   - land: >= 95 % of its ink pixels show cloud in the paint view (the real renderer),
@@ -27,6 +28,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
+#include "app/volume/sky_extent.h"
 #include "opacity_projection.h"
 #include "tests/unit/render/gl_test_context.h"
 
@@ -89,7 +91,7 @@ class WhatYouPaint : public ::testing::Test {
     const Canvas canvas;
     Measures m;
     StrokeResult stroke = paint(kind, drawn, camera, canvas);
-    Volume& v = volumes.emplace_back();  // the default 256³ over [-1,1]³
+    Volume& v = volumes.emplace_back(makeSkyVolume({256, kDefaultSkySpan}));  // the default sky
     MappingReport report = mapper->map(stroke, v);
     m.circles = report.circles.size();
     m.covered = report.coveredFraction();

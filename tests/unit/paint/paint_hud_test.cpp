@@ -144,18 +144,19 @@ struct ReplayRun {
   bool have_before = false, have_after = false;
 };
 
-// Plays `journal` through PaintLoop, pressing `keys` before the first frame; records to
-// `record_to` when given.
+// Plays `journal` through PaintLoop, pressing `keys` before the first frame, in a sky of
+// `sky_span` home boxes; records to `record_to` when given.
 ReplayRun runReplay(const std::string& journal, const std::string& dir, const std::string& keys,
-                    JournalWriter* record_to) {
+                    JournalWriter* record_to, int sky_span = kDefaultSkySpan) {
   ReplayRun run;
   std::unique_ptr<Display> display = openSurfaceless();
   if (!display) return run;
   std::string error;
   VolumeRenderer renderer;
   EXPECT_TRUE(renderer.init(&error)) << error;
-  run.session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH, kGrid}, BrushConfig{},
-                                               MappingConfig{});
+  PaintSessionSettings settings{kW, kH, kGrid};
+  settings.sky_span = sky_span;
+  run.session = std::make_unique<PaintSession>(settings, BrushConfig{}, MappingConfig{});
   run.session->setQuietMapping(true);
   if (record_to) run.session->recordTo(record_to, 0);
   ReplayOptions replay_options;
@@ -190,7 +191,9 @@ ReplayRun runReplay(const std::string& journal, const std::string& dir, const st
 TEST(PaintHud, CircleRingsLieOnTheMappingCircles) {
   const std::string dir = tempDir("circles");
   const std::string journal = writeStrokeJournal(dir);
-  ReplayRun run = runReplay(journal, dir, "c", nullptr);
+  // In the one-box sky, whose drawable region has sides on the screen to check the outline on
+  // (the default sky's canvas reaches past every edge of the default view).
+  ReplayRun run = runReplay(journal, dir, "c", nullptr, kLegacySkySpan);
   ASSERT_TRUE(run.session && run.have_before && run.have_after);
   const std::vector<Circle>& circles = run.session->lastCircles();
   ASSERT_GE(circles.size(), 3u);

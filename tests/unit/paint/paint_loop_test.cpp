@@ -157,14 +157,17 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   const Volume& volume = session.volume();
   const VoxelBox dirty = volume.dirtySince(empty_generation);
   long inside = 0, outside = 0;
-  for (int z = 0; z < kGrid; ++z)
-    for (int y = 0; y < kGrid; ++y)
-      for (int x = 0; x < kGrid; ++x) {
-        if (volume.at(x, y, z) == 0.0f) continue;
-        const bool in = x >= dirty.lo.x && y >= dirty.lo.y && z >= dirty.lo.z && x < dirty.hi.x &&
-                        y < dirty.hi.y && z < dirty.hi.z;
-        ++(in ? inside : outside);
-      }
+  for (const glm::ivec3& b : volume.allocatedBrickList()) {
+    const VoxelBox box = volume.brickBox(b);
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) {
+          if (volume.at(x, y, z) == 0.0f) continue;
+          const bool in = x >= dirty.lo.x && y >= dirty.lo.y && z >= dirty.lo.z && x < dirty.hi.x &&
+                          y < dirty.hi.y && z < dirty.hi.z;
+          ++(in ? inside : outside);
+        }
+  }
   EXPECT_GT(inside, 1000);
   EXPECT_EQ(outside, 0);
 
