@@ -68,7 +68,8 @@ class SkyWithoutWalls : public ::testing::Test {
 };
 
 TEST_F(SkyWithoutWalls, AStrokePastTheOldBoxsWallLandsAndRenders) {
-  // Panned 2.5 world units (320 voxels) in x and z: the drawable region lies wholly outside the
+  // The paint view moved 2.5 world units (320 voxels) along x and z, where panning and orbiting
+  // take it: the drawable region lies wholly outside the
   // old box [-1,1]³, where the one-box sky dropped every voxel of a stroke.
   const Camera camera = pannedPaintCamera(glm::vec3(2.5f, 0.0f, 2.5f));
   for (BrushKind kind : {BrushKind::k2D, BrushKind::k3D, BrushKind::kSkeleton}) {
