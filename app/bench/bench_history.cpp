@@ -31,20 +31,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double rssMb() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmRSS:") {
-      double kb = 0;
-      status >> kb;
-      return kb / 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0.0;
-}
-
 }  // namespace
 
 int benchHistory(int argc, char** argv) {
@@ -92,7 +78,7 @@ int benchHistory(int argc, char** argv) {
   };
   renderer.sync(session.volume(), session.light());
   frame();
-  const double rss_before = rssMb();
+  const double rss_before = processRssMb();
 
   // N strokes: the reference strokes shifted over a grid of places in the drawable region.
   std::printf("painting %d strokes at %dx%d into %d³ ...\n", strokes, w, h, grid);
@@ -114,7 +100,7 @@ int benchHistory(int argc, char** argv) {
   const History& history = session.history();
   const double delta_mb = double(history.deltaBytes()) / (1 << 20);
   const double copy_mb = double(history.copyBytes()) / (1 << 20);
-  const double rss_growth = rssMb() - rss_before;
+  const double rss_growth = processRssMb() - rss_before;
   std::printf(
       "%u strokes mapped in %.1f s; history: %zu steps, deltas %.1f MB + committed copy "
       "%.1f MB = %.1f MB; RSS growth %.1f MB\n",

@@ -31,6 +31,12 @@ double msSince(std::chrono::steady_clock::time_point t0);
 // CPU time of the whole process so far (llvmpipe's threads included), in ms: less inflated by
 // other load on the machine than wall time.
 double processCpuMs();
+// The process's resident set (VmRSS), in MiB; -1 when /proc cannot tell.
+double processRssMb();
+// Bytes as MiB.
+inline double mb(size_t bytes) {
+  return double(bytes) / double(1 << 20);
+}
 
 // Median of timing samples (copies; fine for benchmark sizes).
 double median(std::vector<double> v);

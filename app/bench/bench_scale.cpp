@@ -41,6 +41,7 @@
 #include "app/session/synthetic_session.h"
 #include "app/shell/paint_loop.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/sky_extent.h"
 #include "drivers/replay/replay_pen_source.h"
 
 namespace cb {
@@ -83,6 +84,7 @@ bool parseSizes(const std::string& text, std::vector<Size>* sizes) {
 
 // Figures of one size in one child process.
 struct Row {
+  double volume_mb = -1, gpu_mb = -1, light_mb = -1, rss_mb = -1;  // after the painter's strokes
   double fresh_ms = -1, fresh_first_ms = -1, fresh_cpu_ms = -1, fresh_paint_view_ms = -1;
   double orbit_fps = -1, orbit_scale = -1;
   double painting_ms = -1;
@@ -96,6 +98,9 @@ struct PaintRun {
   double painting_ms = -1, lit_ms = -1, full_ms = -1, mapping_ms = -1;
   double lit_pixels = -1, full_pixels = -1;
   double lit_render_ms = -1, full_render_ms = -1, sync_ms = -1;  // parts: ray cast, sync
+  // Memory after the strokes: the session's volume bricks, the renderer's GPU copies and its
+  // light volume (bytes counted by each), and the process's resident set.
+  double volume_mb = -1, gpu_mb = -1, light_mb = -1, rss_mb = -1;
 };
 
 std::string writeStrokeJournal(const std::string& dir, Size size, int strokes) {
@@ -123,9 +128,11 @@ double medianOr(const std::vector<double>& v) {
 }
 
 PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cumulus,
-                    const std::string& journal, Size size, int grid, bool region) {
+                    const std::string& journal, Size size, const SkyExtent& sky, bool region) {
   PaintRun run;
-  PaintSession session({size.w, size.h, grid}, BrushConfig{}, MappingConfig{});
+  PaintSessionSettings settings{size.w, size.h, sky.grid};
+  settings.sky_span = sky.span;
+  PaintSession session(settings, BrushConfig{}, MappingConfig{});
   session.setQuietMapping(true);
   std::string error;
   if (!session.replaceVolume(cumulus, 0, "bundled cumulus", &error)) {
@@ -171,17 +178,26 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
   run.lit_render_ms = medianOr(lit_render);
   run.full_render_ms = medianOr(full_render);
   run.sync_ms = medianOr(sync);
+  run.volume_mb = mb(session.volume().memoryBytes());
+  run.gpu_mb = mb(renderer.memoryBytes());
+  run.light_mb = mb(renderer.lightVolume().memoryBytes());
+  run.rss_mb = processRssMb();
   return run;
 }
 
-// One thread count (this process's): every size.
-int runChild(const std::vector<Size>& sizes, int frames, int grid) {
+// One thread count (this process's): every size, in a sky of `sky`. `quick`: the fresh frames
+// and the painter with the region re-render only (the sky-size table).
+int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, bool quick) {
   BenchReport report("scale");
+  const int grid = sky.grid;
   const auto t_gen = Clock::now();
-  const Volume cumulus = makeBundledCumulus(glm::ivec3(grid), 1);
-  std::printf("  bundled cumulus %d^3 generated in %.0f ms, %d worker threads, LP_NUM_THREADS=%s\n",
-              grid, msSince(t_gen), workerThreads(),
-              std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
+  const Volume cumulus = placeInSky(makeBundledCumulus(glm::ivec3(grid), 1), sky);
+  const glm::ivec3 sd = sky.dims();
+  std::printf(
+      "  bundled cumulus %d^3 in a %dx%dx%d sky, generated in %.0f ms, %d worker threads, "
+      "LP_NUM_THREADS=%s\n",
+      grid, sd.x, sd.y, sd.z, msSince(t_gen), workerThreads(),
+      std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
   const std::string dir = std::filesystem::temp_directory_path().string() + "/cb_bench_scale_" +
                           std::to_string(::getpid());
   std::filesystem::create_directories(dir);
@@ -243,7 +259,7 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
       std::fflush(stdout);
 
       // The painter's orbit: its own loop and moving-scale policy, no pen.
-      {
+      if (!quick) {
         PaintLoopOptions options;
         options.max_frames = size.huge() ? 24 : 48;
         PaintLoop loop(*display, renderer, cumulus, Light{}, options);
@@ -261,8 +277,13 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
       const int strokes = size.huge() ? 1 : 2;
       const std::string journal = writeStrokeJournal(dir, size, strokes);
       if (!journal.empty()) {
-        const PaintRun region = runPainter(*display, renderer, cumulus, journal, size, grid, true);
-        const PaintRun whole = runPainter(*display, renderer, cumulus, journal, size, grid, false);
+        const PaintRun region = runPainter(*display, renderer, cumulus, journal, size, sky, true);
+        const PaintRun whole =
+            quick ? PaintRun{} : runPainter(*display, renderer, cumulus, journal, size, sky, false);
+        row.volume_mb = region.volume_mb;
+        row.gpu_mb = region.gpu_mb;
+        row.light_mb = region.light_mb;
+        row.rss_mb = region.rss_mb;
         row.painting_ms = region.painting_ms;
         row.lit_ms = region.lit_ms;
         row.full_ms = region.full_ms;
@@ -281,6 +302,10 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
             size.name().c_str(), row.painting_ms, row.lit_ms, row.mapping_ms, row.sync_ms,
             row.lit_render_ms, row.full_ms, row.full_render_ms, row.lit_pixels, row.full_pixels,
             row.lit_base_ms, row.full_base_ms);
+        std::printf(
+            "  %s: memory after the strokes: volume %.1f MiB, GPU copies %.1f MiB, light %.1f MiB "
+            "(process RSS %.0f MiB)\n",
+            size.name().c_str(), row.volume_mb, row.gpu_mb, row.light_mb, row.rss_mb);
         std::fflush(stdout);
       }
     }
@@ -300,6 +325,10 @@ int runChild(const std::vector<Size>& sizes, int frames, int grid) {
     report.figure(k + "sync_ms", row.sync_ms);
     report.figure(k + "lit_ray_cast_ms", row.lit_render_ms);
     report.figure(k + "full_ray_cast_ms", row.full_render_ms);
+    report.figure(k + "volume_mb", row.volume_mb);
+    report.figure(k + "gpu_mb", row.gpu_mb);
+    report.figure(k + "light_mb", row.light_mb);
+    report.figure(k + "rss_mb", row.rss_mb);
     report.baseline(k + "pen_up_to_lit_ms", row.lit_base_ms);
     report.baseline(k + "pen_up_to_full_ms", row.full_base_ms);
   }
@@ -334,12 +363,13 @@ const char* verdict(bool met) {
 }  // namespace
 
 int benchScale(int argc, char** argv) {
-  Args args(argc, argv, {"help", "child"});
+  Args args(argc, argv, {"help", "child", "quick"});
   if (args.has("help")) {
     std::printf("%s", kHelp);
     return 0;
   }
-  if (auto bad = args.unknown({"help", "child", "sizes", "threads", "frames", "grid"});
+  if (auto bad = args.unknown({"help", "child", "quick", "sizes", "threads", "frames", "grid",
+                               "sky-span", "sky-spans"});
       !bad.empty()) {
     std::fprintf(stderr, "cloudbrush bench scale: unknown option %s (see --help)\n",
                  bad.front().c_str());
@@ -357,24 +387,35 @@ int benchScale(int argc, char** argv) {
                  args.error().empty() ? size_list.c_str() : args.error().c_str());
     return 2;
   }
-  if (args.has("child")) return runChild(sizes, frames, grid);
+  const SkyExtent sky{grid, int(args.getInt("sky-span", kDefaultSkySpan))};
+  if (const std::string problem = sky.check(); !problem.empty()) {
+    std::fprintf(stderr, "cloudbrush bench scale: --sky-span: %s\n", problem.c_str());
+    return 2;
+  }
+  if (args.has("child")) return runChild(sizes, frames, sky, args.has("quick"));
 
-  std::vector<int> threads;
-  {
-    const std::string list = args.get("threads", "1,2");
+  // A comma-separated list of integers in lo..hi; false when it is not one.
+  const auto parseList = [](const std::string& list, int lo, int hi, std::vector<int>* out) {
     size_t start = 0;
     while (start <= list.size()) {
       const size_t end = std::min(list.find(',', start), list.size());
-      const int t = std::atoi(list.substr(start, end - start).c_str());
-      if (t < 1 || t > 64) {
-        std::fprintf(stderr, "cloudbrush bench scale: --threads '%s': expected 1..64, ...\n",
-                     list.c_str());
-        return 2;
-      }
-      threads.push_back(t);
+      const int v = std::atoi(list.substr(start, end - start).c_str());
+      if (v < lo || v > hi) return false;
+      out->push_back(v);
       start = end + 1;
     }
+    return true;
+  };
+  std::vector<int> threads, spans;
+  if (!parseList(args.get("threads", "1,2"), 1, 64, &threads)) {
+    std::fprintf(stderr, "cloudbrush bench scale: --threads: expected 1..64, ...\n");
+    return 2;
   }
+  if (!parseList(args.get("sky-spans", "1,2,4"), 0, kMaxSkySpan, &spans)) {
+    std::fprintf(stderr, "cloudbrush bench scale: --sky-spans: expected 0..%d, ...\n", kMaxSkySpan);
+    return 2;
+  }
+  spans.erase(std::remove(spans.begin(), spans.end(), 0), spans.end());
   std::error_code ec;
   const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
   if (ec) {
@@ -396,20 +437,24 @@ int benchScale(int argc, char** argv) {
   }
   std::printf("bench scale: sizes %s, threads", size_list.c_str());
   for (int t : threads) std::printf(" %d", t);
-  std::printf(", the bundled cumulus %d^3 (each thread count in a child process)\n", grid);
+  std::printf(
+      ", the bundled cumulus %d^3 in a sky of %d x %d home boxes (each thread count in a child "
+      "process)\n",
+      grid, sky.span, sky.span);
 
-  std::map<int, std::map<std::string, double>> figures, baselines;
-  for (int t : threads) {
+  // One child process: `t` threads, the figures of its JSON line into *figures / *baselines.
+  const auto runChildProcess = [&](int t, const std::string& sizes_arg, int span, bool quick,
+                                   std::map<std::string, double>* figures_out,
+                                   std::map<std::string, double>* baselines_out) {
     const std::string command = "CLOUDBRUSH_THREADS=" + std::to_string(t) +
                                 " LP_NUM_THREADS=" + std::to_string(t) + " '" + self +
-                                "' bench scale --child --sizes " + size_list + " --frames " +
-                                std::to_string(frames) + " --grid " + std::to_string(grid);
-    std::printf("threads %d:\n", t);
-    std::fflush(stdout);
+                                "' bench scale --child --sizes " + sizes_arg + " --frames " +
+                                std::to_string(frames) + " --grid " + std::to_string(grid) +
+                                " --sky-span " + std::to_string(span) + (quick ? " --quick" : "");
     FILE* p = popen((command + " 2>/dev/null").c_str(), "r");
     if (!p) {
       std::printf("  could not start the child process\n");
-      continue;
+      return;
     }
     std::string last;
     char buf[4096];
@@ -423,9 +468,16 @@ int benchScale(int argc, char** argv) {
     const int status = pclose(p);
     if (last.empty()) {
       std::printf("  the child process gave no figures (status %d)\n", status);
-      continue;
+      return;
     }
-    parseReport(last, &figures[t], &baselines[t]);
+    parseReport(last, figures_out, baselines_out);
+  };
+
+  std::map<int, std::map<std::string, double>> figures, baselines;
+  for (int t : threads) {
+    std::printf("threads %d:\n", t);
+    std::fflush(stdout);
+    runChildProcess(t, size_list, sky.span, false, &figures[t], &baselines[t]);
   }
 
   auto get = [&](int t, const Size& s, const std::string& key, bool baseline = false) {
@@ -433,30 +485,28 @@ int benchScale(int argc, char** argv) {
     auto it = m.find(s.name() + "_" + key);
     return it == m.end() ? -1.0 : it->second;
   };
-  std::printf("\n%-10s %3s | %9s | %8s %5s | %9s | %-21s | %-21s | %s\n", "size", "thr", "fresh ms",
-              "orbit fps", "scale", "paint ms", "pen-up->lit ms (base)", "->full res ms (base)",
-              "sky 1x / 4x / 16x area");
+  std::printf("\n%-10s %3s | %9s | %8s %5s | %9s | %-21s | %-21s\n", "size", "thr", "fresh ms",
+              "orbit fps", "scale", "paint ms", "pen-up->lit ms (base)", "->full res ms (base)");
   for (const Size& s : sizes)
     for (int t : threads) {
       const std::string lit = cell(get(t, s, "pen_up_to_lit_ms"), "%.1f") + " (" +
                               cell(get(t, s, "pen_up_to_lit_ms", true), "%.1f") + ")";
       const std::string full = cell(get(t, s, "pen_up_to_full_ms"), "%.1f") + " (" +
                                cell(get(t, s, "pen_up_to_full_ms", true), "%.1f") + ")";
-      std::printf("%-10s %3d | %9s | %8s %5s | %9s | %-21s | %-21s | %s\n", s.name().c_str(), t,
+      std::printf("%-10s %3d | %9s | %8s %5s | %9s | %-21s | %-21s\n", s.name().c_str(), t,
                   cell(get(t, s, "fresh_ms"), "%.1f").c_str(),
                   cell(get(t, s, "orbit_fps"), "%.1f").c_str(),
                   cell(get(t, s, "orbit_scale"), "%.2f").c_str(),
-                  cell(get(t, s, "painting_ms"), "%.1f").c_str(), lit.c_str(), full.c_str(),
-                  "not measured (no sparse volume yet)");
+                  cell(get(t, s, "painting_ms"), "%.1f").c_str(), lit.c_str(), full.c_str());
       const std::string k = "t" + std::to_string(t) + "_" + s.name() + "_";
       for (const char* key :
            {"fresh_ms", "orbit_fps", "orbit_scale", "painting_ms", "pen_up_to_lit_ms",
-            "pen_up_to_full_ms", "lit_pixels_cast", "full_pixels_cast", "mapping_ms"})
+            "pen_up_to_full_ms", "lit_pixels_cast", "full_pixels_cast", "mapping_ms", "volume_mb",
+            "gpu_mb", "light_mb", "rss_mb"})
         report.figure(k + key, get(t, s, key));
       for (const char* key : {"pen_up_to_lit_ms", "pen_up_to_full_ms"})
         report.baseline(k + key, get(t, s, key, true));
     }
-  report.note("sky_sizes", "not measured (no sparse volume yet)");
 
   // Issue 15's targets, at 1920x1080 with 2 threads.
   const Size hd{1920, 1080};
@@ -478,7 +528,46 @@ int benchScale(int argc, char** argv) {
     std::printf("  pen-up -> full-resolution lit frame %.1f ms <= 150 ms: %s\n", full,
                 verdict(full >= 0 && full <= 150));
   }
-  std::printf("sky sizes (1x, 4x, 16x area): not measured (no sparse volume yet)\n");
+  // The sky-size table: the painter at 1920x1080 in skies of 1x, 4x, 16x the home box's area;
+  // span 1 (the thesis's one box) is the baseline.
+  if (!spans.empty()) {
+    std::printf(
+        "\nsky sizes at %s (the painter with the region re-render; span 1 = one %d^3 box, "
+        "the baseline):\n",
+        hd.name().c_str(), grid);
+    std::map<std::pair<int, int>, std::map<std::string, double>> sky_figures;
+    for (int t : threads)
+      for (int span : spans) {
+        std::printf("threads %d, sky span %d:\n", t, span);
+        std::fflush(stdout);
+        std::map<std::string, double> unused;
+        runChildProcess(t, hd.name(), span, true, &sky_figures[{t, span}], &unused);
+      }
+    std::printf("\n%-16s %3s | %8s | %14s | %14s | %9s %9s %9s %9s\n", "sky (voxels)", "thr",
+                "fresh ms", "pen-up->lit ms", "->full res ms", "volume MB", "GPU MB", "light MB",
+                "RSS MB");
+    for (int t : threads)
+      for (int span : spans) {
+        const auto& m = sky_figures[{t, span}];
+        const auto at = [&](const std::string& key) {
+          auto it = m.find(hd.name() + "_" + key);
+          return it == m.end() ? -1.0 : it->second;
+        };
+        const glm::ivec3 d = SkyExtent{grid, span}.dims();
+        const std::string name =
+            std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+        std::printf("%-16s %3d | %8s | %14s | %14s | %9s %9s %9s %9s\n", name.c_str(), t,
+                    cell(at("fresh_ms"), "%.1f").c_str(),
+                    cell(at("pen_up_to_lit_ms"), "%.1f").c_str(),
+                    cell(at("pen_up_to_full_ms"), "%.1f").c_str(),
+                    cell(at("volume_mb"), "%.1f").c_str(), cell(at("gpu_mb"), "%.1f").c_str(),
+                    cell(at("light_mb"), "%.1f").c_str(), cell(at("rss_mb"), "%.0f").c_str());
+        const std::string k = "t" + std::to_string(t) + "_sky" + std::to_string(span) + "_";
+        for (const char* key : {"fresh_ms", "pen_up_to_lit_ms", "pen_up_to_full_ms", "volume_mb",
+                                "gpu_mb", "light_mb", "rss_mb"})
+          (span == 1 ? report.baseline(k + key, at(key)) : report.figure(k + key, at(key)));
+      }
+  }
   report.print();
   return 0;
 }
