@@ -4,7 +4,10 @@
 //   - a stroke drawn where the thesis's 256³ box ended (the paint view panned past its wall, as
 //     the camera mode pans it) lands there and renders: issue 9's landed and IoU thresholds;
 //   - a cloud at the far edge of the sky is lit and shadowed as the same cloud at the centre:
-//     the sun is a direction, so the light volume and the rendered image move with the cloud.
+//     the sun is a direction, so the light volume and the rendered image move with the cloud;
+//   - memory follows the painting: an empty sky holds ≤ 50 MB (volume bricks + the renderer's
+//     GPU copies + its light volume, counted in bytes), the bundled cumulus and 100 strokes
+//     spread across the sky ≤ 1 GB.
 #include <algorithm>
 #include <cstdio>
 #include <deque>
@@ -49,11 +52,18 @@ class SkyWithoutWalls : public ::testing::Test {
                               float(kW) / float(kH));
   }
 
-  StrokeResult paint(BrushKind kind, const Camera& camera) {
+  // The bytes the sky costs once the renderer has synced it: the volume's bricks, the GPU copies
+  // and the light volume, each as counted by its owner.
+  size_t syncedBytes(const Volume& sky) {
+    renderer.sync(sky, Light{});
+    return sky.memoryBytes() + renderer.memoryBytes() + renderer.lightVolume().memoryBytes();
+  }
+
+  StrokeResult paint(BrushKind kind, const Camera& camera, uint32_t stroke_index = 1) {
     StrokeEngine engine(loadDefaultBrushConfig(), kW, kH);
     engine.selectBrush(kind);
     engine.setPaintView(PaintView{camera}, Canvas{});
-    engine.setNextStrokeIndex(1);
+    engine.setNextStrokeIndex(stroke_index);
     std::vector<BrushInput> samples = sampleStroke(gentleCurve(kW, kH), 200.0);
     engine.prepareNextStroke();
     engine.beginStroke(samples.front());
@@ -177,6 +187,34 @@ TEST_F(SkyWithoutWalls, ACloudAtTheFarEdgeIsLitAndShadowedAsAtTheCentre) {
   // along them by a few ulps: a pixel here and there rounds 2/255 apart, never more.
   EXPECT_LE(worst, 2);
   EXPECT_LE(off_by_more_than_one, kW * kH / 10000);
+}
+
+TEST_F(SkyWithoutWalls, MemoryFollowsThePainting) {
+  Volume& sky = volumes.emplace_back(makeSkyVolume(kSky));
+  const size_t empty = syncedBytes(sky);
+  std::printf("empty %dx%dx%d sky: %.1f MB (volume %.1f, GPU %.1f, light %.1f)\n", kSky.dims().x,
+              kSky.dims().y, kSky.dims().z, empty / 1e6, sky.memoryBytes() / 1e6,
+              renderer.memoryBytes() / 1e6, renderer.lightVolume().memoryBytes() / 1e6);
+  EXPECT_LE(empty, size_t(50'000'000));
+
+  // The bundled cumulus in the home box and 100 strokes of the 3D brush, one from each of 10 × 10
+  // views spread across the sky.
+  Volume& painted =
+      volumes.emplace_back(placeInSky(makeBundledCumulus(glm::ivec3(kGrid), 1), kSky));
+  uint32_t index = 1;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const glm::vec3 shift(-3.0f + 6.0f * float(i) / 9.0f, 0.0f, -3.0f + 6.0f * float(j) / 9.0f);
+      mapper->map(paint(BrushKind::k3D, pannedPaintCamera(shift), index++), painted);
+    }
+  const size_t full = syncedBytes(painted);
+  std::printf(
+      "cumulus + 100 strokes across the sky: %.1f MB (volume %.1f in %zu bricks, GPU %.1f, "
+      "light %.1f)\n",
+      full / 1e6, painted.memoryBytes() / 1e6, painted.allocatedBricks(),
+      renderer.memoryBytes() / 1e6, renderer.lightVolume().memoryBytes() / 1e6);
+  EXPECT_GT(painted.allocatedBricks(), 2000u) << "the strokes did not spread across the sky";
+  EXPECT_LE(full, size_t(1'000'000'000));
 }
 
 }  // namespace
