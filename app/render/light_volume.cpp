@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -275,50 +276,54 @@ struct TileSweep {
           const int c0 = std::max(gc0, (uc0 + j) * kTile),
                     c1 = std::min(gc1, (uc0 + j + 1) * kTile);
           for (int c = c0; c < c1; ++c) {
-            float* row = patch.data() + size_t((c - fc0) * pw);
-            for (int b = b0; b < b1; ++b) row[b - fb0] = p[offset(su, b, c)];
+            float* row = patch.data() + size_t((c - fc0) * pw) + (b0 - fb0);
+            const float* src = p + offset(su, b0, c);
+            for (int b = 0; b < b1 - b0; ++b) row[b] = src[size_t(b) * sb];
           }
         }
 
-    const int n = r.hi.x - r.lo.x;
+    const int n = r.hi.x - r.lo.x, rows = ph - 1;
     float density[kTile], passed[kTile * kTile], own[kTile * kTile];
     bool not_one = false;
-    for (int rr = 0; rr < ph - 1; ++rr) {
-      const int c = r.lo.y + rr;
-      if (density_brick)
-        for (int i = 0; i < n; ++i) density[i] = density_brick[offset(s, r.lo.x + i, c)];
-      else
+    for (int rr = 0; rr < rows; ++rr) {
+      if (density_brick) {
+        const float* src = density_brick + offset(s, r.lo.x, r.lo.y + rr);
+        for (int i = 0; i < n; ++i) density[i] = src[size_t(i) * sb];
+      } else {
         std::fill(density, density + n, 0.0f);
+      }
       const float* up0 = patch.data() + size_t(rr * pw);
-      sweepContiguousRun(up0, up0 + pw, density, passed + rr * kTile, own + rr * kTile, n, wb, wc,
-                         attenuation);
-      for (int i = 0; i < n; ++i) not_one |= passed[rr * kTile + i] != 1.0f;
+      float* out = passed + rr * kTile;
+      sweepContiguousRun(up0, up0 + pw, density, out, own + rr * kTile, n, wb, wc, attenuation);
+      for (int i = 0; i < n; ++i) not_one |= out[i] != 1.0f;
     }
     if (!through && not_one) through = lv.through.create(bi);
     if (through)
-      for (int rr = 0; rr < ph - 1; ++rr) {
-        const int c = r.lo.y + rr;
-        int changed_lo = r.hi.x, changed_hi = r.lo.x;
-        for (int i = 0; i < n; ++i) {
-          const int b = r.lo.x + i;
-          float& stored = through[offset(s, b, c)];
-          const float value = passed[rr * kTile + i];
-          if (track && std::abs(value - stored) > kChangeEpsilon) {
-            changed_lo = std::min(changed_lo, b);
-            changed_hi = b + 1;
-          }
-          stored = value;
+      for (int rr = 0; rr < rows; ++rr) {
+        float* dst = through + offset(s, r.lo.x, r.lo.y + rr);
+        const float* values = passed + rr * kTile;
+        if (track) {
+          int changed_lo = n, changed_hi = 0;
+          for (int i = 0; i < n; ++i)
+            if (std::abs(values[i] - dst[size_t(i) * sb]) > kChangeEpsilon) {
+              changed_lo = std::min(changed_lo, i);
+              changed_hi = i + 1;
+            }
+          if (changed_hi > changed_lo)
+            *changed = changed->unite(
+                Rect{{r.lo.x + changed_lo, r.lo.y + rr}, {r.lo.x + changed_hi, r.lo.y + rr + 1}});
         }
-        if (track && changed_hi > changed_lo)
-          *changed = changed->unite(Rect{{changed_lo, c}, {changed_hi, c + 1}});
+        for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = values[i];
       }
     if (density_brick) {
       // A brick new to the lit set: its voxels outside this sweep hold no density (they were
       // not in an allocated brick and did not change), so their T is the passed-on value.
       float* lit = lv.lit.getForWrite(bi);
       if (!lit) lit = lv.lit.create(bi, through);
-      for (int rr = 0; rr < ph - 1; ++rr)
-        for (int i = 0; i < n; ++i) lit[offset(s, r.lo.x + i, r.lo.y + rr)] = own[rr * kTile + i];
+      for (int rr = 0; rr < rows; ++rr) {
+        float* dst = lit + offset(s, r.lo.x, r.lo.y + rr);
+        for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = own[rr * kTile + i];
+      }
     }
     return not_one;
   }
@@ -353,6 +358,8 @@ LightBricks& LightBricks::operator=(LightBricks&& o) noexcept {
   brick_dims_ = o.brick_dims_;
   table_ = std::move(o.table_);
   allocated_.store(o.allocated_.load());
+  spare_ = std::move(o.spare_);
+  o.spare_.clear();
   o.table_.clear();
   o.brick_dims_ = glm::ivec3(0);
   o.allocated_.store(0);
@@ -361,6 +368,7 @@ LightBricks& LightBricks::operator=(LightBricks&& o) noexcept {
 
 LightBricks::~LightBricks() {
   freeAll();
+  dropSpare();
 }
 
 void LightBricks::freeAll() {
@@ -377,8 +385,30 @@ void LightBricks::reset(glm::ivec3 brick_dims) {
   table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
 }
 
+void LightBricks::recycle(glm::ivec3 brick_dims) {
+  for (float*& p : table_)
+    if (p) spare_.push_back(std::exchange(p, nullptr));
+  allocated_.store(0);
+  brick_dims_ = brick_dims;
+  table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
+}
+
+void LightBricks::dropSpare() {
+  for (float* p : spare_) delete[] p;
+  spare_.clear();
+  spare_.shrink_to_fit();
+}
+
 float* LightBricks::create(size_t i, const float* init) {
-  float* p = new float[size_t(Volume::kBrickVoxels)];
+  float* p = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(spare_mutex_);
+    if (!spare_.empty()) {
+      p = spare_.back();
+      spare_.pop_back();
+    }
+  }
+  if (!p) p = new float[size_t(Volume::kBrickVoxels)];
   if (init)
     std::copy(init, init + Volume::kBrickVoxels, p);
   else
@@ -563,9 +593,11 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                     size_t(brick_stride[f.c])};
 
   if (region == volume.bounds()) {
-    lv.lit.reset(volume.brickDims());
-    lv.through.reset(volume.brickDims());
+    lv.lit.recycle(volume.brickDims());
+    lv.through.recycle(volume.brickDims());
     sweepAllTiles(t);
+    lv.lit.dropSpare();
+    lv.through.dropSpare();
     return volume.bounds();
   }
 

@@ -32,6 +32,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <mutex>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -56,6 +57,10 @@ class LightBricks {
 
   // Frees every brick and sizes the table for `brick_dims` bricks.
   void reset(glm::ivec3 brick_dims);
+  // The same, but keeps the bricks' memory for the next `create`s (a light change creates most
+  // of them again; fresh pages cost more than the sweep's arithmetic); dropSpare frees the rest.
+  void recycle(glm::ivec3 brick_dims);
+  void dropSpare();
   glm::ivec3 brickDims() const { return brick_dims_; }
   size_t brickIndex(glm::ivec3 b) const {
     return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
@@ -78,6 +83,8 @@ class LightBricks {
   glm::ivec3 brick_dims_{0};
   std::vector<float*> table_;
   std::atomic<size_t> allocated_{0};
+  std::vector<float*> spare_;  // recycled bricks, taken by create
+  std::mutex spare_mutex_;
 };
 
 struct LightVolume {
