@@ -80,7 +80,7 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
   lv.dims = dims;
   lv.direction = lightDirectionInVoxels(volume, light);
   lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
-  lv.lit.reset(volume.brickDims());
+  lv.lit.recycle(volume.brickDims());  // the previous drag frame's bricks are reused
   lv.through.reset(volume.brickDims());
   struct Tap {
     int i0, i1;
@@ -103,29 +103,48 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
   std::vector<float*> out(bricks.size());
   for (size_t k = 0; k < bricks.size(); ++k) out[k] = lv.lit.create(lv.lit.brickIndex(bricks[k]));
   parallelFor(bricks.size(), 4, [&](size_t, size_t k0, size_t k1) {
-    std::vector<float> blended(size_t(cdims.x));
+    std::vector<float> coarse_block, blended;
     for (size_t k = k0; k < k1; ++k) {
       const VoxelBox box = volume.brickBox(bricks[k]);
-      const int cx0 = tx[size_t(box.lo.x)].i0, cx1 = tx[size_t(box.hi.x - 1)].i1;
+      // The coarse values this brick interpolates, read once: [c0, c1] per axis.
+      const glm::ivec3 c0(tx[size_t(box.lo.x)].i0, ty[size_t(box.lo.y)].i0,
+                          tz[size_t(box.lo.z)].i0);
+      const glm::ivec3 c1(tx[size_t(box.hi.x - 1)].i1, ty[size_t(box.hi.y - 1)].i1,
+                          tz[size_t(box.hi.z - 1)].i1);
+      const glm::ivec3 n = c1 - c0 + 1;
+      coarse_block.resize(size_t(n.x) * size_t(n.y) * size_t(n.z));
+      for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+          for (int x = 0; x < n.x; ++x)
+            coarse_block[(size_t(z) * size_t(n.y) + size_t(y)) * size_t(n.x) + size_t(x)] =
+                T.at(c0.x + x, c0.y + y, c0.z + z);
+      auto coarseRow = [&](int y, int z) {
+        return coarse_block.data() +
+               (size_t(z - c0.z) * size_t(n.y) + size_t(y - c0.y)) * size_t(n.x);
+      };
+      blended.resize(size_t(n.x));
       for (int z = box.lo.z; z < box.hi.z; ++z) {
         const Tap& a = tz[size_t(z)];
         for (int y = box.lo.y; y < box.hi.y; ++y) {
           const Tap& b = ty[size_t(y)];
-          for (int x = cx0; x <= cx1; ++x)
-            blended[size_t(x)] =
-                (T.at(x, b.i0, a.i0) * (1 - b.t) + T.at(x, b.i1, a.i0) * b.t) * (1 - a.t) +
-                (T.at(x, b.i0, a.i1) * (1 - b.t) + T.at(x, b.i1, a.i1) * b.t) * a.t;
+          const float *r00 = coarseRow(b.i0, a.i0), *r01 = coarseRow(b.i1, a.i0),
+                      *r10 = coarseRow(b.i0, a.i1), *r11 = coarseRow(b.i1, a.i1);
+          for (int x = 0; x < n.x; ++x)
+            blended[size_t(x)] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
+                                 (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
           constexpr int m = Volume::kBrickSize - 1;
           float* row =
               out[k] + ((size_t(z & m) * Volume::kBrickSize + size_t(y & m)) * Volume::kBrickSize);
           for (int x = box.lo.x; x < box.hi.x; ++x) {
             const Tap& c = tx[size_t(x)];
-            row[x & m] = blended[size_t(c.i0)] * (1 - c.t) + blended[size_t(c.i1)] * c.t;
+            row[x & m] =
+                blended[size_t(c.i0 - c0.x)] * (1 - c.t) + blended[size_t(c.i1 - c0.x)] * c.t;
           }
         }
       }
     }
   });
+  lv.lit.dropSpare();
   return volume.bounds();
 }
 
