@@ -5,9 +5,17 @@
 // placed at its centre, the time to place it (row by row, writeLine) and to read the whole sky
 // row by row (as the checksum and the volume file do), with the process RSS beside. Baseline in
 // the same run: the dense grid the sky would be (its bytes, and the same cumulus copied into a
-// dense std::vector for the 1× sky). CPU volume only: the light volume and the GL textures are
-// still dense over the sky's extent (stage 2 of the issue), so they are not counted here.
+// dense std::vector for the 1× sky).
+//
+// Then the light volume (light_volume.h, sparse since stage 2): its bytes and the time of a full
+// sweep (a light change) for an empty 1024×256×1024 sky, the cumulus in its own 256³ box (the
+// baseline: what the light costs today's box), the cumulus in the middle of the large sky, and
+// the cumulus plus 100 stroke-sized balls spread across the sky, each for the default sun and a
+// low one; and the incremental sweep after one stroke. Baseline beside it: the bytes the dense
+// light volume (T and the passed-on values, 8 bytes a voxel) would hold. The GL brick pool is
+// counted by its own owner, not here.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -16,6 +24,8 @@
 
 #include "app/bench/bench_report.h"
 #include "app/bench/benches.h"
+#include "app/core/parallel_for.h"
+#include "app/render/light_volume.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume.h"
 
@@ -37,6 +47,134 @@ double mb(size_t bytes) {
   return double(bytes) / double(1 << 20);
 }
 
+// A stroke-sized soft ball (radius in voxels), merged by max, marked dirty.
+void paintBall(Volume* v, glm::vec3 centre, float radius) {
+  const glm::ivec3 lo = glm::max(glm::ivec3(centre - radius), glm::ivec3(0));
+  const glm::ivec3 hi = glm::min(glm::ivec3(centre + radius) + 1, v->dims());
+  for (int z = lo.z; z < hi.z; ++z)
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x) {
+        const float r = glm::length(glm::vec3(x, y, z) + 0.5f - centre) / radius;
+        if (r < 1.0f) v->maxMerge(x, y, z, std::min(1.0f, 1.5f * (1.0f - r)));
+      }
+  v->markDirty({lo, hi});
+}
+
+// A stroke: balls along a curve of `length` voxels starting at `from`.
+void paintStroke(Volume* v, glm::vec3 from, glm::vec3 along, float length, float radius) {
+  for (float t = 0.0f; t <= length; t += radius * 0.5f)
+    paintBall(v, from + along * t + glm::vec3(0.0f, 4.0f * std::sin(t * 0.05f), 0.0f), radius);
+}
+
+struct LightFigures {
+  double ms = 0.0;    // full sweep, median of 3
+  size_t bytes = 0;   // LightVolume::memoryBytes
+  size_t bricks = 0;  // lit + through bricks
+};
+
+LightFigures fullSweep(const Volume& v, const Light& light) {
+  LightFigures out;
+  std::vector<double> times;
+  LightVolume lv;
+  for (int i = 0; i < 3; ++i) {
+    lv = LightVolume{};
+    const auto t0 = Clock::now();
+    sweepLightVolume(lv, v, light, v.bounds());
+    times.push_back(msSince(t0));
+  }
+  out.ms = median(times);
+  out.bytes = lv.memoryBytes();
+  out.bricks = lv.lit.allocated() + lv.through.allocated();
+  return out;
+}
+
+void lightFigures(const Volume& cumulus, BenchReport* report) {
+  const glm::ivec3 big(1024, 256, 1024);
+  const glm::vec3 half = glm::vec3(big) / 256.0f;
+  Volume empty(big, -half, half);
+  Volume with_cumulus(big, -half, half);
+  const glm::ivec3 offset = (big - cumulus.dims()) / 2;
+  std::vector<float> row(size_t(cumulus.dims().x));
+  for (int z = 0; z < cumulus.dims().z; ++z)
+    for (int y = 0; y < cumulus.dims().y; ++y) {
+      cumulus.readLine({0, y, z}, 0, cumulus.dims().x, row.data());
+      with_cumulus.writeLine(offset + glm::ivec3(0, y, z), 0, cumulus.dims().x, row.data());
+    }
+  with_cumulus.markDirty({offset, offset + cumulus.dims()});
+  // 100 strokes spread over the sky (a fixed sequence: the figures repeat run to run).
+  Volume with_strokes = with_cumulus;
+  uint32_t state = 12345u;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (int i = 0; i < 100; ++i) {
+    const glm::vec3 from(40.0f + next() * 900.0f, 40.0f + next() * 170.0f, 40.0f + next() * 900.0f);
+    const float angle = next() * 6.2831853f;
+    paintStroke(&with_strokes, from, glm::vec3(std::cos(angle), 0.0f, std::sin(angle)),
+                20.0f + next() * 40.0f, 5.0f + next() * 5.0f);
+  }
+
+  struct Sun {
+    const char* name;
+    glm::vec3 direction;
+  };
+  const Sun suns[] = {{"default", Light{}.direction},
+                      {"low", glm::normalize(glm::vec3(-6.0f, 1.0f, 0.3f))}};
+  struct Scene {
+    const char* name;
+    const Volume* volume;
+  };
+  const Scene scenes[] = {{"empty_sky", &empty},
+                          {"cumulus_256", &cumulus},
+                          {"cumulus_in_sky", &with_cumulus},
+                          {"cumulus_100_strokes_in_sky", &with_strokes}};
+  std::printf("\nlight volume (full sweep = a light change; %d threads):\n", workerThreads());
+  std::printf("%-27s %-8s | %9s | %9s %7s | %10s | %11s\n", "scene", "sun", "sweep ms", "light MiB",
+              "bricks", "volume MiB", "dense MiB (baseline)");
+  for (const Sun& sun : suns)
+    for (const Scene& scene : scenes) {
+      Light light;
+      light.direction = sun.direction;
+      const LightFigures f = fullSweep(*scene.volume, light);
+      const double dense = double(scene.volume->voxelCount()) * 8.0;
+      std::printf("%-27s %-8s | %9.1f | %9.2f %7zu | %10.1f | %11.0f\n", scene.name, sun.name, f.ms,
+                  mb(f.bytes), f.bricks, mb(scene.volume->memoryBytes()), dense / double(1 << 20));
+      const std::string key = std::string("light_") + scene.name + "_" + sun.name;
+      report->figure(key + "_sweep_ms", f.ms);
+      report->figure(key + "_bytes", double(f.bytes));
+      report->baseline(key + "_dense_bytes", dense);
+      if (std::string(sun.name) == "default")
+        report->figure(std::string(scene.name) + "_cpu_volume_bytes",
+                       double(scene.volume->memoryBytes()));
+    }
+
+  // One more stroke in the sky with the cumulus and the strokes: the incremental sweep.
+  Light light;
+  LightVolume lv;
+  sweepLightVolume(lv, with_strokes, light, with_strokes.bounds());
+  std::vector<double> times;
+  Volume painted = with_strokes;
+  for (int i = 0; i < 5; ++i) {
+    const uint64_t seen = painted.generation();
+    paintStroke(&painted, glm::vec3(300.0f + 60.0f * float(i), 150.0f, 700.0f),
+                glm::vec3(1.0f, 0.0f, 0.3f), 50.0f, 8.0f);
+    const VoxelBox dirty = painted.dirtySince(seen);
+    const auto t0 = Clock::now();
+    sweepLightVolume(lv, painted, light, dirty);
+    times.push_back(msSince(t0));
+  }
+  const double stroke_ms = median(times);
+  const double full_ms = fullSweep(painted, light).ms;
+  std::printf(
+      "one stroke (50 voxels long, radius 8), incremental sweep: %.1f ms (median of 5); "
+      "full sweep of the same sky %.1f ms (baseline)\n",
+      stroke_ms, full_ms);
+  report->figure("light_one_stroke_incremental_ms", stroke_ms);
+  report->baseline("light_one_stroke_full_sweep_ms", full_ms);
+  report->figure("rss_mb_after_light", rssMb());
+}
+
 }  // namespace
 
 int benchSky(int argc, char** argv) {
@@ -45,7 +183,8 @@ int benchSky(int argc, char** argv) {
       std::printf(
           "usage: cloudbrush bench sky\n"
           "  bytes of an empty sky and of the bundled cumulus in it, for 1x, 4x and 16x\n"
-          "  today's area, against the dense grid's bytes (CPU volume only)\n");
+          "  today's area, against the dense grid's bytes (CPU volume); the light volume's\n"
+          "  bytes and sweep times for an empty sky, the cumulus and 100 strokes\n");
       return 0;
     }
     std::fprintf(stderr, "bench sky: unknown option '%s'\n", argv[i]);
@@ -115,12 +254,13 @@ int benchSky(int argc, char** argv) {
     report.figure(name + "_rss_mb", rss);
     report.baseline(name + "_dense_bytes", double(dense));
   }
+  lightFigures(cumulus, &report);
   std::printf(
-      "\nempty sky <= 50 MB (CPU bricks only; light bricks and the brick pool are stage 2): "
-      "see the 16x row\n"
-      "cumulus + 100 strokes across the sky <= 1 GB: not measured (needs the canvas across the "
-      "sky, stage 3)\n");
-  report.note("not_counted", "light volume and GL textures (still dense, stage 2)");
+      "\nempty sky <= 50 MB: CPU bricks (16x row) + light (empty_sky rows) + the GL brick pool "
+      "(counted by the renderer)\n"
+      "cumulus + 100 strokes across the sky <= 1 GB: CPU volume + light in the "
+      "cumulus_100_strokes_in_sky rows (+ the GL brick pool)\n");
+  report.note("not_counted", "the GL brick pool (the renderer's own figures)");
   report.print();
   return 0;
 }

@@ -5,7 +5,9 @@
 #include <atomic>
 #include <barrier>
 #include <cmath>
+#include <stdexcept>
 #include <thread>
+#include <utility>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -175,13 +177,14 @@ struct Rect {
   Rect intersect(const Rect& o) const { return {glm::max(lo, o.lo), glm::min(hi, o.hi)}; }
 };
 
-// An incremental sweep follows a change downstream only while it exceeds this (see
-// sweepLightVolume); 256 slices of it stay far below the 1e-2 accuracy bound.
-constexpr float kChangeEpsilon = 0.0f;  // any change: updates equal a full recompute bit for bit
-// Slices (and edits) with a smaller lateral area are swept by one thread.
+// An incremental sweep follows a change downstream while it exceeds this: 0, any change, so
+// updates equal a full recompute bit for bit.
+constexpr float kChangeEpsilon = 0.0f;
+// Edits with a smaller lateral area are swept by one thread.
 constexpr int kThreadedArea = 64 * 64;
-// Slices a plane of the full sweep publishes at a time to the thread sweeping the next plane.
-constexpr int kPlaneBatch = 16;
+// Slices a tile row of the full sweep publishes at a time to the thread sweeping the next row.
+constexpr int kRowBatch = 16;
+constexpr int kTile = Volume::kBrickSize;  // a tile is a brick's 16×16 cross-section
 
 // Geometry of a sweep: slices along `axis`, processed from the light side.
 struct SweepFrame {
@@ -207,17 +210,353 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
   return f;
 }
 
+// The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
+// processTile computes a rectangle inside one tile from the upstream slice, exactly as the dense
+// sweep did voxel by voxel: the same bilinear expression, the same attenuation, so the same bits.
+struct TileSweep {
+  const Volume& volume;
+  LightVolume& lv;
+  const SweepFrame& f;
+  const AttenuationPair& attenuation;
+  int na, nb, nc;     // slices, lateral sizes
+  int ob, oc;         // integer part of the upstream offset (each −1, 0 or 1)
+  float wb, wc;       // its fractional part: the bilinear weights, constants of the sweep
+  size_t sa, sb, sc;  // in-brick strides of the slice axis and the lateral axes
+
+  glm::ivec3 brickCoord(int s, int tb, int tc) const {
+    glm::ivec3 v;
+    v[f.axis] = s >> Volume::kBrickShift;
+    v[f.b] = tb;
+    v[f.c] = tc;
+    return v;
+  }
+  size_t offset(int s, int b, int c) const {
+    constexpr int m = kTile - 1;
+    return size_t(s & m) * sa + size_t(b & m) * sb + size_t(c & m) * sc;
+  }
+
+  // Sweeps rectangle r (inside tile (tb, tc) and the grid) of slice s. With `track`, unites the
+  // voxels whose passed-on value changed into *changed. Returns whether a passed-on value is not 1.
+  bool processTile(int s, int tb, int tc, Rect r, bool track, Rect* changed) const {
+    const glm::ivec3 brick = brickCoord(s, tb, tc);
+    const size_t bi = lv.through.brickIndex(brick);
+    const float* density_brick = volume.brick(brick);
+    if (!density_brick && lv.lit.get(bi)) lv.lit.release(bi);  // freed: T is the passed-on value
+    float* through = lv.through.getForWrite(bi);
+    const int su = s - f.dir;
+    const bool has_upstream = su >= 0 && su < na;
+    // The upstream footprint [fb0, fb1) × [fc0, fc1) and the part of it inside the grid.
+    const int fb0 = r.lo.x + ob, fb1 = r.hi.x + ob + 1, fc0 = r.lo.y + oc, fc1 = r.hi.y + oc + 1;
+    const int gb0 = std::max(fb0, 0), gb1 = std::min(fb1, nb), gc0 = std::max(fc0, 0),
+              gc1 = std::min(fc1, nc);
+    const bool inside = has_upstream && gb1 > gb0 && gc1 > gc0;
+    const float* upstream[2][2] = {{nullptr, nullptr}, {nullptr, nullptr}};
+    const int ub0 = gb0 >> Volume::kBrickShift, uc0 = gc0 >> Volume::kBrickShift;
+    bool upstream_lit = true;
+    if (inside)
+      for (int j = 0; j <= ((gc1 - 1) >> Volume::kBrickShift) - uc0; ++j)
+        for (int i = 0; i <= ((gb1 - 1) >> Volume::kBrickShift) - ub0; ++i) {
+          upstream[j][i] = lv.through.get(lv.through.brickIndex(brickCoord(su, ub0 + i, uc0 + j)));
+          if (upstream[j][i]) upstream_lit = false;
+        }
+    // No density, an upstream all 1 and a tile all 1 before: it stays all 1.
+    if (!density_brick && upstream_lit && !through) return false;
+
+    // The upstream values over the footprint (1 outside the grid and in absent bricks).
+    const int pw = r.hi.x - r.lo.x + 1, ph = r.hi.y - r.lo.y + 1;
+    thread_local std::vector<float> patch;
+    patch.assign(size_t(pw * ph), 1.0f);
+    if (inside)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const float* p = upstream[j][i];
+          if (!p) continue;
+          const int b0 = std::max(gb0, (ub0 + i) * kTile),
+                    b1 = std::min(gb1, (ub0 + i + 1) * kTile);
+          const int c0 = std::max(gc0, (uc0 + j) * kTile),
+                    c1 = std::min(gc1, (uc0 + j + 1) * kTile);
+          for (int c = c0; c < c1; ++c) {
+            float* row = patch.data() + size_t((c - fc0) * pw) + (b0 - fb0);
+            const float* src = p + offset(su, b0, c);
+            for (int b = 0; b < b1 - b0; ++b) row[b] = src[size_t(b) * sb];
+          }
+        }
+
+    const int n = r.hi.x - r.lo.x, rows = ph - 1;
+    float density[kTile], passed[kTile * kTile], own[kTile * kTile];
+    bool not_one = false;
+    for (int rr = 0; rr < rows; ++rr) {
+      if (density_brick) {
+        const float* src = density_brick + offset(s, r.lo.x, r.lo.y + rr);
+        for (int i = 0; i < n; ++i) density[i] = src[size_t(i) * sb];
+      } else {
+        std::fill(density, density + n, 0.0f);
+      }
+      const float* up0 = patch.data() + size_t(rr * pw);
+      float* out = passed + rr * kTile;
+      sweepContiguousRun(up0, up0 + pw, density, out, own + rr * kTile, n, wb, wc, attenuation);
+      for (int i = 0; i < n; ++i) not_one |= out[i] != 1.0f;
+    }
+    if (!through && not_one) through = lv.through.create(bi);
+    if (through)
+      for (int rr = 0; rr < rows; ++rr) {
+        float* dst = through + offset(s, r.lo.x, r.lo.y + rr);
+        const float* values = passed + rr * kTile;
+        if (track) {
+          int changed_lo = n, changed_hi = 0;
+          for (int i = 0; i < n; ++i)
+            if (std::abs(values[i] - dst[size_t(i) * sb]) > kChangeEpsilon) {
+              changed_lo = std::min(changed_lo, i);
+              changed_hi = i + 1;
+            }
+          if (changed_hi > changed_lo)
+            *changed = changed->unite(
+                Rect{{r.lo.x + changed_lo, r.lo.y + rr}, {r.lo.x + changed_hi, r.lo.y + rr + 1}});
+        }
+        for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = values[i];
+      }
+    if (density_brick) {
+      // A brick new to the lit set: its voxels outside this sweep hold no density (they were
+      // not in an allocated brick and did not change), so their T is the passed-on value.
+      float* lit = lv.lit.getForWrite(bi);
+      if (!lit) lit = lv.lit.create(bi, through);
+      for (int rr = 0; rr < rows; ++rr) {
+        float* dst = lit + offset(s, r.lo.x, r.lo.y + rr);
+        for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = own[rr * kTile + i];
+      }
+    }
+    return not_one;
+  }
+};
+
+const float* onesBrick() {
+  static const std::vector<float> ones(size_t(Volume::kBrickVoxels), 1.0f);
+  return ones.data();
+}
+
 }  // namespace
+
+LightBricks::LightBricks(const LightBricks& o) {
+  *this = o;
+}
+
+LightBricks& LightBricks::operator=(const LightBricks& o) {
+  if (this == &o) return *this;
+  reset(o.brick_dims_);
+  for (size_t i = 0; i < table_.size(); ++i)
+    if (const float* p = o.get(i)) create(i, p);
+  return *this;
+}
+
+LightBricks::LightBricks(LightBricks&& o) noexcept {
+  *this = std::move(o);
+}
+
+LightBricks& LightBricks::operator=(LightBricks&& o) noexcept {
+  if (this == &o) return *this;
+  freeAll();
+  brick_dims_ = o.brick_dims_;
+  table_ = std::move(o.table_);
+  allocated_.store(o.allocated_.load());
+  spare_ = std::move(o.spare_);
+  o.spare_.clear();
+  o.table_.clear();
+  o.brick_dims_ = glm::ivec3(0);
+  o.allocated_.store(0);
+  return *this;
+}
+
+LightBricks::~LightBricks() {
+  freeAll();
+  dropSpare();
+}
+
+void LightBricks::freeAll() {
+  for (float*& p : table_) {
+    delete[] p;
+    p = nullptr;
+  }
+  allocated_.store(0);
+}
+
+void LightBricks::reset(glm::ivec3 brick_dims) {
+  freeAll();
+  brick_dims_ = brick_dims;
+  table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
+}
+
+void LightBricks::recycle(glm::ivec3 brick_dims) {
+  for (float*& p : table_)
+    if (p) spare_.push_back(std::exchange(p, nullptr));
+  allocated_.store(0);
+  brick_dims_ = brick_dims;
+  table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
+}
+
+void LightBricks::dropSpare() {
+  for (float* p : spare_) delete[] p;
+  spare_.clear();
+  spare_.shrink_to_fit();
+}
+
+float* LightBricks::create(size_t i, const float* init) {
+  float* p = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(spare_mutex_);
+    if (!spare_.empty()) {
+      p = spare_.back();
+      spare_.pop_back();
+    }
+  }
+  if (!p) p = new float[size_t(Volume::kBrickVoxels)];
+  if (init)
+    std::copy(init, init + Volume::kBrickVoxels, p);
+  else
+    std::fill(p, p + Volume::kBrickVoxels, 1.0f);
+  std::atomic_ref<float*>(table_[i]).store(p, std::memory_order_release);
+  allocated_.fetch_add(1, std::memory_order_relaxed);
+  return p;
+}
+
+void LightBricks::release(size_t i) {
+  float* p = std::atomic_ref<float*>(table_[i]).exchange(nullptr);
+  if (!p) return;
+  delete[] p;
+  allocated_.fetch_sub(1, std::memory_order_relaxed);
+}
 
 bool LightVolume::matches(const Volume& volume, const Light& light) const {
   return dims == volume.dims() && extinction == light.extinction &&
          direction == lightDirectionInVoxels(volume, light) &&
-         transmittance.size() == volume.voxelCount() && through.size() == volume.voxelCount();
+         through.brickDims() == volume.brickDims() && lit.brickDims() == volume.brickDims();
+}
+
+const float* LightVolume::brickTransmittance(glm::ivec3 brick) const {
+  const glm::ivec3 bd = through.brickDims();
+  if (glm::any(glm::lessThan(brick, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(brick, bd)))
+    return nullptr;
+  const size_t i = through.brickIndex(brick);
+  if (const float* p = lit.get(i)) return p;
+  if (const float* p = through.get(i)) return p;
+  return onesBrick();
+}
+
+std::vector<float> LightVolume::toDense() const {
+  const size_t n = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
+  if (n > (size_t(1) << 31)) throw std::length_error("LightVolume::toDense: more than 2^31 voxels");
+  std::vector<float> out(n);
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x)
+        out[(size_t(z) * size_t(dims.y) + size_t(y)) * size_t(dims.x) + size_t(x)] = at(x, y, z);
+  return out;
 }
 
 glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light) {
   return glm::normalize(light.direction / volume.voxelSize());
 }
+
+std::vector<glm::ivec3> lightBrickList(const Volume& volume) {
+  const glm::ivec3 bd = volume.brickDims();
+  std::vector<uint8_t> mark(volume.brickCount(), 0);
+  auto index = [&](glm::ivec3 b) {
+    return (size_t(b.z) * size_t(bd.y) + size_t(b.y)) * size_t(bd.x) + size_t(b.x);
+  };
+  for (const glm::ivec3 b : volume.allocatedBrickList()) {
+    const glm::ivec3 lo = glm::max(b - 1, glm::ivec3(0)), hi = glm::min(b + 1, bd - 1);
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) mark[index({x, y, z})] = 1;
+  }
+  std::vector<glm::ivec3> list;
+  for (int z = 0; z < bd.z; ++z)
+    for (int y = 0; y < bd.y; ++y)
+      for (int x = 0; x < bd.x; ++x)
+        if (mark[index({x, y, z})]) list.push_back({x, y, z});
+  return list;
+}
+
+namespace {
+
+// The full sweep. Tile row tc of slice s reads tile rows tc and tc + ⌊u_c⌋… of the slice
+// upstream, i.e. rows tc and one neighbour (tc − 1 when the upstream rows lie below, else
+// tc + 1), so tile rows are swept one after another from the side the light comes from, each
+// over every slice. Threads take rows in turn and run as a pipeline: row i's slice j waits until
+// row i − 1 has published slice j − 1 (in batches of kRowBatch slices); no barrier per slice,
+// and no value depends on the split. A tile is swept only when its brick holds density or a
+// tile in its upstream footprint passed on a value other than 1; the others stay all 1.
+void sweepAllTiles(const TileSweep& t) {
+  const SweepFrame& f = t.f;
+  const int ntb = (t.nb + kTile - 1) / kTile, ntc = (t.nc + kTile - 1) / kTile;
+  const int slices = t.na;
+  const int layers = t.volume.brickDims()[f.axis];
+  // Tile rows holding density, per brick layer along the axis.
+  std::vector<uint8_t> row_has_density(size_t(layers) * size_t(ntc), 0);
+  for (const glm::ivec3 b : t.volume.allocatedBrickList())
+    row_has_density[size_t(b[f.axis]) * size_t(ntc) + size_t(b[f.c])] = 1;
+  // Per slice (in sweep order) and tile: passed on a value other than 1; and per tile row.
+  std::vector<uint8_t> tile_not_one(size_t(slices) * size_t(ntc) * size_t(ntb), 0);
+  std::vector<uint8_t> row_not_one(size_t(slices) * size_t(ntc), 0);
+  const bool descending = t.oc >= 0;
+  const int tb_lo = t.ob < 0 ? -1 : 0, tb_hi = t.ob < 0 ? 0 : 1;  // upstream tiles of tile tb
+  const int threads = std::max(1, std::min({workerThreads(), 16, ntc}));
+  std::vector<std::atomic<int>> progress(static_cast<size_t>(ntc));
+  for (auto& p : progress) p.store(0, std::memory_order_relaxed);
+  auto rowWorker = [&](int id) {
+    for (int i = id; i < ntc; i += threads) {
+      const int tc = descending ? ntc - 1 - i : i;
+      const int neighbour = descending ? tc + 1 : tc - 1;  // the other upstream tile row
+      const bool has_neighbour = neighbour >= 0 && neighbour < ntc;
+      const int c0 = tc * kTile, c1 = std::min(t.nc, c0 + kTile);
+      for (int j0 = 0; j0 < slices; j0 += kRowBatch) {
+        const int j1 = std::min(slices, j0 + kRowBatch);
+        if (i > 0) {
+          std::atomic<int>& previous = progress[size_t(i - 1)];
+          for (int done = previous.load(std::memory_order_acquire); done < j1;
+               done = previous.load(std::memory_order_acquire))
+            previous.wait(done, std::memory_order_acquire);
+        }
+        for (int j = j0; j < j1; ++j) {
+          const int s = f.first + j * f.dir;
+          const bool density =
+              row_has_density[size_t(s >> Volume::kBrickShift) * size_t(ntc) + size_t(tc)] != 0;
+          const uint8_t* up =
+              j > 0 ? &tile_not_one[size_t(j - 1) * size_t(ntc) * size_t(ntb)] : nullptr;
+          const bool shadow_upstream =
+              j > 0 &&
+              (row_not_one[size_t(j - 1) * size_t(ntc) + size_t(tc)] ||
+               (has_neighbour && row_not_one[size_t(j - 1) * size_t(ntc) + size_t(neighbour)]));
+          if (!density && !shadow_upstream) continue;
+          uint8_t* now = &tile_not_one[size_t(j) * size_t(ntc) * size_t(ntb)];
+          bool row_any = false;
+          for (int tb = 0; tb < ntb; ++tb) {
+            bool active = density && t.volume.brick(t.brickCoord(s, tb, tc)) != nullptr;
+            for (int ub = std::max(0, tb + tb_lo);
+                 !active && shadow_upstream && ub <= std::min(ntb - 1, tb + tb_hi); ++ub)
+              active = up[size_t(tc) * size_t(ntb) + size_t(ub)] ||
+                       (has_neighbour && up[size_t(neighbour) * size_t(ntb) + size_t(ub)]);
+            if (!active) continue;
+            const int b0 = tb * kTile;
+            if (t.processTile(s, tb, tc, Rect{{b0, c0}, {std::min(t.nb, b0 + kTile), c1}}, false,
+                              nullptr)) {
+              now[size_t(tc) * size_t(ntb) + size_t(tb)] = 1;
+              row_any = true;
+            }
+          }
+          row_not_one[size_t(j) * size_t(ntc) + size_t(tc)] = row_any;
+        }
+        progress[size_t(i)].store(j1, std::memory_order_release);
+        progress[size_t(i)].notify_all();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(rowWorker, i);
+  rowWorker(0);
+  for (auto& th : pool) th.join();
+}
+
+}  // namespace
 
 VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& light,
                           const VoxelBox& dirty) {
@@ -227,133 +566,53 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     lv.dims = dims;
     lv.direction = lightDirectionInVoxels(volume, light);
     lv.extinction = light.extinction;
-    // A full sweep writes every voxel, so buffers of the right size are reused as they are.
-    lv.transmittance.resize(volume.voxelCount());
-    lv.through.resize(volume.voxelCount());
     region = volume.bounds();
   }
   if (region.empty()) return {};
   const SweepFrame f = makeFrame(lv.direction, dims);
-  const float k = lv.extinction;
   const glm::vec2 lateral_up(f.up[f.b], f.up[f.c]);
   const glm::ivec2 lateral_dims(dims[f.b], dims[f.c]);
-  glm::ivec3 stride(1, dims.x, dims.x * dims.y);
-  const size_t sa = size_t(stride[f.axis]), sb = size_t(stride[f.b]), sc = size_t(stride[f.c]);
-  const bool full = region == volume.bounds();
+  const glm::ivec3 brick_stride(1, kTile, kTile * kTile);
+  const AttenuationPair attenuation(lv.extinction, f.step_length, 0.5f * (f.step_length + 1.0f));
+  // The upstream point of lateral voxel (b, c) is (b + u_b, c + u_c): the same fractional
+  // offsets for every voxel, so the bilinear weights are constants of the sweep.
+  const int ob = int(std::floor(lateral_up.x)), oc = int(std::floor(lateral_up.y));
+  const TileSweep t{volume,
+                    lv,
+                    f,
+                    attenuation,
+                    dims[f.axis],
+                    lateral_dims.x,
+                    lateral_dims.y,
+                    ob,
+                    oc,
+                    lateral_up.x - float(ob),
+                    lateral_up.y - float(oc),
+                    size_t(brick_stride[f.axis]),
+                    size_t(brick_stride[f.b]),
+                    size_t(brick_stride[f.c])};
 
-  // Slices to process: from the dirty box's upstream face towards the far edge. The first
-  // `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of voxels
-  // whose bilinear upstream footprint meets a voxel whose passed-on transmittance changed in the
-  // previous slice (by more than kChangeEpsilon, which is 0), so the update follows the actual
-  // shadow of the edit and stops where it no longer changes anything or falls into shadow that is
-  // already black. Voxels left alone are exactly what a full recompute gives, so undo/redo
-  // restore the light volume bit for bit (app/session/history.h).
+  if (region == volume.bounds()) {
+    lv.lit.recycle(volume.brickDims());
+    lv.through.recycle(volume.brickDims());
+    sweepAllTiles(t);
+    lv.lit.dropSpare();
+    lv.through.dropSpare();
+    return volume.bounds();
+  }
+
+  // An incremental sweep: slices from the dirty box's upstream face towards the far edge. The
+  // first `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of
+  // voxels whose bilinear upstream footprint meets a voxel whose passed-on transmittance changed
+  // in the previous slice (by more than kChangeEpsilon, which is 0), so the update follows the
+  // actual shadow of the edit and stops where it no longer changes anything or falls into
+  // shadow that is already black. Voxels left alone are exactly what a full recompute gives, so
+  // undo/redo restore the light volume bit for bit (app/session/history.h).
   const int start = f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis];
   const int slices = f.dir < 0 ? start + 1 : dims[f.axis] - start;
   const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];
   const Rect dirty_rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}};
   const Rect all{glm::ivec2(0), lateral_dims};
-
-  float* T = lv.through.data();
-  float* lit = lv.transmittance.data();
-  const AttenuationPair attenuation(k, f.step_length, 0.5f * (f.step_length + 1.0f));
-  // The upstream point of lateral voxel (b, c) is (b + u_b, c + u_c): the same fractional
-  // offsets for every voxel, so the bilinear weights are constants of the sweep.
-  const int ob = int(std::floor(lateral_up.x)), oc = int(std::floor(lateral_up.y));
-  const float wb = lateral_up.x - float(ob), wc = lateral_up.y - float(oc);
-  const int nb = lateral_dims.x, nc = lateral_dims.y;
-  // Process one slice's rows [r0, r1) of rectangle `rect`; with `kTrack`, returns the bounding
-  // rectangle of the voxels whose passed-on transmittance changed.
-  auto sweepRows = [&]<bool kTrack>(int s, Rect rect, int r0, int r1) {
-    Rect changed;
-    const int upstream = s - f.dir;  // slice towards the light
-    const bool has_upstream = upstream >= 0 && upstream < dims[f.axis];
-    const glm::ivec2 lo = rect.lo, hi = rect.hi;
-    for (int cc = r0; cc < r1; ++cc) {
-      // The two upstream rows (nullptr: outside the volume, fully lit).
-      const float* row[2] = {nullptr, nullptr};
-      for (int r = 0; r < 2; ++r) {
-        int c = cc + oc + r;
-        if (has_upstream && c >= 0 && c < nc) row[r] = T + size_t(upstream) * sa + size_t(c) * sc;
-      }
-      auto at = [&](const float* r, int b) {
-        return (r && b >= 0 && b < nb) ? r[size_t(b) * sb] : 1.0f;
-      };
-      const size_t base = size_t(s) * sa + size_t(cc) * sc;
-      // This row's densities [lo.x, hi.x) along b, read out of the volume's bricks.
-      thread_local std::vector<float> density_row;
-      density_row.resize(size_t(std::max(hi.x - lo.x, 0)));
-      if (hi.x > lo.x) {
-        glm::ivec3 first;
-        first[f.axis] = s;
-        first[f.c] = cc;
-        first[f.b] = lo.x;
-        volume.readLine(first, f.b, hi.x - lo.x, density_row.data());
-      }
-      const float* density = density_row.data();  // [bb - lo.x]
-      int changed_lo = hi.x, changed_hi = lo.x;
-      // Interior voxels need no bounds checks on b.
-      const int inner_lo = std::clamp(-ob, lo.x, hi.x),
-                inner_hi = std::clamp(nb - 1 - ob, lo.x, hi.x);
-      auto voxel = [&](int bb, float t_up) {
-        size_t idx = base + size_t(bb) * sb;
-        float through, own_t;
-        attenuation.attenuate(density[bb - lo.x], t_up, &through, &own_t);
-        if constexpr (kTrack) {
-          if (std::abs(through - T[idx]) > kChangeEpsilon) {
-            changed_lo = std::min(changed_lo, bb);
-            changed_hi = bb + 1;
-          }
-        }
-        T[idx] = through;
-        lit[idx] = own_t;
-      };
-      auto edgeVoxel = [&](int bb) {
-        float t_up = (at(row[0], bb + ob) * (1 - wb) + at(row[0], bb + ob + 1) * wb) * (1 - wc) +
-                     (at(row[1], bb + ob) * (1 - wb) + at(row[1], bb + ob + 1) * wb) * wc;
-        voxel(bb, t_up);
-      };
-      for (int bb = lo.x; bb < std::min(inner_lo, hi.x); ++bb) edgeVoxel(bb);
-      if (sb == 1 && row[0] && row[1] && inner_hi > inner_lo) {
-        const size_t i0 = base + size_t(inner_lo);
-        const int count = inner_hi - inner_lo;
-        // Tracking compares with the old values afterwards (kept per thread), so the run itself
-        // stays the fast one.
-        thread_local std::vector<float> old_row;
-        if constexpr (kTrack) old_row.assign(T + i0, T + i0 + count);
-        sweepContiguousRun(row[0] + inner_lo + ob, row[1] + inner_lo + ob,
-                           density + (inner_lo - lo.x), T + i0, lit + i0, count, wb, wc,
-                           attenuation);
-        if constexpr (kTrack) {
-          auto moved = [&](int i) {
-            return std::abs(T[i0 + size_t(i)] - old_row[size_t(i)]) > kChangeEpsilon;
-          };
-          int first = 0;
-          while (first < count && !moved(first)) ++first;
-          if (first < count) {
-            int last = count - 1;
-            while (!moved(last)) --last;
-            changed_lo = std::min(changed_lo, inner_lo + first);
-            changed_hi = std::max(changed_hi, inner_lo + last + 1);
-          }
-        }
-      } else if (row[0] && row[1]) {
-        for (int bb = inner_lo; bb < inner_hi; ++bb) {
-          size_t o = size_t(bb + ob) * sb;
-          float t_up = (row[0][o] * (1 - wb) + row[0][o + sb] * wb) * (1 - wc) +
-                       (row[1][o] * (1 - wb) + row[1][o + sb] * wb) * wc;
-          voxel(bb, t_up);
-        }
-      } else {
-        for (int bb = inner_lo; bb < inner_hi; ++bb) edgeVoxel(bb);
-      }
-      for (int bb = std::max(inner_hi, lo.x); bb < hi.x; ++bb) edgeVoxel(bb);
-      if (kTrack && changed_hi > changed_lo)
-        changed = changed.unite(Rect{{changed_lo, cc}, {changed_hi, cc + 1}});
-    }
-    return changed;
-  };
-
   // The voxels of the next slice whose upstream footprint (b + ob + {0,1}, c + oc + {0,1})
   // meets `changed`.
   auto downstreamOf = [&](Rect changed) {
@@ -361,81 +620,40 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     return Rect{changed.lo - glm::ivec2(ob, oc) - 1, changed.hi - glm::ivec2(ob, oc)}.intersect(
         all);
   };
-
-  // Slices depend on their upstream neighbour, so threads split each slice's rows and meet at a
-  // barrier between slices. Small edits run on one thread (a barrier per slice costs more than
-  // they do). Each thread's changed rectangle is double-buffered by slice parity, so one barrier
-  // per slice suffices; every voxel's value is independent of the split (deterministic).
-  const int lateral_area =
-      (dirty_rect.hi.x - dirty_rect.lo.x) * (dirty_rect.hi.y - dirty_rect.lo.y);
+  // Slices depend on their upstream neighbour, so threads split each slice's tile rows (a tile
+  // belongs to one thread) and meet at a barrier between slices. Small edits run on one thread
+  // (a barrier per slice costs more than they do). Each thread's changed rectangle is
+  // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
+  // independent of the split (deterministic).
   const int threads =
-      (full || lateral_area >= kThreadedArea) ? std::max(1, std::min(workerThreads(), 16)) : 1;
+      dirty_rect.area() >= kThreadedArea ? std::max(1, std::min(workerThreads(), 16)) : 1;
   std::vector<Rect> changed_by_thread(size_t(2 * threads));
-  std::vector<Rect> swept(
-      static_cast<size_t>(slices));  // the rectangle of each slice (written by thread 0)
+  std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
   auto worker = [&](int id, std::barrier<>* sync) {
     for (int j = 0; j < slices; ++j) {
-      Rect rect = all;
-      if (!full) {
-        Rect changed;
-        if (j > 0)
-          for (int t = 0; t < threads; ++t)
-            changed = changed.unite(changed_by_thread[size_t(2 * t + (j - 1) % 2)]);
-        rect = downstreamOf(changed);
-        if (j < dirty_slices) rect = rect.unite(dirty_rect);
-        if (rect.empty()) break;  // every thread sees the same rectangles and stops together
-      }
+      Rect changed;
+      if (j > 0)
+        for (int i = 0; i < threads; ++i)
+          changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
+      Rect rect = downstreamOf(changed);
+      if (j < dirty_slices) rect = rect.unite(dirty_rect);
+      if (rect.empty()) break;  // every thread sees the same rectangles and stops together
       const int s = start + j * f.dir;
-      const int rows = rect.hi.y - rect.lo.y;
-      const int share = rect.area() < kThreadedArea ? (id == 0 ? 1 : 0) : 1;
+      const int tr0 = rect.lo.y / kTile, tr1 = (rect.hi.y - 1) / kTile + 1;
       const int parts = rect.area() < kThreadedArea ? 1 : threads;
-      const int part = rect.area() < kThreadedArea ? 0 : id;
-      int r0 = rect.lo.y + rows * part / parts, r1 = rect.lo.y + rows * (part + 1) / parts;
-      if (!share) r1 = r0;
-      Rect changed = full ? sweepRows.template operator()<false>(s, rect, r0, r1)
-                          : sweepRows.template operator()<true>(s, rect, r0, r1);
-      changed_by_thread[size_t(2 * id + j % 2)] = changed;
+      const int r0 = id < parts ? tr0 + (tr1 - tr0) * id / parts : tr0;
+      const int r1 = id < parts ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
+      Rect mine;
+      for (int tc = r0; tc < r1; ++tc)
+        for (int tb = rect.lo.x / kTile; tb * kTile < rect.hi.x; ++tb) {
+          const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
+          t.processTile(s, tb, tc, rect.intersect(tile), true, &mine);
+        }
+      changed_by_thread[size_t(2 * id + j % 2)] = mine;
       if (id == 0) swept[size_t(j)] = rect;
       if (sync) sync->arrive_and_wait();
     }
   };
-  if (full && f.axis != 2) {
-    // A full sweep along x or y: its slices are strided in memory (1 KiB runs 256 KiB apart at
-    // 256³), which costs more than the arithmetic. Row c of a slice reads rows c + oc and
-    // c + oc + 1 of the slice upstream, and |u_c| ≤ 1, so whole row planes (c fixed, all slices,
-    // contiguous in memory as c is the z axis) can be swept one after another, from the side
-    // the upstream rows lie on. Same voxel values as the slice order.
-    // Threads take planes in turn (plane i on thread i % threads) and run as a pipeline: plane
-    // i's slice j reads plane i − 1 at slice j − 1, so a thread waits until the previous plane
-    // has published that far (in batches of kPlaneBatch slices). Values do not depend on it.
-    const bool descending = oc >= 0;
-    std::vector<std::atomic<int>> progress(
-        static_cast<size_t>(nc));  // slices done per plane (in order)
-    for (auto& p : progress) p.store(0, std::memory_order_relaxed);
-    auto planeWorker = [&](int id) {
-      for (int i = id; i < nc; i += threads) {
-        const int c = descending ? nc - 1 - i : i;
-        for (int j0 = 0; j0 < slices; j0 += kPlaneBatch) {
-          const int j1 = std::min(slices, j0 + kPlaneBatch);
-          if (i > 0) {
-            std::atomic<int>& previous = progress[size_t(i - 1)];
-            for (int done = previous.load(std::memory_order_acquire); done < j1;
-                 done = previous.load(std::memory_order_acquire))
-              previous.wait(done, std::memory_order_acquire);
-          }
-          for (int j = j0; j < j1; ++j)
-            sweepRows.template operator()<false>(start + j * f.dir, all, c, c + 1);
-          progress[size_t(i)].store(j1, std::memory_order_release);
-          progress[size_t(i)].notify_all();
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(planeWorker, i);
-    planeWorker(0);
-    for (auto& t : pool) t.join();
-    return volume.bounds();
-  }
   if (threads == 1) {
     worker(0, nullptr);
   } else {
@@ -443,7 +661,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     std::vector<std::thread> pool;
     for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i, &sync);
     worker(0, &sync);
-    for (auto& t : pool) t.join();
+    for (auto& th : pool) th.join();
   }
   // The rewritten box: the union of the per-slice rectangles.
   Rect lateral;
@@ -462,7 +680,18 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   out.hi[f.b] = lateral.hi.x;
   out.lo[f.c] = lateral.lo.y;
   out.hi[f.c] = lateral.hi.y;
-  return out.intersect(volume.bounds());
+  out = out.intersect(volume.bounds());
+  // Bricks the update left all 1 (an erase's shadow gone) are dropped: absent reads the same.
+  const glm::ivec3 blo = out.lo >> Volume::kBrickShift, bhi = (out.hi - 1) >> Volume::kBrickShift;
+  for (int z = blo.z; z <= bhi.z; ++z)
+    for (int y = blo.y; y <= bhi.y; ++y)
+      for (int x = blo.x; x <= bhi.x; ++x) {
+        const size_t i = lv.through.brickIndex({x, y, z});
+        const float* p = lv.through.get(i);
+        if (p && std::all_of(p, p + Volume::kBrickVoxels, [](float v) { return v == 1.0f; }))
+          lv.through.release(i);
+      }
+  return out;
 }
 
 std::vector<float> marchLightReference(const Volume& volume, const Light& light, int z_step) {

@@ -1,21 +1,38 @@
 // The light volume of thesis §4.5 (Alg. 5): per voxel, the transmittance towards a directional
 // sun, T = Π (1 − k·density) over unit steps from the voxel to the volume's edge along the light
-// direction (the direction from the volume centre to the light ball). The shading stage turns it
-// into the thesis's strength S(I) with I = 1 − T (see shaders/shade_thesis.glsl).
+// direction (app/scene/light.h). The shading stage turns it into the thesis's strength S(I) with
+// I = 1 − T (see shaders/shade_thesis.glsl).
 //
 // Two ways to compute it, both free functions over the grid:
 //  - sweepLightVolume: slice by slice along the light's major axis, starting at the light side.
 //    Each voxel takes the (bilinearly interpolated) transmittance of the point one slice
 //    upstream and attenuates it by its own voxel over that step: T(x) = (1 − k·d(x))^ℓ · T(x+u),
-//    u = L / |L_major| (one slice towards the light), ℓ = |u| in voxels. O(voxels), parallel
-//    within each slice. Alg. 5 starts its unit steps at the voxel itself, which weights the
-//    voxel's own density by ½ more than the integral from its centre; to match, the stored T
-//    weights the own voxel by (ℓ+1)/2 while the value passed downstream ("through") carries ℓ.
+//    u = L / |L_major| (one slice towards the light), ℓ = |u| in voxels. O(voxels swept),
+//    parallel. Alg. 5 starts its unit steps at the voxel itself, which weights the voxel's own
+//    density by ½ more than the integral from its centre; to match, the stored T weights the own
+//    voxel by (ℓ+1)/2 while the value passed downstream ("through") carries ℓ.
 //  - marchLightReference: the straightforward per-voxel march of Alg. 5 (trilinear density at
 //    x + i·L̂, i = 0, 1, …, until the point leaves the box). O(voxels × edge length); used by
 //    tests and the benchmark as the reference.
+//
+// Sparse (issue 15): the light volume is stored in the volume's 16³ bricks, and only where it
+// differs from "fully lit, empty":
+//  - `through` holds a brick wherever some voxel's passed-on value is not exactly 1 — the cloud
+//    and its shadow across empty space. Elsewhere every voxel is exactly 1: a voxel with no
+//    density whose upstream footprint is all 1 computes 1·(1 − w) + 1·w = 1 and (1 − k·0)^ℓ = 1
+//    exactly (round to nearest, no FMA), so the sweep skips such 16×16 tiles and its cost follows
+//    the painting and its shadow, not the sky's extent.
+//  - `lit` holds T for the bricks the volume has allocated (where density may be non-zero). In
+//    a brick without density T equals the passed-on value, so `through` (or 1) serves there.
+// After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the grid.
+// The renderer reads the "light bricks" (lightBrickList: the allocated bricks and their 26
+// neighbours, which trilinear samples of non-zero density can reach); the reduced preview
+// (reduced_light_sweep.h) stores only those and reads 1 elsewhere, where nothing reads it.
 #pragma once
 
+#include <atomic>
+#include <cstddef>
+#include <mutex>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,28 +43,93 @@
 
 namespace cb {
 
+// A grid of optional 16³ float bricks (Volume's brick layout, x fastest); an absent brick reads
+// as 1. Bricks are created by `create` from several threads at once (distinct bricks) while
+// others read `get`; reset, release and copying belong to one thread.
+class LightBricks {
+ public:
+  LightBricks() = default;
+  LightBricks(const LightBricks& o);
+  LightBricks& operator=(const LightBricks& o);
+  LightBricks(LightBricks&& o) noexcept;
+  LightBricks& operator=(LightBricks&& o) noexcept;
+  ~LightBricks();
+
+  // Frees every brick and sizes the table for `brick_dims` bricks.
+  void reset(glm::ivec3 brick_dims);
+  // The same, but keeps the bricks' memory for the next `create`s (a light change creates most
+  // of them again; fresh pages cost more than the sweep's arithmetic); dropSpare frees the rest.
+  void recycle(glm::ivec3 brick_dims);
+  void dropSpare();
+  glm::ivec3 brickDims() const { return brick_dims_; }
+  size_t brickIndex(glm::ivec3 b) const {
+    return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
+           size_t(b.x);
+  }
+  const float* get(size_t i) const {
+    return std::atomic_ref<float*>(const_cast<float*&>(table_[i])).load(std::memory_order_acquire);
+  }
+  float* getForWrite(size_t i) { return std::atomic_ref<float*>(table_[i]).load(); }
+  // Creates brick i (absent) holding a copy of `init`'s 16³ values, or 1 everywhere.
+  float* create(size_t i, const float* init = nullptr);
+  void release(size_t i);
+  size_t allocated() const { return allocated_.load(std::memory_order_relaxed); }
+  size_t memoryBytes() const {
+    return allocated() * Volume::kBrickBytes + table_.size() * sizeof(float*);
+  }
+
+ private:
+  void freeAll();
+  glm::ivec3 brick_dims_{0};
+  std::vector<float*> table_;
+  std::atomic<size_t> allocated_{0};
+  std::vector<float*> spare_;  // recycled bricks, taken by create
+  std::mutex spare_mutex_;
+};
+
 struct LightVolume {
   glm::ivec3 dims{0};
-  glm::vec3 direction{0.0f};         // unit, voxel space, towards the light
-  float extinction = -1.0f;          // k the volume was computed with
-  std::vector<float> transmittance;  // T per voxel, x fastest; 1 = fully lit
-  // The sweep's running product including each voxel's whole step (see sweepLightVolume).
-  std::vector<float> through;
+  glm::vec3 direction{0.0f};  // unit, voxel space, towards the light
+  float extinction = -1.0f;   // k the volume was computed with (−1: matches no light)
+  LightBricks lit;            // T of the bricks holding density (see the file comment)
+  LightBricks through;        // passed-on values where they are not 1
 
   bool matches(const Volume& volume, const Light& light) const;
+  // T at voxel (x,y,z), 1 = fully lit: exact at every voxel after sweepLightVolume; after a
+  // reduced preview exact only on light bricks (lightBrickList), 1 elsewhere (nothing reads it).
   float at(int x, int y, int z) const {
-    return transmittance[(size_t(z) * dims.y + size_t(y)) * dims.x + size_t(x)];
+    if (through.brickDims().x == 0) return 1.0f;
+    constexpr int s = Volume::kBrickShift, m = Volume::kBrickSize - 1;
+    const size_t i = through.brickIndex({x >> s, y >> s, z >> s});
+    const size_t o = (size_t(z & m) << (2 * s)) | (size_t(y & m) << s) | size_t(x & m);
+    if (const float* p = lit.get(i)) return p[o];
+    if (const float* p = through.get(i)) return p[o];
+    return 1.0f;
   }
+  // Brick `brick`'s 16³ T values (x fastest; voxels of an edge brick outside the grid read 1).
+  // Never nullptr for a brick of the grid (a fully lit brick shares one brick of ones); nullptr
+  // outside the grid or before the first sweep.
+  const float* brickTransmittance(glm::ivec3 brick) const;
+  // Bytes held: both brick sets and their tables.
+  size_t memoryBytes() const { return lit.memoryBytes() + through.memoryBytes(); }
+  // Every voxel's T in the volume's dense order (tests and tools; at most 2^31 voxels).
+  std::vector<float> toDense() const;
 };
 
 // The light direction in voxel space (unit) for `light` shining on `volume`.
 glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light);
 
+// The bricks whose T the renderer can read: the allocated bricks and their 26 neighbours (a
+// trilinear sample of non-zero density reaches at most one voxel into a neighbour), in the
+// volume's fixed brick order (z, then y, then x).
+std::vector<glm::ivec3> lightBrickList(const Volume& volume);
+
 // Brings `light_volume` up to date. If it was computed for another light, extinction or dims,
 // recomputes everything; otherwise recomputes the voxels a density change in `dirty` reaches:
 // the dirty box, then slice by slice away from the light the voxels whose upstream footprint saw
-// a change above 1e-6 (so the update stops where the edit's shadow fades or meets shadow that
-// is already black). Returns the bounding box of the voxels rewritten (empty if none).
+// any change in the previous slice (so the update stops where the edit's shadow no longer
+// changes a bit, e.g. where it meets shadow that is already black). Returns the bounding box of
+// the voxels rewritten (empty if none; the whole grid after a full recompute).
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
                           const VoxelBox& dirty);
 

@@ -1,7 +1,9 @@
 #include "app/render/reduced_light_sweep.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "app/core/parallel_for.h"
@@ -16,48 +18,70 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
   }
   const glm::ivec3 dims = volume.dims();
   const glm::ivec3 cdims = (dims + divisor - 1) / divisor;
-  if (coarse_.dims() != cdims || coarse_.worldMin() != volume.worldMin() ||
-      coarse_.worldMax() != volume.worldMax())
-    coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());
+  coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());  // empty
 
   // Block averages of the density (a block at the far edge may be partly outside), each block
-  // summed in z, y, x order from the fine rows.
-  std::vector<float> coarse(coarse_.voxelCount());
-  parallelFor(size_t(cdims.z), 1, [&](size_t, size_t z0, size_t z1) {
-    std::vector<float> row(size_t(dims.x));
-    std::vector<float> sums(size_t(cdims.x));
-    for (int cz = int(z0); cz < int(z1); ++cz)
-      for (int cy = 0; cy < cdims.y; ++cy) {
-        const glm::ivec3 lo(0, cy * divisor, cz * divisor);
-        const glm::ivec3 hi = glm::min(lo + divisor, dims);
-        std::fill(sums.begin(), sums.end(), 0.0f);
-        for (int z = lo.z; z < hi.z; ++z)
-          for (int y = lo.y; y < hi.y; ++y) {
-            volume.readLine({0, y, z}, 0, dims.x, row.data());
-            for (int cx = 0; cx < cdims.x; ++cx)
-              for (int x = cx * divisor; x < std::min((cx + 1) * divisor, dims.x); ++x)
-                sums[size_t(cx)] += row[size_t(x)];
+  // summed in z, y, x order from the fine rows; only the coarse bricks holding a block that
+  // meets an allocated fine brick (the others average to 0 and stay unallocated).
+  std::vector<uint8_t> wanted(coarse_.brickCount(), 0);
+  const glm::ivec3 cbd = coarse_.brickDims();
+  for (const glm::ivec3 b : volume.allocatedBrickList()) {
+    const VoxelBox box = volume.brickBox(b);
+    const glm::ivec3 lo = (box.lo / divisor) >> Volume::kBrickShift,
+                     hi = ((box.hi - 1) / divisor) >> Volume::kBrickShift;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          wanted[(size_t(z) * size_t(cbd.y) + size_t(y)) * size_t(cbd.x) + size_t(x)] = 1;
+  }
+  std::vector<glm::ivec3> coarse_bricks;
+  for (int z = 0; z < cbd.z; ++z)
+    for (int y = 0; y < cbd.y; ++y)
+      for (int x = 0; x < cbd.x; ++x)
+        if (wanted[(size_t(z) * size_t(cbd.y) + size_t(y)) * size_t(cbd.x) + size_t(x)])
+          coarse_bricks.push_back({x, y, z});
+  parallelFor(coarse_bricks.size(), 1, [&](size_t, size_t k0, size_t k1) {
+    std::vector<float> row(size_t(Volume::kBrickSize * divisor));
+    std::vector<float> sums(size_t(Volume::kBrickSize));
+    for (size_t k = k0; k < k1; ++k) {
+      const VoxelBox cbox = coarse_.brickBox(coarse_bricks[k]);
+      const int x0 = cbox.lo.x * divisor, x1 = std::min(cbox.hi.x * divisor, dims.x);
+      for (int cz = cbox.lo.z; cz < cbox.hi.z; ++cz)
+        for (int cy = cbox.lo.y; cy < cbox.hi.y; ++cy) {
+          const glm::ivec3 lo(x0, cy * divisor, cz * divisor);
+          const glm::ivec3 hi = glm::min(glm::ivec3(x1, lo.y + divisor, lo.z + divisor), dims);
+          std::fill(sums.begin(), sums.end(), 0.0f);
+          for (int z = lo.z; z < hi.z; ++z)
+            for (int y = lo.y; y < hi.y; ++y) {
+              volume.readLine({x0, y, z}, 0, x1 - x0, row.data());
+              for (int cx = cbox.lo.x; cx < cbox.hi.x; ++cx)
+                for (int x = cx * divisor; x < std::min((cx + 1) * divisor, dims.x); ++x)
+                  sums[size_t(cx - cbox.lo.x)] += row[size_t(x - x0)];
+            }
+          for (int cx = cbox.lo.x; cx < cbox.hi.x; ++cx) {
+            const int nx = std::min((cx + 1) * divisor, dims.x) - cx * divisor;
+            const float average =
+                sums[size_t(cx - cbox.lo.x)] / float(nx * (hi.y - lo.y) * (hi.z - lo.z));
+            if (std::bit_cast<uint32_t>(average) != 0) coarse_.voxelForWrite(cx, cy, cz) = average;
           }
-        for (int cx = 0; cx < cdims.x; ++cx) {
-          const int nx = std::min((cx + 1) * divisor, dims.x) - cx * divisor;
-          coarse[coarse_.index(cx, cy, cz)] =
-              sums[size_t(cx)] / float(nx * (hi.y - lo.y) * (hi.z - lo.z));
         }
-      }
+    }
   });
-  coarse_.assignDense(coarse.data());
+  coarse_.markDirty(coarse_.bounds());
 
   Light coarse_light = light;
   coarse_light.extinction =
       1.0f - std::pow(1.0f - std::min(light.extinction, 1.0f), float(divisor));
   sweepLightVolume(coarse_light_, coarse_, coarse_light, coarse_.bounds());
 
-  // Trilinear interpolation of the coarse transmittance at every voxel centre, row by row: the
-  // four coarse rows around a fine row are blended in y and z once, then each voxel in x.
+  // Trilinear interpolation of the coarse transmittance at every voxel centre of the light
+  // bricks (the only ones the renderer reads), row by row: the four coarse rows around a fine
+  // row are blended in y and z once, then each voxel in x.
   lv.dims = dims;
   lv.direction = lightDirectionInVoxels(volume, light);
   lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
-  lv.transmittance.resize(volume.voxelCount());
+  lv.lit.recycle(volume.brickDims());  // the previous drag frame's bricks are reused
+  lv.through.reset(volume.brickDims());
   struct Tap {
     int i0, i1;
     float t;
@@ -74,30 +98,53 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
   };
   const std::vector<Tap> tx = taps(dims.x, cdims.x), ty = taps(dims.y, cdims.y),
                          tz = taps(dims.z, cdims.z);
-  const float* T = coarse_light_.transmittance.data();
-  const size_t crow = size_t(cdims.x), cslice = crow * size_t(cdims.y);
-  float* out = lv.transmittance.data();
-  parallelFor(size_t(dims.z), 1, [&](size_t, size_t z0, size_t z1) {
-    std::vector<float> blended(crow);
-    for (int z = int(z0); z < int(z1); ++z) {
-      const Tap& a = tz[size_t(z)];
-      for (int y = 0; y < dims.y; ++y) {
-        const Tap& b = ty[size_t(y)];
-        const float* r00 = T + size_t(a.i0) * cslice + size_t(b.i0) * crow;
-        const float* r01 = T + size_t(a.i0) * cslice + size_t(b.i1) * crow;
-        const float* r10 = T + size_t(a.i1) * cslice + size_t(b.i0) * crow;
-        const float* r11 = T + size_t(a.i1) * cslice + size_t(b.i1) * crow;
-        for (size_t x = 0; x < crow; ++x)
-          blended[x] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
-                       (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
-        float* row = out + volume.index(0, y, z);
-        for (int x = 0; x < dims.x; ++x) {
-          const Tap& c = tx[size_t(x)];
-          row[x] = blended[size_t(c.i0)] * (1 - c.t) + blended[size_t(c.i1)] * c.t;
+  const LightVolume& T = coarse_light_;
+  const std::vector<glm::ivec3> bricks = lightBrickList(volume);
+  std::vector<float*> out(bricks.size());
+  for (size_t k = 0; k < bricks.size(); ++k) out[k] = lv.lit.create(lv.lit.brickIndex(bricks[k]));
+  parallelFor(bricks.size(), 4, [&](size_t, size_t k0, size_t k1) {
+    std::vector<float> coarse_block, blended;
+    for (size_t k = k0; k < k1; ++k) {
+      const VoxelBox box = volume.brickBox(bricks[k]);
+      // The coarse values this brick interpolates, read once: [c0, c1] per axis.
+      const glm::ivec3 c0(tx[size_t(box.lo.x)].i0, ty[size_t(box.lo.y)].i0,
+                          tz[size_t(box.lo.z)].i0);
+      const glm::ivec3 c1(tx[size_t(box.hi.x - 1)].i1, ty[size_t(box.hi.y - 1)].i1,
+                          tz[size_t(box.hi.z - 1)].i1);
+      const glm::ivec3 n = c1 - c0 + 1;
+      coarse_block.resize(size_t(n.x) * size_t(n.y) * size_t(n.z));
+      for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+          for (int x = 0; x < n.x; ++x)
+            coarse_block[(size_t(z) * size_t(n.y) + size_t(y)) * size_t(n.x) + size_t(x)] =
+                T.at(c0.x + x, c0.y + y, c0.z + z);
+      auto coarseRow = [&](int y, int z) {
+        return coarse_block.data() +
+               (size_t(z - c0.z) * size_t(n.y) + size_t(y - c0.y)) * size_t(n.x);
+      };
+      blended.resize(size_t(n.x));
+      for (int z = box.lo.z; z < box.hi.z; ++z) {
+        const Tap& a = tz[size_t(z)];
+        for (int y = box.lo.y; y < box.hi.y; ++y) {
+          const Tap& b = ty[size_t(y)];
+          const float *r00 = coarseRow(b.i0, a.i0), *r01 = coarseRow(b.i1, a.i0),
+                      *r10 = coarseRow(b.i0, a.i1), *r11 = coarseRow(b.i1, a.i1);
+          for (int x = 0; x < n.x; ++x)
+            blended[size_t(x)] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
+                                 (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
+          constexpr int m = Volume::kBrickSize - 1;
+          float* row =
+              out[k] + ((size_t(z & m) * Volume::kBrickSize + size_t(y & m)) * Volume::kBrickSize);
+          for (int x = box.lo.x; x < box.hi.x; ++x) {
+            const Tap& c = tx[size_t(x)];
+            row[x & m] =
+                blended[size_t(c.i0 - c0.x)] * (1 - c.t) + blended[size_t(c.i1 - c0.x)] * c.t;
+          }
         }
       }
     }
   });
+  lv.lit.dropSpare();
   return volume.bounds();
 }
 

@@ -35,7 +35,7 @@ struct LightFollower {
 std::vector<float> freshLight(const Volume& volume, const Light& light) {
   LightVolume lv;
   sweepLightVolume(lv, volume, light, volume.bounds());
-  return lv.transmittance;
+  return lv.toDense();
 }
 
 TEST(History, UndoThenRedoOfEveryStrokeIsByteIdenticalForVolumeAndLight) {
@@ -46,7 +46,7 @@ TEST(History, UndoThenRedoOfEveryStrokeIsByteIdenticalForVolumeAndLight) {
   LightFollower follower;
   follower.sync(session.volume(), session.light());
   std::vector<std::vector<float>> after_stroke{voxels(session.volume())};
-  std::vector<std::vector<float>> light_after{follower.light_volume.transmittance};
+  std::vector<std::vector<float>> light_after{follower.light_volume.toDense()};
   int64_t t0 = 1'000'000'000;
   const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kW, kH);
   for (int round = 0; round < 2; ++round)
@@ -58,7 +58,7 @@ TEST(History, UndoThenRedoOfEveryStrokeIsByteIdenticalForVolumeAndLight) {
       t0 += 100'000'000;
       follower.sync(session.volume(), session.light());
       after_stroke.push_back(voxels(session.volume()));
-      light_after.push_back(follower.light_volume.transmittance);
+      light_after.push_back(follower.light_volume.toDense());
     }
   const size_t n = after_stroke.size() - 1;
   ASSERT_EQ(session.strokesMapped(), n);
@@ -69,7 +69,7 @@ TEST(History, UndoThenRedoOfEveryStrokeIsByteIdenticalForVolumeAndLight) {
     ASSERT_TRUE(session.apply(ui::Undo{}, t0, &error)) << error;
     follower.sync(session.volume(), session.light());
     EXPECT_TRUE(sameBytes(voxels(session.volume()), after_stroke[i - 1])) << "undo to " << i - 1;
-    EXPECT_TRUE(sameBytes(follower.light_volume.transmittance, light_after[i - 1]))
+    EXPECT_TRUE(sameBytes(follower.light_volume.toDense(), light_after[i - 1]))
         << "light after undo to " << i - 1;
   }
   std::string error;
@@ -78,11 +78,11 @@ TEST(History, UndoThenRedoOfEveryStrokeIsByteIdenticalForVolumeAndLight) {
     ASSERT_TRUE(session.apply(ui::Redo{}, t0, &error)) << error;
     follower.sync(session.volume(), session.light());
     EXPECT_TRUE(sameBytes(voxels(session.volume()), after_stroke[i])) << "redo to " << i;
-    EXPECT_TRUE(sameBytes(follower.light_volume.transmittance, light_after[i]));
+    EXPECT_TRUE(sameBytes(follower.light_volume.toDense(), light_after[i]));
   }
   // The incrementally followed light equals a fresh sweep of the final volume.
-  EXPECT_TRUE(sameBytes(follower.light_volume.transmittance,
-                        freshLight(session.volume(), session.light())));
+  EXPECT_TRUE(
+      sameBytes(follower.light_volume.toDense(), freshLight(session.volume(), session.light())));
   // Deltas are a small part of what whole volumes would hold.
   const size_t whole = n * session.volume().voxelCount() * sizeof(float);
   EXPECT_LT(session.history().deltaBytes() * 10, whole) << session.history().deltaBytes();
