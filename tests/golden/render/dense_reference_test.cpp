@@ -88,6 +88,7 @@ void expectMatchesDense(const std::string& name, const Volume& volume, const Lig
     worst = std::max(worst, e);
     differing += e != 0;
   }
+  std::printf("%s: %lld channels differ, worst %d\n", name.c_str(), differing, worst);
   if (worst > 1) writePng(name + ".actual.png", image);
   EXPECT_LE(worst, 1) << name << ": worst channel error against the dense render (see " << name
                       << ".actual.png); " << differing << " channels differ";
@@ -203,8 +204,8 @@ TEST(DenseReference, VoxelsOnBrickBorders) {
   Camera close = Camera::reference();
   close.eye = glm::vec3(1.5f, 1.1f, 1.6f);
   expectMatchesDense("brick_borders_close", v, lightFromTheLeft(), close);
-  expectMatchesDense("brick_borders_cartoon", v, lightFromTheLeft(), Camera::reference().orbited(40),
-                     styled(RenderStyle::kCartoon));
+  expectMatchesDense("brick_borders_cartoon", v, lightFromTheLeft(),
+                     Camera::reference().orbited(40), styled(RenderStyle::kCartoon));
 }
 
 }  // namespace
