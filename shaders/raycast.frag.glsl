@@ -44,8 +44,6 @@ uniform mat4 u_inv_view_proj;
 uniform vec2 u_viewport;      // size of the image being rendered, pixels
 uniform vec3 u_world_min;
 uniform vec3 u_voxel_size;    // world units per voxel
-uniform vec3 u_dims;          // voxels
-uniform sampler3D u_volume;   // r = density, g = transmittance towards the light
 uniform usampler3D u_occupancy;
 uniform int u_brick;          // voxels per level-0 occupancy cell
 uniform int u_levels;         // occupancy mip levels
@@ -140,6 +138,13 @@ void main() {
   styleBeginRay(normalize(dir_world));
 #endif
   if (t_exit > t_enter) {
+    // Dense texture coordinate of sample k: base + k·delta (same positions for any start k, so
+    // skipping does not move samples).
+    vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
+    vec3 delta = dir * (u_step * inv_dims);
+#if !CB_SURFACE
+    float neg_optical_depth_log2 = -u_sigma * u_step * 1.4426950408889634;
+#endif
     while (k < n) {
       int k_end = n;
 #if CB_SKIP && CB_BRICK_STEPPING
@@ -160,17 +165,30 @@ void main() {
         k_end = min(n, max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1));
       }
 #endif
-      // Texture coordinates of sample k: base + k·delta (same positions for any start k, so
-      // skipping does not move samples). Per sample: one RG8 fetch, one exp2, the shading stage;
-      // no data-dependent branch (a zero density gives α = 0 and changes nothing) because
-      // llvmpipe runs a branch's code for all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density)
-      // is the Beer–Lambert opacity of the step (§4.5.2 compositing, see the header).
-      vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
-      vec3 delta = dir * (u_step * inv_dims);
-      float neg_optical_depth_log2 = -u_sigma * u_step * 1.4426950408889634;
+      // The pool slot of sample k's cell (volume_pool.glsl), kept for the samples in it: one
+      // indirection fetch per cell crossed, not per sample. Samples within 1/1024 voxel of the
+      // cell's exit go to the next cell, where they round onto its face (fixed point is 1/256),
+      // so float error in t never puts a sample outside the cell it is read in.
+      PoolBrick pb = poolBrickAt(fixedVoxel(base + float(k) * delta));
+      float t_cell = cellExit(origin, inv_dir, pb.cell_lo, kBrickVoxels) - 1.0 / 1024.0;
+      k_end = min(k_end, max(int(ceil((t_cell - t_enter) / u_step - 0.5)), k + 1));
+#if CB_SKIP
+      if (pb.empty) {
+        // Every sample of the cell reads density 0: skipping them changes nothing (lossless).
+#if CB_SURFACE
+        previous_density = 0.0;
+#endif
+        k = k_end;
+        continue;
+      }
+#endif
+      // Per sample: one RG8 fetch, one exp2, the shading stage; no data-dependent branch (a
+      // zero density gives α = 0 and changes nothing) because llvmpipe runs a branch's code for
+      // all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
+      // step (§4.5.2 compositing, see the header).
 #if CB_SURFACE
       for (; k < k_end && !hit; ++k) {
-        float d = textureLod(u_volume, base + float(k) * delta, 0.0).r;
+        float d = samplePool(fixedVoxel(base + float(k) * delta), pb).r;
         ++samples;
         hit = d >= u_iso;
         hit_density = d;
@@ -184,7 +202,7 @@ void main() {
 #else
       for (; k < k_end && transmittance >= u_cutoff; ++k) {
         vec3 texcoord = base + float(k) * delta;
-        vec2 s = textureLod(u_volume, texcoord, 0.0).rg;
+        vec2 s = samplePool(fixedVoxel(texcoord), pb);
         ++samples;
         float density = styleDensity(s.r, texcoord);
         float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
@@ -213,21 +231,18 @@ void main() {
     // the cloud's shape rather than its voxel-scale noise); the outward normal points down the
     // density gradient.
     vec3 h = u_gradient_voxels * inv_dims;
-    vec3 gradient = vec3(textureLod(u_volume, p + vec3(h.x, 0, 0), 0.0).r -
-                             textureLod(u_volume, p - vec3(h.x, 0, 0), 0.0).r,
-                         textureLod(u_volume, p + vec3(0, h.y, 0), 0.0).r -
-                             textureLod(u_volume, p - vec3(0, h.y, 0), 0.0).r,
-                         textureLod(u_volume, p + vec3(0, 0, h.z), 0.0).r -
-                             textureLod(u_volume, p - vec3(0, 0, h.z), 0.0).r);
+    vec3 gradient = vec3(sampleVolume(p + vec3(h.x, 0, 0)).r - sampleVolume(p - vec3(h.x, 0, 0)).r,
+                         sampleVolume(p + vec3(0, h.y, 0)).r - sampleVolume(p - vec3(0, h.y, 0)).r,
+                         sampleVolume(p + vec3(0, 0, h.z)).r - sampleVolume(p - vec3(0, 0, h.z)).r);
     vec3 g_world = gradient / u_voxel_size;
     surface.normal = dot(g_world, g_world) > 1e-12 ? -normalize(g_world) : surface.view;
-    surface.light_transmittance = textureLod(u_volume, p, 0.0).g;
+    surface.light_transmittance = sampleVolume(p).g;
     // Inner surface (seed 003 §5): the largest density within u_inner_depth voxels behind the
     // hit; it equals u_inner_iso where the ray grazes the inner surface (its silhouette).
     int inner_end = min(n, hit_k + 1 + int(u_inner_depth / u_step));
     float inner = hit_density;
     for (int j = hit_k + 1; j < inner_end; ++j)
-      inner = max(inner, textureLod(u_volume, base + float(j) * delta, 0.0).r);
+      inner = max(inner, sampleVolume(base + float(j) * delta).r);
     samples += uint(max(inner_end - hit_k - 1, 0)) + 7u;
     surface.inner_max_density = inner;
   }

@@ -1,6 +1,7 @@
 #include "app/render/occupancy_pyramid.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "app/core/parallel_for.h"
 
@@ -54,7 +55,9 @@ OccupancyPyramid buildOccupancy(const Volume& volume) {
   return p;
 }
 
-VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelBox& dirty) {
+VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelBox& dirty,
+                         bool* changed) {
+  if (changed) *changed = false;
   VoxelBox voxels = dirty.intersect(volume.bounds());
   if (voxels.empty()) return {};
   // Cells whose dilated brick [c*b-1, c*b+b+1) meets the dirty box.
@@ -65,12 +68,20 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   {
     const glm::ivec3 d = p.level_dims[0];
     std::vector<uint8_t>& level = p.levels[0];
+    std::atomic<bool> any_changed{false};
     parallelFor(size_t(cells.hi.z - cells.lo.z), 1, [&](size_t, size_t z0, size_t z1) {
+      bool chunk_changed = false;
       for (int z = cells.lo.z + int(z0); z < cells.lo.z + int(z1); ++z)
         for (int y = cells.lo.y; y < cells.hi.y; ++y)
-          for (int x = cells.lo.x; x < cells.hi.x; ++x)
-            level[cellIndex(d, x, y, z)] = brickOccupied(volume, p.brick, {x, y, z});
+          for (int x = cells.lo.x; x < cells.hi.x; ++x) {
+            uint8_t& cell = level[cellIndex(d, x, y, z)];
+            const uint8_t occupied = brickOccupied(volume, p.brick, {x, y, z});
+            chunk_changed |= cell != occupied;
+            cell = occupied;
+          }
+      if (chunk_changed) any_changed.store(true, std::memory_order_relaxed);
     });
+    if (changed) *changed = any_changed.load();
   }
   // Max-reduce the touched region up the pyramid.
   VoxelBox region = cells;

@@ -39,9 +39,12 @@ struct OccupancyPyramid {
 OccupancyPyramid buildOccupancy(const Volume& volume);
 
 // Recomputes the level-0 cells whose dilated footprint meets `dirty` (voxel box) and their
-// ancestors. Returns the box of level-0 cells updated (empty if nothing was dirty). Parallel over
-// z with cb::parallelFor; the result does not depend on the thread count.
-VoxelBox updateOccupancy(OccupancyPyramid& pyramid, const Volume& volume, const VoxelBox& dirty);
+// ancestors. Returns the box of level-0 cells updated (empty if nothing was dirty); with
+// `changed`, also whether any of them took a new value (an edit inside occupied cloud leaves the
+// pyramid as it was). Parallel over z with cb::parallelFor; the result does not depend on the
+// thread count.
+VoxelBox updateOccupancy(OccupancyPyramid& pyramid, const Volume& volume, const VoxelBox& dirty,
+                         bool* changed = nullptr);
 
 // The boundary of the occupied cells of `level`: two triangles (6 vertices, voxel coordinates)
 // for every face between an occupied cell and an empty or outside neighbour, wound

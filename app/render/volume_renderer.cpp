@@ -41,11 +41,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Round to nearest (no libm call: this runs for every uploaded voxel).
-uint8_t toUnorm8(float v) {
-  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
-}
-
 }  // namespace
 
 void VolumeRenderer::deleteTargets(FrameTargets* t) {
@@ -54,34 +49,6 @@ void VolumeRenderer::deleteTargets(FrameTargets* t) {
   if (t->frame) glDeleteTextures(1, &t->frame);
   if (t->stencil) glDeleteRenderbuffers(1, &t->stencil);
   *t = FrameTargets{};
-}
-
-void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
-                         std::vector<uint8_t>* packed) {
-  VoxelBox b = box.intersect(volume.bounds());
-  if (b.empty()) {
-    packed->clear();
-    return;
-  }
-  const glm::ivec3 size = b.hi - b.lo;
-  // Only the box, contiguous (x fastest): what glTextureSubImage3D reads without row strides.
-  packed->resize(size_t(b.voxelCount()) * 2);
-  uint8_t* out = packed->data();
-  // Small boxes on the calling thread: waking workers costs more than packing a few voxels.
-  const size_t grain = size_t(b.voxelCount()) < (size_t(1) << 18) ? size_t(size.z) : 4;
-  parallelFor(size_t(size.z), grain, [&](size_t, size_t z0, size_t z1) {
-    std::vector<float> d(size_t(size.x));
-    for (int z = b.lo.z + int(z0); z < b.lo.z + int(z1); ++z)
-      for (int y = b.lo.y; y < b.hi.y; ++y) {
-        volume.readLine({b.lo.x, y, z}, 0, size.x, d.data());
-        uint8_t* o =
-            out + 2 * ((size_t(z - b.lo.z) * size_t(size.y) + size_t(y - b.lo.y)) * size_t(size.x));
-        for (int x = 0; x < size.x; ++x) {
-          o[2 * x] = toUnorm8(d[size_t(x)]);
-          o[2 * x + 1] = toUnorm8(light.at(b.lo.x + x, y, z));
-        }
-      }
-  });
 }
 
 std::string RenderStats::summary() const {
@@ -116,7 +83,6 @@ std::string RenderStats::summary() const {
 VolumeRenderer::~VolumeRenderer() {
   for (auto& [key, p] : programs_) glDeleteProgram(p);
   if (vao_) glDeleteVertexArrays(1, &vao_);
-  if (volume_texture_) glDeleteTextures(1, &volume_texture_);
   if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
   if (stats_buffer_) glDeleteBuffers(1, &stats_buffer_);
   if (bounds_program_) glDeleteProgram(bounds_program_);
@@ -163,7 +129,7 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
     program_ = it->second;
     return true;
   }
-  std::vector<std::string> fragment_files;
+  std::vector<std::string> fragment_files{"volume_pool.glsl"};
   if (surface) fragment_files.push_back("surface_sample.glsl");
   fragment_files.push_back(stage);
   fragment_files.push_back("raycast.frag.glsl");
@@ -296,15 +262,8 @@ bool VolumeRenderer::drawSkyUnder(int w, int h, int width, int height,
   return true;
 }
 
-void VolumeRenderer::allocateTextures(glm::ivec3 dims) {
-  if (volume_texture_) glDeleteTextures(1, &volume_texture_);
+void VolumeRenderer::allocateOccupancyTexture() {
   if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
-  glCreateTextures(GL_TEXTURE_3D, 1, &volume_texture_);
-  glTextureStorage3D(volume_texture_, 1, GL_RG8, dims.x, dims.y, dims.z);
-  glTextureParameteri(volume_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(volume_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTextureParameteri(volume_texture_, wrap, GL_CLAMP_TO_EDGE);
   const glm::ivec3 d0 = occupancy_.level_dims[0];
   glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
   glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
@@ -348,9 +307,9 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     // An edit inside cloud that is already occupied leaves the pyramid as it was: then neither
     // the occupancy texture nor the ray-bounds faces (a scan of all cells and a buffer upload of
     // megabytes for the cumulus) need redoing.
-    occupancy_before_ = occupancy_.levels[0];
-    occupancy_cells = updateOccupancy(occupancy_, volume, st.dirty);
-    if (occupancy_.levels[0] == occupancy_before_) occupancy_cells = {};
+    bool changed = false;
+    occupancy_cells = updateOccupancy(occupancy_, volume, st.dirty, &changed);
+    if (!changed) occupancy_cells = {};
   }
   st.occupancy_ms = msSince(t0);
 
@@ -373,17 +332,22 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.light_ms = msSince(t0);
 
   st.uploaded = st.dirty.unite(st.light_box);
-  t0 = std::chrono::steady_clock::now();
-  packDensityAndLight(volume, light_volume_, st.uploaded, &packed_);
-  st.pack_ms = msSince(t0);
-
-  t0 = std::chrono::steady_clock::now();
   if (fresh) {
     dims_ = volume.dims();
     world_min_ = volume.worldMin();
     world_max_ = volume.worldMax();
-    allocateTextures(dims_);
+    allocateOccupancyTexture();
   }
+  // The pool follows the bricks that changed (or every allocated brick when fresh).
+  const std::vector<glm::ivec3> changed_bricks =
+      fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
+  const BrickPool::UpdateStats pool =
+      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box);
+  st.slots_uploaded = pool.slots_uploaded;
+  st.pool_grew = pool.grew;
+  st.pack_ms = pool.pack_ms;
+
+  t0 = std::chrono::steady_clock::now();
   uploadOccupancy(occupancy_cells);
   if (!occupancy_cells.empty()) {
     // Entry faces from the fine level (they set where rays start: tight), exit faces from the
@@ -396,30 +360,43 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     std::vector<glm::vec3> exit_faces = occupiedBoundaryFaces(occupancy_, exit_level);
     bounds_exit_vertices_ = GLsizei(exit_faces.size());
     faces.insert(faces.end(), exit_faces.begin(), exit_faces.end());
-    glNamedBufferData(bounds_vbo_,
-                      GLsizeiptr(std::max<size_t>(1, faces.size()) * sizeof(glm::vec3)),
+    bounds_vbo_bytes_ = std::max<size_t>(1, faces.size()) * sizeof(glm::vec3);
+    glNamedBufferData(bounds_vbo_, GLsizeiptr(bounds_vbo_bytes_),
                       faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
-  }
-  if (!st.uploaded.empty()) {
-    const VoxelBox& b = st.uploaded;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
-                     GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
-      glPixelStorei(p, 0);  // packed_ holds just the box
-    glm::ivec3 size = b.hi - b.lo;
-    glTextureSubImage3D(volume_texture_, 0, b.lo.x, b.lo.y, b.lo.z, size.x, size.y, size.z, GL_RG,
-                        GL_UNSIGNED_BYTE, packed_.data());
   }
   for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
                    GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
     glPixelStorei(p, 0);
   glFinish();  // the upload is complete when sync returns (so its time is honest)
-  st.upload_ms = msSince(t0);
+  st.upload_ms = pool.upload_ms + msSince(t0);
 
   synced_volume_id_ = volume.instanceId();
   synced_generation_ = volume.generation();
   synced_light_ = light;
   return st;
+}
+
+RendererGpuMemory VolumeRenderer::gpuMemory() const {
+  RendererGpuMemory m;
+  m.pool = pool_.poolBytes();
+  m.indirection = pool_.indirectionBytes();
+  if (occupancy_texture_)
+    for (const std::vector<uint8_t>& level : occupancy_.levels) m.occupancy += level.size();
+  m.ray_bounds = bounds_vbo_bytes_;
+  // RG32F bounds + RGBA8 frame + 24/8 depth-stencil per pixel, for the current and spare size.
+  constexpr size_t kTargetBytesPerPixel = 8 + 4 + 4;
+  m.frame_targets = (size_t(bounds_w_) * size_t(bounds_h_) +
+                     size_t(spare_targets_.w) * size_t(spare_targets_.h)) *
+                    kTargetBytesPerPixel;
+  for (const RenderTarget* t : {&low_res_, &style_image_, &bleed_})
+    m.frame_targets += size_t(t->width()) * size_t(t->height()) *
+                       (t->format() == RenderTarget::Format::kRgba8 ? 4 : 16);
+  if (detail_noise_texture_) {
+    GLint size = 0;
+    glGetTextureLevelParameteriv(detail_noise_texture_, 0, GL_TEXTURE_WIDTH, &size);
+    m.styles = size_t(size) * size_t(size) * size_t(size) + 256 * sizeof(glm::vec4);
+  }
+  return m;
 }
 
 void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
@@ -607,7 +584,12 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
   glUniform3fv(loc("u_voxel_size"), 1, glm::value_ptr(voxel));
   glUniform3f(loc("u_dims"), float(dims_.x), float(dims_.y), float(dims_.z));
-  glUniform1i(loc("u_volume"), 0);
+  glUniform1i(loc("u_pool"), 0);
+  glUniform1i(loc("u_bricks"), 5);
+  const glm::ivec3 brick_max = pool_.brickDims() - 1;
+  glUniform3i(loc("u_brick_max"), brick_max.x, brick_max.y, brick_max.z);
+  glUniform3fv(loc("u_inv_pool_fixed"), 1,
+               glm::value_ptr(1.0f / (glm::vec3(pool_.poolTexels()) * 256.0f)));
   glUniform1i(loc("u_occupancy"), 1);
   glUniform1i(loc("u_brick"), occupancy_.brick);
   glUniform1i(loc("u_levels"), occupancy_.levelCount());
@@ -656,7 +638,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glUniform1f(loc("u_erosion"), ph.erosion);
     glBindTextureUnit(3, detail_noise_texture_);
   }
-  glBindTextureUnit(0, volume_texture_);
+  glBindTextureUnit(0, pool_.poolTexture());
+  glBindTextureUnit(5, pool_.indirectionTexture());
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);

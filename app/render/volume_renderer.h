@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/render/brick_pool.h"
 #include "app/render/gl/gl.h"
 #include "app/render/light_volume.h"
 #include "app/render/occupancy_pyramid.h"
@@ -88,11 +89,26 @@ struct RenderStats {
 struct SyncStats {
   VoxelBox dirty;             // density box changed since the previous sync
   VoxelBox light_box;         // light volume voxels recomputed
-  VoxelBox uploaded;          // voxels re-packed and uploaded
+  VoxelBox uploaded;          // voxels whose GPU copy was brought up to date (dirty ∪ light box)
+  int slots_uploaded = 0;     // brick-pool slots re-packed and uploaded for them (brick_pool.h)
+  bool pool_grew = false;     // the brick pool was reallocated to hold more slots
   double occupancy_ms = 0.0;  // updateOccupancy
   double light_ms = 0.0;      // sweepLightVolume
-  double pack_ms = 0.0;       // packing density + transmittance to RG8
-  double upload_ms = 0.0;     // glTextureSubImage3D calls (occupancy + volume)
+  double pack_ms = 0.0;       // packing density + transmittance into pool slots (RG8)
+  double upload_ms = 0.0;     // glTextureSubImage3D calls (occupancy, pool slots, indirection)
+};
+
+// What the renderer holds on the GPU, in bytes (VolumeRenderer::gpuMemory).
+struct RendererGpuMemory {
+  size_t pool = 0;           // the brick pool texture (all its slots, free ones included)
+  size_t indirection = 0;    // one RGBA8UI texel per brick
+  size_t occupancy = 0;      // the R8UI occupancy mip chain
+  size_t ray_bounds = 0;     // the occupied cells' faces (vertex buffer)
+  size_t frame_targets = 0;  // ray-bounds, frame and stencil targets (current and spare size),
+                             // the reduced-scale and style images: these follow the screen size
+  size_t styles = 0;         // the physical style's noise cube and light table, once used
+  size_t volume() const { return pool + indirection + occupancy + ray_bounds; }
+  size_t total() const { return volume() + frame_targets + styles; }
 };
 
 class VolumeRenderer {
@@ -131,6 +147,10 @@ class VolumeRenderer {
   void invalidate() { synced_volume_id_ = 0; }
   const LightVolume& lightVolume() const { return light_volume_; }
   const OccupancyPyramid& occupancy() const { return occupancy_; }
+  const BrickPool& brickPool() const { return pool_; }
+  // GL-side bytes, itemised (RendererGpuMemory); memoryBytes() is their total.
+  RendererGpuMemory gpuMemory() const;
+  size_t memoryBytes() const { return gpuMemory().total(); }
 
  private:
   // The ray-cast program variant for these options (compiled on first use, then cached).
@@ -147,25 +167,24 @@ class VolumeRenderer {
   // composites what is drawn next over it (premultiplied "over"). False when the style shows
   // no sky (then nothing is drawn).
   bool drawSkyUnder(int w, int h, int width, int height, const RenderOptions& options);
-  void allocateTextures(glm::ivec3 dims);
+  void allocateOccupancyTexture();
   void uploadOccupancy(const VoxelBox& cells);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
 
   GLuint program_ = 0;                      // the variant in use
   std::map<std::string, GLuint> programs_;  // variants by shading file + defines
-  GLuint vao_ = 0, volume_texture_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
+  GLuint vao_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
   uint64_t synced_volume_id_ = 0;  // Volume::instanceId() last synced, 0: none
   uint64_t synced_generation_ = 0;
   Light synced_light_;
-  std::vector<uint8_t> packed_;  // RG8 per voxel: density, transmittance
+  BrickPool pool_;  // density and transmittance on the GPU (brick_pool.h)
   LightVolume light_volume_;
   ReducedLightSweep reduced_light_;
   int light_preview_divisor_ = 1;
   bool light_is_preview_ = false;
   OccupancyPyramid occupancy_;
-  std::vector<uint8_t> occupancy_before_;  // level 0 before an update (to detect no change)
   RenderTarget low_res_;
   RenderTarget style_image_;  // the ray-cast image of a screen-space style without skipping
   RenderTarget bleed_;        // ink: the silhouette blurred along x
@@ -177,6 +196,7 @@ class VolumeRenderer {
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
   // The VBO holds the entry faces (kRayBoundsLevel) followed by the exit faces (one level up).
   GLsizei bounds_entry_vertices_ = 0, bounds_exit_vertices_ = 0;
+  size_t bounds_vbo_bytes_ = 0;
   // With skipping, one FBO holds the frame colour (attachment 0), the ray bounds (attachment 1)
   // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast
   // (llvmpipe tests stencil before shading), then the colour is blitted to the target.
@@ -194,10 +214,5 @@ class VolumeRenderer {
   SkyPass sky_;
   Camera frame_camera_;  // the camera of the frame being rendered (for the sky)
 };
-
-// Packs density (clamped to [0,1]) and transmittance into 8-bit RG pairs for the voxels of `box`
-// (clipped to the volume), contiguous with x fastest: packed holds box.voxelCount() pairs.
-void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
-                         std::vector<uint8_t>* packed);
 
 }  // namespace cb

@@ -382,4 +382,19 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
   return out;
 }
 
+void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
+                         std::vector<uint8_t>* packed) {
+  const VoxelBox b = box.intersect(volume.bounds());
+  packed->clear();
+  if (b.empty()) return;
+  packed->reserve(size_t(b.voxelCount()) * 2);
+  auto unorm8 = [](float v) { return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
+  for (int z = b.lo.z; z < b.hi.z; ++z)
+    for (int y = b.lo.y; y < b.hi.y; ++y)
+      for (int x = b.lo.x; x < b.hi.x; ++x) {
+        packed->push_back(unorm8(volume.at(x, y, z)));
+        packed->push_back(unorm8(light.at(x, y, z)));
+      }
+}
+
 }  // namespace cb

@@ -45,6 +45,12 @@ struct ReferencePixel {
   bool sensitive = false;
 };
 
+// The renderer's 8-bit voxels of `box` as a dense block (what its brick pool holds for them,
+// app/render/brick_pool.h): density clamped to [0,1] and the light volume's transmittance, each
+// rounded to 8 bits, RG pairs, x fastest; packed holds box.voxelCount() pairs.
+void packDensityAndLight(const Volume& volume, const LightVolume& light, const VoxelBox& box,
+                         std::vector<uint8_t>* packed);
+
 // The final colour of pixel (x, y), y = 0 at the top, for options.style. For ink and sketch this
 // includes the screen-space pass (and, for ink when still, the bleeding over the neighbours).
 // What shows behind the cloud is options.background or, when the style shows options.sky, the

@@ -1,0 +1,323 @@
+#include "app/render/brick_pool.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+#include "app/core/parallel_for.h"
+
+namespace cb {
+namespace {
+
+// The first pool: 64³ texels, 3³ slots (the empty slot and 26 free ones, 512 KiB).
+constexpr glm::ivec3 kInitialTexels{64, 64, 64};
+// Slots packed into one staging buffer before their uploads (≈ 5 MB).
+constexpr size_t kUploadBatch = 512;
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Round to nearest (no libm call: this runs for every packed texel).
+uint8_t toUnorm8(float v) {
+  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+}
+
+void resetUnpackState() {
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                   GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
+    glPixelStorei(p, 0);
+}
+
+bool valid(glm::ivec3 b, glm::ivec3 dims) {
+  return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, dims));
+}
+
+}  // namespace
+
+void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out) {
+  constexpr int S = BrickPool::kSlotTexels;
+  const glm::ivec3 dims = volume.dims();
+  const glm::ivec3 lo = brick * Volume::kBrickSize;
+  int xs[S], ys[S], zs[S];
+  for (int j = 0; j < S; ++j) {
+    xs[j] = std::min(lo.x + j, dims.x - 1);
+    ys[j] = std::min(lo.y + j, dims.y - 1);
+    zs[j] = std::min(lo.z + j, dims.z - 1);
+  }
+  const int nx = std::min(S, dims.x - lo.x);  // texels of a row inside the volume (≥ 1)
+  float d[S];
+  const size_t row_bytes = 2 * size_t(S);
+  for (int k = 0; k < S; ++k)
+    for (int j = 0; j < S; ++j) {
+      uint8_t* o = out + row_bytes * size_t(k * S + j);
+      // Rows past the volume's edge repeat the last one inside (clamp to edge).
+      if (k > 0 && zs[k] == zs[k - 1]) {
+        std::memcpy(o, o - row_bytes * S, row_bytes);
+        continue;
+      }
+      if (j > 0 && ys[j] == ys[j - 1]) {
+        std::memcpy(o, o - row_bytes, row_bytes);
+        continue;
+      }
+      const int y = ys[j], z = zs[k];
+      volume.readLine({lo.x, y, z}, 0, nx, d);
+      for (int i = 0; i < S; ++i) {
+        o[2 * i] = toUnorm8(d[std::min(i, nx - 1)]);
+        o[2 * i + 1] = toUnorm8(light.at(xs[i], y, z));
+      }
+    }
+}
+
+BrickPool::~BrickPool() {
+  if (pool_texture_) glDeleteTextures(1, &pool_texture_);
+  if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
+}
+
+size_t BrickPool::tableBytes() const {
+  return slot_of_brick_.capacity() * sizeof(glm::u8vec4) +
+         free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity();
+}
+
+void BrickPool::resetTables(glm::ivec3 brick_dims) {
+  if (brick_dims != brick_dims_ || !indirection_texture_) {
+    if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
+    glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
+    glTextureStorage3D(indirection_texture_, 1, GL_RGBA8UI, brick_dims.x, brick_dims.y,
+                       brick_dims.z);
+    glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    brick_dims_ = brick_dims;
+  }
+  const size_t bricks = size_t(brick_dims.x) * brick_dims.y * brick_dims.z;
+  slot_of_brick_.assign(bricks, glm::u8vec4(0));
+  mark_.assign(bricks, 0);
+  slots_in_use_ = 0;
+  if (!pool_texture_) {
+    capacity_ = glm::ivec3(0);
+    UpdateStats ignored;
+    reserve(0, &ignored);
+  }
+  // Every slot but the empty one is free (popped from the back: low coordinates first).
+  free_slots_.clear();
+  for (int z = capacity_.z - 1; z >= 0; --z)
+    for (int y = capacity_.y - 1; y >= 0; --y)
+      for (int x = capacity_.x - 1; x >= 0; --x)
+        if (x || y || z) free_slots_.push_back(glm::u8vec4(x, y, z, 1));
+}
+
+bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
+  const size_t needed = slots + 1;  // and the empty slot
+  if (pool_texture_ && slotCapacity() >= needed) return true;
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_size);
+  // Power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most 255 slots per axis
+  // (slot coordinates are 8-bit).
+  int max_texels = 1;
+  while (max_texels * 2 <= max_size && (max_texels * 2) / kSlotTexels <= 255) max_texels *= 2;
+  auto slotsIn = [](glm::ivec3 t) {
+    const glm::ivec3 c = t / kSlotTexels;
+    return size_t(c.x) * size_t(c.y) * size_t(c.z);
+  };
+  glm::ivec3 texels = pool_texture_ ? pool_texels_ : kInitialTexels;
+  // Double one axis at a time (the smallest first) until the slots fit.
+  while (slotsIn(texels) < needed) {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (texels[a] < texels[axis]) axis = a;
+    if (texels[axis] * 2 > max_texels) {
+      // The smallest axis is at the limit, so all are.
+      if (!full_reported_)
+        std::fprintf(stderr,
+                     "cloudbrush: render: the brick pool is full (%zu slots needed, at most %zu "
+                     "fit in 3D textures of %d texels): bricks beyond it show empty\n",
+                     needed, slotsIn(texels), max_texels);
+      full_reported_ = true;
+      break;
+    }
+    texels[axis] *= 2;
+  }
+  if (pool_texture_ && texels == pool_texels_) return false;
+  const glm::ivec3 cap = texels / kSlotTexels;
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_3D, 1, &texture);
+  glTextureStorage3D(texture, 1, GL_RG8, texels.x, texels.y, texels.z);
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteTextures(1, &texture);
+    std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
+                 size_t(texels.x) * size_t(texels.y) * size_t(texels.z) * 2);
+    return false;
+  }
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
+  if (pool_texture_) {
+    // Slots keep their coordinates: copy the old pool into the corner of the new one (on the
+    // GPU, nothing re-packed) and free the slots that are new.
+    const glm::ivec3 old = pool_texels_;
+    glCopyImageSubData(pool_texture_, GL_TEXTURE_3D, 0, 0, 0, 0, texture, GL_TEXTURE_3D, 0, 0, 0, 0,
+                       old.x, old.y, old.z);
+    glDeleteTextures(1, &pool_texture_);
+    std::vector<glm::u8vec4> added;
+    for (int z = cap.z - 1; z >= 0; --z)
+      for (int y = cap.y - 1; y >= 0; --y)
+        for (int x = cap.x - 1; x >= 0; --x)
+          if (x >= capacity_.x || y >= capacity_.y || z >= capacity_.z)
+            added.push_back(glm::u8vec4(x, y, z, 1));
+    free_slots_.insert(free_slots_.begin(), added.begin(), added.end());
+    stats->grew = true;
+  } else {
+    // The empty slot: density 0 (transmittance 1, never weighted).
+    std::vector<uint8_t> empty(kSlotBytes);
+    for (size_t i = 0; i < empty.size(); i += 2) {
+      empty[i] = 0;
+      empty[i + 1] = 255;
+    }
+    resetUnpackState();
+    glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+                        GL_UNSIGNED_BYTE, empty.data());
+  }
+  pool_texture_ = texture;
+  pool_texels_ = texels;
+  capacity_ = cap;
+  return slotsIn(texels) >= needed;
+}
+
+void BrickPool::uploadIndirection(const VoxelBox& bricks) {
+  if (bricks.empty()) return;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, brick_dims_.x);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, brick_dims_.y);
+  glPixelStorei(GL_UNPACK_SKIP_PIXELS, bricks.lo.x);
+  glPixelStorei(GL_UNPACK_SKIP_ROWS, bricks.lo.y);
+  glPixelStorei(GL_UNPACK_SKIP_IMAGES, bricks.lo.z);
+  const glm::ivec3 size = bricks.hi - bricks.lo;
+  glTextureSubImage3D(indirection_texture_, 0, bricks.lo.x, bricks.lo.y, bricks.lo.z, size.x,
+                      size.y, size.z, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, slot_of_brick_.data());
+  resetUnpackState();
+}
+
+BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
+                                         const std::vector<glm::ivec3>& changed_bricks,
+                                         const VoxelBox& light_box) {
+  UpdateStats st;
+  auto t0 = std::chrono::steady_clock::now();
+  const glm::ivec3 bd = volume.brickDims();
+  if (fresh || bd != brick_dims_) {
+    fresh = true;
+    resetTables(bd);
+  }
+  // Candidates: bricks whose slot may have to change (be added, released or refreshed).
+  std::vector<glm::ivec3> candidates;
+  auto addCandidatesAround = [&](glm::ivec3 c) {
+    // Slot b reads bricks b + {0,1}³, so brick c is read by the slots of c − {0,1}³.
+    for (int dz = -1; dz <= 0; ++dz)
+      for (int dy = -1; dy <= 0; ++dy)
+        for (int dx = -1; dx <= 0; ++dx) {
+          const glm::ivec3 b = c + glm::ivec3(dx, dy, dz);
+          if (!valid(b, bd)) continue;
+          uint8_t& m = mark_[brickIndex(b)];
+          if (m) continue;
+          m = 1;
+          candidates.push_back(b);
+        }
+  };
+  if (fresh)
+    for (glm::ivec3 a : volume.allocatedBrickList()) addCandidatesAround(a);
+  else
+    for (glm::ivec3 c : changed_bricks) addCandidatesAround(c);
+  // A fixed order (z, y, x) so slots are handed out the same way for the same changes.
+  std::sort(candidates.begin(), candidates.end(), [](glm::ivec3 a, glm::ivec3 b) {
+    return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
+  });
+  auto needsSlot = [&](glm::ivec3 b) {
+    for (int dz = 0; dz <= 1; ++dz)
+      for (int dy = 0; dy <= 1; ++dy)
+        for (int dx = 0; dx <= 1; ++dx) {
+          const glm::ivec3 n = b + glm::ivec3(dx, dy, dz);
+          if (valid(n, bd) && volume.brick(n)) return true;
+        }
+    return false;
+  };
+  VoxelBox indirection_changed;
+  std::vector<glm::ivec3> to_upload;
+  std::vector<glm::ivec3> to_add;
+  for (glm::ivec3 b : candidates) {
+    const size_t i = brickIndex(b);
+    mark_[i] = 0;
+    const bool has = slot_of_brick_[i].w != 0;
+    const bool needs = needsSlot(b);
+    if (needs && !has) {
+      to_add.push_back(b);
+    } else if (!needs && has) {
+      free_slots_.push_back(slot_of_brick_[i]);
+      slot_of_brick_[i] = glm::u8vec4(0);
+      --slots_in_use_;
+      ++st.slots_released;
+      indirection_changed = indirection_changed.unite({b, b + 1});
+    } else if (needs) {
+      to_upload.push_back(b);
+    }
+  }
+  if (!to_add.empty() && free_slots_.size() < to_add.size())
+    reserve(slots_in_use_ + to_add.size(), &st);
+  for (glm::ivec3 b : to_add) {
+    if (free_slots_.empty()) break;  // the pool is full (reported by reserve)
+    const size_t i = brickIndex(b);
+    slot_of_brick_[i] = free_slots_.back();
+    free_slots_.pop_back();
+    ++slots_in_use_;
+    ++st.slots_added;
+    indirection_changed = indirection_changed.unite({b, b + 1});
+    to_upload.push_back(b);
+  }
+  // The light: slots whose voxels 16b … 16b+16 meet the light box.
+  const VoxelBox lb = light_box.intersect(volume.bounds());
+  if (!lb.empty() && slots_in_use_ > 0) {
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
+    const glm::ivec3 blo = glm::max((lb.lo - 1) >> Volume::kBrickShift, glm::ivec3(0));
+    const glm::ivec3 bhi = (lb.hi - 1) >> Volume::kBrickShift;
+    for (int z = blo.z; z <= bhi.z; ++z)
+      for (int y = blo.y; y <= bhi.y; ++y)
+        for (int x = blo.x; x <= bhi.x; ++x) {
+          const size_t i = brickIndex({x, y, z});
+          if (slot_of_brick_[i].w && !mark_[i]) to_upload.push_back({x, y, z});
+        }
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
+  }
+  // Added slots not given (a full pool) are not uploaded.
+  std::erase_if(to_upload, [&](glm::ivec3 b) { return slot_of_brick_[brickIndex(b)].w == 0; });
+  st.pack_ms += msSince(t0);
+
+  resetUnpackState();
+  std::vector<uint8_t> staging;  // packed slots of one batch
+  for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
+    const size_t n = std::min(kUploadBatch, to_upload.size() - first);
+    t0 = std::chrono::steady_clock::now();
+    staging.resize(n * kSlotBytes);
+    // Small batches on the calling thread: waking workers costs more than a few slots.
+    parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
+      for (size_t s = s0; s < s1; ++s)
+        packBrickSlot(volume, light, to_upload[first + s], staging.data() + s * kSlotBytes);
+    });
+    st.pack_ms += msSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    for (size_t s = 0; s < n; ++s) {
+      const glm::ivec3 slot(slot_of_brick_[brickIndex(to_upload[first + s])]);
+      const glm::ivec3 at = slot * kSlotTexels;
+      glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
+                          GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
+    }
+    st.upload_ms += msSince(t0);
+  }
+  st.slots_uploaded = int(to_upload.size());
+  t0 = std::chrono::steady_clock::now();
+  uploadIndirection(fresh ? VoxelBox{glm::ivec3(0), bd} : indirection_changed);
+  st.upload_ms += msSince(t0);
+  return st;
+}
+
+}  // namespace cb

@@ -1,0 +1,115 @@
+// The GPU copy of a sparse Volume and its light volume (issue 15): a brick pool texture with an
+// indirection table, after the bricks of GigaVoxels / NanoVDB-style sparse textures.
+//
+//  - Pool: one RG8 3D texture (r = density, g = transmittance towards the light) of slots of
+//    kSlotTexels³ = 17³ texels. The slot of brick b holds voxels 16b … 16b+16 on each axis (its
+//    own 16 and the first voxel of the next brick: a one-voxel apron on the high side), indices
+//    clamped to the volume as a dense texture's CLAMP_TO_EDGE would.
+//  - Indirection: one RGBA8UI texel per brick (Volume::brickDims) holding the slot's coordinates
+//    in slots; slot (0,0,0) is the empty slot (all density 0), shared by every brick without one.
+//
+// Lookup rule (shaders/volume_pool.glsl): a voxel-space point p is sampled in the slot of
+// brick b = ⌊(p − ½)/16⌋ (clamped to the bricks), its "cell" being [16b + ½, 16b + 16½) per axis.
+// Hardware trilinear filtering at p reads voxels ⌊p − ½⌋ and ⌊p − ½⌋ + 1, both within
+// 16b … 16b+16, so a sample inside its slot gives exactly what the dense texture gave. Hence a
+// brick needs a slot when any voxel it can read is non-zero, i.e. when one of the bricks
+// b + {0,1}³ is allocated (this covers an empty brick whose high neighbour holds the density a
+// sample within half a voxel of their face blends in). Every other brick reads the empty slot:
+// zero density, which is what the dense texture held there (its transmittance is then never
+// weighted: a sample of zero density is transparent, and an iso-surface is never hit there).
+//
+// Updates follow the bricks that changed: a changed density brick c refreshes the slots of
+// c − {0,1}³ (allocating or releasing them as the rule above now says) and a light box the slots
+// whose 17³ voxels meet it. Released slots are reused; the pool grows (doubling one axis of its
+// power-of-two size, copied on the GPU with glCopyImageSubData) only when it runs out, so slots
+// keep their coordinates and nothing is re-packed.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "app/render/gl/gl.h"
+#include "app/render/light_volume.h"
+#include "app/volume/box.h"
+#include "app/volume/volume.h"
+
+namespace cb {
+
+class BrickPool {
+ public:
+  // A brick plus a one-voxel apron on its high side, per axis.
+  static constexpr int kSlotTexels = Volume::kBrickSize + 1;
+  static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
+
+  struct UpdateStats {
+    int slots_uploaded = 0;  // slots re-packed and uploaded
+    int slots_added = 0;     // bricks that got a slot
+    int slots_released = 0;  // bricks whose slot was freed
+    bool grew = false;       // the pool texture was reallocated (and copied) to hold more slots
+    double pack_ms = 0.0;    // CPU packing
+    double upload_ms = 0.0;  // glTextureSubImage3D of slots and indirection, growth copies
+  };
+
+  BrickPool() = default;
+  ~BrickPool();
+  BrickPool(const BrickPool&) = delete;
+  BrickPool& operator=(const BrickPool&) = delete;
+
+  // Brings the pool up to date. With `fresh` (another volume or new dims) every slot is
+  // reassigned from the allocated bricks; otherwise `changed_bricks` (Volume::changedBricksSince)
+  // and `light_box` (the light voxels recomputed) say what to refresh. `light` must hold valid
+  // transmittance for every voxel of the bricks next to allocated ones (LightVolume::at).
+  // Needs a current GL 4.5 context.
+  UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
+                     const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box);
+
+  GLuint poolTexture() const { return pool_texture_; }
+  GLuint indirectionTexture() const { return indirection_texture_; }
+  // The pool texture's size in texels (powers of two; slots fill (size / 17)³ of it).
+  glm::ivec3 poolTexels() const { return pool_texels_; }
+  glm::ivec3 brickDims() const { return brick_dims_; }
+  // Bricks holding a slot of their own (the empty slot not counted).
+  size_t slotsInUse() const { return slots_in_use_; }
+  // Slots the pool texture holds (including the empty slot and free ones).
+  size_t slotCapacity() const { return size_t(capacity_.x) * capacity_.y * capacity_.z; }
+  // The slot coordinates of brick b ((0,0,0): the empty slot).
+  glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
+  // GL texture bytes: the pool and the indirection table.
+  size_t poolBytes() const {
+    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * 2;
+  }
+  size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
+  // CPU bytes of the tables (indirection copy, free list, marks).
+  size_t tableBytes() const;
+
+ private:
+  size_t brickIndex(glm::ivec3 b) const {
+    return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
+           size_t(b.x);
+  }
+  void resetTables(glm::ivec3 brick_dims);
+  // Makes room for at least `slots` slots in use (plus the empty slot); false if the GL limit
+  // on 3D texture size is reached.
+  bool reserve(size_t slots, UpdateStats* stats);
+  void uploadIndirection(const VoxelBox& bricks);
+
+  glm::ivec3 brick_dims_{0};
+  glm::ivec3 pool_texels_{0};               // pool texture size (powers of two)
+  glm::ivec3 capacity_{0};                  // pool size in slots, pool_texels_ / 17
+  std::vector<glm::u8vec4> slot_of_brick_;  // per brick, as uploaded to the indirection table
+  std::vector<glm::u8vec4> free_slots_;     // a stack
+  std::vector<uint8_t> mark_;               // per brick, scratch for de-duplicating candidates
+  size_t slots_in_use_ = 0;
+  GLuint pool_texture_ = 0, indirection_texture_ = 0;
+  bool full_reported_ = false;
+};
+
+// Packs the slot of `brick` (BrickPool's layout: 17³ RG8 texels, x fastest; texel j on an axis
+// is voxel min(16·b + j, dim − 1)): density clamped to [0,1] and the light's transmittance, both
+// rounded to 8 bits. Reads transmittance only through LightVolume::at.
+void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out);
+
+}  // namespace cb
