@@ -34,18 +34,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double rssMb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return -1.0;
-}
 
 volatile double g_keep;  // keeps the read loop from being optimised away
 
-double mb(size_t bytes) {
-  return double(bytes) / double(1 << 20);
-}
 
 // A stroke-sized soft ball (radius in voxels), merged by max, marked dirty.
 void paintBall(Volume* v, glm::vec3 centre, float radius) {
@@ -172,7 +163,7 @@ void lightFigures(const Volume& cumulus, BenchReport* report) {
       stroke_ms, full_ms);
   report->figure("light_one_stroke_incremental_ms", stroke_ms);
   report->baseline("light_one_stroke_full_sweep_ms", full_ms);
-  report->figure("rss_mb_after_light", rssMb());
+  report->figure("rss_mb_after_light", processRssMb());
 }
 
 }  // namespace
@@ -238,7 +229,7 @@ int benchSky(int argc, char** argv) {
       }
     const double read_ms = msSince(t0);
     g_keep = sum;
-    const double rss = rssMb();
+    const double rss = processRssMb();
     const size_t dense = sky.voxelCount() * sizeof(float);
     const std::string name = std::to_string(area) + "x";
     const std::string voxels =
