@@ -70,15 +70,16 @@ void packDensityAndLight(const Volume& volume, const LightVolume& light, const V
   // Small boxes on the calling thread: waking workers costs more than packing a few voxels.
   const size_t grain = size_t(b.voxelCount()) < (size_t(1) << 18) ? size_t(size.z) : 4;
   parallelFor(size_t(size.z), grain, [&](size_t, size_t z0, size_t z1) {
-    std::vector<float> d(size_t(size.x));
+    std::vector<float> d(size_t(size.x)), t(size_t(size.x));
     for (int z = b.lo.z + int(z0); z < b.lo.z + int(z1); ++z)
       for (int y = b.lo.y; y < b.hi.y; ++y) {
         volume.readLine({b.lo.x, y, z}, 0, size.x, d.data());
+        light.readRow({b.lo.x, y, z}, size.x, t.data());
         uint8_t* o =
             out + 2 * ((size_t(z - b.lo.z) * size_t(size.y) + size_t(y - b.lo.y)) * size_t(size.x));
         for (int x = 0; x < size.x; ++x) {
           o[2 * x] = toUnorm8(d[size_t(x)]);
-          o[2 * x + 1] = toUnorm8(light.at(b.lo.x + x, y, z));
+          o[2 * x + 1] = toUnorm8(t[size_t(x)]);
         }
       }
   });
