@@ -441,6 +441,25 @@ const float* LightVolume::brickTransmittance(glm::ivec3 brick) const {
   return onesBrick();
 }
 
+void LightVolume::readRow(glm::ivec3 start, int n, float* out) const {
+  constexpr int m = Volume::kBrickSize - 1;
+  for (int x = start.x; x < start.x + n;) {
+    const int run = std::min(start.x + n, (x | m) + 1) - x;  // to the end of this brick
+    const float* p =
+        through.brickDims().x == 0
+            ? nullptr
+            : brickTransmittance(glm::ivec3(x, start.y, start.z) >> Volume::kBrickShift);
+    if (p)
+      std::copy_n(p + ((size_t(start.z & m) * Volume::kBrickSize + size_t(start.y & m)) *
+                           Volume::kBrickSize +
+                       size_t(x & m)),
+                  run, out + (x - start.x));
+    else
+      std::fill_n(out + (x - start.x), run, 1.0f);
+    x += run;
+  }
+}
+
 std::vector<float> LightVolume::toDense() const {
   const size_t n = size_t(dims.x) * size_t(dims.y) * size_t(dims.z);
   if (n > (size_t(1) << 31)) throw std::length_error("LightVolume::toDense: more than 2^31 voxels");

@@ -106,6 +106,8 @@ struct LightVolume {
     if (const float* p = through.get(i)) return p[o];
     return 1.0f;
   }
+  // T of n voxels from `start` along x (the row must lie inside the grid), as `at` gives them.
+  void readRow(glm::ivec3 start, int n, float* out) const;
   // Brick `brick`'s 16³ T values (x fastest; voxels of an edge brick outside the grid read 1).
   // Never nullptr for a brick of the grid (a fully lit brick shares one brick of ones); nullptr
   // outside the grid or before the first sweep.
