@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <tuple>
 
 #include "app/brush/hash_noise.h"
 
@@ -20,11 +23,12 @@ float dispersionForSpeed(const DispersionParams& p, float speed) {
   return p.max_dispersion * smoothstep(0.0f, 1.0f, (speed - p.slow_speed_px_s) / span);
 }
 
-void DispersionField::reset(uint32_t stroke_index, float noise_scale_px) {
-  if (!noise_.empty() && stroke_index == stroke_index_ && noise_scale_px == scale_) return;
-  stroke_index_ = stroke_index;
-  scale_ = noise_scale_px;
-  noise_.resize(size_t(kTile) * kTile);
+namespace {
+
+// Tileable value noise for one stroke: the pattern of dry and wet ink.
+std::vector<float> dispersionNoise(uint32_t stroke_index, float noise_scale_px) {
+  constexpr int kTile = DispersionField::kTile;
+  std::vector<float> noise(size_t(kTile) * kTile);
   // Tileable value noise, three octaves: the lattice of each octave (period × period hashed
   // values, wrapping) is built first, then interpolated for every pixel of the tile.
   int period = std::max(1, int(std::lround(kTile / noise_scale_px)));
@@ -55,12 +59,30 @@ void DispersionField::reset(uint32_t stroke_index, float noise_scale_px) {
   }
   // Stretch the fractal sum (which bunches around 0.5) back over 0..1.
   for (size_t i = 0; i < sum.size(); ++i)
-    noise_[i] = std::clamp((sum[i] / norm - 0.5f) * 2.2f + 0.5f, 0.0f, 1.0f);
+    noise[i] = std::clamp((sum[i] / norm - 0.5f) * 2.2f + 0.5f, 0.0f, 1.0f);
+  return noise;
+}
+
+}  // namespace
+
+void DispersionField::reset(uint32_t stroke_index, float noise_scale_px) {
+  if (noise_ && stroke_index == stroke_index_ && noise_scale_px == scale_) return;
+  stroke_index_ = stroke_index;
+  scale_ = noise_scale_px;
+  static std::mutex mutex;
+  static std::deque<std::tuple<uint32_t, float, std::shared_ptr<const std::vector<float>>>> kept;
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& [index, scale, noise] : kept)
+    if (index == stroke_index && scale == noise_scale_px) return void(noise_ = noise);
+  noise_ =
+      std::make_shared<const std::vector<float>>(dispersionNoise(stroke_index, noise_scale_px));
+  kept.emplace_back(stroke_index, noise_scale_px, noise_);
+  if (kept.size() > 8) kept.pop_front();
 }
 
 float DispersionField::keep(int x, int y, float d) const {
-  if (d <= 0.0f || noise_.empty()) return 1.0f;
-  float n = noise_[size_t(y & (kTile - 1)) * kTile + (x & (kTile - 1))];
+  if (d <= 0.0f || !noise_) return 1.0f;
+  float n = (*noise_)[size_t(y & (kTile - 1)) * kTile + (x & (kTile - 1))];
   return smoothstep(d - kEdgeWidth, d, n);
 }
 

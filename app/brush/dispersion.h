@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "app/brush/brush_config.h"
@@ -24,7 +25,10 @@ class DispersionField {
   float keep(int x, int y, float dispersion) const;
 
  private:
-  std::vector<float> noise_;  // kTile², values 0..1
+  // kTile², values 0..1; made once per process for each (stroke index, scale) and shared by the
+  // brushes of every session (a new session prepares stroke 0 before any pen comes), the last
+  // few kept.
+  std::shared_ptr<const std::vector<float>> noise_;
   uint32_t stroke_index_ = 0;
   float scale_ = 0.0f;
 };

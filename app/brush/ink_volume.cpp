@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <utility>
 
 #include "app/brush/hash_noise.h"
 #include "app/core/parallel_for.h"
@@ -72,6 +75,18 @@ float InkVolume::sample(glm::vec3 p) const {
 float InkVolume::planeHeight(float pressure) const {
   float p = std::clamp(pressure, 0.0f, 1.0f);
   return shape_.top_y + (shape_.sphere_centre.y - shape_.top_y) * p;
+}
+
+std::shared_ptr<const InkVolume> InkVolume::shared(int n, uint32_t seed) {
+  static std::mutex mutex;
+  static std::deque<std::pair<std::pair<int, uint32_t>, std::shared_ptr<const InkVolume>>> kept;
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& [key, ink] : kept)
+    if (key == std::make_pair(n, seed)) return ink;
+  auto ink = std::make_shared<const InkVolume>(n, seed);
+  kept.emplace_back(std::make_pair(n, seed), ink);
+  if (kept.size() > 4) kept.pop_front();
+  return ink;
 }
 
 }  // namespace cb

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,6 +21,10 @@ struct InkVolumeShape {
 class InkVolume {
  public:
   InkVolume(int n, uint32_t seed, const InkVolumeShape& shape = {});
+  // The ink volume of (n, seed) with the default shape, made once per process and shared by
+  // every 3D brush made with them afterwards (each session's brush, a replay, each fuzz input);
+  // the last few are kept.
+  static std::shared_ptr<const InkVolume> shared(int n, uint32_t seed);
   int size() const { return n_; }
   const InkVolumeShape& shape() const { return shape_; }
   float voxel(int x, int y, int z) const { return d_[(size_t(z) * n_ + y) * n_ + x]; }

@@ -21,6 +21,7 @@
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/session_replay.h"
+#include "app/study/study_marker_text.h"
 #include "app/volume/volume_file.h"
 
 namespace cb {
@@ -34,16 +35,21 @@ constexpr const char* kReplayHelp =
     "while painting, whatever the local config (journals from before recorded settings use\n"
     "config/brush.toml and config/mapping.toml). Prints the volume checksum; the same journal\n"
     "gives the same checksum on any thread count. A damaged journal replays its intact part,\n"
-    "says where it broke and exits with status 3.\n"
+    "says where it broke and exits with status 3. For a study session each task's volume at its\n"
+    "end is compared with tasks/ID.cbvol beside the journal; a difference exits with status 4.\n"
     "\n"
     "options:\n"
     "  --out-volume FILE   write the resulting volume (.cbvol, see `cloudbrush render`)\n"
     "  --render FILE.png   write a lit render from the session's last paint view\n"
     "  --frames DIR        write one PNG per frame of the session's time line (frame_000000.png,\n"
-    "                      ...) as fast as possible, headless; progress on stderr. A video:\n"
-    "                      ffmpeg -framerate 30 -i DIR/frame_%06d.png -pix_fmt yuv420p out.mp4\n"
+    "                      ...), drawn by the screens the person saw (the painter's; a study\n"
+    "                      session's consent, forms, tutorial, tasks and questionnaire), as\n"
+    "                      fast as possible, headless; progress on stderr. A video:\n"
+    "                      ffmpeg -framerate 30 -i DIR/frame_%06d.png -c:v libx264 \\\n"
+    "                        -pix_fmt yuv420p session.mp4\n"
     "  --fps N             frames per second of journal time for --frames (default 30)\n"
-    "  --size WxH          render and frame size (default 1280x720)\n"
+    "  --size WxH          render and frame size (default: --frames the session's screen as\n"
+    "                      recorded, --render 1280x720)\n"
     "  --threads N         worker threads (default: CLOUDBRUSH_THREADS or all cores)\n"
     "  --help              this text\n";
 
@@ -115,6 +121,7 @@ int commandReplay(int argc, char** argv) {
   const long threads = args.getInt("threads", 0);
   int width = 1280, height = 720;
   const std::string size = args.get("size", "1280x720");
+  const bool size_given = args.has("size");
   {
     int consumed = 0;
     if (std::sscanf(size.c_str(), "%dx%d%n", &width, &height, &consumed) != 2 ||
@@ -148,16 +155,61 @@ int commandReplay(int argc, char** argv) {
   if (!args.error().empty()) return fail(args.error(), 2);
   if (!(fps > 0.0 && fps <= 240.0)) return fail("--fps: expected a number in (0, 240]", 2);
   std::unique_ptr<ReplayFrameWriter> frames;
-  std::function<void(size_t, const PaintSession&)> before_record;
+  ReplayHooks hooks;
   if (!frames_dir.empty()) {
-    frames = std::make_unique<ReplayFrameWriter>(frames_dir, width, height, fps);
+    int frame_width = width, frame_height = height;
+    if (!size_given) {  // the screen the session was painted on
+      const PaintSessionSettings recorded =
+          recordedSettings(journal.records, BrushConfig{}, mapping).settings;
+      frame_width = recorded.screen_width;
+      frame_height = recorded.screen_height;
+    }
+    frames = std::make_unique<ReplayFrameWriter>(frames_dir, frame_width, frame_height, fps);
     std::string error;
-    if (!frames->open(journal, &error)) return fail(error);
-    before_record = [&](size_t index, const PaintSession& s) { frames->beforeRecord(index, s); };
+    if (!frames->open(journal, &error)) return fail("--frames: " + error);
+    if (!frames->note().empty())
+      std::fprintf(stderr, "cloudbrush replay: --frames: %s\n", frames->note().c_str());
+    hooks.after_record = [&](size_t index, const SampleOutcome* sample) {
+      frames->afterRecord(index, sample);
+    };
   }
+  // A study session's task ends (`study.saved`): the replayed volume there against the one the
+  // runner saved in the session folder (tasks/ID.cbvol beside the journal), when it is there.
+  std::vector<std::string> task_lines;
+  bool task_differs = false;
+  const std::filesystem::path folder = std::filesystem::path(journal_path).parent_path();
+  hooks.before_record = [&](size_t index, PaintSession& s) {
+    if (frames) frames->beforeRecord(index, s);
+    if (index >= journal.records.size()) return;
+    const JournalRecord& record = journal.records[index];
+    if (record.type != JournalRecordType::kMarker || record.text().rfind("study.saved ", 0) != 0)
+      return;
+    const std::string task = parseStudyMarker(std::string(record.text())).get("task");
+    const uint64_t sum = volumeChecksum(s.volume());
+    char line[320];
+    const std::filesystem::path saved = folder / "tasks" / (task + ".cbvol");
+    std::error_code ec;
+    if (task.empty() || !std::filesystem::exists(saved, ec)) {
+      std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 " (no %s to compare)",
+                    task.c_str(), sum, saved.string().c_str());
+    } else {
+      uint64_t saved_sum = 0;
+      try {
+        saved_sum = volumeChecksum(loadVolume(saved.string()));
+      } catch (const std::exception& e) {
+        task_lines.push_back("task " + task + ": " + e.what());
+        task_differs = true;
+        return;
+      }
+      task_differs = task_differs || saved_sum != sum;
+      std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 ", %s %s",
+                    task.c_str(), sum, saved_sum == sum ? "identical to" : "DIFFERENT from",
+                    saved.string().c_str());
+    }
+    task_lines.push_back(line);
+  };
   const auto start = std::chrono::steady_clock::now();
-  const SessionReplay replay =
-      replaySession(journal, loadDefaultBrushConfig(), mapping, {}, before_record);
+  const SessionReplay replay = replaySession(journal, loadDefaultBrushConfig(), mapping, {}, hooks);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const std::string& problem : replay.problems)
@@ -176,14 +228,18 @@ int commandReplay(int argc, char** argv) {
       workerThreads());
   if (frames) {
     if (!frames->error().empty()) return fail("--frames: " + frames->error());
-    std::printf("frames: %ld PNGs in %s (%ld rendered, the rest unchanged) at %.0f fps\n",
-                frames->framesWritten(), frames_dir.c_str(), frames->framesRendered(), fps);
+    std::printf(
+        "frames: %ld PNGs in %s (%ld encoded, the rest links to an equal frame) at %.0f fps\n",
+        frames->framesWritten(), frames_dir.c_str(), frames->framesEncoded(), fps);
     frames.reset();  // its GL context goes before the --render one is made
   }
   std::printf("settings: %s\n", replay.recorded_settings
                                     ? "brush and mapping as recorded in the journal"
                                     : "brush and mapping from the local config (none recorded)");
+  for (const std::string& line : task_lines) std::printf("%s\n", line.c_str());
   std::printf("volume checksum: %016" PRIx64 "\n", volumeChecksum(session.volume()));
+  if (task_differs)
+    return fail("a task's replayed volume differs from the one saved in " + folder.string(), 4);
 
   if (const std::string out = args.get("out-volume", ""); !out.empty()) {
     try {

@@ -1,144 +1,201 @@
 #include "app/cli/replay_frames.h"
 
 #include <algorithm>
-#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 
 #include "app/core/config_paths.h"
-#include "app/render/gl/egl_context.h"
-#include "app/render/image_io.h"
-#include "app/render/render_target.h"
+#include "app/render/gl/display.h"
+#include "app/render/render_config.h"
 #include "app/render/volume_renderer.h"
+#include "app/shell/paint_screen.h"
+#include "app/shell/study_run_screen.h"
+#include "app/study/study_run_state.h"
 
 namespace cb {
+namespace {
 
-struct ReplayFrameWriter::Gl {
-  EglContext ctx;
-  std::unique_ptr<VolumeRenderer> renderer;
-  std::unique_ptr<RenderTarget> target;
-  ~Gl() {
-    target.reset();
-    renderer.reset();
-    destroyGlContext(&ctx);
-  }
-};
+bool isStudyMarker(const JournalRecord& record) {
+  if (record.type != JournalRecordType::kMarker) return false;
+  const std::string text(record.text());
+  return text.rfind("study.", 0) == 0 && text.rfind("study.info ", 0) != 0;
+}
+
+bool samePixels(const ImageRgba8& a, const ImageRgba8& b) {
+  return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
+}
+
+}  // namespace
 
 ReplayFrameWriter::ReplayFrameWriter(std::string dir, int width, int height, double fps)
     : dir_(std::move(dir)), width_(width), height_(height), fps_(fps) {}
 
-ReplayFrameWriter::~ReplayFrameWriter() = default;
+ReplayFrameWriter::~ReplayFrameWriter() {
+  // The screens and the renderer hold GL objects of the display's context: they go first.
+  study_.reset();
+  paint_.reset();
+  state_.reset();
+  renderer_.reset();
+  display_.reset();
+}
+
+bool ReplayFrameWriter::timeLineRecord(const JournalRecord& record) const {
+  // The pen's time line (the device's clock, which the runner's clock follows in a study
+  // session; other records of a plain `paint --backend replay` journal are on another clock).
+  return record.type == JournalRecordType::kPenSample || (info_ && isStudyMarker(record));
+}
 
 bool ReplayFrameWriter::open(const JournalReadResult& journal, std::string* error) {
   journal_ = &journal;
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) return *error = "--frames " + dir_ + ": " + ec.message(), false;
+  for (const JournalRecord& r : journal.records) {
+    StudySessionInfo info;
+    if (r.type == JournalRecordType::kMarker &&
+        parseStudyInfoMarker(std::string(r.text()), &info)) {
+      info_ = info;
+      break;
+    }
+  }
+  if (info_) {
+    try {
+      protocol_ = loadStudyProtocol(info_->protocol_file);
+    } catch (const std::exception& e) {
+      note_ = std::string("the study protocol could not be read (") + e.what() +
+              "): the frames show the painter's screen only";
+      info_.reset();
+    }
+  }
   int64_t t_last = 0;
   bool first = true;
-  // The time line is the pen's: sample times are the device's (kernel) clock, which other
-  // records share when painting live but not when the pen itself was a replay.
   for (const JournalRecord& r : journal.records) {
-    if (r.type != JournalRecordType::kPenSample) continue;
+    if (!timeLineRecord(r)) continue;
     if (first) t_first_ = r.t_ns, first = false;
+    t_first_ = std::min(t_first_, r.t_ns);
     t_last = std::max(t_last, r.t_ns);
+    if (info_ && isStudyMarker(r) && state_start_ns_ == 0) state_start_ns_ = r.t_ns;
   }
   total_ = first ? 1 : long(std::floor(double(t_last - t_first_) * 1e-9 * fps_)) + 1;
-  gl_ = std::make_unique<Gl>();
-  if (!createSurfacelessContext(&gl_->ctx, error)) return false;
-  gl_->renderer = std::make_unique<VolumeRenderer>();
-  gl_->target = std::make_unique<RenderTarget>();
-  if (!gl_->renderer->init(error) ||
-      !gl_->target->create(width_, height_, RenderTarget::Format::kRgba8, error))
-    return false;
+  DisplayOptions options;
+  options.platform = DisplayPlatform::Surfaceless;
+  options.width = width_;
+  options.height = height_;
+  display_ = openDisplay(options, error);
+  if (!display_) return false;
+  renderer_ = std::make_unique<VolumeRenderer>();
+  if (!renderer_->init(error)) return false;
   last_progress_ = std::chrono::steady_clock::now();
   return true;
 }
 
-void ReplayFrameWriter::beforeRecord(size_t index, const PaintSession& session) {
-  if (!gl_ || !error_.empty()) return;
-  if (!configured_) {
-    // The render settings recorded in the journal, else the local render.toml.
-    configured_ = true;
-    try {
-      if (!session.renderSettings().empty())
-        config_ = parseRenderConfigText(session.renderSettings(), "the journal's render.toml");
-      else if (const std::string path = configFile("render.toml"); std::filesystem::exists(path))
-        config_ = loadRenderConfig(path);
-    } catch (const std::exception& e) {
-      error_ = e.what();
-      return;
-    }
+bool ReplayFrameWriter::makeScreens(PaintSession& session) {
+  // The render settings recorded in the journal, else the local render.toml.
+  RenderConfig config;
+  try {
+    if (!session.renderSettings().empty())
+      config = parseRenderConfigText(session.renderSettings(), "the journal's render.toml");
+    else if (const std::string path = configFile("render.toml"); std::filesystem::exists(path))
+      config = loadRenderConfig(path);
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    return false;
   }
+  PaintLoopOptions paint;
+  paint.render = config.options;
+  paint.moving_scale = config.moving_scale;
+  paint.orbit_degrees_per_second = 0.0f;
+  std::string error;
+  if (info_) {
+    state_ =
+        std::make_unique<StudyRunState>(*protocol_, info_->participant_number, state_start_ns_);
+    StudyRunOptions options;
+    options.paint = paint;
+    options.info = *info_;
+    options.replay_view = true;
+    study_ = std::make_unique<StudyRunScreen>(*display_, *renderer_, session, nullptr, nullptr,
+                                              *state_, options);
+    for (const std::string& problem : study_->problems()) error += problem + "; ";
+    screen_ = study_.get();
+  } else {
+    paint_ = std::make_unique<PaintScreen>(*display_, *renderer_, session.volume(), session.light(),
+                                           paint);
+    paint_->showReplay(&session, &error);
+    screen_ = paint_.get();
+  }
+  if (!error.empty()) error_ = error;
+  return error_.empty();
+}
+
+void ReplayFrameWriter::beforeRecord(size_t index, PaintSession& session) {
+  if (!display_ || !error_.empty()) return;
   const bool at_end = index >= journal_->records.size();
-  if (!at_end && journal_->records[index].type != JournalRecordType::kPenSample) return;
+  if (!at_end && !timeLineRecord(journal_->records[index])) return;
+  // The screens are made at the first time-line record, once the Settings records are applied.
+  if (!screen_ && !makeScreens(session)) return;
   const int64_t t = at_end ? INT64_MAX : journal_->records[index].t_ns;
   while (written_ < total_ && (at_end || t_first_ + int64_t(double(written_) * 1e9 / fps_) < t)) {
-    writeFrame(session);
+    writeFrame();
     if (!error_.empty()) return;
     const auto now = std::chrono::steady_clock::now();
     if (now - last_progress_ >= std::chrono::seconds(2) || written_ == total_) {
       last_progress_ = now;
-      std::fprintf(stderr, "cloudbrush replay: frames %ld/%ld (%.0f%%), %ld rendered\n", written_,
-                   total_, 100.0 * double(written_) / double(total_), rendered_);
+      std::fprintf(stderr, "cloudbrush replay: frames %ld/%ld (%.0f%%), %ld encoded\n", written_,
+                   total_, 100.0 * double(written_) / double(total_), encoded_);
     }
   }
 }
 
-void ReplayFrameWriter::writeFrame(const PaintSession& session) {
+void ReplayFrameWriter::afterRecord(size_t index, const SampleOutcome* sample) {
+  if (!screen_ || !error_.empty()) return;
+  if (sample) {
+    PaintScreen& paint = study_ ? study_->paintScreen() : *paint_;
+    paint.replayedSample(*sample);
+  }
+  const JournalRecord& record = journal_->records[index];
+  if (state_ && isStudyMarker(record)) {
+    // The runner's state as the journal has it from here on (the same inputs a resumed session
+    // applies again, study_run_state.h).
+    std::string error;
+    if (!state_->restore({StudyRunRecord{record.t_ns, std::string(record.text())}}, &error)) {
+      error_ = "the study screens cannot follow the journal at record " + std::to_string(index) +
+               ": " + error;
+    }
+  }
+}
+
+void ReplayFrameWriter::writeFrame() {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06ld.png", written_);
   const std::string path = (std::filesystem::path(dir_) / name).string();
-  const Camera& camera = session.camera();
-  const Light& light = session.light();
-  const bool scene_changed = session.volume().generation() != shown_generation_ ||
-                             std::memcmp(&camera, &shown_camera_, sizeof camera) != 0 ||
-                             std::memcmp(&light, &shown_light_, sizeof light) != 0 ||
-                             last_path_.empty();
-  const bool ink = session.engine().inStroke();
+  const int64_t t = t_first_ + int64_t(double(written_) * 1e9 / fps_);
+  FrameContext frame{*display_, width_, height_, written_, t, written_ ? 1.0 / fps_ : 0.0};
+  screen_->update(frame);  // in a replay it changes nothing in the session
+  std::string error;
+  if (!screen_->draw(frame, &error))
+    return void(error_ = "frame " + std::to_string(written_) + ": " + error);
+  ImageRgba8 image = readFramebufferRgba8(display_->framebuffer(), width_, height_);
+  if (!display_->present(&error)) return void(error_ = error);
   std::error_code ec;
   std::filesystem::remove(path, ec);
-  if (!scene_changed && !ink && !last_had_ink_) {
+  bool linked = false;
+  if (!last_path_.empty() && samePixels(image, last_frame_)) {
     std::filesystem::create_hard_link(last_path_, path, ec);
     if (ec) std::filesystem::copy_file(last_path_, path, ec);
     if (ec) return void(error_ = path + ": " + ec.message());
-  } else {
-    if (scene_changed) {
-      gl_->renderer->sync(session.volume(), light);
-      RenderOptions options = config_.options;
-      if (const std::optional<RenderStyle> style = parseRenderStyle(session.styleName()))
-        options.style = *style;
-      options.finish = true;
-      gl_->renderer->render(camera, width_, height_, gl_->target->fbo(), options);
-      scene_ = gl_->target->readRgba8();
-      ++rendered_;
-      shown_generation_ = session.volume().generation();
-      shown_camera_ = camera;
-      shown_light_ = light;
-    }
-    ImageRgba8 frame = scene_;
-    if (ink) {
-      // The live footprint over the still scene, as the painter shows it (white ink at 85%,
-      // app/render/footprint_overlay.h), scaled from footprint pixels to the frame.
-      const Footprint& f = session.engine().footprint();
-      for (int y = 0; y < frame.height && f.width > 0; ++y)
-        for (int x = 0; x < frame.width; ++x) {
-          const float a =
-              0.85f *
-              std::clamp(f.at(x * f.width / frame.width, y * f.height / frame.height), 0.0f, 1.0f);
-          uint8_t* p = frame.at(x, y);
-          for (int c = 0; c < 3; ++c) p[c] = uint8_t(std::lround(p[c] + a * (255.0f - p[c])));
-        }
-    }
+    linked = true;
+  }
+  if (!linked) {
     try {
-      writePng(path, frame);
+      writePng(path, image);
     } catch (const ImageIoError& e) {
       return void(error_ = e.what());
     }
+    ++encoded_;
+    last_frame_ = std::move(image);
   }
-  last_had_ink_ = ink;
   last_path_ = path;
   ++written_;
 }

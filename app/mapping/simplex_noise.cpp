@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <utility>
 
 #include "app/core/parallel_for.h"
 
@@ -107,6 +110,22 @@ NoiseTexture::NoiseTexture(const NoiseTextureConfig& cfg) : size_(cfg.size) {
   const float a = *lo, range = std::max(1e-6f, *hi - *lo);
   texels_.resize(raw.size());
   for (size_t i = 0; i < raw.size(); ++i) texels_[i] = (raw[i] - a) / range;
+}
+
+std::shared_ptr<const NoiseTexture> NoiseTexture::shared(const NoiseTextureConfig& config) {
+  static std::mutex mutex;
+  static std::deque<std::pair<NoiseTextureConfig, std::shared_ptr<const NoiseTexture>>> kept;
+  const auto same = [&](const NoiseTextureConfig& c) {
+    return c.seed == config.seed && c.size == config.size &&
+           c.period_voxels == config.period_voxels && c.octaves == config.octaves;
+  };
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& [c, texture] : kept)
+    if (same(c)) return texture;
+  auto texture = std::make_shared<const NoiseTexture>(config);
+  kept.emplace_back(config, texture);
+  if (kept.size() > 4) kept.pop_front();
+  return texture;
 }
 
 }  // namespace cb

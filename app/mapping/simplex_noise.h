@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -31,6 +32,10 @@ class SimplexNoise3 {
 class NoiseTexture {
  public:
   explicit NoiseTexture(const NoiseTextureConfig& config);
+  // The texture of `config`, generated once per process (§6.5: "only generated when the system
+  // is launched") and shared by every mapper made with the same configuration afterwards (the
+  // kiosk's next visitor, a replay, each fuzz input); the last few configurations are kept.
+  static std::shared_ptr<const NoiseTexture> shared(const NoiseTextureConfig& config);
   int size() const { return size_; }
   float at(int x, int y, int z) const {
     const int m = size_ - 1;

@@ -534,6 +534,10 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
       s.pen_captured_ = c.captured;
       return true;
     }
+    bool operator()(const ui::ShowMenu& c) {
+      s.menu_open_ = c.open;
+      return true;
+    }
     bool operator()(const ui::Undo&) {
       if (s.engine_.inStroke()) return *error = "undo: a stroke is being painted", false;
       SceneState restored;

@@ -163,6 +163,8 @@ class PaintSession {
   const SceneState& scene() const { return scene_; }
   Mode mode() const { return mode_; }
   bool penCaptured() const { return pen_captured_; }
+  // The painter's pen menu is shown (ui::ShowMenu; the screen draws it from here).
+  bool menuOpen() const { return menu_open_; }
   const std::string& styleName() const { return style_; }
   // The render style before anything is recorded (config/render.toml); journalled with the
   // starting state.
@@ -218,6 +220,7 @@ class PaintSession {
   float vacuum_diameter_ = 0.3f, rubout_diameter_ = 0.12f;  // world units (sky box is 2 wide)
   bool rubbing_ = false;                                    // a rub-out is in progress
   bool pen_captured_ = false;
+  bool menu_open_ = false;
   std::string style_ = "thesis";
   std::string opened_source_;     // the saved cloud the session started from, if any
   bool held_until_lift_ = false;  // a stroke ended by itself; the pen must lift first

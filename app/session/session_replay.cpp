@@ -48,10 +48,10 @@ RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
   return recorded;
 }
 
-SessionReplay replaySession(
-    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
-    const PaintSessionSettings& settings_fallback,
-    const std::function<void(size_t index, const PaintSession& session)>& before_record) {
+SessionReplay replaySession(const JournalReadResult& journal, const BrushConfig& brush,
+                            const MappingConfig& mapping,
+                            const PaintSessionSettings& settings_fallback,
+                            const ReplayHooks& hooks) {
   SessionReplay replay;
   replay.journal_error = journal.error;
   RecordedSettings recorded = recordedSettings(journal.records, brush, mapping, settings_fallback);
@@ -62,7 +62,7 @@ SessionReplay replaySession(
   replay.session->setQuietMapping(true);
   for (size_t i = 0; i < journal.records.size(); ++i) {
     const JournalRecord& record = journal.records[i];
-    if (before_record) before_record(i, *replay.session);
+    if (hooks.before_record) hooks.before_record(i, *replay.session);
     std::string error;
     SampleOutcome outcome;
     const bool sample = record.type == JournalRecordType::kPenSample;
@@ -76,8 +76,9 @@ SessionReplay replaySession(
       ++replay.pen_samples;
       replay.last_mapped = outcome.mapped;
     }
+    if (hooks.after_record) hooks.after_record(i, sample ? &outcome : nullptr);
   }
-  if (before_record) before_record(journal.records.size(), *replay.session);
+  if (hooks.before_record) hooks.before_record(journal.records.size(), *replay.session);
   replay.strokes_mapped = replay.session->strokesMapped();
   return replay;
 }

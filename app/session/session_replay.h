@@ -45,15 +45,22 @@ RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
                                   const BrushConfig& brush, const MappingConfig& mapping,
                                   const PaintSessionSettings& settings_fallback = {});
 
+// What a caller sees of a replay as it runs (`cloudbrush replay --frames` draws the screens from
+// it). The session is the replay's own: a hook reads it and changes nothing in it.
+struct ReplayHooks {
+  // Before each record is applied, with its index, and with journal.records.size() at the end,
+  // while the session shows the state up to there.
+  std::function<void(size_t index, PaintSession& session)> before_record;
+  // After record `index` was applied; `sample` is a pen sample's outcome, else null.
+  std::function<void(size_t index, const SampleOutcome* sample)> after_record;
+};
+
 // `settings_fallback` is used when the journal has no Session record before its first sample;
-// `brush` and `mapping` when it has no Settings records.
-// `before_record`, when given, is called with each record's index before it is applied, and
-// with journal.records.size() at the end, while the session shows the state up to there (frame
-// output: `cloudbrush replay --frames`).
-SessionReplay replaySession(
-    const JournalReadResult& journal, const BrushConfig& brush, const MappingConfig& mapping,
-    const PaintSessionSettings& settings_fallback = {},
-    const std::function<void(size_t index, const PaintSession& session)>& before_record = {});
+// `brush` and mapping when it has no Settings records.
+SessionReplay replaySession(const JournalReadResult& journal, const BrushConfig& brush,
+                            const MappingConfig& mapping,
+                            const PaintSessionSettings& settings_fallback = {},
+                            const ReplayHooks& hooks = {});
 
 // FNV-1a 64 over the volume's dims and raw float bytes: equal sums mean equal volumes.
 uint64_t volumeChecksum(const Volume& volume);

@@ -111,6 +111,9 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::PenCapture& c) const {
       return {JournalRecordType::kUi, std::string("pen_capture=") + (c.captured ? "on" : "off")};
     }
+    UiRecordText operator()(const ui::ShowMenu& c) const {
+      return {JournalRecordType::kUi, std::string("menu=") + (c.open ? "open" : "closed")};
+    }
     UiRecordText operator()(const ui::PlaceShape& c) const {
       return {JournalRecordType::kUi, (c.model ? "place_model=" : "place_picture=") + c.path};
     }
@@ -278,6 +281,9 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   } else if (key == "pen_capture") {
     if (value != "on" && value != "off") return bad("on or off");
     *out = ui::PenCapture{value == "on"};
+  } else if (key == "menu") {
+    if (value != "open" && value != "closed") return bad("open or closed");
+    *out = ui::ShowMenu{value == "open"};
   } else if (key == "vacuum_cut") {
     if (!parseFloats(value, 4, v) || v[3] <= 0.0f) return bad("X,Y,Z,RADIUS (radius > 0)");
     *out = ui::VacuumCut{glm::vec3(v[0], v[1], v[2]), v[3]};

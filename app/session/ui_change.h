@@ -16,6 +16,7 @@
 //   Ui      vacuum_diameter=D | rubout_diameter=D SetEraseDiameter (world units)
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
 //   Ui      pen_capture=on|off                    PenCapture
+//   Ui      menu=open|closed                      ShowMenu (the pen menu shown or hidden; 1.2)
 //   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
 //   Ui      morph2=T,CHECKSUM,TARGET              ApplyMorph (TARGET a .vol path or bundled:SEED;
@@ -102,6 +103,12 @@ struct PlaceShape {
 struct PenCapture {
   bool captured;
 };
+// The painter's pen menu shown or hidden (M, the upper side button, a choice made on it). It
+// changes no cloud; it is journalled so a replay shows the screen as it was and a resumed
+// session opens with the menu as it was (specification 1.2).
+struct ShowMenu {
+  bool open;
+};
 // The painter's animations committed ("apply"): the morph from the cloud as it was into the
 // target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
 // recomputes the frame from the cloud before it, so the record holds only what names it.
@@ -126,7 +133,7 @@ struct DeleteAll {};
 using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
                               ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
                               ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
-                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind>;
+                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

@@ -118,6 +118,31 @@ void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
     }
   }
   session_ = session;
+  // A resumed session opens with the menu as it was.
+  if (session_) menu_open_ = session_->menuOpen();
+}
+
+bool PaintScreen::showReplay(PaintSession* session, std::string* error) {
+  session_ = session;
+  replay_view_ = true;
+  pen_connected_once_ = true;  // the session's cloud is shown from the first frame
+  orbiting_ = false;
+  orbit_degrees_ = 0.0f;
+  menu_open_ = session_->menuOpen();
+  return paintingSetUp(error);
+}
+
+void PaintScreen::replayedSample(const SampleOutcome& outcome) {
+  ++pen_samples_;
+  afterSample(outcome, std::chrono::steady_clock::now());
+}
+
+void PaintScreen::setMenu(bool open, int64_t t_ns) {
+  if (open == menu_open_) return;
+  menu_open_ = open;
+  say(open ? "menu open" : "menu closed");
+  std::string error;
+  if (session_ && !session_->apply(ui::ShowMenu{open}, t_ns, &error)) say(error);
 }
 
 const Volume& PaintScreen::shownVolume() const {
@@ -255,9 +280,24 @@ void PaintScreen::feedSample(const PenSample& sample) {
   const bool capture = menu_open_ || pointer_over_ui_;
   if (capture != session_->penCaptured() && !pen_events_.down() && !session_->engine().inStroke())
     apply(ui::PenCapture{capture}, sample.t_ns);
-  const auto received = std::chrono::steady_clock::now();
+  const auto received = std::chrono::steady_clock::now();  // pen-up -> lit counts the mapping
   const SampleOutcome outcome = session_->feed(sample);
   ++pen_samples_;
+  afterSample(outcome, received);
+  events_.clear();
+  pen_events_.derive(outcome.mapped, &events_);
+  if (ui_ && outcome.mapped.in_proximity)
+    ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
+  for (const PenEvent& event : events_) {
+    // Side buttons always reach the screen; the rest only when the UI does not hold the pen.
+    const bool button =
+        event.kind == PenEvent::Kind::kButtonDown || event.kind == PenEvent::Kind::kButtonUp;
+    if (button || !session_->penCaptured()) handleEvent(event, outcome.mapped);
+  }
+}
+
+void PaintScreen::afterSample(const SampleOutcome& outcome,
+                              std::chrono::steady_clock::time_point received) {
   if (outcome.stroke_began)
     overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
   if (!outcome.changed.empty())
@@ -273,16 +313,6 @@ void PaintScreen::feedSample(const PenSample& sample) {
   cursor_.screen_px =
       glm::vec2(float(outcome.mapped.preview_x_px), float(outcome.mapped.preview_y_px));
   cursor_.visible = outcome.mapped.in_proximity;
-  events_.clear();
-  pen_events_.derive(outcome.mapped, &events_);
-  if (ui_ && outcome.mapped.in_proximity)
-    ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
-  for (const PenEvent& event : events_) {
-    // Side buttons always reach the screen; the rest only when the UI does not hold the pen.
-    const bool button =
-        event.kind == PenEvent::Kind::kButtonDown || event.kind == PenEvent::Kind::kButtonUp;
-    if (button || !session_->penCaptured()) handleEvent(event, outcome.mapped);
-  }
 }
 
 void PaintScreen::onPointer(const DisplayEvent& event) {
@@ -438,8 +468,7 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       vacuum_centre_.reset();
       break;
     case Command::kMenu:
-      menu_open_ = !menu_open_;
-      say(menu_open_ ? "menu open" : "menu closed");
+      setMenu(!menu_open_, t_ns);
       break;
     case Command::kNextBrush: {
       if (!session_) return say("B: no pen session, the brush is not used");
@@ -648,6 +677,10 @@ bool PaintScreen::hasPaint() const {
 }
 
 std::string PaintScreen::update(const FrameContext& frame) {
+  if (replay_view_) {
+    menu_open_ = session_->menuOpen();  // as the replay has it; nothing else moves on its own
+    return "";
+  }
   if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
@@ -774,7 +807,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
 
 bool PaintScreen::drawOverlays(std::string* error) {
   const int w = display_.width(), h = display_.height();
-  const bool in_range = pen_ && !orbiting_ && cursor_.visible && session_;
+  const bool in_range = (pen_ || replay_view_) && !orbiting_ && cursor_.visible && session_;
   const bool circles = show_circles_ && session_ && !session_->lastCircles().empty();
   std::vector<HudItem> items;
   const Camera camera = shownCamera();
@@ -843,7 +876,7 @@ bool PaintScreen::drawOverlays(std::string* error) {
 bool PaintScreen::draw(FrameContext& frame, std::string* error) {
   PaintFrameInfo info;
   info.frame = frame.frame;
-  if (pen_ && !orbiting_) {
+  if ((pen_ || replay_view_) && !orbiting_) {
     if (!paintingSetUp(error)) return false;
     drawStill(&info);
     if (info.first_lit_after_lift) {
@@ -935,10 +968,12 @@ void PaintScreen::drawUi(const FrameContext& frame) {
       ui_->draw(frame.width, frame.height, frame.since_last_s, state);
   pointer_over_ui_ = ui_->pointerOverUi();
   pointer_moved_ = false;
+  if (replay_view_) return;  // a replay's taps are in its journal already
   for (Command command : tapped) {
     tapped_.push_back(command);
     onCommand(command, frame.now_ns);
-    if (command != Command::kMenu && menu_open_) menu_open_ = false;  // a choice closes it
+    if (command != Command::kMenu && menu_open_)
+      setMenu(false, frame.now_ns);  // a choice closes it
   }
 }
 

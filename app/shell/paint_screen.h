@@ -56,6 +56,15 @@ class PaintScreen : public Screen {
   // operator panel) and hands it to the session, which journals it. False without a connected
   // pen (it is selected when the pen connects).
   bool reselectCalibration();
+  // Replay (`cloudbrush replay --frames`): the screen shows `session` while a replay of its
+  // journal applies the records; it feeds, applies and journals nothing itself, and its update
+  // step changes nothing in the session. replayedSample() is told each pen sample's outcome (the
+  // live footprint, the cursor, the lit frame after a lift). Needs the GL context current.
+  bool showReplay(PaintSession* session, std::string* error);
+  void replayedSample(const SampleOutcome& outcome);
+  // The circle overlay (C) on or off (a resumed study session restores it).
+  void showCircles(bool on) { show_circles_ = on; }
+  bool circlesShown() const { return show_circles_; }
 
   const char* name() const override { return "paint"; }
   void onPenSamples(const std::vector<PenSample>& samples) override;
@@ -91,6 +100,10 @@ class PaintScreen : public Screen {
   // One raw sample (tablet or mouse) through the session, the overlay and the pen events.
   void feedSample(const PenSample& sample);
   void apply(const UiChange& change, int64_t t_ns);
+  // Shows or hides the pen menu; the session journals it (ui::ShowMenu).
+  void setMenu(bool open, int64_t t_ns);
+  // The footprint overlay, cursor and lift timing after the session mapped a sample.
+  void afterSample(const SampleOutcome& outcome, std::chrono::steady_clock::time_point received);
   void say(const std::string& message);
   void warnIfEdgeOn();
   const Volume& shownVolume() const;
@@ -162,6 +175,7 @@ class PaintScreen : public Screen {
   HudOverlay hud_;
   bool show_stats_ = false, show_circles_ = false;
   bool menu_open_ = false;
+  bool replay_view_ = false;  // showReplay(): drawn from a replay, no input of its own
   std::unique_ptr<UiOverlay> ui_;
   bool ui_failed_ = false;
   bool pointer_over_ui_ = false;

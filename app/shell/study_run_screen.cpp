@@ -10,6 +10,7 @@
 #include "app/shell/paint_screen.h"
 #include "app/shell/ui_overlay.h"
 #include "app/study/render_export.h"
+#include "app/study/study_marker_text.h"
 #include "app/study/volume_export.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/pen_source.h"
@@ -72,7 +73,12 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
       options_(options),
       paint_(std::make_unique<PaintScreen>(display, renderer, session.volume(), session.light(),
                                            paintOptionsFor(options.paint))) {
-  paint_->attachPen(pen, &session);
+  if (options.replay_view) {
+    std::string error;
+    if (!paint_->showReplay(&session, &error)) problem("replay: " + error);
+  } else {
+    paint_->attachPen(pen, &session);
+  }
   now_ns_ = options.resumed ? options.start_ns : options.info.anchor_monotonic_ns;
   circles_shown_ = options.paint.show_circles_overlay;
   last_stage_ = state_.stage();
@@ -94,6 +100,11 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
       if (!loadReferenceImage(&error)) problem("reference image: " + error);
     }
     if (state_.done()) done_since_ = now_ns_;
+    // The tutorial step's counters as the journal last had them.
+    if (state_.stage() == StudyStageKind::kTutorial) {
+      last_step_ = state_.tutorialStep();
+      restoreStepProgress(state_.restoredStepProgress());
+    }
     if (options.last_mapped && !isPaintingStage(state_.stage())) {
       // A tap under way on a form: the pen is down on its target.
       pen_events_.derive(*options.last_mapped, &events_);
@@ -114,6 +125,7 @@ void StudyRunScreen::problem(const std::string& text) {
 }
 
 void StudyRunScreen::flushRecords() {
+  if (options_.replay_view) return;  // the journal has them (and restore() expects them)
   for (const StudyRunRecord& r : state_.takeRecords()) {
     std::fprintf(stderr, "cloudbrush study: %s\n", r.text.c_str());
     if (journal_ && !journal_->append(JournalRecordType::kMarker, r.t_ns, r.text))
@@ -129,6 +141,7 @@ void StudyRunScreen::flushRecords() {
 }
 
 void StudyRunScreen::writeAnswers() {
+  if (options_.replay_view) return;
   std::string error;
   if (!writeFileAtomically(options_.folder + "/questionnaire.csv", state_.questionnaireCsv(),
                            &error))
@@ -138,6 +151,7 @@ void StudyRunScreen::writeAnswers() {
 }
 
 void StudyRunScreen::writeSessionJson() {
+  if (options_.replay_view) return;
   StudySessionInfo info = options_.info;
   info.status = !state_.done() ? "running" : state_.aborted() ? "aborted" : "completed";
   info.abort_reason = state_.abortReason();
@@ -203,7 +217,7 @@ void StudyRunScreen::enterStage(int64_t t_ns) {
   message_.clear();
   pressed_.reset();
   if (state_.stage() == StudyStageKind::kTask) {
-    setUpTask(t_ns);
+    if (!options_.replay_view) setUpTask(t_ns);  // a replay has the setup in its journal
     std::string error;
     if (!loadReferenceImage(&error)) problem("reference image: " + error);
   }
@@ -222,6 +236,7 @@ void StudyRunScreen::afterStateChange(int64_t t_ns) {
     last_step_ = state_.tutorialStep();
     strokes_in_step_ = brush_changes_in_step_ = erasures_in_step_ = undos_in_step_ =
         saves_in_step_ = 0;
+    step_progress_.clear();
   }
 }
 
@@ -341,6 +356,48 @@ void StudyRunScreen::observeSession() {
   last_camera_ = session_.camera();
   have_last_camera_ = true;
   preset_pending_.reset();
+}
+
+std::string StudyRunScreen::stepProgressText() const {
+  std::string text = "study.step-progress step=" + std::to_string(state_.tutorialStep() + 1) +
+                     " strokes=" + std::to_string(strokes_in_step_) +
+                     " brush_changes=" + std::to_string(brush_changes_in_step_) +
+                     " erasures=" + std::to_string(erasures_in_step_) +
+                     " undos=" + std::to_string(undos_in_step_) +
+                     " saves=" + std::to_string(saves_in_step_) +
+                     " circles_shown=" + (circles_shown_ ? "1" : "0");
+  if (!camera_view_.empty()) text += " camera_view=" + studyMarkerValue(camera_view_);
+  return text;
+}
+
+void StudyRunScreen::recordStepProgress() {
+  const std::string text = stepProgressText();
+  if (text == step_progress_) return;
+  const bool first = step_progress_.empty();
+  step_progress_ = text;
+  // Nothing counted yet in a fresh step: nothing to carry on.
+  if (first && strokes_in_step_ == 0 && brush_changes_in_step_ == 0 && erasures_in_step_ == 0 &&
+      undos_in_step_ == 0 && saves_in_step_ == 0 && camera_view_.empty() &&
+      circles_shown_ == options_.paint.show_circles_overlay)
+    return;
+  if (journal_ && !journal_->append(JournalRecordType::kMarker, now_ns_, text))
+    problem("journal: " + journal_->error());
+}
+
+void StudyRunScreen::restoreStepProgress(const std::string& text) {
+  if (text.empty()) return;
+  const StudyMarkerFields m = parseStudyMarker(text);
+  if (m.get("step") != std::to_string(state_.tutorialStep() + 1)) return;  // an earlier step's
+  const auto number = [&](const char* key) { return int64_t(std::atoll(m.get(key).c_str())); };
+  strokes_in_step_ = number("strokes");
+  brush_changes_in_step_ = number("brush_changes");
+  erasures_in_step_ = number("erasures");
+  undos_in_step_ = number("undos");
+  saves_in_step_ = number("saves");
+  circles_shown_ = m.get("circles_shown") == "1";
+  paint_->showCircles(circles_shown_);
+  camera_view_ = m.get("camera_view");
+  step_progress_ = text;
 }
 
 void StudyRunScreen::onPenSamples(const std::vector<PenSample>& samples) {
@@ -503,12 +560,23 @@ void StudyRunScreen::onResize(int width, int height) {
 
 std::string StudyRunScreen::update(const FrameContext& frame) {
   now_ns_ = frame.now_ns;
+  if (options_.replay_view) {
+    // The replay moves the session and the state; only what the screen shows follows them.
+    if (isPaintingStage(state_.stage())) {
+      paint_->update(frame);
+      observeSession();
+    }
+    afterStateChange(now_ns_);
+    return "";
+  }
   state_.tick(now_ns_);
   if (isPaintingStage(state_.stage())) {
     paint_->update(frame);  // its timers (a replay's end does not end a study)
     observeSession();
-    if (state_.stage() == StudyStageKind::kTutorial)
+    if (state_.stage() == StudyStageKind::kTutorial) {
+      recordStepProgress();
       state_.observeTutorial(tutorialState(), now_ns_);
+    }
     if (state_.closing() && !session_.engine().inStroke()) {
       if (state_.stage() == StudyStageKind::kTask)
         saveTask(now_ns_);

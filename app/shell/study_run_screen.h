@@ -18,7 +18,9 @@
 // Ctrl+Alt+S skip, Ctrl+Alt+A abort, each followed by a reason (tap or digit; Esc cancels).
 // While the pen is on a form it is captured by the UI (journalled `pen_capture=on`), so taps
 // never paint. Esc and q do not quit while the session runs; once it ended, the loop stops
-// after `end_seconds` (or at Esc).
+// after `end_seconds` (or at Esc). The tutorial step's counters (strokes, brush changes,
+// erasures, undos, saves in the step; the named view; the circle overlay) are journalled as a
+// `study.step-progress` marker whenever they change, and a resumed session carries them on.
 #pragma once
 
 #include <functional>
@@ -60,6 +62,11 @@ struct StudyRunOptions {
   // The journal's last pen sample as the session mapped it: a tap on a form that was under way
   // (tip down) goes on from there.
   std::optional<MappedSample> last_mapped;
+  // Replay (`cloudbrush replay SESSION --frames`): the screen only shows a session that a replay
+  // of its journal drives, and a state that the caller restores from the journal's markers as
+  // their time comes. It then changes neither (no clock ticks, no task setup, no records) and
+  // writes no file: `journal` is null and `folder` unused.
+  bool replay_view = false;
 };
 
 class StudyRunScreen : public Screen {
@@ -101,6 +108,11 @@ class StudyRunScreen : public Screen {
   void writeAnswers();
   void writeSessionJson();
   void observeSession();
+  // The tutorial step's counters as a `study.step-progress` marker when they changed (so a
+  // resumed session carries them on), and reading them back.
+  void recordStepProgress();
+  void restoreStepProgress(const std::string& text);
+  std::string stepProgressText() const;
   bool loadReferenceImage(std::string* error);
   void problem(const std::string& text);
 
@@ -146,6 +158,7 @@ class StudyRunScreen : public Screen {
   Camera last_camera_;
   bool have_last_camera_ = false;
   bool circles_shown_ = false;
+  std::string step_progress_;  // the last `study.step-progress` text journalled
   std::optional<Command> preset_pending_;
   bool cloud_empty_ = true;
   uint64_t empty_checked_generation_ = ~0ull;

@@ -545,6 +545,10 @@ bool StudyRunState::restore(const std::vector<StudyRunRecord>& records, std::str
   for (StudyRunRecord& r : takeRecords()) expected.push_back(std::move(r));
   for (size_t i = 0; i < records.size(); ++i) {
     const StudyRunRecord& r = records[i];
+    if (r.text.rfind("study.step-progress ", 0) == 0) {
+      restored_step_progress_ = r.text;  // the screen's counters, not a state change
+      continue;
+    }
     const std::string where =
         "study record " + std::to_string(i + 1) + " (" + studyStageName(stage()) + ")";
     if (!expected.empty()) {

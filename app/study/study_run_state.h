@@ -144,6 +144,9 @@ class StudyRunState {
   // After restore(): the index in its records of the current stage's `study.stage-begin`, or -1
   // when the journal lost it (the runner has not set the stage up yet).
   int restoredStageBegin() const { return restored_stage_begin_; }
+  // After restore(): the last `study.step-progress` record (the runner's tutorial counters,
+  // written by the screen, not by this state machine; restore() passes over them), or "".
+  const std::string& restoredStepProgress() const { return restored_step_progress_; }
   // The runner restarted at `t_ns` after its last durable record at `last_record_ns`: the stage
   // clock does not count the time it was down (recorded as `study.resume down_ns=N`).
   void resumedAfter(int64_t last_record_ns, int64_t t_ns);
@@ -193,6 +196,7 @@ class StudyRunState {
   std::vector<std::string> stages_completed_;
   bool entered_ = false;
   int restored_stage_begin_ = -1;  // the first stage was entered (later entries leave one)
+  std::string restored_step_progress_;
   std::string empty_;
 };
 

@@ -155,17 +155,10 @@ class KmsDisplay final : public Display {
 
   std::vector<DisplayEvent> pollEvents() override { return keyboards_->poll(); }
   std::optional<double> refreshHz(std::string* why_unknown) const override {
-    // The mode's exact rate: pixel clock (kHz) over the pixels of a whole frame, halved for
-    // double scan and doubled for interlace (as the kernel's drm_mode_vrefresh does).
-    const drmModeModeInfo& m = output_.mode;
-    double pixels = double(m.htotal) * double(m.vtotal);
-    if (m.flags & DRM_MODE_FLAG_INTERLACE) pixels /= 2.0;
-    if (m.flags & DRM_MODE_FLAG_DBLSCAN) pixels *= 2.0;
-    if (m.vscan > 1) pixels *= m.vscan;
-    if (pixels > 0.0 && m.clock > 0) return double(m.clock) * 1000.0 / pixels;
-    if (m.vrefresh > 0) return double(m.vrefresh);
-    if (why_unknown) *why_unknown = output_.device + ": the mode reports no timing";
-    return std::nullopt;
+    std::string why;
+    const std::optional<double> hz = kmsModeRefreshHz(output_.mode, &why);
+    if (!hz && why_unknown) *why_unknown = output_.device + ": " + why;
+    return hz;
   }
 
  private:

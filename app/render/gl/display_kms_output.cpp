@@ -201,4 +201,15 @@ bool addKmsFramebuffer(const KmsOutput& out, uint32_t width, uint32_t height, ui
   return true;
 }
 
+std::optional<double> kmsModeRefreshHz(const drmModeModeInfo& mode, std::string* why_unknown) {
+  double pixels = double(mode.htotal) * double(mode.vtotal);
+  if (mode.flags & DRM_MODE_FLAG_INTERLACE) pixels /= 2.0;
+  if (mode.flags & DRM_MODE_FLAG_DBLSCAN) pixels *= 2.0;
+  if (mode.vscan > 1) pixels *= mode.vscan;
+  if (pixels > 0.0 && mode.clock > 0) return double(mode.clock) * 1000.0 / pixels;
+  if (mode.vrefresh > 0) return double(mode.vrefresh);
+  if (why_unknown) *why_unknown = "the mode reports no timing (no pixel clock, totals or vrefresh)";
+  return std::nullopt;
+}
+
 }  // namespace cb

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <xf86drmMode.h>
@@ -48,5 +49,12 @@ bool waitKmsPageFlip(const KmsOutput& out, int timeout_ms, KmsFlipEvent* pending
 // Framebuffer object for a buffer of the given format, handle and pitch (drmModeAddFB2).
 bool addKmsFramebuffer(const KmsOutput& out, uint32_t width, uint32_t height, uint32_t format,
                        uint32_t handle, uint32_t pitch, uint32_t* fb_id, std::string* error);
+
+// A mode's vertical refresh rate (Hz; session.json's refresh_hz): the pixel clock (kHz) over the
+// pixels of a whole frame (htotal × vtotal), halved for double scan, multiplied for vscan and
+// doubled for interlace (the field rate), as the kernel's drm_mode_vrefresh() computes it, but
+// unrounded; the mode's integer vrefresh when it has no clock or totals. Null with *why_unknown
+// when it has neither.
+std::optional<double> kmsModeRefreshHz(const drmModeModeInfo& mode, std::string* why_unknown);
 
 }  // namespace cb

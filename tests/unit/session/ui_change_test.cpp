@@ -25,6 +25,8 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
       ui::Redo{},
       ui::DeleteAll{},
       ui::PenCapture{true},
+      ui::ShowMenu{true},
+      ui::ShowMenu{false},
       ui::SetStyle{"ink"}};
   for (const UiChange& change : changes) {
     const UiRecordText text = formatUiChange(change);

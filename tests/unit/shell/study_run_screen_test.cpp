@@ -494,5 +494,100 @@ TEST(StudyRunScreen, OperatorPausesSkipsAndAbortsWithAReason) {
   std::filesystem::remove_all(rig.dir);
 }
 
+// Restarting on the session (`study run --resume`, as command_study.cpp does it): the journal
+// replayed into a new session, the runner's state restored from its markers, a new screen. The
+// tutorial step under way keeps its counters (two of its four strokes, the circle overlay
+// turned on) and the painter's menu is open as it was; two more strokes then finish the step.
+TEST(StudyRunScreen, AResumedTutorialStepKeepsItsCountersAndTheMenu) {
+  Rig rig;
+  StudyProtocol protocol = loadStudyProtocol(defaultStudyProtocolPath());
+  rig.protocol.tutorial = {protocol.tutorial[21], protocol.tutorial[23]};  // Paint mode; 4 strokes
+  ASSERT_EQ(rig.protocol.tutorial[1].expect.at(0).text(), "strokes_in_step >= 4");
+  if (!rig.open("cb_study_resume_")) return;
+  Driver d(*rig.display, *rig.screen, rig.tablet, rig.t0);
+  d.frames(1);
+  d.tap(StudyTargetAction::kAgree);
+  d.tap(StudyTargetAction::kContinue);
+  d.keys("space");
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kTutorial);
+  d.keys("3");
+  ASSERT_EQ(rig.state->tutorialStep(), 1);
+  d.stroke(referencePaintStrokes(kW, kH)[0]);
+  d.stroke(referencePaintStrokes(kW, kH)[1]);
+  d.keys("c,m");
+  ASSERT_EQ(rig.state->tutorialStep(), 1);
+  TutorialState before = rig.screen->tutorialState();
+  EXPECT_EQ(before.numbers["strokes_in_step"], 2);
+  EXPECT_EQ(before.numbers["circles_shown"], 1);
+  EXPECT_EQ(before.numbers["menu_open"], 1);
+  d.keep("before_restart");
+
+  // The restart, 30 s later.
+  ASSERT_TRUE(rig.journal.sync());
+  rig.screen.reset();
+  const JournalReadResult read = readJournal(rig.folder + "/session.cbj");
+  ASSERT_TRUE(read.error.empty()) << read.error;
+  std::vector<StudyRunRecord> markers;
+  int64_t last_ns = 0;
+  for (const JournalRecord& r : read.records) {
+    // The test's clock is the pen's and the runner's (the calibration's records carry the
+    // machine's monotonic time: the rig gives the painter no clock).
+    if (r.type == JournalRecordType::kPenSample) last_ns = std::max(last_ns, r.t_ns);
+    if (r.type == JournalRecordType::kMarker && r.text().rfind("study.", 0) == 0) {
+      markers.push_back({r.t_ns, std::string(r.text())});
+      last_ns = std::max(last_ns, r.t_ns);
+    }
+  }
+  EXPECT_TRUE(anyContains(
+      [&] {
+        std::vector<std::string> texts;
+        for (const StudyRunRecord& m : markers) texts.push_back(m.text);
+        return texts;
+      }(),
+      "study.step-progress step=2 strokes=2 brush_changes=0 erasures=0 undos=0 saves=0 "
+      "circles_shown=1"));
+  SessionReplay replay = replaySession(read, rig.brush, rig.mapping);
+  ASSERT_TRUE(replay.complete()) << replay.problems.size();
+  EXPECT_TRUE(replay.session->menuOpen()) << "the menu is journalled (menu=open)";
+  StudyRunState state(rig.protocol, 1, markers.front().t_ns);
+  std::string error;
+  ASSERT_TRUE(state.restore(markers, &error)) << error;
+  const int64_t restart = last_ns + 30 * kSecond;
+  state.resumedAfter(last_ns, restart);
+  StudyRunOptions options;
+  options.folder = rig.folder;
+  options.end_seconds = 1.0;
+  options.info.participant_number = 1;
+  options.paint.config_dir = rig.dir + "/config";
+  options.paint.state_dir = rig.dir + "/state";
+  options.resumed = true;
+  options.start_ns = restart;
+  options.last_mapped = replay.last_mapped;
+  StudyRunScreen resumed(*rig.display, rig.renderer, *replay.session, rig.pen.get(), nullptr, state,
+                         options);
+  Driver again(*rig.display, resumed, rig.tablet, restart);
+  again.frames(1);
+  ASSERT_EQ(state.stage(), StudyStageKind::kTutorial);
+  ASSERT_EQ(state.tutorialStep(), 1);
+  TutorialState after = resumed.tutorialState();
+  EXPECT_EQ(after.numbers["strokes_in_step"], 2) << "the step's strokes carry on";
+  EXPECT_EQ(after.numbers["circles_shown"], 1);
+  EXPECT_EQ(after.numbers["menu_open"], 1);
+  EXPECT_TRUE(resumed.paintScreen().menuOpen());
+  EXPECT_TRUE(resumed.paintScreen().circlesShown());
+  again.keep("resumed_tutorial_menu");
+  again.keys("m");
+  EXPECT_FALSE(resumed.paintScreen().menuOpen());
+  again.keep("resumed_tutorial");
+  EXPECT_TRUE(again.labelShown("strokes_in_step >= 4 (now 2, not yet)"));
+  EXPECT_LT(state.stageSeconds(again.now()), 60.0) << "the 30 s down do not count";
+  again.stroke(referencePaintStrokes(kW, kH)[0]);
+  EXPECT_EQ(state.stage(), StudyStageKind::kTutorial) << "three of four";
+  again.stroke(referencePaintStrokes(kW, kH)[1]);
+  again.frames(2);
+  EXPECT_NE(state.stage(), StudyStageKind::kTutorial) << "the fourth stroke ends the step";
+  std::filesystem::remove_all(rig.dir);
+}
+
 }  // namespace
 }  // namespace cb

@@ -1,0 +1,31 @@
+// A short study session for the tests of `cloudbrush study run` and of its replay: a protocol
+// (consent, the participant's code, an introduction, a one-step tutorial that holds at once (an
+// empty sky), 1.8 s of free drawing, two tasks of 3.6 s, three Likert items) and one
+// participant's recorded pen, which taps the runner's own targets (laid out by
+// app/shell/study_page.h for a kShortStudyWidth × kShortStudyHeight screen) and paints one
+// stroke in each task.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "app/study/protocol.h"
+
+namespace cb::test {
+
+constexpr int kShortStudyWidth = 512, kShortStudyHeight = 288;
+constexpr int64_t kShortStudyT0 = 5'000'000'000;  // the pen journal's first time (ns)
+
+// The protocol's TOML (its pictures are config/study/images/..., relative to the file).
+extern const char* const kShortStudyProtocol;
+
+// The pen of participant 1, from kShortStudyT0 (times in seconds after it): consent at 1 s, the
+// code at 1.8 s, the introduction at 2.6 s (the tutorial step holds at once; the free drawing's
+// 1.8 s pass without the pen), one stroke in the first task (from 5.3 s; the task runs from
+// about 4.45 s to 8.05 s), another in the second (from 8.9 s; it ends at about 11.65 s), the
+// answers 4, 2, 5 at 12.6, 13.4 and 14.2 s. Every stage change falls in most of a second
+// without pen samples. Written to `path` as a journal (a Device record and the samples); gtest
+// assertions on failure.
+void recordShortStudyPen(const StudyProtocol& protocol, const std::string& path);
+
+}  // namespace cb::test
