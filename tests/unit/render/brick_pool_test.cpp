@@ -114,9 +114,10 @@ TEST_F(BrickPoolTest, EveryBrickThatCanReadDensityHasASlotAndNoOtherDoes) {
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        // Necessary: a slot wherever a voxel the slot covers (16b … 16b+16) holds density.
+        // Necessary: a slot wherever a voxel the slot holds (16b on) holds density.
         bool reads_density = false;
-        const VoxelBox covered = VoxelBox{b * 16, b * 16 + 17}.intersect(v.bounds());
+        const VoxelBox covered =
+            VoxelBox{b * 16, b * 16 + BrickPool::kSlotTexels}.intersect(v.bounds());
         for (int k = covered.lo.z; k < covered.hi.z && !reads_density; ++k)
           for (int j = covered.lo.y; j < covered.hi.y && !reads_density; ++j)
             for (int i = covered.lo.x; i < covered.hi.x && !reads_density; ++i)
@@ -152,7 +153,7 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
   const std::vector<glm::ivec3> changed = v.changedBricksSince(generation);
   ASSERT_EQ(changed.size(), 1u);
   SyncStats st = renderer.sync(v, light);
-  // Expected: slots of changed − {0,1}³, and those whose voxels 16b … 16b+16 meet the light box.
+  // Expected: slots of changed − {0,1}³, and those whose voxels (16b on) meet the light box.
   const BrickPool& pool = renderer.brickPool();
   BrickSet expected;
   for (int n = 0; n < 8; ++n) {
@@ -164,7 +165,8 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        if (pool.slotOf(b).w && !VoxelBox{b * 16, b * 16 + 17}.intersect(st.light_box).empty())
+        if (pool.slotOf(b).w &&
+            !VoxelBox{b * 16, b * 16 + BrickPool::kSlotTexels}.intersect(st.light_box).empty())
           expected.insert({x, y, z});
       }
   EXPECT_EQ(size_t(st.slots_uploaded), expected.size());
