@@ -142,6 +142,11 @@ void main() {
     // skipping does not move samples).
     vec3 base = (origin + (t_enter + 0.5 * u_step) * dir) * inv_dims;
     vec3 delta = dir * (u_step * inv_dims);
+    // The same in fixed point (1/256 voxel, volume_pool.glsl): exactly base·dims·256 and
+    // delta·dims·256 when dims are powers of two, so rounding sample k gives the position the
+    // dense texture's filtering used.
+    vec3 fixed_base = base * (u_dims * kFixed);
+    vec3 fixed_delta = delta * (u_dims * kFixed);
 #if !CB_SURFACE
     float neg_optical_depth_log2 = -u_sigma * u_step * 1.4426950408889634;
 #endif
@@ -165,20 +170,22 @@ void main() {
         k_end = min(n, max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1));
       }
 #endif
-      // The pool slot of sample k's cell (volume_pool.glsl), kept for the samples in it: one
-      // indirection fetch per cell crossed, not per sample. Samples within 1/1024 voxel of the
-      // cell's exit go to the next cell, where they round onto its face (fixed point is 1/256),
-      // so float error in t never puts a sample outside the cell it is read in.
-      PoolBrick pb = poolBrickAt(fixedVoxel(base + float(k) * delta));
-      float t_cell = cellExit(origin, inv_dir, pb.cell_lo, kBrickVoxels) - 1.0 / 1024.0;
-      k_end = min(k_end, max(int(ceil((t_cell - t_enter) / u_step - 0.5)), k + 1));
+      // Samples go in chunks of up to kMaxChunk (u_chunk at this step), each read in the slot
+      // of the cell holding the chunk's first corner (volume_pool.glsl): the slot's apron holds
+      // the rest of the chunk. One slot lookup per chunk; the chunk is unrolled, so every ray of
+      // a group llvmpipe shades in lockstep takes the same number of loop iterations as
+      // without the pool.
+      int chunk_end = min(k_end, k + u_chunk);
+      vec3 q = roundEven(fixed_base + float(k) * fixed_delta);
+      PoolBrick pb =
+          poolBrickAt(min(q, roundEven(fixed_base + float(chunk_end - 1) * fixed_delta)));
 #if CB_SKIP
       if (pb.empty) {
-        // Every sample of the cell reads density 0: skipping them changes nothing (lossless).
+        // Every sample of the chunk reads density 0: skipping them changes nothing (lossless).
 #if CB_SURFACE
         previous_density = 0.0;
 #endif
-        k = k_end;
+        k = chunk_end;
         continue;
       }
 #endif
@@ -186,29 +193,37 @@ void main() {
       // zero density gives α = 0 and changes nothing) because llvmpipe runs a branch's code for
       // all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
       // step (§4.5.2 compositing, see the header).
+      for (int i = 0; i < kMaxChunk; ++i) {
 #if CB_SURFACE
-      for (; k < k_end && !hit; ++k) {
-        float d = samplePool(fixedVoxel(base + float(k) * delta), pb).r;
-        ++samples;
-        hit = d >= u_iso;
-        hit_density = d;
-        hit_k = k;
-        if (!hit) {
-          previous_density = d;
-          max_density = max(max_density, d);
+        if (k < chunk_end && !hit) {
+          float d = sampleChunk(q, pb).r;
+          ++samples;
+          hit = d >= u_iso;
+          hit_density = d;
+          hit_k = k;
+          if (!hit) {
+            previous_density = d;
+            max_density = max(max_density, d);
+          }
+          ++k;
+          q = roundEven(fixed_base + float(k) * fixed_delta);
         }
+#else
+        if (k < chunk_end && transmittance >= u_cutoff) {
+          vec2 s = sampleChunk(q, pb);
+          ++samples;
+          float density = styleDensity(s.r, base + float(k) * delta);
+          float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
+          colour += (transmittance * alpha) * shadeSample(density, s.g);
+          transmittance *= 1.0 - alpha;
+          ++k;
+          q = roundEven(fixed_base + float(k) * fixed_delta);
+        }
+#endif
       }
+#if CB_SURFACE
       if (hit) k = n;
 #else
-      for (; k < k_end && transmittance >= u_cutoff; ++k) {
-        vec3 texcoord = base + float(k) * delta;
-        vec2 s = samplePool(fixedVoxel(texcoord), pb);
-        ++samples;
-        float density = styleDensity(s.r, texcoord);
-        float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
-        colour += (transmittance * alpha) * shadeSample(density, s.g);
-        transmittance *= 1.0 - alpha;
-      }
       if (transmittance < u_cutoff) k = n;  // early termination: leave the outer loop too
 #endif
     }

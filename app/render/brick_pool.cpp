@@ -10,7 +10,7 @@
 namespace cb {
 namespace {
 
-// The first pool: 64³ texels, 3³ slots (the empty slot and 26 free ones, 512 KiB).
+// The first pool: 64³ texels, 3³ slots of 20³ (the empty slot and 26 free ones, 512 KiB).
 constexpr glm::ivec3 kInitialTexels{64, 64, 64};
 // Slots packed into one staging buffer before their uploads (≈ 5 MB).
 constexpr size_t kUploadBatch = 512;
@@ -85,8 +85,7 @@ void BrickPool::resetTables(glm::ivec3 brick_dims) {
   if (brick_dims != brick_dims_ || !indirection_texture_) {
     if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
     glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
-    glTextureStorage3D(indirection_texture_, 1, GL_RGBA8UI, brick_dims.x, brick_dims.y,
-                       brick_dims.z);
+    glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
     glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     brick_dims_ = brick_dims;
@@ -196,7 +195,7 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
   glPixelStorei(GL_UNPACK_SKIP_IMAGES, bricks.lo.z);
   const glm::ivec3 size = bricks.hi - bricks.lo;
   glTextureSubImage3D(indirection_texture_, 0, bricks.lo.x, bricks.lo.y, bricks.lo.z, size.x,
-                      size.y, size.z, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, slot_of_brick_.data());
+                      size.y, size.z, GL_RGBA, GL_UNSIGNED_BYTE, slot_of_brick_.data());
   resetUnpackState();
 }
 
@@ -274,11 +273,12 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     indirection_changed = indirection_changed.unite({b, b + 1});
     to_upload.push_back(b);
   }
-  // The light: slots whose voxels 16b … 16b+16 meet the light box.
+  // The light: slots whose voxels 16b … 16b + kSlotTexels − 1 meet the light box.
   const VoxelBox lb = light_box.intersect(volume.bounds());
   if (!lb.empty() && slots_in_use_ > 0) {
     for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
-    const glm::ivec3 blo = glm::max((lb.lo - 1) >> Volume::kBrickShift, glm::ivec3(0));
+    const glm::ivec3 blo = glm::max(
+        (lb.lo - (kSlotTexels - Volume::kBrickSize)) >> Volume::kBrickShift, glm::ivec3(0));
     const glm::ivec3 bhi = (lb.hi - 1) >> Volume::kBrickShift;
     for (int z = blo.z; z <= bhi.z; ++z)
       for (int y = blo.y; y <= bhi.y; ++y)

@@ -2,25 +2,29 @@
 // indirection table, after the bricks of GigaVoxels / NanoVDB-style sparse textures.
 //
 //  - Pool: one RG8 3D texture (r = density, g = transmittance towards the light) of slots of
-//    kSlotTexels³ = 17³ texels. The slot of brick b holds voxels 16b … 16b+16 on each axis (its
-//    own 16 and the first voxel of the next brick: a one-voxel apron on the high side), indices
-//    clamped to the volume as a dense texture's CLAMP_TO_EDGE would.
-//  - Indirection: one RGBA8UI texel per brick (Volume::brickDims) holding the slot's coordinates
-//    in slots; slot (0,0,0) is the empty slot (all density 0), shared by every brick without one.
+//    kSlotTexels³ = 20³ texels. The slot of brick b holds voxels 16b … 16b+19 on each axis: its
+//    own 16, the first voxel of the next brick and an apron of kApron = 3 more (so a chunk of up
+//    to 4 ray samples, looked up once, stays inside one slot); indices are clamped to the volume
+//    as a dense texture's CLAMP_TO_EDGE would.
+//  - Indirection: one RGBA8 texel per brick (Volume::brickDims), read with nearest filtering,
+//    holding the slot's coordinates in slots and a = 1; (0,0,0,0) is the empty slot (all density
+//    0), shared by every brick without one. (RGBA8 rather than an integer texture: llvmpipe's
+//    normalised fetch measured a little cheaper than texelFetch or a storage buffer.)
 //
-// Lookup rule (shaders/volume_pool.glsl): a voxel-space point p is sampled in the slot of
-// brick b = ⌊(p − ½)/16⌋ (clamped to the bricks), its "cell" being [16b + ½, 16b + 16½) per axis.
+// Lookup rule (shaders/volume_pool.glsl): a voxel-space point p is sampled in the slot of brick
+// b = ⌊(p − ½)/16⌋ (clamped to the bricks), its "cell" being [16b + ½, 16b + 16½) per axis.
 // Hardware trilinear filtering at p reads voxels ⌊p − ½⌋ and ⌊p − ½⌋ + 1, both within
-// 16b … 16b+16, so a sample inside its slot gives exactly what the dense texture gave. Hence a
-// brick needs a slot when any voxel it can read is non-zero, i.e. when one of the bricks
-// b + {0,1}³ is allocated (this covers an empty brick whose high neighbour holds the density a
-// sample within half a voxel of their face blends in). Every other brick reads the empty slot:
-// zero density, which is what the dense texture held there (its transmittance is then never
-// weighted: a sample of zero density is transparent, and an iso-surface is never hit there).
+// 16b … 16b+16 (… 16b+19 for the rest of a chunk), so a sample inside its slot gives exactly what
+// the dense texture gave. Hence a brick needs a slot when any voxel it can read is non-zero,
+// i.e. when one of the bricks b + {0,1}³ is allocated (this covers an empty brick whose high
+// neighbour holds the density a sample within half a voxel of their face blends in). Every
+// other brick reads the empty slot: zero density, which is what the dense texture held there
+// (its transmittance is then never weighted: a sample of zero density is transparent, and an
+// iso-surface is never hit there).
 //
 // Updates follow the bricks that changed: a changed density brick c refreshes the slots of
 // c − {0,1}³ (allocating or releasing them as the rule above now says) and a light box the slots
-// whose 17³ voxels meet it. Released slots are reused; the pool grows (doubling one axis of its
+// whose voxels meet it. Released slots are reused; the pool grows (doubling one axis of its
 // power-of-two size, copied on the GPU with glCopyImageSubData) only when it runs out, so slots
 // keep their coordinates and nothing is re-packed.
 #pragma once
@@ -40,8 +44,9 @@ namespace cb {
 
 class BrickPool {
  public:
-  // A brick plus a one-voxel apron on its high side, per axis.
-  static constexpr int kSlotTexels = Volume::kBrickSize + 1;
+  // Per axis: a brick, the first voxel of the next one and kApron more.
+  static constexpr int kApron = 3;
+  static constexpr int kSlotTexels = Volume::kBrickSize + 1 + kApron;
   static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
 
   struct UpdateStats {
@@ -68,7 +73,7 @@ class BrickPool {
 
   GLuint poolTexture() const { return pool_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
-  // The pool texture's size in texels (powers of two; slots fill (size / 17)³ of it).
+  // The pool texture's size in texels (powers of two; slots fill (size / 20)³ of it).
   glm::ivec3 poolTexels() const { return pool_texels_; }
   glm::ivec3 brickDims() const { return brick_dims_; }
   // Bricks holding a slot of their own (the empty slot not counted).
@@ -98,7 +103,7 @@ class BrickPool {
 
   glm::ivec3 brick_dims_{0};
   glm::ivec3 pool_texels_{0};               // pool texture size (powers of two)
-  glm::ivec3 capacity_{0};                  // pool size in slots, pool_texels_ / 17
+  glm::ivec3 capacity_{0};                  // pool size in slots, pool_texels_ / kSlotTexels
   std::vector<glm::u8vec4> slot_of_brick_;  // per brick, as uploaded to the indirection table
   std::vector<glm::u8vec4> free_slots_;     // a stack
   std::vector<uint8_t> mark_;               // per brick, scratch for de-duplicating candidates
@@ -107,7 +112,7 @@ class BrickPool {
   bool full_reported_ = false;
 };
 
-// Packs the slot of `brick` (BrickPool's layout: 17³ RG8 texels, x fastest; texel j on an axis
+// Packs the slot of `brick` (BrickPool's layout: 20³ RG8 texels, x fastest; texel j on an axis
 // is voxel min(16·b + j, dim − 1)): density clamped to [0,1] and the light's transmittance, both
 // rounded to 8 bits. Reads transmittance only through LightVolume::at.
 void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out);

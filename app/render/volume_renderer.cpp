@@ -587,6 +587,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_pool"), 0);
   glUniform1i(loc("u_bricks"), 5);
   const glm::ivec3 brick_max = pool_.brickDims() - 1;
+  glUniform3fv(loc("u_inv_brick_dims"), 1, glm::value_ptr(1.0f / glm::vec3(pool_.brickDims())));
   glUniform3i(loc("u_brick_max"), brick_max.x, brick_max.y, brick_max.z);
   glUniform3fv(loc("u_inv_pool_fixed"), 1,
                glm::value_ptr(1.0f / (glm::vec3(pool_.poolTexels()) * 256.0f)));
@@ -594,6 +595,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_brick"), occupancy_.brick);
   glUniform1i(loc("u_levels"), occupancy_.levelCount());
   glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
+  glUniform1i(loc("u_chunk"), std::min(4, 1 + int(float(BrickPool::kApron) /
+                                                  std::max(options.step_voxels, 0.05f))));
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
   glUniform4fv(loc("u_background"), 1, glm::value_ptr(background));

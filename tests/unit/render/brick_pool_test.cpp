@@ -114,9 +114,10 @@ TEST_F(BrickPoolTest, EveryBrickThatCanReadDensityHasASlotAndNoOtherDoes) {
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        // Necessary: a slot wherever a voxel the slot covers (16b … 16b+16) holds density.
+        // Necessary: a slot wherever a voxel the slot holds (16b on) holds density.
         bool reads_density = false;
-        const VoxelBox covered = VoxelBox{b * 16, b * 16 + 17}.intersect(v.bounds());
+        const VoxelBox covered =
+            VoxelBox{b * 16, b * 16 + BrickPool::kSlotTexels}.intersect(v.bounds());
         for (int k = covered.lo.z; k < covered.hi.z && !reads_density; ++k)
           for (int j = covered.lo.y; j < covered.hi.y && !reads_density; ++j)
             for (int i = covered.lo.x; i < covered.hi.x && !reads_density; ++i)
@@ -152,7 +153,7 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
   const std::vector<glm::ivec3> changed = v.changedBricksSince(generation);
   ASSERT_EQ(changed.size(), 1u);
   SyncStats st = renderer.sync(v, light);
-  // Expected: slots of changed − {0,1}³, and those whose voxels 16b … 16b+16 meet the light box.
+  // Expected: slots of changed − {0,1}³, and those whose voxels (16b on) meet the light box.
   const BrickPool& pool = renderer.brickPool();
   BrickSet expected;
   for (int n = 0; n < 8; ++n) {
@@ -164,7 +165,8 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        if (pool.slotOf(b).w && !VoxelBox{b * 16, b * 16 + 17}.intersect(st.light_box).empty())
+        if (pool.slotOf(b).w &&
+            !VoxelBox{b * 16, b * 16 + BrickPool::kSlotTexels}.intersect(st.light_box).empty())
           expected.insert({x, y, z});
       }
   EXPECT_EQ(size_t(st.slots_uploaded), expected.size());
@@ -240,6 +242,57 @@ TEST_F(BrickPoolTest, IncrementalUpdatesRenderExactlyLikeAFreshUpload) {
   paintBall(v, {64, 64, 64}, 10, 0.6f);
   step("erase and repaint");
   EXPECT_TRUE(grew) << "the sequence should have grown the pool at least once";
+}
+
+// A cloud painted in the far corner of a wide sky renders as the same cloud painted in the
+// middle does (camera moved with it): the sun is a direction and the sky around is empty. At
+// 512×128×512 (16× today's area at today's voxel size), not the 1024×256×1024 default: the light
+// volume is still dense (268 MB here, 2 GB there) until the sparse light lands.
+TEST_F(BrickPoolTest, ACloudInTheFarCornerOfAWideSkyRendersLikeOneInTheMiddle) {
+  const glm::ivec3 dims(512, 128, 512);
+  const glm::vec3 lo(-2.0f, -0.5f, -2.0f), hi(2.0f, 0.5f, 2.0f);
+  Light light;
+  light.direction = Light::directionTowards(glm::vec3(-4.0f, 2.0f, 2.5f));
+  auto renderBallAt = [&](glm::ivec3 centre) {
+    Volume v(dims, lo, hi);
+    paintBall(v, centre, 14);
+    paintBall(v, centre + glm::ivec3(10, 6, -4), 9);
+    VolumeRenderer r;
+    std::string err;
+    EXPECT_TRUE(r.init(&err)) << err;
+    r.sync(v, light);
+    EXPECT_LT(r.brickPool().slotsInUse(), 64u);
+    Camera camera = Camera::reference();
+    const glm::vec3 target = v.voxelToWorld(glm::vec3(centre) + 0.5f);
+    camera.eye = target + glm::vec3(0.35f, 0.25f, 0.35f);
+    camera.target = target;
+    return render(r, camera);
+  };
+  const ImageRgba8 corner = renderBallAt({490, 100, 490});
+  const ImageRgba8 middle = renderBallAt({250, 60, 250});
+  ImageRgba8 empty;
+  {
+    VolumeRenderer r;
+    std::string err;
+    ASSERT_TRUE(r.init(&err)) << err;
+    r.sync(Volume(glm::ivec3(64)), light);
+    empty = render(r, Camera::reference());
+  }
+  long long cloud = 0;
+  double sum = 0;
+  int worst = 0;
+  for (size_t i = 0; i < corner.pixels.size(); ++i) {
+    cloud += std::abs(int(corner.pixels[i]) - int(empty.pixels[i])) > 8;
+    const int e = std::abs(int(corner.pixels[i]) - int(middle.pixels[i]));
+    sum += e;
+    worst = std::max(worst, e);
+  }
+  const double mean = sum / double(corner.pixels.size());
+  std::printf("far corner vs middle: %lld cloud channels, mean error %.3f, worst %d (of 255)\n",
+              cloud, mean, worst);
+  EXPECT_GT(cloud, 3000) << "the far corner's cloud does not show";
+  EXPECT_LT(mean, 0.1);
+  EXPECT_LE(worst, 4);  // sample positions along the rays differ a little (they start at the box)
 }
 
 // Issue 15: an empty sky costs little on the GPU. The renderer's GL memory is counted in bytes;
