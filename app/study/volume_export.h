@@ -1,7 +1,8 @@
 // A volume as the files Blender, Houdini, numpy and R open: `<stem>.vdb` (OpenVDB fog volume, a
 // FloatGrid named "density" placed on the volume's world box: app/volume/volume_vdb_file.h) and
-// `<stem>.cbvol` (one JSON header line, then raw little-endian float32, x fastest:
-// app/volume/volume_file.h). The .vdb is skipped, with a note, in a build without OpenVDB.
+// `<stem>.cbvol` (one JSON header line, then the raw little-endian float32 of the box holding
+// the cloud, x fastest: app/volume/volume_file.h; reading it in numpy: app/study/README.md). The
+// .vdb is skipped, with a note, in a build without OpenVDB.
 #pragma once
 
 #include <string>

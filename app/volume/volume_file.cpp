@@ -27,37 +27,70 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
-// The volume the header describes; the allocation is the only one sized by the header, and
-// happens only after the header's sizes were checked.
+// The volume the header describes, still zero; its brick table (sized by the header's dims,
+// which the limits bound) is the only allocation the header sizes, made after every check.
 Volume allocate(const VolumeFileHeader& h, const std::string& name) {
   try {
     return Volume(glm::ivec3(int(h.dims[0]), int(h.dims[1]), int(h.dims[2])), h.world_min,
                   h.world_max);
   } catch (const std::bad_alloc&) {
-    throw VolumeFileError(name, "header field 'dims': " + formatDims(h) + " voxels (" +
-                                    std::to_string(h.data_bytes) + " bytes) do not fit in memory");
+    throw VolumeFileError(name, "header field 'dims': the brick table of " + formatDims(h) +
+                                    " voxels does not fit in memory");
   }
 }
 
-// Refuses a non-finite density (`first_bad`: its dense index, or voxelCount() when there is
-// none) and marks the whole volume changed.
-Volume finish(Volume v, size_t first_bad, const std::string& name) {
-  if (first_bad < v.voxelCount())
-    throw VolumeFileError(name, "non-finite density at voxel index " + std::to_string(first_bad));
+// Fills `v` with the stored box's rows (x fastest, then y, then z), each taken from
+// `next_row(float* row, size_t n)`, which throws when the data ends early. Only the stored box
+// is walked and writeLine allocates bricks only for non-zero runs, so memory and time follow
+// the bytes stored, not the virtual extent. Refuses a non-finite density; marks the whole
+// volume changed.
+template <typename NextRow>
+Volume fillStoredBox(Volume v, const VolumeFileHeader& h, const std::string& name,
+                     NextRow&& next_row) {
+  const glm::ivec3 lo(int(h.stored_min[0]), int(h.stored_min[1]), int(h.stored_min[2]));
+  const glm::ivec3 hi(int(h.stored_max[0]), int(h.stored_max[1]), int(h.stored_max[2]));
+  const int width = hi.x - lo.x;
+  std::vector<float> row(size_t(std::max(width, 0)));
+  if (h.stored_voxels > 0)
+    for (int z = lo.z; z < hi.z; ++z)
+      for (int y = lo.y; y < hi.y; ++y) {
+        next_row(row.data(), row.size());
+        for (int x = 0; x < width; ++x)
+          if (!std::isfinite(row[size_t(x)]))
+            throw VolumeFileError(name, "non-finite density at voxel index " +
+                                            std::to_string(v.index(lo.x + x, y, z)) + " (x " +
+                                            std::to_string(lo.x + x) + ", y " + std::to_string(y) +
+                                            ", z " + std::to_string(z) + ")");
+        v.writeLine({lo.x, y, z}, 0, width, row.data());
+      }
   v.markDirty(v.bounds());
   return v;
 }
 
-// Stores one row of voxels (x fastest) at (0, y, z), noting the first non-finite one.
-void storeRow(Volume& v, int y, int z, const float* row, size_t* first_bad) {
-  const int n = v.dims().x;
-  if (*first_bad == v.voxelCount())
-    for (int x = 0; x < n; ++x)
-      if (!std::isfinite(row[x])) {
-        *first_bad = v.index(x, y, z);
-        break;
+// The smallest box holding every voxel whose bit pattern is not zero (every voxel outside it
+// reads back as +0, so -0 is kept too). Looks into the allocated bricks only, skipping those
+// already inside the box found so far; empty when no voxel is non-zero.
+VoxelBox nonZeroBox(const Volume& volume) {
+  VoxelBox box;
+  for (const glm::ivec3 b : volume.allocatedBrickList()) {
+    const VoxelBox bb = volume.brickBox(b);
+    if (!box.empty() && box.unite(bb) == box) continue;
+    const float* voxels = volume.brick(b);
+    const glm::ivec3 o = b * Volume::kBrickSize;
+    for (int z = bb.lo.z; z < bb.hi.z; ++z)
+      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const float* row =
+            voxels + (size_t(z - o.z) * Volume::kBrickSize + size_t(y - o.y)) * Volume::kBrickSize;
+        int first = -1, last = -1;
+        for (int x = bb.lo.x; x < bb.hi.x; ++x)
+          if (std::bit_cast<uint32_t>(row[x - o.x]) != 0) {
+            if (first < 0) first = x;
+            last = x;
+          }
+        if (first >= 0) box = box.unite({{first, y, z}, {last + 1, y + 1, z + 1}});
       }
-  v.writeLine({0, y, z}, 0, n, row);
+  }
+  return box;
 }
 
 }  // namespace
@@ -66,16 +99,17 @@ void saveVolume(const Volume& volume, const std::string& path) {
   FilePtr f(std::fopen(path.c_str(), "wb"));
   if (!f)
     throw VolumeFileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-  std::string header = volumeFileHeader(volume) + "\n";
+  const VoxelBox stored = nonZeroBox(volume);
+  std::string header = volumeFileHeader(volume, stored) + "\n";
   bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
-  // Row by row, so a sparse sky is never made dense in memory.
-  const glm::ivec3 d = volume.dims();
-  std::vector<float> row(size_t(d.x));
-  for (int z = 0; z < d.z && ok; ++z)
-    for (int y = 0; y < d.y && ok; ++y) {
-      volume.readLine({0, y, z}, 0, d.x, row.data());
-      ok = std::fwrite(row.data(), sizeof(float), row.size(), f.get()) == row.size();
-    }
+  // The stored box row by row, so a sparse sky is never made dense in memory nor walked whole.
+  std::vector<float> row(size_t(stored.hi.x - stored.lo.x));
+  if (!stored.empty())
+    for (int z = stored.lo.z; z < stored.hi.z && ok; ++z)
+      for (int y = stored.lo.y; y < stored.hi.y && ok; ++y) {
+        volume.readLine({stored.lo.x, y, z}, 0, int(row.size()), row.data());
+        ok = std::fwrite(row.data(), sizeof(float), row.size(), f.get()) == row.size();
+      }
   if (!ok || std::fflush(f.get()) != 0)
     throw VolumeFileError(path, std::string("write failed: ") + std::strerror(errno));
 }
@@ -94,28 +128,21 @@ Volume readVolume(std::istream& in, const std::string& name, std::optional<uint6
   const uint64_t header_bytes = line.size() + 1;
 
   if (size) {
-    // A file of known size: every check before the allocation, then read straight into it.
+    // A file of known size: every check before the allocation, then read row by row.
     checkVolumeFileData(h, *size >= header_bytes ? *size - header_bytes : 0, name);
     checkVolumeFileLimits(h, name);
-    Volume v = allocate(h, name);
-    // Row by row into the bricks: only bricks holding density take memory.
-    const glm::ivec3 d = v.dims();
-    std::vector<float> row(size_t(d.x));
-    const std::streamsize row_bytes = std::streamsize(row.size() * sizeof(float));
     uint64_t got = 0;
-    size_t first_bad = v.voxelCount();
-    for (int z = 0; z < d.z; ++z)
-      for (int y = 0; y < d.y; ++y) {
-        in.read(reinterpret_cast<char*>(row.data()), row_bytes);
-        got += uint64_t(in.gcount());
-        // The file may have changed since its size was taken.
-        if (in.gcount() != row_bytes) checkVolumeFileData(h, got, name);
-        storeRow(v, y, z, row.data(), &first_bad);
-      }
+    Volume v = fillStoredBox(allocate(h, name), h, name, [&](float* row, size_t n) {
+      const std::streamsize row_bytes = std::streamsize(n * sizeof(float));
+      in.read(reinterpret_cast<char*>(row), row_bytes);
+      got += uint64_t(in.gcount());
+      // The file may have changed since its size was taken.
+      if (in.gcount() != row_bytes) checkVolumeFileData(h, got, name);
+    });
     checkVolumeFileData(h, got, name);
     if (in.peek() != std::char_traits<char>::eof())
       checkVolumeFileData(h, h.data_bytes, name, /*at_least=*/true);
-    return finish(std::move(v), first_bad, name);
+    return v;
   }
 
   // Unknown size (a pipe): the limits first, then the data into a buffer that grows with what
@@ -131,18 +158,11 @@ Volume readVolume(std::istream& in, const std::string& name, std::optional<uint6
   }
   if (data.size() > h.data_bytes) checkVolumeFileData(h, h.data_bytes, name, /*at_least=*/true);
   checkVolumeFileData(h, data.size(), name);
-  Volume v = allocate(h, name);
-  const glm::ivec3 d = v.dims();
-  std::vector<float> row(size_t(d.x));
-  size_t first_bad = v.voxelCount();
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y) {
-      std::memcpy(row.data(), data.data() + v.index(0, y, z) * sizeof(float),
-                  row.size() * sizeof(float));
-      storeRow(v, y, z, row.data(), &first_bad);
-    }
-  data = {};
-  return finish(std::move(v), first_bad, name);
+  size_t offset = 0;
+  return fillStoredBox(allocate(h, name), h, name, [&](float* row, size_t n) {
+    std::memcpy(row, data.data() + offset, n * sizeof(float));
+    offset += n * sizeof(float);
+  });
 }
 
 Volume loadVolume(const std::string& path) {

@@ -165,6 +165,26 @@ glm::vec3 vecField(const Header& h, const std::string& key, const std::string& n
   return glm::vec3(float(v.numbers[0]), float(v.numbers[1]), float(v.numbers[2]));
 }
 
+// A corner of the stored box: 3 non-negative integers, each at most the dims along its axis.
+void storedCorner(const Header& h, const std::string& key, const uint64_t (&dims)[3],
+                  uint64_t (&out)[3], const std::string& name) {
+  const HeaderValue& v = field(h, key, name);
+  if (!v.is_array || v.numbers.size() != 3)
+    fieldError(name, key, " must be an array of 3 non-negative integers");
+  for (size_t i = 0; i < 3; ++i) {
+    const double d = v.numbers[i];
+    if (!(d >= 0) || d != std::floor(d))  // also NaN
+      fieldError(name, key,
+                 ": " + formatNumber(d) + " (" + "xyz"[i] + ") is not a non-negative integer");
+    if (d > double(dims[i]))
+      fieldError(name, key,
+                 ": " + formatNumber(d) + " (" + "xyz"[i] + ") lies outside dims " +
+                     std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+                     std::to_string(dims[2]));
+    out[i] = uint64_t(d);
+  }
+}
+
 }  // namespace
 
 std::string formatDims(const VolumeFileHeader& header) {
@@ -172,13 +192,15 @@ std::string formatDims(const VolumeFileHeader& header) {
          std::to_string(header.dims[2]);
 }
 
-std::string volumeFileHeader(const Volume& volume) {
-  glm::ivec3 d = volume.dims();
+std::string volumeFileHeader(const Volume& volume, const VoxelBox& stored) {
+  const glm::ivec3 d = volume.dims();
+  const VoxelBox box = stored.intersect(volume.bounds());  // an empty box becomes [0,0,0]..[0,0,0]
   std::ostringstream s;
   s << "{\"format\":\"cloudbrush-volume\",\"version\":" << kVolumeFileVersion << ",\"dims\":["
     << d.x << "," << d.y << "," << d.z << "],\"world_min\":" << formatVec(volume.worldMin())
-    << ",\"world_max\":" << formatVec(volume.worldMax())
-    << ",\"type\":\"float32\",\"endian\":\"little\",\"order\":\"x-fastest\"}";
+    << ",\"world_max\":" << formatVec(volume.worldMax()) << ",\"stored_min\":[" << box.lo.x << ","
+    << box.lo.y << "," << box.lo.z << "],\"stored_max\":[" << box.hi.x << "," << box.hi.y << ","
+    << box.hi.z << "],\"type\":\"float32\",\"endian\":\"little\",\"order\":\"x-fastest\"}";
   return s.str();
 }
 
@@ -186,15 +208,19 @@ VolumeFileHeader parseVolumeFileHeader(const std::string& line, const std::strin
   const Header h = HeaderParser(line, name).parse();
   expectString(h, "format", "cloudbrush-volume", name);
   const HeaderValue& version = field(h, "version", name);
-  if (version.is_string || version.is_array || version.numbers[0] != double(kVolumeFileVersion))
-    fieldError(
-        name, "version",
-        ": unsupported (this build reads version " + std::to_string(kVolumeFileVersion) + ")");
+  if (version.is_string || version.is_array || (version.numbers[0] != 1 && version.numbers[0] != 2))
+    fieldError(name, "version",
+               ": " +
+                   (version.is_string  ? "\"" + version.text + "\""
+                    : version.is_array ? std::string("an array")
+                                       : formatNumber(version.numbers[0])) +
+                   " is unsupported (this build reads versions 1 and 2)");
   expectString(h, "type", "float32", name);
   expectString(h, "endian", "little", name);
   expectString(h, "order", "x-fastest", name);
 
   VolumeFileHeader out;
+  out.version = int(version.numbers[0]);
   const HeaderValue& dims = field(h, "dims", name);
   if (!dims.is_array || dims.numbers.size() != 3)
     fieldError(name, "dims", " must be an array of 3 positive integers");
@@ -208,9 +234,10 @@ VolumeFileHeader parseVolumeFileHeader(const std::string& line, const std::strin
                  ": " + formatNumber(d) + " (" + "xyz"[i] + ") does not fit a 64-bit count");
     out.dims[i] = uint64_t(d);
   }
+  uint64_t dense_bytes = 0;
   if (__builtin_mul_overflow(out.dims[0], out.dims[1], &out.voxel_count) ||
       __builtin_mul_overflow(out.voxel_count, out.dims[2], &out.voxel_count) ||
-      __builtin_mul_overflow(out.voxel_count, sizeof(float), &out.data_bytes))
+      __builtin_mul_overflow(out.voxel_count, sizeof(float), &dense_bytes))
     fieldError(
         name, "dims",
         ": " + formatDims(out) + " voxels of float32 need more bytes than a 64-bit count holds");
@@ -221,18 +248,53 @@ VolumeFileHeader parseVolumeFileHeader(const std::string& line, const std::strin
     fieldError(name, "world_max",
                ": " + formatVec(out.world_max) + " must be above world_min " +
                    formatVec(out.world_min) + " on every axis");
+
+  if (out.version == 1) {
+    // The whole grid, x fastest.
+    for (const char* key : {"stored_min", "stored_max"})
+      if (h.count(key))
+        fieldError(name, key, " is not part of version 1 (which stores the whole grid)");
+    for (size_t i = 0; i < 3; ++i) out.stored_max[i] = out.dims[i];
+  } else {
+    storedCorner(h, "stored_min", out.dims, out.stored_min, name);
+    storedCorner(h, "stored_max", out.dims, out.stored_max, name);
+    for (size_t i = 0; i < 3; ++i)
+      if (out.stored_max[i] < out.stored_min[i])
+        fieldError(name, "stored_max",
+                   ": " + std::to_string(out.stored_max[i]) + " (" + "xyz"[i] +
+                       ") is below stored_min " + std::to_string(out.stored_min[i]));
+  }
+  // At most voxel_count, whose bytes fit 64 bits (checked above).
+  out.stored_voxels = 1;
+  for (size_t i = 0; i < 3; ++i) out.stored_voxels *= out.stored_max[i] - out.stored_min[i];
+  out.data_bytes = out.stored_voxels * sizeof(float);
   return out;
+}
+
+std::string formatStoredBox(const VolumeFileHeader& header) {
+  auto corner = [](const uint64_t* c) {
+    return "[" + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," + std::to_string(c[2]) +
+           "]";
+  };
+  return corner(header.stored_min) + ".." + corner(header.stored_max);
 }
 
 void checkVolumeFileData(const VolumeFileHeader& header, uint64_t bytes_after_header,
                          const std::string& name, bool at_least) {
   if (bytes_after_header == header.data_bytes && !at_least) return;
   const bool short_data = bytes_after_header < header.data_bytes;
-  fieldError(name, "dims",
-             ": " + formatDims(header) + " voxels need " + std::to_string(header.data_bytes) +
-                 " bytes of float32 but the file holds " + (at_least ? "more than " : "") +
-                 std::to_string(bytes_after_header) + " bytes after the header (" +
-                 (short_data ? "truncated file or wrong dims)" : "trailing data or wrong dims)"));
+  const std::string holds = " bytes of float32 but the file holds " +
+                            std::string(at_least ? "more than " : "") +
+                            std::to_string(bytes_after_header) + " bytes after the header (" +
+                            (short_data ? "truncated file or " : "trailing data or ");
+  if (header.version == 1)
+    fieldError(name, "dims",
+               ": " + formatDims(header) + " voxels need " + std::to_string(header.data_bytes) +
+                   holds + "wrong dims)");
+  throw VolumeFileError(name, "header fields 'stored_min', 'stored_max': the stored box " +
+                                  formatStoredBox(header) + " (" +
+                                  std::to_string(header.stored_voxels) + " voxels) needs " +
+                                  std::to_string(header.data_bytes) + holds + "wrong box)");
 }
 
 void checkVolumeFileLimits(const VolumeFileHeader& header, const std::string& name) {

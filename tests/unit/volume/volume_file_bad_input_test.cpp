@@ -1,5 +1,6 @@
-// Bad volume files (issue 10): every size a header claims is checked before a voxel is allocated,
-// and each failure is a VolumeFileError naming the file and the header field. The largest
+// Bad volume files (issue 10; the stored box of version 2, issue 15): every size a header claims
+// is checked before a voxel is allocated, and each failure is a VolumeFileError naming the file
+// and the header field. The largest
 // allocation made while a bad file is read is measured by replacing global operator new.
 #include <atomic>
 #include <cstdint>
@@ -56,6 +57,14 @@ std::string header(const std::string& dims, const std::string& drop = "") {
     h += "\"" + f[0] + "\":" + f[1];
   }
   return h + "}\n";
+}
+
+// A version 2 header storing the box [lo, hi) of `dims`.
+std::string header2(const std::string& dims, const std::string& lo, const std::string& hi) {
+  return "{\"format\":\"cloudbrush-volume\",\"version\":2,\"dims\":" + dims +
+         ",\"world_min\":[-1,-1,-1],\"world_max\":[1,1,1],\"stored_min\":" + lo +
+         ",\"stored_max\":" + hi +
+         ",\"type\":\"float32\",\"endian\":\"little\",\"order\":" + "\"x-fastest\"}\n";
 }
 
 std::string floats(size_t n) {
@@ -218,7 +227,10 @@ TEST(VolumeFileBadInput, OtherFieldsAreNamed) {
     r.replace(r.find(from), from.size(), to);
     return r + floats(64);
   };
-  expectRefused(with("\"version\":1", "\"version\":2"), "header field 'version'", "unsupported");
+  expectRefused(with("\"version\":1", "\"version\":3"), "header field 'version'",
+                "3 is unsupported (this build reads versions 1 and 2)");
+  expectRefused(with("\"version\":1", "\"version\":\"2\""), "header field 'version'",
+                "\"2\" is unsupported");
   expectRefused(with("\"float32\"", "\"float16\""), "header field 'type'", "\"float16\"");
   expectRefused(with("\"little\"", "\"big\""), "header field 'endian'", "\"big\"");
   expectRefused(with("\"world_min\":[-1,-1,-1]", "\"world_min\":[-1,-1]"),
@@ -227,6 +239,75 @@ TEST(VolumeFileBadInput, OtherFieldsAreNamed) {
                 "header field 'world_max'", "not a finite float");
   expectRefused(with("\"world_max\":[1,1,1]", "\"world_max\":[1,-1,1]"), "header field 'world_max'",
                 "must be above world_min");
+}
+
+TEST(VolumeFileBadInput, AVersionTwoFileAllocatesForItsStoredBytesOnly) {
+  // The largest virtual extent the limits allow (2^30 voxels, 4 GiB dense) with one stored
+  // voxel: the brick table and one brick are allocated, never the grid.
+  const std::string bytes =
+      header2("[2048,2048,256]", "[5,6,7]", "[6,7,8]") + std::string("\0\0\x80\x3f", 4);
+  for (std::optional<uint64_t> size :
+       {std::optional<uint64_t>(bytes.size()), std::optional<uint64_t>()}) {
+    SCOPED_TRACE(size ? "regular file" : "pipe");
+    std::istringstream in(bytes);
+    g_largest_allocation = 0;
+    const Volume v = readVolume(in, kName, size);
+    EXPECT_LE(g_largest_allocation.load(), size_t(4) << 20);
+    EXPECT_EQ(v.dims(), glm::ivec3(2048, 2048, 256));
+    EXPECT_EQ(v.allocatedBricks(), 1u);
+    EXPECT_EQ(v.at(5, 6, 7), 1.0f);
+    EXPECT_EQ(v.at(5, 6, 8), 0.0f);
+  }
+  // The virtual extent still obeys the limits, stored bytes or not.
+  expectRefused(header2("[2048,2048,512]", "[0,0,0]", "[0,0,0]"), "header field 'dims'",
+                "2048x2048x512 = 2147483648 voxels exceeds the limit");
+  expectRefused(header2("[4096,1,1]", "[0,0,0]", "[1,1,1]") + floats(1), "header field 'dims'",
+                "4096x1x1 exceeds 2048 voxels along x");
+}
+
+TEST(VolumeFileBadInput, AStoredBoxIsComparedWithTheFileBeforeAllocating) {
+  expectRefused(header2("[1024,1024,1024]", "[0,0,0]", "[1024,1024,1024]") + floats(4),
+                "header fields 'stored_min', 'stored_max'",
+                "the stored box [0,0,0]..[1024,1024,1024] (1073741824 voxels) needs 4294967296 "
+                "bytes of float32 but the file holds 16 bytes after the header (truncated file "
+                "or wrong box)");
+  const std::string trailing = header2("[4,4,4]", "[0,0,0]", "[2,2,2]") + floats(9);
+  expectRefused(trailing, "stored_max'", "(trailing data or wrong box)");
+  EXPECT_NE(
+      read(trailing, trailing.size())
+          .error.find("needs 32 bytes of float32 but the file holds 36 bytes after the header"),
+      std::string::npos);
+  expectRefused(header2("[4,4,4]", "[0,0,0]", "[0,0,0]") + floats(1), "stored_max'",
+                "[0,0,0]..[0,0,0] (0 voxels) needs 0 bytes");
+}
+
+TEST(VolumeFileBadInput, StoredBoxFieldsAreNamed) {
+  const std::string body = floats(8);
+  expectRefused(header2("[4,4,4]", "[0,0,0]", "[2,2,5]") + body, "header field 'stored_max'",
+                "5 (z) lies outside dims 4x4x4");
+  expectRefused(header2("[4,4,4]", "[5,0,0]", "[5,2,2]") + body, "header field 'stored_min'",
+                "5 (x) lies outside dims 4x4x4");
+  expectRefused(header2("[4,4,4]", "[0,-1,0]", "[2,2,2]") + body, "header field 'stored_min'",
+                "-1 (y) is not a non-negative integer");
+  expectRefused(header2("[4,4,4]", "[0,0,0]", "[2,2,1.5]") + body, "header field 'stored_max'",
+                "1.5 (z) is not a non-negative integer");
+  expectRefused(header2("[4,4,4]", "[0,0,0]", "[2,nan,2]") + body, "header field 'stored_max'",
+                "is not a non-negative integer");
+  expectRefused(header2("[4,4,4]", "[0,0,0]", "[1e300,2,2]") + body, "header field 'stored_max'",
+                "1e+300 (x) lies outside dims");
+  expectRefused(header2("[4,4,4]", "[3,0,0]", "[2,2,2]") + body, "header field 'stored_max'",
+                "2 (x) is below stored_min 3");
+  expectRefused(header2("[4,4,4]", "[0,0]", "[2,2,2]") + body, "header field 'stored_min'",
+                "must be an array of 3 non-negative integers");
+  expectRefused(header2("[4,4,4]", "\"0,0,0\"", "[2,2,2]") + body, "header field 'stored_min'",
+                "must be an array of 3");
+  std::string no_max = header2("[4,4,4]", "[0,0,0]", "[2,2,2]");
+  no_max.replace(no_max.find("\"stored_max\""), 12, "\"stored_mux\"");
+  expectRefused(no_max + body, "header field 'stored_max' is missing", "");
+  // Version 1 stores the whole grid: a stored box there is a mistake, not ignored.
+  std::string v1 = header2("[2,2,2]", "[0,0,0]", "[2,2,2]");
+  v1.replace(v1.find("\"version\":2"), 11, "\"version\":1");
+  expectRefused(v1 + body, "header field 'stored_min'", "is not part of version 1");
 }
 
 TEST(VolumeFileBadInput, LoadVolumeUsesTheFileSize) {

@@ -28,6 +28,13 @@ std::string header(const std::string& dims) {
          "\"endian\":\"little\",\"order\":\"x-fastest\"}\n";
 }
 
+std::string header2(const std::string& dims, const std::string& lo, const std::string& hi) {
+  return "{\"format\":\"cloudbrush-volume\",\"version\":2,\"dims\":" + dims +
+         ",\"world_min\":[-1,-1,-1],\"world_max\":[1,1,1],\"stored_min\":" + lo +
+         ",\"stored_max\":" + hi +
+         ",\"type\":\"float32\",\"endian\":\"little\",\"order\":\"x-fastest\"}\n";
+}
+
 class RenderBadVolume : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -87,6 +94,11 @@ TEST_F(RenderBadVolume, EveryBadHeaderExitsNonZeroWithItsField) {
       {"notjson.vol", "P6\n4 4\n255\n" + body, "header line: malformed JSON"},
       {"missing_field.vol", "{\"format\":\"cloudbrush-volume\",\"version\":1}\n" + body,
        "header field 'type' is missing"},
+      {"box_outside.vol", header2("[4,4,4]", "[0,0,0]", "[4,8,4]") + body,
+       "header field 'stored_max': 8 (y) lies outside dims 4x4x4"},
+      {"box_bytes.vol", header2("[4,4,4]", "[0,0,0]", "[4,4,2]") + body,
+       "header fields 'stored_min', 'stored_max': the stored box [0,0,0]..[4,4,2] (32 voxels) "
+       "needs 128 bytes of float32 but the file holds 256"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.file);
