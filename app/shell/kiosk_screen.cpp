@@ -10,6 +10,7 @@
 #include "app/render/gl/gl.h"
 #include "app/shell/gallery_capture.h"
 #include "app/shell/keymap.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
 namespace cb {
@@ -280,6 +281,9 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
                before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
       awaiting_first_sample_ = connected;
+      if (connected)  // for the hotplug check: when the loop found the (re)connected pen
+        std::fprintf(stderr, "cloudbrush kiosk: pen: connected, found by the loop at %.6f s\n",
+                     double(MonotonicClock().nowNs()) / 1e9);
     }
   }
   if (awaiting_first_sample_ && !samples.empty()) {

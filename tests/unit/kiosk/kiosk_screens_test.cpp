@@ -169,6 +169,7 @@ TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
   rig.run(1);
   ASSERT_EQ(kiosk.state(), State::kAttract);
   EXPECT_GT(kiosk.attract().recordCount(), 500u);
+  kiosk.attract().waitUntilPrepared();  // the strokes are mapped on the replay's worker thread
   const glm::vec3 eye0 = kiosk.attract().shownCamera().eye;
   // The journal replays at its own pace on the clock: half a second per frame here.
   ASSERT_TRUE(rig.runUntil(
