@@ -125,6 +125,7 @@ void KioskScreen::updateTexts() {
 
 void KioskScreen::setState(State state) {
   state_ = state;
+  reconnect_drawn_.reset();
   std::string status;
   switch (state) {
     case State::kAttract:
@@ -567,6 +568,11 @@ bool KioskScreen::needsFrame() const {
   switch (state_) {
     case State::kVisitor:
       return paint_.needsFrame() || !notice_.empty();
+    case State::kReconnect:
+      // Drawn until the painting under it has settled, then only when the pen's status changes:
+      // meanwhile the loop polls the pen every few milliseconds and the replug shows at once.
+      return !paint_.viewSettled() || !reconnect_drawn_ ||
+             *reconnect_drawn_ != (pen_ ? pen_->statusMessage() : std::string());
     default:
       return true;
   }
@@ -593,8 +599,9 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
       return calibration_->draw(frame, error);
     case State::kReconnect:
       if (!paint_.draw(frame, error)) return false;
+      reconnect_drawn_ = pen_ ? pen_->statusMessage() : std::string();
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
-                          pen_ ? pen_->statusMessage() : "");
+                          *reconnect_drawn_);
       return reconnect_.draw(frame, error);
     case State::kVisitor:
       if (!paint_.draw(frame, error)) return false;

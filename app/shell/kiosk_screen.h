@@ -24,6 +24,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -144,6 +145,8 @@ class KioskScreen : public Screen {
   int64_t saved_notice_until_ns_ = 0;
   std::string saved_notice_;
   int last_connection_ = -1;
+  // The pen status the "reconnect the pen" screen last drew (none: not drawn since shown).
+  std::optional<std::string> reconnect_drawn_;
   bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
   bool next_visitor_pending_ = false;   // after an idle reset, until prepareVisitor() ran
   bool attract_shown_ = false;          // an attract frame was presented since the reset

@@ -664,6 +664,12 @@ bool PaintScreen::needsFrame() const {
   return !drawn_ || !(*drawn_ == currentKey());
 }
 
+bool PaintScreen::viewSettled() const {
+  return !(orbiting_ || !refined_ || lit_pending_ || refine_pending_ || animationPlaying() ||
+           menu_open_) &&
+         drawn_ && *drawn_ == currentKey();
+}
+
 bool PaintScreen::paintingSetUp(std::string* error) {
   if (!overlay_ready_) {
     if (!overlay_.init(error)) return false;

@@ -67,6 +67,10 @@ class PaintScreen : public Screen {
   bool hasPaint() const;
   std::string update(const FrameContext& frame) override;
   bool needsFrame() const override;
+  // The view has come to rest: no orbit, lit or refined frame or animation is still to be
+  // drawn (what is left is the cursor following the pen). The kiosk's "reconnect the pen" screen
+  // stops redrawing the painting under it then.
+  bool viewSettled() const;
   bool draw(FrameContext& frame, std::string* error) override;
   void presented(const FrameContext& frame, double frame_ms) override;
 
