@@ -9,7 +9,7 @@ namespace cb {
 
 Brush3D::Brush3D(const BrushConfig& c, std::shared_ptr<const InkVolume> ink)
     : TextureBrush(c.stroke, c.dispersion), params_(c.brush3d), ink_(std::move(ink)) {
-  if (!ink_) ink_ = std::make_shared<InkVolume>(params_.ink_volume_size, params_.ink_seed);
+  if (!ink_) ink_ = sharedInkVolume(params_.ink_volume_size, params_.ink_seed);
 }
 
 const BrushSample& Brush3D::sampleFor(float pressure, float tilt_x_deg, float tilt_y_deg) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "app/brush/hash_noise.h"
 #include "app/core/parallel_for.h"
@@ -72,6 +73,21 @@ float InkVolume::sample(glm::vec3 p) const {
 float InkVolume::planeHeight(float pressure) const {
   float p = std::clamp(pressure, 0.0f, 1.0f);
   return shape_.top_y + (shape_.sphere_centre.y - shape_.top_y) * p;
+}
+
+std::shared_ptr<const InkVolume> sharedInkVolume(int n, uint32_t seed) {
+  struct Entry {
+    int n;
+    uint32_t seed;
+    std::shared_ptr<const InkVolume> ink;
+  };
+  static std::mutex mutex;
+  static std::vector<Entry> made;  // one per distinct (n, seed): a process sees one or two
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const Entry& e : made)
+    if (e.n == n && e.seed == seed) return e.ink;
+  made.push_back({n, seed, std::make_shared<const InkVolume>(n, seed)});
+  return made.back().ink;
 }
 
 }  // namespace cb

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -36,5 +37,10 @@ class InkVolume {
   std::vector<float> d_;
   std::vector<float> padded_;  // (n+2)³ copy with a zero border, for sample()
 };
+
+// The default-shaped ink volume of (n, seed), made once per process and shared by every 3D brush
+// (each new session made its own: tens of milliseconds on the host, about a second under an
+// emulated CPU, paid again for each kiosk visitor). Thread-safe.
+std::shared_ptr<const InkVolume> sharedInkVolume(int n, uint32_t seed);
 
 }  // namespace cb

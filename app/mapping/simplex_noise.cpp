@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "app/core/parallel_for.h"
 
@@ -107,6 +108,22 @@ NoiseTexture::NoiseTexture(const NoiseTextureConfig& cfg) : size_(cfg.size) {
   const float a = *lo, range = std::max(1e-6f, *hi - *lo);
   texels_.resize(raw.size());
   for (size_t i = 0; i < raw.size(); ++i) texels_[i] = (raw[i] - a) / range;
+}
+
+std::shared_ptr<const NoiseTexture> sharedNoiseTexture(const NoiseTextureConfig& config) {
+  struct Entry {
+    NoiseTextureConfig config;
+    std::shared_ptr<const NoiseTexture> texture;
+  };
+  static std::mutex mutex;
+  static std::vector<Entry> made;  // one per distinct config (a process sees one or two)
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const Entry& e : made)
+    if (e.config.seed == config.seed && e.config.size == config.size &&
+        e.config.period_voxels == config.period_voxels && e.config.octaves == config.octaves)
+      return e.texture;
+  made.push_back({config, std::make_shared<const NoiseTexture>(config)});
+  return made.back().texture;
 }
 
 }  // namespace cb

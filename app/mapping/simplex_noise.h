@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,5 +43,11 @@ class NoiseTexture {
   int size_;
   std::vector<float> texels_;
 };
+
+// The texture of `config`, generated once per process and shared (thesis §6.5: generated when
+// the system is launched). Every session's mapper asks for it: generating it took about 1 s per
+// session on the host (64³ texels of 3-octave noise, blended over 8 corners) and 10–20 s under
+// an emulated CPU, which the kiosk paid for each visitor's fresh session. Thread-safe.
+std::shared_ptr<const NoiseTexture> sharedNoiseTexture(const NoiseTextureConfig& config);
 
 }  // namespace cb

@@ -16,7 +16,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 StrokeMapper::StrokeMapper(const MappingConfig& config) : config_(config) {
   validate(config_);
-  noise_ = std::make_unique<NoiseTexture>(config_.noise);
+  noise_ = sharedNoiseTexture(config_.noise);
 }
 
 void StrokeMapper::warn(MappingReport* report, uint32_t stroke_index,

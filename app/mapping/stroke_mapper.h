@@ -66,7 +66,7 @@ class StrokeMapper {
   void warn(MappingReport* report, uint32_t stroke_index, const std::string& text) const;
 
   MappingConfig config_;
-  std::unique_ptr<NoiseTexture> noise_;
+  std::shared_ptr<const NoiseTexture> noise_;  // shared by every mapper (sharedNoiseTexture)
   std::vector<Circle> last_circles_;
   bool quiet_ = false;
   bool straightforward_growth_ = false;

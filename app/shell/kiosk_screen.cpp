@@ -569,9 +569,9 @@ bool KioskScreen::needsFrame() const {
     case State::kVisitor:
       return paint_.needsFrame() || !notice_.empty();
     case State::kReconnect:
-      // Drawn until the painting under it has settled, then only when the pen's status changes:
-      // meanwhile the loop polls the pen every few milliseconds and the replug shows at once.
-      return !paint_.viewSettled() || !reconnect_drawn_ ||
+      // Drawn when shown and when the pen's status changes: meanwhile the loop polls the pen
+      // every few milliseconds and the replug shows at once.
+      return !reconnect_drawn_ ||
              *reconnect_drawn_ != (pen_ ? pen_->statusMessage() : std::string());
     default:
       return true;
@@ -598,7 +598,8 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
     case State::kCalibrate:
       return calibration_->draw(frame, error);
     case State::kReconnect:
-      if (!paint_.draw(frame, error)) return false;
+      // The painting as it was (no refinement while the pen is away), the message over it.
+      if (!paint_.drawLastScene(frame) && !paint_.draw(frame, error)) return false;
       reconnect_drawn_ = pen_ ? pen_->statusMessage() : std::string();
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
                           *reconnect_drawn_);

@@ -67,10 +67,11 @@ class PaintScreen : public Screen {
   bool hasPaint() const;
   std::string update(const FrameContext& frame) override;
   bool needsFrame() const override;
-  // The view has come to rest: no orbit, lit or refined frame or animation is still to be
-  // drawn (what is left is the cursor following the pen). The kiosk's "reconnect the pen" screen
-  // stops redrawing the painting under it then.
-  bool viewSettled() const;
+  // Puts the painting view as last drawn on the screen (a copy of the cached scene, nothing
+  // rendered, no cursor); false when none was drawn yet. The kiosk's "reconnect the pen" screen
+  // draws over it: a full-resolution refinement there took seconds under an emulated CPU, and
+  // the replugged pen waited for it.
+  bool drawLastScene(FrameContext& frame);
   bool draw(FrameContext& frame, std::string* error) override;
   void presented(const FrameContext& frame, double frame_ms) override;
 

@@ -29,7 +29,23 @@ uint32_t EvdevKeyboards::fallbackKeysym(int code, bool shift) {
   if (code >= KEY_A && code <= KEY_L) return letter(kRow2[code - KEY_A]);
   if (code >= KEY_Z && code <= KEY_M) return letter(kRow3[code - KEY_Z]);
   if (code >= KEY_1 && code <= KEY_9) return uint32_t('1' + (code - KEY_1));
+  // F1-F10 are consecutive key codes, F11 and F12 come later; the keysyms F1-F12 are consecutive.
+  if (code >= KEY_F1 && code <= KEY_F10) return uint32_t(XKB_KEY_F1 + (code - KEY_F1));
   switch (code) {
+    case KEY_F11:
+      return XKB_KEY_F11;
+    case KEY_F12:
+      return XKB_KEY_F12;
+    case KEY_PAGEUP:
+      return XKB_KEY_Prior;
+    case KEY_PAGEDOWN:
+      return XKB_KEY_Next;
+    case KEY_HOME:
+      return XKB_KEY_Home;
+    case KEY_END:
+      return XKB_KEY_End;
+    case KEY_INSERT:
+      return XKB_KEY_Insert;
     case KEY_0:
       return '0';
     case KEY_ESC:

@@ -6,6 +6,7 @@
 // quota and journal retention, and "reconnect the pen" when the tablet goes away mid-visit.
 // CB_KEEP_FRAMES=DIR writes the frames checked, for looking.
 #include <gtest/gtest.h>
+#include <xkbcommon/xkbcommon-keysyms.h>
 
 #include <unistd.h>
 
@@ -311,6 +312,20 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
         "export-cloud ", "shutdown", "panel-closed"})
     EXPECT_NE(log.find(std::string("Z ") + action), std::string::npos) << action << "\n" << log;
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 12) << log;
+}
+
+// An operator combination with a function key (the KMS keyboard's built-in US table has them).
+TEST(KioskScreens, OperatorCombinationWithAFunctionKey) {
+  KioskRig rig("cb_kiosk_operator_f12", [](KioskConfig& c) { c.operator_keys = "ctrl+alt+f12"; });
+  KioskScreen& kiosk = rig.kiosk();
+  rig.run(1);
+  EXPECT_TRUE(rig.key(XKB_KEY_o, DisplayEvent::kCtrl | DisplayEvent::kAlt));  // wakes, no panel
+  EXPECT_NE(kiosk.state(), State::kOperator);
+  EXPECT_TRUE(rig.key(XKB_KEY_F12, DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  EXPECT_EQ(kiosk.state(), State::kOperator);
+  rig.type("2468");
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
+  EXPECT_NE(slurp(rig.dataDir() + "/operator.log").find("Z panel-opened"), std::string::npos);
 }
 
 // Opens the operator panel mid-visit and presses C: the calibration screens take over.
