@@ -16,6 +16,7 @@
 //   Ui      vacuum_diameter=D | rubout_diameter=D SetEraseDiameter (world units)
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
 //   Ui      pen_capture=on|off                    PenCapture
+//   Ui      pressure_range=LO,HI                  SetPressureRange (calibration/pressure_range.h)
 //   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
 //   Ui      morph2=T,CHECKSUM,TARGET              ApplyMorph (TARGET a .vol path or bundled:SEED;
@@ -102,6 +103,12 @@ struct PlaceShape {
 struct PenCapture {
   bool captured;
 };
+// The participant's (or, in the kiosk, the operator's) pressure range from the press
+// calibration (calibration/pressure_range.h): which part of the pen's pressure feeds the curve,
+// for every sample after it. 0 ≤ lo < hi ≤ 1.
+struct SetPressureRange {
+  float lo = 0.0f, hi = 1.0f;
+};
 // The painter's animations committed ("apply"): the morph from the cloud as it was into the
 // target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
 // recomputes the frame from the cloud before it, so the record holds only what names it.
@@ -123,10 +130,11 @@ struct Redo {};
 struct DeleteAll {};
 }  // namespace ui
 
-using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
-                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
-                              ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
-                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind>;
+using UiChange =
+    std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
+                 ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
+                 ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo, ui::Redo, ui::DeleteAll,
+                 ui::ApplyMorph, ui::ApplyWind, ui::SetPressureRange>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi
