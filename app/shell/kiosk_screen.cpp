@@ -302,15 +302,24 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
           pen_->connection() != PenConnection::kFinished)
         setState(State::kReconnect);
       else if (state_ == State::kReconnect && connected)
-        setState(State::kVisitor);
+        reconnected_ns_ = now;  // the painting again with the pen's first sample (below)
       else if ((state_ == State::kOperator || state_ == State::kCalibrate) &&
                before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
       awaiting_first_sample_ = connected;
+      if (!connected) reconnected_ns_ = -1;
       if (connected)  // for the hotplug check: when the loop found the (re)connected pen
         std::fprintf(stderr, "cloudbrush kiosk: pen: connected, found by the loop at %.6f s\n",
                      double(MonotonicClock().nowNs()) / 1e9);
     }
+  }
+  // The tablet is back: the painting returns with the pen's first sample, or after a second
+  // without one (the pen lies away from the tablet). Drawn at once, the painting's next frame
+  // (often a full-resolution one) would hold that first sample back: 3-6 s under TCG.
+  if (state_ == State::kReconnect && reconnected_ns_ >= 0 &&
+      (!samples.empty() || double(now - reconnected_ns_) / 1e9 >= kReconnectWaitForSampleS)) {
+    reconnected_ns_ = -1;
+    setState(State::kVisitor);
   }
   if (awaiting_first_sample_ && !samples.empty()) {
     // For the log and the hotplug check (tests/hil/kms): how long a (re)connected pen took to

@@ -8,7 +8,8 @@
 //   visitor   the painter: painting, erasing, camera, undo, "start again"; after
 //             idle_seconds without input a countdown of warning_seconds, then the cloud is kept
 //             in the gallery (when on), the visit ends and the attract loop resumes
-//   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug
+//   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug,
+//             with the pen's first sample (or a second after the replug without one)
 //   operator  (operator_panel_screen.h) the configured key combination, then the PIN; every
 //             action is logged to <data dir>/operator.log
 //   calibrate the operator pressed C: the calibration flow (calibrate_flow_screen.h) takes
@@ -154,6 +155,8 @@ class KioskScreen : public Screen {
   int last_connection_ = -1;
   // The pen status the "reconnect the pen" screen last drew (none: not drawn since shown).
   std::optional<std::string> reconnect_drawn_;
+  int64_t reconnected_ns_ = -1;  // the tablet came back while "reconnect the pen" showed
+  static constexpr double kReconnectWaitForSampleS = 1.0;
   bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
   bool next_visitor_pending_ = false;   // after an idle reset, until prepareVisitor() ran
   bool attract_shown_ = false;          // an attract frame was presented since the reset

@@ -543,9 +543,12 @@ TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
   ASSERT_EQ(kiosk.state(), State::kReconnect);
   rig.run(5, 1.0);
   EXPECT_EQ(kiosk.state(), State::kReconnect) << "waits for the pen";
+  // The tablet is back but the pen lies away from it: the painting returns after a second.
   rig.pen().replug();
-  rig.run(1);
-  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  rig.run(1, 0.5);
+  EXPECT_EQ(kiosk.state(), State::kReconnect) << "the painting returns with the pen's sample";
+  rig.run(2, 0.5);
+  EXPECT_EQ(kiosk.state(), State::kVisitor) << "or a second after the replug without one";
   rig.pen().stroke(rig.clock().nowNs());
   rig.run(3);
   EXPECT_GT(kiosk.visitorSession()->strokesMapped(), strokes) << "painting goes on after replug";
@@ -556,6 +559,7 @@ TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
     rig.run(1);
     ASSERT_EQ(kiosk.state(), State::kReconnect) << "cycle " << i;
     rig.pen().replug();
+    rig.pen().hover(rig.clock().nowNs());  // the pen near the tablet: back at its first sample
     rig.run(1);
     ASSERT_EQ(kiosk.state(), State::kVisitor) << "cycle " << i;
   }
