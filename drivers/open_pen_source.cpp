@@ -2,20 +2,30 @@
 
 #include <cstdio>
 
+#include "drivers/core/threaded_pen_source.h"
 #include "drivers/devices/device_file.h"
-
 #include "drivers/evdev/evdev_pen_source.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
 
 namespace cb {
 
+namespace {
+
+// A tablet is read on a thread of its own unless asked otherwise (threaded_pen_source.h).
+std::unique_ptr<PenSource> live(std::unique_ptr<PenSource> backend, const PenSourceOptions& o) {
+  if (!o.reader_thread) return backend;
+  return std::make_unique<ThreadedPenSource>(std::move(backend));
+}
+
+}  // namespace
+
 std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& o, std::string* error) {
   if (o.backend == "auto" || o.backend == "evdev") {
     EvdevPenSourceOptions e;
     e.device_path = o.device;
     e.grab = o.grab;
-    return std::make_unique<EvdevPenSource>(e);
+    return live(std::make_unique<EvdevPenSource>(e), o);
   }
   if (o.backend == "hidraw" || o.backend == "libusb") {
     hid::HidapiPenSourceOptions h;
@@ -27,7 +37,7 @@ std::unique_ptr<PenSource> openPenSource(const PenSourceOptions& o, std::string*
       for (const std::string& e : load.errors) std::fprintf(stderr, "cloudbrush: %s\n", e.c_str());
       h.devices = load.database;
     }
-    return std::make_unique<hid::HidapiPenSource>(h);
+    return live(std::make_unique<hid::HidapiPenSource>(h), o);
   }
   if (o.backend == "replay") {
     if (o.device.empty()) {

@@ -19,6 +19,9 @@ struct PenSourceOptions {
   std::string device_dir;
   // hidraw/libusb: the input core's fuzz filter as evdev applies it (false: raw values).
   bool input_fuzz = true;
+  // evdev/hidraw/libusb: read the device on a thread of its own, so a slow frame loses no
+  // samples and a plugged tablet opens at once (threaded_pen_source.h). Replays never are.
+  bool reader_thread = true;
 };
 
 // nullptr and `error` set for an unknown backend name or a replay without a file. Mistakes in

@@ -169,6 +169,13 @@ void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
     const UiRecordText record = formatUiChange(change);
     journalText(record.type, t_ns, record.text);
   }
+  // A pressure range set before recording began (the kiosk's, from the operator's press
+  // calibration); the whole range is the default and is not written.
+  if (pressure_range_.lo != 0.0f || pressure_range_.hi != 1.0f) {
+    const UiRecordText record =
+        formatUiChange(ui::SetPressureRange{pressure_range_.lo, pressure_range_.hi});
+    journalText(record.type, t_ns, record.text);
+  }
 }
 
 void PaintSession::setRenderSettings(const std::string& render_toml, int64_t t_ns) {
@@ -337,6 +344,7 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
   if (!calibrator_) {
     calibrator_ = std::make_unique<Calibrator>(profile_, *device_, settings_.screen_width,
                                                settings_.screen_height);
+    calibrator_->setPressureRange(pressure_range_);
     calibrator_error_ = calibrator_->error();
     if (!calibrator_->ok())
       std::fprintf(stderr, "cloudbrush: calibration: %s\n", calibrator_error_.c_str());
@@ -526,6 +534,11 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     }
     bool operator()(const ui::SetStyle& c) {
       s.style_ = c.name;
+      return true;
+    }
+    bool operator()(const ui::SetPressureRange& c) {
+      s.pressure_range_ = PressureRange{c.lo, c.hi};
+      if (s.calibrator_) s.calibrator_->setPressureRange(s.pressure_range_);
       return true;
     }
     bool operator()(const ui::PenCapture& c) {

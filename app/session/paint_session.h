@@ -184,6 +184,8 @@ class PaintSession {
   uint32_t strokesMapped() const { return strokes_mapped_; }
   // The calibration in force (built-in defaults until setCalibration).
   const CalibrationProfile& calibration() const { return profile_; }
+  // The pressure range in force (ui::SetPressureRange).
+  const PressureRange& pressureRange() const { return pressure_range_; }
   const std::string& calibratorError() const { return calibrator_error_; }
   uint64_t samplesWithoutDevice() const { return samples_without_device_; }
   void setQuietMapping(bool quiet) { mapper_.setQuiet(quiet); }
@@ -213,6 +215,7 @@ class PaintSession {
   CalibrationProfile profile_;
   std::optional<PenDeviceInfo> device_;
   std::unique_ptr<Calibrator> calibrator_;
+  PressureRange pressure_range_;  // ui::SetPressureRange (default: the pen's whole range)
   std::string calibrator_error_;
   SceneState scene_;
   Mode mode_ = Mode::kPaint;

@@ -114,6 +114,10 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::ShowMenu& c) const {
       return {JournalRecordType::kUi, std::string("menu=") + (c.open ? "open" : "closed")};
     }
+    UiRecordText operator()(const ui::SetPressureRange& c) const {
+      const float v[2] = {c.lo, c.hi};
+      return {JournalRecordType::kUi, "pressure_range=" + formatFloats(v, 2)};
+    }
     UiRecordText operator()(const ui::PlaceShape& c) const {
       return {JournalRecordType::kUi, (c.model ? "place_model=" : "place_picture=") + c.path};
     }
@@ -284,6 +288,10 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   } else if (key == "menu") {
     if (value != "open" && value != "closed") return bad("open or closed");
     *out = ui::ShowMenu{value == "open"};
+  } else if (key == "pressure_range") {
+    if (!parseFloats(value, 2, v) || !(v[0] >= 0.0f && v[0] < v[1] && v[1] <= 1.0f))
+      return bad("LO,HI (0 <= LO < HI <= 1)");
+    *out = ui::SetPressureRange{v[0], v[1]};
   } else if (key == "vacuum_cut") {
     if (!parseFloats(value, 4, v) || v[3] <= 0.0f) return bad("X,Y,Z,RADIUS (radius > 0)");
     *out = ui::VacuumCut{glm::vec3(v[0], v[1], v[2]), v[3]};

@@ -17,6 +17,7 @@
 //   Ui      vacuum_cut=X,Y,Z,RADIUS               VacuumCut (world units)
 //   Ui      pen_capture=on|off                    PenCapture
 //   Ui      menu=open|closed                      ShowMenu (the pen menu shown or hidden; 1.2)
+//   Ui      pressure_range=LO,HI                  SetPressureRange (calibration/pressure_range.h)
 //   Ui      style=NAME                            SetStyle (a render style's name)
 //   Ui      place_picture=PATH | place_model=PATH PlaceShape (the file must be there on replay)
 //   Ui      morph2=T,CHECKSUM,TARGET              ApplyMorph (TARGET a .vol path or bundled:SEED;
@@ -109,6 +110,12 @@ struct PenCapture {
 struct ShowMenu {
   bool open;
 };
+// The participant's (or, in the kiosk, the operator's) pressure range from the press
+// calibration (calibration/pressure_range.h): which part of the pen's pressure feeds the curve,
+// for every sample after it. 0 ≤ lo < hi ≤ 1.
+struct SetPressureRange {
+  float lo = 0.0f, hi = 1.0f;
+};
 // The painter's animations committed ("apply"): the morph from the cloud as it was into the
 // target at t (app/tools/cloud_morph.h), or a wind run (app/tools/cloud_animation.h). Replay
 // recomputes the frame from the cloud before it, so the record holds only what names it.
@@ -133,7 +140,8 @@ struct DeleteAll {};
 using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
                               ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
                               ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
-                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu>;
+                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu,
+                              ui::SetPressureRange>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

@@ -14,37 +14,36 @@ namespace cb {
 AttractScreen::AttractScreen(VolumeRenderer& renderer, const Clock& clock,
                              std::vector<JournalRecord> journal, AttractOptions options,
                              UiOverlay* ui)
-    : renderer_(renderer),
-      clock_(clock),
-      journal_(std::move(journal)),
-      options_(std::move(options)),
-      ui_(ui) {
+    : renderer_(renderer), clock_(clock), options_(std::move(options)), ui_(ui) {
   // The journal's own session settings (screen, format, auto-end), brush and mapping, so the
   // replay is the one `cloudbrush replay` gives whatever the local config; the grid may be the
   // kiosk's.
-  RecordedSettings recorded = recordedSettings(journal_, options_.brush, options_.mapping);
+  RecordedSettings recorded = recordedSettings(journal, options_.brush, options_.mapping);
   settings_ = recorded.settings;
   options_.brush = recorded.brush;
   options_.mapping = recorded.mapping;
   for (const std::string& problem : recorded.problems)
     problems_.push_back("attract journal: " + problem);
   if (options_.grid > 0) settings_.grid = options_.grid;
+  replay_ = std::make_unique<AttractReplay>(std::move(journal), settings_, options_.brush,
+                                            options_.mapping, options_.light);
   restart();
 }
 
 AttractScreen::~AttractScreen() = default;
 
 void AttractScreen::restart() {
-  session_ = std::make_unique<PaintSession>(settings_, options_.brush, options_.mapping);
-  session_->setQuietMapping(true);
-  session_->setStartingLight(options_.light);
   started_ns_ = clock_.nowNs();
+  last_update_ns_ = started_ns_;
   if (orbit_start_ns_ < 0) orbit_start_ns_ = started_ns_;
-  finished_ns_ = journal_.empty() ? started_ns_ : -1;
+  finished_ns_ = replay_->recordCount() == 0 ? started_ns_ : -1;
   next_ = 0;
+  shown_ = replay_->keyframeAt(0);
   morph_.reset();
   morphs_ = 0;
-  camera_ = session_->camera();
+  session_.reset();
+  morph_applied_ = false;
+  camera_ = shown_.camera;
 }
 
 void AttractScreen::setTexts(std::string invitation, std::string hint, std::string notice) {
@@ -56,30 +55,34 @@ void AttractScreen::setTexts(std::string invitation, std::string hint, std::stri
 std::string AttractScreen::update(const FrameContext& frame) {
   (void)frame;
   const int64_t now = clock_.nowNs();
+  const std::vector<std::string> replay_problems = replay_->problems();
+  for (; problems_seen_ < replay_problems.size(); ++problems_seen_) {
+    problems_.push_back(replay_problems[problems_seen_]);
+    std::fprintf(stderr, "cloudbrush kiosk: %s\n", problems_.back().c_str());
+  }
   if (morph_ && morph_->playing()) {
     morph_->advanceTo(now);
     if (!morph_->playing()) finished_ns_ = now;  // the gallery cloud holds, then goes on
   } else if (finished_ns_ < 0) {
     // Every record due by now, at the journal's pace: record time since the first record,
-    // against clock time since the start, times the speed.
-    const int64_t t0 = journal_.front().t_ns;
-    const double played_s = double(now - started_ns_) / 1e9 * options_.speed;
-    while (next_ < journal_.size() && double(journal_[next_].t_ns - t0) / 1e9 <= played_s) {
-      std::string error;
-      // The Session record made the session (with the kiosk's grid); everything else applies.
-      if (journal_[next_].type != JournalRecordType::kSession &&
-          !session_->applyRecord(journal_[next_], nullptr, &error) && problems_.size() < 20) {
-        problems_.push_back("attract journal record " + std::to_string(next_) + ": " + error);
-        std::fprintf(stderr, "cloudbrush kiosk: %s\n", problems_.back().c_str());
-      }
-      ++next_;
-    }
-    if (next_ == journal_.size()) finished_ns_ = now;
-  } else if (!journal_.empty() && double(now - finished_ns_) / 1e9 >= options_.hold_s) {
+    // against clock time since the start, times the speed; never past what the worker mapped.
+    const size_t count = replay_->recordCount(), mapped = replay_->recordsReplayed();
+    const auto due = [&](size_t i) {
+      return double(replay_->recordTime(i)) / 1e9 <=
+             double(now - started_ns_) / 1e9 * options_.speed;
+    };
+    const size_t before = next_;
+    while (next_ < count && next_ < mapped && due(next_)) ++next_;
+    // The worker is behind the clock: the replay holds where it is until it catches up.
+    if (next_ < count && next_ == mapped && due(next_)) started_ns_ += now - last_update_ns_;
+    if (next_ != before) shown_ = replay_->keyframeAt(next_);
+    if (next_ == count) finished_ns_ = now;
+  } else if (replay_->recordCount() > 0 && double(now - finished_ns_) / 1e9 >= options_.hold_s) {
     if (morph_ && morph_->active()) {
       // The gallery cloud shown becomes the session's (t = 1: the cloud itself).
       std::string error;
       if (!morph_->apply(session_.get(), now, &error)) problems_.push_back("attract: " + error);
+      morph_applied_ = true;
       morph_.reset();
     }
     if (!startNextMorph()) {
@@ -87,14 +90,15 @@ std::string AttractScreen::update(const FrameContext& frame) {
       restart();
     }
   }
+  last_update_ns_ = now;
   const float degrees =
       options_.orbit_degrees_per_second * float(double(now - orbit_start_ns_) / 1e9);
-  camera_ = session_->camera().orbited(degrees);
+  camera_ = shown_.camera.orbited(degrees);
   return "";
 }
 
 const Volume& AttractScreen::shownVolume() const {
-  return morphing() ? morph_->shown() : session_->volume();
+  return morphing() ? morph_->shown() : volume();
 }
 
 bool AttractScreen::startNextMorph() {
@@ -106,6 +110,17 @@ bool AttractScreen::startNextMorph() {
     if (last_gallery_ < 0 || it->number < last_gallery_) order.push_back(&*it);
   for (auto it = entries.rbegin(); it != entries.rend(); ++it)
     if (last_gallery_ >= 0 && it->number >= last_gallery_) order.push_back(&*it);
+  if (!session_ && !order.empty()) {
+    // The replayed cloud, in a session the morphs start from.
+    session_ = std::make_unique<PaintSession>(settings_, options_.brush, options_.mapping);
+    session_->setStartingLight(shown_.light);
+    std::string error;
+    if (!session_->replaceVolume(*shown_.volume, clock_.nowNs(), "attract replay", &error)) {
+      problems_.push_back("attract: " + error);
+      session_.reset();
+      return false;
+    }
+  }
   for (const GalleryEntry* entry : order) {
     last_gallery_ = entry->number;
     auto morph = std::make_unique<AnimationPreview>();
@@ -134,11 +149,11 @@ void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
 
 bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
-  renderer_.sync(shownVolume(), session_->light());
+  renderer_.sync(shownVolume(), shown_.light);
   RenderOptions render = options_.render;
   // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
   render.scale = std::max(0.2f, std::round(render.scale * 20.0f) / 20.0f);
-  render.style = parseRenderStyle(session_->styleName()).value_or(render.style);
+  render.style = parseRenderStyle(shown_.style).value_or(render.style);
   render.moving = render.scale < 1.0f;
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
   renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);

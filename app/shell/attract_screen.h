@@ -1,5 +1,6 @@
 // The kiosk's attract loop (issue 11): while nobody paints, a recorded session journal is
-// replayed into a session of its own at the pace it was painted (times `speed`), the camera
+// replayed at the pace it was painted (times `speed`; the strokes are mapped once, on a thread of
+// their own: attract_replay.h, so no frame waits for a mapping), the camera
 // slowly orbiting, with the invitation over it; when the journal has played, the finished cloud
 // keeps orbiting for `hold_s`. Then, when the kiosk keeps a gallery, the cloud morphs (issue 14,
 // app/tools/cloud_morph.h, played as the painter plays it: AnimationPreview) into up to
@@ -21,6 +22,7 @@
 #include "app/scene/light.h"
 #include "app/session/paint_session.h"
 #include "app/shell/animation_preview.h"
+#include "app/shell/attract_replay.h"
 #include "app/shell/screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/core/clock.h"
@@ -66,10 +68,14 @@ class AttractScreen : public Screen {
   void setTexts(std::string invitation, std::string hint, std::string notice);
 
   // For tests and the health status.
-  const Volume& volume() const { return session_->volume(); }
+  const Volume& volume() const { return morph_applied_ ? session_->volume() : *shown_.volume; }
   const Camera& shownCamera() const { return camera_; }
+  // Records played by the clock (never past those the replay's worker has mapped: when it is
+  // behind, the replay holds and goes on when it catches up).
   size_t recordsPlayed() const { return next_; }
-  size_t recordCount() const { return journal_.size(); }
+  size_t recordCount() const { return replay_->recordCount(); }
+  // Waits for the worker to map the whole journal (tests that drive the clock fast).
+  void waitUntilPrepared() const { replay_->waitUntilFinished(); }
   long loopsCompleted() const { return loops_; }
   // The cloud shown: the replayed session's, or a morph's frame while one plays.
   const Volume& shownVolume() const;
@@ -81,15 +87,21 @@ class AttractScreen : public Screen {
  private:
   VolumeRenderer& renderer_;
   const Clock& clock_;
-  std::vector<JournalRecord> journal_;
   AttractOptions options_;
   UiOverlay* ui_;
   PaintSessionSettings settings_;
+  std::unique_ptr<AttractReplay> replay_;
+  AttractKeyframe shown_;  // the replay's state at next_ records
+  // The morphs' session: the replayed cloud, then each gallery cloud morphed into (null until
+  // the first morph of a loop); after a morph is applied it is what is shown (morph_applied_).
   std::unique_ptr<PaintSession> session_;
-  int64_t started_ns_ = 0;       // clock time the replay (re)started
+  bool morph_applied_ = false;
+  int64_t started_ns_ = 0;       // clock time the replay (re)started (moved on while it holds)
+  int64_t last_update_ns_ = 0;   // clock time of the last update
   int64_t finished_ns_ = -1;     // clock time the last record played (-1: still playing)
   int64_t orbit_start_ns_ = -1;  // the orbit's time origin (kept across restarts)
   size_t next_ = 0;
+  size_t problems_seen_ = 0;  // of the replay's problems, those already in problems_
   long loops_ = 0;
   Camera camera_;
   std::vector<std::string> problems_;

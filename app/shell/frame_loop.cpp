@@ -1,6 +1,7 @@
 #include "app/shell/frame_loop.h"
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "app/shell/keymap.h"
@@ -27,7 +28,10 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
   int64_t last_frame_ns = now_ns();
   std::vector<DisplayEvent> pending = options.initial_keys;
   std::vector<PenSample> samples;
+  // Phase marks of one iteration (monotonic), for the slow-iteration log line.
+  int64_t mark_start = 0, mark_pen = 0, mark_update = 0, mark_draw = 0;
   while (true) {
+    mark_start = monotonicNs();
     std::string quit;
     for (const DisplayEvent& event : display_.pollEvents()) pending.push_back(event);
     for (const DisplayEvent& event : pending) {
@@ -74,7 +78,9 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       pen_->poll(0, samples);
       screen.onPenSamples(samples);
     }
+    mark_pen = monotonicNs();
     if (quit.empty()) quit = screen.update(frame);
+    mark_update = monotonicNs();
     if (!quit.empty()) {
       result->quit_reason = quit;
       break;
@@ -89,8 +95,18 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     }
     if (!screen.draw(frame, error)) return false;
     if (options.after_draw) options.after_draw(frame);
+    mark_draw = monotonicNs();
     if (!display_.present(error)) return false;
     const int64_t presented = monotonicNs();
+    if (options.slow_iteration_s > 0.0 &&
+        double(presented - mark_start) / 1e9 >= options.slow_iteration_s)
+      std::fprintf(stderr,
+                   "cloudbrush: slow loop iteration (frame %ld): %.2f s = input+pen %.2f, update "
+                   "%.2f, draw %.2f, present %.2f (ended at %.6f s monotonic)\n",
+                   result->frames, double(presented - mark_start) / 1e9,
+                   double(mark_pen - mark_start) / 1e9, double(mark_update - mark_pen) / 1e9,
+                   double(mark_draw - mark_update) / 1e9, double(presented - mark_draw) / 1e9,
+                   double(presented) / 1e9);
     screen.presented(frame, double(presented - last_present) / 1e6);
     last_present = presented;
     last_frame_ns = now;

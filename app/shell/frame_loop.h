@@ -29,6 +29,9 @@ struct FrameLoopOptions {
   // read (tests drive a ManualClock); null: the monotonic clock. max_seconds and the frame
   // timings passed to presented() stay on the monotonic clock.
   const Clock* clock = nullptr;
+  // A drawn iteration that took at least this long (monotonic seconds) is logged on stderr with
+  // its phases (input and pen, update, draw, present); 0: never.
+  double slow_iteration_s = 2.0;
 };
 
 struct FrameLoopResult {

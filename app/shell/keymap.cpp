@@ -63,7 +63,11 @@ constexpr NamedKey kNamedKeys[] = {
     {"space", XKB_KEY_space},  {"esc", XKB_KEY_Escape},    {"delete", XKB_KEY_Delete},
     {"up", XKB_KEY_Up},        {"down", XKB_KEY_Down},     {"left", XKB_KEY_Left},
     {"right", XKB_KEY_Right},  {"minus", XKB_KEY_minus},   {"plus", XKB_KEY_plus},
-    {"pageup", XKB_KEY_Prior}, {"pagedown", XKB_KEY_Next},
+    {"pageup", XKB_KEY_Prior}, {"pagedown", XKB_KEY_Next}, {"f1", XKB_KEY_F1},
+    {"f2", XKB_KEY_F2},        {"f3", XKB_KEY_F3},         {"f4", XKB_KEY_F4},
+    {"f5", XKB_KEY_F5},        {"f6", XKB_KEY_F6},         {"f7", XKB_KEY_F7},
+    {"f8", XKB_KEY_F8},        {"f9", XKB_KEY_F9},         {"f10", XKB_KEY_F10},
+    {"f11", XKB_KEY_F11},      {"f12", XKB_KEY_F12},
 };
 
 }  // namespace
@@ -226,7 +230,7 @@ bool parseKeyList(std::string_view text, std::vector<DisplayEvent>* keys, std::s
     if (keysym == 0) {
       *error = "key '" + token +
                "' is not a letter, digit or one of space, esc, delete, up, down, left, right, "
-               "minus, plus, pageup, pagedown";
+               "minus, plus, pageup, pagedown, f1-f12";
       return false;
     }
     keys->push_back(DisplayEvent::key(keysym, modifiers));

@@ -5,11 +5,15 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
+#include "app/kiosk/atomic_file.h"
 #include "app/kiosk/data_retention.h"
 #include "app/render/gl/gl.h"
 #include "app/shell/gallery_capture.h"
 #include "app/shell/keymap.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
 namespace cb {
@@ -98,6 +102,21 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
   updateTexts();
   cleanUpOldData();
+  // The operator's last press calibration (P on the panel), for every visitor.
+  const std::string range_path = setup_.data_dir + "/pressure_range.toml";
+  if (std::filesystem::exists(range_path)) {
+    std::ifstream in(range_path);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    std::string range_error;
+    pressure_range_ = pressureRangeFromToml(text, &range_error);
+    if (!pressure_range_)
+      std::fprintf(stderr,
+                   "cloudbrush kiosk: %s: %s (ignored: visitors get the pen's whole range)\n",
+                   range_path.c_str(), range_error.c_str());
+    else
+      std::fprintf(stderr, "cloudbrush kiosk: pressure range %.3f..%.3f from %s\n",
+                   double(pressure_range_->lo), double(pressure_range_->hi), range_path.c_str());
+  }
   prepareVisitor();
   last_input_ns_ = clock_.nowNs();
   setState(State::kAttract);
@@ -105,7 +124,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
 
 KioskScreen::~KioskScreen() {
   if (calibration_)  // stopped (service stop, signal) in the middle of the operator's calibration
-    logOperator(std::string(OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate)) +
+    logOperator(std::string(OperatorPanelScreen::actionName(
+                    calibrating_pressure_ ? OperatorActionKind::kCalibratePressure
+                                          : OperatorActionKind::kCalibrate)) +
                 " abandoned: the kiosk stopped (nothing saved)");
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
 }
@@ -124,6 +145,7 @@ void KioskScreen::updateTexts() {
 
 void KioskScreen::setState(State state) {
   state_ = state;
+  reconnect_drawn_.reset();
   std::string status;
   switch (state) {
     case State::kAttract:
@@ -177,6 +199,11 @@ void KioskScreen::prepareVisitor() {
   if (!setup_.render_settings.empty()) session->setRenderSettings(setup_.render_settings, 0);
   session->setStartingLight(setup_.light);
   session->setStartingStyle(setup_.style);
+  if (pressure_range_) {
+    std::string error;
+    if (!session->apply(ui::SetPressureRange{pressure_range_->lo, pressure_range_->hi}, 0, &error))
+      std::fprintf(stderr, "cloudbrush kiosk: pressure range: %s\n", error.c_str());
+  }
   paint_.attachPen(pen_, session.get());
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
   visitor_ = std::move(session);
@@ -275,12 +302,24 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
           pen_->connection() != PenConnection::kFinished)
         setState(State::kReconnect);
       else if (state_ == State::kReconnect && connected)
-        setState(State::kVisitor);
+        reconnected_ns_ = now;  // the painting again with the pen's first sample (below)
       else if ((state_ == State::kOperator || state_ == State::kCalibrate) &&
                before_operator_ == State::kVisitor && !connected && was_connected)
         before_operator_ = State::kReconnect;
       awaiting_first_sample_ = connected;
+      if (!connected) reconnected_ns_ = -1;
+      if (connected)  // for the hotplug check: when the loop found the (re)connected pen
+        std::fprintf(stderr, "cloudbrush kiosk: pen: connected, found by the loop at %.6f s\n",
+                     double(MonotonicClock().nowNs()) / 1e9);
     }
+  }
+  // The tablet is back: the painting returns with the pen's first sample, or after a second
+  // without one (the pen lies away from the tablet). Drawn at once, the painting's next frame
+  // (often a full-resolution one) would hold that first sample back: 3-6 s under TCG.
+  if (state_ == State::kReconnect && reconnected_ns_ >= 0 &&
+      (!samples.empty() || double(now - reconnected_ns_) / 1e9 >= kReconnectWaitForSampleS)) {
+    reconnected_ns_ = -1;
+    setState(State::kVisitor);
   }
   if (awaiting_first_sample_ && !samples.empty()) {
     // For the log and the hotplug check (tests/hil/kms): how long a (re)connected pen took to
@@ -372,7 +411,7 @@ void KioskScreen::logOperator(const std::string& action) {
     std::fprintf(stderr, "cloudbrush kiosk: operator log: %s\n", error.c_str());
 }
 
-void KioskScreen::startCalibration(int64_t now) {
+void KioskScreen::startCalibration(int64_t now, bool pressure) {
   // As `cloudbrush calibrate` does, with the kiosk's data dir as the state dir: the profile goes
   // to <data dir>/profiles/ (where the painter looks it up) and the session's record beside it.
   const std::string record = setup_.data_dir + "/calibration-" + utcStamp() + ".cbj";
@@ -383,6 +422,8 @@ void KioskScreen::startCalibration(int64_t now) {
     calibration_record_.reset();
   }
   CalibrateFlowOptions options;
+  calibrating_pressure_ = pressure;
+  if (pressure) options.task = CalibrateFlowOptions::Task::kPressure;
   options.config_dir = setup_.config_dir;
   options.state_dir = setup_.data_dir;
   options.journal = calibration_record_.get();
@@ -393,8 +434,10 @@ void KioskScreen::startCalibration(int64_t now) {
   };
   calibration_ =
       std::make_unique<CalibrateFlowScreen>(pen_, display_.width(), display_.height(), options);
-  logOperator(std::string(OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate)) +
-              " started" + (calibration_record_ ? " (record " + record + ")" : ""));
+  logOperator(
+      std::string(OperatorPanelScreen::actionName(pressure ? OperatorActionKind::kCalibratePressure
+                                                           : OperatorActionKind::kCalibrate)) +
+      " started" + (calibration_record_ ? " (record " + record + ")" : ""));
   input(now);
   setState(State::kCalibrate);
 }
@@ -407,7 +450,9 @@ void KioskScreen::finishCalibration(int64_t now) {
   glUseProgram(0);
   if (calibration_record_) calibration_record_->close();
   calibration_record_.reset();
-  const std::string name = OperatorPanelScreen::actionName(OperatorActionKind::kCalibrate);
+  const std::string name =
+      OperatorPanelScreen::actionName(calibrating_pressure_ ? OperatorActionKind::kCalibratePressure
+                                                            : OperatorActionKind::kCalibrate);
   switch (outcome.kind) {
     case CalibrateOutcome::Kind::kSaved: {
       const CalibrationProfile& p = outcome.fit->profile;
@@ -422,11 +467,35 @@ void KioskScreen::finishCalibration(int64_t now) {
                  (applied ? "; the pen uses it now" : "; the pen uses it when it connects");
       break;
     }
+    case CalibrateOutcome::Kind::kPressureRange: {
+      const PressureRange range = *outcome.pressure.range;
+      const std::string path = setup_.data_dir + "/pressure_range.toml";
+      std::string error;
+      char fit[160];
+      std::snprintf(fit, sizeof fit, "lo %.3f, hi %.3f; light press %.3f, firm press %.3f",
+                    double(range.lo), double(range.hi), double(outcome.pressure.light),
+                    double(outcome.pressure.firm));
+      if (!writeFileAtomically(path, pressureRangeToToml(range), &error)) {
+        logOperator(name + " FAILED: " + error);
+        message_ = "pressure calibration FAILED: " + error;
+        break;
+      }
+      pressure_range_ = range;
+      // The visitor's session takes it now (journalled); every later visitor's from the start.
+      bool applied = false;
+      if (visitor_)
+        applied = visitor_->apply(ui::SetPressureRange{range.lo, range.hi}, now, &error);
+      logOperator(name + " saved " + path + " (" + fit + ")");
+      message_ = "pressure range saved (" + std::string(fit) + ")\nto " + path +
+                 (applied ? "; the pen uses it now" : "; visitors' pens use it");
+      break;
+    }
     case CalibrateOutcome::Kind::kCancelled:
       logOperator(name + " cancelled (nothing saved)");
-      message_ = "calibration cancelled: nothing saved, the pen keeps its calibration";
+      message_ = calibrating_pressure_
+                     ? "pressure calibration cancelled: nothing saved, the range stays"
+                     : "calibration cancelled: nothing saved, the pen keeps its calibration";
       break;
-    case CalibrateOutcome::Kind::kPressureRange:  // not asked for here
     case CalibrateOutcome::Kind::kFailed:
       logOperator(name + " FAILED: " + outcome.message);
       message_ = "calibration FAILED: " + outcome.message;
@@ -493,8 +562,9 @@ void KioskScreen::runOperatorActions(int64_t now) {
         break;
       }
       case OperatorActionKind::kCalibrate:
-        startCalibration(now);
-        return;  // the keys after C are the calibration's
+      case OperatorActionKind::kCalibratePressure:
+        startCalibration(now, action.kind == OperatorActionKind::kCalibratePressure);
+        return;  // the keys after C or P are the calibration's
       case OperatorActionKind::kShutdown:
         logOperator(name);
         quit_ = "operator shutdown";
@@ -526,6 +596,12 @@ std::string KioskScreen::update(const FrameContext& frame) {
       values.gallery_enabled = setup_.config.gallery_enabled;
       values.gallery_entries = long(gallery_.entries().size());
       values.data_dir = setup_.data_dir;
+      if (pressure_range_) {
+        char range[64];
+        std::snprintf(range, sizeof range, "%.3f..%.3f", double(pressure_range_->lo),
+                      double(pressure_range_->hi));
+        values.pressure_range = range;
+      }
       values.message = message_;
       panel_.setValues(values);
       break;
@@ -563,6 +639,11 @@ bool KioskScreen::needsFrame() const {
   switch (state_) {
     case State::kVisitor:
       return paint_.needsFrame() || !notice_.empty();
+    case State::kReconnect:
+      // Drawn when shown and when the pen's status changes: meanwhile the loop polls the pen
+      // every few milliseconds and the replug shows at once.
+      return !reconnect_drawn_ ||
+             *reconnect_drawn_ != (pen_ ? pen_->statusMessage() : std::string());
     default:
       return true;
   }
@@ -588,9 +669,11 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
     case State::kCalibrate:
       return calibration_->draw(frame, error);
     case State::kReconnect:
-      if (!paint_.draw(frame, error)) return false;
+      // The painting as it was (no refinement while the pen is away), the message over it.
+      if (!paint_.drawLastScene(frame) && !paint_.draw(frame, error)) return false;
+      reconnect_drawn_ = pen_ ? pen_->statusMessage() : std::string();
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
-                          pen_ ? pen_->statusMessage() : "");
+                          *reconnect_drawn_);
       return reconnect_.draw(frame, error);
     case State::kVisitor:
       if (!paint_.draw(frame, error)) return false;

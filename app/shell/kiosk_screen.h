@@ -8,13 +8,17 @@
 //   visitor   the painter: painting, erasing, camera, undo, "start again"; after
 //             idle_seconds without input a countdown of warning_seconds, then the cloud is kept
 //             in the gallery (when on), the visit ends and the attract loop resumes
-//   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug
+//   reconnect (reconnect_screen.h) the tablet went away mid-visit; back to painting on replug,
+//             with the pen's first sample (or a second after the replug without one)
 //   operator  (operator_panel_screen.h) the configured key combination, then the PIN; every
 //             action is logged to <data dir>/operator.log
 //   calibrate the operator pressed C: the calibration flow (calibrate_flow_screen.h) takes
 //             every input; Esc cancels it. The profile is saved under the data dir (where the
 //             kiosk's painter looks it up), the visitor's pen uses it at once, the result is
-//             logged and shown on the panel again
+//             logged and shown on the panel again. P runs the flow's press calibration instead
+//             (press lightly, then firmly): the pressure range is saved as
+//             <data dir>/pressure_range.toml (read again when the kiosk starts), the current
+//             visitor's session takes it (journalled) and so does every later visitor's
 //
 // Visitor texts come from config/kiosk/texts.toml in the configured language. Everything the
 // kiosk writes goes under the data dir: sessions/ (journals, deleted after [journals] keep_days),
@@ -24,6 +28,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,6 +106,8 @@ class KioskScreen : public Screen {
   const OperatorPanelScreen& operatorPanel() const { return panel_; }
   // The operator's calibration while the state is kCalibrate, else null.
   const CalibrateFlowScreen* calibration() const { return calibration_.get(); }
+  // The pressure range the operator's press calibration set (null: the pen's whole range).
+  const std::optional<PressureRange>& pressureRange() const { return pressure_range_; }
   const KioskConfig& config() const { return setup_.config; }
   // The countdown (or "saved as number N") shown over the painter, or "".
   const std::string& notice() const { return notice_; }
@@ -115,7 +122,7 @@ class KioskScreen : public Screen {
   void cleanUpOldData();
   void runOperatorActions(int64_t now);
   void logOperator(const std::string& action);
-  void startCalibration(int64_t now);
+  void startCalibration(int64_t now, bool pressure);
   void finishCalibration(int64_t now);
   void updateTexts();
   bool visiting() const { return state_ == State::kVisitor || state_ == State::kReconnect; }
@@ -140,10 +147,16 @@ class KioskScreen : public Screen {
   std::unique_ptr<PaintSession> visitor_;
   std::unique_ptr<CalibrateFlowScreen> calibration_;
   std::unique_ptr<JournalWriter> calibration_record_;
+  bool calibrating_pressure_ = false;
+  std::optional<PressureRange> pressure_range_;  // the operator's, for every visitor
   int64_t last_input_ns_ = 0;
   int64_t saved_notice_until_ns_ = 0;
   std::string saved_notice_;
   int last_connection_ = -1;
+  // The pen status the "reconnect the pen" screen last drew (none: not drawn since shown).
+  std::optional<std::string> reconnect_drawn_;
+  int64_t reconnected_ns_ = -1;  // the tablet came back while "reconnect the pen" showed
+  static constexpr double kReconnectWaitForSampleS = 1.0;
   bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
   bool next_visitor_pending_ = false;   // after an idle reset, until prepareVisitor() ran
   bool attract_shown_ = false;          // an attract frame was presented since the reset

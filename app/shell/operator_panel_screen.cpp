@@ -42,6 +42,8 @@ const char* OperatorPanelScreen::actionName(OperatorActionKind kind) {
       return "export-cloud";
     case OperatorActionKind::kCalibrate:
       return "calibrate";
+    case OperatorActionKind::kCalibratePressure:
+      return "calibrate-pressure";
     case OperatorActionKind::kShutdown:
       return "shutdown";
   }
@@ -130,6 +132,9 @@ bool OperatorPanelScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
     case 'c':
       actions_.push_back({OperatorActionKind::kCalibrate});
       break;
+    case 'p':
+      actions_.push_back({OperatorActionKind::kCalibratePressure});
+      break;
     case 'x':
       state_ = State::kConfirmShutdown;
       break;
@@ -192,6 +197,9 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     add(text, line, 0xffffffffu);
     add("E       export the current cloud to " + values_.data_dir + "/exports", line, 0xffffffffu);
     add("C       calibrate the pen (tap the targets; Esc cancels)", line, 0xffffffffu);
+    add("P       calibrate the pressure: press lightly, then firmly (now " +
+            values_.pressure_range + ")",
+        line, 0xffffffffu);
     add(state_ == State::kConfirmShutdown ? "X       shut down: press Y to confirm, any other key "
                                             "cancels"
                                           : "X       shut the kiosk down",

@@ -5,6 +5,8 @@
 //   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
 //   G      gallery on/off           E      export the current cloud
 //   C      calibrate the pen (the kiosk runs the calibration screens, then shows the panel again)
+//   P      calibrate the pressure: press lightly, then firmly (the same way; every visitor's
+//          pen then uses that range)
 //   X then Y  shut the kiosk down
 //   Esc    close (also after 2 min without a key)
 // The panel only asks; the kiosk screen carries the actions out and logs every one of them
@@ -30,6 +32,7 @@ enum class OperatorActionKind {
   kToggleGallery,
   kExportCloud,
   kCalibrate,
+  kCalibratePressure,
   kShutdown,
 };
 
@@ -44,7 +47,8 @@ struct OperatorPanelValues {
   bool gallery_enabled = false;
   long gallery_entries = 0;
   std::string data_dir;
-  std::string message;  // the result of the last action
+  std::string pressure_range = "the pen's whole range";  // in force for visitors
+  std::string message;                                   // the result of the last action
 };
 
 class OperatorPanelScreen : public Screen {

@@ -697,6 +697,13 @@ bool PaintScreen::needsFrame() const {
   return !drawn_ || !(*drawn_ == currentKey());
 }
 
+bool PaintScreen::drawLastScene(FrameContext& frame) {
+  if (!drawn_ || scene_.width() != frame.width || scene_.height() != frame.height) return false;
+  glBlitNamedFramebuffer(scene_.fbo(), frame.display.framebuffer(), 0, 0, frame.width, frame.height,
+                         0, 0, frame.width, frame.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return true;
+}
+
 bool PaintScreen::paintingSetUp(std::string* error) {
   if (!overlay_ready_) {
     if (!overlay_.init(error)) return false;

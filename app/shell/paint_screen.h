@@ -76,6 +76,11 @@ class PaintScreen : public Screen {
   bool hasPaint() const;
   std::string update(const FrameContext& frame) override;
   bool needsFrame() const override;
+  // Puts the painting view as last drawn on the screen (a copy of the cached scene, nothing
+  // rendered, no cursor); false when none was drawn yet. The kiosk's "reconnect the pen" screen
+  // draws over it: a full-resolution refinement there took seconds under an emulated CPU, and
+  // the replugged pen waited for it.
+  bool drawLastScene(FrameContext& frame);
   bool draw(FrameContext& frame, std::string* error) override;
   void presented(const FrameContext& frame, double frame_ms) override;
 

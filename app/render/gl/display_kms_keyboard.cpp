@@ -29,7 +29,23 @@ uint32_t EvdevKeyboards::fallbackKeysym(int code, bool shift) {
   if (code >= KEY_A && code <= KEY_L) return letter(kRow2[code - KEY_A]);
   if (code >= KEY_Z && code <= KEY_M) return letter(kRow3[code - KEY_Z]);
   if (code >= KEY_1 && code <= KEY_9) return uint32_t('1' + (code - KEY_1));
+  // F1-F10 are consecutive key codes, F11 and F12 come later; the keysyms F1-F12 are consecutive.
+  if (code >= KEY_F1 && code <= KEY_F10) return uint32_t(XKB_KEY_F1 + (code - KEY_F1));
   switch (code) {
+    case KEY_F11:
+      return XKB_KEY_F11;
+    case KEY_F12:
+      return XKB_KEY_F12;
+    case KEY_PAGEUP:
+      return XKB_KEY_Prior;
+    case KEY_PAGEDOWN:
+      return XKB_KEY_Next;
+    case KEY_HOME:
+      return XKB_KEY_Home;
+    case KEY_END:
+      return XKB_KEY_End;
+    case KEY_INSERT:
+      return XKB_KEY_Insert;
     case KEY_0:
       return '0';
     case KEY_ESC:
@@ -73,6 +89,7 @@ EvdevKeyboards::EvdevKeyboards() {
     unsigned long keys[(KEY_MAX + 1) / (sizeof(unsigned long) * 8) + 1] = {};
     if (ioctl(fd, EVIOCGBIT(EV_KEY, sizeof(keys)), keys) >= 0 && hasBit(keys, KEY_ESC)) {
       fds_.push_back(fd);
+      trackers_.emplace_back();
     } else {
       close(fd);
     }
@@ -96,35 +113,47 @@ EvdevKeyboards::~EvdevKeyboards() {
 
 std::vector<DisplayEvent> EvdevKeyboards::poll() {
   std::vector<DisplayEvent> events;
-  for (int fd : fds_) {
+  std::vector<KeyTransition> keys;
+  for (size_t k = 0; k < fds_.size(); ++k) {
+    EvdevKeyTracker& tracker = trackers_[k];
+    keys.clear();
     input_event ev[32];
     ssize_t n;
-    while ((n = read(fd, ev, sizeof(ev))) > 0) {
-      for (size_t i = 0; i < size_t(n) / sizeof(input_event); ++i) {
-        if (ev[i].type != EV_KEY || ev[i].value == 2) continue;  // 2 = auto-repeat
-        const bool down = ev[i].value == 1;
-        const int code = ev[i].code;
-        uint32_t keysym = XKB_KEY_NoSymbol, modifiers = 0;
-        if (state_) {
-          if (down) keysym = xkb_state_key_get_one_sym(state_, code + kXkbOffset);
-          xkb_state_update_key(state_, code + kXkbOffset, down ? XKB_KEY_DOWN : XKB_KEY_UP);
-          const auto active = [&](const char* name) {
-            return xkb_state_mod_name_is_active(state_, name, XKB_STATE_MODS_EFFECTIVE) > 0;
-          };
-          modifiers = (active(XKB_MOD_NAME_SHIFT) ? DisplayEvent::kShift : 0u) |
-                      (active(XKB_MOD_NAME_CTRL) ? DisplayEvent::kCtrl : 0u) |
-                      (active(XKB_MOD_NAME_ALT) ? DisplayEvent::kAlt : 0u);
-        } else {
-          if (code == KEY_LEFTSHIFT || code == KEY_RIGHTSHIFT) shift_ = down;
-          if (code == KEY_LEFTCTRL || code == KEY_RIGHTCTRL) ctrl_ = down;
-          if (code == KEY_LEFTALT || code == KEY_RIGHTALT) alt_ = down;
-          if (down) keysym = fallbackKeysym(code, shift_);
-          modifiers = (shift_ ? DisplayEvent::kShift : 0u) | (ctrl_ ? DisplayEvent::kCtrl : 0u) |
-                      (alt_ ? DisplayEvent::kAlt : 0u);
-        }
-        if (!down || keysym == XKB_KEY_NoSymbol) continue;
-        events.push_back(DisplayEvent::key(keysym, modifiers));
+    while ((n = read(fds_[k], ev, sizeof(ev))) > 0)
+      for (size_t i = 0; i < size_t(n) / sizeof(input_event); ++i) tracker.feed(ev[i], &keys);
+    if (tracker.needsResync()) {
+      // The kernel dropped events (its buffer overflowed during a long frame): what is held now.
+      uint8_t bits[KEY_CNT / 8 + 1] = {};
+      if (ioctl(fds_[k], EVIOCGKEY(sizeof bits), bits) >= 0)
+        tracker.resync(bits, sizeof bits, &keys);
+      ++resyncs_;
+      std::fprintf(stderr,
+                   "cloudbrush: keyboard: the kernel dropped key events (SYN_DROPPED); key state "
+                   "read again\n");
+    }
+    for (const KeyTransition& key : keys) {
+      const bool down = key.down;
+      const int code = key.code;
+      uint32_t keysym = XKB_KEY_NoSymbol, modifiers = 0;
+      if (state_) {
+        if (down) keysym = xkb_state_key_get_one_sym(state_, code + kXkbOffset);
+        xkb_state_update_key(state_, code + kXkbOffset, down ? XKB_KEY_DOWN : XKB_KEY_UP);
+        const auto active = [&](const char* name) {
+          return xkb_state_mod_name_is_active(state_, name, XKB_STATE_MODS_EFFECTIVE) > 0;
+        };
+        modifiers = (active(XKB_MOD_NAME_SHIFT) ? DisplayEvent::kShift : 0u) |
+                    (active(XKB_MOD_NAME_CTRL) ? DisplayEvent::kCtrl : 0u) |
+                    (active(XKB_MOD_NAME_ALT) ? DisplayEvent::kAlt : 0u);
+      } else {
+        if (code == KEY_LEFTSHIFT || code == KEY_RIGHTSHIFT) shift_ = down;
+        if (code == KEY_LEFTCTRL || code == KEY_RIGHTCTRL) ctrl_ = down;
+        if (code == KEY_LEFTALT || code == KEY_RIGHTALT) alt_ = down;
+        if (down) keysym = fallbackKeysym(code, shift_);
+        modifiers = (shift_ ? DisplayEvent::kShift : 0u) | (ctrl_ ? DisplayEvent::kCtrl : 0u) |
+                    (alt_ ? DisplayEvent::kAlt : 0u);
       }
+      if (!down || keysym == XKB_KEY_NoSymbol) continue;
+      events.push_back(DisplayEvent::key(keysym, modifiers));
     }
   }
   return events;

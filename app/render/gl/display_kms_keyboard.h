@@ -3,12 +3,15 @@
 // become keysyms through an XKB keymap (libxkbcommon, the layout from the XKB_DEFAULT_* variables
 // or the system default), so Ctrl+Z is Ctrl+Z on any layout. Where no keymap compiles (no
 // xkb-data, as in a minimal initramfs) a built-in US table is used and said so on stderr. The
-// pen has its own drivers in drivers/evdev.
+// pen has its own drivers in drivers/evdev. Events the kernel drops when its buffer overflows
+// (keys typed during a long frame) are recovered by reading the key state again
+// (evdev_key_tracker.h).
 #pragma once
 
 #include <vector>
 
 #include "app/render/gl/display.h"
+#include "app/render/gl/evdev_key_tracker.h"
 
 struct xkb_context;
 struct xkb_keymap;
@@ -30,13 +33,17 @@ class EvdevKeyboards {
   // The keysym and modifiers of a Linux key code (KEY_*) press given the modifier keys held
   // (exposed for tests of the built-in table).
   static uint32_t fallbackKeysym(int code, bool shift);
+  // Times the kernel dropped key events and the key state was read again.
+  long resyncs() const { return resyncs_; }
 
  private:
   std::vector<int> fds_;
+  std::vector<EvdevKeyTracker> trackers_;  // one per fd: held keys, SYN_DROPPED resync
   xkb_context* context_ = nullptr;
   xkb_keymap* keymap_ = nullptr;
   xkb_state* state_ = nullptr;
   bool shift_ = false, ctrl_ = false, alt_ = false;  // for the built-in table
+  long resyncs_ = 0;
 };
 
 }  // namespace cb

@@ -11,7 +11,11 @@
 //
 // Prints "KIOSK-PEN created LABEL I T_S", "KIOSK-PEN destroyed LABEL I" and "KIOSK-PEN done".
 #include <linux/input.h>
+#include <poll.h>
+#include <sys/inotify.h>
 #include <unistd.h>
+
+#include <atomic>
 
 #include <chrono>
 #include <cmath>
@@ -63,16 +67,45 @@ int main(int argc, char** argv) {
   // The kiosk says "the pen was unplugged" (from a visit) or "pen searching" (any screen).
   const auto unplugs_seen = [&]() { return count_in_log("cloudbrush: pen searching"); };
   const auto sleep_ms = [](int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); };
+  // The stages between the creation and the kiosk: when the kernel's driver started the device
+  // (UHID_START) and when each event node appeared in /dev/input (inotify, as the kiosk's evdev
+  // backend watches), printed as "KIOSK-PEN started|node LABEL I [NAME] T_S".
+  std::atomic<int> cycle{0};
+  std::atomic<bool> watching{true};
+  std::thread node_watch([&]() {
+    const int fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    if (fd < 0 || inotify_add_watch(fd, "/dev/input", IN_CREATE) < 0) return;
+    while (watching) {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      const int64_t t = MonotonicClock().nowNs();
+      alignas(inotify_event) char buf[4096];
+      const ssize_t n = read(fd, buf, sizeof buf);
+      for (ssize_t at = 0; at < n;) {
+        const auto* e = reinterpret_cast<const inotify_event*>(buf + at);
+        if (e->len > 0 && std::string(e->name).rfind("event", 0) == 0)
+          std::printf("KIOSK-PEN node %s %d %s %.6f\n", label.c_str(), cycle.load(), e->name,
+                      double(t) / 1e9);
+        at += ssize_t(sizeof(inotify_event) + e->len);
+      }
+      std::fflush(stdout);
+    }
+    close(fd);
+  });
   for (int i = 1; i <= cycles; ++i) {
     hil::UhidDevice dev;
     std::string error;
     const int64_t created = MonotonicClock().nowNs();
     if (!dev.create("Wacom Intuos Pro M", desc, BUS_USB, 0x056A, 0x0357, &error)) {
       std::printf("KIOSK-PEN FAIL create %s %d: %s\n", label.c_str(), i, error.c_str());
+      watching = false;
+      node_watch.join();
       return 1;
     }
+    cycle = i;
     std::printf("KIOSK-PEN created %s %d %.6f\n", label.c_str(), i, double(created) / 1e9);
     std::fflush(stdout);
+    bool start_said = false;
     const long seen_before = samples_seen();
     hid::PenReportState s;
     s.tool_type = 0x802;
@@ -87,6 +120,12 @@ int main(int argc, char** argv) {
       s.y = ym / 2;
       dev.input(hid::encodePenReport(layout, s));
       sleep_ms(10);
+      if (!start_said && dev.started()) {
+        start_said = true;
+        std::printf("KIOSK-PEN started %s %d %.6f\n", label.c_str(), i,
+                    double(MonotonicClock().nowNs()) / 1e9);
+        std::fflush(stdout);
+      }
       if (k % 10 == 9) seen = samples_seen() > seen_before;
     }
     if (!seen) std::printf("KIOSK-PEN unseen %s %d\n", label.c_str(), i);
@@ -114,6 +153,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 600 && unplugs_seen() == unplugs_before; ++k) sleep_ms(100);
     sleep_ms(pause_ms);
   }
+  watching = false;
+  node_watch.join();
   std::printf("KIOSK-PEN done %s\n", label.c_str());
   std::fflush(stdout);
   return 0;

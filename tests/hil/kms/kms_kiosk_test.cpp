@@ -223,11 +223,14 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   ASSERT_EQ(plugs.size(), 40u) << all;
   for (const char* label : {"attract", "visit"}) {
     std::vector<double> delays;
-    long on_expected_screen = 0;
+    long on_expected_screen = 0, index = 0;
     for (const Plug& p : plugs) {
       if (p.label != label) continue;
       if (p.reached >= 0.0) delays.push_back(p.reached - p.created);
-      on_expected_screen += p.screen == (std::string(label) == "attract" ? "attract" : "visitor");
+      // The visit phase's first plug comes after the attract phase's idle reset: it finds the
+      // attract loop and starts the visit the other 19 are plugged into.
+      const bool attract_expected = std::string(label) == "attract" || index++ == 0;
+      on_expected_screen += p.screen == (attract_expected ? "attract" : "visitor");
     }
     std::sort(delays.begin(), delays.end());
     ASSERT_EQ(delays.size(), 20u) << label << ": a plug whose samples never reached the screen\n"
@@ -238,7 +241,8 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
         "max %.3f s (20 plugs, %ld on the %s screen); 1 s wanted%s, %.2f s allowed here (1 s + "
         "two of the guest's frames)\n",
         label, delays[10], delays.back(), on_expected_screen,
-        std::string(label) == "attract" ? "attract" : "visitor",
+        std::string(label) == "attract" ? "attract"
+                                        : "expected (the first on the attract, 19 visitor)",
         delays.back() <= 1.0 ? " and met" : " and MISSED", allowed);
     EXPECT_LE(delays.back(), allowed) << label << ": creation to first sample at the screen";
     EXPECT_EQ(on_expected_screen, 20) << label;

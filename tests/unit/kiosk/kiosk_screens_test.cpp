@@ -6,6 +6,7 @@
 // quota and journal retention, and "reconnect the pen" when the tablet goes away mid-visit.
 // CB_KEEP_FRAMES=DIR writes the frames checked, for looking.
 #include <gtest/gtest.h>
+#include <xkbcommon/xkbcommon-keysyms.h>
 
 #include <unistd.h>
 
@@ -26,6 +27,7 @@
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
 #include "calibration/n_point_calibration.h"
+#include "calibration/pressure_range.h"
 #include "calibration/profile_store.h"
 #include "scripted_pen_source.h"
 #include "tests/support/test_display.h"
@@ -169,6 +171,7 @@ TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
   rig.run(1);
   ASSERT_EQ(kiosk.state(), State::kAttract);
   EXPECT_GT(kiosk.attract().recordCount(), 500u);
+  kiosk.attract().waitUntilPrepared();  // the strokes are mapped on the replay's worker thread
   const glm::vec3 eye0 = kiosk.attract().shownCamera().eye;
   // The journal replays at its own pace on the clock: half a second per frame here.
   ASSERT_TRUE(rig.runUntil(
@@ -312,6 +315,20 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 12) << log;
 }
 
+// An operator combination with a function key (the KMS keyboard's built-in US table has them).
+TEST(KioskScreens, OperatorCombinationWithAFunctionKey) {
+  KioskRig rig("cb_kiosk_operator_f12", [](KioskConfig& c) { c.operator_keys = "ctrl+alt+f12"; });
+  KioskScreen& kiosk = rig.kiosk();
+  rig.run(1);
+  EXPECT_TRUE(rig.key(XKB_KEY_o, DisplayEvent::kCtrl | DisplayEvent::kAlt));  // wakes, no panel
+  EXPECT_NE(kiosk.state(), State::kOperator);
+  EXPECT_TRUE(rig.key(XKB_KEY_F12, DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  EXPECT_EQ(kiosk.state(), State::kOperator);
+  rig.type("2468");
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
+  EXPECT_NE(slurp(rig.dataDir() + "/operator.log").find("Z panel-opened"), std::string::npos);
+}
+
 // Opens the operator panel mid-visit and presses C: the calibration screens take over.
 void openPanelAndCalibrate(KioskRig& rig) {
   rig.pen().hover(rig.clock().nowNs());
@@ -377,6 +394,64 @@ TEST(KioskScreens, OperatorCalibratesThePenFromThePanel) {
   rig.press("esc");
   rig.run(1);
   EXPECT_EQ(kiosk.state(), State::kVisitor);
+}
+
+// P on the panel: the press calibration (light, then firm) sets the pressure range for the
+// current visitor (journalled, so the visit replays) and for every later visitor, and is kept
+// in the data dir for the next start.
+TEST(KioskScreens, OperatorCalibratesThePressureFromThePanel) {
+  KioskRig rig("cb_kiosk_calibrate_pressure");
+  KioskScreen& kiosk = rig.kiosk();
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kVisitor);
+  EXPECT_EQ(kiosk.visitorSession()->pressureRange().hi, 1.0f);
+  rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
+  rig.type("2468");
+  ASSERT_TRUE(kiosk.operatorPanel().unlocked());
+  rig.type("p");
+  ASSERT_EQ(kiosk.state(), State::kCalibrate);
+  rig.run(2, 0.0);
+  ASSERT_EQ(kiosk.calibration()->stage(), CalibrateFlowScreen::Stage::kPressure);
+  keep("kiosk_calibrate_pressure.png", rig.lastFrame());
+  rig.pen().press(0.15f, 120, rig.clock().nowNs());  // light
+  rig.run(2, 0.7);
+  rig.pen().press(0.55f, 120, rig.clock().nowNs());  // firm
+  rig.run(3, 0.7);
+  ASSERT_EQ(kiosk.state(), State::kOperator) << "back on the panel with the result";
+  ASSERT_TRUE(kiosk.pressureRange());
+  const PressureRange range = *kiosk.pressureRange();
+  EXPECT_NEAR(range.hi, 0.555f, 0.01f);
+  EXPECT_NEAR(range.apply(0.15f), 0.2f, 0.03f) << "the light press gives the light target";
+  rig.run(1, 0.0);
+  keep("kiosk_operator_panel_after_pressure.png", rig.lastFrame());
+  // Kept in the data dir; the visitor's session uses it (and journals it).
+  const std::string path = rig.dataDir() + "/pressure_range.toml";
+  std::string error;
+  const std::optional<PressureRange> saved = pressureRangeFromToml(slurp(path), &error);
+  ASSERT_TRUE(saved) << path << ": " << error;
+  EXPECT_EQ(saved->lo, range.lo);
+  EXPECT_EQ(saved->hi, range.hi);
+  EXPECT_EQ(kiosk.visitorSession()->pressureRange().lo, range.lo);
+  EXPECT_EQ(kiosk.visitorSession()->pressureRange().hi, range.hi);
+  const std::string log = slurp(rig.dataDir() + "/operator.log");
+  EXPECT_NE(log.find("Z calibrate-pressure started"), std::string::npos) << log;
+  EXPECT_NE(log.find("Z calibrate-pressure saved " + path + " (lo "), std::string::npos) << log;
+  // The visitor paints on; the next visitor's session starts with the range, journalled.
+  rig.press("esc");
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kVisitor);
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 400, 0.5));
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kVisitor);
+  EXPECT_EQ(kiosk.visitorSession()->pressureRange().hi, range.hi);
+  bool journalled = false;
+  for (const auto& entry : fs::directory_iterator(rig.dataDir() + "/sessions")) {
+    const std::string text = slurp(entry.path().string());
+    journalled = journalled || text.find("pressure_range=") != std::string::npos;
+  }
+  EXPECT_TRUE(journalled) << "the visitors' journals carry the range";
 }
 
 TEST(KioskScreens, EscCancelsTheOperatorsCalibrationAndNothingIsSaved) {
@@ -468,9 +543,12 @@ TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
   ASSERT_EQ(kiosk.state(), State::kReconnect);
   rig.run(5, 1.0);
   EXPECT_EQ(kiosk.state(), State::kReconnect) << "waits for the pen";
+  // The tablet is back but the pen lies away from it: the painting returns after a second.
   rig.pen().replug();
-  rig.run(1);
-  EXPECT_EQ(kiosk.state(), State::kVisitor);
+  rig.run(1, 0.5);
+  EXPECT_EQ(kiosk.state(), State::kReconnect) << "the painting returns with the pen's sample";
+  rig.run(2, 0.5);
+  EXPECT_EQ(kiosk.state(), State::kVisitor) << "or a second after the replug without one";
   rig.pen().stroke(rig.clock().nowNs());
   rig.run(3);
   EXPECT_GT(kiosk.visitorSession()->strokesMapped(), strokes) << "painting goes on after replug";
@@ -481,6 +559,7 @@ TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
     rig.run(1);
     ASSERT_EQ(kiosk.state(), State::kReconnect) << "cycle " << i;
     rig.pen().replug();
+    rig.pen().hover(rig.clock().nowNs());  // the pen near the tablet: back at its first sample
     rig.run(1);
     ASSERT_EQ(kiosk.state(), State::kVisitor) << "cycle " << i;
   }

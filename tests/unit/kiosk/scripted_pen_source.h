@@ -73,6 +73,30 @@ class ScriptedPenSource final : public PenSource {
     }
     last_ = queue_.back();
   }
+  // A press at the screen's centre: hovering in, the tip down for `samples` samples at about
+  // `level` of the pen's pressure (a small wobble, as a hand holds it), hovering away; 200 Hz.
+  void press(float level, int samples, int64_t t_ns) {
+    PenSample s{};
+    s.x_mm = 0.5 * double(info_.x_max) / info_.x_res;
+    s.y_mm = 0.5 * double(info_.y_max) / info_.y_res;
+    s.x_raw = int32_t(std::lround(s.x_mm * info_.x_res));
+    s.y_raw = int32_t(std::lround(s.y_mm * info_.y_res));
+    s.tool = PenTool::kPen;
+    s.tool_id = 0x802u;
+    s.in_proximity = true;
+    for (int i = 0; i < samples + 20; ++i, t_ns += 5'000'000) {
+      const bool down = i >= 10 && i < samples + 10;
+      const float p = down ? level + 0.004f * float((i % 5) - 2) : 0.0f;
+      s.t_ns = t_ns;
+      s.pressure_raw = int32_t(std::lround(p * float(info_.pressure_max)));
+      s.pressure = float(s.pressure_raw) / float(info_.pressure_max);
+      s.distance_raw = down ? 0 : 10;
+      s.distance = float(s.distance_raw) / float(info_.distance_max);
+      s.buttons = down ? kPenTip : 0u;
+      queue_.push_back(s);
+    }
+    last_ = queue_.back();
+  }
   void unplug() {
     connection_ = PenConnection::kSearching;
     PenSample out = last_;

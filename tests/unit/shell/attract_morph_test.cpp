@@ -68,6 +68,7 @@ TEST(AttractMorph, TheReplayedCloudMorphsIntoGalleryCloudsThenTheLoopStartsAgain
   options.render.scale = 1.0f;  // sharp frames for looking (the kiosk adapts its scale)
   ManualClock clock(1'000'000'000);
   AttractScreen screen(renderer, clock, journal.records, options, nullptr);
+  screen.waitUntilPrepared();  // the strokes are mapped on the replay's worker thread
   FrameContext frame{*display, kW, kH};
   auto runUntil = [&](const std::function<bool()>& done, double max_s) {
     for (double t = 0; t < max_s; t += 0.1) {

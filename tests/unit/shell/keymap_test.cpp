@@ -67,5 +67,26 @@ TEST(Keymap, KeyListsParseOrNameTheBadKey) {
   EXPECT_NE(error.find("f00"), std::string::npos) << error;
 }
 
+// The kiosk's operator combination may use a function key ([operator] keys in kiosk.toml).
+TEST(Keymap, FunctionKeysParseAsOneKey) {
+  std::vector<DisplayEvent> keys;
+  std::string error;
+  ASSERT_TRUE(parseKeyList("ctrl+alt+f12", &keys, &error)) << error;
+  ASSERT_EQ(keys.size(), 1u);
+  EXPECT_EQ(keys[0].keysym, uint32_t(XKB_KEY_F12));
+  EXPECT_EQ(keys[0].modifiers, uint32_t(DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  keys.clear();
+  ASSERT_TRUE(parseKeyList("f1", &keys, &error)) << error;
+  ASSERT_EQ(keys.size(), 1u) << "f1 is F1, not f and 1";
+  EXPECT_EQ(keys[0].keysym, uint32_t(XKB_KEY_F1));
+  keys.clear();
+  ASSERT_TRUE(parseKeyList("shift+f5,f10", &keys, &error)) << error;
+  ASSERT_EQ(keys.size(), 2u);
+  EXPECT_EQ(keys[0].keysym, uint32_t(XKB_KEY_F5));
+  EXPECT_EQ(keys[1].keysym, uint32_t(XKB_KEY_F10));
+  EXPECT_FALSE(parseKeyList("ctrl+f13", &keys, &error));
+  EXPECT_NE(error.find("f1-f12"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace cb
