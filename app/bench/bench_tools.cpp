@@ -2,7 +2,8 @@
 // generated 70,656-triangle torus), morph in-between generation at 256³ and one wind step (64³
 // velocity driving the 256³ density), each against a straightforward baseline in the same run;
 // then the morph and the wind as the painter plays them (generate + renderer sync + ray cast at
-// 1280×720, moving scale 0.5) against the first versions. Picture and model times are to the
+// 1280×720, moving scale 0.5) in the default sky (tools on their window of it) against the
+// one-box sky and the first versions. Picture and model times are to the
 // volume ready (dirty box marked); their lit frame is the painter's sync, timed by
 // `bench mapping`.
 #include <chrono>
@@ -30,6 +31,7 @@
 #include "app/tools/picture_cloud.h"
 #include "app/tools/procedural_mesh.h"
 #include "app/tools/wind.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume_file.h"
 
 namespace cb {
@@ -318,19 +320,29 @@ int benchTools(int argc, char** argv) {
             cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
           }
         };
-        // The painter's path (AnimationPreview on a session holding the picture's cloud): the
-        // display copy at half resolution (the default at 256³) and at full resolution; the
-        // baseline is the first version (a fresh one-thread frame at full resolution).
-        PaintSession session(PaintSessionSettings{1280, 720, a.dims().x}, BrushConfig{},
-                             MappingConfig{});
+        // The painter's path (AnimationPreview on a session holding the picture's cloud, opened
+        // into the home box): the display copy at half resolution (the default for a 256³ home
+        // box) and at full resolution, in the default sky (kDefaultSkySpan home boxes across:
+        // the tools work on their window of it, tool_window.h) and, as the baseline, in the
+        // one-box sky; the first version's baseline is a fresh one-thread frame at full
+        // resolution.
+        const int grid = a.dims().x;
+        PaintSession sky_session(PaintSessionSettings{1280, 720, grid}, BrushConfig{},
+                                 MappingConfig{});
+        PaintSessionSettings one_box_settings{1280, 720, grid};
+        one_box_settings.sky_span = kLegacySkySpan;
+        PaintSession one_box_session(one_box_settings, BrushConfig{}, MappingConfig{});
         std::string session_error;
-        session.replaceVolume(a, 0, "bench", &session_error);
+        for (PaintSession* s : {&sky_session, &one_box_session})
+          if (!s->replaceVolume(a, 0, "bench", &session_error))
+            std::printf("open: %s\n", session_error.c_str());
         const std::string target_path = (dir / "cloudbrush-bench-morph-target.vol").string();
         saveVolume(b, target_path);
         struct Played {
           double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0, replay = 0, apply_base = 0;
+          glm::ivec3 window{0};
         };
-        auto playPreview = [&](bool morph, bool half) {
+        auto playPreview = [&](PaintSession& session, bool morph, bool half) {
           AnimationPreview preview;
           preview.setHalfResolution(half);
           if (morph)
@@ -345,22 +357,30 @@ int benchTools(int argc, char** argv) {
               },
               &total);
           Played result{median(total), median(sync_ms), median(render_ms), median(cpu_ms)};
-          result.apply = timeMs([&] { preview.fullFrame(session); });
-          // Replay recomputes it from the record; the baseline is the first version's apply
-          // (a morph re-planned at full resolution; wind advecting the density step by step).
+          result.window = preview.window().dims();
+          // Replay recomputes the window's frame from the record (the morph re-planned).
+          const UiChange change = preview.change();
           if (morph) {
-            result.replay =
-                timeMs([&] { CloudMorph(session.volume(), b).frame(preview.morphT()); });
-            result.apply_base = result.replay;
+            const Volume target = loadMorphTarget(target_path, session.volume());
+            result.replay = timeMs(
+                [&] { morphFrame(session.volume(), target, std::get<ui::ApplyMorph>(change).t); });
           } else {
-            const WindRun run = std::get<ui::ApplyWind>(preview.change()).run;
-            Volume blown = session.volume(), stepwise = session.volume();
-            result.replay = timeMs([&] { blowWind(run, &blown); });
-            result.apply_base = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+            const WindRun run = std::get<ui::ApplyWind>(change).run;
+            result.replay = timeMs([&] { windFrame(run, session.volume()); });
+            if (&session == &one_box_session) {
+              Volume stepwise = session.volume();
+              result.apply_base = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+            }
           }
+          // Apply: the full-resolution frame of the window committed (diffed into the cloud,
+          // one history step), then undone so the next run starts from the same cloud.
+          result.apply = timeMs([&] { preview.apply(&session, 0, &session_error); });
+          session.apply(ui::Undo{}, 0, &session_error);
           return result;
         };
-        const Played morph_half = playPreview(true, true), morph_full = playPreview(true, false);
+        const Played morph_half = playPreview(sky_session, true, true),
+                     morph_full = playPreview(sky_session, true, false),
+                     morph_one_box = playPreview(one_box_session, true, true);
         std::vector<double> morph_played_base;
         Volume fresh;
         int k = 0;
@@ -371,28 +391,38 @@ int benchTools(int argc, char** argv) {
             },
             &morph_played_base);
         std::printf(
-            "morph played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
-            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply "
-            "frames the full clouds carried at the start in %.1f ms, baseline "
-            "re-planning as the first version did and replay does: %.1f ms); full-resolution "
-            "copy: %.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, one-thread fresh "
-            "frames: %.1f ms = %.1f fps; target >= 20 fps\n",
-            morph_half.ms, 1000.0 / morph_half.ms, morph_half.sync, morph_half.render,
-            morph_half.cpu, morph_half.apply, morph_half.apply_base, morph_full.ms,
-            1000.0 / morph_full.ms, morph_full.sync, morph_full.render, median(morph_played_base),
-            1000.0 / median(morph_played_base));
+            "morph played in the painter at 1280x720, scale 0.5, in the default sky (window "
+            "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
+            "%.1f; CPU %.1f ms per frame; apply (full frame of the window + commit) %.1f ms, "
+            "replay re-planning %.1f ms); full-resolution copy: %.1f ms = %.1f fps (sync %.1f, "
+            "render %.1f); baseline, the one-box sky: %.1f ms = %.1f fps (sync %.1f, render "
+            "%.1f; apply %.1f ms, replay %.1f ms); baseline, one-thread fresh frames: %.1f ms = "
+            "%.1f fps; target >= 20 fps\n",
+            morph_half.window.x, morph_half.window.y, morph_half.window.z, morph_half.ms,
+            1000.0 / morph_half.ms, morph_half.sync, morph_half.render, morph_half.cpu,
+            morph_half.apply, morph_half.replay, morph_full.ms, 1000.0 / morph_full.ms,
+            morph_full.sync, morph_full.render, morph_one_box.ms, 1000.0 / morph_one_box.ms,
+            morph_one_box.sync, morph_one_box.render, morph_one_box.apply, morph_one_box.replay,
+            median(morph_played_base), 1000.0 / median(morph_played_base));
         report.figure("morph_played_ms", morph_half.ms);
         report.figure("morph_played_fps", 1000.0 / morph_half.ms);
         report.figure("morph_played_sync_ms", morph_half.sync);
         report.figure("morph_played_render_ms", morph_half.render);
         report.figure("morph_played_cpu_ms", morph_half.cpu);
-        report.figure("morph_apply_full_frame_ms", morph_half.apply);
-        report.baseline("morph_apply_replanned_ms", morph_half.apply_base);
+        report.figure("morph_apply_ms", morph_half.apply);
+        report.figure("morph_replay_ms", morph_half.replay);
         report.figure("morph_played_full_res_ms", morph_full.ms);
         report.figure("morph_played_full_res_sync_ms", morph_full.sync);
+        report.baseline("morph_played_one_box_ms", morph_one_box.ms);
+        report.baseline("morph_played_one_box_fps", 1000.0 / morph_one_box.ms);
+        report.baseline("morph_played_one_box_sync_ms", morph_one_box.sync);
+        report.baseline("morph_apply_one_box_ms", morph_one_box.apply);
+        report.baseline("morph_replay_one_box_ms", morph_one_box.replay);
         report.baseline("morph_played_first_version_ms", median(morph_played_base));
 
-        const Played wind_half = playPreview(false, true), wind_full = playPreview(false, false);
+        const Played wind_half = playPreview(sky_session, false, true),
+                     wind_full = playPreview(sky_session, false, false),
+                     wind_one_box = playPreview(one_box_session, false, true);
         std::vector<double> wind_played_base;
         {
           Volume cloud = a;
@@ -408,26 +438,35 @@ int benchTools(int argc, char** argv) {
               &wind_played_base);
         }
         std::printf(
-            "wind played in the painter at 1280x720, scale 0.5, half-resolution copy: %.1f ms "
-            "per frame = %.1f fps (sync %.1f, render %.1f; CPU %.1f ms per frame; apply of its "
-            "%d steps resamples the full cloud once in %.1f ms, replay with the steps %.1f ms, "
-            "baseline advecting the full density step by step %.1f ms); full-resolution copy: "
-            "%.1f ms = %.1f fps (sync %.1f, render %.1f); baseline, first version: %.1f ms = "
-            "%.1f fps; target >= 15 fps\n",
-            wind_half.ms, 1000.0 / wind_half.ms, wind_half.sync, wind_half.render, wind_half.cpu,
-            frames + 1, wind_half.apply, wind_half.replay, wind_half.apply_base, wind_full.ms,
-            1000.0 / wind_full.ms, wind_full.sync, wind_full.render, median(wind_played_base),
-            1000.0 / median(wind_played_base));
+            "wind played in the painter at 1280x720, scale 0.5, in the default sky (window "
+            "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
+            "%.1f; CPU %.1f ms per frame; apply of its %d steps (the full window resampled "
+            "once + commit) %.1f ms, replay with the steps %.1f ms); full-resolution copy: %.1f "
+            "ms = %.1f fps (sync %.1f, render %.1f); baseline, the one-box sky: %.1f ms = %.1f "
+            "fps (sync %.1f, render %.1f; apply %.1f ms, replay %.1f ms, advecting the full "
+            "density step by step %.1f ms); baseline, first version: %.1f ms = %.1f fps; target "
+            ">= 15 fps\n",
+            wind_half.window.x, wind_half.window.y, wind_half.window.z, wind_half.ms,
+            1000.0 / wind_half.ms, wind_half.sync, wind_half.render, wind_half.cpu, frames + 1,
+            wind_half.apply, wind_half.replay, wind_full.ms, 1000.0 / wind_full.ms, wind_full.sync,
+            wind_full.render, wind_one_box.ms, 1000.0 / wind_one_box.ms, wind_one_box.sync,
+            wind_one_box.render, wind_one_box.apply, wind_one_box.replay, wind_one_box.apply_base,
+            median(wind_played_base), 1000.0 / median(wind_played_base));
         report.figure("wind_played_ms", wind_half.ms);
         report.figure("wind_played_fps", 1000.0 / wind_half.ms);
         report.figure("wind_played_sync_ms", wind_half.sync);
         report.figure("wind_played_render_ms", wind_half.render);
         report.figure("wind_played_cpu_ms", wind_half.cpu);
-        report.figure("wind_apply_full_frame_ms", wind_half.apply);
-        report.figure("wind_replay_full_frame_ms", wind_half.replay);
-        report.baseline("wind_apply_step_by_step_ms", wind_half.apply_base);
+        report.figure("wind_apply_ms", wind_half.apply);
+        report.figure("wind_replay_ms", wind_half.replay);
         report.figure("wind_played_full_res_ms", wind_full.ms);
         report.figure("wind_played_full_res_sync_ms", wind_full.sync);
+        report.baseline("wind_played_one_box_ms", wind_one_box.ms);
+        report.baseline("wind_played_one_box_fps", 1000.0 / wind_one_box.ms);
+        report.baseline("wind_played_one_box_sync_ms", wind_one_box.sync);
+        report.baseline("wind_apply_one_box_ms", wind_one_box.apply);
+        report.baseline("wind_replay_one_box_ms", wind_one_box.replay);
+        report.baseline("wind_apply_step_by_step_ms", wind_one_box.apply_base);
         report.baseline("wind_played_first_version_ms", median(wind_played_base));
       }
     }

@@ -272,32 +272,23 @@ bool PaintSession::vacuumCentre(const MappedSample& sample, glm::vec3* centre) c
   return true;
 }
 
-void PaintSession::takeFrame(const Volume& frame) {
-  // Only the box where the bytes differ is marked, so the history keeps a small delta.
-  const glm::ivec3 d = volume_.dims();
-  VoxelBox changed;
-  std::vector<float> a(size_t(d.x)), b(size_t(d.x));
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y) {
-      volume_.readLine({0, y, z}, 0, d.x, a.data());
-      frame.readLine({0, y, z}, 0, d.x, b.data());
-      if (std::memcmp(a.data(), b.data(), sizeof(float) * size_t(d.x)) == 0) continue;
-      int lo = 0, hi = d.x;
-      while (std::memcmp(&a[size_t(lo)], &b[size_t(lo)], sizeof(float)) == 0) ++lo;
-      while (std::memcmp(&a[size_t(hi - 1)], &b[size_t(hi - 1)], sizeof(float)) == 0) --hi;
-      volume_.writeLine({0, y, z}, 0, d.x, b.data());
-      changed = changed.unite({{lo, y, z}, {hi, y + 1, z + 1}});
-    }
-  volume_.markDirty(changed);
+void PaintSession::takeFrame(const WindowFrame& frame) {
+  // Only the bricks whose bytes differ are written and marked, so the renderer uploads and the
+  // history keeps those alone.
+  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, &volume_);
 }
 
-bool PaintSession::commitAnimation(const UiChange& change, const Volume& shown, int64_t t_ns,
+bool PaintSession::commitAnimation(const UiChange& change, const WindowFrame& shown, int64_t t_ns,
                                    std::string* error) {
   const bool morph = std::holds_alternative<ui::ApplyMorph>(change);
   if (!morph && !std::holds_alternative<ui::ApplyWind>(change))
     return *error = "apply: not an animation", false;
-  if (shown.dims() != volume_.dims() || shown.worldMin() != volume_.worldMin() ||
-      shown.worldMax() != volume_.worldMax())
+  // The frame must be a window of this sky, over that window's world box.
+  const VoxelBox box{shown.at, shown.at + shown.volume.dims()};
+  glm::vec3 world_min, world_max;
+  windowWorldBox(volume_, box, &world_min, &world_max);
+  if (box.intersect(volume_.bounds()) != box || shown.volume.worldMin() != world_min ||
+      shown.volume.worldMax() != world_max)
     return *error = "apply: the animated cloud does not fit this sky; the cloud is unchanged",
            false;
   if (engine_.inStroke()) return *error = "apply: a stroke is being painted", false;
@@ -513,8 +504,8 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
                  false;
         }
         // A `morph=` record (specification 1.1) is recomputed the way it was made.
-        s.takeFrame(c.cell_blocks ? morphCellBlocks(s.volume_, target, c.t)
-                                  : CloudMorph(s.volume_, target).frame(c.t));
+        s.takeFrame(c.cell_blocks ? WindowFrame{morphCellBlocks(s.volume_, target, c.t)}
+                                  : morphFrame(s.volume_, target, c.t));
       } catch (const std::exception& e) {
         return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
       }
@@ -523,12 +514,13 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     }
     bool operator()(const ui::ApplyWind& c) {
       if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
-      Volume blown = s.volume_;
-      if (c.step_by_step)
+      if (c.step_by_step) {
+        Volume blown = s.volume_;
         blowWindStepByStep(c.run, &blown);
-      else
-        blowWind(c.run, &blown);
-      s.takeFrame(blown);
+        s.takeFrame(WindowFrame{std::move(blown)});
+      } else {
+        s.takeFrame(windFrame(c.run, s.volume_));
+      }
       s.recordStep(before, "wind");
       return true;
     }

@@ -28,6 +28,7 @@
 #include "app/session/history.h"
 #include "app/session/sync_marker_sender.h"
 #include "app/session/ui_change.h"
+#include "app/tools/cloud_animation.h"
 #include "app/volume/sky_extent.h"
 #include "app/volume/volume.h"
 #include "calibration/calibration_profile.h"
@@ -132,10 +133,12 @@ class PaintSession {
 
   // The painter's animations (issue 14): a morph or wind animated on a copy of the cloud is
   // committed as the frame shown. `change` (ui::ApplyMorph or ui::ApplyWind) names how to
-  // recompute it, `shown` is the frame; the cloud becomes `shown` as one history step and one
-  // journal record (replay recomputes the frame from the record through apply()). False with
-  // *error, nothing changed, when `shown` does not fit the cloud or a stroke is open.
-  bool commitAnimation(const UiChange& change, const Volume& shown, int64_t t_ns,
+  // recompute it, `shown` is the frame on the tool's window (cloud_animation.h, tool_window.h:
+  // the whole cloud in a one-box sky); the window of the cloud becomes `shown` as one history
+  // step and one journal record (replay recomputes the frame from the record through apply()).
+  // False with *error, nothing changed, when `shown` does not fit the cloud there or a stroke is
+  // open.
+  bool commitAnimation(const UiChange& change, const WindowFrame& shown, int64_t t_ns,
                        std::string* error);
 
   // Where the vacuum sphere sits for a pen at this sample (§3.5.1, Fig. 3.5): x/z where the
@@ -201,7 +204,7 @@ class PaintSession {
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
   void syncJournal();  // fsync at a stroke's end (paint or rub-out)
   void recordStep(const SceneState& before, const std::string& label);
-  void takeFrame(const Volume& frame);
+  void takeFrame(const WindowFrame& frame);
 
   PaintSessionSettings settings_;
   BrushConfig brush_config_;

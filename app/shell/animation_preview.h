@@ -4,14 +4,18 @@
 // one journal record (PaintSession::commitAnimation with ui::ApplyMorph / ui::ApplyWind, which
 // replay recomputes), and leaving without applying drops the copy, so the cloud shows as it was.
 //
-// The display copy is at half the resolution when the cloud is 128³ or more (halfResolution:
+// Both work on the tool's window of the sky (tool_window.h; the whole cloud in a one-box sky):
+// the window is cropped out when the animation starts, each frame is made on the window's copy
+// and pasted into the display copy of the whole sky (what the renderer is given), so a frame
+// costs what the window holds, and only the bricks that changed are uploaded.
+// The display copy is at half the resolution when the home box is 128³ or more (halfResolution:
 // an eighth of the voxels to move, upload and light each frame). The morph is planned once from
-// the full-resolution clouds, and both they and the copy are carried along its paths when the
-// morph starts (so apply only frames the full clouds: no re-planning); the wind's 64³
-// velocity grid and flow map are the same at any resolution. Apply then computes the frame
-// shown at full resolution — the morph's frame at the same t from the same plan, the wind's
-// flow map resampling the full cloud once — which is exactly what replay computes from the
-// record, and commits that.
+// the full-resolution windows, and both they and the copy are carried along its paths when the
+// morph starts (so apply only frames the full clouds: no re-planning); the wind's velocity grid
+// and flow map are the same at any resolution. Apply then computes the window's frame shown at
+// full resolution — the morph's frame at the same t from the same plan, the wind's flow map
+// resampling the full window once — which is exactly what replay computes from the record, and
+// commits that.
 // A change to the session's cloud while an animation is shown (a stroke, undo, open…) leaves
 // the animation first: the copy no longer starts from the cloud.
 #pragma once
@@ -51,10 +55,10 @@ class AnimationPreview {
   UiChange change() const;
   // Commits the frame shown (at full resolution) to the session and ends the animation.
   bool apply(PaintSession* session, int64_t t_ns, std::string* error);
-  // The full-resolution frame of what is shown (what apply commits).
-  Volume fullFrame(const PaintSession& session) const;
-  // Whether the display copy is at half resolution (set before starting; default: for 128³ and
-  // larger clouds).
+  // The full-resolution frame of what is shown on the window (what apply commits).
+  WindowFrame fullFrame(const PaintSession& session) const;
+  // Whether the display copy is at half resolution (set before starting; default: when the home
+  // box is 128³ or larger).
   void setHalfResolution(std::optional<bool> half) { half_ = half; }
   bool atHalfResolution() const { return shown_ && shown_->dims() != base_dims_; }
   // Ends the animation without applying.
@@ -65,7 +69,10 @@ class AnimationPreview {
   Kind kind() const { return kind_; }
   bool active() const { return kind_ != Kind::kNone; }
   bool playing() const { return active() && playing_; }
+  // The display copy of the whole sky (at half resolution or full).
   const Volume& shown() const { return *shown_; }
+  // The window the animation works on (in the session's voxels).
+  const ToolWindow& window() const { return window_; }
   float morphT() const { return t_; }
   int windSteps() const { return wind_ ? wind_->run().steps() : 0; }
   const char* windDirectionName() const;
@@ -75,13 +82,20 @@ class AnimationPreview {
  private:
   Kind kind_ = Kind::kNone;
   bool playing_ = false;
-  std::unique_ptr<Volume> shown_;
-  std::unique_ptr<Volume> start_;  // the wind's starting display copy
+  std::unique_ptr<Volume> shown_;  // the display copy of the sky
+  std::unique_ptr<Volume> frame_;  // the window's display frame, pasted into shown_
+  std::unique_ptr<Volume> start_;  // the wind's starting window (display copy)
+  ToolWindow window_;
+  glm::ivec3 display_at_{0};  // where frame_ goes in shown_
   uint64_t base_instance_ = 0, base_generation_ = 0;
   int64_t last_advance_ns_ = -1;
   std::optional<bool> half_;
   glm::ivec3 base_dims_{0};
-  bool useHalf(const Volume& v) const { return half_.value_or(v.dims().x >= 128); }
+  bool useHalf(const Volume& cloud, const ToolWindow& window) const;
+  // Starts showing: shown_ the sky's display copy, frame_ (and for the wind start_) its window.
+  void startDisplay(const Volume& cloud, const ToolWindow& window);
+  // frame_'s voxels in `region` (frame_'s voxels) into shown_.
+  void paste(const VoxelBox& region);
   // Morph
   std::unique_ptr<CloudMorph> morph_;
   std::unique_ptr<CloudMorph> morph_full_;  // the full-resolution clouds along the same plan

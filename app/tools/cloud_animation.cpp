@@ -1,6 +1,9 @@
 #include "app/tools/cloud_animation.h"
 
+#include <optional>
+
 #include "app/core/parallel_for.h"
+#include "app/tools/cloud_morph.h"
 #include "app/tools/tool_error.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"
@@ -42,25 +45,45 @@ Volume halfResolution(const Volume& volume) {
   const glm::ivec3 d = volume.dims();
   const glm::ivec3 h = (d + 1) / 2;
   Volume half(h, volume.worldMin(), volume.worldMax());
-  parallelFor(size_t(h.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
-    for (int z = int(z_begin); z < int(z_end); ++z)
-      for (int y = 0; y < h.y; ++y)
-        for (int x = 0; x < h.x; ++x) {
-          float sum = 0.0f;
-          int n = 0;
-          for (int k = 0; k < 2; ++k)
-            for (int j = 0; j < 2; ++j)
-              for (int i = 0; i < 2; ++i) {
-                const glm::ivec3 p(2 * x + i, 2 * y + j, 2 * z + k);
-                if (p.x >= d.x || p.y >= d.y || p.z >= d.z) continue;
-                sum += volume.at(p.x, p.y, p.z);
-                ++n;
+  // A brick of the half volume averages 2×2×2 bricks of the volume: computed only when one of
+  // them is allocated (the rest reads as zeros and stays unallocated).
+  const glm::ivec3 bricks = half.brickDims();
+  parallelFor(size_t(bricks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+    for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+      for (int by = 0; by < bricks.y; ++by)
+        for (int bx = 0; bx < bricks.x; ++bx) {
+          bool any = false;
+          for (int k = 0; k < 8 && !any; ++k) {
+            const glm::ivec3 source(2 * bx + (k & 1), 2 * by + ((k >> 1) & 1), 2 * bz + (k >> 2));
+            any = glm::all(glm::lessThan(source, volume.brickDims())) && volume.brick(source);
+          }
+          if (!any) continue;
+          const VoxelBox box = half.brickBox({bx, by, bz});
+          for (int z = box.lo.z; z < box.hi.z; ++z)
+            for (int y = box.lo.y; y < box.hi.y; ++y)
+              for (int x = box.lo.x; x < box.hi.x; ++x) {
+                float sum = 0.0f;
+                int n = 0;
+                for (int k = 0; k < 2; ++k)
+                  for (int j = 0; j < 2; ++j)
+                    for (int i = 0; i < 2; ++i) {
+                      const glm::ivec3 p(2 * x + i, 2 * y + j, 2 * z + k);
+                      if (p.x >= d.x || p.y >= d.y || p.z >= d.z) continue;
+                      sum += volume.at(p.x, p.y, p.z);
+                      ++n;
+                    }
+                if (sum != 0.0f) half.voxelForWrite(x, y, z) = sum / float(n);
               }
-          if (sum != 0.0f) half.voxelForWrite(x, y, z) = sum / float(n);
         }
   });
   half.markDirty(half.bounds());
   return half;
+}
+
+Volume withFrame(const Volume& cloud, const WindowFrame& frame) {
+  Volume out = cloud;
+  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, &out);
+  return out;
 }
 
 int WindRun::steps() const {
@@ -71,7 +94,24 @@ int WindRun::steps() const {
 
 WindAnimation::WindAnimation(const Volume& like, float speed, float gust)
     : solver_(like.worldMin(), like.worldMax()),
-      centre_(0.5f * (like.worldMin() + like.worldMax())) {
+      centre_(0.5f * (like.worldMin() + like.worldMax())),
+      gust_radius_(0.0f) {
+  run_.speed = speed;
+  run_.gust = gust;
+}
+
+namespace {
+WindParams windowParams(const ToolWindow& window) {
+  WindParams params;
+  params.grid = window.wind_cells;
+  return params;
+}
+}  // namespace
+
+WindAnimation::WindAnimation(const ToolWindow& window, float speed, float gust)
+    : solver_(window.world_min, window.world_max, windowParams(window)),
+      centre_(0.5f * (window.world_min + window.world_max)),
+      gust_radius_(window.gust_radius) {
   run_.speed = speed;
   run_.gust = gust;
 }
@@ -88,10 +128,11 @@ void WindAnimation::blow() {
                           ? glm::normalize(glm::vec2(s.dx, s.dz))
                           : glm::vec2(0.0f);
   solver_.setUniformWind(run_.speed * glm::vec3(d.x, 0.0f, d.y));
-  // An updraft in the middle of the sky box, so the breeze curls the cloud rather than only
-  // carrying it (Eq. 3.5 for 0.1 s).
+  // An updraft in the middle of the sky box (of the window), so the breeze curls the cloud
+  // rather than only carrying it (Eq. 3.5 for 0.1 s); a quarter of the home box across.
   const glm::vec3 size = solver_.cellSize() * glm::vec3(solver_.grid());
-  solver_.addForce({0.0f, run_.gust, 0.0f}, centre_, 0.25f * size.x, 0.1f);
+  const float radius = gust_radius_ > 0.0f ? gust_radius_ : 0.25f * size.x;
+  solver_.addForce({0.0f, run_.gust, 0.0f}, centre_, radius, 0.1f);
 }
 
 void WindAnimation::step() {
@@ -111,14 +152,31 @@ void WindAnimation::stepDensityItself(Volume* density) {
   solver_.advectDensityEveryVoxel(kWindStepSeconds, density);
 }
 
-void blowWind(const WindRun& run, Volume* density) {
-  WindAnimation wind(*density, run.speed, run.gust);
+WindowFrame windFrame(const WindRun& run, const Volume& density) {
+  const ToolWindow window = toolWindow(density);
+  std::optional<Volume> cropped;
+  if (!window.whole) cropped = cropToWindow(density, window);
+  const Volume& start = cropped ? *cropped : density;
+  WindAnimation wind(window, run.speed, run.gust);
   for (const WindSegment& s : run.segments) {
     wind.setDirection(s.dx, s.dz);
     for (int i = 0; i < s.steps; ++i) wind.step();
   }
-  const Volume start = *density;
-  wind.show(start, density, density->bounds());
+  WindowFrame frame{start, window.box.lo};
+  wind.show(start, &frame.volume, frame.volume.bounds());
+  return frame;
+}
+
+void blowWind(const WindRun& run, Volume* density) {
+  const WindowFrame frame = windFrame(run, *density);
+  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, density);
+}
+
+WindowFrame morphFrame(const Volume& source, const Volume& target, float t) {
+  const ToolWindow window = toolWindow(source, target);
+  if (window.whole) return {CloudMorph(source, target).frame(t), glm::ivec3(0)};
+  return {CloudMorph(cropToWindow(source, window), cropToWindow(target, window)).frame(t),
+          window.box.lo};
 }
 
 void blowWindStepByStep(const WindRun& run, Volume* density) {

@@ -2,6 +2,9 @@
 // a committed frame can be recomputed from its journal record: the morph target by name, and a
 // wind run as its settings and step counts. The painter animates a copy of the session's cloud
 // with these; "apply" journals the record, and replay recomputes the same bytes from it.
+//
+// In a sky wider than one box, morph and wind work on a window of it (tool_window.h): the frame
+// they make is the window's (`WindowFrame`), pasted back where it was cropped from.
 #pragma once
 
 #include <string>
@@ -9,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/tools/tool_window.h"
 #include "app/tools/wind.h"
 #include "app/volume/volume.h"
 
@@ -22,8 +26,18 @@ Volume loadMorphTarget(const std::string& source, const Volume& like);
 
 // The display copy of an animation: half the resolution on each axis (each voxel the mean of
 // its 2×2×2, the last voxel of an odd dimension alone), the same world box, so it is one eighth
-// of the voxels to animate, upload and light. In parallel, the same bytes on any thread count.
+// of the voxels to animate, upload and light. Only the bricks under allocated ones are computed
+// (the cost follows the cloud, not the sky); in parallel, the same bytes on any thread count.
 Volume halfResolution(const Volume& volume);
+
+// A tool's result on its window: the window's voxels (over the window's world box), to be put
+// back at `at` in the volume it was cropped from (pasteWindow).
+struct WindowFrame {
+  Volume volume;
+  glm::ivec3 at{0};
+};
+// `cloud` with `frame` pasted in: what committing the frame makes of the cloud.
+Volume withFrame(const Volume& cloud, const WindowFrame& frame);
 
 // One stretch of wind: blowing horizontally towards (dx, dz) for `steps` steps.
 struct WindSegment {
@@ -41,11 +55,15 @@ struct WindRun {
 };
 constexpr float kWindStepSeconds = 1.0f / 15.0f;
 
-// The wind animation: a WindSolver (64³) over the cloud's world box, stepped one step at a time;
-// the density it shows is the starting cloud carried by the solver's flow map (wind.h).
+// The wind animation: a WindSolver over a window's world box (64³ over a whole volume, 64 cells
+// per home box over a window of a wider sky), stepped one step at a time; the density it shows
+// is the starting cloud carried by the solver's flow map (wind.h).
 class WindAnimation {
  public:
+  // Over the whole of `like` (64³ cells, the gust a quarter of its width across).
   WindAnimation(const Volume& like, float speed, float gust);
+  // Over `window` (its world box, wind cells and gust radius).
+  WindAnimation(const ToolWindow& window, float speed, float gust);
   // Turns the wind towards (dx, dz) from the next step (a new segment; the velocity field
   // becomes the uniform wind plus the gust again).
   void setDirection(float dx, float dz);
@@ -64,14 +82,20 @@ class WindAnimation {
   void blow();
   WindSolver solver_;
   glm::vec3 centre_;
+  float gust_radius_;  // 0: a quarter of the solver's width
   WindRun run_;
 };
 
-// Recomputes a recorded run on `density` (replay and apply): the steps on the coarse grid, then
-// one resampling; the same bytes as the animation shows at that resolution.
+// Recomputes a recorded run on `density` (replay and apply): the steps on the coarse grid over
+// the density's window (toolWindow), then one resampling of the window; the same bytes as the
+// animation shows at that resolution. windFrame returns the window's frame, blowWind pastes it.
+WindowFrame windFrame(const WindRun& run, const Volume& density);
 void blowWind(const WindRun& run, Volume* density);
+// The morph of `source` into `target` (the same dims and world box) at t, on the window of
+// their content (toolWindow of source ∪ target): CloudMorph(window of source, window of target).
+WindowFrame morphFrame(const Volume& source, const Volume& target, float t);
 // A run recorded by journal specification 1.1 (`wind=`), recomputed as it was then: each step
-// advecting the density itself.
+// advecting the density itself (over the whole volume: such records come from one-box skies).
 void blowWindStepByStep(const WindRun& run, Volume* density);
 
 }  // namespace cb

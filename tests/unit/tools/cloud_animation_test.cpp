@@ -235,7 +235,7 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
   // A specification 1.1 morph record (cells moved as blocks) is recomputed that way: it
   // changes the cloud, into what the cell-block morph makes and not what morph2 makes.
   const Volume kept = replay.session->volume();
-  const Volume target = loadVolume(f.target_path);
+  const Volume target = loadMorphTarget(f.target_path, kept);  // placed in the home box
   char checksum[24];
   std::snprintf(checksum, sizeof checksum, "%016llx", (unsigned long long)volumeChecksum(target));
   UiChange old_morph;
@@ -245,7 +245,7 @@ TEST(CloudAnimation, LeavingWithoutApplyingKeepsTheCloudAndAChangedTargetIsRefus
   ASSERT_TRUE(replay.session->apply(old_morph, 5000, &error)) << error;
   const Volume cells = morphCellBlocks(kept, target, 0.5f);
   EXPECT_TRUE(sameBytes(replay.session->volume(), cells));
-  EXPECT_FALSE(sameBytes(cells, CloudMorph(kept, target).frame(0.5f)));
+  EXPECT_FALSE(sameBytes(cells, withFrame(kept, morphFrame(kept, target, 0.5f))));
   EXPECT_FALSE(sameBytes(cells, kept));
 
   // Nothing to morph: an empty cloud says so and starts nothing.
@@ -267,9 +267,10 @@ TEST(CloudAnimation, AHalfResolutionCopyAppliesTheFullResolutionFrame) {
   AnimationPreview preview;
   preview.setHalfResolution(true);
   ASSERT_TRUE(preview.startMorph(s, f.target_path, 1.0, &error)) << error;
-  EXPECT_EQ(preview.shown().dims(), glm::ivec3(kGrid / 2));
+  EXPECT_EQ(preview.shown().dims(), (source.dims() + 1) / 2);
   preview.advance(0.4);
-  const Volume full_morph = CloudMorph(source, f.clouds.target).frame(0.4f);  // what replay does
+  const Volume full_morph =  // what replay does
+      withFrame(source, morphFrame(source, loadMorphTarget(f.target_path, source), 0.4f));
   const Volume half_of_full = halfResolution(full_morph);
   double diff = 0, mass = 0;
   const std::vector<float> half = half_of_full.toDense(), shown = preview.shown().toDense();
@@ -283,7 +284,7 @@ TEST(CloudAnimation, AHalfResolutionCopyAppliesTheFullResolutionFrame) {
 
   ASSERT_TRUE(preview.toggleWind(s, &error)) << error;
   for (int i = 0; i < 4; ++i) preview.advance(0.05);
-  EXPECT_EQ(preview.shown().dims(), glm::ivec3(kGrid / 2));
+  EXPECT_EQ(preview.shown().dims(), (source.dims() + 1) / 2);
   Volume full_wind = s.volume();
   blowWind(std::get<ui::ApplyWind>(preview.change()).run, &full_wind);
   ASSERT_TRUE(preview.apply(&s, 2000, &error)) << error;
