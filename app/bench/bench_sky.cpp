@@ -34,9 +34,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-
 volatile double g_keep;  // keeps the read loop from being optimised away
-
 
 // A stroke-sized soft ball (radius in voxels), merged by max, marked dirty.
 void paintBall(Volume* v, glm::vec3 centre, float radius) {

@@ -137,11 +137,11 @@ struct Redo {};
 struct DeleteAll {};
 }  // namespace ui
 
-using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
-                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
-                              ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
-                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu,
-                              ui::SetPressureRange>;
+using UiChange =
+    std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
+                 ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
+                 ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo, ui::Redo, ui::DeleteAll,
+                 ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu, ui::SetPressureRange>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi
