@@ -36,23 +36,10 @@ using Clock = std::chrono::steady_clock;
 
 volatile double g_keep;  // keeps the read loop from being optimised away
 
-// A stroke-sized soft ball (radius in voxels), merged by max, marked dirty.
-void paintBall(Volume* v, glm::vec3 centre, float radius) {
-  const glm::ivec3 lo = glm::max(glm::ivec3(centre - radius), glm::ivec3(0));
-  const glm::ivec3 hi = glm::min(glm::ivec3(centre + radius) + 1, v->dims());
-  for (int z = lo.z; z < hi.z; ++z)
-    for (int y = lo.y; y < hi.y; ++y)
-      for (int x = lo.x; x < hi.x; ++x) {
-        const float r = glm::length(glm::vec3(x, y, z) + 0.5f - centre) / radius;
-        if (r < 1.0f) v->maxMerge(x, y, z, std::min(1.0f, 1.5f * (1.0f - r)));
-      }
-  v->markDirty({lo, hi});
-}
-
 // A stroke: balls along a curve of `length` voxels starting at `from`.
 void paintStroke(Volume* v, glm::vec3 from, glm::vec3 along, float length, float radius) {
   for (float t = 0.0f; t <= length; t += radius * 0.5f)
-    paintBall(v, from + along * t + glm::vec3(0.0f, 4.0f * std::sin(t * 0.05f), 0.0f), radius);
+    mergeSoftBall(v, from + along * t + glm::vec3(0.0f, 4.0f * std::sin(t * 0.05f), 0.0f), radius);
 }
 
 struct LightFigures {

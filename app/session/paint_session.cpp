@@ -275,7 +275,7 @@ bool PaintSession::vacuumCentre(const MappedSample& sample, glm::vec3* centre) c
 void PaintSession::takeFrame(const WindowFrame& frame) {
   // Only the bricks whose bytes differ are written and marked, so the renderer uploads and the
   // history keeps those alone.
-  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, &volume_);
+  pasteVolume(frame.volume, frame.volume.bounds(), frame.at, &volume_);
 }
 
 bool PaintSession::commitAnimation(const UiChange& change, const WindowFrame& shown, int64_t t_ns,

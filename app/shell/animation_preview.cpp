@@ -46,7 +46,7 @@ bool AnimationPreview::useHalf(const Volume& cloud, const ToolWindow& window) co
 }
 
 void AnimationPreview::paste(const VoxelBox& region) {
-  pasteWindow(*frame_, region, display_at_, shown_.get());
+  pasteVolume(*frame_, region, display_at_, shown_.get());
 }
 
 bool AnimationPreview::startMorph(const PaintSession& session, const std::string& target_source,

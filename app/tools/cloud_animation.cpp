@@ -82,7 +82,7 @@ Volume halfResolution(const Volume& volume) {
 
 Volume withFrame(const Volume& cloud, const WindowFrame& frame) {
   Volume out = cloud;
-  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, &out);
+  pasteVolume(frame.volume, frame.volume.bounds(), frame.at, &out);
   return out;
 }
 
@@ -169,7 +169,7 @@ WindowFrame windFrame(const WindRun& run, const Volume& density) {
 
 void blowWind(const WindRun& run, Volume* density) {
   const WindowFrame frame = windFrame(run, *density);
-  pasteWindow(frame.volume, frame.volume.bounds(), frame.at, density);
+  pasteVolume(frame.volume, frame.volume.bounds(), frame.at, density);
 }
 
 WindowFrame morphFrame(const Volume& source, const Volume& target, float t) {

@@ -31,7 +31,7 @@ Volume loadMorphTarget(const std::string& source, const Volume& like);
 Volume halfResolution(const Volume& volume);
 
 // A tool's result on its window: the window's voxels (over the window's world box), to be put
-// back at `at` in the volume it was cropped from (pasteWindow).
+// back at `at` in the volume it was cropped from (pasteVolume).
 struct WindowFrame {
   Volume volume;
   glm::ivec3 at{0};

@@ -30,6 +30,7 @@
 
 #include "app/volume/box.h"
 #include "app/volume/volume.h"
+#include "app/volume/volume_paste.h"
 
 namespace cb {
 
@@ -68,12 +69,5 @@ Volume cropToWindow(const Volume& volume, const ToolWindow& window);
 // The window's box in a volume of half the resolution (halfResolution, cloud_animation.h): the
 // voxels whose 2×2×2 lie in `box` (exact when box.lo is even on every axis).
 VoxelBox halfBox(const VoxelBox& box);
-
-// Copies `region` of `from` (a tool's result on a window) into `into` at region.lo + at. Rows that
-// are already equal are not written; the bricks of `into` that changed are marked dirty (each
-// run of changed bricks along x its own box, or — past 64 runs, so the volume's kept change
-// list never overflows — the box around them). Returns the box around the changed bricks,
-// clipped to the pasted region (empty: nothing changed).
-VoxelBox pasteWindow(const Volume& from, const VoxelBox& region, glm::ivec3 at, Volume* into);
 
 }  // namespace cb

@@ -203,4 +203,16 @@ double filledFraction(const Volume& volume) {
   return double(total) / double(volume.voxelCount());
 }
 
+void mergeSoftBall(Volume* v, glm::vec3 centre, float radius) {
+  const glm::ivec3 lo = glm::max(glm::ivec3(centre - radius), glm::ivec3(0));
+  const glm::ivec3 hi = glm::min(glm::ivec3(centre + radius) + 1, v->dims());
+  for (int z = lo.z; z < hi.z; ++z)
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x) {
+        const float r = glm::length(glm::vec3(x, y, z) + 0.5f - centre) / radius;
+        if (r < 1.0f) v->maxMerge(x, y, z, std::min(1.0f, 1.5f * (1.0f - r)));
+      }
+  v->markDirty({lo, hi});
+}
+
 }  // namespace cb

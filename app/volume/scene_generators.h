@@ -29,6 +29,11 @@ Volume makeSingleVoxel(glm::ivec3 dims, glm::ivec3 voxel, float density = 1.0f);
 Volume makeSphere(glm::ivec3 dims, glm::vec3 centre, float radius, float density = 1.0f,
                   float soft = 0.2f);
 
+// A soft ball of `radius` voxels around `centre` (voxel coordinates) merged by max into `v`,
+// density min(1, 1.5·(1 − r/radius)), its box marked dirty: a stroke-sized test and benchmark
+// shape.
+void mergeSoftBall(Volume* v, glm::vec3 centre, float radius);
+
 // Fraction of voxels with density > 0 (a scene statistic used by tests and benchmarks).
 double filledFraction(const Volume& volume);
 

@@ -1,7 +1,8 @@
 #include "app/volume/sky_extent.h"
 
+#include "app/volume/volume_paste.h"
+
 #include <stdexcept>
-#include <vector>
 
 namespace cb {
 
@@ -46,15 +47,7 @@ Volume placeInSky(const Volume& home, const SkyExtent& extent) {
                                 std::to_string(extent.grid) + "³");
   if (extent.span == 1) return home;
   Volume sky = makeSkyVolume(extent);
-  const glm::ivec3 offset = extent.homeOffset();
-  const int n = extent.grid;
-  std::vector<float> row(size_t(n), 0.0f);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y) {
-      home.readLine({0, y, z}, 0, n, row.data());
-      sky.writeLine(offset + glm::ivec3(0, y, z), 0, n, row.data());  // skips zero bricks
-    }
-  sky.markDirty(sky.bounds());
+  pasteVolume(home, home.bounds(), extent.homeOffset(), &sky);
   return sky;
 }
 

@@ -24,6 +24,7 @@
 #include "app/scene/paint_camera.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"
+#include "app/volume/volume_paste.h"
 #include "rendered_opacity.h"
 #include "tests/unit/render/gl_test_context.h"
 
@@ -127,13 +128,7 @@ TEST_F(SkyWithoutWalls, ACloudAtTheFarEdgeIsLitAndShadowedAsAtTheCentre) {
   const glm::ivec3 move = corner - home;
   ASSERT_EQ(move % Volume::kBrickSize, glm::ivec3(0));
   Volume& edge = volumes.emplace_back(makeSkyVolume(kSky));
-  std::vector<float> row(static_cast<size_t>(kGrid));
-  for (int z = 0; z < kGrid; ++z)
-    for (int y = 0; y < kGrid; ++y) {
-      centre_cloud.readLine(home + glm::ivec3(0, y, z), 0, kGrid, row.data());
-      edge.writeLine(corner + glm::ivec3(0, y, z), 0, kGrid, row.data());
-    }
-  edge.markDirty(edge.bounds());
+  pasteVolume(centre_cloud, {home, home + glm::ivec3(kGrid)}, move, &edge);
   Volume& centre = volumes.emplace_back(centre_cloud);
 
   const Light sun;  // the default sun

@@ -9,6 +9,7 @@
 #include "app/core/parallel_for.h"
 #include "app/render/light_volume.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/volume_paste.h"
 
 namespace cb {
 namespace {
@@ -21,27 +22,7 @@ Volume sky(glm::ivec3 dims) {
 
 // Copies `cloud` into `into` at voxel offset `at`.
 void place(const Volume& cloud, Volume* into, glm::ivec3 at) {
-  const glm::ivec3 d = cloud.dims();
-  std::vector<float> row(size_t(d.x));
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y) {
-      cloud.readLine({0, y, z}, 0, d.x, row.data());
-      into->writeLine(at + glm::ivec3(0, y, z), 0, d.x, row.data());
-    }
-  into->markDirty({at, at + d});
-}
-
-// A soft ball of `radius` voxels around `centre`, merged by max (as a stroke lands).
-void paintBall(Volume* v, glm::vec3 centre, float radius) {
-  const glm::ivec3 lo = glm::max(glm::ivec3(centre - radius), glm::ivec3(0));
-  const glm::ivec3 hi = glm::min(glm::ivec3(centre + radius) + 1, v->dims());
-  for (int z = lo.z; z < hi.z; ++z)
-    for (int y = lo.y; y < hi.y; ++y)
-      for (int x = lo.x; x < hi.x; ++x) {
-        const float r = glm::length(glm::vec3(x, y, z) + 0.5f - centre) / radius;
-        if (r < 1.0f) v->maxMerge(x, y, z, std::min(1.0f, 1.5f * (1.0f - r)));
-      }
-  v->markDirty({lo, hi});
+  pasteVolume(cloud, cloud.bounds(), at, into);
 }
 
 std::vector<float> passedOn(const LightVolume& lv) {
@@ -96,8 +77,8 @@ TEST(SparseLightVolume, ACloudBelowAnotherStaysInItsShadowAcrossEmptySpace) {
     const glm::vec3 top(32.5f, 41.5f, 32.5f);
     auto towardsSun = [&](float y) { return top + d / d.y * (y - top.y); };
     Volume both = sky({80, 224, 64}), lower_only = sky({80, 224, 64});
-    paintBall(&both, towardsSun(205.0f), 14);
-    for (Volume* v : {&both, &lower_only}) paintBall(v, {32.5f, 30.0f, 32.5f}, 12);
+    mergeSoftBall(&both, towardsSun(205.0f), 14);
+    for (Volume* v : {&both, &lower_only}) mergeSoftBall(v, {32.5f, 30.0f, 32.5f}, 12);
     Light light;
     light.direction = glm::normalize(d);
     LightVolume shaded, open;
@@ -144,9 +125,9 @@ TEST(SparseLightVolume, IncrementalEditsEqualAFullSweepOnAnyThreadCount) {
         EXPECT_EQ(followed[i].lit.allocated(), w.allocatedBricks()) << what;
       }
     };
-    paintBall(&w, {150, 70, 120}, 9);
+    mergeSoftBall(&w, {150, 70, 120}, 9);
     edit("a stroke in the open sky");
-    paintBall(&w, {60, 50, 60}, 14);
+    mergeSoftBall(&w, {60, 50, 60}, 14);
     edit("a stroke among the puffs");
     const VoxelBox slab{{20, 60, 10}, {180, 64, 150}};  // wide: the threaded path
     for (int z = slab.lo.z; z < slab.hi.z; ++z)
