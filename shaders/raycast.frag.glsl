@@ -170,12 +170,12 @@ void main() {
         k_end = min(n, max(int(ceil((t_leave - t_enter) / u_step - 0.5)), k + 1));
       }
 #endif
-      // Samples go in chunks of up to kMaxChunk (u_chunk at this step), each read in the slot
+      // Samples go in chunks of CB_CHUNK (chunkSamples of the step), each read in the slot
       // of the cell holding the chunk's first corner (volume_pool.glsl): the slot's apron holds
       // the rest of the chunk. One slot lookup per chunk; the chunk is unrolled, so every ray of
       // a group llvmpipe shades in lockstep takes the same number of loop iterations as
       // without the pool.
-      int chunk_end = min(k_end, k + u_chunk);
+      int chunk_end = min(k_end, k + CB_CHUNK);
       vec3 q = roundEven(fixed_base + float(k) * fixed_delta);
       PoolBrick pb =
           poolBrickAt(min(q, roundEven(fixed_base + float(chunk_end - 1) * fixed_delta)));
@@ -193,7 +193,7 @@ void main() {
       // zero density gives α = 0 and changes nothing) because llvmpipe runs a branch's code for
       // all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
       // step (§4.5.2 compositing, see the header).
-      for (int i = 0; i < kMaxChunk; ++i) {
+      for (int i = 0; i < CB_CHUNK; ++i) {
 #if CB_SURFACE
         if (k < chunk_end && !hit) {
           float d = sampleChunk(q, pb).r;

@@ -23,11 +23,9 @@ uniform vec3 u_dims;              // voxels
 uniform ivec3 u_brick_max;        // bricks per axis − 1
 uniform vec3 u_inv_brick_dims;    // 1 / bricks per axis
 uniform vec3 u_inv_pool_fixed;    // 1 / (pool size in texels · 256)
-uniform int u_chunk;              // samples per chunk (≤ kMaxChunk): step·(u_chunk − 1) ≤ 3
 
 const float kBrickVoxels = 16.0;
 const float kSlotTexels = 20.0;
-const int kMaxChunk = 4;
 const float kFixed = 256.0;  // fixed-point steps per voxel
 
 // The slot of one cell.

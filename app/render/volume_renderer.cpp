@@ -121,7 +121,8 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
       std::string("#define CB_SKIP ") + (options.skip_empty_space ? "1" : "0") +
       "\n#define CB_BRICK_STEPPING " + (options.brick_stepping ? "1" : "0") +
       "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n#define CB_SURFACE " +
-      (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") + "\n";
+      (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") +
+      "\n#define CB_CHUNK " + std::to_string(chunkSamples(rayStepVoxels(options))) + "\n";
   const std::string stage = shadingStageFile(options.style);
   const std::string key = stage + "\n" + defines;
   auto it = programs_.find(key);
@@ -476,6 +477,17 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
   eye_near_occupied_ = occupiedNear(occupancy_, level, eye_voxel);
 }
 
+int chunkSamples(float step_voxels) {
+  return std::clamp(1 + int(float(BrickPool::kApron) / step_voxels), 1, 4);
+}
+
+float rayStepVoxels(const RenderOptions& options) {
+  const float step = std::max(options.step_voxels, 0.05f);
+  const float scale = std::clamp(options.scale, 0.05f, 1.0f);
+  if (!options.moving || scale >= 1.0f) return step;
+  return std::max(step, std::min(step / scale, kMaxMovingStepVoxels));
+}
+
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
                             const RenderOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
@@ -594,9 +606,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_occupancy"), 1);
   glUniform1i(loc("u_brick"), occupancy_.brick);
   glUniform1i(loc("u_levels"), occupancy_.levelCount());
-  glUniform1f(loc("u_step"), std::max(options.step_voxels, 0.05f));
-  glUniform1i(loc("u_chunk"), std::min(4, 1 + int(float(BrickPool::kApron) /
-                                                  std::max(options.step_voxels, 0.05f))));
+  const float step = rayStepVoxels(options);
+  glUniform1f(loc("u_step"), step);
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
   glUniform4fv(loc("u_background"), 1, glm::value_ptr(background));

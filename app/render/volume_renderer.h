@@ -57,7 +57,8 @@ struct RenderOptions {
   // The sky behind the cloud (sky_settings.h); kind none keeps the flat `background`.
   SkySettings sky;
   // The view is moving (orbit, drag): styles may shade more simply (ink: the seed's two bands,
-  // no bleeding). Set it together with scale < 1; clear both when the view comes to rest.
+  // no bleeding) and, below scale 1, the ray steps as coarsely as the reduced image's pixels
+  // (rayStepVoxels). Set it together with scale < 1; clear both when the view comes to rest.
   bool moving = false;
   // Re-render only this rectangle of the target (x, y, width, height in pixels, origin at the
   // bottom left like glScissor) and leave the rest of the target as it is; a zero width or
@@ -110,6 +111,19 @@ struct RendererGpuMemory {
   size_t volume() const { return pool + indirection + occupancy + ray_bounds; }
   size_t total() const { return volume() + frame_targets + styles; }
 };
+
+// The ray step render() uses, in voxels: options.step_voxels, and on a moving frame (moving,
+// scale < 1) that step divided by the scale, at most kMaxMovingStepVoxels: a pixel of the reduced
+// image is 1/scale pixels of the full one across, so the ray is sampled as coarsely along as
+// across (opacity per step follows the step, Beer–Lambert, so the cloud keeps its density).
+// The frame at rest is always cast at options.step_voxels.
+constexpr float kMaxMovingStepVoxels = 2.0f;
+float rayStepVoxels(const RenderOptions& options);
+// Ray samples per brick-pool lookup at that step (shaders/volume_pool.glsl): as many as stay
+// within the slot's apron (BrickPool::kApron voxels past the first), at most 4. A compile-time
+// constant of the program (CB_CHUNK): llvmpipe runs every unrolled sample of a chunk, active or
+// not, so a chunk longer than the step allows would cost samples it cannot take.
+int chunkSamples(float step_voxels);
 
 class VolumeRenderer {
  public:
