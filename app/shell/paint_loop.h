@@ -74,6 +74,10 @@ struct PaintLoopOptions {
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;
+  // After a lift the change is first shown at moving_scale, then refined, unless the last
+  // full-resolution frames say it can be cast at full resolution within this long of the lift
+  // (issue 15: pen-up → first lit frame ≤ 100 ms); then it is shown so at once.
+  double lift_budget_ms = 100.0;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame

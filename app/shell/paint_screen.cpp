@@ -762,6 +762,14 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
                       drawn_->style} == key)
       region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, renderer_.occupancy(),
                                    key.style);
+    // Right after a lift, a change the last refinements say can be cast at full resolution
+    // within the pen-up budget is shown so at once (no reduced frame, no refinement).
+    const bool full_at_once = lit_pending_ && !refine && !dragging && !animationPlaying() &&
+                              liftFitsFullResolution(region);
+    if (full_at_once) {
+      options.scale = 1.0f;
+      options.moving = false;
+    }
     if (options.scale >= 1.0f) region = region.unite(unrefined_);
     if (!region.empty()) {
       options.region = region.renderRegion();
@@ -773,6 +781,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     if (lit_pending_ || refine) {
       glFinish();
       render_ms = msSince(synced);
+      if (options.scale >= 1.0f) learnFullResolutionCost(render_ms, region);
     }
     overlay_.invalidate();
     drawn_ = key;
@@ -803,6 +812,10 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     info->rendered_pixels = rendered_pixels;
     info->render_scale = render_scale;
     lit_pending_ = false;
+    if (render_scale >= 1.0f) {  // shown at full resolution at once: nothing left to refine
+      info->refined_after_lift = true;
+      info->pen_up_to_refined_ms = since_lift;
+    }
   } else if (refine) {
     info->refined_after_lift = true;
     info->pen_up_to_refined_ms = since_lift;
@@ -810,6 +823,19 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     info->rendered_pixels = rendered_pixels;
     info->render_scale = render_scale;
   }
+}
+
+bool PaintScreen::liftFitsFullResolution(const ScreenRegion& region) const {
+  if (full_ms_per_pixel_ <= 0.0 || region.empty()) return false;
+  const double predicted_ms = full_ms_per_pixel_ * double(region.pixels());
+  return msSince(lift_time_) + predicted_ms <= options_.lift_budget_ms;
+}
+
+void PaintScreen::learnFullResolutionCost(double render_ms, const ScreenRegion& region) {
+  // Regions of a few pixels say little about the cost per pixel (fixed costs dominate).
+  if (region.pixels() < 4096) return;
+  const double rate = render_ms / double(region.pixels());
+  full_ms_per_pixel_ = full_ms_per_pixel_ > 0.0 ? 0.5 * (full_ms_per_pixel_ + rate) : rate;
 }
 
 bool PaintScreen::drawOverlays(std::string* error) {

@@ -116,6 +116,10 @@ class PaintScreen : public Screen {
   bool paintingSetUp(std::string* error);
   void drawStill(PaintFrameInfo* info);
   bool drawOverlays(std::string* error);
+  // After a lift: whether re-rendering `region` at full resolution, at the cost per pixel the
+  // last full-resolution frames took, still shows it within options_.lift_budget_ms of the lift.
+  bool liftFitsFullResolution(const ScreenRegion& region) const;
+  void learnFullResolutionCost(double render_ms, const ScreenRegion& region);
   void drawUi(const FrameContext& frame);
   void selectCalibration(uint64_t tool_serial);
   int64_t clockNs() const;  // now on the frame loop's clock
@@ -175,6 +179,9 @@ class PaintScreen : public Screen {
   ScreenRegion unrefined_;  // the part of scene_ still at the reduced resolution
   std::chrono::steady_clock::time_point lift_time_;
   double lift_mapping_ms_ = 0.0;
+  // Full-resolution ray-cast milliseconds per pixel of the re-rendered region, from the last
+  // timed full-resolution frames (0: none yet); liftFitsFullResolution predicts with it.
+  double full_ms_per_pixel_ = 0.0;
   size_t texels_this_frame_ = 0;
   OverlayCursor cursor_;
   HudOverlay hud_;

@@ -272,5 +272,80 @@ TEST(PaintLoop, MissingTabletKeepsTheOrbitRunning) {
   EXPECT_EQ(orbit_frames, 5);
 }
 
+// After a lift the change is shown at the moving scale and then refined, unless the cost per
+// pixel of the last full-resolution frames says it fits the pen-up budget: then the first lit
+// frame is already at full resolution and is also the refined one. Two strokes: the first
+// teaches the cost (its refinement); with an unbounded budget the second is shown at full
+// resolution at once, with a zero budget never.
+TEST(PaintLoop, ASmallChangeIsShownAtFullResolutionAtOnceWhenItFitsTheBudget) {
+  constexpr int w = 480, h = 270;
+  const std::string dir = tempDir();
+  const std::string path = dir + "/two_strokes.cbj";
+  {
+    PaintSession recorder({w, h, 32}, BrushConfig{}, MappingConfig{});
+    recorder.setQuietMapping(true);
+    JournalWriter journal;
+    ASSERT_TRUE(journal.open(path)) << journal.error();
+    recorder.recordTo(&journal, 0);
+    const PenDeviceInfo tablet = syntheticTablet(w, h);
+    recorder.setDevice(tablet, 0);
+    int64_t t0 = 1'000'000'000;
+    const std::vector<SyntheticStroke> strokes = referencePaintStrokes(w, h);
+    ASSERT_GE(strokes.size(), 2u);
+    for (int i = 0; i < 2; ++i) {
+      const std::vector<PenSample> samples =
+          syntheticPenSamples(strokes[size_t(i)], tablet, w, h, 200.0, t0);
+      for (const PenSample& sample : samples) recorder.feed(sample);
+      t0 = samples.back().t_ns + 500'000'000;
+    }
+    ASSERT_EQ(recorder.strokesMapped(), 2u);
+  }
+  DisplayOptions display_options;
+  display_options.platform = DisplayPlatform::Surfaceless;
+  display_options.width = w;
+  display_options.height = h;
+  std::string error;
+  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  ASSERT_TRUE(display) << error;
+  for (const double budget_ms : {1e9, 0.0}) {
+    VolumeRenderer renderer;
+    ASSERT_TRUE(renderer.init(&error)) << error;
+    PaintSession session({w, h, 64}, BrushConfig{}, MappingConfig{});
+    session.setQuietMapping(true);
+    ReplayOptions replay_options;
+    replay_options.realtime = false;
+    replay_options.batch = 4;
+    ReplayPenSource pen(path, replay_options);
+    PaintLoopOptions options;
+    options.max_frames = 3000;
+    options.lift_budget_ms = budget_ms;
+    options.config_dir = dir + "/config";
+    options.state_dir = dir + "/state";
+    std::vector<float> lit_scales;
+    std::vector<bool> lit_is_refined;
+    options.on_frame = [&](const PaintFrameInfo& info) {
+      if (!info.first_lit_after_lift) return;
+      lit_scales.push_back(info.render_scale);
+      lit_is_refined.push_back(info.refined_after_lift);
+    };
+    PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+    loop.attachPen(&pen, &session);
+    PaintLoopSummary summary;
+    ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
+    ASSERT_EQ(lit_scales.size(), 2u) << "budget " << budget_ms;
+    EXPECT_LT(lit_scales[0], 1.0f) << "no full-resolution cost is known before the first lift";
+    EXPECT_FALSE(lit_is_refined[0]);
+    EXPECT_EQ(summary.pen_up_to_refined_ms.size(), 2u) << "every lift ends at full resolution";
+    if (budget_ms > 0.0) {
+      EXPECT_EQ(lit_scales[1], 1.0f) << "the second change fits an unbounded budget";
+      EXPECT_TRUE(lit_is_refined[1]);
+    } else {
+      EXPECT_LT(lit_scales[1], 1.0f) << "nothing fits a zero budget";
+      EXPECT_FALSE(lit_is_refined[1]);
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cb
