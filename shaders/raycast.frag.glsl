@@ -209,18 +209,21 @@ void main() {
           q = roundEven(fixed_base + float(k) * fixed_delta);
         }
 #else
-        if (k < chunk_end && transmittance >= u_cutoff) {
-          vec2 s = sampleChunk(q, pb);
-          ++samples;
-          float density = styleDensity(s.r, base + float(k) * delta);
-          float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
-          colour += (transmittance * alpha) * shadeSample(density, s.g);
-          transmittance *= 1.0 - alpha;
-          ++k;
-          q = roundEven(fixed_base + float(k) * fixed_delta);
-        }
+        // Straight-line code, no `if`: a sample past the chunk's end or after termination is
+        // still read (inside the slot or clamped to it) but weighs nothing — its density is
+        // multiplied by 0, so α = 0 exactly and colour and transmittance stay as they are.
+        float live = float(k + i < chunk_end && transmittance >= u_cutoff);
+        vec2 s = sampleChunk(roundEven(fixed_base + float(k + i) * fixed_delta), pb);
+        samples += uint(live);
+        float density = styleDensity(s.r, base + float(k + i) * delta) * live;
+        float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
+        colour += (transmittance * alpha) * shadeSample(density, s.g);
+        transmittance *= 1.0 - alpha;
 #endif
       }
+#if !CB_SURFACE
+      k = chunk_end;
+#endif
 #if CB_SURFACE
       if (hit) k = n;
 #else
