@@ -71,6 +71,19 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
     }
 }
 
+uint64_t slotHash(const uint8_t* slot) {
+  // 64-bit words mixed by multiply–xorshift (kSlotBytes = 16000 is a multiple of 8).
+  static_assert(BrickPool::kSlotBytes % 8 == 0);
+  uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (size_t i = 0; i < BrickPool::kSlotBytes; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, slot + i, 8);
+    h = (h ^ w) * 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 31;
+  }
+  return h ? h : 1;
+}
+
 BrickPool::~BrickPool() {
   if (pool_texture_) glDeleteTextures(1, &pool_texture_);
   if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
@@ -78,7 +91,8 @@ BrickPool::~BrickPool() {
 
 size_t BrickPool::tableBytes() const {
   return slot_of_brick_.capacity() * sizeof(glm::u8vec4) +
-         free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity();
+         free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity() +
+         slot_hash_.capacity() * sizeof(uint64_t);
 }
 
 void BrickPool::resetTables(glm::ivec3 brick_dims) {
@@ -93,6 +107,7 @@ void BrickPool::resetTables(glm::ivec3 brick_dims) {
   const size_t bricks = size_t(brick_dims.x) * brick_dims.y * brick_dims.z;
   slot_of_brick_.assign(bricks, glm::u8vec4(0));
   mark_.assign(bricks, 0);
+  slot_hash_.assign(bricks, 0);
   slots_in_use_ = 0;
   if (!pool_texture_) {
     capacity_ = glm::ivec3(0);
@@ -201,7 +216,8 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
 
 BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
                                          const std::vector<glm::ivec3>& changed_bricks,
-                                         const VoxelBox& light_box) {
+                                         const VoxelBox& light_box,
+                                         std::vector<glm::ivec3>* changed_slots) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
   const glm::ivec3 bd = volume.brickDims();
@@ -254,6 +270,8 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     } else if (!needs && has) {
       free_slots_.push_back(slot_of_brick_[i]);
       slot_of_brick_[i] = glm::u8vec4(0);
+      slot_hash_[i] = 0;
+      if (changed_slots) changed_slots->push_back(b);
       --slots_in_use_;
       ++st.slots_released;
       indirection_changed = indirection_changed.unite({b, b + 1});
@@ -303,9 +321,25 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       for (size_t s = s0; s < s1; ++s)
         packBrickSlot(volume, light, to_upload[first + s], staging.data() + s * kSlotBytes);
     });
+    // Slots whose bytes are what they held stay as they are (the slot of an added brick held
+    // nothing: hash 0).
+    std::vector<uint8_t> same(n, 0);
+    parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
+      for (size_t s = s0; s < s1; ++s) {
+        uint64_t& held = slot_hash_[brickIndex(to_upload[first + s])];
+        const uint64_t h = slotHash(staging.data() + s * kSlotBytes);
+        same[s] = h == held;
+        held = h;
+      }
+    });
     st.pack_ms += msSince(t0);
     t0 = std::chrono::steady_clock::now();
     for (size_t s = 0; s < n; ++s) {
+      if (same[s]) {
+        ++st.slots_unchanged;
+        continue;
+      }
+      if (changed_slots) changed_slots->push_back(to_upload[first + s]);
       const glm::ivec3 slot(slot_of_brick_[brickIndex(to_upload[first + s])]);
       const glm::ivec3 at = slot * kSlotTexels;
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
@@ -313,7 +347,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     }
     st.upload_ms += msSince(t0);
   }
-  st.slots_uploaded = int(to_upload.size());
+  st.slots_uploaded = int(to_upload.size()) - st.slots_unchanged;
   t0 = std::chrono::steady_clock::now();
   uploadIndirection(fresh ? VoxelBox{glm::ivec3(0), bd} : indirection_changed);
   st.upload_ms += msSince(t0);

@@ -50,12 +50,13 @@ class BrickPool {
   static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
 
   struct UpdateStats {
-    int slots_uploaded = 0;  // slots re-packed and uploaded
-    int slots_added = 0;     // bricks that got a slot
-    int slots_released = 0;  // bricks whose slot was freed
-    bool grew = false;       // the pool texture was reallocated (and copied) to hold more slots
-    double pack_ms = 0.0;    // CPU packing
-    double upload_ms = 0.0;  // glTextureSubImage3D of slots and indirection, growth copies
+    int slots_uploaded = 0;   // slots re-packed and uploaded
+    int slots_added = 0;      // bricks that got a slot
+    int slots_released = 0;   // bricks whose slot was freed
+    int slots_unchanged = 0;  // re-packed but their bytes were what the slot held: not uploaded
+    bool grew = false;        // the pool texture was reallocated (and copied) to hold more slots
+    double pack_ms = 0.0;     // CPU packing
+    double upload_ms = 0.0;   // glTextureSubImage3D of slots and indirection, growth copies
   };
 
   BrickPool() = default;
@@ -68,8 +69,13 @@ class BrickPool {
   // and `light_box` (the light voxels recomputed) say what to refresh. `light` must hold valid
   // transmittance for every voxel of the bricks next to allocated ones (LightVolume::at).
   // Needs a current GL 4.5 context.
+  // `changed_slots`, if given, receives the bricks whose slot reads differently now: a slot
+  // added, released, or re-packed to bytes it did not hold (a 64-bit hash of each slot's bytes
+  // is kept: the light box re-packs many slots whose 8-bit transmittance did not change, and
+  // those are neither uploaded nor reported). A ray reading no listed slot reads what it read.
   UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
-                     const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box);
+                     const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box,
+                     std::vector<glm::ivec3>* changed_slots = nullptr);
 
   GLuint poolTexture() const { return pool_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
@@ -107,6 +113,7 @@ class BrickPool {
   std::vector<glm::u8vec4> slot_of_brick_;  // per brick, as uploaded to the indirection table
   std::vector<glm::u8vec4> free_slots_;     // a stack
   std::vector<uint8_t> mark_;               // per brick, scratch for de-duplicating candidates
+  std::vector<uint64_t> slot_hash_;         // per brick, hash of its slot's bytes (slotHash)
   size_t slots_in_use_ = 0;
   GLuint pool_texture_ = 0, indirection_texture_ = 0;
   bool full_reported_ = false;
@@ -116,5 +123,8 @@ class BrickPool {
 // is voxel min(16·b + j, dim − 1)): density clamped to [0,1] and the light's transmittance, both
 // rounded to 8 bits. Reads transmittance only through LightVolume::at.
 void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out);
+
+// A 64-bit hash of one packed slot (kSlotBytes), never 0 (0 marks "no slot").
+uint64_t slotHash(const uint8_t* slot);
 
 }  // namespace cb

@@ -83,9 +83,13 @@ VoxelBox occupiedPartOf(const OccupancyPyramid& occupancy, const VoxelBox& box) 
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
                                  const SyncStats& sync, const OccupancyPyramid& occupancy,
                                  RenderStyle style) {
-  return projectVoxelBoxes(camera, width, height, volume,
-                           {sync.dirty, occupiedPartOf(occupancy, sync.light_box)},
-                           readReachVoxels(style, volume.dims()));
+  // The light box is swept in float, but the GPU reads 8-bit transmittance: only the slots
+  // whose bytes changed (sync.changed_slots) can change a pixel, and within the light box that
+  // is often far less (deep in the cloud's shadow the 8-bit value stays where it was).
+  return projectVoxelBoxes(
+      camera, width, height, volume,
+      {sync.dirty, occupiedPartOf(occupancy, sync.light_box.intersect(sync.changed_slots))},
+      readReachVoxels(style, volume.dims()));
 }
 
 }  // namespace cb

@@ -1,6 +1,9 @@
 #include "app/render/volume_renderer.h"
 
+#include "app/render/changed_region.h"
+
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -88,6 +91,8 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_program_) glDeleteProgram(bounds_program_);
   if (bounds_vao_) glDeleteVertexArrays(1, &bounds_vao_);
   if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
+  if (mask_vao_) glDeleteVertexArrays(1, &mask_vao_);
+  if (mask_vbo_) glDeleteBuffers(1, &mask_vbo_);
   FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
   deleteTargets(&current);
   deleteTargets(&spare_targets_);
@@ -112,6 +117,12 @@ bool VolumeRenderer::init(std::string* error) {
   glEnableVertexArrayAttrib(bounds_vao_, 0);
   glVertexArrayAttribFormat(bounds_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(bounds_vao_, 0, 0);
+  glCreateBuffers(1, &mask_vbo_);
+  glCreateVertexArrays(1, &mask_vao_);
+  glVertexArrayVertexBuffer(mask_vao_, 0, mask_vbo_, 0, sizeof(glm::vec3));
+  glEnableVertexArrayAttrib(mask_vao_, 0);
+  glVertexArrayAttribFormat(mask_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(mask_vao_, 0, 0);
   return true;
 }
 
@@ -342,9 +353,33 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // The pool follows the bricks that changed (or every allocated brick when fresh).
   const std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
+  std::vector<glm::ivec3> changed_slots;
   const BrickPool::UpdateStats pool =
-      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box);
+      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &changed_slots);
+  for (FrameHistory* history : {&history_, &spare_history_}) {
+    if (fresh || history->pending.size() + changed_slots.size() > kMaxMaskBoxes) {
+      *history = FrameHistory{};
+    }
+  }
+  for (glm::ivec3 b : changed_slots) {
+    const glm::ivec3 lo = b * Volume::kBrickSize;
+    const VoxelBox box = VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
+    st.changed_slots = st.changed_slots.unite(box);
+    for (FrameHistory* history : {&history_, &spare_history_})
+      if (history->valid) history->pending.push_back(box);
+  }
   st.slots_uploaded = pool.slots_uploaded;
+  st.slots_unchanged = pool.slots_unchanged;
+  if (getenv("CBT") && !fresh)
+    fprintf(stderr,
+            "SYNC changed %zu uploaded %d unchanged %d dirty %d,%d,%d-%d,%d,%d light "
+            "%d,%d,%d-%d,%d,%d slots %d,%d,%d-%d,%d,%d\n",
+            changed_slots.size(), pool.slots_uploaded, pool.slots_unchanged, st.dirty.lo.x,
+            st.dirty.lo.y, st.dirty.lo.z, st.dirty.hi.x, st.dirty.hi.y, st.dirty.hi.z,
+            st.light_box.lo.x, st.light_box.lo.y, st.light_box.lo.z, st.light_box.hi.x,
+            st.light_box.hi.y, st.light_box.hi.z, st.changed_slots.lo.x, st.changed_slots.lo.y,
+            st.changed_slots.lo.z, st.changed_slots.hi.x, st.changed_slots.hi.y,
+            st.changed_slots.hi.z);
   st.pool_grew = pool.grew;
   st.pack_ms = pool.pack_ms;
 
@@ -400,13 +435,14 @@ RendererGpuMemory VolumeRenderer::gpuMemory() const {
   return m;
 }
 
-void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
+void VolumeRenderer::useFrameTargets(int w, int h) {
   if (bounds_w_ != w || bounds_h_ != h) {
     // The painter alternates two sizes (a pen-up frame at the moving scale, then the full one):
     // the previous size's targets are kept as the spare instead of being reallocated.
     FrameTargets current{bounds_fbo_,     bounds_texture_, frame_texture_,
                          stencil_buffer_, bounds_w_,       bounds_h_};
     std::swap(current, spare_targets_);
+    std::swap(history_, spare_history_);
     if (current.w == w && current.h == h) {
       bounds_fbo_ = current.fbo;
       bounds_texture_ = current.bounds;
@@ -416,6 +452,7 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
       bounds_h_ = h;
     } else {
       deleteTargets(&current);
+      history_ = FrameHistory{};  // new targets hold no frame
       glCreateTextures(GL_TEXTURE_2D, 1, &bounds_texture_);
       glTextureStorage2D(bounds_texture_, 1, GL_RG32F, w, h);
       glTextureParameteri(bounds_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -433,6 +470,10 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
       bounds_h_ = h;
     }
   }
+}
+
+void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
+  useFrameTargets(w, h);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
   const GLenum bounds_only = GL_COLOR_ATTACHMENT1;  // fragment output 0 -> the bounds texture
   glDrawBuffers(1, &bounds_only);
@@ -486,6 +527,113 @@ float rayStepVoxels(const RenderOptions& options) {
   const float scale = std::clamp(options.scale, 0.05f, 1.0f);
   if (!options.moving || scale >= 1.0f) return step;
   return std::max(step, std::min(step / scale, kMaxMovingStepVoxels));
+}
+
+std::string VolumeRenderer::imageKey(const glm::mat4& view_proj, int w, int h,
+                                     const RenderOptions& options,
+                                     const glm::vec4& background) const {
+  std::string key;
+  const auto add = [&key](const void* p, size_t n) { key.append(static_cast<const char*>(p), n); };
+  add(&view_proj, sizeof view_proj);
+  const int ints[] = {w, h, int(program_), int(options.style)};
+  add(ints, sizeof ints);
+  const PhysicalStyleParams& ph = options.style_params.physical;
+  const CartoonStyleParams& ca = options.style_params.cartoon;
+  const float floats[] = {rayStepVoxels(options),
+                          options.extinction_per_voxel,
+                          options.termination_transmittance,
+                          background.r,
+                          background.g,
+                          background.b,
+                          background.a,
+                          synced_light_.colour.r,
+                          synced_light_.colour.g,
+                          synced_light_.colour.b,
+                          synced_light_.direction.x,
+                          synced_light_.direction.y,
+                          synced_light_.direction.z,
+                          ph.reflection,
+                          ph.scattering,
+                          ph.forward_g,
+                          ph.back_g,
+                          ph.forward_weight,
+                          float(ph.octaves),
+                          ph.ambient,
+                          ph.exposure,
+                          ph.erosion,
+                          ca.band_thresholds.x,
+                          ca.band_thresholds.y,
+                          ca.band_thresholds.z,
+                          ca.outline_width,
+                          options.style_params.sketch.outline_width};
+  add(floats, sizeof floats);
+  return key;
+}
+
+namespace {
+
+// The 8 corners of `box` grown by `reach` voxels, in voxel space.
+std::array<glm::vec3, 8> grownCorners(const VoxelBox& box, float reach) {
+  const glm::vec3 lo = glm::vec3(box.lo) - reach, hi = glm::vec3(box.hi) + reach;
+  std::array<glm::vec3, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[size_t(i)] = {i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z};
+  return c;
+}
+
+}  // namespace
+
+bool VolumeRenderer::projectedRect(const std::vector<VoxelBox>& boxes, float reach,
+                                   const glm::mat4& view_proj, int w, int h,
+                                   glm::ivec4* rect) const {
+  const glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  for (const VoxelBox& box : boxes)
+    for (const glm::vec3& c : grownCorners(box, reach)) {
+      const glm::vec4 clip = view_proj * glm::vec4(world_min_ + c * voxel, 1.0f);
+      if (clip.w <= 1e-4f || clip.z < -clip.w) return false;  // at or behind the near plane
+      const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(w, h);
+      lo = glm::min(lo, px);
+      hi = glm::max(hi, px);
+    }
+  const glm::ivec2 a = glm::max(glm::ivec2(glm::floor(lo)) - 1, glm::ivec2(0));
+  const glm::ivec2 b = glm::min(glm::ivec2(glm::ceil(hi)) + 1, glm::ivec2(w, h));
+  if (rect) *rect = glm::ivec4(a, glm::max(b - a, glm::ivec2(0)));
+  return true;
+}
+
+void VolumeRenderer::drawChangedMask(const std::vector<VoxelBox>& boxes, float reach,
+                                     const glm::mat4& view_proj) {
+  // Every face of every grown box: a pixel whose centre ray passes through a box is inside its
+  // projected outline (no box reaches the near plane: projectedRect checked).
+  static constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                       {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  std::vector<glm::vec3> vertices;
+  vertices.reserve(boxes.size() * 36);
+  for (const VoxelBox& box : boxes) {
+    const std::array<glm::vec3, 8> c = grownCorners(box, reach);
+    for (const auto& f : kFaces)
+      for (int i : {0, 1, 2, 0, 2, 3}) vertices.push_back(c[size_t(f[i])]);
+  }
+  const size_t bytes = vertices.size() * sizeof(glm::vec3);
+  if (bytes > mask_vbo_bytes_) {
+    glNamedBufferData(mask_vbo_, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
+    mask_vbo_bytes_ = bytes;
+  }
+  glNamedBufferSubData(mask_vbo_, 0, GLsizeiptr(bytes), vertices.data());
+  glUseProgram(bounds_program_);  // its uniforms are this frame's (drawRayBounds set them)
+  glUniformMatrix4fv(glGetUniformLocation(bounds_program_, "u_view_proj"), 1, GL_FALSE,
+                     glm::value_ptr(view_proj));
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(2);
+  glStencilFunc(GL_ALWAYS, 2, 2);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glBindVertexArray(mask_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertices.size()));
+  glStencilMask(0xFF);
+  glDisable(GL_STENCIL_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
@@ -564,6 +712,15 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const glm::ivec4 cast_rect = grow(image_rect, reach, reach);
   const glm::ivec4 bleed_rect = grow(image_rect, 0, reach);  // the first blur axis is x
   stats_.pixels_cast = partial ? (long long)cast_rect.z * cast_rect.w : (long long)w * h;
+  // Re-cast only the changed pixels (a stencil mask of the pool slots changed since this size's
+  // targets last held a whole frame of the same image key; every other pixel of the frame colour
+  // is what a whole cast would write again), when that frame colour can be trusted.
+  const std::string key = skip ? imageKey(view_proj, w, h, options, background) : std::string();
+  if (skip) useFrameTargets(w, h);
+  const float read_reach = readReachVoxels(options.style, dims_);
+  const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
+                      history_.key == key && !history_.pending.empty() &&
+                      projectedRect(history_.pending, read_reach, view_proj, w, h, nullptr);
   if (partial) {
     // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
     glEnable(GL_SCISSOR_TEST);
@@ -576,15 +733,25 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
+    if (masked) {
+      // The changed pixels get stencil bit 2 and are all cast (an unoccupied one casts no sample
+      // and writes the background); the frame colour keeps every other pixel.
+      drawChangedMask(history_.pending, read_reach, view_proj);
+    } else {
+      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
+    }
   } else {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
   }
   glViewport(0, 0, w, h);
   if (sky_under) drawSkyUnder(w, h, width, height, options);
-  if (skip && !eye_near_occupied_) {
+  if (masked) {
     glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilFunc(GL_EQUAL, 2, 2);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  } else if (skip && !eye_near_occupied_) {
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 1);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
   glUseProgram(program_);
@@ -657,8 +824,39 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);
+  GLuint cast_query = 0;
+  if (masked) {
+    glCreateQueries(GL_SAMPLES_PASSED, 1, &cast_query);
+    glBeginQuery(GL_SAMPLES_PASSED, cast_query);
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (masked) {
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 cast = 0;
+    glGetQueryObjectui64v(cast_query, GL_QUERY_RESULT, &cast);
+    glDeleteQueries(1, &cast_query);
+    stats_.pixels_cast = (long long)cast;
+  }
   glDisable(GL_STENCIL_TEST);
+  // What the frame colour of these targets now holds (FrameHistory).
+  if (skip) {
+    if (screen_space || sky_under) {
+      history_ = FrameHistory{};
+    } else if (!partial) {
+      history_ = FrameHistory{key, {}, true};
+    } else if (masked) {
+      // Boxes seen whole inside the rectangle are done; the others' pixels outside it are not
+      // (the region holds every pixel the latest change alters, not those of older ones).
+      std::erase_if(history_.pending, [&](const VoxelBox& box) {
+        glm::ivec4 r;
+        return projectedRect({box}, read_reach, view_proj, w, h, &r) && r.x >= cast_rect.x &&
+               r.y >= cast_rect.y && r.x + r.z <= cast_rect.x + cast_rect.z &&
+               r.y + r.w <= cast_rect.y + cast_rect.w;
+      });
+    } else if (history_.key != key) {
+      history_.valid = false;  // a rectangle of another image over the old frame
+    }  // else: the rectangle is fresh; the pending boxes outside it are still to do
+  }
   glDisable(GL_BLEND);
 
   if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too

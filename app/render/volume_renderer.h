@@ -88,10 +88,14 @@ struct RenderStats {
 };
 
 struct SyncStats {
-  VoxelBox dirty;             // density box changed since the previous sync
-  VoxelBox light_box;         // light volume voxels recomputed
-  VoxelBox uploaded;          // voxels whose GPU copy was brought up to date (dirty ∪ light box)
-  int slots_uploaded = 0;     // brick-pool slots re-packed and uploaded for them (brick_pool.h)
+  VoxelBox dirty;           // density box changed since the previous sync
+  VoxelBox light_box;       // light volume voxels recomputed
+  VoxelBox uploaded;        // voxels whose GPU copy was brought up to date (dirty ∪ light box)
+  int slots_uploaded = 0;   // brick-pool slots re-packed and uploaded for them (brick_pool.h)
+  int slots_unchanged = 0;  // re-packed but holding the same bytes: not uploaded
+  // The voxels of every slot added, released or uploaded (brick_pool.h): a ray that samples
+  // none of them renders as before the sync. Empty when nothing changed.
+  VoxelBox changed_slots;
   bool pool_grew = false;     // the brick pool was reallocated to hold more slots
   double occupancy_ms = 0.0;  // updateOccupancy
   double light_ms = 0.0;      // sweepLightVolume
@@ -183,6 +187,8 @@ class VolumeRenderer {
   bool drawSkyUnder(int w, int h, int width, int height, const RenderOptions& options);
   void allocateOccupancyTexture();
   void uploadOccupancy(const VoxelBox& cells);
+  // Makes the frame targets of a w×h image current (keeping the previous size's as the spare).
+  void useFrameTargets(int w, int h);
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
 
   GLuint program_ = 0;                      // the variant in use
@@ -221,6 +227,30 @@ class VolumeRenderer {
     int w = 0, h = 0;
   };
   FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)
+  // What the frame colour of a size's targets holds (for re-casting only changed pixels): the
+  // image key (camera, size, program, shading inputs) it was cast with, and the voxel boxes of
+  // the pool slots changed since (sync appends). `valid` is false when the colour is not a whole
+  // frame of `key` (never cast, another key, too many boxes): then only the rectangle path is
+  // exact.
+  struct FrameHistory {
+    std::string key;
+    std::vector<VoxelBox> pending;
+    bool valid = false;
+  };
+  FrameHistory history_, spare_history_;  // of the current and the spare targets
+  // Boxes beyond this many make a mask cost more than the rectangle saves.
+  static constexpr size_t kMaxMaskBoxes = 2048;
+  GLuint mask_vao_ = 0, mask_vbo_ = 0;  // the changed slots' boxes as triangles (stencil mask)
+  size_t mask_vbo_bytes_ = 0;
+  std::string imageKey(const glm::mat4& view_proj, int w, int h, const RenderOptions& options,
+                       const glm::vec4& background) const;
+  // The pixel rectangle of a w×h image holding every box of `boxes` grown by `reach` voxels
+  // (into `rect` if given); false when a box reaches the near plane (then no mask is drawn).
+  bool projectedRect(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj,
+                     int w, int h, glm::ivec4* rect) const;
+  // Stencil bit 2 on every pixel whose ray passes through a box of `boxes` (voxel space, grown
+  // by `reach` voxels), inside the current scissor.
+  void drawChangedMask(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj);
   static void deleteTargets(FrameTargets* targets);
   bool eye_near_occupied_ = false;
   RenderStats stats_;
