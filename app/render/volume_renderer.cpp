@@ -370,16 +370,6 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   }
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;
-  if (getenv("CBT") && !fresh)
-    fprintf(stderr,
-            "SYNC changed %zu uploaded %d unchanged %d dirty %d,%d,%d-%d,%d,%d light "
-            "%d,%d,%d-%d,%d,%d slots %d,%d,%d-%d,%d,%d\n",
-            changed_slots.size(), pool.slots_uploaded, pool.slots_unchanged, st.dirty.lo.x,
-            st.dirty.lo.y, st.dirty.lo.z, st.dirty.hi.x, st.dirty.hi.y, st.dirty.hi.z,
-            st.light_box.lo.x, st.light_box.lo.y, st.light_box.lo.z, st.light_box.hi.x,
-            st.light_box.hi.y, st.light_box.hi.z, st.changed_slots.lo.x, st.changed_slots.lo.y,
-            st.changed_slots.lo.z, st.changed_slots.hi.x, st.changed_slots.hi.y,
-            st.changed_slots.hi.z);
   st.pool_grew = pool.grew;
   st.pack_ms = pool.pack_ms;
 
