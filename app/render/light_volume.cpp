@@ -210,6 +210,22 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
   return f;
 }
 
+// How many slices, counted from the light side in sweep order, store their light: down to the
+// last slice of the most downstream brick layer holding a light brick (lightBrickList: an
+// allocated brick or one of its neighbours, so one layer past the last allocated one). Further
+// downstream the shadow falls on nothing the renderer reads, and the sweep reads only upstream,
+// so nothing there is computed or stored (0 for an empty volume).
+int storedSlices(const Volume& volume, const SweepFrame& f) {
+  const int layers = volume.brickDims()[f.axis], n = volume.dims()[f.axis];
+  int far = -1;  // the most downstream allocated layer, counted from the light side
+  for (const glm::ivec3 b : volume.allocatedBrickList())
+    far = std::max(far, f.dir < 0 ? layers - 1 - b[f.axis] : b[f.axis]);
+  if (far < 0) return 0;
+  far = std::min(far + 1, layers - 1);
+  return f.dir < 0 ? n - (layers - 1 - far) * Volume::kBrickSize
+                   : std::min(n, (far + 1) * Volume::kBrickSize);
+}
+
 // The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
 // processTile computes a rectangle inside one tile from the upstream slice, exactly as the dense
 // sweep did voxel by voxel: the same bilinear expression, the same attenuation, so the same bits.
@@ -503,11 +519,11 @@ namespace {
 // over every slice. Threads take rows in turn and run as a pipeline: row i's slice j waits until
 // row i − 1 has published slice j − 1 (in batches of kRowBatch slices); no barrier per slice,
 // and no value depends on the split. A tile is swept only when its brick holds density or a
-// tile in its upstream footprint passed on a value other than 1; the others stay all 1.
-void sweepAllTiles(const TileSweep& t) {
+// tile in its upstream footprint passed on a value other than 1; the others stay all 1. Only the
+// first `slices` slices (storedSlices) are swept.
+void sweepAllTiles(const TileSweep& t, int slices) {
   const SweepFrame& f = t.f;
   const int ntb = (t.nb + kTile - 1) / kTile, ntc = (t.nc + kTile - 1) / kTile;
-  const int slices = t.na;
   const int layers = t.volume.brickDims()[f.axis];
   // Tile rows holding density, per brick layer along the axis.
   std::vector<uint8_t> row_has_density(size_t(layers) * size_t(ntc), 0);
@@ -611,13 +627,33 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                     size_t(brick_stride[f.b]),
                     size_t(brick_stride[f.c])};
 
+  // Slices from the light side whose light is stored, before and after this update.
+  const int stored_before = lv.stored_slices, stored = storedSlices(volume, f);
+  lv.stored_slices = stored;
   if (region == volume.bounds()) {
     lv.lit.recycle(volume.brickDims());
     lv.through.recycle(volume.brickDims());
-    sweepAllTiles(t);
+    sweepAllTiles(t, stored);
     lv.lit.dropSpare();
     lv.through.dropSpare();
     return volume.bounds();
+  }
+  // Slices an erase moved out of the stored part: their bricks are freed.
+  auto sweepIndex = [&](int s) { return (s - f.first) * f.dir; };  // 0 at the light side
+  if (stored < stored_before) {
+    const glm::ivec3 bd = volume.brickDims();
+    for (int layer = 0; layer < bd[f.axis]; ++layer) {
+      const int s0 = layer * Volume::kBrickSize;
+      if (std::min(sweepIndex(s0), sweepIndex(std::min(dims[f.axis], s0 + kTile) - 1)) < stored)
+        continue;
+      glm::ivec3 b;
+      b[f.axis] = layer;
+      for (b[f.c] = 0; b[f.c] < bd[f.c]; ++b[f.c])
+        for (b[f.b] = 0; b[f.b] < bd[f.b]; ++b[f.b]) {
+          lv.through.release(lv.through.brickIndex(b));
+          lv.lit.release(lv.lit.brickIndex(b));
+        }
+    }
   }
 
   // An incremental sweep: slices from the dirty box's upstream face towards the far edge. The
@@ -627,9 +663,16 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // actual shadow of the edit and stops where it no longer changes anything or falls into
   // shadow that is already black. Voxels left alone are exactly what a full recompute gives, so
   // undo/redo restore the light volume bit for bit (app/session/history.h).
-  const int start = f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis];
-  const int slices = f.dir < 0 ? start + 1 : dims[f.axis] - start;
+  // An edit that allocates a brick further downstream than any before (stored > stored_before)
+  // also sweeps the newly stored slices whole: nothing of them was kept. The sweep stops at the
+  // end of the stored slices.
+  const int dirty_start = sweepIndex(f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis]);
+  const bool grown = stored > stored_before;
+  const int first = grown ? std::min(dirty_start, stored_before) : dirty_start;
+  const int start = f.first + first * f.dir;  // the first slice swept
+  const int slices = stored - first;
   const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];
+  const int dirty_lo = dirty_start - first;  // the dirty box's slices: dirty_lo … + dirty_slices
   const Rect dirty_rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}};
   const Rect all{glm::ivec2(0), lateral_dims};
   // The voxels of the next slice whose upstream footprint (b + ob + {0,1}, c + oc + {0,1})
@@ -644,8 +687,9 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // (a barrier per slice costs more than they do). Each thread's changed rectangle is
   // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
   // independent of the split (deterministic).
+  if (slices <= 0) return {};
   const int threads =
-      dirty_rect.area() >= kThreadedArea ? std::max(1, std::min(workerThreads(), 16)) : 1;
+      dirty_rect.area() >= kThreadedArea || grown ? std::max(1, std::min(workerThreads(), 16)) : 1;
   std::vector<Rect> changed_by_thread(size_t(2 * threads));
   std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
   auto worker = [&](int id, std::barrier<>* sync) {
@@ -655,8 +699,12 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
         for (int i = 0; i < threads; ++i)
           changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
       Rect rect = downstreamOf(changed);
-      if (j < dirty_slices) rect = rect.unite(dirty_rect);
-      if (rect.empty()) break;  // every thread sees the same rectangles and stops together
+      if (j >= dirty_lo && j < dirty_lo + dirty_slices) rect = rect.unite(dirty_rect);
+      const bool newly_stored = grown && first + j >= stored_before;
+      if (newly_stored) rect = all;
+      // Every thread sees the same rectangles and stops together; before newly stored slices
+      // an empty slice is passed over.
+      if (rect.empty() && !(grown && first + j < stored_before)) break;
       const int s = start + j * f.dir;
       const int tr0 = rect.lo.y / kTile, tr1 = (rect.hi.y - 1) / kTile + 1;
       const int parts = rect.area() < kThreadedArea ? 1 : threads;

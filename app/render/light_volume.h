@@ -24,7 +24,13 @@
 //    the painting and its shadow, not the sky's extent.
 //  - `lit` holds T for the bricks the volume has allocated (where density may be non-zero). In
 //    a brick without density T equals the passed-on value, so `through` (or 1) serves there.
-// After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the grid.
+//  - Neither is kept downstream of the most downstream brick layer holding a light brick (below
+//    the lowest cloud for a sun from above): there the shadow falls on nothing the renderer
+//    reads, and the sweep reads only upstream, so those slices are not swept at all
+//    (`stored_slices`). An edit that allocates a brick further downstream sweeps the newly
+//    stored slices whole; an erase that lifts the lowest cloud frees them.
+// After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the stored
+// slices, which hold every brick the renderer reads; beyond them it reads 1.
 // The renderer reads the "light bricks" (lightBrickList: the allocated bricks and their 26
 // neighbours, which trilinear samples of non-zero density can reach); the reduced preview
 // (reduced_light_sweep.h) stores only those and reads 1 elsewhere, where nothing reads it.
@@ -93,10 +99,15 @@ struct LightVolume {
   float extinction = -1.0f;   // k the volume was computed with (−1: matches no light)
   LightBricks lit;            // T of the bricks holding density (see the file comment)
   LightBricks through;        // passed-on values where they are not 1
+  // Slices, counted from the light side along the sweep's major axis, whose light is stored: down
+  // to the most downstream brick layer holding a light brick. Below it the shadow falls on
+  // nothing the renderer reads, so it is neither swept nor stored (see the file comment).
+  int stored_slices = 0;
 
   bool matches(const Volume& volume, const Light& light) const;
-  // T at voxel (x,y,z), 1 = fully lit: exact at every voxel after sweepLightVolume; after a
-  // reduced preview exact only on light bricks (lightBrickList), 1 elsewhere (nothing reads it).
+  // T at voxel (x,y,z), 1 = fully lit: after sweepLightVolume exact in the stored slices (every
+  // light brick, lightBrickList, lies in them) and 1 beyond; after a reduced preview exact only on
+  // light bricks, 1 elsewhere. Nothing reads it where it reads 1 instead of the shadow.
   float at(int x, int y, int z) const {
     if (through.brickDims().x == 0) return 1.0f;
     constexpr int s = Volume::kBrickShift, m = Volume::kBrickSize - 1;
