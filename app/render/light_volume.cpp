@@ -210,20 +210,45 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
   return f;
 }
 
-// How many slices, counted from the light side in sweep order, store their light: down to the
-// last slice of the most downstream brick layer holding a light brick (lightBrickList: an
-// allocated brick or one of its neighbours, so one layer past the last allocated one). Further
-// downstream the shadow falls on nothing the renderer reads, and the sweep reads only upstream,
-// so nothing there is computed or stored (0 for an empty volume).
-int storedSlices(const Volume& volume, const SweepFrame& f) {
-  const int layers = volume.brickDims()[f.axis], n = volume.dims()[f.axis];
-  int far = -1;  // the most downstream allocated layer, counted from the light side
-  for (const glm::ivec3 b : volume.allocatedBrickList())
-    far = std::max(far, f.dir < 0 ? layers - 1 - b[f.axis] : b[f.axis]);
-  if (far < 0) return 0;
-  far = std::min(far + 1, layers - 1);
-  return f.dir < 0 ? n - (layers - 1 - far) * Volume::kBrickSize
-                   : std::min(n, (far + 1) * Volume::kBrickSize);
+// How many slices of each brick column along the sweep's axis (lateral tile tb + ntb·tc),
+// counted from the light side in sweep order, store their light. A column stores down to its
+// most downstream light brick (lightBrickList: an allocated brick or a neighbour, so one layer
+// past an allocated brick, in its own column and the 8 around it); further downstream its shadow
+// falls on nothing the renderer reads. A stored tile reads the upstream slice in tiles t + δ,
+// δ ∈ {lo_b, lo_b + 1} × {lo_c, lo_c + 1} (lo = −1 where the upstream offset is negative, else
+// 0), so a column stores at least as deep as every column it reads: the depths are a running
+// maximum over those offsets. Unstored tiles are read only by unstored tiles, and the sweep
+// reads only upstream, so they are neither computed nor stored (all 0 for an empty volume).
+std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob, int oc) {
+  const glm::ivec3 bd = volume.brickDims();
+  const int layers = bd[f.axis], n = volume.dims()[f.axis], ntb = bd[f.b], ntc = bd[f.c];
+  std::vector<int> depth(size_t(ntb) * size_t(ntc), 0);
+  for (const glm::ivec3 b : volume.allocatedBrickList()) {
+    const int below = std::clamp(b[f.axis] + f.dir, 0, layers - 1);  // one layer downstream
+    const int end =
+        f.dir < 0 ? n - below * Volume::kBrickSize : std::min(n, (below + 1) * Volume::kBrickSize);
+    for (int tc = std::max(0, b[f.c] - 1); tc <= std::min(ntc - 1, b[f.c] + 1); ++tc)
+      for (int tb = std::max(0, b[f.b] - 1); tb <= std::min(ntb - 1, b[f.b] + 1); ++tb) {
+        int& d = depth[size_t(tc) * size_t(ntb) + size_t(tb)];
+        d = std::max(d, end);
+      }
+  }
+  // depth(t + δ) ≥ depth(t): visit t before t + δ and pull from t − δ.
+  const int lo_b = ob < 0 ? -1 : 0, lo_c = oc < 0 ? -1 : 0;
+  for (int jc = 0; jc < ntc; ++jc) {
+    const int tc = lo_c < 0 ? ntc - 1 - jc : jc;
+    for (int jb = 0; jb < ntb; ++jb) {
+      const int tb = lo_b < 0 ? ntb - 1 - jb : jb;
+      int& d = depth[size_t(tc) * size_t(ntb) + size_t(tb)];
+      for (int dc = lo_c; dc <= lo_c + 1; ++dc)
+        for (int db = lo_b; db <= lo_b + 1; ++db) {
+          const int pb = tb - db, pc = tc - dc;
+          if ((db || dc) && pb >= 0 && pb < ntb && pc >= 0 && pc < ntc)
+            d = std::max(d, depth[size_t(pc) * size_t(ntb) + size_t(pb)]);
+        }
+    }
+  }
+  return depth;
 }
 
 // The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
@@ -520,10 +545,11 @@ namespace {
 // row i − 1 has published slice j − 1 (in batches of kRowBatch slices); no barrier per slice,
 // and no value depends on the split. A tile is swept only when its brick holds density or a
 // tile in its upstream footprint passed on a value other than 1; the others stay all 1. Only the
-// first `slices` slices (storedSlices) are swept.
-void sweepAllTiles(const TileSweep& t, int slices) {
+// stored slices of each column (`depth`, storedSlices) are swept.
+void sweepAllTiles(const TileSweep& t, const std::vector<int>& depth) {
   const SweepFrame& f = t.f;
   const int ntb = (t.nb + kTile - 1) / kTile, ntc = (t.nc + kTile - 1) / kTile;
+  const int slices = depth.empty() ? 0 : *std::max_element(depth.begin(), depth.end());
   const int layers = t.volume.brickDims()[f.axis];
   // Tile rows holding density, per brick layer along the axis.
   std::vector<uint8_t> row_has_density(size_t(layers) * size_t(ntc), 0);
@@ -565,6 +591,7 @@ void sweepAllTiles(const TileSweep& t, int slices) {
           uint8_t* now = &tile_not_one[size_t(j) * size_t(ntc) * size_t(ntb)];
           bool row_any = false;
           for (int tb = 0; tb < ntb; ++tb) {
+            if (j >= depth[size_t(tc) * size_t(ntb) + size_t(tb)]) continue;  // not stored
             bool active = density && t.volume.brick(t.brickCoord(s, tb, tc)) != nullptr;
             for (int ub = std::max(0, tb + tb_lo);
                  !active && shadow_upstream && ub <= std::min(ntb - 1, tb + tb_hi); ++ub)
@@ -627,34 +654,47 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                     size_t(brick_stride[f.b]),
                     size_t(brick_stride[f.c])};
 
-  // Slices from the light side whose light is stored, before and after this update.
-  const int stored_before = lv.stored_slices, stored = storedSlices(volume, f);
-  lv.stored_slices = stored;
+  // Slices of each brick column whose light is stored (storedSlices), before and after.
+  const std::vector<int> depth = storedSlices(volume, f, ob, oc);
+  std::vector<int> depth_before = std::exchange(lv.stored_slices, depth);
   if (region == volume.bounds()) {
     lv.lit.recycle(volume.brickDims());
     lv.through.recycle(volume.brickDims());
-    sweepAllTiles(t, stored);
+    sweepAllTiles(t, depth);
     lv.lit.dropSpare();
     lv.through.dropSpare();
     return volume.bounds();
   }
-  // Slices an erase moved out of the stored part: their bricks are freed.
+  if (depth_before.size() != depth.size()) depth_before.assign(depth.size(), 0);
+  // Columns an erase made shallower free their bricks past the new depth; columns an edit made
+  // deeper (a brick allocated further downstream) are swept whole over their newly stored
+  // slices [depth_before, depth): nothing of them was kept.
   auto sweepIndex = [&](int s) { return (s - f.first) * f.dir; };  // 0 at the light side
-  if (stored < stored_before) {
-    const glm::ivec3 bd = volume.brickDims();
-    for (int layer = 0; layer < bd[f.axis]; ++layer) {
-      const int s0 = layer * Volume::kBrickSize;
-      if (std::min(sweepIndex(s0), sweepIndex(std::min(dims[f.axis], s0 + kTile) - 1)) < stored)
-        continue;
-      glm::ivec3 b;
-      b[f.axis] = layer;
-      for (b[f.c] = 0; b[f.c] < bd[f.c]; ++b[f.c])
-        for (b[f.b] = 0; b[f.b] < bd[f.b]; ++b[f.b]) {
-          lv.through.release(lv.through.brickIndex(b));
-          lv.lit.release(lv.lit.brickIndex(b));
-        }
+  const glm::ivec3 bd = volume.brickDims();
+  const int ntb = bd[f.b];
+  Rect grown_rect;  // the newly stored columns' bounding rectangle (voxels)
+  int grown_lo = dims[f.axis], grown_hi = 0, stored_end = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    stored_end = std::max(stored_end, depth[i]);
+    glm::ivec3 b;
+    b[f.b] = int(i % size_t(ntb));
+    b[f.c] = int(i / size_t(ntb));
+    if (depth[i] > depth_before[i]) {
+      grown_rect = grown_rect.unite(
+          Rect{{b[f.b] * kTile, b[f.c] * kTile}, {(b[f.b] + 1) * kTile, (b[f.c] + 1) * kTile}});
+      grown_lo = std::min(grown_lo, depth_before[i]);
+      grown_hi = std::max(grown_hi, depth[i]);
+    } else if (depth[i] < depth_before[i]) {
+      for (b[f.axis] = 0; b[f.axis] < bd[f.axis]; ++b[f.axis]) {
+        const int s0 = b[f.axis] * Volume::kBrickSize;
+        if (std::min(sweepIndex(s0), sweepIndex(std::min(dims[f.axis], s0 + kTile) - 1)) < depth[i])
+          continue;
+        lv.through.release(lv.through.brickIndex(b));
+        lv.lit.release(lv.lit.brickIndex(b));
+      }
     }
   }
+  const bool grown = grown_hi > 0;
 
   // An incremental sweep: slices from the dirty box's upstream face towards the far edge. The
   // first `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of
@@ -662,15 +702,14 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // in the previous slice (by more than kChangeEpsilon, which is 0), so the update follows the
   // actual shadow of the edit and stops where it no longer changes anything or falls into
   // shadow that is already black. Voxels left alone are exactly what a full recompute gives, so
-  // undo/redo restore the light volume bit for bit (app/session/history.h).
-  // An edit that allocates a brick further downstream than any before (stored > stored_before)
-  // also sweeps the newly stored slices whole: nothing of them was kept. The sweep stops at the
-  // end of the stored slices.
+  // undo/redo restore the light volume bit for bit (app/session/history.h). Tiles past their
+  // column's stored depth are passed over (only unstored tiles read them); newly stored tiles
+  // are swept whole (a tile stored before reads only tiles stored before, so their values need
+  // no change tracking).
   const int dirty_start = sweepIndex(f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis]);
-  const bool grown = stored > stored_before;
-  const int first = grown ? std::min(dirty_start, stored_before) : dirty_start;
+  const int first = grown ? std::min(dirty_start, grown_lo) : dirty_start;
   const int start = f.first + first * f.dir;  // the first slice swept
-  const int slices = stored - first;
+  const int slices = stored_end - first;
   const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];
   const int dirty_lo = dirty_start - first;  // the dirty box's slices: dirty_lo … + dirty_slices
   const Rect dirty_rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}};
@@ -688,8 +727,9 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
   // independent of the split (deterministic).
   if (slices <= 0) return {};
-  const int threads =
-      dirty_rect.area() >= kThreadedArea || grown ? std::max(1, std::min(workerThreads(), 16)) : 1;
+  const int threads = dirty_rect.area() >= kThreadedArea || grown_rect.area() >= kThreadedArea
+                          ? std::max(1, std::min(workerThreads(), 16))
+                          : 1;
   std::vector<Rect> changed_by_thread(size_t(2 * threads));
   std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
   auto worker = [&](int id, std::barrier<>* sync) {
@@ -700,24 +740,32 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
       Rect rect = downstreamOf(changed);
       if (j >= dirty_lo && j < dirty_lo + dirty_slices) rect = rect.unite(dirty_rect);
-      const bool newly_stored = grown && first + j >= stored_before;
-      if (newly_stored) rect = all;
+      const int k = first + j;  // the slice's sweep index
+      const bool growing = grown && k >= grown_lo && k < grown_hi;
       // Every thread sees the same rectangles and stops together; before newly stored slices
       // an empty slice is passed over.
-      if (rect.empty() && !(grown && first + j < stored_before)) break;
+      if (rect.empty() && !(grown && k < grown_hi)) break;
+      const Rect work = growing ? rect.unite(grown_rect).intersect(all) : rect;
       const int s = start + j * f.dir;
-      const int tr0 = rect.lo.y / kTile, tr1 = (rect.hi.y - 1) / kTile + 1;
-      const int parts = rect.area() < kThreadedArea ? 1 : threads;
-      const int r0 = id < parts ? tr0 + (tr1 - tr0) * id / parts : tr0;
-      const int r1 = id < parts ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
+      const int tr0 = work.lo.y / kTile, tr1 = (work.hi.y - 1) / kTile + 1;
+      const int parts = work.area() < kThreadedArea ? 1 : threads;
+      const int r0 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * id / parts : tr0;
+      const int r1 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
       Rect mine;
       for (int tc = r0; tc < r1; ++tc)
-        for (int tb = rect.lo.x / kTile; tb * kTile < rect.hi.x; ++tb) {
+        for (int tb = work.lo.x / kTile; tb * kTile < work.hi.x; ++tb) {
+          const size_t column = size_t(tc) * size_t(ntb) + size_t(tb);
+          if (k >= depth[column]) continue;  // not stored
           const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
-          t.processTile(s, tb, tc, rect.intersect(tile), true, &mine);
+          if (k >= depth_before[column]) {  // newly stored: swept whole
+            t.processTile(s, tb, tc, tile.intersect(all), false, nullptr);
+            continue;
+          }
+          const Rect r = rect.intersect(tile);
+          if (!r.empty()) t.processTile(s, tb, tc, r, true, &mine);
         }
       changed_by_thread[size_t(2 * id + j % 2)] = mine;
-      if (id == 0) swept[size_t(j)] = rect;
+      if (id == 0) swept[size_t(j)] = work;
       if (sync) sync->arrive_and_wait();
     }
   };

@@ -24,11 +24,12 @@
 //    the painting and its shadow, not the sky's extent.
 //  - `lit` holds T for the bricks the volume has allocated (where density may be non-zero). In
 //    a brick without density T equals the passed-on value, so `through` (or 1) serves there.
-//  - Neither is kept downstream of the most downstream brick layer holding a light brick (below
-//    the lowest cloud for a sun from above): there the shadow falls on nothing the renderer
-//    reads, and the sweep reads only upstream, so those slices are not swept at all
+//  - Neither is kept where the shadow falls on nothing: past the most downstream light brick of
+//    each brick column along the sweep's axis (below the lowest cloud for a sun from above; a
+//    column goes at least as deep as the columns its tiles read, so a stored tile never reads an
+//    unstored one). The sweep reads only upstream, so those tiles are not swept at all
 //    (`stored_slices`). An edit that allocates a brick further downstream sweeps the newly
-//    stored slices whole; an erase that lifts the lowest cloud frees them.
+//    stored tiles whole; an erase that lifts a column's lowest cloud frees them.
 // After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the stored
 // slices, which hold every brick the renderer reads; beyond them it reads 1.
 // The renderer reads the "light bricks" (lightBrickList: the allocated bricks and their 26
@@ -99,10 +100,12 @@ struct LightVolume {
   float extinction = -1.0f;   // k the volume was computed with (−1: matches no light)
   LightBricks lit;            // T of the bricks holding density (see the file comment)
   LightBricks through;        // passed-on values where they are not 1
-  // Slices, counted from the light side along the sweep's major axis, whose light is stored: down
-  // to the most downstream brick layer holding a light brick. Below it the shadow falls on
-  // nothing the renderer reads, so it is neither swept nor stored (see the file comment).
-  int stored_slices = 0;
+  // Per brick column along the sweep's major axis (the two lateral brick axes, the one of smaller
+  // memory stride fastest): how many slices, counted from the light side, store their light —
+  // down to the column's most downstream light brick, and at least as deep as the columns its
+  // sweep reads. Past it the shadow falls on nothing the renderer reads, so it is neither swept
+  // nor stored (see the file comment).
+  std::vector<int> stored_slices;
 
   bool matches(const Volume& volume, const Light& light) const;
   // T at voxel (x,y,z), 1 = fully lit: after sweepLightVolume exact in the stored slices (every

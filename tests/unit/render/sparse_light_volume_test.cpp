@@ -174,12 +174,15 @@ TEST(SparseLightVolume, TheShadowBelowTheLowestCloudIsNeitherSweptNorStored) {
     }
     setWorkerThreads(0);
     sweepLightVolume(all, anchored, light, anchored.bounds());
-    const int stored_at_start = followed[0].stored_slices;
+    const std::vector<int> stored_at_start = followed[0].stored_slices;
+    auto deepest = [](const std::vector<int>& depth) {
+      return *std::max_element(depth.begin(), depth.end());
+    };
     if (from_above) {
       int lowest = 13;
       for (const glm::ivec3 b : v.allocatedBrickList()) lowest = std::min(lowest, b.y);
       EXPECT_GE(lowest, 8);
-      EXPECT_EQ(stored_at_start, 224 - 16 * (lowest - 1)) << "down to the layer below the puffs";
+      EXPECT_EQ(deepest(stored_at_start), 224 - 16 * (lowest - 1)) << "the layer below the puffs";
       EXPECT_EQ(followed[0].at(100, 20, 60), 1.0f) << "not stored: reads 1";
       // Measured: 3.2 MB against 5.6 MB with the default sun.
       EXPECT_LT(3 * followed[0].memoryBytes(), 2 * all.memoryBytes()) << "the shadow over nothing";
@@ -220,7 +223,7 @@ TEST(SparseLightVolume, TheShadowBelowTheLowestCloudIsNeitherSweptNorStored) {
     mergeSoftBall(&anchored, low, 10);
     edit("a stroke below the lowest cloud");
     if (from_above) {
-      EXPECT_GT(followed[0].stored_slices, stored_at_start);
+      EXPECT_GT(deepest(followed[0].stored_slices), deepest(stored_at_start));
     }
     sweepLightVolume(all, anchored, light, anchored.bounds());
     sameOnLightBricks(followed[0], "after the stroke below");
