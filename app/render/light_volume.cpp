@@ -732,6 +732,11 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                           : 1;
   std::vector<Rect> changed_by_thread(size_t(2 * threads));
   std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
+  struct Fresh {  // newly stored tiles that are not all 1, per thread
+    Rect lateral;
+    int first = -1, last = -1;
+  };
+  std::vector<Fresh> fresh(static_cast<size_t>(threads));
   auto worker = [&](int id, std::barrier<>* sync) {
     for (int j = 0; j < slices; ++j) {
       Rect changed;
@@ -758,14 +763,20 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           if (k >= depth[column]) continue;  // not stored
           const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
           if (k >= depth_before[column]) {  // newly stored: swept whole
-            t.processTile(s, tb, tc, tile.intersect(all), false, nullptr);
+            // `at` read 1 there before: the tile is rewritten only where it is not 1 now.
+            if (t.processTile(s, tb, tc, tile.intersect(all), false, nullptr)) {
+              Fresh& mine_fresh = fresh[size_t(id)];
+              mine_fresh.lateral = mine_fresh.lateral.unite(tile.intersect(all));
+              if (mine_fresh.first < 0) mine_fresh.first = j;
+              mine_fresh.last = j;
+            }
             continue;
           }
           const Rect r = rect.intersect(tile);
           if (!r.empty()) t.processTile(s, tb, tc, r, true, &mine);
         }
       changed_by_thread[size_t(2 * id + j % 2)] = mine;
-      if (id == 0) swept[size_t(j)] = work;
+      if (id == 0) swept[size_t(j)] = rect;
       if (sync) sync->arrive_and_wait();
     }
   };
@@ -778,19 +789,26 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     worker(0, &sync);
     for (auto& th : pool) th.join();
   }
-  // The rewritten box: the union of the per-slice rectangles.
+  // The rewritten box: the union of the per-slice rectangles and the newly stored tiles not 1.
   Rect lateral;
-  int last = -1;
+  int first_rewritten = slices, last = -1;
   for (int j = 0; j < slices; ++j) {
     if (swept[size_t(j)].empty()) continue;
     lateral = lateral.unite(swept[size_t(j)]);
+    first_rewritten = std::min(first_rewritten, j);
     last = j;
+  }
+  for (const Fresh& f_id : fresh) {
+    if (f_id.last < 0) continue;
+    lateral = lateral.unite(f_id.lateral);
+    first_rewritten = std::min(first_rewritten, f_id.first);
+    last = std::max(last, f_id.last);
   }
   if (last < 0) return {};
   VoxelBox out;
-  const int end = start + last * f.dir;
-  out.lo[f.axis] = std::min(start, end);
-  out.hi[f.axis] = std::max(start, end) + 1;
+  const int begin = start + first_rewritten * f.dir, end = start + last * f.dir;
+  out.lo[f.axis] = std::min(begin, end);
+  out.hi[f.axis] = std::max(begin, end) + 1;
   out.lo[f.b] = lateral.lo.x;
   out.hi[f.b] = lateral.hi.x;
   out.lo[f.c] = lateral.lo.y;

@@ -126,8 +126,10 @@ struct LightVolume {
   // Never nullptr for a brick of the grid (a fully lit brick shares one brick of ones); nullptr
   // outside the grid or before the first sweep.
   const float* brickTransmittance(glm::ivec3 brick) const;
-  // Bytes held: both brick sets and their tables.
-  size_t memoryBytes() const { return lit.memoryBytes() + through.memoryBytes(); }
+  // Bytes held: both brick sets, their tables and the stored depths.
+  size_t memoryBytes() const {
+    return lit.memoryBytes() + through.memoryBytes() + stored_slices.size() * sizeof(int);
+  }
   // Every voxel's T in the volume's dense order (tests and tools; at most 2^31 voxels).
   std::vector<float> toDense() const;
 };
