@@ -210,6 +210,47 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
   return f;
 }
 
+// How many slices of each brick column along the sweep's axis (lateral tile tb + ntb·tc),
+// counted from the light side in sweep order, store their light. A column stores down to its
+// most downstream light brick (lightBrickList: an allocated brick or a neighbour, so one layer
+// past an allocated brick, in its own column and the 8 around it); further downstream its shadow
+// falls on nothing the renderer reads. A stored tile reads the upstream slice in tiles t + δ,
+// δ ∈ {lo_b, lo_b + 1} × {lo_c, lo_c + 1} (lo = −1 where the upstream offset is negative, else
+// 0), so a column stores at least as deep as every column it reads: the depths are a running
+// maximum over those offsets. Unstored tiles are read only by unstored tiles, and the sweep
+// reads only upstream, so they are neither computed nor stored (all 0 for an empty volume).
+std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob, int oc) {
+  const glm::ivec3 bd = volume.brickDims();
+  const int layers = bd[f.axis], n = volume.dims()[f.axis], ntb = bd[f.b], ntc = bd[f.c];
+  std::vector<int> depth(size_t(ntb) * size_t(ntc), 0);
+  for (const glm::ivec3 b : volume.allocatedBrickList()) {
+    const int below = std::clamp(b[f.axis] + f.dir, 0, layers - 1);  // one layer downstream
+    const int end =
+        f.dir < 0 ? n - below * Volume::kBrickSize : std::min(n, (below + 1) * Volume::kBrickSize);
+    for (int tc = std::max(0, b[f.c] - 1); tc <= std::min(ntc - 1, b[f.c] + 1); ++tc)
+      for (int tb = std::max(0, b[f.b] - 1); tb <= std::min(ntb - 1, b[f.b] + 1); ++tb) {
+        int& d = depth[size_t(tc) * size_t(ntb) + size_t(tb)];
+        d = std::max(d, end);
+      }
+  }
+  // depth(t + δ) ≥ depth(t): visit t before t + δ and pull from t − δ.
+  const int lo_b = ob < 0 ? -1 : 0, lo_c = oc < 0 ? -1 : 0;
+  for (int jc = 0; jc < ntc; ++jc) {
+    const int tc = lo_c < 0 ? ntc - 1 - jc : jc;
+    for (int jb = 0; jb < ntb; ++jb) {
+      const int tb = lo_b < 0 ? ntb - 1 - jb : jb;
+      int& d = depth[size_t(tc) * size_t(ntb) + size_t(tb)];
+      for (int dc = lo_c; dc <= lo_c + 1; ++dc)
+        for (int db = lo_b; db <= lo_b + 1; ++db) {
+          const int pb = tb - db, pc = tc - dc;
+          if ((db || dc) && pb >= 0 && pb < ntb && pc >= 0 && pc < ntc)
+            d = std::max(d, depth[size_t(pc) * size_t(ntb) + size_t(pb)]);
+        }
+    }
+  }
+  return depth;
+}
+
 // The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
 // processTile computes a rectangle inside one tile from the upstream slice, exactly as the dense
 // sweep did voxel by voxel: the same bilinear expression, the same attenuation, so the same bits.
@@ -503,11 +544,12 @@ namespace {
 // over every slice. Threads take rows in turn and run as a pipeline: row i's slice j waits until
 // row i − 1 has published slice j − 1 (in batches of kRowBatch slices); no barrier per slice,
 // and no value depends on the split. A tile is swept only when its brick holds density or a
-// tile in its upstream footprint passed on a value other than 1; the others stay all 1.
-void sweepAllTiles(const TileSweep& t) {
+// tile in its upstream footprint passed on a value other than 1; the others stay all 1. Only the
+// stored slices of each column (`depth`, storedSlices) are swept.
+void sweepAllTiles(const TileSweep& t, const std::vector<int>& depth) {
   const SweepFrame& f = t.f;
   const int ntb = (t.nb + kTile - 1) / kTile, ntc = (t.nc + kTile - 1) / kTile;
-  const int slices = t.na;
+  const int slices = depth.empty() ? 0 : *std::max_element(depth.begin(), depth.end());
   const int layers = t.volume.brickDims()[f.axis];
   // Tile rows holding density, per brick layer along the axis.
   std::vector<uint8_t> row_has_density(size_t(layers) * size_t(ntc), 0);
@@ -549,6 +591,7 @@ void sweepAllTiles(const TileSweep& t) {
           uint8_t* now = &tile_not_one[size_t(j) * size_t(ntc) * size_t(ntb)];
           bool row_any = false;
           for (int tb = 0; tb < ntb; ++tb) {
+            if (j >= depth[size_t(tc) * size_t(ntb) + size_t(tb)]) continue;  // not stored
             bool active = density && t.volume.brick(t.brickCoord(s, tb, tc)) != nullptr;
             for (int ub = std::max(0, tb + tb_lo);
                  !active && shadow_upstream && ub <= std::min(ntb - 1, tb + tb_hi); ++ub)
@@ -611,14 +654,47 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                     size_t(brick_stride[f.b]),
                     size_t(brick_stride[f.c])};
 
+  // Slices of each brick column whose light is stored (storedSlices), before and after.
+  const std::vector<int> depth = storedSlices(volume, f, ob, oc);
+  std::vector<int> depth_before = std::exchange(lv.stored_slices, depth);
   if (region == volume.bounds()) {
     lv.lit.recycle(volume.brickDims());
     lv.through.recycle(volume.brickDims());
-    sweepAllTiles(t);
+    sweepAllTiles(t, depth);
     lv.lit.dropSpare();
     lv.through.dropSpare();
     return volume.bounds();
   }
+  if (depth_before.size() != depth.size()) depth_before.assign(depth.size(), 0);
+  // Columns an erase made shallower free their bricks past the new depth; columns an edit made
+  // deeper (a brick allocated further downstream) are swept whole over their newly stored
+  // slices [depth_before, depth): nothing of them was kept.
+  auto sweepIndex = [&](int s) { return (s - f.first) * f.dir; };  // 0 at the light side
+  const glm::ivec3 bd = volume.brickDims();
+  const int ntb = bd[f.b];
+  Rect grown_rect;  // the newly stored columns' bounding rectangle (voxels)
+  int grown_lo = dims[f.axis], grown_hi = 0, stored_end = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    stored_end = std::max(stored_end, depth[i]);
+    glm::ivec3 b;
+    b[f.b] = int(i % size_t(ntb));
+    b[f.c] = int(i / size_t(ntb));
+    if (depth[i] > depth_before[i]) {
+      grown_rect = grown_rect.unite(
+          Rect{{b[f.b] * kTile, b[f.c] * kTile}, {(b[f.b] + 1) * kTile, (b[f.c] + 1) * kTile}});
+      grown_lo = std::min(grown_lo, depth_before[i]);
+      grown_hi = std::max(grown_hi, depth[i]);
+    } else if (depth[i] < depth_before[i]) {
+      for (b[f.axis] = 0; b[f.axis] < bd[f.axis]; ++b[f.axis]) {
+        const int s0 = b[f.axis] * Volume::kBrickSize;
+        if (std::min(sweepIndex(s0), sweepIndex(std::min(dims[f.axis], s0 + kTile) - 1)) < depth[i])
+          continue;
+        lv.through.release(lv.through.brickIndex(b));
+        lv.lit.release(lv.lit.brickIndex(b));
+      }
+    }
+  }
+  const bool grown = grown_hi > 0;
 
   // An incremental sweep: slices from the dirty box's upstream face towards the far edge. The
   // first `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of
@@ -626,10 +702,16 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // in the previous slice (by more than kChangeEpsilon, which is 0), so the update follows the
   // actual shadow of the edit and stops where it no longer changes anything or falls into
   // shadow that is already black. Voxels left alone are exactly what a full recompute gives, so
-  // undo/redo restore the light volume bit for bit (app/session/history.h).
-  const int start = f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis];
-  const int slices = f.dir < 0 ? start + 1 : dims[f.axis] - start;
+  // undo/redo restore the light volume bit for bit (app/session/history.h). Tiles past their
+  // column's stored depth are passed over (only unstored tiles read them); newly stored tiles
+  // are swept whole (a tile stored before reads only tiles stored before, so their values need
+  // no change tracking).
+  const int dirty_start = sweepIndex(f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis]);
+  const int first = grown ? std::min(dirty_start, grown_lo) : dirty_start;
+  const int start = f.first + first * f.dir;  // the first slice swept
+  const int slices = stored_end - first;
   const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];
+  const int dirty_lo = dirty_start - first;  // the dirty box's slices: dirty_lo … + dirty_slices
   const Rect dirty_rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}};
   const Rect all{glm::ivec2(0), lateral_dims};
   // The voxels of the next slice whose upstream footprint (b + ob + {0,1}, c + oc + {0,1})
@@ -644,10 +726,17 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // (a barrier per slice costs more than they do). Each thread's changed rectangle is
   // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
   // independent of the split (deterministic).
-  const int threads =
-      dirty_rect.area() >= kThreadedArea ? std::max(1, std::min(workerThreads(), 16)) : 1;
+  if (slices <= 0) return {};
+  const int threads = dirty_rect.area() >= kThreadedArea || grown_rect.area() >= kThreadedArea
+                          ? std::max(1, std::min(workerThreads(), 16))
+                          : 1;
   std::vector<Rect> changed_by_thread(size_t(2 * threads));
   std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
+  struct Fresh {  // newly stored tiles that are not all 1, per thread
+    Rect lateral;
+    int first = -1, last = -1;
+  };
+  std::vector<Fresh> fresh(static_cast<size_t>(threads));
   auto worker = [&](int id, std::barrier<>* sync) {
     for (int j = 0; j < slices; ++j) {
       Rect changed;
@@ -655,18 +744,36 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
         for (int i = 0; i < threads; ++i)
           changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
       Rect rect = downstreamOf(changed);
-      if (j < dirty_slices) rect = rect.unite(dirty_rect);
-      if (rect.empty()) break;  // every thread sees the same rectangles and stops together
+      if (j >= dirty_lo && j < dirty_lo + dirty_slices) rect = rect.unite(dirty_rect);
+      const int k = first + j;  // the slice's sweep index
+      const bool growing = grown && k >= grown_lo && k < grown_hi;
+      // Every thread sees the same rectangles and stops together; before newly stored slices
+      // an empty slice is passed over.
+      if (rect.empty() && !(grown && k < grown_hi)) break;
+      const Rect work = growing ? rect.unite(grown_rect).intersect(all) : rect;
       const int s = start + j * f.dir;
-      const int tr0 = rect.lo.y / kTile, tr1 = (rect.hi.y - 1) / kTile + 1;
-      const int parts = rect.area() < kThreadedArea ? 1 : threads;
-      const int r0 = id < parts ? tr0 + (tr1 - tr0) * id / parts : tr0;
-      const int r1 = id < parts ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
+      const int tr0 = work.lo.y / kTile, tr1 = (work.hi.y - 1) / kTile + 1;
+      const int parts = work.area() < kThreadedArea ? 1 : threads;
+      const int r0 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * id / parts : tr0;
+      const int r1 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
       Rect mine;
       for (int tc = r0; tc < r1; ++tc)
-        for (int tb = rect.lo.x / kTile; tb * kTile < rect.hi.x; ++tb) {
+        for (int tb = work.lo.x / kTile; tb * kTile < work.hi.x; ++tb) {
+          const size_t column = size_t(tc) * size_t(ntb) + size_t(tb);
+          if (k >= depth[column]) continue;  // not stored
           const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
-          t.processTile(s, tb, tc, rect.intersect(tile), true, &mine);
+          if (k >= depth_before[column]) {  // newly stored: swept whole
+            // `at` read 1 there before: the tile is rewritten only where it is not 1 now.
+            if (t.processTile(s, tb, tc, tile.intersect(all), false, nullptr)) {
+              Fresh& mine_fresh = fresh[size_t(id)];
+              mine_fresh.lateral = mine_fresh.lateral.unite(tile.intersect(all));
+              if (mine_fresh.first < 0) mine_fresh.first = j;
+              mine_fresh.last = j;
+            }
+            continue;
+          }
+          const Rect r = rect.intersect(tile);
+          if (!r.empty()) t.processTile(s, tb, tc, r, true, &mine);
         }
       changed_by_thread[size_t(2 * id + j % 2)] = mine;
       if (id == 0) swept[size_t(j)] = rect;
@@ -682,19 +789,26 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     worker(0, &sync);
     for (auto& th : pool) th.join();
   }
-  // The rewritten box: the union of the per-slice rectangles.
+  // The rewritten box: the union of the per-slice rectangles and the newly stored tiles not 1.
   Rect lateral;
-  int last = -1;
+  int first_rewritten = slices, last = -1;
   for (int j = 0; j < slices; ++j) {
     if (swept[size_t(j)].empty()) continue;
     lateral = lateral.unite(swept[size_t(j)]);
+    first_rewritten = std::min(first_rewritten, j);
     last = j;
+  }
+  for (const Fresh& f_id : fresh) {
+    if (f_id.last < 0) continue;
+    lateral = lateral.unite(f_id.lateral);
+    first_rewritten = std::min(first_rewritten, f_id.first);
+    last = std::max(last, f_id.last);
   }
   if (last < 0) return {};
   VoxelBox out;
-  const int end = start + last * f.dir;
-  out.lo[f.axis] = std::min(start, end);
-  out.hi[f.axis] = std::max(start, end) + 1;
+  const int begin = start + first_rewritten * f.dir, end = start + last * f.dir;
+  out.lo[f.axis] = std::min(begin, end);
+  out.hi[f.axis] = std::max(begin, end) + 1;
   out.lo[f.b] = lateral.lo.x;
   out.hi[f.b] = lateral.hi.x;
   out.lo[f.c] = lateral.lo.y;

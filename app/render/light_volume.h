@@ -24,7 +24,14 @@
 //    the painting and its shadow, not the sky's extent.
 //  - `lit` holds T for the bricks the volume has allocated (where density may be non-zero). In
 //    a brick without density T equals the passed-on value, so `through` (or 1) serves there.
-// After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the grid.
+//  - Neither is kept where the shadow falls on nothing: past the most downstream light brick of
+//    each brick column along the sweep's axis (below the lowest cloud for a sun from above; a
+//    column goes at least as deep as the columns its tiles read, so a stored tile never reads an
+//    unstored one). The sweep reads only upstream, so those tiles are not swept at all
+//    (`stored_slices`). An edit that allocates a brick further downstream sweeps the newly
+//    stored tiles whole; an erase that lifts a column's lowest cloud frees them.
+// After sweepLightVolume, `at` therefore equals the dense sweep's T at every voxel of the stored
+// slices, which hold every brick the renderer reads; beyond them it reads 1.
 // The renderer reads the "light bricks" (lightBrickList: the allocated bricks and their 26
 // neighbours, which trilinear samples of non-zero density can reach); the reduced preview
 // (reduced_light_sweep.h) stores only those and reads 1 elsewhere, where nothing reads it.
@@ -93,10 +100,17 @@ struct LightVolume {
   float extinction = -1.0f;   // k the volume was computed with (−1: matches no light)
   LightBricks lit;            // T of the bricks holding density (see the file comment)
   LightBricks through;        // passed-on values where they are not 1
+  // Per brick column along the sweep's major axis (the two lateral brick axes, the one of smaller
+  // memory stride fastest): how many slices, counted from the light side, store their light —
+  // down to the column's most downstream light brick, and at least as deep as the columns its
+  // sweep reads. Past it the shadow falls on nothing the renderer reads, so it is neither swept
+  // nor stored (see the file comment).
+  std::vector<int> stored_slices;
 
   bool matches(const Volume& volume, const Light& light) const;
-  // T at voxel (x,y,z), 1 = fully lit: exact at every voxel after sweepLightVolume; after a
-  // reduced preview exact only on light bricks (lightBrickList), 1 elsewhere (nothing reads it).
+  // T at voxel (x,y,z), 1 = fully lit: after sweepLightVolume exact in the stored slices (every
+  // light brick, lightBrickList, lies in them) and 1 beyond; after a reduced preview exact only on
+  // light bricks, 1 elsewhere. Nothing reads it where it reads 1 instead of the shadow.
   float at(int x, int y, int z) const {
     if (through.brickDims().x == 0) return 1.0f;
     constexpr int s = Volume::kBrickShift, m = Volume::kBrickSize - 1;
@@ -112,8 +126,10 @@ struct LightVolume {
   // Never nullptr for a brick of the grid (a fully lit brick shares one brick of ones); nullptr
   // outside the grid or before the first sweep.
   const float* brickTransmittance(glm::ivec3 brick) const;
-  // Bytes held: both brick sets and their tables.
-  size_t memoryBytes() const { return lit.memoryBytes() + through.memoryBytes(); }
+  // Bytes held: both brick sets, their tables and the stored depths.
+  size_t memoryBytes() const {
+    return lit.memoryBytes() + through.memoryBytes() + stored_slices.size() * sizeof(int);
+  }
   // Every voxel's T in the volume's dense order (tests and tools; at most 2^31 voxels).
   std::vector<float> toDense() const;
 };

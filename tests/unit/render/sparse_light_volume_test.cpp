@@ -1,6 +1,7 @@
 // The sparse light volume (light_volume.h, issue 15): stored only where the light is not 1, its
 // values are those of the dense sweep — in a large sky as in a box of the cloud's own size, with
 // shadows crossing empty space, after incremental edits and erases, on any thread count.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -145,12 +146,109 @@ TEST(SparseLightVolume, IncrementalEditsEqualAFullSweepOnAnyThreadCount) {
   }
 }
 
+// Below the lowest cloud (for a sun from above) the shadow falls on nothing the renderer reads:
+// those slices are neither swept nor stored. The light bricks get the bits they get when a speck
+// at the grid's far corner makes everything stored, and a stroke below the lowest cloud (the
+// newly stored slices swept whole) and its erase (freed again) give a fresh full sweep's bytes
+// and bricks on 1, 2 and 8 threads.
+TEST(SparseLightVolume, TheShadowBelowTheLowestCloudIsNeitherSweptNorStored) {
+  Volume v = sky({160, 224, 128});
+  place(makeSparsePuffs(glm::ivec3(96, 64, 96), 3), &v, {20, 150, 10});
+  for (const glm::vec3 d : {glm::vec3(3.0f, 4.0f, 1.5f), glm::vec3(0.2f, 3.0f, -0.5f),
+                            glm::vec3(-0.3f, -3.0f, 1.0f), glm::vec3(-6.0f, 1.0f, 0.3f)}) {
+    Light light;
+    light.direction = glm::normalize(d);
+    const bool from_above = d.y > std::abs(d.x) && d.y > std::abs(d.z);
+    // Everything stored: a speck in the grid's corner furthest downstream, whose own shadow
+    // leaves the grid at once, makes its brick layer the last one with density.
+    Volume anchored = v;
+    const glm::vec3 l = lightDirectionInVoxels(v, light);
+    const glm::ivec3 corner(l.x > 0 ? 0 : 159, l.y > 0 ? 0 : 223, l.z > 0 ? 0 : 127);
+    anchored.voxelForWrite(corner.x, corner.y, corner.z) = 0.5f;
+    Volume w = v;
+    LightVolume followed[3], all;
+    const int threads[3] = {1, 2, 8};
+    for (int i = 0; i < 3; ++i) {
+      setWorkerThreads(threads[i]);
+      sweepLightVolume(followed[i], w, light, w.bounds());
+    }
+    setWorkerThreads(0);
+    sweepLightVolume(all, anchored, light, anchored.bounds());
+    const std::vector<int> stored_at_start = followed[0].stored_slices;
+    auto deepest = [](const std::vector<int>& depth) {
+      return *std::max_element(depth.begin(), depth.end());
+    };
+    if (from_above) {
+      int lowest = 13;
+      for (const glm::ivec3 b : v.allocatedBrickList()) lowest = std::min(lowest, b.y);
+      EXPECT_GE(lowest, 8);
+      EXPECT_EQ(deepest(stored_at_start), 224 - 16 * (lowest - 1)) << "the layer below the puffs";
+      EXPECT_EQ(followed[0].at(100, 20, 60), 1.0f) << "not stored: reads 1";
+      // Measured: 3.2 MB against 5.6 MB with the default sun.
+      EXPECT_LT(3 * followed[0].memoryBytes(), 2 * all.memoryBytes()) << "the shadow over nothing";
+    }
+    // Every brick the renderer reads has the bits it has when everything is stored.
+    auto sameOnLightBricks = [&](const LightVolume& lv, const char* what) {
+      size_t different = 0;
+      for (const glm::ivec3 b : lightBrickList(w)) {
+        const float* p = lv.brickTransmittance(b);
+        const float* q = all.brickTransmittance(b);
+        different += std::memcmp(p, q, sizeof(float) * Volume::kBrickVoxels) != 0;
+      }
+      EXPECT_EQ(different, 0u) << what << " " << d.x << "," << d.y << "," << d.z;
+    };
+    sameOnLightBricks(followed[0], "full sweep");
+    uint64_t seen = w.generation();
+    auto edit = [&](const char* what) {
+      for (int i = 0; i < 3; ++i) {
+        setWorkerThreads(threads[i]);
+        sweepLightVolume(followed[i], w, light, w.dirtySince(seen));
+      }
+      setWorkerThreads(0);
+      seen = w.generation();
+      LightVolume full;
+      sweepLightVolume(full, w, light, w.bounds());
+      const std::vector<float> t = full.toDense(), passed = passedOn(full);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(followed[i].stored_slices, full.stored_slices) << what;
+        EXPECT_TRUE(followed[i].toDense() == t) << what << " on " << threads[i] << " threads";
+        EXPECT_TRUE(passedOn(followed[i]) == passed) << what << " on " << threads[i];
+        EXPECT_EQ(followed[i].lit.allocated(), full.lit.allocated()) << what;
+        EXPECT_EQ(followed[i].through.allocated(), full.through.allocated()) << what;
+      }
+    };
+    // A stroke below the puffs, under their shadow, and one more beside it.
+    const glm::vec3 low = from_above ? glm::vec3(70, 60, 50) : glm::vec3(80, 120, 64);
+    mergeSoftBall(&w, low, 10);
+    mergeSoftBall(&anchored, low, 10);
+    edit("a stroke below the lowest cloud");
+    if (from_above) {
+      EXPECT_GT(deepest(followed[0].stored_slices), deepest(stored_at_start));
+    }
+    sweepLightVolume(all, anchored, light, anchored.bounds());
+    sameOnLightBricks(followed[0], "after the stroke below");
+    mergeSoftBall(&w, low + glm::vec3(30, 8, 20), 8);
+    edit("a second stroke beside it");
+    // Erase both: the lowest cloud is the puffs again.
+    const VoxelBox erase{{0, 0, 0}, {160, 140, 128}};
+    for (int z = erase.lo.z; z < erase.hi.z; ++z)
+      for (int y = erase.lo.y; y < erase.hi.y; ++y)
+        for (int x = erase.lo.x; x < erase.hi.x; ++x)
+          if (w.at(x, y, z) != 0.0f) w.voxelForWrite(x, y, z) = 0.0f;
+    for (const glm::ivec3 b : w.allocatedBrickList()) w.releaseEmptyBrick(b);
+    w.markDirty(erase);
+    edit("an erase that lifts the lowest cloud");
+    EXPECT_EQ(followed[0].stored_slices, stored_at_start);
+  }
+}
+
 TEST(SparseLightVolume, AnEmptySkyStoresNoLight) {
   Volume v = sky({1024, 256, 1024});
   LightVolume lv;
   EXPECT_EQ(sweepLightVolume(lv, v, Light{}, v.bounds()), v.bounds());
   EXPECT_EQ(lv.lit.allocated() + lv.through.allocated(), 0u);
-  EXPECT_LE(lv.memoryBytes(), 2 * v.brickCount() * sizeof(float*));
+  // The two brick tables and a depth per brick column (64 × 64).
+  EXPECT_LE(lv.memoryBytes(), 2 * v.brickCount() * sizeof(float*) + 64 * 64 * sizeof(int));
   EXPECT_EQ(lv.at(512, 3, 1000), 1.0f);
   const float* ones = lv.brickTransmittance({10, 2, 60});
   ASSERT_NE(ones, nullptr);
