@@ -429,6 +429,7 @@ void KioskScreen::startCalibration(int64_t now, bool pressure) {
   options.journal = calibration_record_.get();
   options.end_loop_when_done = false;
   options.esc_quits = false;
+  options.esc_returns_to = "the operator panel";
   options.log = [](const std::string& line) {
     std::fprintf(stderr, "cloudbrush kiosk: calibrate: %s\n", line.c_str());
   };
