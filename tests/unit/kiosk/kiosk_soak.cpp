@@ -450,6 +450,9 @@ int runKiosk(const SoakOptions& o) {
           // finished visitor's session given back and the next visitor's fresh one made.
           resets.back().rss_kb = vmRssKb();
           resets.back().fds = openFds();
+          std::printf("kiosk_soak: reset %zu at simulated %.0f s: VmRSS %.1f MB, %d fds\n",
+                      resets.size(), resets.back().sim_s, double(resets.back().rss_kb) / 1024.0,
+                      resets.back().fds);
           sample_pending = false;
           if (now >= end_ns) g_stop.store(true);
         }
