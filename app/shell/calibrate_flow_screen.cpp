@@ -47,6 +47,11 @@ CalibrateFlowScreen::CalibrateFlowScreen(PenSource* pen, int width, int height,
   context_.height = height;
   context_.journal = options_.journal;
   context_.log = options_.log;
+  if (!options_.esc_quits)
+    context_.esc_hint =
+        "Esc goes back" +
+        (options_.esc_returns_to.empty() ? std::string() : " to " + options_.esc_returns_to) +
+        " without saving.";
   wait_ = std::make_unique<CalibrateWaitScreen>(context_,
                                                 [this](bool connected, const std::string& why) {
                                                   if (connected) return penArrived();

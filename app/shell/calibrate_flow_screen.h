@@ -46,6 +46,8 @@ struct CalibrateFlowOptions {
   bool end_loop_when_done = true;     // the outcome ends the frame loop (a command); a pushed
                                       // screen leaves that to the callback
   bool esc_quits = true;              // Esc ends the loop (command); otherwise it cancels the flow
+  std::string esc_returns_to;         // with !esc_quits: where Esc goes, in words ("the
+                                      // operator panel"); the screens say so
   std::function<void(const std::string&)> log;  // progress lines
   std::function<void(const CalibrateOutcome&)> on_done;
 };
@@ -79,6 +81,8 @@ class CalibrateFlowScreen : public Screen {
   bool allowsQuit() const override { return options_.esc_quits; }
 
   Stage stage() const { return stage_; }
+  // The words on the frame last drawn (what the person at the screen reads).
+  std::vector<std::string> words() const { return context_.view.words(); }
   const std::optional<CalibrateOutcome>& outcome() const { return outcome_; }
 
  private:

@@ -45,11 +45,11 @@ bool CalibratePressureScreen::draw(FrameContext& frame, std::string* error) {
   v.rect(w * 0.3, h * 0.75, w * 0.4, 12, {0.2f, 0.22f, 0.25f});  // the bar's track
   v.rect(w * 0.3, h * 0.75, w * 0.4 * held, 12, {0.3f, 0.8f, 0.3f});
   if (context_.input.inRange()) v.cursor(context_.input.cursor());
-  v.say(
-      {light ? "Step 1 of 2: press lightly, as gently as you would paint"
-             : "Step 2 of 2: now press firmly",
-       "Hold the pen still on the tablet until the green bar is full, then lift it.", "Esc quits."},
-      0.08f);
+  v.say({light ? "Step 1 of 2: press lightly, as gently as you would paint"
+               : "Step 2 of 2: now press firmly",
+         "Hold the pen still on the tablet until the green bar is full, then lift it.",
+         context_.esc_hint},
+        0.08f);
   if (!problem_.empty()) v.label(float(w) * 0.5f, float(h) * 0.82f, problem_, 0.0f, 0xffb060ffu);
   return v.finish(error);
 }

@@ -87,7 +87,7 @@ bool CalibrateResultScreen::draw(FrameContext& frame, std::string* error) {
           "Accept and save (Space)");
   v.label(float(redo.x + redo.w * 0.5), float(redo.y + redo.h + 0.4 * size), "Redo the taps");
   v.label(float(w) * 0.5f, float(accept.y) - 1.2f * size,
-          "Tap a box with the pen. Esc leaves without saving.", size * 0.8f, 0xd0d8e0ffu);
+          "Tap a box with the pen. " + context_.esc_hint, size * 0.8f, 0xd0d8e0ffu);
   if (context_.input.inRange()) v.cursor(context_.input.cursor());
   return v.finish(error);
 }

@@ -28,8 +28,9 @@ struct CalibrateContext {
   int width = 0, height = 0;
   CalibratePenInput input;
   CalibrateView view;
-  JournalWriter* journal = nullptr;             // may be null
-  std::function<void(const std::string&)> log;  // progress lines (the command prints them)
+  JournalWriter* journal = nullptr;                    // may be null
+  std::function<void(const std::string&)> log;         // progress lines (the command prints them)
+  std::string esc_hint = "Esc quits without saving.";  // what Esc does, in words, on every step
   bool changed = true;  // input or a step since the last frame was drawn (whoever draws clears)
   void say(const std::string& line) const {
     if (log) log(line);

@@ -48,7 +48,7 @@ bool CalibrateTargetsScreen::draw(FrameContext& frame, std::string* error) {
                 n);
   v.label(float(w) * 0.5f, float(h) * 0.5f + size * 2.5f, line);
   v.label(float(w) * 0.5f, float(h) * 0.5f + size * 4.0f,
-          "Touch with the tip and lift without sliding. Esc leaves without saving.", size * 0.8f,
+          "Touch with the tip and lift without sliding. " + context_.esc_hint, size * 0.8f,
           0xd0d8e0ffu);
   if (!problem_.empty())
     v.label(float(w) * 0.5f, float(h) * 0.5f + size * 5.3f, "Not counted: " + problem_, size * 0.8f,

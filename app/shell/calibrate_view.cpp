@@ -52,6 +52,12 @@ void CalibrateView::say(const std::vector<std::string>& lines, float top) {
           i == 0 ? size * 1.3f : size, i == 0 ? 0xffffffffu : 0xd0d8e0ffu, true);
 }
 
+std::vector<std::string> CalibrateView::words() const {
+  std::vector<std::string> lines;
+  for (const UiLabel& l : labels_) lines.push_back(l.text);
+  return lines;
+}
+
 bool CalibrateView::finish(std::string* error) {
   if (!items_.empty()) {
     if (!hud_ready_) {

@@ -37,6 +37,8 @@ class CalibrateView {
   float bodySize() const;
   // Draws the frame; false with *error when the GL passes cannot start.
   bool finish(std::string* error);
+  // The words of the frame last drawn, one line each (what a person reads on it).
+  std::vector<std::string> words() const;
 
  private:
   HudOverlay hud_;

@@ -33,7 +33,7 @@ bool CalibrateWaitScreen::draw(FrameContext& frame, std::string* error) {
   CalibrateView& v = context_.view;
   v.begin(frame.display.framebuffer(), frame.width, frame.height, {0.25f, 0.05f, 0.05f});
   v.say({"Waiting for the pen", "Connect the tablet and bring the pen near it.", status,
-         "Calibration starts by itself when the pen is there; Esc leaves."},
+         "Calibration starts by itself when the pen is there.", context_.esc_hint},
         0.35f);
   drawn_ = true;
   drawn_status_ = status;

@@ -1,5 +1,7 @@
 #include "app/shell/kiosk_screen.h"
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -208,6 +210,10 @@ void KioskScreen::prepareVisitor() {
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
   visitor_ = std::move(session);
   next_visitor_pending_ = false;
+  // The finished visitor's sky and undo history are freed now; hand the pages back, so the
+  // kiosk's resident memory after each reset is what the next visit needs, not the high-water
+  // mark of the largest visit so far (weeks of uptime).
+  malloc_trim(0);
 }
 
 void KioskScreen::beginVisit(int64_t now) {
@@ -429,6 +435,7 @@ void KioskScreen::startCalibration(int64_t now, bool pressure) {
   options.journal = calibration_record_.get();
   options.end_loop_when_done = false;
   options.esc_quits = false;
+  options.esc_returns_to = "the operator panel";
   options.log = [](const std::string& line) {
     std::fprintf(stderr, "cloudbrush kiosk: calibrate: %s\n", line.c_str());
   };

@@ -99,6 +99,8 @@ class KioskScreen : public Screen {
   static const char* stateName(State state);
   long idleResets() const { return idle_resets_; }
   long visits() const { return visits_; }
+  // After an idle reset: the next visitor's fresh session is made (the finished one freed).
+  bool nextVisitorReady() const { return visitor_ && !next_visitor_pending_; }
   // The current visitor's session; between visits, the fresh one the next visitor gets (made
   // just after the attract loop's first frame following a reset; until then the last one's).
   const PaintSession* visitorSession() const { return visitor_.get(); }

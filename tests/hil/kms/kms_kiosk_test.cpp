@@ -235,16 +235,18 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
     std::sort(delays.begin(), delays.end());
     ASSERT_EQ(delays.size(), 20u) << label << ": a plug whose samples never reached the screen\n"
                                   << all;
-    const double allowed = 1.0 + 2.0 * frame_s;
+    // The bound, per plug, with the guest's frames inside it: a frame the loop is
+    // drawing when the pen's first report arrives delays the report's reaching the screen, and
+    // a visitor waits for that as much as for the kernel (the guest's mean frame is printed
+    // above, for telling the two apart).
     std::printf(
         "hotplug during %s: uhid creation -> first pen sample at the screen: median %.3f s, "
-        "max %.3f s (20 plugs, %ld on the %s screen); 1 s wanted%s, %.2f s allowed here (1 s + "
-        "two of the guest's frames)\n",
+        "max %.3f s (20 plugs, %ld on the %s screen); 1 s wanted%s\n",
         label, delays[10], delays.back(), on_expected_screen,
         std::string(label) == "attract" ? "attract"
                                         : "expected (the first on the attract, 19 visitor)",
-        delays.back() <= 1.0 ? " and met" : " and MISSED", allowed);
-    EXPECT_LE(delays.back(), allowed) << label << ": creation to first sample at the screen";
+        delays.back() <= 1.0 ? " and met" : " and MISSED");
+    EXPECT_LE(delays.back(), 1.0) << label << ": creation to first sample at the screen";
     EXPECT_EQ(on_expected_screen, 20) << label;
   }
   long samples = 0, strokes = 0;

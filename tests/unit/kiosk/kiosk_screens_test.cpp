@@ -50,6 +50,16 @@ std::string slurp(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+// Whether a calibration screen in the kiosk says that Esc goes back to the operator panel (as
+// it does there) and never that Esc quits (it does not: a kiosk has no way out).
+void expectEscGoesBackToThePanel(const std::vector<std::string>& words) {
+  std::string all;
+  for (const std::string& w : words) all += w + "\n";
+  EXPECT_NE(all.find("Esc goes back to the operator panel without saving."), std::string::npos)
+      << all;
+  EXPECT_EQ(all.find("quit"), std::string::npos) << all;
+}
+
 void keep(const std::string& name, const ImageRgba8& image) {
   if (const char* dir = std::getenv("CB_KEEP_FRAMES"))
     writePng(std::string(dir) + "/" + name, image);
@@ -348,6 +358,7 @@ void openPanelAndCalibrate(KioskRig& rig) {
   ASSERT_EQ(rig.kiosk().calibration()->stage(), CalibrateFlowScreen::Stage::kTargets)
       << "the scripted tablet is connected: the targets at once";
   keep("kiosk_calibrate_targets.png", rig.lastFrame());
+  expectEscGoesBackToThePanel(rig.kiosk().calibration()->words());
 }
 
 TEST(KioskScreens, OperatorCalibratesThePenFromThePanel) {
@@ -364,6 +375,7 @@ TEST(KioskScreens, OperatorCalibratesThePenFromThePanel) {
   ASSERT_EQ(kiosk.state(), State::kCalibrate);
   ASSERT_EQ(kiosk.calibration()->stage(), CalibrateFlowScreen::Stage::kResult);
   keep("kiosk_calibrate_result.png", rig.lastFrame());
+  expectEscGoesBackToThePanel(kiosk.calibration()->words());
   const CalibrateBox accept = CalibrateResultScreen::acceptBox(kW, kH);
   rig.pen().tap({accept.x + accept.w / 2, accept.y + accept.h / 2}, rig.clock().nowNs());
   rig.run(2, 0.1);
@@ -414,6 +426,7 @@ TEST(KioskScreens, OperatorCalibratesThePressureFromThePanel) {
   rig.run(2, 0.0);
   ASSERT_EQ(kiosk.calibration()->stage(), CalibrateFlowScreen::Stage::kPressure);
   keep("kiosk_calibrate_pressure.png", rig.lastFrame());
+  expectEscGoesBackToThePanel(kiosk.calibration()->words());
   rig.pen().press(0.15f, 120, rig.clock().nowNs());  // light
   rig.run(2, 0.7);
   rig.pen().press(0.55f, 120, rig.clock().nowNs());  // firm

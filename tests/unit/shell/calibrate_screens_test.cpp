@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -316,6 +317,9 @@ TEST_F(CalibrateScreensTest, WaitsForThePenAndEscCancelsAPushedFlow) {
   const uint8_t* corner = px(seen.first_frame.at(0), 5, kH - 5);
   EXPECT_EQ(corner[0], 64);
   EXPECT_EQ(corner[1], 13);
+  const std::vector<std::string> words = flow.words();
+  EXPECT_NE(std::find(words.begin(), words.end(), "Esc goes back without saving."), words.end())
+      << "a pushed flow says Esc goes back, not that it quits";
   // Esc is the flow's to handle: it reports a cancel through the callback, nothing is saved.
   result = run(flow, &pen, &seen, "esc");
   EXPECT_EQ(result.quit_reason, "calibration cancelled");
