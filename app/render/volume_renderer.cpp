@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -111,18 +112,16 @@ bool VolumeRenderer::init(std::string* error) {
   }
   bounds_program_ = linkProgram({"ray_bounds.vert.glsl"}, {"ray_bounds.frag.glsl"}, error);
   if (!bounds_program_) return false;
-  glCreateBuffers(1, &bounds_vbo_);
-  glCreateVertexArrays(1, &bounds_vao_);
-  glVertexArrayVertexBuffer(bounds_vao_, 0, bounds_vbo_, 0, sizeof(glm::vec3));
-  glEnableVertexArrayAttrib(bounds_vao_, 0);
-  glVertexArrayAttribFormat(bounds_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(bounds_vao_, 0, 0);
-  glCreateBuffers(1, &mask_vbo_);
-  glCreateVertexArrays(1, &mask_vao_);
-  glVertexArrayVertexBuffer(mask_vao_, 0, mask_vbo_, 0, sizeof(glm::vec3));
-  glEnableVertexArrayAttrib(mask_vao_, 0);
-  glVertexArrayAttribFormat(mask_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(mask_vao_, 0, 0);
+  // The ray-bounds faces and the changed-slot boxes: voxel-space vec3 triangles.
+  for (auto [vao, vbo] :
+       {std::pair{&bounds_vao_, &bounds_vbo_}, std::pair{&mask_vao_, &mask_vbo_}}) {
+    glCreateBuffers(1, vbo);
+    glCreateVertexArrays(1, vao);
+    glVertexArrayVertexBuffer(*vao, 0, *vbo, 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(*vao, 0);
+    glVertexArrayAttribFormat(*vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(*vao, 0, 0);
+  }
   return true;
 }
 

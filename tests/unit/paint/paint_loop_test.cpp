@@ -33,20 +33,23 @@ std::string tempDir() {
   return dir.string();
 }
 
-// Writes a journal of one reference stroke (the S curve) at this screen size.
-std::string writeStrokeJournal(const std::string& dir) {
-  const std::string path = dir + "/stroke.cbj";
-  PaintSession recorder({kW, kH, 32}, BrushConfig{}, MappingConfig{});
+// Writes a journal of `strokes` drawn on a w×h screen, half a second apart, to `path`.
+std::string writeStrokeJournal(const std::string& path, const std::vector<SyntheticStroke>& strokes,
+                               int w, int h) {
+  PaintSession recorder({w, h, 32}, BrushConfig{}, MappingConfig{});
   recorder.setQuietMapping(true);
   JournalWriter journal;
   EXPECT_TRUE(journal.open(path)) << journal.error();
   recorder.recordTo(&journal, 0);
-  const PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  const PenDeviceInfo tablet = syntheticTablet(w, h);
   recorder.setDevice(tablet, 0);
-  for (const PenSample& s :
-       syntheticPenSamples(gentleCurve(kW, kH), tablet, kW, kH, 200.0, 1'000'000'000))
-    recorder.feed(s);
-  EXPECT_EQ(recorder.strokesMapped(), 1u);
+  int64_t t0 = 1'000'000'000;
+  for (const SyntheticStroke& stroke : strokes) {
+    const std::vector<PenSample> samples = syntheticPenSamples(stroke, tablet, w, h, 200.0, t0);
+    for (const PenSample& s : samples) recorder.feed(s);
+    t0 = samples.back().t_ns + 500'000'000;
+  }
+  EXPECT_EQ(recorder.strokesMapped(), strokes.size());
   return path;
 }
 
@@ -80,7 +83,9 @@ struct Frames {
 
 TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   const std::string dir = tempDir();
-  const std::string journal = writeStrokeJournal(dir);
+  // One reference stroke (the S curve) at this screen size.
+  const std::string journal =
+      writeStrokeJournal(dir + "/stroke.cbj", {gentleCurve(kW, kH)}, kW, kH);
 
   DisplayOptions display_options;
   display_options.platform = DisplayPlatform::Surfaceless;
@@ -280,26 +285,10 @@ TEST(PaintLoop, MissingTabletKeepsTheOrbitRunning) {
 TEST(PaintLoop, ASmallChangeIsShownAtFullResolutionAtOnceWhenItFitsTheBudget) {
   constexpr int w = 480, h = 270;
   const std::string dir = tempDir();
-  const std::string path = dir + "/two_strokes.cbj";
-  {
-    PaintSession recorder({w, h, 32}, BrushConfig{}, MappingConfig{});
-    recorder.setQuietMapping(true);
-    JournalWriter journal;
-    ASSERT_TRUE(journal.open(path)) << journal.error();
-    recorder.recordTo(&journal, 0);
-    const PenDeviceInfo tablet = syntheticTablet(w, h);
-    recorder.setDevice(tablet, 0);
-    int64_t t0 = 1'000'000'000;
-    const std::vector<SyntheticStroke> strokes = referencePaintStrokes(w, h);
-    ASSERT_GE(strokes.size(), 2u);
-    for (int i = 0; i < 2; ++i) {
-      const std::vector<PenSample> samples =
-          syntheticPenSamples(strokes[size_t(i)], tablet, w, h, 200.0, t0);
-      for (const PenSample& sample : samples) recorder.feed(sample);
-      t0 = samples.back().t_ns + 500'000'000;
-    }
-    ASSERT_EQ(recorder.strokesMapped(), 2u);
-  }
+  const std::vector<SyntheticStroke> reference = referencePaintStrokes(w, h);
+  ASSERT_GE(reference.size(), 2u);
+  const std::string path =
+      writeStrokeJournal(dir + "/two_strokes.cbj", {reference[0], reference[1]}, w, h);
   DisplayOptions display_options;
   display_options.platform = DisplayPlatform::Surfaceless;
   display_options.width = w;
