@@ -462,7 +462,6 @@ void VolumeRenderer::useFrameTargets(int w, int h) {
 }
 
 void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
-  useFrameTargets(w, h);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
   const GLenum bounds_only = GL_COLOR_ATTACHMENT1;  // fragment output 0 -> the bounds texture
   glDrawBuffers(1, &bounds_only);

@@ -189,6 +189,7 @@ class VolumeRenderer {
   void uploadOccupancy(const VoxelBox& cells);
   // Makes the frame targets of a w×h image current (keeping the previous size's as the spare).
   void useFrameTargets(int w, int h);
+  // Into the targets useFrameTargets(w, h) made current.
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
 
   GLuint program_ = 0;                      // the variant in use

@@ -26,6 +26,16 @@ void place(const Volume& cloud, Volume* into, glm::ivec3 at) {
   pasteVolume(cloud, cloud.bounds(), at, into);
 }
 
+// Erases every voxel of `box`, frees the bricks left empty and marks the box dirty.
+void eraseBox(Volume* w, const VoxelBox& box) {
+  for (int z = box.lo.z; z < box.hi.z; ++z)
+    for (int y = box.lo.y; y < box.hi.y; ++y)
+      for (int x = box.lo.x; x < box.hi.x; ++x)
+        if (w->at(x, y, z) != 0.0f) w->voxelForWrite(x, y, z) = 0.0f;
+  for (const glm::ivec3 b : w->allocatedBrickList()) w->releaseEmptyBrick(b);
+  w->markDirty(box);
+}
+
 std::vector<float> passedOn(const LightVolume& lv) {
   std::vector<float> out;
   for (int z = 0; z < lv.dims.z; ++z)
@@ -135,13 +145,7 @@ TEST(SparseLightVolume, IncrementalEditsEqualAFullSweepOnAnyThreadCount) {
       for (int x = slab.lo.x; x < slab.hi.x; ++x) w.maxMerge(x, 61, z, 0.3f);
     w.markDirty(slab);
     edit("a wide layer");
-    const VoxelBox erase{{0, 0, 0}, {192, 96, 80}};
-    for (int z = erase.lo.z; z < erase.hi.z; ++z)
-      for (int y = erase.lo.y; y < erase.hi.y; ++y)
-        for (int x = erase.lo.x; x < erase.hi.x; ++x)
-          if (w.at(x, y, z) != 0.0f) w.voxelForWrite(x, y, z) = 0.0f;
-    for (const glm::ivec3 b : w.allocatedBrickList()) w.releaseEmptyBrick(b);
-    w.markDirty(erase);
+    eraseBox(&w, {{0, 0, 0}, {192, 96, 80}});
     edit("an erase that frees bricks");
   }
 }
@@ -230,13 +234,7 @@ TEST(SparseLightVolume, TheShadowBelowTheLowestCloudIsNeitherSweptNorStored) {
     mergeSoftBall(&w, low + glm::vec3(30, 8, 20), 8);
     edit("a second stroke beside it");
     // Erase both: the lowest cloud is the puffs again.
-    const VoxelBox erase{{0, 0, 0}, {160, 140, 128}};
-    for (int z = erase.lo.z; z < erase.hi.z; ++z)
-      for (int y = erase.lo.y; y < erase.hi.y; ++y)
-        for (int x = erase.lo.x; x < erase.hi.x; ++x)
-          if (w.at(x, y, z) != 0.0f) w.voxelForWrite(x, y, z) = 0.0f;
-    for (const glm::ivec3 b : w.allocatedBrickList()) w.releaseEmptyBrick(b);
-    w.markDirty(erase);
+    eraseBox(&w, {{0, 0, 0}, {160, 140, 128}});
     edit("an erase that lifts the lowest cloud");
     EXPECT_EQ(followed[0].stored_slices, stored_at_start);
   }
