@@ -26,8 +26,9 @@
 //
 // Skipping (lossless, two levels):
 //  1. Ray bounds: a pass before this one rasterises the boundary faces of the occupancy pyramid
-//     (dilated by one voxel) and keeps, per pixel, the nearest entry face of an occupied 4³-voxel
-//     cell and the farthest exit face of an occupied 8³-voxel cell (ray_bounds.*.glsl). The march covers only the samples between them.
+//     (dilated by one voxel) and keeps, per pixel, the nearest entry face and the farthest exit
+//     face of an occupied 4³-voxel cell (ray_bounds.*.glsl). The march covers only the samples
+//     between them.
 //     Pixels whose rays meet no occupied cell are not shaded at all: that pass also sets a
 //     stencil, tested here before shading. When the eye is in or next to an occupied cell the
 //     march starts at the near plane (and every pixel is cast).
@@ -108,8 +109,8 @@ void main() {
     // Narrow [k, n) to the samples between the nearest and farthest occupied faces. Sample
     // positions stay on the same grid t_enter + (k + ½)·step, so the image does not change.
     vec2 bounds = texelFetch(u_ray_bounds, ivec2(gl_FragCoord.xy), 0).rg;
-    // r: nearest entry face of an occupied level-0 cell, −g: farthest exit face of an occupied
-    // level-1 cell (a superset, so never nearer than the fine exits); 1e30 where none was drawn.
+    // r: nearest entry face, −g: farthest exit face of an occupied level-0 cell; 1e30 where none
+    // was drawn.
     const float none = 1e29;
     // World distance from the eye -> ray parameter in voxel units from the near-plane origin.
     float voxels_per_world = length(normalize(dir_world) / u_voxel_size);

@@ -86,7 +86,7 @@ bool parseSizes(const std::string& text, std::vector<Size>* sizes) {
 struct Row {
   double volume_mb = -1, gpu_mb = -1, light_mb = -1, rss_mb = -1;  // after the painter's strokes
   double fresh_ms = -1, fresh_first_ms = -1, fresh_cpu_ms = -1, fresh_paint_view_ms = -1;
-  double orbit_fps = -1, orbit_scale = -1;
+  double orbit_fps = -1, orbit_scale = -1, orbit_cpu_ms = -1;
   double painting_ms = -1;
   double lit_ms = -1, full_ms = -1, lit_pixels = -1, full_pixels = -1;  // region path
   double lit_base_ms = -1, full_base_ms = -1;                           // whole-frame baseline
@@ -264,12 +264,16 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
         options.max_frames = size.huge() ? 24 : 48;
         PaintLoop loop(*display, renderer, cumulus, Light{}, options);
         PaintLoopSummary summary;
+        const double cpu0 = processCpuMs();
         if (loop.run(nullptr, &summary, &error)) {
           row.orbit_fps = summary.median_frame_ms > 0 ? 1000.0 / summary.median_frame_ms : -1;
           row.orbit_scale = orbitRenderScale(summary.final_moving_scale, options);
+          // Mean process CPU per frame (all threads): the figure to compare on a loaded machine.
+          if (summary.frames > 0)
+            row.orbit_cpu_ms = (processCpuMs() - cpu0) / double(summary.frames);
         }
-        std::printf("  %s: orbit %.1f fps at scale %.2f\n", size.name().c_str(), row.orbit_fps,
-                    row.orbit_scale);
+        std::printf("  %s: orbit %.1f fps at scale %.2f (process CPU %.1f ms a frame)\n",
+                    size.name().c_str(), row.orbit_fps, row.orbit_scale, row.orbit_cpu_ms);
         std::fflush(stdout);
       }
 
@@ -316,6 +320,7 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
     report.figure(k + "fresh_paint_view_ms", row.fresh_paint_view_ms);
     report.figure(k + "orbit_fps", row.orbit_fps);
     report.figure(k + "orbit_scale", row.orbit_scale);
+    report.figure(k + "orbit_cpu_ms", row.orbit_cpu_ms);
     report.figure(k + "painting_ms", row.painting_ms);
     report.figure(k + "pen_up_to_lit_ms", row.lit_ms);
     report.figure(k + "pen_up_to_full_ms", row.full_ms);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <tuple>
 
 #include "app/core/parallel_for.h"
 
@@ -104,44 +105,84 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   return cells;
 }
 
-std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& p, int level) {
-  std::vector<glm::vec3> out;
+std::vector<BoundaryRect> occupiedBoundaryRects(const OccupancyPyramid& p, int level) {
   const glm::ivec3 d = p.level_dims[size_t(level)];
-  const float size = float(p.cellSize(level));
   auto occupied = [&](glm::ivec3 c) {
     return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < d.x && c.y < d.y && c.z < d.z &&
            p.at(level, c) != 0;
   };
+  // Every face between an occupied cell and an empty or outside neighbour, as a 1×1 rectangle.
+  std::vector<BoundaryRect> faces;
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
-        glm::ivec3 c(x, y, z);
+        const glm::ivec3 c(x, y, z);
         if (!occupied(c)) continue;
         for (int axis = 0; axis < 3; ++axis)
           for (int side = 0; side < 2; ++side) {
             glm::ivec3 n = c;
             n[axis] += side ? 1 : -1;
             if (occupied(n)) continue;
-            // The face at c[axis] + side, spanning the other two axes.
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            glm::vec3 corner[4];
-            for (int k = 0; k < 4; ++k) {
-              glm::vec3 q(c);
-              q[axis] += float(side);
-              q[u] += float(k & 1);
-              q[v] += float(k >> 1);
-              corner[k] = q * size;
-            }
-            // Counter-clockwise seen from outside the occupied cell (from the empty side), so
-            // front faces are where rays enter occupied space and back faces where they leave.
-            // Corners 0, 1, 3 turn counter-clockwise about +axis (u × v = axis).
-            if (side)
-              for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
-            else
-              for (int k : {0, 3, 1, 0, 2, 3}) out.push_back(corner[k]);
+            const int u = c[(axis + 1) % 3], v = c[(axis + 2) % 3];
+            faces.push_back({axis, side, c[axis] + side, u, u + 1, v, v + 1});
           }
       }
+  // Runs along u, then runs of the same u extent stacked along v (a fixed order: the result
+  // does not depend on anything but the occupancy).
+  auto plane = [](const BoundaryRect& r) { return std::tie(r.axis, r.side, r.plane); };
+  std::sort(faces.begin(), faces.end(), [&](const BoundaryRect& a, const BoundaryRect& b) {
+    return std::tuple_cat(plane(a), std::tie(a.v0, a.u0)) <
+           std::tuple_cat(plane(b), std::tie(b.v0, b.u0));
+  });
+  std::vector<BoundaryRect> runs;
+  for (const BoundaryRect& f : faces) {
+    if (!runs.empty() && plane(runs.back()) == plane(f) && runs.back().v0 == f.v0 &&
+        runs.back().u1 == f.u0)
+      runs.back().u1 = f.u1;
+    else
+      runs.push_back(f);
+  }
+  std::sort(runs.begin(), runs.end(), [&](const BoundaryRect& a, const BoundaryRect& b) {
+    return std::tuple_cat(plane(a), std::tie(a.u0, a.u1, a.v0)) <
+           std::tuple_cat(plane(b), std::tie(b.u0, b.u1, b.v0));
+  });
+  std::vector<BoundaryRect> rects;
+  for (const BoundaryRect& r : runs) {
+    if (!rects.empty() && plane(rects.back()) == plane(r) && rects.back().u0 == r.u0 &&
+        rects.back().u1 == r.u1 && rects.back().v1 == r.v0)
+      rects.back().v1 = r.v1;
+    else
+      rects.push_back(r);
+  }
+  return rects;
+}
+
+std::vector<glm::vec3> boundaryTriangles(const std::vector<BoundaryRect>& rects, float cell_size) {
+  std::vector<glm::vec3> out;
+  out.reserve(rects.size() * 6);
+  for (const BoundaryRect& r : rects) {
+    const int u = (r.axis + 1) % 3, v = (r.axis + 2) % 3;
+    glm::vec3 corner[4];
+    for (int k = 0; k < 4; ++k) {
+      glm::vec3 q(0.0f);
+      q[r.axis] = float(r.plane);
+      q[u] = (k & 1) ? float(r.u1) + kBoundaryOverlap : float(r.u0) - kBoundaryOverlap;
+      q[v] = (k >> 1) ? float(r.v1) + kBoundaryOverlap : float(r.v0) - kBoundaryOverlap;
+      corner[k] = q * cell_size;
+    }
+    // Counter-clockwise seen from outside the occupied cell (from the empty side), so front
+    // faces are where rays enter occupied space and back faces where they leave. Corners 0, 1, 3
+    // turn counter-clockwise about +axis (u × v = axis).
+    if (r.side)
+      for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
+    else
+      for (int k : {0, 3, 1, 0, 2, 3}) out.push_back(corner[k]);
+  }
   return out;
+}
+
+std::vector<glm::vec3> occupiedBoundaryFaces(const OccupancyPyramid& p, int level) {
+  return boundaryTriangles(occupiedBoundaryRects(p, level), float(p.cellSize(level)));
 }
 
 bool occupiedNear(const OccupancyPyramid& p, int level, glm::vec3 point) {

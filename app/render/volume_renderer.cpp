@@ -375,16 +375,13 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   t0 = std::chrono::steady_clock::now();
   uploadOccupancy(occupancy_cells);
   if (!occupancy_cells.empty()) {
-    // Entry faces from the fine level (they set where rays start: tight), exit faces from the
-    // next coarser one (it contains the fine cells, so its exits are never nearer; rays mostly
-    // terminate before them anyway). llvmpipe's bounds pass is bound by triangle count.
-    const int entry_level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
-    const int exit_level = std::min(kRayBoundsLevel + 1, occupancy_.levelCount() - 1);
-    std::vector<glm::vec3> faces = occupiedBoundaryFaces(occupancy_, entry_level);
-    bounds_entry_vertices_ = GLsizei(faces.size());
-    std::vector<glm::vec3> exit_faces = occupiedBoundaryFaces(occupancy_, exit_level);
-    bounds_exit_vertices_ = GLsizei(exit_faces.size());
-    faces.insert(faces.end(), exit_faces.begin(), exit_faces.end());
+    // One boundary, drawn once without culling: its front faces are where rays enter occupied
+    // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
+    // llvmpipe's bounds pass is bound by triangle count, so the faces are merged into
+    // rectangles (occupiedBoundaryFaces).
+    const std::vector<glm::vec3> faces =
+        occupiedBoundaryFaces(occupancy_, std::min(kRayBoundsLevel, occupancy_.levelCount() - 1));
+    bounds_vertices_ = GLsizei(faces.size());
     bounds_vbo_bytes_ = std::max<size_t>(1, faces.size()) * sizeof(glm::vec3);
     glNamedBufferData(bounds_vbo_, GLsizeiptr(bounds_vbo_bytes_),
                       faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
@@ -471,7 +468,7 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
   glStencilMask(0xFF);
   const GLint zero = 0;
   glClearBufferiv(GL_STENCIL, 0, &zero);
-  if (bounds_entry_vertices_ > 0) {
+  if (bounds_vertices_ > 0) {
     // Every covered pixel gets stencil 1.
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_ALWAYS, 1, 0xFF);
@@ -488,15 +485,7 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
     glUniform3fv(glGetUniformLocation(bounds_program_, "u_voxel_size"), 1, glm::value_ptr(voxel));
     glUniform3fv(glGetUniformLocation(bounds_program_, "u_eye"), 1, glm::value_ptr(camera.eye));
     glBindVertexArray(bounds_vao_);
-    // Entry (front) faces of the fine level, then exit (back) faces of the coarse level.
-    glEnable(GL_CULL_FACE);
-    glFrontFace(GL_CCW);
-    glCullFace(GL_BACK);
-    glDrawArrays(GL_TRIANGLES, 0, bounds_entry_vertices_);
-    glCullFace(GL_FRONT);
-    glDrawArrays(GL_TRIANGLES, bounds_entry_vertices_, bounds_exit_vertices_);
-    glCullFace(GL_BACK);
-    glDisable(GL_CULL_FACE);
+    glDrawArrays(GL_TRIANGLES, 0, bounds_vertices_);  // entries and exits, both faces
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_STENCIL_TEST);

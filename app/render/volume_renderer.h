@@ -215,8 +215,8 @@ class VolumeRenderer {
   // Ray bounds pass: boundary faces of occupied cells at kRayBoundsLevel, rasterised into an
   // RG32F target (nearest, −farthest face distance per pixel).
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
-  // The VBO holds the entry faces (kRayBoundsLevel) followed by the exit faces (one level up).
-  GLsizei bounds_entry_vertices_ = 0, bounds_exit_vertices_ = 0;
+  // The VBO holds the boundary's triangles (occupiedBoundaryFaces of kRayBoundsLevel).
+  GLsizei bounds_vertices_ = 0;
   size_t bounds_vbo_bytes_ = 0;
   // With skipping, one FBO holds the frame colour (attachment 0), the ray bounds (attachment 1)
   // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast

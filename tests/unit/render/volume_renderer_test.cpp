@@ -1,6 +1,9 @@
 #include "app/render/volume_renderer.h"
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <random>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -72,12 +75,72 @@ TEST(OccupiedBoundaryFaces, AFaceForEveryOccupiedCellSideFacingEmptySpace) {
   OccupancyPyramid p = buildOccupancy(v);
   std::vector<glm::vec3> faces = occupiedBoundaryFaces(p, 0);
   EXPECT_EQ(faces.size(), 6u * 6u);  // one cube, 6 faces of 2 triangles
-  for (glm::vec3 q : faces) {
-    EXPECT_TRUE(q.x == 4.0f || q.x == 8.0f) << q.x;
-    EXPECT_TRUE(q.y == 4.0f || q.y == 8.0f) << q.y;
+  // Each face lies in a face plane of the brick [4, 8)³ and reaches kBoundaryOverlap of a cell
+  // (4 voxels) past its edges.
+  const float grown = kBoundaryOverlap * 4.0f;
+  for (size_t i = 0; i < faces.size(); i += 6) {
+    int in_plane = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      bool flat = true;
+      for (size_t j = i; j < i + 6; ++j) {
+        const float q = faces[j][axis];
+        EXPECT_TRUE(q == 4.0f || q == 8.0f || q == 4.0f - grown || q == 8.0f + grown) << q;
+        flat = flat && q == faces[i][axis] && (q == 4.0f || q == 8.0f);
+      }
+      in_plane += flat;
+    }
+    EXPECT_EQ(in_plane, 1) << "face " << i / 6;
   }
   EXPECT_TRUE(occupiedNear(p, 0, glm::vec3(9.5f)));
   EXPECT_FALSE(occupiedNear(p, 0, glm::vec3(14.5f)));
+}
+
+TEST(OccupiedBoundaryFaces, MergedRectanglesHoldEveryBoundaryFaceOnce) {
+  // A ball with a cavity and scattered voxels: every unit face between an occupied and an empty
+  // (or outside) level-0 cell must lie in exactly one rectangle, and no other face in any.
+  Volume v(glm::ivec3(64));
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(0, 63);
+  for (int z = 0; z < 64; ++z)
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const float r = glm::length(glm::vec3(x, y, z) - glm::vec3(30.0f, 34.0f, 28.0f));
+        if (r < 20.0f && r > 9.0f) v.set(x, y, z, 0.5f);
+      }
+  for (int i = 0; i < 40; ++i) v.set(coord(rng), coord(rng), coord(rng), 1.0f);
+  OccupancyPyramid p = buildOccupancy(v);
+  for (int level = 0; level < 2; ++level) {
+    const glm::ivec3 d = p.level_dims[size_t(level)];
+    auto occupied = [&](glm::ivec3 c) {
+      return glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThan(c, d)) &&
+             p.at(level, c) != 0;
+    };
+    std::map<std::array<int, 5>, int> in_rects;  // axis, side, plane, u, v -> rectangles
+    const std::vector<BoundaryRect> rects = occupiedBoundaryRects(p, level);
+    for (const BoundaryRect& r : rects)
+      for (int b = r.v0; b < r.v1; ++b)
+        for (int a = r.u0; a < r.u1; ++a) ++in_rects[{r.axis, r.side, r.plane, a, b}];
+    size_t boundary = 0;
+    for (int z = 0; z < d.z; ++z)
+      for (int y = 0; y < d.y; ++y)
+        for (int x = 0; x < d.x; ++x)
+          for (int axis = 0; axis < 3; ++axis)
+            for (int side = 0; side < 2; ++side) {
+              const glm::ivec3 c(x, y, z);
+              glm::ivec3 n = c;
+              n[axis] += side ? 1 : -1;
+              if (!occupied(c) || occupied(n)) continue;
+              ++boundary;
+              const auto it =
+                  in_rects.find({axis, side, c[axis] + side, c[(axis + 1) % 3], c[(axis + 2) % 3]});
+              ASSERT_NE(it, in_rects.end()) << "level " << level << " cell " << x << "," << y << ","
+                                            << z << " axis " << axis << " side " << side;
+              EXPECT_EQ(it->second, 1);
+            }
+    EXPECT_EQ(in_rects.size(), boundary) << "a rectangle holds a face that is not boundary";
+    EXPECT_LT(rects.size() * (level == 0 ? 2 : 1), boundary)
+        << "level " << level << ": faces were hardly merged";
+  }
 }
 
 TEST(OccupiedBoundaryFaces, TrianglesAreWoundOutwardSoFrontFacesAreEntries) {
