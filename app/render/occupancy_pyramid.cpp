@@ -112,20 +112,32 @@ std::vector<BoundaryRect> occupiedBoundaryRects(const OccupancyPyramid& p, int l
            p.at(level, c) != 0;
   };
   // Every face between an occupied cell and an empty or outside neighbour, as a 1×1 rectangle.
+  // Cells are visited under the occupied cells of a coarser level only (max-mip: an empty coarse
+  // cell has no occupied cell below it); a sky is mostly empty.
+  const int coarse = std::min(level + 2, p.levelCount() - 1);
+  const int per = 1 << (coarse - level);  // cells of `level` across a coarse cell
+  const glm::ivec3 dc = p.level_dims[size_t(coarse)];
   std::vector<BoundaryRect> faces;
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y)
-      for (int x = 0; x < d.x; ++x) {
-        const glm::ivec3 c(x, y, z);
-        if (!occupied(c)) continue;
-        for (int axis = 0; axis < 3; ++axis)
-          for (int side = 0; side < 2; ++side) {
-            glm::ivec3 n = c;
-            n[axis] += side ? 1 : -1;
-            if (occupied(n)) continue;
-            const int u = c[(axis + 1) % 3], v = c[(axis + 2) % 3];
-            faces.push_back({axis, side, c[axis] + side, u, u + 1, v, v + 1});
-          }
+  for (int cz = 0; cz < dc.z; ++cz)
+    for (int cy = 0; cy < dc.y; ++cy)
+      for (int cx = 0; cx < dc.x; ++cx) {
+        if (p.at(coarse, {cx, cy, cz}) == 0) continue;
+        const glm::ivec3 lo = glm::ivec3(cx, cy, cz) * per;
+        const glm::ivec3 hi = glm::min(lo + per, d);
+        for (int z = lo.z; z < hi.z; ++z)
+          for (int y = lo.y; y < hi.y; ++y)
+            for (int x = lo.x; x < hi.x; ++x) {
+              const glm::ivec3 c(x, y, z);
+              if (!occupied(c)) continue;
+              for (int axis = 0; axis < 3; ++axis)
+                for (int side = 0; side < 2; ++side) {
+                  glm::ivec3 n = c;
+                  n[axis] += side ? 1 : -1;
+                  if (occupied(n)) continue;
+                  const int u = c[(axis + 1) % 3], v = c[(axis + 2) % 3];
+                  faces.push_back({axis, side, c[axis] + side, u, u + 1, v, v + 1});
+                }
+            }
       }
   // Runs along u, then runs of the same u extent stacked along v (a fixed order: the result
   // does not depend on anything but the occupancy).
