@@ -64,7 +64,8 @@ fi
 
 # The package in a throwaway Debian 12 root.
 cache="$build/deb-root-cache/bookworm-apt.tar"
-if [ ! -s "$cache" ]; then
+if [ ! -f "$cache" ] || [ ! -s "$cache" ]; then
+  rm -rf "$cache"  # a directory left by an older version of this script
   if ! command -v mmdebstrap >/dev/null; then
     echo "SKIPPED the Debian 12 root: mmdebstrap is not installed (config/setup.sh installs it)" >&2
     [ "$fail" -eq 0 ] && exit 77
@@ -72,7 +73,9 @@ if [ ! -s "$cache" ]; then
   fi
   mkdir -p "$(dirname "$cache")"
   echo "making a Debian 12 root with mmdebstrap (once; cached as $cache)"
-  mmdebstrap --variant=apt --quiet bookworm "$cache.part" \
+  # --format: mmdebstrap picks the format from the target's name, and "….tar.part" is not one it
+  # knows, so without it a directory would be made (and renamed to ….tar).
+  mmdebstrap --variant=apt --format=tar --quiet bookworm "$cache.part" \
     "deb http://deb.debian.org/debian bookworm main" \
     "deb http://deb.debian.org/debian bookworm-updates main" \
     "deb http://deb.debian.org/debian-security bookworm-security main"
