@@ -205,7 +205,7 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
     int index = 0;
     double t = 0.0;
     if (std::sscanf(l.c_str(), "KIOSK-PEN created %31s %d %lf", label, &index, &t) == 3) {
-      plugs.push_back({label, t, -1.0, ""});
+      plugs.push_back({label, t, -1.0, -1.0, ""});
       continue;
     }
     // The frame drawn after that sample (what the visitor sees answer the pen).
