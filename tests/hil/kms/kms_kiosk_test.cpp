@@ -12,7 +12,8 @@
 //     guest);
 //   - the tablet plugged in 20 times during the attract loop and 20 times mid-visit: every time
 //     the first pen sample reaches the screen showing (attract / visitor), measured from the
-//     uhid device's creation (the figure; ≤ 1 s wanted), and the strokes are painted;
+//     uhid device's creation (the figure; ≤ 1 s wanted), and the strokes are painted; when the
+//     frame after that sample was presented is printed beside it (not held to the 1 s);
 //   - the kiosk ends on SIGTERM with its last page flip reported.
 // Screendumps are kept in <build>/tests/hil/kms/work/kiosk/kiosk-*.ppm for looking.
 #include <gtest/gtest.h>
