@@ -139,7 +139,9 @@ bool AttractScreen::startNextMorph() {
 }
 
 void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
+  given_up_in_a_row_ = 0;
   if (frame.frame == 0) return;  // the first frame compiles shaders
+  last_frame_ms_ = frame_ms;
   float& scale = options_.render.scale;
   if (frame_ms > 50.0)
     scale = std::max(0.2f, scale * 0.9f);
@@ -147,8 +149,45 @@ void AttractScreen::presented(const FrameContext& frame, double frame_ms) {
     scale = std::min(1.0f, scale * 1.05f);
 }
 
+int AttractScreen::slices() const {
+  if (options_.slice_ms <= 0.0 || last_frame_ms_ <= options_.slice_ms) return 1;
+  return std::clamp(int(std::ceil(last_frame_ms_ / options_.slice_ms)), 1,
+                    std::max(1, options_.max_slices));
+}
+
+bool AttractScreen::drawnUnlessInputWaits(FrameContext& frame) {
+  // A run of frames given up for input that never hands over (a tablet flapping) still shows
+  // every kMaxGivenUpInARow + 1-th frame whole.
+  constexpr int kMaxGivenUpInARow = 8;
+  const bool may_give_up = frame.input_waiting && given_up_in_a_row_ < kMaxGivenUpInARow;
+  const auto waiting = [&] { return may_give_up && frame.input_waiting(); };
+  if (waiting()) return false;
+  // What was sent is drawn while the pen is watched: a pen arriving meanwhile gives the frame up
+  // without waiting for it (the GPU finishes it ahead of the next frame's commands).
+  GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  bool done = false;
+  while (!done && !waiting()) {
+    const GLenum r = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 2'000'000);  // 2 ms
+    done = r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED || r == GL_WAIT_FAILED;
+  }
+  glDeleteSync(fence);
+  return done;
+}
+
+bool AttractScreen::giveUp(FrameContext& frame, int slices) {
+  frame.abandoned = true;
+  ++given_up_in_a_row_;
+  ++frames_given_up_;
+  std::fprintf(stderr,
+               "cloudbrush kiosk: attract frame given up for the pen after %d of %d slices\n",
+               slices_finished_, slices);
+  return true;
+}
+
 bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
+  const int slices = this->slices();
+  slices_finished_ = 0;
   renderer_.sync(shownVolume(), shown_.light);
   RenderOptions render = options_.render;
   // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
@@ -156,7 +195,21 @@ bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   render.style = parseRenderStyle(shown_.style).value_or(render.style);
   render.moving = render.scale < 1.0f;
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
-  renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);
+  if (slices == 1) {
+    renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);
+    slices_finished_ = 1;
+  } else {
+    if (!drawnUnlessInputWaits(frame)) return giveUp(frame, slices);  // the sync's uploads
+    // Bands of rows, bottom up (the renderer's region: the rest of the target is left as it
+    // is, and each band's pixels are those of the whole frame).
+    for (int k = 0; k < slices; ++k) {
+      const int y0 = frame.height * k / slices, y1 = frame.height * (k + 1) / slices;
+      render.region = glm::ivec4(0, y0, frame.width, y1 - y0);
+      renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);
+      if (!drawnUnlessInputWaits(frame)) return giveUp(frame, slices);
+      ++slices_finished_;
+    }
+  }
   if (!ui_) return true;
   const float h = float(frame.height), w = float(frame.width);
   std::vector<UiLabel> labels;
@@ -172,6 +225,7 @@ bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
   ui_->drawLabels(frame.width, frame.height, labels);
+  if (slices > 1 && !drawnUnlessInputWaits(frame)) return giveUp(frame, slices);
   return true;
 }
 

@@ -44,6 +44,14 @@ struct AttractOptions {
   std::string gallery_dir;       // the kiosk's gallery (app/kiosk/gallery_store.h); "": none
   int gallery_morphs = 2;        // gallery clouds morphed into per loop
   double morph_seconds = 6.0;    // each morph's length
+  // A frame that took longer than slice_ms (a slow box, an emulated CPU) is drawn in horizontal
+  // bands of about that long each (at most max_slices); between them, and while each band is
+  // being drawn, the screen asks whether pen input waits (FrameContext::input_waiting) and, if
+  // so, gives the frame up: the loop takes the pen at once instead of after the frame (issue
+  // 11: the tablet's first sample on the screen within 1 s of plugging it in). The bands
+  // together are the whole frame, pixel for pixel. 0: always whole frames.
+  double slice_ms = 60.0;
+  int max_slices = 16;
 };
 
 class AttractScreen : public Screen {
@@ -59,9 +67,15 @@ class AttractScreen : public Screen {
   std::string update(const FrameContext& frame) override;
   bool draw(FrameContext& frame, std::string* error) override;
   // Keeps the orbit fluid: the resolution scale shrinks when a frame is over 50 ms (20 fps) and
-  // grows back when there is room, within [0.2, 1] (as the painter's orbit does).
+  // grows back when there is room, within [0.2, 1] (as the painter's orbit does). The frame's
+  // length also sets how many slices the next one is drawn in.
   void presented(const FrameContext& frame, double frame_ms) override;
   float scale() const { return options_.render.scale; }
+  // The slices the next frame is drawn in (1: whole), and those of the last frame drawn that
+  // were finished (all of them unless it was given up).
+  int slices() const;
+  int slicesFinished() const { return slices_finished_; }
+  long framesGivenUp() const { return frames_given_up_; }
 
   // Starts the replay from the beginning at the clock's time (an empty sky).
   void restart();
@@ -105,6 +119,15 @@ class AttractScreen : public Screen {
   long loops_ = 0;
   Camera camera_;
   std::vector<std::string> problems_;
+  // Frames drawn in slices (AttractOptions::slice_ms).
+  // Waits for the GL work sent so far while watching for input; false: input waits (the frame
+  // is to be given up).
+  bool drawnUnlessInputWaits(FrameContext& frame);
+  bool giveUp(FrameContext& frame, int slices);
+  double last_frame_ms_ = 0.0;  // present to present, of the last frame shown
+  int slices_finished_ = 0;
+  int given_up_in_a_row_ = 0;
+  long frames_given_up_ = 0;
   // Morphs into gallery clouds after the replay.
   bool startNextMorph();
   std::unique_ptr<AnimationPreview> morph_;

@@ -73,6 +73,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
                        result->frames,
                        now,
                        double(now - last_frame_ns) / 1e9};
+    if (pen_) frame.input_waiting = [this] { return pen_->inputWaiting(); };
     if (quit.empty() && pen_) {
       samples.clear();
       pen_->poll(0, samples);
@@ -94,6 +95,12 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       continue;
     }
     if (!screen.draw(frame, error)) return false;
+    if (frame.abandoned) {
+      // Given up for waiting input: not presented; the next iteration takes the input at once.
+      ++result->abandoned_frames;
+      if (options.each_iteration) options.each_iteration(false);
+      continue;
+    }
     if (options.after_draw) options.after_draw(frame);
     mark_draw = monotonicNs();
     if (!display_.present(error)) return false;

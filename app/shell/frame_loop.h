@@ -39,6 +39,7 @@ struct FrameLoopResult {
   double seconds = 0.0;
   std::string quit_reason;  // "Esc", "q", "window closed", "frame limit", "signal", or the screen's
   std::vector<std::string> commands;  // every command routed, by name, in order (tests, logs)
+  long abandoned_frames = 0;  // drawn in part and given up for waiting input (not presented)
 };
 
 class FrameLoop {

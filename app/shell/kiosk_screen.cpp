@@ -331,6 +331,7 @@ void KioskScreen::onPenSamples(const std::vector<PenSample>& samples) {
     // For the log and the hotplug check (tests/hil/kms): how long a (re)connected pen took to
     // reach the screen that is showing.
     awaiting_first_sample_ = false;
+    first_sample_frame_pending_ = true;
     std::fprintf(stderr,
                  "cloudbrush kiosk: pen: first sample since it connected (event at %.6f s) "
                  "reached the %s screen at %.6f s (monotonic)\n",
@@ -698,6 +699,14 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
 }
 
 void KioskScreen::presented(const FrameContext& frame, double frame_ms) {
+  if (first_sample_frame_pending_) {
+    // The frame drawn after it: what the visitor sees answer the pen.
+    first_sample_frame_pending_ = false;
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: pen: the first frame after that sample (the %s screen) was "
+                 "presented at %.6f s (monotonic)\n",
+                 stateName(state_), double(MonotonicClock().nowNs()) / 1e9);
+  }
   if (state_ == State::kVisitor) paint_.presented(frame, frame_ms);
   if (state_ == State::kAttract) {
     attract_.presented(frame, frame_ms);

@@ -159,9 +159,10 @@ class KioskScreen : public Screen {
   std::optional<std::string> reconnect_drawn_;
   int64_t reconnected_ns_ = -1;  // the tablet came back while "reconnect the pen" showed
   static constexpr double kReconnectWaitForSampleS = 1.0;
-  bool awaiting_first_sample_ = false;  // the pen (re)connected; its first sample not yet seen
-  bool next_visitor_pending_ = false;   // after an idle reset, until prepareVisitor() ran
-  bool attract_shown_ = false;          // an attract frame was presented since the reset
+  bool awaiting_first_sample_ = false;       // the pen (re)connected; its first sample not yet seen
+  bool first_sample_frame_pending_ = false;  // that sample came; the next frame not yet presented
+  bool next_visitor_pending_ = false;        // after an idle reset, until prepareVisitor() ran
+  bool attract_shown_ = false;               // an attract frame was presented since the reset
   long idle_resets_ = 0, visits_ = 0;
   std::string notice_, quit_, message_;
   std::vector<long> gallery_saved_;

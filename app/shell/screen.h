@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,13 @@ struct FrameContext {
   long frame = 0;           // frames presented before this one
   int64_t now_ns = 0;       // monotonic time of this frame
   double since_last_s = 0;  // seconds since the previous frame was presented
+  // Whether input waits to be taken (the pen's reader thread has news, PenSource::inputWaiting):
+  // a screen drawing a long frame in slices asks between them and may give the frame up, so a
+  // visitor's pen is taken at once rather than after the frame. Null: nothing can tell.
+  std::function<bool()> input_waiting = nullptr;
+  // Set by draw() when it gave the frame up for waiting input: the loop does not present it (the
+  // last frame stays on the screen) and goes round again at once, taking the input.
+  bool abandoned = false;
 };
 
 class Screen {

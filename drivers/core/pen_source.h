@@ -26,6 +26,11 @@ class PenSource {
   // Waits up to timeout_ms (0: do not wait) for input or a hotplug change, and appends every
   // sample decoded meanwhile. Unplugging mid-stroke appends a proximity-out sample.
   virtual void poll(int timeout_ms, std::vector<PenSample>& out) = 0;
+  // True when a poll(0, …) now would bring news (samples or a connection change) without
+  // reading the device, from any thread: a long frame asks it between its slices and stops early
+  // for a pen that just arrived (app/shell/attract_screen.h). Sources read on the caller's own
+  // thread cannot know without reading, and say false.
+  virtual bool inputWaiting() const { return false; }
   virtual PenConnection connection() const = 0;
   // Valid while connected (and kept after a disconnect until the next device appears).
   virtual const PenDeviceInfo& deviceInfo() const = 0;

@@ -61,6 +61,7 @@ void ThreadedPenSource::readLoop() {
         queued_samples_ -= drop;
         dropped_ += drop;
       }
+      waiting_.store(true, std::memory_order_release);
     }
     arrived_.notify_all();
     last = std::move(now);
@@ -81,6 +82,7 @@ void ThreadedPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
   queued_samples_ -= b.samples.size();
   shown_ = std::move(b.state);
   queue_.pop_front();
+  waiting_.store(!queue_.empty(), std::memory_order_release);
 }
 
 std::string ThreadedPenSource::serialNumber(std::string* why_none) const {

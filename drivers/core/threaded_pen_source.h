@@ -11,8 +11,11 @@
 // poll(). poll() returns the queued samples of one connection state at a time, so a caller that
 // polls once per frame still sees every unplug and replug (searching, then connected) in order,
 // with the proximity-out sample of the unplug in the poll that reports "searching".
+// inputWaiting() says, without the lock, whether anything is queued: a frame drawn in slices asks
+// it between them (app/shell/attract_screen.h).
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -43,6 +46,8 @@ class ThreadedPenSource final : public PenSource {
 
   const char* backendName() const override { return backend_name_; }
   void poll(int timeout_ms, std::vector<PenSample>& out) override;
+  // Set by the reader thread as it queues news, cleared by poll() when it took the last of it.
+  bool inputWaiting() const override { return waiting_.load(std::memory_order_acquire); }
   PenConnection connection() const override { return shown_.connection; }
   const PenDeviceInfo& deviceInfo() const override { return shown_.info; }
   std::string statusMessage() const override { return shown_.status; }
@@ -77,7 +82,8 @@ class ThreadedPenSource final : public PenSource {
   size_t queued_samples_ = 0;
   uint64_t dropped_ = 0;
   bool stop_ = false;
-  std::thread thread_;  // last: starts after everything above is set up
+  std::atomic<bool> waiting_{false};  // !queue_.empty(), readable without the mutex
+  std::thread thread_;                // last: starts after everything above is set up
 };
 
 }  // namespace cb

@@ -12,7 +12,8 @@
 //     guest);
 //   - the tablet plugged in 20 times during the attract loop and 20 times mid-visit: every time
 //     the first pen sample reaches the screen showing (attract / visitor), measured from the
-//     uhid device's creation (the figure; ≤ 1 s wanted), and the strokes are painted;
+//     uhid device's creation (the figure; ≤ 1 s wanted), and the strokes are painted; when the
+//     frame after that sample was presented is printed beside it (not held to the 1 s);
 //   - the kiosk ends on SIGTERM with its last page flip reported.
 // Screendumps are kept in <build>/tests/hil/kms/work/kiosk/kiosk-*.ppm for looking.
 #include <gtest/gtest.h>
@@ -196,7 +197,7 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   // Pair each uhid creation with the kiosk's next "first sample since it connected" line.
   struct Plug {
     std::string label;
-    double created = 0.0, reached = -1.0;
+    double created = 0.0, reached = -1.0, shown = -1.0;
     std::string screen;
   };
   std::vector<Plug> plugs;
@@ -205,7 +206,15 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
     int index = 0;
     double t = 0.0;
     if (std::sscanf(l.c_str(), "KIOSK-PEN created %31s %d %lf", label, &index, &t) == 3) {
-      plugs.push_back({label, t, -1.0, ""});
+      plugs.push_back({label, t, -1.0, -1.0, ""});
+      continue;
+    }
+    // The frame drawn after that sample (what the visitor sees answer the pen).
+    const size_t f = l.find("cloudbrush kiosk: pen: the first frame after that sample");
+    if (f != std::string::npos && !plugs.empty() && plugs.back().reached >= 0.0 &&
+        plugs.back().shown < 0.0) {
+      const size_t at = l.find("presented at ", f);
+      if (at != std::string::npos) plugs.back().shown = std::atof(l.c_str() + at + 13);
       continue;
     }
     const size_t k = l.find("cloudbrush kiosk: pen: first sample since it connected");
@@ -222,23 +231,26 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   }
   ASSERT_EQ(plugs.size(), 40u) << all;
   for (const char* label : {"attract", "visit"}) {
-    std::vector<double> delays;
+    std::vector<double> delays, shown;
     long on_expected_screen = 0, index = 0;
     for (const Plug& p : plugs) {
       if (p.label != label) continue;
       if (p.reached >= 0.0) delays.push_back(p.reached - p.created);
+      if (p.shown >= 0.0) shown.push_back(p.shown - p.created);
       // The visit phase's first plug comes after the attract phase's idle reset: it finds the
       // attract loop and starts the visit the other 19 are plugged into.
       const bool attract_expected = std::string(label) == "attract" || index++ == 0;
       on_expected_screen += p.screen == (attract_expected ? "attract" : "visitor");
     }
     std::sort(delays.begin(), delays.end());
+    std::sort(shown.begin(), shown.end());
     ASSERT_EQ(delays.size(), 20u) << label << ": a plug whose samples never reached the screen\n"
                                   << all;
     // The bound, per plug, with the guest's frames inside it: a frame the loop is
     // drawing when the pen's first report arrives delays the report's reaching the screen, and
     // a visitor waits for that as much as for the kernel (the guest's mean frame is printed
-    // above, for telling the two apart).
+    // above, for telling the two apart). A slow attract frame is drawn in slices and given up
+    // for the pen (app/shell/attract_screen.h); before that, this missed (max 1.14–1.65 s).
     std::printf(
         "hotplug during %s: uhid creation -> first pen sample at the screen: median %.3f s, "
         "max %.3f s (20 plugs, %ld on the %s screen); 1 s wanted%s\n",
@@ -247,6 +259,13 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
                                         : "expected (the first on the attract, 19 visitor)",
         delays.back() <= 1.0 ? " and met" : " and MISSED");
     EXPECT_LE(delays.back(), 1.0) << label << ": creation to first sample at the screen";
+    // And the frame drawn next, which answers the pen on the display (the painter's first frame
+    // after a hand-over): printed, not held to the 1 s.
+    if (!shown.empty())
+      std::printf(
+          "hotplug during %s: uhid creation -> the next frame presented: median %.3f s, max "
+          "%.3f s (%zu plugs)\n",
+          label, shown[shown.size() / 2], shown.back(), shown.size());
     EXPECT_EQ(on_expected_screen, 20) << label;
   }
   long samples = 0, strokes = 0;

@@ -156,6 +156,24 @@ TEST(ThreadedPenSource, AWaitingPollReturnsAsSoonAsASampleArrives) {
   EXPECT_LT(waited, 1.5) << "poll(2000) returns on arrival, not at its timeout";
 }
 
+TEST(ThreadedPenSource, InputWaitingSaysWhetherAPollWouldBringNewsUntilItIsAllTaken) {
+  ThreadedPenSource pen(std::make_unique<ScriptedTablet>(twoPlugs(2)));
+  // The whole timeline queued (4 batches: connected, gone, connected, gone) before any poll.
+  for (int i = 0; i < 200 && !pen.inputWaiting(); ++i) sleepMs(5);
+  EXPECT_TRUE(pen.inputWaiting()) << "the first connection is news";
+  sleepMs(300);
+  int polls = 0;
+  while (pen.inputWaiting() && polls < 10) {
+    std::vector<PenSample> got;
+    pen.poll(0, got);
+    ++polls;
+  }
+  EXPECT_EQ(polls, 4) << "true until the poll that took the last queued state";
+  EXPECT_FALSE(pen.inputWaiting());
+  EXPECT_EQ(pen.connection(), PenConnection::kSearching);
+  EXPECT_STREQ(pen.deviceInfo().name, "tablet 2");
+}
+
 TEST(ThreadedPenSource, AFullQueueDropsTheOldestSamplesAndCountsThem) {
   std::vector<Step> steps{{Step::kConnect, 1}};
   for (int i = 0; i < 100; ++i) steps.push_back({Step::kSample, 1});
