@@ -35,6 +35,25 @@ bool valid(glm::ivec3 b, glm::ivec3 dims) {
   return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, dims));
 }
 
+// The empty slot's bytes: density 0, transmittance 1 (never weighted).
+const std::vector<uint8_t>& emptySlotBytes() {
+  static const std::vector<uint8_t> empty = [] {
+    std::vector<uint8_t> e(BrickPool::kSlotBytes);
+    for (size_t i = 0; i < e.size(); i += 2) {
+      e[i] = 0;
+      e[i + 1] = 255;
+    }
+    return e;
+  }();
+  return empty;
+}
+
+// The voxels a slot holds (voxels 16b … 16b + 19, clamped to the volume).
+VoxelBox slotVoxels(glm::ivec3 b, const Volume& volume) {
+  const glm::ivec3 lo = b * Volume::kBrickSize;
+  return VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
+}
+
 }  // namespace
 
 void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out) {
@@ -82,6 +101,46 @@ uint64_t slotHash(const uint8_t* slot) {
     h ^= h >> 31;
   }
   return h ? h : 1;
+}
+
+void slotDifference(const uint8_t* before, const uint8_t* now, VoxelBox* bytes,
+                    VoxelBox* weighted) {
+  constexpr int S = BrickPool::kSlotTexels;
+  constexpr size_t N = size_t(S) * S * S;
+  // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
+  // dilation of the non-zero densities, one axis at a time).
+  uint8_t near[N], scratch[N];
+  for (size_t i = 0; i < N; ++i) near[i] = now[2 * i] != 0;
+  const size_t strides[3] = {1, size_t(S), size_t(S) * S};
+  for (int axis = 0; axis < 3; ++axis) {
+    const size_t st = strides[axis];
+    std::memcpy(scratch, near, N);
+    for (size_t i = 0; i < N; ++i) {
+      const int c = int(i / st) % S;  // the texel's coordinate on this axis
+      uint8_t v = scratch[i];
+      if (c > 0) v |= scratch[i - st];
+      if (c < S - 1) v |= scratch[i + st];
+      near[i] = v;
+    }
+  }
+  glm::ivec3 lo(S), hi(-1), wlo(S), whi(-1);
+  size_t i = 0;
+  for (int z = 0; z < S; ++z)
+    for (int y = 0; y < S; ++y)
+      for (int x = 0; x < S; ++x, ++i) {
+        const bool density = before[2 * i] != now[2 * i];
+        const bool light = before[2 * i + 1] != now[2 * i + 1];
+        if (!density && !light) continue;
+        const glm::ivec3 t(x, y, z);
+        lo = glm::min(lo, t);
+        hi = glm::max(hi, t);
+        if (density || near[i]) {
+          wlo = glm::min(wlo, t);
+          whi = glm::max(whi, t);
+        }
+      }
+  *bytes = hi.x < 0 ? VoxelBox{} : VoxelBox{lo, hi + 1};
+  *weighted = whi.x < 0 ? VoxelBox{} : VoxelBox{wlo, whi + 1};
 }
 
 BrickPool::~BrickPool() {
@@ -184,15 +243,9 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     free_slots_.insert(free_slots_.begin(), added.begin(), added.end());
     stats->grew = true;
   } else {
-    // The empty slot: density 0 (transmittance 1, never weighted).
-    std::vector<uint8_t> empty(kSlotBytes);
-    for (size_t i = 0; i < empty.size(); i += 2) {
-      empty[i] = 0;
-      empty[i + 1] = 255;
-    }
     resetUnpackState();
     glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
-                        GL_UNSIGNED_BYTE, empty.data());
+                        GL_UNSIGNED_BYTE, emptySlotBytes().data());
   }
   pool_texture_ = texture;
   pool_texels_ = texels;
@@ -217,7 +270,7 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
 BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
                                          const std::vector<glm::ivec3>& changed_bricks,
                                          const VoxelBox& light_box,
-                                         std::vector<glm::ivec3>* changed_slots) {
+                                         std::vector<SlotChange>* changes) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
   const glm::ivec3 bd = volume.brickDims();
@@ -271,7 +324,10 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       free_slots_.push_back(slot_of_brick_[i]);
       slot_of_brick_[i] = glm::u8vec4(0);
       slot_hash_[i] = 0;
-      if (changed_slots) changed_slots->push_back(b);
+      if (changes) {
+        const VoxelBox whole = slotVoxels(b, volume);
+        changes->push_back({b, whole, whole});
+      }
       --slots_in_use_;
       ++st.slots_released;
       indirection_changed = indirection_changed.unite({b, b + 1});
@@ -312,6 +368,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
 
   resetUnpackState();
   std::vector<uint8_t> staging;  // packed slots of one batch
+  std::vector<uint8_t> before;   // a slot's bytes before the update (for `changes`)
   for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
     const size_t n = std::min(kUploadBatch, to_upload.size() - first);
     t0 = std::chrono::steady_clock::now();
@@ -323,25 +380,46 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     });
     // Slots whose bytes are what they held stay as they are (the slot of an added brick held
     // nothing: hash 0).
-    std::vector<uint8_t> same(n, 0);
+    enum : uint8_t { kChanged, kSame, kAdded };
+    std::vector<uint8_t> state(n, kChanged);
     parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
       for (size_t s = s0; s < s1; ++s) {
         uint64_t& held = slot_hash_[brickIndex(to_upload[first + s])];
         const uint64_t h = slotHash(staging.data() + s * kSlotBytes);
-        same[s] = h == held;
+        state[s] = h == held ? kSame : held == 0 ? kAdded : kChanged;
         held = h;
       }
     });
     st.pack_ms += msSince(t0);
     t0 = std::chrono::steady_clock::now();
     for (size_t s = 0; s < n; ++s) {
-      if (same[s]) {
+      if (state[s] == kSame) {
         ++st.slots_unchanged;
         continue;
       }
-      if (changed_slots) changed_slots->push_back(to_upload[first + s]);
-      const glm::ivec3 slot(slot_of_brick_[brickIndex(to_upload[first + s])]);
+      const glm::ivec3 b = to_upload[first + s];
+      const glm::ivec3 slot(slot_of_brick_[brickIndex(b)]);
       const glm::ivec3 at = slot * kSlotTexels;
+      if (changes) {
+        // What rays read there before: the empty slot for an added brick, else the slot's bytes.
+        const uint8_t* old = emptySlotBytes().data();
+        if (state[s] == kChanged) {
+          before.resize(kSlotBytes);
+          glPixelStorei(GL_PACK_ALIGNMENT, 1);
+          glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                               kSlotTexels, GL_RG, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
+                               before.data());
+          old = before.data();
+        }
+        VoxelBox bytes, weighted;
+        slotDifference(old, staging.data() + s * kSlotBytes, &bytes, &weighted);
+        const VoxelBox bounds = volume.bounds();
+        const glm::ivec3 lo = b * Volume::kBrickSize;
+        changes->push_back(
+            {b, bytes.empty() ? bytes : VoxelBox{lo + bytes.lo, lo + bytes.hi}.intersect(bounds),
+             weighted.empty() ? weighted
+                              : VoxelBox{lo + weighted.lo, lo + weighted.hi}.intersect(bounds)});
+      }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
                           GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
     }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -352,20 +353,14 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // The pool follows the bricks that changed (or every allocated brick when fresh).
   const std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
-  std::vector<glm::ivec3> changed_slots;
   const BrickPool::UpdateStats pool =
-      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &changed_slots);
+      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
-    if (fresh || history->pending.size() + changed_slots.size() > kMaxMaskBoxes) {
+    if (fresh || history->pending.size() + st.changes.size() > kMaxMaskBoxes) {
       *history = FrameHistory{};
     }
-  }
-  for (glm::ivec3 b : changed_slots) {
-    const glm::ivec3 lo = b * Volume::kBrickSize;
-    const VoxelBox box = VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
-    st.changed_slots = st.changed_slots.unite(box);
-    for (FrameHistory* history : {&history_, &spare_history_})
-      if (history->valid) history->pending.push_back(box);
+    if (history->valid)
+      history->pending.insert(history->pending.end(), st.changes.begin(), st.changes.end());
   }
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;
@@ -395,6 +390,10 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   glFinish();  // the upload is complete when sync returns (so its time is honest)
   st.upload_ms = pool.upload_ms + msSince(t0);
 
+  if (std::getenv("CB_DEBUG_SYNC"))
+    std::fprintf(stderr, "sync: occ %.1f light %.1f pack %.1f upload %.1f slots up %d same %d boxes %zu light box %d %d %d - %d %d %d\n",
+                 st.occupancy_ms, st.light_ms, st.pack_ms, st.upload_ms, st.slots_uploaded,
+                 st.slots_unchanged, st.changes.size(), st.light_box.lo.x, st.light_box.lo.y, st.light_box.lo.z, st.light_box.hi.x, st.light_box.hi.y, st.light_box.hi.z);
   synced_volume_id_ = volume.instanceId();
   synced_generation_ = volume.generation();
   synced_light_ = light;
@@ -706,9 +705,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const std::string key = skip ? imageKey(view_proj, w, h, options, background) : std::string();
   if (skip) useFrameTargets(w, h);
   const float read_reach = readReachVoxels(options.style, dims_);
+  const std::vector<VoxelBox> pending = visibleChanges(history_.pending, options.style);
   const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
                       history_.key == key && !history_.pending.empty() &&
-                      projectedRect(history_.pending, read_reach, view_proj, w, h, nullptr);
+                      projectedRect(pending, read_reach, view_proj, w, h, nullptr);
   if (partial) {
     // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
     glEnable(GL_SCISSOR_TEST);
@@ -724,7 +724,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     if (masked) {
       // The changed pixels get stencil bit 2 and are all cast (an unoccupied one casts no sample
       // and writes the background); the frame colour keeps every other pixel.
-      drawChangedMask(history_.pending, read_reach, view_proj);
+      drawChangedMask(pending, read_reach, view_proj);
     } else {
       glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     }
@@ -835,7 +835,9 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     } else if (masked) {
       // Boxes seen whole inside the rectangle are done; the others' pixels outside it are not
       // (the region holds every pixel the latest change alters, not those of older ones).
-      std::erase_if(history_.pending, [&](const VoxelBox& box) {
+      std::erase_if(history_.pending, [&](const BrickPool::SlotChange& change) {
+        const VoxelBox box = visibleChange(change, options.style);
+        if (box.empty()) return true;  // nothing this image shows
         glm::ivec4 r;
         return projectedRect({box}, read_reach, view_proj, w, h, &r) && r.x >= cast_rect.x &&
                r.y >= cast_rect.y && r.x + r.z <= cast_rect.x + cast_rect.z &&

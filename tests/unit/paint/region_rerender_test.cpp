@@ -131,7 +131,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   const SyncStats sync = renderer.sync(volume, light);
   ASSERT_FALSE(sync.dirty.empty());
   const ScreenRegion region =
-      changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), c.style);
+      changedScreenRegion(camera, kW, kH, volume, sync, c.style);
   const ScreenRegion stroke_only = projectVoxelBoxes(camera, kW, kH, volume, {sync.dirty},
                                                      readReachVoxels(c.style, volume.dims()));
   ASSERT_FALSE(region.empty());
@@ -272,7 +272,7 @@ TEST(RegionRerenderSequence, MaskedRecastsStayExactAcrossSizes) {
     paint(&session, stroke, 5'000'000'000LL * (i + 2));
     const SyncStats sync = renderer.sync(volume, light);
     const ScreenRegion region =
-        changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), rest.style);
+        changedScreenRegion(camera, kW, kH, volume, sync, rest.style);
     ASSERT_FALSE(region.empty());
     reference_renderer.sync(volume, light);
     if (i != 1) {
@@ -306,7 +306,7 @@ TEST(RegionRerenderSequence, MaskedRecastsStayExactAcrossSizes) {
   paint(&session, fourth, 30'000'000'000LL);
   const SyncStats sync = renderer.sync(volume, light);
   RenderOptions full = rest;
-  full.region = changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), rest.style)
+  full.region = changedScreenRegion(camera, kW, kH, volume, sync, rest.style)
                     .renderRegion();
   renderer.render(camera, kW, kH, shown.fbo(), full);
   RenderOptions lit = moving;
