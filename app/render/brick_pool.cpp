@@ -103,8 +103,8 @@ uint64_t slotHash(const uint8_t* slot) {
   return h ? h : 1;
 }
 
-void slotDifference(const uint8_t* before, const uint8_t* now, VoxelBox* bytes,
-                    VoxelBox* weighted) {
+void slotDifference(const uint8_t* before, const uint8_t* now,
+                    std::vector<BrickPool::SlotChange>* out) {
   constexpr int S = BrickPool::kSlotTexels;
   constexpr size_t N = size_t(S) * S * S;
   // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
@@ -123,7 +123,13 @@ void slotDifference(const uint8_t* before, const uint8_t* now, VoxelBox* bytes,
       near[i] = v;
     }
   }
-  glm::ivec3 lo(S), hi(-1), wlo(S), whi(-1);
+  constexpr int B = BrickPool::kChangeBlockTexels, blocks = S / B;
+  glm::ivec3 lo[blocks * blocks * blocks], hi[blocks * blocks * blocks];
+  glm::ivec3 wlo[blocks * blocks * blocks], whi[blocks * blocks * blocks];
+  for (int k = 0; k < blocks * blocks * blocks; ++k) {
+    lo[k] = wlo[k] = glm::ivec3(S);
+    hi[k] = whi[k] = glm::ivec3(-1);
+  }
   size_t i = 0;
   for (int z = 0; z < S; ++z)
     for (int y = 0; y < S; ++y)
@@ -132,15 +138,18 @@ void slotDifference(const uint8_t* before, const uint8_t* now, VoxelBox* bytes,
         const bool light = before[2 * i + 1] != now[2 * i + 1];
         if (!density && !light) continue;
         const glm::ivec3 t(x, y, z);
-        lo = glm::min(lo, t);
-        hi = glm::max(hi, t);
+        const int k = (z / B * blocks + y / B) * blocks + x / B;
+        lo[k] = glm::min(lo[k], t);
+        hi[k] = glm::max(hi[k], t);
         if (density || near[i]) {
-          wlo = glm::min(wlo, t);
-          whi = glm::max(whi, t);
+          wlo[k] = glm::min(wlo[k], t);
+          whi[k] = glm::max(whi[k], t);
         }
       }
-  *bytes = hi.x < 0 ? VoxelBox{} : VoxelBox{lo, hi + 1};
-  *weighted = whi.x < 0 ? VoxelBox{} : VoxelBox{wlo, whi + 1};
+  for (int k = 0; k < blocks * blocks * blocks; ++k)
+    if (hi[k].x >= 0)
+      out->push_back({glm::ivec3(0), VoxelBox{lo[k], hi[k] + 1},
+                      whi[k].x >= 0 ? VoxelBox{wlo[k], whi[k] + 1} : VoxelBox{}});
 }
 
 BrickPool::~BrickPool() {
@@ -411,14 +420,18 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
                                before.data());
           old = before.data();
         }
-        VoxelBox bytes, weighted;
-        slotDifference(old, staging.data() + s * kSlotBytes, &bytes, &weighted);
-        const VoxelBox bounds = volume.bounds();
+        const size_t first_change = changes->size();
+        slotDifference(old, staging.data() + s * kSlotBytes, changes);
+        // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its
+        // last voxel, which then changed too).
         const glm::ivec3 lo = b * Volume::kBrickSize;
-        changes->push_back(
-            {b, bytes.empty() ? bytes : VoxelBox{lo + bytes.lo, lo + bytes.hi}.intersect(bounds),
-             weighted.empty() ? weighted
-                              : VoxelBox{lo + weighted.lo, lo + weighted.hi}.intersect(bounds)});
+        auto toVoxels = [&](const VoxelBox& t) {
+          return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
+        };
+        for (size_t c = first_change; c < changes->size(); ++c) {
+          SlotChange& change = (*changes)[c];
+          change = {b, toVoxels(change.bytes), toVoxels(change.weighted)};
+        }
       }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
                           GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);

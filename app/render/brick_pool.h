@@ -64,12 +64,18 @@ class BrickPool {
   BrickPool(const BrickPool&) = delete;
   BrickPool& operator=(const BrickPool&) = delete;
 
-  // What one slot's change can alter in an image, as voxel boxes (clamped to the volume).
+  // A slot's changed texels are reported per block of this many texels on each axis (2³ blocks
+  // a slot): one box around a slot's changes covers much that did not change (a stroke's edge,
+  // a shadow's slanted front), and more blocks cost the mask more triangles than they save
+  // pixels (`cloudbrush bench scale`, app/render/README.md).
+  static constexpr int kChangeBlockTexels = kSlotTexels / 2;
+  // What one block of a slot's change can alter in an image, as voxel boxes (clamped to the
+  // volume).
   struct SlotChange {
     glm::ivec3 brick{0};
-    // The voxels whose texels in this slot now hold other bytes (density or transmittance): a
-    // sample reading none of them in this slot reads what it read. The whole slot when it was
-    // added or released.
+    // The voxels whose texels in this block of the slot now hold other bytes (density or
+    // transmittance): a sample reading none of them in this slot reads what it read. The whole
+    // slot when it was released.
     VoxelBox bytes;
     // The part of `bytes` a sample of non-zero density can read: texels whose density changed,
     // and texels whose transmittance changed with a texel of non-zero density among their 3³
@@ -144,10 +150,11 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
 // A 64-bit hash of one packed slot (kSlotBytes), never 0 (0 marks "no slot").
 uint64_t slotHash(const uint8_t* slot);
 
-// The texels of two packed slots (kSlotBytes each) that differ, as texel boxes of the slot
-// (BrickPool::SlotChange: `bytes` and its `weighted` part, judged by `now`'s densities; the lo
-// corner inclusive, hi exclusive, both empty when the slots are equal).
-void slotDifference(const uint8_t* before, const uint8_t* now, VoxelBox* bytes,
-                    VoxelBox* weighted);
+// The texels of two packed slots (kSlotBytes each) that differ: appends one SlotChange per
+// block of BrickPool::kChangeBlockTexels³ texels holding a changed one, its boxes in texel
+// coordinates of the slot (lo inclusive, hi exclusive; `weighted` judged by `now`'s densities)
+// and `brick` left 0. Nothing when the slots are equal.
+void slotDifference(const uint8_t* before, const uint8_t* now,
+                    std::vector<BrickPool::SlotChange>* out);
 
 }  // namespace cb

@@ -231,9 +231,9 @@ class VolumeRenderer {
   FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)
   // What the frame colour of a size's targets holds (for re-casting only changed pixels): the
   // image key (camera, size, program, shading inputs) it was cast with, and the pool slots'
-  // changes since (sync appends; each with its changed voxels). `valid` is false when the colour is not a whole
-  // frame of `key` (never cast, another key, too many boxes): then only the rectangle path is
-  // exact.
+  // changes since (sync appends; each with its changed voxels). `valid` is false when the colour is
+  // not a whole frame of `key` (never cast, another key, too many boxes): then only the rectangle
+  // path is exact.
   struct FrameHistory {
     std::string key;
     std::vector<BrickPool::SlotChange> pending;
