@@ -19,11 +19,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Round to nearest (no libm call: this runs for every packed texel).
-uint8_t toUnorm8(float v) {
-  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
-}
-
 void resetUnpackState() {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
@@ -84,8 +79,8 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
       volume.readLine({lo.x, y, z}, 0, nx, d);
       light.readRow({lo.x, y, z}, nx, t);  // a row at a time: cheaper than at() per voxel
       for (int i = 0; i < S; ++i) {
-        o[2 * i] = toUnorm8(d[std::min(i, nx - 1)]);
-        o[2 * i + 1] = toUnorm8(t[std::min(i, nx - 1)]);
+        o[2 * i] = unorm8(d[std::min(i, nx - 1)]);
+        o[2 * i + 1] = unorm8(t[std::min(i, nx - 1)]);
       }
     }
 }
@@ -279,6 +274,7 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
 BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
                                          const std::vector<glm::ivec3>& changed_bricks,
                                          const VoxelBox& light_box,
+                                         const LightByteChanges* light_bytes,
                                          std::vector<SlotChange>* changes) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
@@ -356,9 +352,24 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     indirection_changed = indirection_changed.unite({b, b + 1});
     to_upload.push_back(b);
   }
-  // The light: slots whose voxels 16b … 16b + kSlotTexels − 1 meet the light box.
+  // The light: the slots reading a brick whose 8-bit light changed (c − {0,1}³ for each such
+  // brick c, as for density); without that list, those whose voxels 16b … 16b + kSlotTexels − 1
+  // meet the light box.
   const VoxelBox lb = light_box.intersect(volume.bounds());
-  if (!lb.empty() && slots_in_use_ > 0) {
+  if (light_bytes && !light_bytes->all && slots_in_use_ > 0) {
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
+    for (glm::ivec3 c : light_bytes->bricks)
+      for (int n = 0; n < 8; ++n) {
+        const glm::ivec3 b = c - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
+        if (!valid(b, bd)) continue;
+        const size_t i = brickIndex(b);
+        if (slot_of_brick_[i].w && !mark_[i]) {
+          mark_[i] = 1;
+          to_upload.push_back(b);
+        }
+      }
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
+  } else if (!lb.empty() && slots_in_use_ > 0) {
     for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
     const glm::ivec3 blo = glm::max(
         (lb.lo - (kSlotTexels - Volume::kBrickSize)) >> Volume::kBrickShift, glm::ivec3(0));

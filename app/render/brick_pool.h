@@ -88,7 +88,9 @@ class BrickPool {
 
   // Brings the pool up to date. With `fresh` (another volume or new dims) every slot is
   // reassigned from the allocated bricks; otherwise `changed_bricks` (Volume::changedBricksSince)
-  // and `light_box` (the light voxels recomputed) say what to refresh. `light` must hold valid
+  // and the light say what to refresh: `light_bytes` (the bricks whose 8-bit light an incremental
+  // sweep changed, sweepLightVolume) if given and not `all`, else `light_box` (the light voxels
+  // recomputed, every slot meeting it re-packed). `light` must hold valid
   // transmittance for every voxel of the bricks next to allocated ones (LightVolume::at).
   // Needs a current GL 4.5 context.
   // `changes`, if given, receives every slot that reads differently now: a slot added, released,
@@ -98,6 +100,7 @@ class BrickPool {
   // back from the pool texture (only for slots whose hash changed) and compared texel by texel.
   UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
                      const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box,
+                     const LightByteChanges* light_bytes = nullptr,
                      std::vector<SlotChange>* changes = nullptr);
 
   GLuint poolTexture() const { return pool_texture_; }

@@ -331,6 +331,8 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
                                synced_light_.extinction == light.extinction && !fresh;
   const bool stale = light_is_preview_ ? !light_unchanged || !st.dirty.empty()
                                        : !light_volume_.matches(volume, light);
+  LightByteChanges light_bytes;  // which bricks' 8-bit light changed (else: the light box)
+  light_bytes.all = true;
   if (light_preview_divisor_ > 1 && stale) {
     // The light moves while it is dragged: a coarse sweep, recomputed in full at release.
     st.light_box = reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
@@ -338,7 +340,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   } else if (light_preview_divisor_ > 1 && light_is_preview_) {
     st.light_box = {};  // the same preview light: nothing to redo
   } else {
-    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty);
+    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty, &light_bytes);
     light_is_preview_ = false;
   }
   st.light_ms = msSince(t0);
@@ -353,8 +355,8 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // The pool follows the bricks that changed (or every allocated brick when fresh).
   const std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
-  const BrickPool::UpdateStats pool =
-      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &st.changes);
+  const BrickPool::UpdateStats pool = pool_.update(volume, light_volume_, fresh, changed_bricks,
+                                                   st.light_box, &light_bytes, &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
     if (fresh || history->pending.size() + st.changes.size() > kMaxMaskBoxes) {
       *history = FrameHistory{};
