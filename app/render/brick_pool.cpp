@@ -420,7 +420,11 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       const glm::ivec3 b = to_upload[first + s];
       const glm::ivec3 slot(slot_of_brick_[brickIndex(b)]);
       const glm::ivec3 at = slot * kSlotTexels;
-      if (changes) {
+      if (changes && fresh) {
+        // Everything is new (the renderer starts its frames over): the whole slot, no compare.
+        const VoxelBox whole = slotVoxels(b, volume);
+        changes->push_back({b, whole, whole});
+      } else if (changes) {
         // What rays read there before: the empty slot for an added brick, else the slot's bytes.
         const uint8_t* old = emptySlotBytes().data();
         if (state[s] == kChanged) {

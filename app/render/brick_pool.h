@@ -75,7 +75,7 @@ class BrickPool {
     glm::ivec3 brick{0};
     // The voxels whose texels in this block of the slot now hold other bytes (density or
     // transmittance): a sample reading none of them in this slot reads what it read. The whole
-    // slot when it was released.
+    // slot when it was released or the update was `fresh`.
     VoxelBox bytes;
     // The part of `bytes` a sample of non-zero density can read: texels whose density changed,
     // and texels whose transmittance changed with a texel of non-zero density among their 3³

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -392,13 +391,6 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   glFinish();  // the upload is complete when sync returns (so its time is honest)
   st.upload_ms = pool.upload_ms + msSince(t0);
 
-  if (std::getenv("CB_DEBUG_SYNC"))
-    std::fprintf(stderr,
-                 "sync: occ %.1f light %.1f pack %.1f upload %.1f slots up %d same %d boxes %zu "
-                 "light box %d %d %d - %d %d %d\n",
-                 st.occupancy_ms, st.light_ms, st.pack_ms, st.upload_ms, st.slots_uploaded,
-                 st.slots_unchanged, st.changes.size(), st.light_box.lo.x, st.light_box.lo.y,
-                 st.light_box.lo.z, st.light_box.hi.x, st.light_box.hi.y, st.light_box.hi.z);
   synced_volume_id_ = volume.instanceId();
   synced_generation_ = volume.generation();
   synced_light_ = light;
