@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -43,6 +44,24 @@ std::string composeDefines(bool ink, bool bleed, bool over_sky) {
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Merges the changes of each slot into one (the bounding boxes of its blocks' boxes).
+void coalescePerSlot(std::vector<BrickPool::SlotChange>* changes) {
+  auto order = [](const BrickPool::SlotChange& a, const BrickPool::SlotChange& b) {
+    return std::tie(a.brick.z, a.brick.y, a.brick.x) < std::tie(b.brick.z, b.brick.y, b.brick.x);
+  };
+  std::stable_sort(changes->begin(), changes->end(), order);
+  std::vector<BrickPool::SlotChange> merged;
+  for (const BrickPool::SlotChange& c : *changes) {
+    if (!merged.empty() && merged.back().brick == c.brick) {
+      merged.back().bytes = merged.back().bytes.unite(c.bytes);
+      merged.back().weighted = merged.back().weighted.unite(c.weighted);
+    } else {
+      merged.push_back(c);
+    }
+  }
+  *changes = std::move(merged);
 }
 
 }  // namespace
@@ -357,11 +376,12 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   const BrickPool::UpdateStats pool = pool_.update(volume, light_volume_, fresh, changed_bricks,
                                                    st.light_box, &light_bytes, &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
-    if (fresh || history->pending.size() + st.changes.size() > kMaxMaskBoxes) {
-      *history = FrameHistory{};
-    }
-    if (history->valid)
-      history->pending.insert(history->pending.end(), st.changes.begin(), st.changes.end());
+    if (fresh) *history = FrameHistory{};
+    if (!history->valid) continue;
+    history->pending.insert(history->pending.end(), st.changes.begin(), st.changes.end());
+    // Too many boxes: one per slot (its blocks' bounding boxes) before giving the mask up.
+    if (history->pending.size() > kMaxMaskBoxes) coalescePerSlot(&history->pending);
+    if (history->pending.size() > kMaxMaskBoxes) *history = FrameHistory{};
   }
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;

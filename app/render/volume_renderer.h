@@ -240,7 +240,8 @@ class VolumeRenderer {
     bool valid = false;
   };
   FrameHistory history_, spare_history_;  // of the current and the spare targets
-  // Changes beyond this many make a mask cost more than the rectangle saves.
+  // Changes beyond this many make a mask cost more than the rectangle saves (first merged to
+  // one per slot, then given up).
   static constexpr size_t kMaxMaskBoxes = 2048;
   GLuint mask_vao_ = 0, mask_vbo_ = 0;  // the changed slots' boxes as triangles (stencil mask)
   size_t mask_vbo_bytes_ = 0;
