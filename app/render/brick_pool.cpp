@@ -428,8 +428,9 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         // What rays read there before: the empty slot for an added brick, else the slot's bytes.
         const uint8_t* old = emptySlotBytes().data();
         if (state[s] == kChanged) {
+          // Rows of 40 bytes: tight under any pack alignment (the project sets no other
+          // pack state).
           before.resize(kSlotBytes);
-          glPixelStorei(GL_PACK_ALIGNMENT, 1);
           glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
                                kSlotTexels, GL_RG, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
                                before.data());
