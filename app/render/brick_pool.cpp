@@ -352,15 +352,16 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     indirection_changed = indirection_changed.unite({b, b + 1});
     to_upload.push_back(b);
   }
-  // The light: the slots reading a brick whose 8-bit light changed (c − {0,1}³ for each such
-  // brick c, as for density); without that list, those whose voxels 16b … 16b + kSlotTexels − 1
-  // meet the light box.
+  // The light: the slots reading a voxel whose 8-bit light changed (of c − {0,1}³ for each such
+  // brick c, those its `readers` name); without that list, those whose voxels 16b … 16b +
+  // kSlotTexels − 1 meet the light box.
   const VoxelBox lb = light_box.intersect(volume.bounds());
   if (light_bytes && !light_bytes->all && slots_in_use_ > 0) {
     for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
-    for (glm::ivec3 c : light_bytes->bricks)
+    for (const LightByteChanges::Brick& c : light_bytes->bricks)
       for (int n = 0; n < 8; ++n) {
-        const glm::ivec3 b = c - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
+        if (!(c.readers >> n & 1)) continue;
+        const glm::ivec3 b = c.brick - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
         if (!valid(b, bd)) continue;
         const size_t i = brickIndex(b);
         if (slot_of_brick_[i].w && !mark_[i]) {

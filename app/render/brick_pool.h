@@ -48,6 +48,7 @@ class BrickPool {
   static constexpr int kApron = 3;
   static constexpr int kSlotTexels = Volume::kBrickSize + 1 + kApron;
   static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
+  static_assert(kSlotTexels - Volume::kBrickSize == LightByteChanges::kLowVoxels);
 
   struct UpdateStats {
     int slots_uploaded = 0;   // slots re-packed and uploaded

@@ -263,9 +263,10 @@ struct TileSweep {
   int ob, oc;         // integer part of the upstream offset (each −1, 0 or 1)
   float wb, wc;       // its fractional part: the bilinear weights, constants of the sweep
   size_t sa, sb, sc;  // in-brick strides of the slice axis and the lateral axes
-  // Per brick (LightBricks::brickIndex), set where LightVolume::at may now round to another
-  // 8-bit value (unorm8) than before; nullptr: not tracked. Tiles of one slice are distinct
-  // bricks and slices are separated by a barrier, so plain byte stores do not race.
+  // Per brick (LightBricks::brickIndex), the slots reading a voxel where LightVolume::at now
+  // rounds to another 8-bit value (unorm8) than before (LightByteChanges::Brick::readers);
+  // nullptr: not tracked. Tiles of one slice are distinct bricks and slices are separated by a
+  // barrier, so plain byte stores do not race.
   uint8_t* changed_bytes = nullptr;
 
   glm::ivec3 brickCoord(int s, int tb, int tc) const {
@@ -288,21 +289,33 @@ struct TileSweep {
     const float* density_brick = volume.brick(brick);
     // `at` reads lit where the volume holds the brick, else through. Whether a rewrite changes
     // what it reads in 8 bits (once a brick is marked its other rewrites are not compared).
-    const bool compare = changed_bytes && !changed_bytes[bi];
+    const bool compare = changed_bytes && changed_bytes[bi] != 0xFF;
     auto compareRows = [&](const float* dst, const float* values, int rows, size_t stride) {
-      for (int rr = 0; rr < rows && !changed_bytes[bi]; ++rr) {
+      // The slots reading voxel v: brick − δ for each δ whose axes all have v_i < kLowVoxels.
+      static constexpr std::array<uint8_t, 8> kReaders = [] {
+        std::array<uint8_t, 8> t{};
+        for (int low = 0; low < 8; ++low)
+          for (int d = 0; d < 8; ++d)
+            if ((d & ~low) == 0) t[size_t(low)] |= uint8_t(1 << d);
+        return t;
+      }();
+      constexpr int m = kTile - 1, kLow = LightByteChanges::kLowVoxels;
+      uint8_t& readers = changed_bytes[bi];
+      for (int rr = 0; rr < rows; ++rr) {
         const float* d = dst + offset(s, r.lo.x, r.lo.y + rr);
         const float* v = values + rr * stride;
+        const int row_low =
+            ((s & m) < kLow ? 1 << f.axis : 0) | (((r.lo.y + rr) & m) < kLow ? 1 << f.c : 0);
         for (int i = 0; i < r.hi.x - r.lo.x; ++i)
           if (unorm8(d[size_t(i) * sb]) != unorm8(v[i])) {
-            changed_bytes[bi] = 1;
-            break;
+            readers |= kReaders[size_t(row_low | (((r.lo.x + i) & m) < kLow ? 1 << f.b : 0))];
+            if (readers == 0xFF) return;
           }
       }
     };
     if (!density_brick && lv.lit.get(bi)) {
       lv.lit.release(bi);  // freed: T is the passed-on value
-      if (changed_bytes) changed_bytes[bi] = 1;
+      if (changed_bytes) changed_bytes[bi] = 0xFF;
     }
     float* through = lv.through.getForWrite(bi);
     const int su = s - f.dir;
@@ -384,7 +397,7 @@ struct TileSweep {
       float* lit = lv.lit.getForWrite(bi);
       if (!lit) {
         lit = lv.lit.create(bi, through);
-        if (changed_bytes) changed_bytes[bi] = 1;  // `at` switches from through to lit
+        if (changed_bytes) changed_bytes[bi] = 0xFF;  // `at` switches from through to lit
       }
       if (compare) compareRows(lit, own, rows, kTile);
       for (int rr = 0; rr < rows; ++rr) {
@@ -726,7 +739,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           continue;
         lv.through.release(lv.through.brickIndex(b));
         lv.lit.release(lv.lit.brickIndex(b));
-        if (!changed_bytes.empty()) changed_bytes[lv.through.brickIndex(b)] = 1;
+        if (!changed_bytes.empty()) changed_bytes[lv.through.brickIndex(b)] = 0xFF;
       }
     }
   }
@@ -768,7 +781,8 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     for (int z = 0; z < bd.z; ++z)
       for (int y = 0; y < bd.y; ++y)
         for (int x = 0; x < bd.x; ++x)
-          if (changed_bytes[lv.through.brickIndex({x, y, z})]) changes->bricks.push_back({x, y, z});
+          if (const uint8_t readers = changed_bytes[lv.through.brickIndex({x, y, z})])
+            changes->bricks.push_back({{x, y, z}, readers});
   };
   if (slices <= 0) {
     collectChanges();

@@ -144,8 +144,17 @@ inline uint8_t unorm8(float v) {
 
 // Which bricks' light a sweep changed as the renderer reads it: LightVolume::at rounded by unorm8.
 struct LightByteChanges {
-  bool all = false;                // a full recompute: any brick may have changed
-  std::vector<glm::ivec3> bricks;  // otherwise the bricks where `at` may round differently now
+  // A brick's voxels v < kLowVoxels on an axis are also read by the brick-pool slot one brick
+  // below on that axis (brick_pool.h: a slot holds its brick and the next brick's first voxels).
+  static constexpr int kLowVoxels = 4;
+  struct Brick {
+    glm::ivec3 brick{0};
+    // Bit δx + 2δy + 4δz (δ ∈ {0,1}³) set when the slot of brick − δ reads a changed voxel: some
+    // changed voxel has v_i < kLowVoxels on every axis i with δ_i = 1. 0xFF: any may.
+    uint8_t readers = 0;
+  };
+  bool all = false;           // a full recompute: any brick may have changed
+  std::vector<Brick> bricks;  // otherwise the bricks where `at` may round differently now
 };
 
 // The light direction in voxel space (unit) for `light` shining on `volume`.

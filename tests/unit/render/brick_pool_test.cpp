@@ -123,6 +123,77 @@ TEST(BrickPoolSlot, DifferenceBoxesTheChangedTexelsAndWeighsLightByNearbyDensity
   EXPECT_EQ(out[1].bytes, (VoxelBox{{12, 12, 12}, {13, 17, 13}}));
 }
 
+// The changes `st` (a sync from `old_volume` / `old_light` to `v` / the renderer's light)
+// reports are exactly the texels whose bytes changed: every texel that packs differently lies in
+// a box of its slot, and each box's faces hold changed texels (tight). `had_slot`: the bricks
+// with a slot before (the others read the empty slot).
+void expectChangesAreTheChangedTexels(const VolumeRenderer& renderer, const Volume& old_volume,
+                                      const LightVolume& old_light, const BrickSet& had_slot,
+                                      const Volume& v, const SyncStats& st) {
+  constexpr int S = BrickPool::kSlotTexels;
+  std::vector<uint8_t> a(BrickPool::kSlotBytes), b(BrickPool::kSlotBytes);
+  const glm::ivec3 d = v.brickDims();
+  int changed_slots = 0;
+  long changed_texels = 0;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        const glm::ivec3 brick(x, y, z);
+        if (!renderer.brickPool().slotOf(brick).w) continue;
+        // What rays read there before: the slot's bytes, or the empty slot (density 0,
+        // transmittance 1) for a brick that had none.
+        packBrickSlot(old_volume, old_light, brick, a.data());
+        if (!had_slot.count({x, y, z}))
+          for (size_t i = 0; i < a.size(); i += 2) a[i] = 0, a[i + 1] = 255;
+        packBrickSlot(v, renderer.lightVolume(), brick, b.data());
+        std::vector<VoxelBox> boxes;
+        for (const BrickPool::SlotChange& c : st.changes)
+          if (c.brick == brick) boxes.push_back(c.bytes);
+        bool any = false;
+        for (int k = 0; k < S; ++k)
+          for (int j = 0; j < S; ++j)
+            for (int i = 0; i < S; ++i) {
+              const size_t o = 2 * size_t((k * S + j) * S + i);
+              if (a[o] == b[o] && a[o + 1] == b[o + 1]) continue;
+              any = true;
+              ++changed_texels;
+              const glm::ivec3 voxel = glm::min(brick * 16 + glm::ivec3(i, j, k), v.dims() - 1);
+              EXPECT_TRUE(std::any_of(boxes.begin(), boxes.end(),
+                                      [&](const VoxelBox& box) { return box.contains(voxel); }))
+                  << "slot " << x << "," << y << "," << z << " texel " << i << "," << j << "," << k;
+            }
+        changed_slots += any;
+        if (!any) {
+          EXPECT_TRUE(boxes.empty()) << "slot " << x << "," << y << "," << z;
+        }
+        for (const VoxelBox& box : boxes) {
+          // Tight: a texel on each face of the box changed.
+          for (int axis = 0; axis < 3; ++axis)
+            for (int face : {box.lo[axis], box.hi[axis] - 1}) {
+              bool found = false;
+              for (int k = box.lo.z; k < box.hi.z && !found; ++k)
+                for (int j = box.lo.y; j < box.hi.y && !found; ++j)
+                  for (int i = box.lo.x; i < box.hi.x && !found; ++i) {
+                    const glm::ivec3 t = glm::ivec3(i, j, k) - brick * 16;
+                    const size_t o = 2 * size_t((t.z * S + t.y) * S + t.x);
+                    found =
+                        glm::ivec3(i, j, k)[axis] == face && (a[o] != b[o] || a[o + 1] != b[o + 1]);
+                  }
+              EXPECT_TRUE(found) << "a loose box in slot " << x << "," << y << "," << z;
+            }
+        }
+      }
+  std::printf("%d slots, %ld texels changed; %zu boxes reported\n", changed_slots, changed_texels,
+              st.changes.size());
+  // Every slot reported changed somewhere (an added slot may hold what the empty slot held: it is
+  // uploaded, not reported).
+  BrickSet reported;
+  for (const BrickPool::SlotChange& c : st.changes)
+    reported.insert({c.brick.x, c.brick.y, c.brick.z});
+  EXPECT_EQ(size_t(changed_slots), reported.size());
+  EXPECT_LE(changed_slots, st.slots_uploaded);
+}
+
 class BrickPoolTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -187,32 +258,31 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
   const std::vector<glm::ivec3> changed = v.changedBricksSince(generation);
   ASSERT_EQ(changed.size(), 1u);
   SyncStats st = renderer.sync(v, light);
-  // Expected: the slots reading a brick whose density changed or whose light changed in 8 bits
-  // (slot b reads bricks b + {0,1}³), found here by comparing every voxel's light.
+  // Expected: the slots reading the brick whose density changed (slot b reads bricks
+  // b + {0,1}³), and the slots holding a voxel whose light changed in 8 bits (slot b holds voxels
+  // 16b … 16b + 19), found here by comparing every voxel's light.
   const BrickPool& pool = renderer.brickPool();
   const LightVolume& new_light = renderer.lightVolume();
-  std::vector<glm::ivec3> read_changed = changed;
-  const glm::ivec3 d = v.brickDims();
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y)
-      for (int x = 0; x < d.x; ++x) {
-        bool differs = false;
-        for (int k = 0; k < 16 && !differs; ++k)
-          for (int j = 0; j < 16 && !differs; ++j)
-            for (int i = 0; i < 16 && !differs; ++i) {
-              const glm::ivec3 p = glm::ivec3(x, y, z) * 16 + glm::ivec3(i, j, k);
-              differs = unorm8(old_light.at(p.x, p.y, p.z)) != unorm8(new_light.at(p.x, p.y, p.z));
-            }
-        if (differs) read_changed.push_back({x, y, z});
-      }
-  EXPECT_GT(read_changed.size(), 1u) << "the edit should change its shadow in 8 bits";
   BrickSet expected;
-  for (glm::ivec3 c : read_changed)
-    for (int n = 0; n < 8; ++n) {
-      const glm::ivec3 b = c - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
-      if (glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && pool.slotOf(b).w)
-        expected.insert({b.x, b.y, b.z});
-    }
+  auto expect = [&](glm::ivec3 b) {
+    if (glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && pool.slotOf(b).w)
+      expected.insert({b.x, b.y, b.z});
+  };
+  for (int n = 0; n < 8; ++n) expect(changed[0] - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2));
+  const glm::ivec3 d = v.brickDims();
+  long light_changed = 0;
+  for (int z = 0; z < v.dims().z; ++z)
+    for (int y = 0; y < v.dims().y; ++y)
+      for (int x = 0; x < v.dims().x; ++x) {
+        if (unorm8(old_light.at(x, y, z)) == unorm8(new_light.at(x, y, z))) continue;
+        ++light_changed;
+        const glm::ivec3 p(x, y, z);
+        const glm::ivec3 hi = p >> 4, lo = glm::max((p - BrickPool::kSlotTexels + 1 + 15) >> 4, 0);
+        for (int k = lo.z; k <= hi.z; ++k)
+          for (int j = lo.y; j <= hi.y; ++j)
+            for (int i = lo.x; i <= hi.x; ++i) expect({i, j, k});
+      }
+  EXPECT_GT(light_changed, 0) << "the edit should change its shadow in 8 bits";
   // Fewer than the slots meeting the light box (what was re-packed before the sweep reported
   // its 8-bit changes).
   size_t in_light_box = 0;
@@ -244,9 +314,8 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
   EXPECT_EQ(pool.slotsInUse(), before);
 }
 
-// The changes a sync reports are the texels whose bytes changed, read back from the pool: every
-// texel that packs differently lies in a box of its slot, and each box's corners are changed
-// texels (tight), for an edit and its shadow.
+// The changes a sync reports are the texels whose bytes changed, read back from the pool, for an
+// edit and its shadow.
 TEST_F(BrickPoolTest, ReportedChangesAreExactlyTheTexelsThatChanged) {
   Volume v(glm::ivec3(96));
   paintBall(v, {40, 60, 40}, 12);
@@ -259,69 +328,25 @@ TEST_F(BrickPoolTest, ReportedChangesAreExactlyTheTexelsThatChanged) {
   paintBall(v, {47, 62, 30}, 6);  // at the first ball's edge; its shadow falls on the second
   const SyncStats st = renderer.sync(v, light);
   ASSERT_FALSE(st.changes.empty());
-  constexpr int S = BrickPool::kSlotTexels;
-  std::vector<uint8_t> a(BrickPool::kSlotBytes), b(BrickPool::kSlotBytes);
-  const glm::ivec3 d = v.brickDims();
-  int changed_slots = 0;
-  long changed_texels = 0;
-  for (int z = 0; z < d.z; ++z)
-    for (int y = 0; y < d.y; ++y)
-      for (int x = 0; x < d.x; ++x) {
-        const glm::ivec3 brick(x, y, z);
-        if (!renderer.brickPool().slotOf(brick).w) continue;
-        // What rays read there before: the slot's bytes, or the empty slot (density 0,
-        // transmittance 1) for a brick that had none.
-        packBrickSlot(old_volume, old_light, brick, a.data());
-        if (!had_slot.count({x, y, z}))
-          for (size_t i = 0; i < a.size(); i += 2) a[i] = 0, a[i + 1] = 255;
-        packBrickSlot(v, renderer.lightVolume(), brick, b.data());
-        std::vector<VoxelBox> boxes;
-        for (const BrickPool::SlotChange& c : st.changes)
-          if (c.brick == brick) boxes.push_back(c.bytes);
-        bool any = false;
-        for (int k = 0; k < S; ++k)
-          for (int j = 0; j < S; ++j)
-            for (int i = 0; i < S; ++i) {
-              const size_t o = 2 * size_t((k * S + j) * S + i);
-              if (a[o] == b[o] && a[o + 1] == b[o + 1]) continue;
-              any = true;
-              ++changed_texels;
-              const glm::ivec3 voxel = glm::min(brick * 16 + glm::ivec3(i, j, k), v.dims() - 1);
-              EXPECT_TRUE(std::any_of(boxes.begin(), boxes.end(),
-                                      [&](const VoxelBox& box) { return box.contains(voxel); }))
-                  << "slot " << x << "," << y << "," << z << " texel " << i << "," << j << "," << k;
-            }
-        changed_slots += any;
-        if (!any) {
-          EXPECT_TRUE(boxes.empty()) << "slot " << x << "," << y << "," << z;
-        }
-        for (const VoxelBox& box : boxes) {
-          // Tight: a texel on each face of the box changed.
-          for (int axis = 0; axis < 3; ++axis)
-            for (int face : {box.lo[axis], box.hi[axis] - 1}) {
-              bool found = false;
-              for (int k = box.lo.z; k < box.hi.z && !found; ++k)
-                for (int j = box.lo.y; j < box.hi.y && !found; ++j)
-                  for (int i = box.lo.x; i < box.hi.x && !found; ++i) {
-                    const glm::ivec3 t = glm::ivec3(i, j, k) - brick * 16;
-                    const size_t o = 2 * size_t((t.z * S + t.y) * S + t.x);
-                    found =
-                        glm::ivec3(i, j, k)[axis] == face && (a[o] != b[o] || a[o + 1] != b[o + 1]);
-                  }
-              EXPECT_TRUE(found) << "a loose box in slot " << x << "," << y << "," << z;
-            }
-        }
-      }
-  std::printf("%d slots, %ld texels changed; %zu boxes reported\n", changed_slots, changed_texels,
-              st.changes.size());
-  // Every slot reported changed somewhere (an added slot may hold what the empty slot held: it is
-  // uploaded, not reported).
-  BrickSet reported;
-  for (const BrickPool::SlotChange& c : st.changes)
-    reported.insert({c.brick.x, c.brick.y, c.brick.z});
-  EXPECT_EQ(size_t(changed_slots), reported.size());
-  EXPECT_LE(changed_slots, st.slots_uploaded);
-  EXPECT_GT(st.slots_unchanged, 0) << "the shadow should re-pack slots whose bytes stay";
+  expectChangesAreTheChangedTexels(renderer, old_volume, old_light, had_slot, v, st);
+}
+
+// A light change in a brick's first voxels (x, z < 4) only, under a sun straight above: the
+// slots one brick below on x and z hold those voxels too and must be re-packed (the sweep's
+// LightByteChanges::Brick::readers), though nothing else near them changed.
+TEST_F(BrickPoolTest, ALightChangeInABricksFirstVoxelsReachesTheSlotsBelow) {
+  Volume v(glm::ivec3(64));
+  paintBall(v, {20, 16, 20}, 6);  // the receiver, below
+  Light light;
+  light.direction = glm::vec3(0.0f, 1.0f, 0.0f);
+  renderer.sync(v, light);
+  const Volume old_volume = v;
+  const LightVolume old_light = renderer.lightVolume();
+  const BrickSet had_slot = bricksWithSlots(renderer.brickPool());
+  v.set(17, 40, 17, 1.0f);  // one voxel above it, in brick (1, 2, 1)'s first voxels on x and z
+  const SyncStats st = renderer.sync(v, light);
+  ASSERT_FALSE(st.changes.empty());
+  expectChangesAreTheChangedTexels(renderer, old_volume, old_light, had_slot, v, st);
 }
 
 TEST_F(BrickPoolTest, ReleasedSlotsAreReusedAndThePoolGrowsOnlyWhenFull) {
