@@ -19,11 +19,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Round to nearest (no libm call: this runs for every packed texel).
-uint8_t toUnorm8(float v) {
-  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
-}
-
 void resetUnpackState() {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
@@ -33,6 +28,25 @@ void resetUnpackState() {
 
 bool valid(glm::ivec3 b, glm::ivec3 dims) {
   return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, dims));
+}
+
+// The empty slot's bytes: density 0, transmittance 1 (never weighted).
+const std::vector<uint8_t>& emptySlotBytes() {
+  static const std::vector<uint8_t> empty = [] {
+    std::vector<uint8_t> e(BrickPool::kSlotBytes);
+    for (size_t i = 0; i < e.size(); i += 2) {
+      e[i] = 0;
+      e[i + 1] = 255;
+    }
+    return e;
+  }();
+  return empty;
+}
+
+// The voxels a slot holds (voxels 16b … 16b + 19, clamped to the volume).
+VoxelBox slotVoxels(glm::ivec3 b, const Volume& volume) {
+  const glm::ivec3 lo = b * Volume::kBrickSize;
+  return VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
 }
 
 }  // namespace
@@ -65,8 +79,8 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
       volume.readLine({lo.x, y, z}, 0, nx, d);
       light.readRow({lo.x, y, z}, nx, t);  // a row at a time: cheaper than at() per voxel
       for (int i = 0; i < S; ++i) {
-        o[2 * i] = toUnorm8(d[std::min(i, nx - 1)]);
-        o[2 * i + 1] = toUnorm8(t[std::min(i, nx - 1)]);
+        o[2 * i] = unorm8(d[std::min(i, nx - 1)]);
+        o[2 * i + 1] = unorm8(t[std::min(i, nx - 1)]);
       }
     }
 }
@@ -82,6 +96,55 @@ uint64_t slotHash(const uint8_t* slot) {
     h ^= h >> 31;
   }
   return h ? h : 1;
+}
+
+void slotDifference(const uint8_t* before, const uint8_t* now,
+                    std::vector<BrickPool::SlotChange>* out) {
+  constexpr int S = BrickPool::kSlotTexels;
+  constexpr size_t N = size_t(S) * S * S;
+  // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
+  // dilation of the non-zero densities, one axis at a time).
+  uint8_t near[N], scratch[N];
+  for (size_t i = 0; i < N; ++i) near[i] = now[2 * i] != 0;
+  const size_t strides[3] = {1, size_t(S), size_t(S) * S};
+  for (int axis = 0; axis < 3; ++axis) {
+    const size_t st = strides[axis];
+    std::memcpy(scratch, near, N);
+    for (size_t i = 0; i < N; ++i) {
+      const int c = int(i / st) % S;  // the texel's coordinate on this axis
+      uint8_t v = scratch[i];
+      if (c > 0) v |= scratch[i - st];
+      if (c < S - 1) v |= scratch[i + st];
+      near[i] = v;
+    }
+  }
+  constexpr int B = BrickPool::kChangeBlockTexels, blocks = S / B;
+  glm::ivec3 lo[blocks * blocks * blocks], hi[blocks * blocks * blocks];
+  glm::ivec3 wlo[blocks * blocks * blocks], whi[blocks * blocks * blocks];
+  for (int k = 0; k < blocks * blocks * blocks; ++k) {
+    lo[k] = wlo[k] = glm::ivec3(S);
+    hi[k] = whi[k] = glm::ivec3(-1);
+  }
+  size_t i = 0;
+  for (int z = 0; z < S; ++z)
+    for (int y = 0; y < S; ++y)
+      for (int x = 0; x < S; ++x, ++i) {
+        const bool density = before[2 * i] != now[2 * i];
+        const bool light = before[2 * i + 1] != now[2 * i + 1];
+        if (!density && !light) continue;
+        const glm::ivec3 t(x, y, z);
+        const int k = (z / B * blocks + y / B) * blocks + x / B;
+        lo[k] = glm::min(lo[k], t);
+        hi[k] = glm::max(hi[k], t);
+        if (density || near[i]) {
+          wlo[k] = glm::min(wlo[k], t);
+          whi[k] = glm::max(whi[k], t);
+        }
+      }
+  for (int k = 0; k < blocks * blocks * blocks; ++k)
+    if (hi[k].x >= 0)
+      out->push_back({glm::ivec3(0), VoxelBox{lo[k], hi[k] + 1},
+                      whi[k].x >= 0 ? VoxelBox{wlo[k], whi[k] + 1} : VoxelBox{}});
 }
 
 BrickPool::~BrickPool() {
@@ -184,15 +247,9 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     free_slots_.insert(free_slots_.begin(), added.begin(), added.end());
     stats->grew = true;
   } else {
-    // The empty slot: density 0 (transmittance 1, never weighted).
-    std::vector<uint8_t> empty(kSlotBytes);
-    for (size_t i = 0; i < empty.size(); i += 2) {
-      empty[i] = 0;
-      empty[i + 1] = 255;
-    }
     resetUnpackState();
     glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
-                        GL_UNSIGNED_BYTE, empty.data());
+                        GL_UNSIGNED_BYTE, emptySlotBytes().data());
   }
   pool_texture_ = texture;
   pool_texels_ = texels;
@@ -217,7 +274,8 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
 BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
                                          const std::vector<glm::ivec3>& changed_bricks,
                                          const VoxelBox& light_box,
-                                         std::vector<glm::ivec3>* changed_slots) {
+                                         const LightByteChanges* light_bytes,
+                                         std::vector<SlotChange>* changes) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
   const glm::ivec3 bd = volume.brickDims();
@@ -271,7 +329,10 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       free_slots_.push_back(slot_of_brick_[i]);
       slot_of_brick_[i] = glm::u8vec4(0);
       slot_hash_[i] = 0;
-      if (changed_slots) changed_slots->push_back(b);
+      if (changes) {
+        const VoxelBox whole = slotVoxels(b, volume);
+        changes->push_back({b, whole, whole});
+      }
       --slots_in_use_;
       ++st.slots_released;
       indirection_changed = indirection_changed.unite({b, b + 1});
@@ -291,9 +352,25 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     indirection_changed = indirection_changed.unite({b, b + 1});
     to_upload.push_back(b);
   }
-  // The light: slots whose voxels 16b … 16b + kSlotTexels − 1 meet the light box.
+  // The light: the slots reading a voxel whose 8-bit light changed (of c − {0,1}³ for each such
+  // brick c, those its `readers` name); without that list, those whose voxels 16b … 16b +
+  // kSlotTexels − 1 meet the light box.
   const VoxelBox lb = light_box.intersect(volume.bounds());
-  if (!lb.empty() && slots_in_use_ > 0) {
+  if (light_bytes && !light_bytes->all && slots_in_use_ > 0) {
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
+    for (const LightByteChanges::Brick& c : light_bytes->bricks)
+      for (int n = 0; n < 8; ++n) {
+        if (!(c.readers >> n & 1)) continue;
+        const glm::ivec3 b = c.brick - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
+        if (!valid(b, bd)) continue;
+        const size_t i = brickIndex(b);
+        if (slot_of_brick_[i].w && !mark_[i]) {
+          mark_[i] = 1;
+          to_upload.push_back(b);
+        }
+      }
+    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
+  } else if (!lb.empty() && slots_in_use_ > 0) {
     for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
     const glm::ivec3 blo = glm::max(
         (lb.lo - (kSlotTexels - Volume::kBrickSize)) >> Volume::kBrickShift, glm::ivec3(0));
@@ -312,6 +389,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
 
   resetUnpackState();
   std::vector<uint8_t> staging;  // packed slots of one batch
+  std::vector<uint8_t> before;   // a slot's bytes before the update (for `changes`)
   for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
     const size_t n = std::min(kUploadBatch, to_upload.size() - first);
     t0 = std::chrono::steady_clock::now();
@@ -323,25 +401,55 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     });
     // Slots whose bytes are what they held stay as they are (the slot of an added brick held
     // nothing: hash 0).
-    std::vector<uint8_t> same(n, 0);
+    enum : uint8_t { kChanged, kSame, kAdded };
+    std::vector<uint8_t> state(n, kChanged);
     parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
       for (size_t s = s0; s < s1; ++s) {
         uint64_t& held = slot_hash_[brickIndex(to_upload[first + s])];
         const uint64_t h = slotHash(staging.data() + s * kSlotBytes);
-        same[s] = h == held;
+        state[s] = h == held ? kSame : held == 0 ? kAdded : kChanged;
         held = h;
       }
     });
     st.pack_ms += msSince(t0);
     t0 = std::chrono::steady_clock::now();
     for (size_t s = 0; s < n; ++s) {
-      if (same[s]) {
+      if (state[s] == kSame) {
         ++st.slots_unchanged;
         continue;
       }
-      if (changed_slots) changed_slots->push_back(to_upload[first + s]);
-      const glm::ivec3 slot(slot_of_brick_[brickIndex(to_upload[first + s])]);
+      const glm::ivec3 b = to_upload[first + s];
+      const glm::ivec3 slot(slot_of_brick_[brickIndex(b)]);
       const glm::ivec3 at = slot * kSlotTexels;
+      if (changes && fresh) {
+        // Everything is new (the renderer starts its frames over): the whole slot, no compare.
+        const VoxelBox whole = slotVoxels(b, volume);
+        changes->push_back({b, whole, whole});
+      } else if (changes) {
+        // What rays read there before: the empty slot for an added brick, else the slot's bytes.
+        const uint8_t* old = emptySlotBytes().data();
+        if (state[s] == kChanged) {
+          // Rows of 40 bytes: tight under any pack alignment (the project sets no other
+          // pack state).
+          before.resize(kSlotBytes);
+          glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                               kSlotTexels, GL_RG, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
+                               before.data());
+          old = before.data();
+        }
+        const size_t first_change = changes->size();
+        slotDifference(old, staging.data() + s * kSlotBytes, changes);
+        // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its
+        // last voxel, which then changed too).
+        const glm::ivec3 lo = b * Volume::kBrickSize;
+        auto toVoxels = [&](const VoxelBox& t) {
+          return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
+        };
+        for (size_t c = first_change; c < changes->size(); ++c) {
+          SlotChange& change = (*changes)[c];
+          change = {b, toVoxels(change.bytes), toVoxels(change.weighted)};
+        }
+      }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
                           GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
     }

@@ -48,6 +48,7 @@ class BrickPool {
   static constexpr int kApron = 3;
   static constexpr int kSlotTexels = Volume::kBrickSize + 1 + kApron;
   static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
+  static_assert(kSlotTexels - Volume::kBrickSize == LightByteChanges::kLowVoxels);
 
   struct UpdateStats {
     int slots_uploaded = 0;   // slots re-packed and uploaded
@@ -64,18 +65,44 @@ class BrickPool {
   BrickPool(const BrickPool&) = delete;
   BrickPool& operator=(const BrickPool&) = delete;
 
+  // A slot's changed texels are reported per block of this many texels on each axis (2³ blocks
+  // a slot): one box around a slot's changes covers much that did not change (a stroke's edge,
+  // a shadow's slanted front), and more blocks cost the mask more triangles than they save
+  // pixels (`cloudbrush bench scale`, app/render/README.md).
+  static constexpr int kChangeBlockTexels = kSlotTexels / 2;
+  // What one block of a slot's change can alter in an image, as voxel boxes (clamped to the
+  // volume).
+  struct SlotChange {
+    glm::ivec3 brick{0};
+    // The voxels whose texels in this block of the slot now hold other bytes (density or
+    // transmittance): a sample reading none of them in this slot reads what it read. The whole
+    // slot when it was released or the update was `fresh`.
+    VoxelBox bytes;
+    // The part of `bytes` a sample of non-zero density can read: texels whose density changed,
+    // and texels whose transmittance changed with a texel of non-zero density among their 3³
+    // neighbours in the slot (a trilinear sample's 8 texels are one 2³ cell of the slot; its
+    // density is 0 exactly when all 8 densities are, and then its opacity is 0, so its light
+    // weighs nothing). What the composited styles (thesis, physical) can show changed; the
+    // iso-surface styles read the light off the march and need `bytes`. May be empty.
+    VoxelBox weighted;
+  };
+
   // Brings the pool up to date. With `fresh` (another volume or new dims) every slot is
   // reassigned from the allocated bricks; otherwise `changed_bricks` (Volume::changedBricksSince)
-  // and `light_box` (the light voxels recomputed) say what to refresh. `light` must hold valid
+  // and the light say what to refresh: `light_bytes` (the bricks whose 8-bit light an incremental
+  // sweep changed, sweepLightVolume) if given and not `all`, else `light_box` (the light voxels
+  // recomputed, every slot meeting it re-packed). `light` must hold valid
   // transmittance for every voxel of the bricks next to allocated ones (LightVolume::at).
   // Needs a current GL 4.5 context.
-  // `changed_slots`, if given, receives the bricks whose slot reads differently now: a slot
-  // added, released, or re-packed to bytes it did not hold (a 64-bit hash of each slot's bytes
-  // is kept: the light box re-packs many slots whose 8-bit transmittance did not change, and
-  // those are neither uploaded nor reported). A ray reading no listed slot reads what it read.
+  // `changes`, if given, receives every slot that reads differently now: a slot added, released,
+  // or re-packed to bytes it did not hold (a 64-bit hash of each slot's bytes is kept: the light
+  // box re-packs many slots whose 8-bit transmittance did not change, and those are neither
+  // uploaded nor reported), with the texels that changed: a re-packed slot's old bytes are read
+  // back from the pool texture (only for slots whose hash changed) and compared texel by texel.
   UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
                      const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box,
-                     std::vector<glm::ivec3>* changed_slots = nullptr);
+                     const LightByteChanges* light_bytes = nullptr,
+                     std::vector<SlotChange>* changes = nullptr);
 
   GLuint poolTexture() const { return pool_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
@@ -126,5 +153,12 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
 
 // A 64-bit hash of one packed slot (kSlotBytes), never 0 (0 marks "no slot").
 uint64_t slotHash(const uint8_t* slot);
+
+// The texels of two packed slots (kSlotBytes each) that differ: appends one SlotChange per
+// block of BrickPool::kChangeBlockTexels³ texels holding a changed one, its boxes in texel
+// coordinates of the slot (lo inclusive, hi exclusive; `weighted` judged by `now`'s densities)
+// and `brick` left 0. Nothing when the slots are equal.
+void slotDifference(const uint8_t* before, const uint8_t* now,
+                    std::vector<BrickPool::SlotChange>* out);
 
 }  // namespace cb

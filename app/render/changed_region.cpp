@@ -1,7 +1,6 @@
 #include "app/render/changed_region.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 
 namespace cb {
@@ -61,35 +60,25 @@ ScreenRegion projectVoxelBoxes(const Camera& camera, int width, int height, cons
   return region;
 }
 
-VoxelBox occupiedPartOf(const OccupancyPyramid& occupancy, const VoxelBox& box) {
-  if (box.empty() || occupancy.levels.empty()) return box;
-  const int brick = occupancy.brick;
-  const glm::ivec3 d = occupancy.level_dims[0];
-  const glm::ivec3 c0 = glm::max(box.lo / brick, glm::ivec3(0));
-  const glm::ivec3 c1 = glm::min((box.hi + brick - 1) / brick, d);
-  const std::vector<uint8_t>& cells = occupancy.levels[0];
-  glm::ivec3 lo(INT32_MAX), hi(INT32_MIN);
-  for (int z = c0.z; z < c1.z; ++z)
-    for (int y = c0.y; y < c1.y; ++y)
-      for (int x = c0.x; x < c1.x; ++x)
-        if (cells[(size_t(z) * size_t(d.y) + size_t(y)) * size_t(d.x) + size_t(x)]) {
-          lo = glm::min(lo, glm::ivec3(x, y, z));
-          hi = glm::max(hi, glm::ivec3(x, y, z) + 1);
-        }
-  if (lo.x > hi.x) return {};
-  return box.intersect({lo * brick, hi * brick});
+VoxelBox visibleChange(const BrickPool::SlotChange& change, RenderStyle style) {
+  return drawsIsoSurface(style) ? change.bytes : change.weighted;
+}
+
+std::vector<VoxelBox> visibleChanges(const std::vector<BrickPool::SlotChange>& changes,
+                                     RenderStyle style) {
+  std::vector<VoxelBox> boxes;
+  boxes.reserve(changes.size());
+  for (const BrickPool::SlotChange& change : changes) {
+    const VoxelBox box = visibleChange(change, style);
+    if (!box.empty()) boxes.push_back(box);
+  }
+  return boxes;
 }
 
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
-                                 const SyncStats& sync, const OccupancyPyramid& occupancy,
-                                 RenderStyle style) {
-  // The light box is swept in float, but the GPU reads 8-bit transmittance: only the slots
-  // whose bytes changed (sync.changed_slots) can change a pixel, and within the light box that
-  // is often far less (deep in the cloud's shadow the 8-bit value stays where it was).
-  return projectVoxelBoxes(
-      camera, width, height, volume,
-      {sync.dirty, occupiedPartOf(occupancy, sync.light_box.intersect(sync.changed_slots))},
-      readReachVoxels(style, volume.dims()));
+                                 const SyncStats& sync, RenderStyle style) {
+  return projectVoxelBoxes(camera, width, height, volume, visibleChanges(sync.changes, style),
+                           readReachVoxels(style, volume.dims()));
 }
 
 }  // namespace cb

@@ -6,9 +6,9 @@
 // (one voxel), or, for the iso-surface styles, within the central-difference offset of the
 // normal; every other pixel computes exactly what it computed before the change (the ray-bounds
 // skipping keeps sample positions, and newly occupied cells hold only zeros off the changed
-// voxels). So the boxes a sync rewrote — the density's dirty box and the light volume's
-// recomputed box (the edit's shadow swept downstream, light_volume.h; only where there is
-// density for it to fall on) — grown by that reach and
+// voxels). So the boxes of the pool texels a sync changed (BrickPool::SlotChange, per slot: the
+// stroke's density and the 8-bit transmittance of its shadow, light_volume.h; for the composited
+// styles only where a sample has density for the light to weigh) — grown by that reach and
 // projected through the camera bound every changed pixel: their 8 corners each, the rectangle
 // around them rounded outwards. A box that reaches behind the near plane (or holds the eye)
 // gives the whole frame. Screen-space styles dilate the rectangle further inside render().
@@ -18,7 +18,6 @@
 
 #include <glm/glm.hpp>
 
-#include "app/render/occupancy_pyramid.h"
 #include "app/render/render_style.h"
 #include "app/render/volume_renderer.h"
 #include "app/scene/camera.h"
@@ -47,21 +46,24 @@ struct ScreenRegion {
 // footprint, plus the normal's central-difference offset for the iso-surface styles.
 float readReachVoxels(RenderStyle style, glm::ivec3 dims);
 
+// The voxels of a pool slot's change (BrickPool::SlotChange) whose change can alter an image in
+// `style`: `weighted` for the composited styles (a sample's light weighs nothing where its
+// density is 0), `bytes` for the iso-surface styles (they read the light off the march, near a
+// surface, not at a sample of known density). Empty if none.
+VoxelBox visibleChange(const BrickPool::SlotChange& change, RenderStyle style);
+// The non-empty ones of `changes`.
+std::vector<VoxelBox> visibleChanges(const std::vector<BrickPool::SlotChange>& changes,
+                                     RenderStyle style);
+
 // The pixels of a width×height image through `camera` whose rays pass within `reach_voxels` of
 // any box in `boxes` (voxel boxes of `volume`); empty when all boxes are.
 ScreenRegion projectVoxelBoxes(const Camera& camera, int width, int height, const Volume& volume,
                                const std::vector<VoxelBox>& boxes, float reach_voxels);
 
-// The part of `box` in occupied level-0 cells of `occupancy` (bounding box; empty if none). A
-// transmittance change outside it reaches no image: a sample's colour is weighted by its
-// opacity, zero unless a voxel within one voxel holds density, and the cells are dilated by one.
-VoxelBox occupiedPartOf(const OccupancyPyramid& occupancy, const VoxelBox& box);
-
-// The pixels a sync changed: the dirty box of `sync` and its light box where `occupancy` (the
-// renderer's, after the sync) holds density, in `style`. (The dirty box is never clipped so:
-// erased density changes pixels where there is no density left.)
+// The pixels a sync changed in `style`: those whose rays pass near the texels it changed
+// (visibleChanges of sync.changes: density and 8-bit transmittance as the pool holds them, so
+// erased density counts where none is left, and a shadow's change only where 8 bits see it).
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
-                                 const SyncStats& sync, const OccupancyPyramid& occupancy,
-                                 RenderStyle style);
+                                 const SyncStats& sync, RenderStyle style);
 
 }  // namespace cb

@@ -263,6 +263,11 @@ struct TileSweep {
   int ob, oc;         // integer part of the upstream offset (each −1, 0 or 1)
   float wb, wc;       // its fractional part: the bilinear weights, constants of the sweep
   size_t sa, sb, sc;  // in-brick strides of the slice axis and the lateral axes
+  // Per brick (LightBricks::brickIndex), the slots reading a voxel where LightVolume::at now
+  // rounds to another 8-bit value (unorm8) than before (LightByteChanges::Brick::readers);
+  // nullptr: not tracked. Tiles of one slice are distinct bricks and slices are separated by a
+  // barrier, so plain byte stores do not race.
+  uint8_t* changed_bytes = nullptr;
 
   glm::ivec3 brickCoord(int s, int tb, int tc) const {
     glm::ivec3 v;
@@ -282,7 +287,36 @@ struct TileSweep {
     const glm::ivec3 brick = brickCoord(s, tb, tc);
     const size_t bi = lv.through.brickIndex(brick);
     const float* density_brick = volume.brick(brick);
-    if (!density_brick && lv.lit.get(bi)) lv.lit.release(bi);  // freed: T is the passed-on value
+    // `at` reads lit where the volume holds the brick, else through. Whether a rewrite changes
+    // what it reads in 8 bits (once a brick is marked its other rewrites are not compared).
+    const bool compare = changed_bytes && changed_bytes[bi] != 0xFF;
+    auto compareRows = [&](const float* dst, const float* values, int rows, size_t stride) {
+      // The slots reading voxel v: brick − δ for each δ whose axes all have v_i < kLowVoxels.
+      static constexpr std::array<uint8_t, 8> kReaders = [] {
+        std::array<uint8_t, 8> t{};
+        for (int low = 0; low < 8; ++low)
+          for (int d = 0; d < 8; ++d)
+            if ((d & ~low) == 0) t[size_t(low)] |= uint8_t(1 << d);
+        return t;
+      }();
+      constexpr int m = kTile - 1, kLow = LightByteChanges::kLowVoxels;
+      uint8_t& readers = changed_bytes[bi];
+      for (int rr = 0; rr < rows; ++rr) {
+        const float* d = dst + offset(s, r.lo.x, r.lo.y + rr);
+        const float* v = values + rr * stride;
+        const int row_low =
+            ((s & m) < kLow ? 1 << f.axis : 0) | (((r.lo.y + rr) & m) < kLow ? 1 << f.c : 0);
+        for (int i = 0; i < r.hi.x - r.lo.x; ++i)
+          if (unorm8(d[size_t(i) * sb]) != unorm8(v[i])) {
+            readers |= kReaders[size_t(row_low | (((r.lo.x + i) & m) < kLow ? 1 << f.b : 0))];
+            if (readers == 0xFF) return;
+          }
+      }
+    };
+    if (!density_brick && lv.lit.get(bi)) {
+      lv.lit.release(bi);  // freed: T is the passed-on value
+      if (changed_bytes) changed_bytes[bi] = 0xFF;
+    }
     float* through = lv.through.getForWrite(bi);
     const int su = s - f.dir;
     const bool has_upstream = su >= 0 && su < na;
@@ -338,7 +372,8 @@ struct TileSweep {
       sweepContiguousRun(up0, up0 + pw, density, out, own + rr * kTile, n, wb, wc, attenuation);
       for (int i = 0; i < n; ++i) not_one |= out[i] != 1.0f;
     }
-    if (!through && not_one) through = lv.through.create(bi);
+    if (!through && not_one) through = lv.through.create(bi);  // all 1, as `at` read it
+    if (through && compare && !density_brick) compareRows(through, passed, rows, kTile);
     if (through)
       for (int rr = 0; rr < rows; ++rr) {
         float* dst = through + offset(s, r.lo.x, r.lo.y + rr);
@@ -360,7 +395,11 @@ struct TileSweep {
       // A brick new to the lit set: its voxels outside this sweep hold no density (they were
       // not in an allocated brick and did not change), so their T is the passed-on value.
       float* lit = lv.lit.getForWrite(bi);
-      if (!lit) lit = lv.lit.create(bi, through);
+      if (!lit) {
+        lit = lv.lit.create(bi, through);
+        if (changed_bytes) changed_bytes[bi] = 0xFF;  // `at` switches from through to lit
+      }
+      if (compare) compareRows(lit, own, rows, kTile);
       for (int rr = 0; rr < rows; ++rr) {
         float* dst = lit + offset(s, r.lo.x, r.lo.y + rr);
         for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = own[rr * kTile + i];
@@ -621,9 +660,10 @@ void sweepAllTiles(const TileSweep& t, const std::vector<int>& depth) {
 }  // namespace
 
 VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& light,
-                          const VoxelBox& dirty) {
+                          const VoxelBox& dirty, LightByteChanges* changes) {
   const glm::ivec3 dims = volume.dims();
   VoxelBox region = dirty.intersect(volume.bounds());
+  if (changes) *changes = LightByteChanges{};
   if (!lv.matches(volume, light)) {
     lv.dims = dims;
     lv.direction = lightDirectionInVoxels(volume, light);
@@ -631,6 +671,13 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     region = volume.bounds();
   }
   if (region.empty()) return {};
+  if (changes) changes->all = region == volume.bounds();
+  // Per brick: the 8-bit light changed (TileSweep::changed_bytes), for an incremental sweep.
+  std::vector<uint8_t> changed_bytes;
+  if (changes && !changes->all) {
+    const glm::ivec3 bd = volume.brickDims();
+    changed_bytes.assign(size_t(bd.x) * size_t(bd.y) * size_t(bd.z), 0);
+  }
   const SweepFrame f = makeFrame(lv.direction, dims);
   const glm::vec2 lateral_up(f.up[f.b], f.up[f.c]);
   const glm::ivec2 lateral_dims(dims[f.b], dims[f.c]);
@@ -652,7 +699,8 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                     lateral_up.y - float(oc),
                     size_t(brick_stride[f.axis]),
                     size_t(brick_stride[f.b]),
-                    size_t(brick_stride[f.c])};
+                    size_t(brick_stride[f.c]),
+                    changed_bytes.empty() ? nullptr : changed_bytes.data()};
 
   // Slices of each brick column whose light is stored (storedSlices), before and after.
   const std::vector<int> depth = storedSlices(volume, f, ob, oc);
@@ -691,6 +739,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           continue;
         lv.through.release(lv.through.brickIndex(b));
         lv.lit.release(lv.lit.brickIndex(b));
+        if (!changed_bytes.empty()) changed_bytes[lv.through.brickIndex(b)] = 0xFF;
       }
     }
   }
@@ -726,7 +775,19 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   // (a barrier per slice costs more than they do). Each thread's changed rectangle is
   // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
   // independent of the split (deterministic).
-  if (slices <= 0) return {};
+  // The bricks marked in changed_bytes, in the volume's brick order (z, y, x).
+  auto collectChanges = [&] {
+    if (changed_bytes.empty()) return;
+    for (int z = 0; z < bd.z; ++z)
+      for (int y = 0; y < bd.y; ++y)
+        for (int x = 0; x < bd.x; ++x)
+          if (const uint8_t readers = changed_bytes[lv.through.brickIndex({x, y, z})])
+            changes->bricks.push_back({{x, y, z}, readers});
+  };
+  if (slices <= 0) {
+    collectChanges();
+    return {};
+  }
   const int threads = dirty_rect.area() >= kThreadedArea || grown_rect.area() >= kThreadedArea
                           ? std::max(1, std::min(workerThreads(), 16))
                           : 1;
@@ -804,6 +865,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     first_rewritten = std::min(first_rewritten, f_id.first);
     last = std::max(last, f_id.last);
   }
+  collectChanges();
   if (last < 0) return {};
   VoxelBox out;
   const int begin = start + first_rewritten * f.dir, end = start + last * f.dir;

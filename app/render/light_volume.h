@@ -37,8 +37,10 @@
 // (reduced_light_sweep.h) stores only those and reads 1 elsewhere, where nothing reads it.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <mutex>
 #include <vector>
 
@@ -134,6 +136,27 @@ struct LightVolume {
   std::vector<float> toDense() const;
 };
 
+// A value in [0, 1] as the GPU copy holds it (brick_pool.h): 8 bits, rounded to nearest, clamped.
+// (No libm call: this runs for every packed or compared voxel.)
+inline uint8_t unorm8(float v) {
+  return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+}
+
+// Which bricks' light a sweep changed as the renderer reads it: LightVolume::at rounded by unorm8.
+struct LightByteChanges {
+  // A brick's voxels v < kLowVoxels on an axis are also read by the brick-pool slot one brick
+  // below on that axis (brick_pool.h: a slot holds its brick and the next brick's first voxels).
+  static constexpr int kLowVoxels = 4;
+  struct Brick {
+    glm::ivec3 brick{0};
+    // Bit δx + 2δy + 4δz (δ ∈ {0,1}³) set when the slot of brick − δ reads a changed voxel: some
+    // changed voxel has v_i < kLowVoxels on every axis i with δ_i = 1. 0xFF: any may.
+    uint8_t readers = 0;
+  };
+  bool all = false;           // a full recompute: any brick may have changed
+  std::vector<Brick> bricks;  // otherwise the bricks where `at` may round differently now
+};
+
 // The light direction in voxel space (unit) for `light` shining on `volume`.
 glm::vec3 lightDirectionInVoxels(const Volume& volume, const Light& light);
 
@@ -147,9 +170,11 @@ std::vector<glm::ivec3> lightBrickList(const Volume& volume);
 // the dirty box, then slice by slice away from the light the voxels whose upstream footprint saw
 // any change in the previous slice (so the update stops where the edit's shadow no longer
 // changes a bit, e.g. where it meets shadow that is already black). Returns the bounding box of
-// the voxels rewritten (empty if none; the whole grid after a full recompute).
+// the voxels rewritten (empty if none; the whole grid after a full recompute). `changes`, if
+// given, receives the bricks whose 8-bit light changed (far fewer than the box holds: deep in
+// the shadow the float values move but their 8 bits stay; brick_pool.h re-packs only those).
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
-                          const VoxelBox& dirty);
+                          const VoxelBox& dirty, LightByteChanges* changes = nullptr);
 
 // The per-voxel reference march of Alg. 5 (slow: for tests and benchmarks). With z_step > 1 only
 // the z slices z % z_step == 0 are computed (the others are set to -1), for timing and checking

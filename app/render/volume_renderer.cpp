@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -43,6 +44,24 @@ std::string composeDefines(bool ink, bool bleed, bool over_sky) {
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Merges the changes of each slot into one (the bounding boxes of its blocks' boxes).
+void coalescePerSlot(std::vector<BrickPool::SlotChange>* changes) {
+  auto order = [](const BrickPool::SlotChange& a, const BrickPool::SlotChange& b) {
+    return std::tie(a.brick.z, a.brick.y, a.brick.x) < std::tie(b.brick.z, b.brick.y, b.brick.x);
+  };
+  std::stable_sort(changes->begin(), changes->end(), order);
+  std::vector<BrickPool::SlotChange> merged;
+  for (const BrickPool::SlotChange& c : *changes) {
+    if (!merged.empty() && merged.back().brick == c.brick) {
+      merged.back().bytes = merged.back().bytes.unite(c.bytes);
+      merged.back().weighted = merged.back().weighted.unite(c.weighted);
+    } else {
+      merged.push_back(c);
+    }
+  }
+  *changes = std::move(merged);
 }
 
 }  // namespace
@@ -330,6 +349,8 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
                                synced_light_.extinction == light.extinction && !fresh;
   const bool stale = light_is_preview_ ? !light_unchanged || !st.dirty.empty()
                                        : !light_volume_.matches(volume, light);
+  LightByteChanges light_bytes;  // which bricks' 8-bit light changed (else: the light box)
+  light_bytes.all = true;
   if (light_preview_divisor_ > 1 && stale) {
     // The light moves while it is dragged: a coarse sweep, recomputed in full at release.
     st.light_box = reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
@@ -337,7 +358,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   } else if (light_preview_divisor_ > 1 && light_is_preview_) {
     st.light_box = {};  // the same preview light: nothing to redo
   } else {
-    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty);
+    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty, &light_bytes);
     light_is_preview_ = false;
   }
   st.light_ms = msSince(t0);
@@ -352,20 +373,15 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // The pool follows the bricks that changed (or every allocated brick when fresh).
   const std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
-  std::vector<glm::ivec3> changed_slots;
-  const BrickPool::UpdateStats pool =
-      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &changed_slots);
+  const BrickPool::UpdateStats pool = pool_.update(volume, light_volume_, fresh, changed_bricks,
+                                                   st.light_box, &light_bytes, &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
-    if (fresh || history->pending.size() + changed_slots.size() > kMaxMaskBoxes) {
-      *history = FrameHistory{};
-    }
-  }
-  for (glm::ivec3 b : changed_slots) {
-    const glm::ivec3 lo = b * Volume::kBrickSize;
-    const VoxelBox box = VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
-    st.changed_slots = st.changed_slots.unite(box);
-    for (FrameHistory* history : {&history_, &spare_history_})
-      if (history->valid) history->pending.push_back(box);
+    if (fresh) *history = FrameHistory{};
+    if (!history->valid) continue;
+    history->pending.insert(history->pending.end(), st.changes.begin(), st.changes.end());
+    // Too many boxes: one per slot (its blocks' bounding boxes) before giving the mask up.
+    if (history->pending.size() > kMaxMaskBoxes) coalescePerSlot(&history->pending);
+    if (history->pending.size() > kMaxMaskBoxes) *history = FrameHistory{};
   }
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;
@@ -695,9 +711,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const std::string key = skip ? imageKey(view_proj, w, h, options, background) : std::string();
   if (skip) useFrameTargets(w, h);
   const float read_reach = readReachVoxels(options.style, dims_);
+  const std::vector<VoxelBox> pending = visibleChanges(history_.pending, options.style);
   const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
                       history_.key == key && !history_.pending.empty() &&
-                      projectedRect(history_.pending, read_reach, view_proj, w, h, nullptr);
+                      projectedRect(pending, read_reach, view_proj, w, h, nullptr);
   if (partial) {
     // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
     glEnable(GL_SCISSOR_TEST);
@@ -713,7 +730,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     if (masked) {
       // The changed pixels get stencil bit 2 and are all cast (an unoccupied one casts no sample
       // and writes the background); the frame colour keeps every other pixel.
-      drawChangedMask(history_.pending, read_reach, view_proj);
+      drawChangedMask(pending, read_reach, view_proj);
     } else {
       glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
     }
@@ -824,7 +841,9 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     } else if (masked) {
       // Boxes seen whole inside the rectangle are done; the others' pixels outside it are not
       // (the region holds every pixel the latest change alters, not those of older ones).
-      std::erase_if(history_.pending, [&](const VoxelBox& box) {
+      std::erase_if(history_.pending, [&](const BrickPool::SlotChange& change) {
+        const VoxelBox box = visibleChange(change, options.style);
+        if (box.empty()) return true;  // nothing this image shows
         glm::ivec4 r;
         return projectedRect({box}, read_reach, view_proj, w, h, &r) && r.x >= cast_rect.x &&
                r.y >= cast_rect.y && r.x + r.z <= cast_rect.x + cast_rect.z &&

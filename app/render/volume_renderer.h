@@ -93,9 +93,10 @@ struct SyncStats {
   VoxelBox uploaded;        // voxels whose GPU copy was brought up to date (dirty ∪ light box)
   int slots_uploaded = 0;   // brick-pool slots re-packed and uploaded for them (brick_pool.h)
   int slots_unchanged = 0;  // re-packed but holding the same bytes: not uploaded
-  // The voxels of every slot added, released or uploaded (brick_pool.h): a ray that samples
-  // none of them renders as before the sync. Empty when nothing changed.
-  VoxelBox changed_slots;
+  // Every slot added, released or uploaded, with the voxels whose texels changed in it
+  // (BrickPool::SlotChange; visibleChanges in changed_region.h picks a style's): a ray that
+  // samples none of them renders as before the sync. Empty when nothing changed.
+  std::vector<BrickPool::SlotChange> changes;
   bool pool_grew = false;     // the brick pool was reallocated to hold more slots
   double occupancy_ms = 0.0;  // updateOccupancy
   double light_ms = 0.0;      // sweepLightVolume
@@ -229,17 +230,18 @@ class VolumeRenderer {
   };
   FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)
   // What the frame colour of a size's targets holds (for re-casting only changed pixels): the
-  // image key (camera, size, program, shading inputs) it was cast with, and the voxel boxes of
-  // the pool slots changed since (sync appends). `valid` is false when the colour is not a whole
-  // frame of `key` (never cast, another key, too many boxes): then only the rectangle path is
-  // exact.
+  // image key (camera, size, program, shading inputs) it was cast with, and the pool slots'
+  // changes since (sync appends; each with its changed voxels). `valid` is false when the colour is
+  // not a whole frame of `key` (never cast, another key, too many boxes): then only the rectangle
+  // path is exact.
   struct FrameHistory {
     std::string key;
-    std::vector<VoxelBox> pending;
+    std::vector<BrickPool::SlotChange> pending;
     bool valid = false;
   };
   FrameHistory history_, spare_history_;  // of the current and the spare targets
-  // Boxes beyond this many make a mask cost more than the rectangle saves.
+  // Changes beyond this many make a mask cost more than the rectangle saves (first merged to
+  // one per slot, then given up).
   static constexpr size_t kMaxMaskBoxes = 2048;
   GLuint mask_vao_ = 0, mask_vbo_ = 0;  // the changed slots' boxes as triangles (stencil mask)
   size_t mask_vbo_bytes_ = 0;

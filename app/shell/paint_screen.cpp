@@ -760,8 +760,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     else if (drawn_ && options_.region_rerender && !key.stats &&
              SceneKey{drawn_->volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
                       drawn_->style} == key)
-      region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, renderer_.occupancy(),
-                                   key.style);
+      region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, key.style);
     // Right after a lift, a change the last refinements say can be cast at full resolution
     // within the pen-up budget is shown so at once (no reduced frame, no refinement).
     const bool full_at_once = lit_pending_ && !refine && !dragging && !animationPlaying() &&

@@ -130,8 +130,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   paint(&session, shortStroke(), 5'000'000'000);
   const SyncStats sync = renderer.sync(volume, light);
   ASSERT_FALSE(sync.dirty.empty());
-  const ScreenRegion region =
-      changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), c.style);
+  const ScreenRegion region = changedScreenRegion(camera, kW, kH, volume, sync, c.style);
   const ScreenRegion stroke_only = projectVoxelBoxes(camera, kW, kH, volume, {sync.dirty},
                                                      readReachVoxels(c.style, volume.dims()));
   ASSERT_FALSE(region.empty());
@@ -271,8 +270,7 @@ TEST(RegionRerenderSequence, MaskedRecastsStayExactAcrossSizes) {
     for (auto& p : stroke.control_points) p.y += (i == 0 ? 0.0f : i == 1 ? -0.25f : 0.3f) * kH;
     paint(&session, stroke, 5'000'000'000LL * (i + 2));
     const SyncStats sync = renderer.sync(volume, light);
-    const ScreenRegion region =
-        changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), rest.style);
+    const ScreenRegion region = changedScreenRegion(camera, kW, kH, volume, sync, rest.style);
     ASSERT_FALSE(region.empty());
     reference_renderer.sync(volume, light);
     if (i != 1) {
@@ -306,8 +304,7 @@ TEST(RegionRerenderSequence, MaskedRecastsStayExactAcrossSizes) {
   paint(&session, fourth, 30'000'000'000LL);
   const SyncStats sync = renderer.sync(volume, light);
   RenderOptions full = rest;
-  full.region = changedScreenRegion(camera, kW, kH, volume, sync, renderer.occupancy(), rest.style)
-                    .renderRegion();
+  full.region = changedScreenRegion(camera, kW, kH, volume, sync, rest.style).renderRegion();
   renderer.render(camera, kW, kH, shown.fbo(), full);
   RenderOptions lit = moving;
   lit.region = glm::ivec4(0, 0, kW, kH);
