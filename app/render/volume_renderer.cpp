@@ -360,6 +360,16 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
       *history = FrameHistory{};
     }
   }
+  if (fresh) {
+    // The frame targets hold frames of the volume before: given back, so that what the renderer
+    // holds follows the sizes this volume is drawn at, not every size drawn before (a kiosk
+    // resets to the attract loop after each visit; soak in tests/unit/kiosk/kiosk_soak.cpp).
+    FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+    deleteTargets(&current);
+    deleteTargets(&spare_targets_);
+    bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = 0;
+    bounds_w_ = bounds_h_ = 0;
+  }
   for (glm::ivec3 b : changed_slots) {
     const glm::ivec3 lo = b * Volume::kBrickSize;
     const VoxelBox box = VoxelBox{lo, lo + BrickPool::kSlotTexels}.intersect(volume.bounds());
