@@ -56,9 +56,9 @@ class BrickPool {
     int slots_released = 0;   // bricks whose slot was freed
     int slots_unchanged = 0;  // re-packed but their bytes were what the slot held: not uploaded
     bool grew = false;        // the pool texture was reallocated (and copied) to hold more slots
-  bool shrank = false;      // a fresh volume needed fewer slots: the texture was made anew, smaller
-    double pack_ms = 0.0;     // CPU packing
-    double upload_ms = 0.0;   // glTextureSubImage3D of slots and indirection, growth copies
+    bool shrank = false;   // a fresh volume needed fewer slots: the texture was made anew, smaller
+    double pack_ms = 0.0;  // CPU packing
+    double upload_ms = 0.0;  // glTextureSubImage3D of slots and indirection, growth copies
   };
 
   BrickPool() = default;

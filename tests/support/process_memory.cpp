@@ -31,8 +31,9 @@ ProcessMemory readProcessMemory(int keep) {
     else
       m.file_kb += current.rss_kb;
     m.largest.push_back(current);
-    std::sort(m.largest.begin(), m.largest.end(),
-              [](const ResidentMapping& a, const ResidentMapping& b) { return a.rss_kb > b.rss_kb; });
+    std::sort(
+        m.largest.begin(), m.largest.end(),
+        [](const ResidentMapping& a, const ResidentMapping& b) { return a.rss_kb > b.rss_kb; });
     if (int(m.largest.size()) > keep) m.largest.resize(size_t(keep));
   };
   while (std::getline(in, line)) {

@@ -470,17 +470,17 @@ int runKiosk(const SoakOptions& o) {
           if (o.memory_detail) {
             const RendererGpuMemory gpu = renderer.gpuMemory();
             const PaintSession* v = kiosk->visitorSession();
-            std::printf("kiosk_soak:   %s | renderer pool %.1f occupancy %.1f targets %.1f "
-                        "styles %.1f MB; light %.1f tables %.1f attract vol %.1f visitor vol %.1f "
-                        "hist %.1f MB; attract scale %.2f\n",
-                        test::describe(test::readProcessMemory()).c_str(), gpu.pool / 1048576.0,
-                        gpu.occupancy / 1048576.0, gpu.frame_targets / 1048576.0,
-                        gpu.styles / 1048576.0, renderer.lightVolume().memoryBytes() / 1048576.0,
-                        renderer.brickPool().tableBytes() / 1048576.0,
-                        kiosk->attract().volume().memoryBytes() / 1048576.0,
-                        v ? v->volume().memoryBytes() / 1048576.0 : 0.0,
-                        v ? v->history().copyBytes() / 1048576.0 : 0.0,
-                        double(kiosk->attract().scale()));
+            std::printf(
+                "kiosk_soak:   %s | renderer pool %.1f occupancy %.1f targets %.1f "
+                "styles %.1f MB; light %.1f tables %.1f attract vol %.1f visitor vol %.1f "
+                "hist %.1f MB; attract scale %.2f\n",
+                test::describe(test::readProcessMemory()).c_str(), gpu.pool / 1048576.0,
+                gpu.occupancy / 1048576.0, gpu.frame_targets / 1048576.0, gpu.styles / 1048576.0,
+                renderer.lightVolume().memoryBytes() / 1048576.0,
+                renderer.brickPool().tableBytes() / 1048576.0,
+                kiosk->attract().volume().memoryBytes() / 1048576.0,
+                v ? v->volume().memoryBytes() / 1048576.0 : 0.0,
+                v ? v->history().copyBytes() / 1048576.0 : 0.0, double(kiosk->attract().scale()));
           }
           sample_pending = false;
           if (now >= end_ns) g_stop.store(true);
