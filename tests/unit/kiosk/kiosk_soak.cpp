@@ -28,6 +28,8 @@
 // reads the strace log, so nothing it does shows in the trace.
 //
 //   build/tests/unit/kiosk/kiosk_soak --hours 8 --strace      # the long soak (README)
+//   ... --memory-detail    # after every reset, where VmRSS is (tests/support/process_memory.h)
+//                          # and what the renderer holds (pool, frame targets, light volume)
 #include <signal.h>
 #include <sys/wait.h>
 #include <time.h>
