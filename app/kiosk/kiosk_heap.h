@@ -6,7 +6,7 @@
 //    brick pool, a frame target) raises it to that size, and so does the trim threshold (to
 //    twice that). After that, blocks of megabytes go into the arenas, and the top of a thread's
 //    arena stays resident (malloc_trim trims only the main arena's top): VmRSS after the resets
-//    of one run crept up by 3–9 MiB at a time through the hours;
+//    of one run rose by 1–8 MiB at a time through the hours;
 //  - how many arenas there are (8, 9 or 10 in three runs of the same soak) follows contention
 //    between threads, so the memory each arena holds free differs from run to run.
 // A fixed threshold (glibc's default, 128 KiB: blocks above it are mmapped and unmapped on free,
