@@ -20,6 +20,7 @@
 #include "app/cli/paint_headless.h"
 #include "app/core/config_paths.h"
 #include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_heap.h"
 #include "app/kiosk/kiosk_service.h"
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/watchdog_interval.h"
@@ -148,6 +149,9 @@ int commandPaint(int argc, char** argv) {
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
+  // Before any thread starts (app/kiosk/kiosk_heap.h).
+  if (args.has("kiosk") && !setKioskHeapPolicy())
+    std::fprintf(stderr, "cloudbrush: kiosk: glibc refused the heap settings (kiosk_heap.h)\n");
 
   DisplayOptions display_options;
   const std::string platform = args.get("display", "auto");

@@ -177,6 +177,10 @@ void BrickPool::resetTables(glm::ivec3 brick_dims) {
     UpdateStats ignored;
     reserve(0, &ignored);
   }
+  freeEverySlot();
+}
+
+void BrickPool::freeEverySlot() {
   // Every slot but the empty one is free (popped from the back: low coordinates first).
   free_slots_.clear();
   for (int z = capacity_.z - 1; z >= 0; --z)
@@ -185,36 +189,51 @@ void BrickPool::resetTables(glm::ivec3 brick_dims) {
         if (x || y || z) free_slots_.push_back(glm::u8vec4(x, y, z, 1));
 }
 
-bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
-  const size_t needed = slots + 1;  // and the empty slot
-  if (pool_texture_ && slotCapacity() >= needed) return true;
+glm::ivec3 BrickPool::texelsFor(glm::ivec3 texels, size_t needed, bool* full) const {
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_size);
   // Power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most 255 slots per axis
   // (slot coordinates are 8-bit).
   int max_texels = 1;
   while (max_texels * 2 <= max_size && (max_texels * 2) / kSlotTexels <= 255) max_texels *= 2;
-  auto slotsIn = [](glm::ivec3 t) {
-    const glm::ivec3 c = t / kSlotTexels;
-    return size_t(c.x) * size_t(c.y) * size_t(c.z);
-  };
-  glm::ivec3 texels = pool_texture_ ? pool_texels_ : kInitialTexels;
   // Double one axis at a time (the smallest first) until the slots fit.
+  *full = false;
   while (slotsIn(texels) < needed) {
     int axis = 0;
     for (int a = 1; a < 3; ++a)
       if (texels[a] < texels[axis]) axis = a;
     if (texels[axis] * 2 > max_texels) {
-      // The smallest axis is at the limit, so all are.
-      if (!full_reported_)
-        std::fprintf(stderr,
-                     "cloudbrush: render: the brick pool is full (%zu slots needed, at most %zu "
-                     "fit in 3D textures of %d texels): bricks beyond it show empty\n",
-                     needed, slotsIn(texels), max_texels);
-      full_reported_ = true;
+      *full = true;  // the smallest axis is at the limit, so all are
       break;
     }
     texels[axis] *= 2;
+  }
+  return texels;
+}
+
+bool BrickPool::fitFresh(size_t slots, UpdateStats* stats) {
+  bool full = false;
+  const glm::ivec3 fitted = texelsFor(kInitialTexels, slots + 1, &full);
+  if (!pool_texture_ || slotsIn(fitted) >= slotsIn(pool_texels_)) return false;
+  glDeleteTextures(1, &pool_texture_);
+  pool_texture_ = 0;
+  capacity_ = glm::ivec3(0);
+  reserve(slots, stats);
+  freeEverySlot();
+  return true;
+}
+
+bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
+  const size_t needed = slots + 1;  // and the empty slot
+  if (pool_texture_ && slotCapacity() >= needed) return true;
+  bool full = false;
+  const glm::ivec3 texels = texelsFor(pool_texture_ ? pool_texels_ : kInitialTexels, needed, &full);
+  if (full && !full_reported_) {
+    std::fprintf(stderr,
+                 "cloudbrush: render: the brick pool is full (%zu slots needed, at most %zu fit "
+                 "in 3D textures of %d texels per axis): bricks beyond it show empty\n",
+                 needed, slotsIn(texels), texels.x);
+    full_reported_ = true;
   }
   if (pool_texture_ && texels == pool_texels_) return false;
   const glm::ivec3 cap = texels / kSlotTexels;
@@ -340,6 +359,10 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       to_upload.push_back(b);
     }
   }
+  // A fresh volume gets a pool sized for it: the texture shrinks when this volume needs fewer
+  // slots than earlier ones did (nothing is in it yet to copy), so the pool does not stay at the
+  // largest cloud's size for good (a kiosk resets to an empty sky between visitors).
+  if (fresh) st.shrank = fitFresh(to_add.size(), &st);
   if (!to_add.empty() && free_slots_.size() < to_add.size())
     reserve(slots_in_use_ + to_add.size(), &st);
   for (glm::ivec3 b : to_add) {

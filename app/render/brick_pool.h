@@ -26,7 +26,8 @@
 // c − {0,1}³ (allocating or releasing them as the rule above now says) and a light box the slots
 // whose voxels meet it. Released slots are reused; the pool grows (doubling one axis of its
 // power-of-two size, copied on the GPU with glCopyImageSubData) only when it runs out, so slots
-// keep their coordinates and nothing is re-packed.
+// keep their coordinates and nothing is re-packed. A fresh volume (another one, or new dims) gets
+// a pool of the size it needs: one that held a bigger cloud before is made anew, smaller.
 #pragma once
 
 #include <cstddef>
@@ -56,8 +57,9 @@ class BrickPool {
     int slots_released = 0;   // bricks whose slot was freed
     int slots_unchanged = 0;  // re-packed but their bytes were what the slot held: not uploaded
     bool grew = false;        // the pool texture was reallocated (and copied) to hold more slots
-    double pack_ms = 0.0;     // CPU packing
-    double upload_ms = 0.0;   // glTextureSubImage3D of slots and indirection, growth copies
+    bool shrank = false;   // a fresh volume needed fewer slots: the texture was made anew, smaller
+    double pack_ms = 0.0;  // CPU packing
+    double upload_ms = 0.0;  // glTextureSubImage3D of slots and indirection, growth copies
   };
 
   BrickPool() = default;
@@ -129,6 +131,19 @@ class BrickPool {
            size_t(b.x);
   }
   void resetTables(glm::ivec3 brick_dims);
+  // Puts every slot but the empty one on the free list.
+  void freeEverySlot();
+  // Slots a pool texture of `texels` holds.
+  static size_t slotsIn(glm::ivec3 texels) {
+    const glm::ivec3 c = texels / kSlotTexels;
+    return size_t(c.x) * size_t(c.y) * size_t(c.z);
+  }
+  // The pool size for `needed` slots: `texels` with one axis doubled at a time (the smallest
+  // first) until they fit; `full` when the GL limit stopped it short.
+  glm::ivec3 texelsFor(glm::ivec3 texels, size_t needed, bool* full) const;
+  // With every slot free (a fresh volume): remakes the pool texture at the size `slots` need if
+  // that is smaller than it is. True if it did.
+  bool fitFresh(size_t slots, UpdateStats* stats);
   // Makes room for at least `slots` slots in use (plus the empty slot); false if the GL limit
   // on 3D texture size is reached.
   bool reserve(size_t slots, UpdateStats* stats);

@@ -383,6 +383,16 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     if (history->pending.size() > kMaxMaskBoxes) coalescePerSlot(&history->pending);
     if (history->pending.size() > kMaxMaskBoxes) *history = FrameHistory{};
   }
+  if (fresh) {
+    // The frame targets hold frames of the volume before: given back, so that what the renderer
+    // holds follows the sizes this volume is drawn at, not every size drawn before (a kiosk
+    // resets to the attract loop after each visit; soak in tests/unit/kiosk/kiosk_soak.cpp).
+    FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+    deleteTargets(&current);
+    deleteTargets(&spare_targets_);
+    bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = 0;
+    bounds_w_ = bounds_h_ = 0;
+  }
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;
   st.pool_grew = pool.grew;

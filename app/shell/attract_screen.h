@@ -77,7 +77,8 @@ class AttractScreen : public Screen {
   int slicesFinished() const { return slices_finished_; }
   long framesGivenUp() const { return frames_given_up_; }
 
-  // Starts the replay from the beginning at the clock's time (an empty sky).
+  // Starts the replay from the beginning at the clock's time (an empty sky), at the resolution
+  // scale the options gave.
   void restart();
   void setTexts(std::string invitation, std::string hint, std::string notice);
 
@@ -102,6 +103,7 @@ class AttractScreen : public Screen {
   VolumeRenderer& renderer_;
   const Clock& clock_;
   AttractOptions options_;
+  float start_scale_ = 1.0f;  // options.render.scale as given: where each loop starts
   UiOverlay* ui_;
   PaintSessionSettings settings_;
   std::unique_ptr<AttractReplay> replay_;

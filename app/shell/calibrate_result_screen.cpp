@@ -1,5 +1,6 @@
 #include "app/shell/calibrate_result_screen.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "calibration/point_fit.h"
@@ -17,11 +18,21 @@ CalibrateResultScreen::CalibrateResultScreen(CalibrateContext& context, Calibrat
       auto_accept_(auto_accept),
       on_done_(std::move(on_done)) {}
 
+namespace {
+// 180×100 px, lower on a short screen (at most a fifth of its height) so that a box stays clear
+// of the middle row's residual labels (16 px below the crosses at half height) and of the
+// bottom row's crosses (at 0.9 of the height): at 640×360 a 100 px box overlapped the labels.
+CalibrateBox choiceBox(double centre_x, int height) {
+  const double h = std::min(100.0, 0.2 * height);
+  return {centre_x - 90, height * 0.7 - h / 2, 180, h};
+}
+}  // namespace
+
 CalibrateBox CalibrateResultScreen::acceptBox(int width, int height) {
-  return {width * 0.3 - 90, height * 0.7 - 50, 180, 100};
+  return choiceBox(width * 0.3, height);
 }
 CalibrateBox CalibrateResultScreen::redoBox(int width, int height) {
-  return {width * 0.7 - 90, height * 0.7 - 50, 180, 100};
+  return choiceBox(width * 0.7, height);
 }
 
 void CalibrateResultScreen::choose(Choice choice) {
@@ -86,7 +97,9 @@ bool CalibrateResultScreen::draw(FrameContext& frame, std::string* error) {
   v.label(float(accept.x + accept.w * 0.5), float(accept.y + accept.h + 0.4 * size),
           "Accept and save (Space)");
   v.label(float(redo.x + redo.w * 0.5), float(redo.y + redo.h + 0.4 * size), "Redo the taps");
-  v.label(float(w) * 0.5f, float(accept.y) - 1.2f * size,
+  // The third line of the block above the middle row (just above the boxes it crossed the middle
+  // cross at 640×360).
+  v.label(float(w) * 0.5f, float(h) * 0.3f + 1.0f * size,
           "Tap a box with the pen. " + context_.esc_hint, size * 0.8f, 0xd0d8e0ffu);
   if (context_.input.inRange()) v.cursor(context_.input.cursor());
   return v.finish(error);

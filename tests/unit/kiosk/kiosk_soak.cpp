@@ -28,6 +28,8 @@
 // reads the strace log, so nothing it does shows in the trace.
 //
 //   build/tests/unit/kiosk/kiosk_soak --hours 8 --strace      # the long soak (README)
+//   ... --memory-detail    # after every reset, where VmRSS is (tests/support/process_memory.h)
+//                          # and what the renderer holds (pool, frame targets, light volume)
 #include <signal.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -53,6 +55,7 @@
 #include "app/brush/brush_config.h"
 #include "app/core/config_paths.h"
 #include "app/kiosk/kiosk_config.h"
+#include "app/kiosk/kiosk_heap.h"
 #include "app/kiosk/kiosk_service.h"
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/watchdog_interval.h"
@@ -68,6 +71,7 @@
 #include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/pen_source.h"
+#include "tests/support/process_memory.h"
 #include "tests/support/strace_file_writes.h"
 #include "tests/unit/kiosk/notify_socket_listener.h"
 
@@ -94,6 +98,7 @@ struct SoakOptions {
   uint32_t seed = 1;
   std::string data_dir;  // default: a fresh temporary directory
   bool strace = false;
+  bool memory_detail = false;  // a breakdown of resident memory after every reset
   bool child = false;
 };
 
@@ -135,6 +140,8 @@ bool parseArgs(int argc, char** argv, SoakOptions* o, std::string* error) {
         o->data_dir = value();
       else if (a == "--strace")
         o->strace = true;
+      else if (a == "--memory-detail")
+        o->memory_detail = true;
       else if (a == "--child")
         o->child = true;
       else
@@ -310,6 +317,8 @@ struct ResetSample {
 };
 
 int runKiosk(const SoakOptions& o) {
+  // As `cloudbrush kiosk` does first (app/cli/command_paint.cpp).
+  if (!setKioskHeapPolicy()) throw std::runtime_error("glibc refused the kiosk's heap settings");
   const std::string config_dir = defaultConfigDir();
   const auto configPath = [&](const std::string& name) { return config_dir + "/" + name; };
   // Settings as `cloudbrush kiosk` loads them (app/cli/command_paint.cpp).
@@ -460,6 +469,21 @@ int runKiosk(const SoakOptions& o) {
           std::printf("kiosk_soak: reset %zu at simulated %.0f s: VmRSS %.1f MB, %d fds\n",
                       resets.size(), resets.back().sim_s, double(resets.back().rss_kb) / 1024.0,
                       resets.back().fds);
+          if (o.memory_detail) {
+            const RendererGpuMemory gpu = renderer.gpuMemory();
+            const PaintSession* v = kiosk->visitorSession();
+            std::printf(
+                "kiosk_soak:   %s | renderer pool %.1f occupancy %.1f targets %.1f "
+                "styles %.1f MB; light %.1f tables %.1f attract vol %.1f visitor vol %.1f "
+                "hist %.1f MB; attract scale %.2f\n",
+                test::describe(test::readProcessMemory()).c_str(), gpu.pool / 1048576.0,
+                gpu.occupancy / 1048576.0, gpu.frame_targets / 1048576.0, gpu.styles / 1048576.0,
+                renderer.lightVolume().memoryBytes() / 1048576.0,
+                renderer.brickPool().tableBytes() / 1048576.0,
+                kiosk->attract().volume().memoryBytes() / 1048576.0,
+                v ? v->volume().memoryBytes() / 1048576.0 : 0.0,
+                v ? v->history().copyBytes() / 1048576.0 : 0.0, double(kiosk->attract().scale()));
+          }
           sample_pending = false;
           if (now >= end_ns) g_stop.store(true);
         }

@@ -376,6 +376,46 @@ TEST_F(BrickPoolTest, ReleasedSlotsAreReusedAndThePoolGrowsOnlyWhenFull) {
   EXPECT_EQ(pool.slotsInUse(), bricksWithSlots(pool).size());
 }
 
+// A fresh volume gets a pool of the size it needs: after a big cloud, a new small one (the kiosk's
+// empty sky after a visit) does not keep the big cloud's texture, and renders as a fresh
+// renderer does; the same volume again keeps its pool.
+TEST_F(BrickPoolTest, AFreshVolumeGetsAPoolSizedForItNotTheLargestSoFar) {
+  Volume small(glm::ivec3(128));
+  paintBall(small, {40, 40, 40}, 6);
+  Light light;
+  renderer.sync(small, light);
+  const BrickPool& pool = renderer.brickPool();
+  const size_t small_bytes = pool.poolBytes();
+  Volume big = makeSparsePuffs(glm::ivec3(128), 4);
+  paintBall(big, {64, 64, 64}, 40);
+  EXPECT_TRUE(renderer.sync(big, light).pool_grew);
+  const size_t big_bytes = pool.poolBytes();
+  ASSERT_GT(big_bytes, 4 * small_bytes);
+  // The same big volume, edited: the pool stays.
+  paintBall(big, {100, 30, 100}, 5);
+  renderer.sync(big, light);
+  EXPECT_EQ(pool.poolBytes(), big_bytes);
+  // Another small volume: back to the small pool.
+  Volume next(glm::ivec3(128));
+  paintBall(next, {90, 70, 30}, 6);
+  renderer.sync(next, light);
+  EXPECT_EQ(pool.poolBytes(), small_bytes);
+  EXPECT_EQ(renderer.gpuMemory().pool, small_bytes);
+  EXPECT_EQ(pool.slotsInUse(), bricksWithSlots(pool).size());
+  const Camera camera = Camera::reference().orbited(20.0f);
+  VolumeRenderer fresh;
+  std::string err;
+  ASSERT_TRUE(fresh.init(&err)) << err;
+  fresh.sync(next, light);
+  ASSERT_EQ(render(renderer, camera).pixels, render(fresh, camera).pixels);
+  // It grows again as the new cloud does.
+  paintBall(next, {64, 64, 64}, 40);
+  EXPECT_TRUE(renderer.sync(next, light).pool_grew);
+  EXPECT_GT(pool.poolBytes(), small_bytes);
+  fresh.sync(next, light);
+  ASSERT_EQ(render(renderer, camera).pixels, render(fresh, camera).pixels);
+}
+
 // The pool after any sequence of edits (allocation, release, reuse, growth, light changes) holds
 // what a fresh upload of the same volume holds: the images are identical.
 TEST_F(BrickPoolTest, IncrementalUpdatesRenderExactlyLikeAFreshUpload) {
