@@ -23,6 +23,7 @@
 #include "app/shell/paint_loop.h"
 #include "app/volume/scene_generators.h"
 #include "drivers/replay/replay_pen_source.h"
+#include "tests/support/test_display.h"
 
 namespace cb {
 namespace {
@@ -37,12 +38,8 @@ std::string tempDir(const char* name) {
 }
 
 std::unique_ptr<Display> openSurfaceless() {
-  DisplayOptions options;
-  options.platform = DisplayPlatform::Surfaceless;
-  options.width = kW;
-  options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   EXPECT_TRUE(display) << error;
   return display;
 }

@@ -20,6 +20,7 @@
 #include "app/shell/paint_loop.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
+#include "tests/support/test_display.h"
 
 namespace cb {
 namespace {
@@ -87,12 +88,8 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   const std::string journal =
       writeStrokeJournal(dir + "/stroke.cbj", {gentleCurve(kW, kH)}, kW, kH);
 
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = kW;
-  display_options.height = kH;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;
@@ -249,12 +246,8 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
 
 // No tablet is a state, not an exit: the orbit runs with a searching pen source.
 TEST(PaintLoop, MissingTabletKeepsTheOrbitRunning) {
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = 320;
-  display_options.height = 180;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(320, 180, &error);
   ASSERT_TRUE(display) << error;
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;
@@ -289,12 +282,8 @@ TEST(PaintLoop, ASmallChangeIsShownAtFullResolutionAtOnceWhenItFitsTheBudget) {
   ASSERT_GE(reference.size(), 2u);
   const std::string path =
       writeStrokeJournal(dir + "/two_strokes.cbj", {reference[0], reference[1]}, w, h);
-  DisplayOptions display_options;
-  display_options.platform = DisplayPlatform::Surfaceless;
-  display_options.width = w;
-  display_options.height = h;
   std::string error;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error);
+  std::unique_ptr<Display> display = test::openTestDisplay(w, h, &error);
   ASSERT_TRUE(display) << error;
   for (const double budget_ms : {1e9, 0.0}) {
     VolumeRenderer renderer;
