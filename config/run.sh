@@ -3,5 +3,5 @@
 # a headless render of the bundled cloud whose PNG and EXR paths are printed on stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash config/build.sh
+bash config/build.sh cloudbrush
 exec ./build/app/cloudbrush "$@"

@@ -7,8 +7,9 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git clang clang-format libclang-rt-14-dev
-  # display: EGL/GL (libglvnd), GBM/KMS, X11, Mesa software rasteriser (llvmpipe)
-  libegl-dev libgl-dev libgles-dev libgbm-dev libdrm-dev libx11-dev
+  # display: EGL/GL (libglvnd; libopengl-dev holds opengl.pc), GBM/KMS, X11, Mesa software
+  # rasteriser (llvmpipe)
+  libegl-dev libgl-dev libopengl-dev libgles-dev libgbm-dev libdrm-dev libx11-dev
   libgl1-mesa-dri libegl-mesa0 libgbm1 xvfb xauth
   # math, images, volumes, config
   libglm-dev libopenexr-dev libpng-dev libopenvdb-dev libopenvdb-tools libtbb-dev
