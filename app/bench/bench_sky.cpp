@@ -193,21 +193,13 @@ void growthFigures(const Volume& cumulus, BenchReport* report) {
   const LightFigures grown_light = fullSweep(grown, Light{});
   const glm::ivec3 d = to.dims();
   std::printf(
-      "
-          the sky growing from span %
-          d to % d(% dx % dx % d) around the cumulus
-      : bricks moved in %
-            .2f ms
-            "
-            "(median of 5; copying them, the baseline: %.1f ms); the grown sky holds %.1f MiB
-            "
-            "the widest sky empty: volume %.2f MiB + light %.2f MiB; the light's full sweep of the "
-            "grown sky with the cumulus: %.1f ms wall, %.1f ms CPU, %.1f MiB
-            ",
-            from.span,
-        to.span, d.x, d.y, d.z, median(move_ms), median(copy_ms), mb(grown_bytes),
-        mb(empty_widest.memoryBytes()), mb(empty_light.bytes), grown_light.ms, grown_light.cpu_ms,
-        mb(grown_light.bytes));
+      "\nthe sky growing from span %d to %d (%dx%dx%d) around the cumulus: bricks moved in %.2f "
+      "ms (median of 5; copying them, the baseline: %.1f ms); the grown sky holds %.1f MiB\n"
+      "the widest sky empty: volume %.2f MiB + light %.2f MiB; the light's full sweep of the "
+      "grown sky with the cumulus: %.1f ms wall, %.1f ms CPU, %.1f MiB\n",
+      from.span, to.span, d.x, d.y, d.z, median(move_ms), median(copy_ms), mb(grown_bytes),
+      mb(empty_widest.memoryBytes()), mb(empty_light.bytes), grown_light.ms, grown_light.cpu_ms,
+      mb(grown_light.bytes));
   report->figure("grow_sky_move_ms", median(move_ms));
   report->baseline("grow_sky_copy_ms", median(copy_ms));
   report->figure("widest_sky_empty_bytes", double(empty_widest.memoryBytes()));
