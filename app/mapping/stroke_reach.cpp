@@ -55,9 +55,14 @@ StrokeReach strokeReach(const StrokeResult& stroke, const MappingConfig& config,
     }
     if (eye_in_slab) d_min = std::min(d_min, view.depthOf(origin[c]));
   }
-  // The largest sphere: a circle fits inside the inked rectangle and the initial circle.
+  // The largest sphere: circles start at the initial diameter and shrink (§6.3.3); an accepted
+  // circle is at least a fraction a (accept_white_ratio) white, white pixels lie in the inked
+  // rectangle, and a circle of radius r meets a strip m wide (the rectangle's narrower side) in
+  // less than 2·r·m pixels: so a·π·r² < 2·r·m, r < 2m / (π·a).
+  const float m = float(std::min(x1 - x0, y1 - y0) + 1);
+  const float a = config.circles.accept_white_ratio;
   const float r_px = std::min(0.5f * float(config.circles.initial_diameter_px),
-                              0.5f * float(std::max(x1 - x0, y1 - y0) + 1));
+                              a > 0.0f ? 2.0f * m / (3.14159265f * a) : 1e30f);
   const float r_world =
       sphereFillRadius(r_px * view.pixelWorldSize(d_max), voxel_size, config.spheres);
   const float margin = 2.0f * r_world + 8.0f * voxel_size;

@@ -302,7 +302,7 @@ TEST(SkyGrowth, AJournalWithGrowthReplaysByteIdenticallyOnOneTwoAndEightThreads)
 }
 
 TEST_F(SkyGrowthGl, TheLightOfACloudIsTheSameAfterTheSkyGrowsAroundIt) {
-  const SkyExtent from{kGrid, kDefaultSkySpan}, to{kGrid, 6};
+  const SkyExtent from{kGrid, kDefaultSkySpan}, to{kGrid, kMaxSkySpan};  // to the widest
   std::deque<Volume> volumes;  // kept alive: the renderer knows a volume by its address
   Volume& before = volumes.emplace_back(placeInSky(makeBundledCumulus(glm::ivec3(kGrid), 1), from));
   const Light sun;  // the default sun: a direction
