@@ -301,6 +301,27 @@ TEST(SkyGrowth, AJournalWithGrowthReplaysByteIdenticallyOnOneTwoAndEightThreads)
   std::filesystem::remove(path);
 }
 
+// Memory follows the painting however wide the sky has grown: the widest sky, empty, holds
+// ≤ 50 MB (volume bricks + the renderer's GPU copies + its light volume, counted in bytes).
+TEST_F(SkyGrowthGl, AnEmptySkyGrownToItsWidestStaysUnderFiftyMegabytes) {
+  const SkyExtent widest{kGrid, widestSkySpan(kGrid, kDefaultSkySpan, kMaxSkySpan)};
+  ASSERT_EQ(widest.dims(), glm::ivec3(2048, 256, 2048));
+  std::deque<Volume> volumes;
+  Volume& sky = volumes.emplace_back(
+      growSky(makeSkyVolume({kGrid, kDefaultSkySpan}), {kGrid, kDefaultSkySpan}, widest));
+  renderer.sync(sky, Light{});
+  const RendererGpuMemory gpu = renderer.gpuMemory();
+  const size_t bytes =
+      sky.memoryBytes() + renderer.memoryBytes() + renderer.lightVolume().memoryBytes();
+  std::printf(
+      "empty %dx%dx%d sky: %.1f MB (volume %.1f, GPU %.1f of which occupancy %.1f, "
+      "indirection %.1f, pool %.1f, frame targets %.1f; light %.1f)\n",
+      widest.dims().x, widest.dims().y, widest.dims().z, bytes / 1e6, sky.memoryBytes() / 1e6,
+      renderer.memoryBytes() / 1e6, gpu.occupancy / 1e6, gpu.indirection / 1e6, gpu.pool / 1e6,
+      gpu.frame_targets / 1e6, renderer.lightVolume().memoryBytes() / 1e6);
+  EXPECT_LE(bytes, size_t(50'000'000));
+}
+
 TEST_F(SkyGrowthGl, TheLightOfACloudIsTheSameAfterTheSkyGrowsAroundIt) {
   const SkyExtent from{kGrid, kDefaultSkySpan}, to{kGrid, kMaxSkySpan};  // to the widest
   std::deque<Volume> volumes;  // kept alive: the renderer knows a volume by its address
