@@ -131,7 +131,8 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
                     const std::string& journal, Size size, const SkyExtent& sky, bool region) {
   PaintRun run;
   PaintSessionSettings settings{size.w, size.h, sky.grid};
-  settings.sky_span = sky.span;
+  // A sky of this span throughout (the sky-size table's rows): the strokes do not grow it.
+  settings.sky_span = settings.sky_max_span = sky.span;
   PaintSession session(settings, BrushConfig{}, MappingConfig{});
   session.setQuietMapping(true);
   std::string error;
