@@ -7,6 +7,11 @@
 //
 //   span 1: the old box, grid × grid × grid over [-1,1]³ (journals recorded before the sky grew)
 //   span 4: the default, 1024 × 256 × 1024 voxels over [-4,4] × [-1,1] × [-4,4] for grid 256
+//   span 8: the widest for grid 256, 2048 × 256 × 2048 (kMaxVolumeDim across)
+//
+// The sky grows with what is painted: a session widens it, a span at a time as needed, before a
+// stroke that reaches past its edge (skyToHold, growSky), keeping every voxel where it is in the
+// world, so the home box stays on [-1,1]³ and the sun (a direction) lights the cloud as before.
 #pragma once
 
 #include <optional>
