@@ -37,6 +37,7 @@
 #include "app/render/gl/display.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
+#include "app/scene/paint_camera.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/paint_loop.h"
@@ -101,6 +102,9 @@ struct PaintRun {
   // Memory after the strokes: the session's volume bricks, the renderer's GPU copies and its
   // light volume (bytes counted by each), and the process's resident set.
   double volume_mb = -1, gpu_mb = -1, light_mb = -1, rss_mb = -1;
+  // The first stroke alone (the one that grows the sky in the growth case), and the sky after.
+  double first_lit_ms = -1, first_full_ms = -1, first_sync_ms = -1;
+  int sky_span = 0;
 };
 
 std::string writeStrokeJournal(const std::string& dir, Size size, int strokes) {
@@ -127,15 +131,24 @@ double medianOr(const std::vector<double>& v) {
   return v.empty() ? -1.0 : median(v);
 }
 
+// `view`: the paint view the strokes are drawn from (null: the session's starting view);
+// `max_span`: how wide the sky may grow (0: a sky of `sky`'s span throughout, as the sky-size
+// table's rows need).
 PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cumulus,
-                    const std::string& journal, Size size, const SkyExtent& sky, bool region) {
+                    const std::string& journal, Size size, const SkyExtent& sky, bool region,
+                    const Camera* view = nullptr, int max_span = 0) {
   PaintRun run;
   PaintSessionSettings settings{size.w, size.h, sky.grid};
   settings.sky_span = sky.span;
+  settings.sky_max_span = max_span > 0 ? max_span : sky.span;
   PaintSession session(settings, BrushConfig{}, MappingConfig{});
   session.setQuietMapping(true);
   std::string error;
   if (!session.replaceVolume(cumulus, 0, "bundled cumulus", &error)) {
+    std::printf("  painter: %s\n", error.c_str());
+    return run;
+  }
+  if (view && !session.apply(ui::SetCamera{*view}, 0, &error)) {
     std::printf("  painter: %s\n", error.c_str());
     return run;
   }
@@ -178,6 +191,11 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
   run.lit_render_ms = medianOr(lit_render);
   run.full_render_ms = medianOr(full_render);
   run.sync_ms = medianOr(sync);
+  if (!summary.pen_up_to_lit_ms.empty()) run.first_lit_ms = summary.pen_up_to_lit_ms.front();
+  if (!summary.pen_up_to_refined_ms.empty())
+    run.first_full_ms = summary.pen_up_to_refined_ms.front();
+  if (!sync.empty()) run.first_sync_ms = sync.front();
+  run.sky_span = session.sky().span;
   run.volume_mb = mb(session.volume().memoryBytes());
   run.gpu_mb = mb(renderer.memoryBytes());
   run.light_mb = mb(renderer.lightVolume().memoryBytes());
@@ -311,6 +329,38 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
             "(process RSS %.0f MiB)\n",
             size.name().c_str(), row.volume_mb, row.gpu_mb, row.light_mb, row.rss_mb);
         std::fflush(stdout);
+      }
+
+      // The sky growing (sky_extent.h): the strokes drawn from the default view panned to the
+      // default sky's +x edge, so the first grows the sky; its pen-up pays the renderer's fresh
+      // sync of the grown sky. Baseline in the same run: the same strokes in a sky made that
+      // wide from the start. Once, at 1920x1080 in the default sky.
+      if (!quick && !journal.empty() && size.w == 1920 && size.h == 1080 &&
+          sky.span == kDefaultSkySpan) {
+        const Volume home = makeBundledCumulus(glm::ivec3(grid), 1);
+        const glm::vec3 edge(float(sky.span), 0.0f, 0.0f);
+        const Camera view = defaultPaintCamera(Canvas{}, glm::vec3(-1.0f) + edge,
+                                               glm::vec3(1.0f) + edge, float(size.w) / size.h);
+        const PaintRun grows =
+            runPainter(*display, renderer, home, journal, size, sky, true, &view, kMaxSkySpan);
+        const PaintRun wide = grows.sky_span > sky.span
+                                  ? runPainter(*display, renderer, home, journal, size,
+                                               {grid, grows.sky_span}, true, &view)
+                                  : PaintRun{};
+        std::printf(
+            "  %s: the stroke that grows the sky (span %d -> %d): pen-up -> lit %.1f ms (sync "
+            "%.1f), -> full %.1f ms; in a sky that wide from the start (baseline): %.1f ms "
+            "(sync %.1f), %.1f ms\n",
+            size.name().c_str(), sky.span, grows.sky_span, grows.first_lit_ms, grows.first_sync_ms,
+            grows.first_full_ms, wide.first_lit_ms, wide.first_sync_ms, wide.first_full_ms);
+        std::fflush(stdout);
+        report.figure(k + "growth_sky_span", double(grows.sky_span));
+        report.figure(k + "growth_pen_up_to_lit_ms", grows.first_lit_ms);
+        report.figure(k + "growth_pen_up_to_full_ms", grows.first_full_ms);
+        report.figure(k + "growth_sync_ms", grows.first_sync_ms);
+        report.baseline(k + "growth_pen_up_to_lit_ms", wide.first_lit_ms);
+        report.baseline(k + "growth_pen_up_to_full_ms", wide.first_full_ms);
+        report.baseline(k + "growth_sync_ms", wide.first_sync_ms);
       }
     }
     display.reset();

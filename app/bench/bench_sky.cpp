@@ -14,6 +14,10 @@
 // low one; and the incremental sweep after one stroke. Baseline beside it: the bytes the dense
 // light volume (T and the passed-on values, 8 bytes a voxel) would hold. The GL brick pool is
 // counted by its own owner, not here.
+//
+// Last, the sky growing with what is painted (sky_extent.h): the default sky holding the
+// cumulus grown to the widest one by moving bricks, against copying them (the baseline); the
+// widest sky's bytes empty; the light's full sweep of the grown sky.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,7 +31,9 @@
 #include "app/core/parallel_for.h"
 #include "app/render/light_volume.h"
 #include "app/volume/scene_generators.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume.h"
+#include "app/volume/volume_paste.h"
 
 namespace cb {
 namespace {
@@ -159,6 +165,48 @@ void lightFigures(const Volume& cumulus, BenchReport* report) {
   report->figure("rss_mb_after_light", processRssMb());
 }
 
+// The sky growing (sky_extent.h growSky): the default sky with the cumulus grown to the widest
+// one (2048×256×2048 for grid 256) by moving its bricks, against copying them into the wider
+// sky (pasteVolume, the baseline); what the widest sky costs empty, and the light volume's full
+// sweep of the grown sky with the cumulus (what the renderer's fresh sync recomputes on the CPU
+// at the pen-up of the stroke that grows the sky).
+void growthFigures(const Volume& cumulus, BenchReport* report) {
+  const SkyExtent from{cumulus.dims().x, kDefaultSkySpan};
+  const SkyExtent to{from.grid, widestSkySpan(from.grid, from.span, kMaxSkySpan)};
+  const Volume placed = placeInSky(cumulus, from);
+  std::vector<double> move_ms, copy_ms;
+  size_t grown_bytes = 0;
+  for (int i = 0; i < 5; ++i) {
+    Volume sky = placed;
+    auto t0 = Clock::now();
+    const Volume grown = growSky(std::move(sky), from, to);
+    move_ms.push_back(msSince(t0));
+    grown_bytes = grown.memoryBytes();
+    t0 = Clock::now();
+    Volume copied = makeSkyVolume(to);
+    pasteVolume(placed, placed.bounds(), growthOffset(from, to), &copied);
+    copy_ms.push_back(msSince(t0));
+  }
+  const Volume empty_widest = makeSkyVolume(to);
+  const LightFigures empty_light = fullSweep(empty_widest, Light{});
+  Volume grown = growSky(Volume(placed), from, to);
+  const LightFigures grown_light = fullSweep(grown, Light{});
+  const glm::ivec3 d = to.dims();
+  std::printf(
+      "\nthe sky growing from span %d to %d (%dx%dx%d) around the cumulus: bricks moved in %.2f "
+      "ms (median of 5; copying them, the baseline: %.1f ms); the grown sky holds %.1f MiB\n"
+      "the widest sky empty: volume %.2f MiB + light %.2f MiB; the light's full sweep of the "
+      "grown sky with the cumulus: %.1f ms wall, %.1f ms CPU, %.1f MiB\n",
+      from.span, to.span, d.x, d.y, d.z, median(move_ms), median(copy_ms), mb(grown_bytes),
+      mb(empty_widest.memoryBytes()), mb(empty_light.bytes), grown_light.ms, grown_light.cpu_ms,
+      mb(grown_light.bytes));
+  report->figure("grow_sky_move_ms", median(move_ms));
+  report->baseline("grow_sky_copy_ms", median(copy_ms));
+  report->figure("widest_sky_empty_bytes", double(empty_widest.memoryBytes()));
+  report->figure("widest_sky_empty_light_bytes", double(empty_light.bytes));
+  report->figure("grown_sky_cumulus_light_sweep_ms", grown_light.ms);
+}
+
 }  // namespace
 
 int benchSky(int argc, char** argv) {
@@ -168,7 +216,8 @@ int benchSky(int argc, char** argv) {
           "usage: cloudbrush bench sky\n"
           "  bytes of an empty sky and of the bundled cumulus in it, for 1x, 4x and 16x\n"
           "  today's area, against the dense grid's bytes (CPU volume); the light volume's\n"
-          "  bytes and sweep times for an empty sky, the cumulus and 100 strokes\n");
+          "  bytes and sweep times for an empty sky, the cumulus and 100 strokes; the sky\n"
+          "  growing around the cumulus to its widest\n");
       return 0;
     }
     std::fprintf(stderr, "bench sky: unknown option '%s'\n", argv[i]);
@@ -239,6 +288,7 @@ int benchSky(int argc, char** argv) {
     report.baseline(name + "_dense_bytes", double(dense));
   }
   lightFigures(cumulus, &report);
+  growthFigures(cumulus, &report);
   std::printf(
       "\nempty sky <= 50 MB: CPU bricks (16x row) + light (empty_sky rows) + the GL brick pool "
       "(counted by the renderer)\n"

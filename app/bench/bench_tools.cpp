@@ -330,7 +330,7 @@ int benchTools(int argc, char** argv) {
         PaintSession sky_session(PaintSessionSettings{1280, 720, grid}, BrushConfig{},
                                  MappingConfig{});
         PaintSessionSettings one_box_settings{1280, 720, grid};
-        one_box_settings.sky_span = kLegacySkySpan;
+        one_box_settings.sky_span = one_box_settings.sky_max_span = kLegacySkySpan;
         PaintSession one_box_session(one_box_settings, BrushConfig{}, MappingConfig{});
         std::string session_error;
         for (PaintSession* s : {&sky_session, &one_box_session})

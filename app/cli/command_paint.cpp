@@ -3,6 +3,7 @@
 // (PaintSession, journalled to the state dir), shown by PaintLoop; without a tablet the bundled
 // cloud orbits and the missing tablet is shown as a state. With no display (surfaceless) and no
 // pen backend named: a headless render of the bundled cloud to PNG + EXR.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -63,8 +64,10 @@ constexpr const char* kUsage =
     "  --size WxH          headless image size (default 1280x720)\n"
     "  --out-dir DIR       headless output directory (default ./out)\n"
     "  --grid N            voxels across the home box, N³ (default 256)\n"
-    "  --sky-span N        home boxes across the sky in x and z (default 4: a 1024x256x1024 sky\n"
-    "                      for grid 256; 1 = the thesis's one box)\n"
+    "  --sky-span N        home boxes across the sky in x and z at the start (default 4: a\n"
+    "                      1024x256x1024 sky for grid 256; 1 = the thesis's one box)\n"
+    "  --sky-max-span N    the sky grows with what is painted, up to N home boxes across\n"
+    "                      (default 8, as far as 2048 voxels allow; = --sky-span: fixed)\n"
     "  --seed N            seed of the bundled cloud (default 1)\n"
     "  --orbit DEG         orbit speed in degrees per second (default 6; 0 = still)\n"
     "  --moving-scale F    starting resolution scale while the camera moves (default 0.5;\n"
@@ -140,12 +143,12 @@ int commandPaint(int argc, char** argv) {
     return 0;
   }
   const auto unknown = args.unknown(
-      {"help",       "stats",   "display",      "drm-device",      "size",     "out-dir",
-       "grid",       "seed",    "orbit",        "moving-scale",    "frames",   "backend",
-       "pen-device", "journal", "session-dir",  "no-record",       "keys",     "open",
-       "place",      "kiosk",   "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery", "resume",       "sync-udp",        "morph-to", "morph-seconds",
-       "sky-span"});
+      {"help",       "stats",       "display",      "drm-device",      "size",     "out-dir",
+       "grid",       "seed",        "orbit",        "moving-scale",    "frames",   "backend",
+       "pen-device", "journal",     "session-dir",  "no-record",       "keys",     "open",
+       "place",      "kiosk",       "idle-seconds", "warning-seconds", "data-dir", "seconds",
+       "language",   "gallery",     "resume",       "sync-udp",        "morph-to", "morph-seconds",
+       "sky-span",   "sky-max-span"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -165,6 +168,7 @@ int commandPaint(int argc, char** argv) {
   const long grid = args.getInt("grid", 256);
   const long sky_span = args.getInt("sky-span", kDefaultSkySpan);
   const SkyExtent sky{int(grid), int(sky_span)};
+  const long sky_max_span = args.getInt("sky-max-span", std::max(long(kMaxSkySpan), sky_span));
   const long seed = args.getInt("seed", 1);
   PaintLoopOptions loop_options;
   loop_options.orbit_degrees_per_second = float(args.getDouble("orbit", 6.0));
@@ -207,6 +211,11 @@ int commandPaint(int argc, char** argv) {
     return fail("--grid: expected 8..1024, got " + std::to_string(grid), 2);
   if (const std::string problem = sky.check(); !problem.empty())
     return fail("--sky-span: " + problem, 2);
+  if (sky_max_span < sky_span || sky_max_span > kMaxSkySpan)
+    return fail("--sky-max-span: expected " + std::to_string(sky_span) + ".." +
+                    std::to_string(kMaxSkySpan) + " (at least --sky-span), got " +
+                    std::to_string(sky_max_span),
+                2);
   if (seed < 0) return fail("--seed: expected a non-negative integer", 2);
   if (loop_options.moving_scale <= 0.0f || loop_options.moving_scale > 1.0f)
     return fail("--moving-scale: expected a number in (0, 1]", 2);
@@ -275,6 +284,7 @@ int commandPaint(int argc, char** argv) {
     settings.screen_height = display->height();
     settings.grid = int(grid);
     settings.sky_span = int(sky_span);
+    settings.sky_max_span = int(sky_max_span);
     brush = loadDefaultBrushConfig();
     settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;

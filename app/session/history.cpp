@@ -113,6 +113,15 @@ void History::record(const Volume& volume, const SceneState& before, const Scene
   }
 }
 
+void History::followGrowth(const Volume& grown, glm::ivec3 brick_offset) {
+  for (Step& step : steps_)
+    for (glm::ivec3& brick : step.bricks) brick += brick_offset;
+  committed_ = std::move(committed_)
+                   .movedInto(grown.dims(), grown.worldMin(), grown.worldMax(), brick_offset);
+  committed_generation_ = grown.generation();
+  committed_instance_ = grown.instanceId();
+}
+
 void History::applyDelta(const Step& step, Volume* volume) {
   if (step.bricks.empty()) return;
   std::vector<uint32_t> words(step.raw_bytes / sizeof(uint32_t));

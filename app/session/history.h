@@ -45,6 +45,12 @@ class History {
   void record(const Volume& volume, const SceneState& before, const SceneState& after,
               const std::string& label);
 
+  // The sky grew around the cloud (sky_extent.h growSky): `grown` is the volume the history's
+  // volume became, each brick b now brick b + brick_offset. The committed copy and every step's
+  // bricks follow, so undo and redo go on across the growth (the sky stays grown). Call it
+  // between steps, when every change of the volume before the growth is recorded.
+  void followGrowth(const Volume& grown, glm::ivec3 brick_offset);
+
   bool canUndo() const { return cursor_ > 0; }
   bool canRedo() const { return cursor_ < steps_.size(); }
   // Reverts / re-applies one step: the changed bricks are written into `volume` (marked dirty,

@@ -7,6 +7,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "app/mapping/stroke_reach.h"
 #include "app/scene/paint_camera.h"
 #include "app/session/recorded_settings.h"
 #include "app/session/session_replay.h"
@@ -45,6 +46,9 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
          "\ngrid = " + std::to_string(settings.grid) +
          (settings.sky_span != kLegacySkySpan ? "\nsky_span = " + std::to_string(settings.sky_span)
                                               : std::string()) +
+         (settings.sky_max_span != settings.sky_span
+              ? "\nsky_max_span = " + std::to_string(settings.sky_max_span)
+              : std::string()) +
          "\nformat = " + std::to_string(settings.format) +
          (settings.format >= 2
               ? "\nauto_end_still_ms = " + std::to_string(settings.auto_end_still_ms) +
@@ -68,6 +72,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   parsed.format = 1;  // records of the first landing have no format key
   parsed.auto_end_still_ms = parsed.auto_end_light_ms = 0;  // nor strokes that end by themselves
   parsed.sky_span = kLegacySkySpan;                         // nor a sky wider than one box
+  parsed.sky_max_span = 0;  // nor one that grew: sky_span, set below
   std::istringstream lines{std::string(text)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -95,6 +100,10 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
       if (!parseInt(value, 1, kMaxSkySpan, &v))
         return bad(("1.." + std::to_string(kMaxSkySpan)).c_str());
       parsed.sky_span = int(v);
+    } else if (key == "sky_max_span") {
+      if (!parseInt(value, 1, kMaxSkySpan, &v))
+        return bad(("1.." + std::to_string(kMaxSkySpan)).c_str());
+      parsed.sky_max_span = int(v);
     } else if (key == "auto_end_still_ms" || key == "auto_end_light_ms") {
       if (!parseInt(value, 0, 600000, &v)) return bad("0..600000 ms");
       (key == "auto_end_still_ms" ? parsed.auto_end_still_ms : parsed.auto_end_light_ms) = int(v);
@@ -106,6 +115,11 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   }
   const std::string sky_problem = parsed.skyExtent().check();
   if (!sky_problem.empty()) return *error = "session: " + sky_problem, false;
+  if (parsed.sky_max_span == 0) parsed.sky_max_span = parsed.sky_span;
+  if (parsed.sky_max_span < parsed.sky_span)
+    return *error = "session: sky_max_span " + std::to_string(parsed.sky_max_span) +
+                    " is narrower than sky_span " + std::to_string(parsed.sky_span),
+           false;
   *settings = parsed;
   return true;
 }
@@ -119,6 +133,8 @@ PaintSession::PaintSession(const PaintSessionSettings& settings, const BrushConf
           1, int(std::lround(settings.screen_width * double(brush.stroke.footprint_scale))))),
       footprint_h_(std::max(
           1, int(std::lround(settings.screen_height * double(brush.stroke.footprint_scale))))),
+      sky_(settings.skyExtent()),
+      widest_span_(widestSkySpan(settings.grid, settings.sky_span, settings.sky_max_span)),
       volume_(makeSkyVolume(settings.skyExtent())),
       engine_(brush, footprint_w_, footprint_h_),
       mapper_(mapping),
@@ -234,6 +250,7 @@ void PaintSession::recordStep(const SceneState& before, const std::string& label
 void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
   StrokeResult stroke;
   while (engine_.takeFinishedStroke(&stroke)) {
+    growSkyToHold(stroke);
     // §6: the finished footprint becomes voxels, max-merged; the stroke index seeds the noise.
     outcome->mapping = mapper_.map(stroke, volume_, method_);
     outcome->stroke_mapped = true;
@@ -247,6 +264,25 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
     markSync("stroke_end", std::to_string(stroke.stroke_index), t_ns);
     syncJournal();
   }
+}
+
+void PaintSession::growSkyToHold(const StrokeResult& stroke) {
+  if (widest_span_ <= sky_.span) return;
+  const glm::vec3 voxel = volume_.voxelSize();
+  const StrokeReach reach =
+      strokeReach(stroke, mapper_.config(), std::min({voxel.x, voxel.y, voxel.z}));
+  if (!reach.inked) return;
+  // A stroke whose rays do not all meet the canvas is placed on the mapping's fallback plane,
+  // possibly far off: the sky becomes as wide as it may.
+  const SkyExtent to =
+      reach.bounded ? skyToHold(sky_, widest_span_, reach.xz_min, reach.xz_max) : reachableSky();
+  if (to.span <= sky_.span) return;
+  const glm::ivec3 offset = growthOffset(sky_, to);
+  volume_ = growSky(std::move(volume_), sky_, to);
+  history_.followGrowth(volume_, offset / Volume::kBrickSize);
+  sky_ = to;
+  ++sky_growths_;
+  last_growth_stroke_ = stroke.stroke_index;
 }
 
 void PaintSession::syncJournal() {
@@ -302,21 +338,31 @@ bool PaintSession::commitAnimation(const UiChange& change, const WindowFrame& sh
 
 bool PaintSession::replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
                                  std::string* error) {
-  const SkyExtent sky = settings_.skyExtent();
-  // A cloud of the one-box sky (grid³ over [-1,1]³) opens in the home box of a wider sky.
-  const bool home_box = isHomeBoxCloud(volume, sky);
-  if (!home_box && (volume.dims() != volume_.dims() || volume.worldMin() != volume_.worldMin() ||
-                    volume.worldMax() != volume_.worldMax())) {
-    const glm::ivec3 d = volume_.dims();
+  // A cloud of the one-box sky (grid³ over [-1,1]³) opens in the home box of the sky as it is;
+  // a saved sky opens as it was saved when this session's sky could have grown to it.
+  const bool home_box = isHomeBoxCloud(volume, sky_);
+  const std::optional<SkyExtent> saved_sky = skyExtentOf(volume);
+  const bool fits = saved_sky && saved_sky->grid == sky_.grid && saved_sky->span >= sky_.span &&
+                    saved_sky->span <= widest_span_;
+  if (!home_box && !fits) {
+    const glm::ivec3 d = volume_.dims(), w = reachableSky().dims();
     *error = source + ": a " + std::to_string(volume.dims().x) + "x" +
              std::to_string(volume.dims().y) + "x" + std::to_string(volume.dims().z) +
              " cloud does not fit this session's " + std::to_string(d.x) + "x" +
-             std::to_string(d.y) + "x" + std::to_string(d.z) + " sky, nor its " +
-             std::to_string(sky.grid) + "³ home box; the cloud is unchanged";
+             std::to_string(d.y) + "x" + std::to_string(d.z) + " sky" +
+             (w != d ? " (which may grow to " + std::to_string(w.x) + "x" + std::to_string(w.y) +
+                           "x" + std::to_string(w.z) + ")"
+                     : std::string()) +
+             ", nor its " + std::to_string(sky_.grid) + "³ home box; the cloud is unchanged";
     return false;
   }
   if (engine_.inStroke()) return *error = "open: a stroke is being painted", false;
-  volume_ = home_box ? placeInSky(volume, sky) : volume;
+  if (home_box) {
+    volume_ = placeInSky(volume, sky_);
+  } else {
+    volume_ = volume;
+    sky_ = *saved_sky;
+  }
   history_.reset(volume_);
   opened_source_ = source;
   journalText(JournalRecordType::kMarker, t_ns, "opened " + source);
@@ -610,7 +656,8 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (!parseSessionSettings(record.text(), &recorded, error)) return false;
       if (recorded.screen_width != settings_.screen_width ||
           recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
-          recorded.sky_span != settings_.sky_span || recorded.format != settings_.format ||
+          recorded.sky_span != settings_.sky_span ||
+          recorded.sky_max_span != settings_.sky_max_span || recorded.format != settings_.format ||
           recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
           recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
         *error = "session record (" + formatSessionSettings(recorded) +

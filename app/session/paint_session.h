@@ -45,6 +45,12 @@ struct PaintSessionSettings {
   // Session record without `sky_span` is from the one-box sky (kLegacySkySpan), so old journals
   // replay in the box they were painted in, their strokes clipped to it as they were then.
   int sky_span = kDefaultSkySpan;
+  // The sky grows with what is painted: a stroke reaching past its edge first widens it, by
+  // whole home boxes about the home box, up to this many across (widestSkySpan: the volume's
+  // limits and the grid may allow fewer). A Session record without `sky_max_span` is from a sky
+  // that did not grow (sky_span), so its strokes replay clipped to it as they were then.
+  int sky_max_span = kMaxSkySpan;
+  // The sky the session starts with.
   SkyExtent skyExtent() const { return {grid, sky_span}; }
   // Journal format of UI changes: 1 = the first landing (no modes; the paint view is
   // Camera::reference() unless a camera_orbit record says otherwise), 2 = typed changes with
@@ -157,6 +163,14 @@ class PaintSession {
   // naming the record's problem; the caller decides whether to go on.
   bool applyRecord(const JournalRecord& record, SampleOutcome* outcome, std::string* error);
 
+  // The sky as it is now: the starting extent (settings) grown to hold what was painted.
+  const SkyExtent& sky() const { return sky_; }
+  // The widest sky this session may grow to: where a stroke can land.
+  SkyExtent reachableSky() const { return {sky_.grid, widest_span_}; }
+  // How often the sky grew, and the mapped stroke that grew it last (0: none).
+  uint32_t skyGrowths() const { return sky_growths_; }
+  uint32_t lastGrowthStroke() const { return last_growth_stroke_; }
+
   const Volume& volume() const { return volume_; }
   Volume& volume() { return volume_; }
   const StrokeEngine& engine() const { return engine_; }
@@ -202,6 +216,7 @@ class PaintSession {
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
+  void growSkyToHold(const StrokeResult& stroke);
   void syncJournal();  // fsync at a stroke's end (paint or rub-out)
   void recordStep(const SceneState& before, const std::string& label);
   void takeFrame(const WindowFrame& frame);
@@ -211,6 +226,9 @@ class PaintSession {
   MappingConfig mapping_config_;
   std::string render_settings_;
   int footprint_w_, footprint_h_;
+  SkyExtent sky_;
+  int widest_span_;
+  uint32_t sky_growths_ = 0, last_growth_stroke_ = 0;
   Volume volume_;
   StrokeEngine engine_;
   StrokeMapper mapper_;

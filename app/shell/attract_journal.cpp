@@ -44,7 +44,7 @@ bool writeAttractJournal(const std::string& path, std::string* error) {
   settings.grid = 128;
   // The bundled loop's strokes all fall in the home box; one box keeps its bytes (and the
   // attract loop's replay) as they were before the sky grew.
-  settings.sky_span = kLegacySkySpan;
+  settings.sky_span = settings.sky_max_span = kLegacySkySpan;
   PaintSession recorder(settings, BrushConfig{}, MappingConfig{});
   recorder.setQuietMapping(true);
   recorder.setReproducibleRecord(true);  // the same bytes on every run

@@ -192,9 +192,10 @@ void PaintScreen::apply(const UiChange& change, int64_t t_ns) {
 void PaintScreen::warnIfEdgeOn() {
   // §7.7.5 problem 2: from a near edge-on view little of the canvas can be painted; say so and
   // offer the nearest good view (G takes it).
-  const Volume& v = session_->volume();
+  // Judged over where a stroke can land: the sky as wide as it may grow.
+  const SkyExtent reach = session_->reachableSky();
   const PaintViewAssessment view =
-      assessPaintView(session_->camera(), session_->canvas(), v.worldMin(), v.worldMax(),
+      assessPaintView(session_->camera(), session_->canvas(), reach.worldMin(), reach.worldMax(),
                       display_.width(), display_.height());
   edge_on_ = session_->mode() == Mode::kPaint && !view.good;
   if (!edge_on_) notice_.clear();
@@ -642,9 +643,10 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
     }
     case Command::kGoodView: {
       if (!session_) return;
-      const Volume& v = session_->volume();
-      apply(ui::SetCamera{nearestGoodPaintView(session_->camera(), session_->canvas(), v.worldMin(),
-                                               v.worldMax(), display_.width(), display_.height())},
+      const SkyExtent reach = session_->reachableSky();
+      apply(ui::SetCamera{nearestGoodPaintView(session_->camera(), session_->canvas(),
+                                               reach.worldMin(), reach.worldMax(), display_.width(),
+                                               display_.height())},
             t_ns);
       break;
     }
@@ -846,18 +848,20 @@ bool PaintScreen::drawOverlays(std::string* error) {
   if (session_) {
     const Mode mode = session_->mode();
     const Volume& volume = shownVolume();
-    // Where a stroke can land (§7.7.5 problem 2): outside it the screen is veiled while the pen
-    // is in range, so ink that cannot land looks different at once; in Canvas mode the outline
-    // follows the canvas as it moves.
+    // Where a stroke can land (§7.7.5 problem 2): the sky as wide as it may grow (a stroke past
+    // its edge grows it first). Outside it the screen is veiled while the pen is in range, so
+    // ink that cannot land looks different at once; in Canvas mode the outline follows the
+    // canvas as it moves.
     const Canvas canvas = drag_canvas_ ? *drag_canvas_ : session_->canvas();
     if ((in_range && (mode == Mode::kPaint || mode == Mode::kErase)) || mode == Mode::kCanvas) {
-      const DrawableRegion region(camera, canvas, volume.worldMin(), volume.worldMax(), w, h);
+      const SkyExtent reach = session_->reachableSky();
+      const DrawableRegion region(camera, canvas, reach.worldMin(), reach.worldMax(), w, h);
       if (mode == Mode::kPaint) appendOutsideVeil(region, &items);
-      // The canvas as a grid on its mid-plane (thesis Fig. 3.4) across the sky, every eighth of
-      // the home box (the thesis's sky box).
+      // The canvas as a grid on its mid-plane (thesis Fig. 3.4) across that reach, every eighth
+      // of the home box (the thesis's sky box).
       const auto to_screen = [&](glm::vec3 p) { return project(camera, p, w, h); };
-      const int span = session_->settings().sky_span;
-      appendCanvasGrid(canvas, volume.worldMin(), volume.worldMax(), 8 * span, to_screen, &items);
+      appendCanvasGrid(canvas, reach.worldMin(), reach.worldMax(), 8 * reach.span, to_screen,
+                       &items);
       appendCanvasOutline(region.outline(), &items);
     }
     if (mode == Mode::kErase && vacuum_centre_) {
@@ -1024,6 +1028,18 @@ std::string PaintScreen::statusLine() const {
   if (s.mode() == Mode::kErase) {
     std::snprintf(text, sizeof text, " | %s %.2f", eraseToolName(s.eraseTool()),
                   double(s.eraseDiameter(s.eraseTool())));
+    line += text;
+  }
+  if (s.mode() == Mode::kPaint || s.mode() == Mode::kCanvas) {
+    // Where a stroke can land: the veil's edge is the sky's widest extent.
+    const glm::ivec3 now = s.sky().dims(), reach = s.reachableSky().dims();
+    if (reach.x > now.x)
+      std::snprintf(text, sizeof text, " | sky %dx%d voxels, grows to %dx%d as you paint", now.x,
+                    now.z, reach.x, reach.z);
+    else
+      std::snprintf(
+          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil is lost", now.x, now.z,
+          s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed");
     line += text;
   }
   if (s.mode() == Mode::kCamera && pan_drag_) line += " | drag pans (P: orbit)";

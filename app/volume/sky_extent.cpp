@@ -2,6 +2,8 @@
 
 #include "app/volume/volume_paste.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace cb {
@@ -18,6 +20,41 @@ std::string SkyExtent::check() const {
     return "sky span " + std::to_string(span) + " with an odd grid " + std::to_string(grid) +
            " would put the home box between voxels: use an odd span or an even grid";
   return {};
+}
+
+int widestSkySpan(int grid, int span, int max_span) {
+  // A span step moves the home box by grid/2 voxels in x and z: whole bricks when grid/2 is.
+  if (grid % (2 * Volume::kBrickSize) != 0) return span;
+  int widest = span;
+  for (int s = span + 1; s <= max_span; ++s)
+    if (SkyExtent{grid, s}.check().empty()) widest = s;
+  return widest;
+}
+
+SkyExtent skyToHold(const SkyExtent& from, int max_span, glm::vec2 xz_min, glm::vec2 xz_max) {
+  const int widest = widestSkySpan(from.grid, from.span, max_span);
+  // The sky of span s covers [-s, s] in x and z.
+  const glm::vec4 ends(-xz_min.x, -xz_min.y, xz_max.x, xz_max.y);
+  if (glm::any(glm::isnan(ends))) return {from.grid, widest};  // unknown: as wide as allowed
+  const float reach = std::max({ends.x, ends.y, ends.z, ends.w});
+  if (!(reach <= float(widest))) return {from.grid, widest};
+  const int needed = int(std::ceil(reach));
+  return {from.grid, std::clamp(needed, from.span, widest)};
+}
+
+glm::ivec3 growthOffset(const SkyExtent& from, const SkyExtent& to) {
+  return to.homeOffset() - from.homeOffset();
+}
+
+Volume growSky(Volume&& sky, const SkyExtent& from, const SkyExtent& to) {
+  const glm::ivec3 offset = growthOffset(from, to);
+  if (to.grid != from.grid || to.span < from.span || !to.check().empty() ||
+      sky.dims() != from.dims() || offset % Volume::kBrickSize != glm::ivec3(0))
+    throw std::invalid_argument("growSky: a sky of span " + std::to_string(from.span) +
+                                " cannot grow by whole bricks to span " + std::to_string(to.span) +
+                                " (grid " + std::to_string(from.grid) + ")");
+  return std::move(sky).movedInto(to.dims(), to.worldMin(), to.worldMax(),
+                                  offset / Volume::kBrickSize);
 }
 
 std::optional<SkyExtent> skyExtentOf(const Volume& volume) {

@@ -7,6 +7,11 @@
 //
 //   span 1: the old box, grid × grid × grid over [-1,1]³ (journals recorded before the sky grew)
 //   span 4: the default, 1024 × 256 × 1024 voxels over [-4,4] × [-1,1] × [-4,4] for grid 256
+//   span 8: the widest for grid 256, 2048 × 256 × 2048 (kMaxVolumeDim across)
+//
+// The sky grows with what is painted: a session widens it, a span at a time as needed, before a
+// stroke that reaches past its edge (skyToHold, growSky), keeping every voxel where it is in the
+// world, so the home box stays on [-1,1]³ and the sun (a direction) lights the cloud as before.
 #pragma once
 
 #include <optional>
@@ -37,6 +42,25 @@ struct SkyExtent {
   // the home box sits on whole voxels; otherwise what is wrong, in words.
   std::string check() const;
 };
+
+// The widest sky of this grid the limits allow, at most `max_span` home boxes across: the span
+// checks pass (kMaxVolumeDim, whole voxels) and, when it is wider than `span`, every span
+// between them moves the home box by whole volume bricks, so growing re-places bricks rather
+// than voxels and the history's brick deltas follow (grid a multiple of 32; otherwise the sky
+// cannot grow and this is `span`).
+int widestSkySpan(int grid, int span, int max_span);
+
+// The narrowest sky at least as wide as `from` and at most `max_span` across (widestSkySpan)
+// holding the world-space x/z rectangle [xz_min, xz_max]; the widest one when none holds it.
+SkyExtent skyToHold(const SkyExtent& from, int max_span, glm::vec2 xz_min, glm::vec2 xz_max);
+
+// `sky` (a sky of extent `from`) grown to the wider extent `to` around it: the same grid,
+// every brick moved to where it was in the world (the home box stays on [-1,1]³), the rest
+// empty; `sky` is left empty. std::invalid_argument when `to` is not a wider sky of the same
+// grid that `from` grows into by whole bricks.
+Volume growSky(Volume&& sky, const SkyExtent& from, const SkyExtent& to);
+// Where `from`'s voxel 0 lies in the grown sky `to` (whole bricks of Volume::kBrickSize).
+glm::ivec3 growthOffset(const SkyExtent& from, const SkyExtent& to);
 
 // The extent `volume` was made with, when it is a sky (span home boxes across, y one box high over
 // [-1,1]); std::nullopt for any other volume (a file from elsewhere, a test shape).

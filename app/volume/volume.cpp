@@ -236,6 +236,32 @@ size_t Volume::memoryBytes() const {
   return allocated_ * kBrickBytes + table_.size() * (sizeof(float*) + sizeof(uint64_t));
 }
 
+Volume Volume::movedInto(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_max,
+                         glm::ivec3 brick_offset) && {
+  Volume to(dims, world_min, world_max);
+  const glm::ivec3 end = brick_offset + brick_dims_;
+  if (dims_ % kBrickSize != glm::ivec3(0) || glm::any(glm::lessThan(brick_offset, glm::ivec3(0))) ||
+      glm::any(glm::greaterThan(end * kBrickSize, dims)))
+    throw std::invalid_argument(
+        "Volume::movedInto: a " + std::to_string(dims_.x) + "x" + std::to_string(dims_.y) + "x" +
+        std::to_string(dims_.z) + " grid does not go whole bricks into " + std::to_string(dims.x) +
+        "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " at brick offset " +
+        std::to_string(brick_offset.x) + "," + std::to_string(brick_offset.y) + "," +
+        std::to_string(brick_offset.z));
+  for (int z = 0; z < brick_dims_.z; ++z)
+    for (int y = 0; y < brick_dims_.y; ++y)
+      for (int x = 0; x < brick_dims_.x; ++x) {
+        float*& from = table_[brickIndexOf({x, y, z})];
+        if (!from) continue;
+        to.table_[to.brickIndexOf(glm::ivec3(x, y, z) + brick_offset)] = from;
+        from = nullptr;
+      }
+  to.allocated_ = allocated_;
+  allocated_ = 0;
+  to.markDirty(to.bounds());
+  return to;
+}
+
 uint64_t Volume::markDirty(const VoxelBox& box) {
   VoxelBox clipped = box.intersect(bounds());
   if (clipped.empty()) return generation_;

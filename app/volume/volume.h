@@ -125,6 +125,13 @@ class Volume {
   std::vector<glm::ivec3> allocatedBrickList() const;
   // Bytes held: allocated bricks plus the brick table.
   size_t memoryBytes() const;
+  // This volume's bricks moved, without copying a voxel, into a new grid of `dims` over
+  // [world_min, world_max]: brick b becomes brick b + brick_offset (how the sky grows around
+  // what is painted, sky_extent.h). The new volume is marked dirty as a whole; this one is left
+  // empty. std::invalid_argument when this volume's dims are not whole bricks or a brick would
+  // land outside the new grid.
+  Volume movedInto(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_max,
+                   glm::ivec3 brick_offset) &&;
 
   // --- changes ---
   // Records a change (clipped to bounds) and returns the new generation.

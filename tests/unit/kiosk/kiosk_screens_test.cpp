@@ -219,6 +219,9 @@ TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
   EXPECT_EQ(kiosk.state(), State::kVisitor);
   EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0);
   EXPECT_FALSE(kiosk.visitorSession()->history().canUndo());
+  // ... in the default sky, however far the previous visitor grew theirs (a fresh session).
+  EXPECT_EQ(kiosk.visitorSession()->sky().span, kDefaultSkySpan);
+  EXPECT_EQ(kiosk.visitorSession()->volume().dims(), kiosk.visitorSession()->sky().dims());
   EXPECT_EQ(kiosk.visits(), 2);
   // Each visitor's journal is in the data dir and replays to the cloud they painted.
   size_t journals = 0;

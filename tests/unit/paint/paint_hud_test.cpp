@@ -153,6 +153,7 @@ ReplayRun runReplay(const std::string& journal, const std::string& dir, const st
   EXPECT_TRUE(renderer.init(&error)) << error;
   PaintSessionSettings settings{kW, kH, kGrid};
   settings.sky_span = sky_span;
+  if (sky_span == kLegacySkySpan) settings.sky_max_span = kLegacySkySpan;  // the old box
   run.session = std::make_unique<PaintSession>(settings, BrushConfig{}, MappingConfig{});
   run.session->setQuietMapping(true);
   if (record_to) run.session->recordTo(record_to, 0);

@@ -275,7 +275,7 @@ TEST(ToolWindow, AMorphAndWindRecordedInAWideSkyReplayExactly) {
   // A cloud opened in the home box: the span-4 session's cloud is the span-1 session's,
   // translated (the windows are the home box) after the morph, and after the wind on the cloud.
   PaintSessionSettings one_box_settings{320, 180, kGrid};
-  one_box_settings.sky_span = 1;
+  one_box_settings.sky_span = one_box_settings.sky_max_span = 1;
   PaintSession one_box(one_box_settings, BrushConfig{}, MappingConfig{});
   PaintSession home(PaintSessionSettings{320, 180, kGrid}, BrushConfig{}, MappingConfig{});
   ASSERT_EQ(home.volume().dims(), kSky.dims());

@@ -1,9 +1,15 @@
 // The sky's extent (app/volume/sky_extent.h): the home box at the centre of a wider sky at the
 // same voxel size, and clouds of the one-box sky placed into it where they were in the world.
+#include <cmath>
+#include <filesystem>
+
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"
+#include "app/volume/volume_file.h"
 
 namespace cb {
 namespace {
@@ -71,6 +77,72 @@ TEST(SkyExtent, RecognisesSkies) {
   EXPECT_EQ(box->span, 1);
   EXPECT_FALSE(skyExtentOf(Volume(glm::ivec3(64, 32, 64))).has_value());  // [-1,1]³, not a sky
   EXPECT_FALSE(isHomeBoxCloud(makeSkyVolume({64, 3}), {64, 3}));
+}
+
+TEST(SkyExtent, GrowsByWholeBricksKeepingEveryVoxelWhereItWasInTheWorld) {
+  const SkyExtent from{64, 2}, to{64, 5};
+  Volume sky = placeInSky(makeBundledCumulus(glm::ivec3(64), 1), from);
+  sky.set(0, 3, 127, 0.25f);  // a voxel at the old sky's far corner
+  const Volume before = sky;
+  const size_t bricks = sky.allocatedBricks();
+  ASSERT_GT(bricks, 0u);
+  const glm::ivec3 offset = growthOffset(from, to);
+  EXPECT_EQ(offset, glm::ivec3(96, 0, 96));
+  const Volume grown = growSky(std::move(sky), from, to);
+  EXPECT_EQ(grown.dims(), to.dims());
+  EXPECT_EQ(grown.worldMin(), to.worldMin());
+  EXPECT_EQ(skyExtentOf(grown)->span, 5);
+  EXPECT_EQ(grown.allocatedBricks(), bricks);
+  EXPECT_EQ(sky.allocatedBricks(), 0u);  // moved, not copied
+  for (const glm::ivec3& b : before.allocatedBrickList()) {
+    const VoxelBox box = before.brickBox(b);
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x)
+          ASSERT_EQ(grown.at(x + offset.x, y, z + offset.z), before.at(x, y, z));
+  }
+  // The same world point names the same voxel value.
+  const glm::vec3 w(0.3f, 0.1f, -0.4f);
+  const glm::ivec3 a(before.worldToVoxel(w)), b(grown.worldToVoxel(w));
+  EXPECT_EQ(b, a + offset);
+  // The home box stays on [-1,1]³.
+  EXPECT_EQ(grown.voxelToWorld(glm::vec3(to.homeOffset())), glm::vec3(-1.0f));
+  // The whole grown sky is marked changed (consumers start afresh).
+  EXPECT_EQ(grown.dirtySince(0), grown.bounds());
+  // A volume file carries the grown extent: it opens as the same sky, voxel for voxel.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("cb_grown_sky_" + std::to_string(::getpid()) + ".cbvol"))
+                               .string();
+  saveVolume(grown, path);
+  const Volume loaded = loadVolume(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(loaded.dims(), to.dims());
+  EXPECT_EQ(loaded.worldMin(), to.worldMin());
+  EXPECT_EQ(loaded.worldMax(), to.worldMax());
+  for (const glm::ivec3& b : grown.allocatedBrickList()) {
+    const VoxelBox box = grown.brickBox(b);
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) ASSERT_EQ(loaded.at(x, y, z), grown.at(x, y, z));
+  }
+}
+
+TEST(SkyExtent, ChoosesTheNarrowestSkyHoldingAStrokeWithinTheLimits) {
+  const SkyExtent sky{256, 4};
+  EXPECT_EQ(widestSkySpan(256, 4, kMaxSkySpan), 8);
+  EXPECT_EQ(widestSkySpan(512, 2, kMaxSkySpan), 4);  // 2048 voxels across at most
+  EXPECT_EQ(widestSkySpan(48, 1, kMaxSkySpan), 1);   // a span step is not whole bricks
+  EXPECT_EQ(widestSkySpan(256, 4, 4), 4);            // a fixed sky
+  EXPECT_EQ(skyToHold(sky, 8, {-1.0f, -1.0f}, {3.9f, 1.0f}).span, 4);
+  EXPECT_EQ(skyToHold(sky, 8, {-1.0f, -1.0f}, {4.1f, 1.0f}).span, 5);
+  EXPECT_EQ(skyToHold(sky, 8, {-6.5f, -1.0f}, {0.0f, 1.0f}).span, 7);
+  EXPECT_EQ(skyToHold(sky, 8, {-1.0f, -1.0f}, {30.0f, 1.0f}).span, 8);  // as wide as allowed
+  EXPECT_EQ(skyToHold(sky, 6, {-1.0f, -1.0f}, {30.0f, 1.0f}).span, 6);
+  EXPECT_EQ(skyToHold(sky, 8, {-1.0f, -1.0f}, {NAN, 1.0f}).span, 8);
+  Volume narrow = makeSkyVolume({48, 1});
+  EXPECT_THROW(growSky(std::move(narrow), {48, 1}, {48, 2}), std::invalid_argument);  // 24
+  Volume four = makeSkyVolume(sky);
+  EXPECT_THROW(growSky(std::move(four), sky, {256, 3}), std::invalid_argument);
 }
 
 }  // namespace
