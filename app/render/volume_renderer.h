@@ -218,6 +218,9 @@ class VolumeRenderer {
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
   // The VBO holds the boundary's triangles (occupiedBoundaryFaces of kRayBoundsLevel).
   GLsizei bounds_vertices_ = 0;
+  // The corners of the boundary's rectangles (boundaryCorners): every pixel the pass covers lies
+  // in their projected rectangle, so the pass, the cast and the upscale are confined to it.
+  std::vector<glm::vec3> bounds_corners_;
   size_t bounds_vbo_bytes_ = 0;
   // With skipping, one FBO holds the frame colour (attachment 0), the ray bounds (attachment 1)
   // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast
@@ -251,6 +254,9 @@ class VolumeRenderer {
   // (into `rect` if given); false when a box reaches the near plane (then no mask is drawn).
   bool projectedRect(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj,
                      int w, int h, glm::ivec4* rect) const;
+  // The same for voxel-space points.
+  bool projectedPointsRect(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, int w,
+                           int h, glm::ivec4* rect) const;
   // Stencil bit 2 on every pixel whose ray passes through a box of `boxes` (voxel space, grown
   // by `reach` voxels), inside the current scissor.
   void drawChangedMask(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj);
