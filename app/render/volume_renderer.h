@@ -154,7 +154,9 @@ class VolumeRenderer {
   // True while the light volume on the GPU is a reduced-resolution preview.
   bool lightIsPreview() const { return light_is_preview_; }
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
-  // renders into an internal smaller target and blits it up.
+  // renders into an internal smaller target and blits it up. With skipping, only the boundary's
+  // screen rectangle is bounded, cast and blitted; the rest of the target is cleared to the
+  // background (with a sky under the cloud, the whole image is blitted).
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
               const RenderOptions& options = {});
   // Compiles (and caches) every program render(…, options) will use, without drawing: call it
