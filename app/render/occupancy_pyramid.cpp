@@ -169,23 +169,32 @@ std::vector<BoundaryRect> occupiedBoundaryRects(const OccupancyPyramid& p, int l
   return rects;
 }
 
-std::vector<glm::vec3> boundaryTriangles(const std::vector<BoundaryRect>& rects, float cell_size) {
+std::vector<glm::vec3> boundaryCorners(const std::vector<BoundaryRect>& rects, float cell_size) {
   std::vector<glm::vec3> out;
-  out.reserve(rects.size() * 6);
+  out.reserve(rects.size() * 4);
   for (const BoundaryRect& r : rects) {
     const int u = (r.axis + 1) % 3, v = (r.axis + 2) % 3;
-    glm::vec3 corner[4];
     for (int k = 0; k < 4; ++k) {
       glm::vec3 q(0.0f);
       q[r.axis] = float(r.plane);
       q[u] = (k & 1) ? float(r.u1) + kBoundaryOverlap : float(r.u0) - kBoundaryOverlap;
       q[v] = (k >> 1) ? float(r.v1) + kBoundaryOverlap : float(r.v0) - kBoundaryOverlap;
-      corner[k] = q * cell_size;
+      out.push_back(q * cell_size);
     }
+  }
+  return out;
+}
+
+std::vector<glm::vec3> boundaryTriangles(const std::vector<BoundaryRect>& rects, float cell_size) {
+  const std::vector<glm::vec3> corners = boundaryCorners(rects, cell_size);
+  std::vector<glm::vec3> out;
+  out.reserve(rects.size() * 6);
+  for (size_t i = 0; i < rects.size(); ++i) {
+    const glm::vec3* corner = &corners[i * 4];
     // Counter-clockwise seen from outside the occupied cell (from the empty side), so front
     // faces are where rays enter occupied space and back faces where they leave. Corners 0, 1, 3
     // turn counter-clockwise about +axis (u × v = axis).
-    if (r.side)
+    if (rects[i].side)
       for (int k : {0, 1, 3, 0, 3, 2}) out.push_back(corner[k]);
     else
       for (int k : {0, 3, 1, 0, 2, 3}) out.push_back(corner[k]);

@@ -66,9 +66,13 @@ std::vector<BoundaryRect> occupiedBoundaryRects(const OccupancyPyramid& pyramid,
 // (losslessly: a pixel or sample taken in empty space adds nothing).
 constexpr float kBoundaryOverlap = 1.0f / 16.0f;
 
-// Two triangles (6 vertices, voxel coordinates: cells of `cell_size` voxels) per rectangle,
-// grown by kBoundaryOverlap, wound counter-clockwise as seen from the empty side (front faces
-// face away from occupied space).
+// The 4 corners of each rectangle (voxel coordinates: cells of `cell_size` voxels), grown by
+// kBoundaryOverlap: corner k is at (u1 if k & 1 else u0, v1 if k & 2 else v0). The projection of
+// the boundary lies inside their projected bounding rectangle.
+std::vector<glm::vec3> boundaryCorners(const std::vector<BoundaryRect>& rects, float cell_size);
+
+// Two triangles (6 vertices of boundaryCorners) per rectangle, wound counter-clockwise as seen from
+// the empty side (front faces face away from occupied space).
 std::vector<glm::vec3> boundaryTriangles(const std::vector<BoundaryRect>& rects, float cell_size);
 
 // boundaryTriangles of occupiedBoundaryRects. Rasterised, it tells each pixel where its ray enters

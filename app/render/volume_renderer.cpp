@@ -405,8 +405,12 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
     // llvmpipe's bounds pass is bound by triangle count, so the faces are merged into
     // rectangles (occupiedBoundaryFaces).
-    const std::vector<glm::vec3> faces =
-        occupiedBoundaryFaces(occupancy_, std::min(kRayBoundsLevel, occupancy_.levelCount() - 1));
+    // The rectangles' corners are kept to bound the boundary's projection (boundsRect).
+    const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
+    const std::vector<BoundaryRect> rects = occupiedBoundaryRects(occupancy_, level);
+    const float cell = float(occupancy_.cellSize(level));
+    const std::vector<glm::vec3> faces = boundaryTriangles(rects, cell);
+    bounds_corners_ = boundaryCorners(rects, cell);
     bounds_vertices_ = GLsizei(faces.size());
     bounds_vbo_bytes_ = std::max<size_t>(1, faces.size()) * sizeof(glm::vec3);
     glNamedBufferData(bounds_vbo_, GLsizeiptr(bounds_vbo_bytes_),
@@ -516,9 +520,6 @@ void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_p
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_STENCIL_TEST);
   }
-  const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
-  glm::vec3 eye_voxel = (camera.eye - world_min_) / ((world_max_ - world_min_) / glm::vec3(dims_));
-  eye_near_occupied_ = occupiedNear(occupancy_, level, eye_voxel);
 }
 
 int chunkSamples(float step_voxels) {
@@ -589,16 +590,29 @@ std::array<glm::vec3, 8> grownCorners(const VoxelBox& box, float reach) {
 bool VolumeRenderer::projectedRect(const std::vector<VoxelBox>& boxes, float reach,
                                    const glm::mat4& view_proj, int w, int h,
                                    glm::ivec4* rect) const {
+  std::vector<glm::vec3> corners;
+  corners.reserve(boxes.size() * 8);
+  for (const VoxelBox& box : boxes)
+    for (const glm::vec3& c : grownCorners(box, reach)) corners.push_back(c);
+  return projectedPointsRect(corners, view_proj, w, h, rect);
+}
+
+bool VolumeRenderer::projectedPointsRect(const std::vector<glm::vec3>& points,
+                                         const glm::mat4& view_proj, int w, int h,
+                                         glm::ivec4* rect) const {
+  if (points.empty()) {
+    if (rect) *rect = glm::ivec4(0);
+    return true;
+  }
   const glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
   glm::vec2 lo(1e30f), hi(-1e30f);
-  for (const VoxelBox& box : boxes)
-    for (const glm::vec3& c : grownCorners(box, reach)) {
-      const glm::vec4 clip = view_proj * glm::vec4(world_min_ + c * voxel, 1.0f);
-      if (clip.w <= 1e-4f || clip.z < -clip.w) return false;  // at or behind the near plane
-      const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(w, h);
-      lo = glm::min(lo, px);
-      hi = glm::max(hi, px);
-    }
+  for (const glm::vec3& p : points) {
+    const glm::vec4 clip = view_proj * glm::vec4(world_min_ + p * voxel, 1.0f);
+    if (clip.w <= 1e-4f || clip.z < -clip.w) return false;  // at or behind the near plane
+    const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(w, h);
+    lo = glm::min(lo, px);
+    hi = glm::max(hi, px);
+  }
   const glm::ivec2 a = glm::max(glm::ivec2(glm::floor(lo)) - 1, glm::ivec2(0));
   const glm::ivec2 b = glm::min(glm::ivec2(glm::ceil(hi)) + 1, glm::ivec2(w, h));
   if (rect) *rect = glm::ivec4(a, glm::max(b - a, glm::ivec2(0)));
@@ -725,13 +739,33 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
                       history_.key == key && !history_.pending.empty() &&
                       projectedRect(pending, read_reach, view_proj, w, h, nullptr);
-  if (partial) {
-    // Everything below (ray bounds, clears, the cast, the blit) stays inside the rectangle.
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(cast_rect.x, cast_rect.y, cast_rect.z, cast_rect.w);
+  // bounds_rect: the pixels the ray-bounds pass can cover — the projected rectangle of the
+  // boundary's corners (all pixels when the eye is in or next to an occupied cell, or when the
+  // masked re-cast must also reach pixels an erase emptied). Only these are ray cast; the rest of
+  // the frame is the background.
+  glm::ivec4 bounds_rect(0, 0, w, h);
+  if (skip) {
+    const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
+    const glm::vec3 eye_voxel =
+        (camera.eye - world_min_) / ((world_max_ - world_min_) / glm::vec3(dims_));
+    eye_near_occupied_ = occupiedNear(occupancy_, level, eye_voxel);
+    if (eye_near_occupied_ || masked ||
+        !projectedPointsRect(bounds_corners_, view_proj, w, h, &bounds_rect))
+      bounds_rect = glm::ivec4(0, 0, w, h);
   }
+  const glm::ivec4 frame_rect = partial ? cast_rect : glm::ivec4(0, 0, w, h);
+  const glm::ivec4 pass_rect =
+      clipTo(glm::max(glm::ivec2(frame_rect), glm::ivec2(bounds_rect)),
+             glm::min(glm::ivec2(frame_rect) + glm::ivec2(frame_rect.z, frame_rect.w),
+                      glm::ivec2(bounds_rect) + glm::ivec2(bounds_rect.z, bounds_rect.w)),
+             w, h);
+  // Everything below (ray bounds, clears, the cast, the blit) stays inside frame_rect; the ray
+  // bounds and the cast inside pass_rect.
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(pass_rect.x, pass_rect.y, pass_rect.z, pass_rect.w);
   if (skip) {
     drawRayBounds(camera, view_proj, w, h);  // costs per triangle, and per pixel in the scissor
+    glScissor(frame_rect.x, frame_rect.y, frame_rect.z, frame_rect.w);
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
@@ -833,6 +867,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glCreateQueries(GL_SAMPLES_PASSED, 1, &cast_query);
     glBeginQuery(GL_SAMPLES_PASSED, cast_query);
   }
+  glScissor(pass_rect.x, pass_rect.y, pass_rect.z, pass_rect.w);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   if (masked) {
     glEndQuery(GL_SAMPLES_PASSED);
@@ -865,7 +900,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   }
   glDisable(GL_BLEND);
 
-  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
+  glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
+  if (!partial) glDisable(GL_SCISSOR_TEST);
   if (screen_space) {
     finishScreenSpace(skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
                       height, options, partial, bleed_rect, out_rect);
@@ -873,6 +909,24 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+    if (!sky_under && bounds_rect != glm::ivec4(0, 0, w, h)) {
+      // Outside bounds_rect the image is the background, and so is every target pixel whose
+      // bilinear footprint lies there: cleared (a memset per tile for llvmpipe), not filtered.
+      // The blit keeps its whole-image mapping and is scissored to the target pixels whose
+      // footprint (2 texels per axis) may meet bounds_rect.
+      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
+      const glm::vec2 k(float(width) / float(w), float(height) / float(h));
+      const glm::ivec2 lo =
+          glm::ivec2(glm::floor(glm::vec2(bounds_rect.x - 1, bounds_rect.y - 1) * k));
+      const glm::ivec2 hi = glm::ivec2(glm::ceil(
+          glm::vec2(bounds_rect.x + bounds_rect.z + 1, bounds_rect.y + bounds_rect.w + 1) * k));
+      const glm::ivec4 out = partial ? out_rect : glm::ivec4(0, 0, width, height);
+      const glm::ivec4 blit_rect =
+          clipTo(glm::max(lo, glm::ivec2(out)),
+                 glm::min(hi, glm::ivec2(out) + glm::ivec2(out.z, out.w)), width, height);
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(blit_rect.x, blit_rect.y, blit_rect.z, blit_rect.w);
+    }
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
                       reduced ? GL_LINEAR : GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);

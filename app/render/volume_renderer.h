@@ -154,7 +154,9 @@ class VolumeRenderer {
   // True while the light volume on the GPU is a reduced-resolution preview.
   bool lightIsPreview() const { return light_is_preview_; }
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
-  // renders into an internal smaller target and blits it up.
+  // renders into an internal smaller target and blits it up. With skipping, only the boundary's
+  // screen rectangle is bounded, cast and blitted; the rest of the target is cleared to the
+  // background (with a sky under the cloud, the whole image is blitted).
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
               const RenderOptions& options = {});
   // Compiles (and caches) every program render(…, options) will use, without drawing: call it
@@ -218,6 +220,9 @@ class VolumeRenderer {
   GLuint bounds_program_ = 0, bounds_vao_ = 0, bounds_vbo_ = 0;
   // The VBO holds the boundary's triangles (occupiedBoundaryFaces of kRayBoundsLevel).
   GLsizei bounds_vertices_ = 0;
+  // The corners of the boundary's rectangles (boundaryCorners): every pixel the pass covers lies
+  // in their projected rectangle, so the pass, the cast and the upscale are confined to it.
+  std::vector<glm::vec3> bounds_corners_;
   size_t bounds_vbo_bytes_ = 0;
   // With skipping, one FBO holds the frame colour (attachment 0), the ray bounds (attachment 1)
   // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast
@@ -251,6 +256,9 @@ class VolumeRenderer {
   // (into `rect` if given); false when a box reaches the near plane (then no mask is drawn).
   bool projectedRect(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj,
                      int w, int h, glm::ivec4* rect) const;
+  // The same for voxel-space points.
+  bool projectedPointsRect(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, int w,
+                           int h, glm::ivec4* rect) const;
   // Stencil bit 2 on every pixel whose ray passes through a box of `boxes` (voxel space, grown
   // by `reach` voxels), inside the current scissor.
   void drawChangedMask(const std::vector<VoxelBox>& boxes, float reach, const glm::mat4& view_proj);

@@ -209,6 +209,45 @@ TEST_F(VolumeRendererTest, SkippingIsLosslessAndSavesSamples) {
   }
 }
 
+// With skipping, only the projected rectangle of the ray-bounds boundary is bounded, cast and
+// upscaled; the rest of the target is cleared to the background. At full and reduced scale, moving
+// or not, with the cloud inside the frame, cut by its edge or out of sight, the frame equals the
+// unskipped one (which upscales the whole image).
+TEST_F(VolumeRendererTest, SkippingConfinedToTheBoundsRectangleIsLossless) {
+  for (int scene = 0; scene < 3; ++scene) {
+    // A hard-edged ball too, whose silhouette a rectangle a pixel too small would cut.
+    Volume v = scene == 0   ? makeSparsePuffs(glm::ivec3(64), 2)
+               : scene == 1 ? makeBundledCumulus(glm::ivec3(64), 1)
+                            : makeSphere(glm::ivec3(64), glm::vec3(0.1f, -0.2f, 0.0f), 0.5f);
+    renderer.sync(v, Light{});
+    Camera near = Camera::reference();
+    near.eye = near.target + 0.45f * (near.eye - near.target);  // the cloud cut by the frame
+    Camera away = Camera::reference();
+    away.target = away.eye + (away.eye - away.target);  // looking away: nothing to cast
+    const Camera cameras[] = {Camera::reference(), Camera::reference().orbited(75.0f), near,
+                              near.orbited(200.0f), away};
+    for (size_t c = 0; c < std::size(cameras); ++c)
+      for (float scale : {1.0f, 0.5f, 0.35f}) {
+        RenderOptions opt;
+        opt.scale = scale;
+        opt.moving = scale < 1.0f;
+        const ImageRgba8 skip = renderImage(renderer, cameras[c], opt);
+        opt.skip_empty_space = false;
+        const ImageRgba8 full = renderImage(renderer, cameras[c], opt);
+        int cloud = 0;
+        for (int y = 0; y < kH; ++y)
+          for (int x = 0; x < kW; ++x) cloud += !isBackground(full.at(x, y), opt);
+        EXPECT_LE(maxChannelDifference(skip, full), 1)
+            << "scene " << scene << " camera " << c << " scale " << scale;
+        if (c < 4) {
+          EXPECT_GT(cloud, kW * kH / 50) << "scene " << scene << " camera " << c;
+        } else {
+          EXPECT_EQ(cloud, 0);
+        }
+      }
+  }
+}
+
 TEST_F(VolumeRendererTest, SampleStatisticsAddUp) {
   Volume v = makeSphere(glm::ivec3(64), glm::vec3(0.0f), 0.6f);
   renderer.sync(v, Light{});
