@@ -11,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -549,6 +550,11 @@ int runStudySession(Args& args) {
     info.participant_id = protocol.participant_ids.idFor(info.participant_number);
     info.anchor_monotonic_ns = previous.info->anchor_monotonic_ns;
     info.anchor_unix_ns = previous.info->anchor_unix_ns;
+    // The pen an earlier run recorded stays in session.json until this run's pen connects.
+    std::ifstream earlier(folder + "/session.json", std::ios::binary);
+    const std::string earlier_json((std::istreambuf_iterator<char>(earlier)),
+                                   std::istreambuf_iterator<char>());
+    info.earlier_device_json = deviceJsonIn(earlier_json);
   } else {
     const std::string data_dir = resume_folder.empty()
                                      ? args.get("data-dir", stateDir() + "/study")

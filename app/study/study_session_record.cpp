@@ -105,6 +105,8 @@ std::string formatStudySessionJson(const StudySessionInfo& info) {
          ", \"tilt_min\": " + std::to_string(d.tilt_min) +
          ", \"tilt_max\": " + std::to_string(d.tilt_max) +
          ", \"distance_max\": " + std::to_string(d.distance_max) + "},\n";
+  } else if (!info.earlier_device_json.empty()) {
+    j += "  \"device\": " + info.earlier_device_json + ",\n";
   } else {
     j += "  \"device\": null,\n";
   }
@@ -121,6 +123,16 @@ std::string formatStudySessionJson(const StudySessionInfo& info) {
   j += "  \"task_order\": " + jsonList(info.task_order) + ",\n";
   j += "  \"stages_completed\": " + jsonList(info.stages_completed) + "\n";
   return j + "}\n";
+}
+
+std::string deviceJsonIn(const std::string& session_json) {
+  const std::string key = "\n  \"device\": {";
+  const size_t at = session_json.find(key);
+  if (at == std::string::npos) return "";
+  const size_t begin = at + key.size() - 1;  // the '{'
+  const size_t end = session_json.find("},\n", begin);
+  if (end == std::string::npos) return "";
+  return session_json.substr(begin, end + 1 - begin);
 }
 
 bool writeFileAtomically(const std::string& path, const std::string& text, std::string* error) {

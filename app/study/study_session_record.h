@@ -38,6 +38,10 @@ struct StudySessionInfo {
   std::string venue, operator_initials;
   std::optional<PenDeviceInfo> device;
   std::string device_serial, device_serial_note;  // "" serial: none, the note says why
+  // Without `device`: the device object an earlier run of this session wrote (deviceJsonIn of
+  // its session.json), kept so that a resumed run whose pen never connects (the session was
+  // already complete, say) does not overwrite it with null; "" writes null.
+  std::string earlier_device_json;
   std::string calibration_toml;
   std::string display_platform;
   int display_width = 0, display_height = 0;
@@ -62,6 +66,9 @@ std::string studySessionFolderName(const std::string& participant_id, int64_t un
 
 // session.json's text.
 std::string formatStudySessionJson(const StudySessionInfo& info);
+// The "device" object of a session.json this build wrote (formatStudySessionJson writes it on
+// one line), as JSON text; "" when it is null or not there.
+std::string deviceJsonIn(const std::string& session_json);
 
 // Writes `text` to `path` whole or not at all (a temporary file renamed over it, fsynced).
 // False with *error naming the file.

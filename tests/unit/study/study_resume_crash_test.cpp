@@ -131,6 +131,21 @@ TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOn
   EXPECT_EQ(reference_counts.answers.size(), 3u);
   const std::string answers = readText(whole + "/questionnaire.csv");
   EXPECT_EQ(answers, "participant,Q1,Q2,Q3\nC01,4,2,5\n");
+  // A run resuming the completed session whose pen never connects keeps the pen an earlier run
+  // recorded in session.json (it wrote null there once: a last restart that ended before its
+  // pen connected).
+  {
+    const test::CommandRun penless = test::runCommand(
+        std::string(CB_CLOUDBRUSH_BIN) + " study run " + protocol_path +
+        " --display surfaceless --size " + std::to_string(kW) + "x" + std::to_string(kH) +
+        " --grid 64 --participant 1 --backend none --end-seconds 0.3 --seconds 90 --resume " +
+        whole);
+    ASSERT_EQ(penless.status, 0) << penless.out;
+    const std::string json = readText(whole + "/session.json");
+    EXPECT_NE(json.find("\"serial\": null, \"serial_note\": \"replay: "), std::string::npos)
+        << json;
+    EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
+  }
 
   unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
   if (const char* fixed = std::getenv("CB_CRASH_SEED"))
