@@ -17,7 +17,7 @@
 // GPUs do), so a position rounded the same way and moved by a whole number of texels (the slot's
 // offset, exact in float) filters with exactly the weights the dense texture used, and the pool
 // reproduces the dense texture's images bit for bit (tests/golden/render/dense_reference_test).
-uniform sampler3D u_pool;
+uniform sampler2DArray u_pool;
 uniform sampler3D u_bricks;
 uniform vec3 u_dims;              // voxels
 uniform ivec3 u_brick_max;        // bricks per axis − 1
@@ -55,16 +55,27 @@ PoolBrick poolBrickAt(vec3 q) {
   return pb;
 }
 
+// Density and transmittance at fixed-point pool position p (inside a slot): the texture unit's
+// bilinear fetch in x and y of layer ⌊p.z − ½⌋, whose texels hold that layer's bytes (rg) and the
+// next layer's (ba), then the lerp in z as the texture unit does it in 8 bits.
+vec2 poolFetch(vec3 p) {
+  float z = p.z - 0.5 * kFixed;
+  float layer = floor(z * (1.0 / kFixed));
+  float w = z - layer * kFixed;
+  vec4 c = round(textureLod(u_pool, vec3(p.xy * u_inv_pool_fixed.xy, layer), 0.0) * 255.0);
+  return (c.rg + floor(((c.ba - c.rg) * w + 128.0) * (1.0 / kFixed))) * (1.0 / 255.0);
+}
+
 // Density and transmittance at fixed-point voxel position q, anywhere in pb's slot (clamped to
 // it: beyond the volume's faces that is the dense texture's CLAMP_TO_EDGE).
 vec2 samplePool(vec3 q, PoolBrick pb) {
-  return textureLod(u_pool, clamp(q + pb.to_pool, pb.lo, pb.hi) * u_inv_pool_fixed, 0.0).rg;
+  return poolFetch(clamp(q + pb.to_pool, pb.lo, pb.hi));
 }
 
 // The same for a sample of a chunk whose lowest corner lies in pb's cell: inside the slot by
 // construction, except below the volume's low faces (clamped there, as CLAMP_TO_EDGE does).
 vec2 sampleChunk(vec3 q, PoolBrick pb) {
-  return textureLod(u_pool, max(q + pb.to_pool, pb.lo) * u_inv_pool_fixed, 0.0).rg;
+  return poolFetch(max(q + pb.to_pool, pb.lo));
 }
 
 // Density and transmittance at dense texture coordinate `coord` (voxel i at (i + ½)/dims; what

@@ -11,7 +11,7 @@ namespace cb {
 namespace {
 
 // The first pool: 64³ texels, 3³ slots of 20³ (the empty slot and 26 free ones, 512 KiB).
-constexpr glm::ivec3 kInitialTexels{64, 64, 64};
+constexpr glm::ivec3 kInitialTexels{64, 64, 20};
 // Slots packed into one staging buffer before their uploads (≈ 5 MB).
 constexpr size_t kUploadBatch = 512;
 
@@ -34,9 +34,9 @@ bool valid(glm::ivec3 b, glm::ivec3 dims) {
 const std::vector<uint8_t>& emptySlotBytes() {
   static const std::vector<uint8_t> empty = [] {
     std::vector<uint8_t> e(BrickPool::kSlotBytes);
-    for (size_t i = 0; i < e.size(); i += 2) {
-      e[i] = 0;
-      e[i + 1] = 255;
+    for (size_t i = 0; i < e.size(); i += 4) {
+      e[i] = e[i + 2] = 0;
+      e[i + 1] = e[i + 3] = 255;
     }
     return e;
   }();
@@ -62,7 +62,8 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
   }
   const int nx = std::min(S, dims.x - lo.x);  // texels of a row inside the volume (≥ 1)
   float d[S], t[S];
-  const size_t row_bytes = 2 * size_t(S);
+  constexpr size_t T = BrickPool::kTexelBytes;
+  const size_t row_bytes = T * size_t(S);
   for (int k = 0; k < S; ++k)
     for (int j = 0; j < S; ++j) {
       uint8_t* o = out + row_bytes * size_t(k * S + j);
@@ -79,10 +80,21 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
       volume.readLine({lo.x, y, z}, 0, nx, d);
       light.readRow({lo.x, y, z}, nx, t);  // a row at a time: cheaper than at() per voxel
       for (int i = 0; i < S; ++i) {
-        o[2 * i] = unorm8(d[std::min(i, nx - 1)]);
-        o[2 * i + 1] = unorm8(t[std::min(i, nx - 1)]);
+        o[T * i] = unorm8(d[std::min(i, nx - 1)]);
+        o[T * i + 1] = unorm8(t[std::min(i, nx - 1)]);
       }
     }
+  // Bytes 2 and 3: the next layer's own bytes (the last layer repeats its own: the chunk reads
+  // it only with z weight 0).
+  const size_t layer_bytes = row_bytes * S;
+  for (int k = 0; k < S; ++k) {
+    uint8_t* o = out + layer_bytes * size_t(k);
+    const uint8_t* up = out + layer_bytes * size_t(std::min(k + 1, S - 1));
+    for (size_t i = 0; i < layer_bytes; i += T) {
+      o[i + 2] = up[i];
+      o[i + 3] = up[i + 1];
+    }
+  }
 }
 
 uint64_t slotHash(const uint8_t* slot) {
@@ -105,7 +117,8 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
   // dilation of the non-zero densities, one axis at a time).
   uint8_t near[N], scratch[N];
-  for (size_t i = 0; i < N; ++i) near[i] = now[2 * i] != 0;
+  constexpr size_t T = BrickPool::kTexelBytes;
+  for (size_t i = 0; i < N; ++i) near[i] = now[T * i] != 0;
   const size_t strides[3] = {1, size_t(S), size_t(S) * S};
   for (int axis = 0; axis < 3; ++axis) {
     const size_t st = strides[axis];
@@ -129,8 +142,9 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   for (int z = 0; z < S; ++z)
     for (int y = 0; y < S; ++y)
       for (int x = 0; x < S; ++x, ++i) {
-        const bool density = before[2 * i] != now[2 * i];
-        const bool light = before[2 * i + 1] != now[2 * i + 1];
+        // A texel's own bytes (0 and 1); bytes 2 and 3 repeat the next layer's.
+        const bool density = before[T * i] != now[T * i];
+        const bool light = before[T * i + 1] != now[T * i + 1];
         if (!density && !light) continue;
         const glm::ivec3 t(x, y, z);
         const int k = (z / B * blocks + y / B) * blocks + x / B;
@@ -190,23 +204,41 @@ void BrickPool::freeEverySlot() {
 }
 
 glm::ivec3 BrickPool::texelsFor(glm::ivec3 texels, size_t needed, bool* full) const {
-  GLint max_size = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_size);
-  // Power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most 255 slots per axis
-  // (slot coordinates are 8-bit).
+  GLint max_size = 0, max_layers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  // Rows and columns: power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most
+  // 255 slots per axis (slot coordinates are 8-bit). Layers: whole slots (the shader addresses
+  // them by index), at most 255 slots.
   int max_texels = 1;
   while (max_texels * 2 <= max_size && (max_texels * 2) / kSlotTexels <= 255) max_texels *= 2;
-  // Double one axis at a time (the smallest first) until the slots fit.
+  const int max_layer_slots = std::min(255, max_layers / kSlotTexels);
+  // Double one axis's slots at a time (the one with fewest first) until the slots fit.
   *full = false;
   while (slotsIn(texels) < needed) {
+    const glm::ivec3 cap = texels / kSlotTexels;
     int axis = 0;
     for (int a = 1; a < 3; ++a)
-      if (texels[a] < texels[axis]) axis = a;
-    if (texels[axis] * 2 > max_texels) {
-      *full = true;  // the smallest axis is at the limit, so all are
-      break;
+      if (cap[a] < cap[axis]) axis = a;
+    if (axis == 2 ? cap.z * 2 > max_layer_slots : texels[axis] * 2 > max_texels) {
+      // Try the other axes before giving up.
+      bool grown = false;
+      for (int a = 0; a < 3 && !grown; ++a) {
+        if (a == 2 && cap.z * 2 <= max_layer_slots) {
+          texels.z *= 2;
+          grown = true;
+        } else if (a < 2 && texels[a] * 2 <= max_texels) {
+          texels[a] *= 2;
+          grown = true;
+        }
+      }
+      if (!grown) {
+        *full = true;
+        break;
+      }
+      continue;
     }
-    texels[axis] *= 2;
+    texels[axis] *= 2;  // layers are whole slots, so doubling them doubles the slots
   }
   return texels;
 }
@@ -238,24 +270,24 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   if (pool_texture_ && texels == pool_texels_) return false;
   const glm::ivec3 cap = texels / kSlotTexels;
   GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_3D, 1, &texture);
-  glTextureStorage3D(texture, 1, GL_RG8, texels.x, texels.y, texels.z);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+  glTextureStorage3D(texture, 1, GL_RGBA8, texels.x, texels.y, texels.z);
   if (glGetError() == GL_OUT_OF_MEMORY) {
     glDeleteTextures(1, &texture);
     std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
-                 size_t(texels.x) * size_t(texels.y) * size_t(texels.z) * 2);
+                 size_t(texels.x) * size_t(texels.y) * size_t(texels.z) * kTexelBytes);
     return false;
   }
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
     glTextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
   if (pool_texture_) {
     // Slots keep their coordinates: copy the old pool into the corner of the new one (on the
     // GPU, nothing re-packed) and free the slots that are new.
     const glm::ivec3 old = pool_texels_;
-    glCopyImageSubData(pool_texture_, GL_TEXTURE_3D, 0, 0, 0, 0, texture, GL_TEXTURE_3D, 0, 0, 0, 0,
-                       old.x, old.y, old.z);
+    glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture,
+                       GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, old.x, old.y, old.z);
     glDeleteTextures(1, &pool_texture_);
     std::vector<glm::u8vec4> added;
     for (int z = cap.z - 1; z >= 0; --z)
@@ -267,7 +299,7 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     stats->grew = true;
   } else {
     resetUnpackState();
-    glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+    glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RGBA,
                         GL_UNSIGNED_BYTE, emptySlotBytes().data());
   }
   pool_texture_ = texture;
@@ -456,7 +488,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
           // pack state).
           before.resize(kSlotBytes);
           glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                               kSlotTexels, GL_RG, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
+                               kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
                                before.data());
           old = before.data();
         }
@@ -474,7 +506,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         }
       }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
-                          GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
+                          GL_RGBA, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
     }
     st.upload_ms += msSince(t0);
   }

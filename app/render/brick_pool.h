@@ -48,7 +48,11 @@ class BrickPool {
   // Per axis: a brick, the first voxel of the next one and kApron more.
   static constexpr int kApron = 3;
   static constexpr int kSlotTexels = Volume::kBrickSize + 1 + kApron;
-  static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
+  // RGBA8 texels: density and transmittance of the texel's own voxel, then of the voxel above
+  // it in z (the next layer's r and g).
+  static constexpr size_t kTexelBytes = 4;
+  static constexpr size_t kSlotBytes =
+      size_t(kSlotTexels) * kSlotTexels * kSlotTexels * kTexelBytes;
   static_assert(kSlotTexels - Volume::kBrickSize == LightByteChanges::kLowVoxels);
 
   struct UpdateStats {
@@ -119,7 +123,7 @@ class BrickPool {
   glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
   // GL texture bytes: the pool and the indirection table.
   size_t poolBytes() const {
-    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * 2;
+    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * kTexelBytes;
   }
   size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
   // CPU bytes of the tables (indirection copy, free list, marks).
