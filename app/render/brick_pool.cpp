@@ -10,8 +10,8 @@
 namespace cb {
 namespace {
 
-// The first pool: 64³ texels, 3³ slots of 20³ (the empty slot and 26 free ones, 512 KiB).
-constexpr glm::ivec3 kInitialTexels{64, 64, 20};
+// The first pool: 3 × 3 × 1 slots of 20³ texels (the empty slot and 8 free ones, 281 KiB).
+constexpr glm::ivec3 kInitialSlots{3, 3, 1};
 // Slots packed into one staging buffer before their uploads (≈ 5 MB).
 constexpr size_t kUploadBatch = 512;
 
@@ -203,50 +203,33 @@ void BrickPool::freeEverySlot() {
         if (x || y || z) free_slots_.push_back(glm::u8vec4(x, y, z, 1));
 }
 
-glm::ivec3 BrickPool::texelsFor(glm::ivec3 texels, size_t needed, bool* full) const {
+glm::ivec3 BrickPool::slotsFor(glm::ivec3 slots, size_t needed, bool* full) const {
   GLint max_size = 0, max_layers = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-  // Rows and columns: power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most
-  // 255 slots per axis (slot coordinates are 8-bit). Layers: whole slots (the shader addresses
-  // them by index), at most 255 slots.
-  int max_texels = 1;
-  while (max_texels * 2 <= max_size && (max_texels * 2) / kSlotTexels <= 255) max_texels *= 2;
-  const int max_layer_slots = std::min(255, max_layers / kSlotTexels);
-  // Double one axis's slots at a time (the one with fewest first) until the slots fit.
+  // At most 255 slots per axis (slot coordinates are 8-bit) and what GL allows.
+  const int across = std::min(255, max_size / kSlotTexels);
+  const glm::ivec3 most(across, across, std::min(255, max_layers / kSlotTexels));
   *full = false;
-  while (slotsIn(texels) < needed) {
-    const glm::ivec3 cap = texels / kSlotTexels;
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-      if (cap[a] < cap[axis]) axis = a;
-    if (axis == 2 ? cap.z * 2 > max_layer_slots : texels[axis] * 2 > max_texels) {
-      // Try the other axes before giving up.
-      bool grown = false;
-      for (int a = 0; a < 3 && !grown; ++a) {
-        if (a == 2 && cap.z * 2 <= max_layer_slots) {
-          texels.z *= 2;
-          grown = true;
-        } else if (a < 2 && texels[a] * 2 <= max_texels) {
-          texels[a] *= 2;
-          grown = true;
-        }
-      }
-      if (!grown) {
-        *full = true;
-        break;
-      }
-      continue;
+  while (slotCount(slots) < needed) {
+    // One more slot column, row or layer on the axis with the fewest (the pool stays near a
+    // cube, so each step adds few slots beyond what is needed).
+    int axis = -1;
+    for (int a = 0; a < 3; ++a)
+      if (slots[a] < most[a] && (axis < 0 || slots[a] < slots[axis])) axis = a;
+    if (axis < 0) {
+      *full = true;
+      break;
     }
-    texels[axis] *= 2;  // layers are whole slots, so doubling them doubles the slots
+    ++slots[axis];
   }
-  return texels;
+  return slots;
 }
 
 bool BrickPool::fitFresh(size_t slots, UpdateStats* stats) {
   bool full = false;
-  const glm::ivec3 fitted = texelsFor(kInitialTexels, slots + 1, &full);
-  if (!pool_texture_ || slotsIn(fitted) >= slotsIn(pool_texels_)) return false;
+  const glm::ivec3 fitted = slotsFor(kInitialSlots, withHeadroom(slots + 1), &full);
+  if (!pool_texture_ || slotCount(fitted) >= slotCapacity()) return false;
   glDeleteTextures(1, &pool_texture_);
   pool_texture_ = 0;
   capacity_ = glm::ivec3(0);
@@ -259,23 +242,24 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   const size_t needed = slots + 1;  // and the empty slot
   if (pool_texture_ && slotCapacity() >= needed) return true;
   bool full = false;
-  const glm::ivec3 texels = texelsFor(pool_texture_ ? pool_texels_ : kInitialTexels, needed, &full);
-  if (full && !full_reported_) {
+  const glm::ivec3 cap =
+      slotsFor(pool_texture_ ? capacity_ : kInitialSlots, withHeadroom(needed), &full);
+  if (slotCount(cap) < needed && !full_reported_) {
     std::fprintf(stderr,
                  "cloudbrush: render: the brick pool is full (%zu slots needed, at most %zu fit "
-                 "in 3D textures of %d texels per axis): bricks beyond it show empty\n",
-                 needed, slotsIn(texels), texels.x);
+                 "in a texture of %d x %d x %d slots): bricks beyond it show empty\n",
+                 needed, slotCount(cap), cap.x, cap.y, cap.z);
     full_reported_ = true;
   }
-  if (pool_texture_ && texels == pool_texels_) return false;
-  const glm::ivec3 cap = texels / kSlotTexels;
+  if (pool_texture_ && cap == capacity_) return false;
+  const glm::ivec3 texels = cap * kSlotTexels;
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
   glTextureStorage3D(texture, 1, GL_RGBA8, texels.x, texels.y, texels.z);
   if (glGetError() == GL_OUT_OF_MEMORY) {
     glDeleteTextures(1, &texture);
     std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
-                 size_t(texels.x) * size_t(texels.y) * size_t(texels.z) * kTexelBytes);
+                 slotCount(cap) * kSlotBytes);
     return false;
   }
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -305,7 +289,7 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   pool_texture_ = texture;
   pool_texels_ = texels;
   capacity_ = cap;
-  return slotsIn(texels) >= needed;
+  return slotCount(cap) >= needed;
 }
 
 void BrickPool::uploadIndirection(const VoxelBox& bricks) {

@@ -118,7 +118,7 @@ class BrickPool {
   // Bricks holding a slot of their own (the empty slot not counted).
   size_t slotsInUse() const { return slots_in_use_; }
   // Slots the pool texture holds (including the empty slot and free ones).
-  size_t slotCapacity() const { return size_t(capacity_.x) * capacity_.y * capacity_.z; }
+  size_t slotCapacity() const { return slotCount(capacity_); }
   // The slot coordinates of brick b ((0,0,0): the empty slot).
   glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
   // GL texture bytes: the pool and the indirection table.
@@ -137,14 +137,15 @@ class BrickPool {
   void resetTables(glm::ivec3 brick_dims);
   // Puts every slot but the empty one on the free list.
   void freeEverySlot();
-  // Slots a pool texture of `texels` holds.
-  static size_t slotsIn(glm::ivec3 texels) {
-    const glm::ivec3 c = texels / kSlotTexels;
-    return size_t(c.x) * size_t(c.y) * size_t(c.z);
+  static size_t slotCount(glm::ivec3 slots) {
+    return size_t(slots.x) * size_t(slots.y) * size_t(slots.z);
   }
-  // The pool size for `needed` slots: `texels` with one axis doubled at a time (the smallest
-  // first) until they fit; `full` when the GL limit stopped it short.
-  glm::ivec3 texelsFor(glm::ivec3 texels, size_t needed, bool* full) const;
+  // What a pool is sized for when it must hold `needed` slots: a quarter more, because growing
+  // copies the whole pool (so the strokes after a fresh volume or a growth rarely grow it).
+  static size_t withHeadroom(size_t needed) { return needed + needed / 4; }
+  // The pool size in slots for `needed` slots: `slots` grown one column, row or layer at a time
+  // (the axis with the fewest first) until they fit; `full` when the limits stopped it short.
+  glm::ivec3 slotsFor(glm::ivec3 slots, size_t needed, bool* full) const;
   // With every slot free (a fresh volume): remakes the pool texture at the size `slots` need if
   // that is smaller than it is. True if it did.
   bool fitFresh(size_t slots, UpdateStats* stats);
@@ -154,7 +155,7 @@ class BrickPool {
   void uploadIndirection(const VoxelBox& bricks);
 
   glm::ivec3 brick_dims_{0};
-  glm::ivec3 pool_texels_{0};               // pool texture size (powers of two)
+  glm::ivec3 pool_texels_{0};               // pool texture size: capacity_ · kSlotTexels
   glm::ivec3 capacity_{0};                  // pool size in slots, pool_texels_ / kSlotTexels
   std::vector<glm::u8vec4> slot_of_brick_;  // per brick, as uploaded to the indirection table
   std::vector<glm::u8vec4> free_slots_;     // a stack
