@@ -62,8 +62,10 @@ vec2 poolFetch(vec3 p) {
   float z = p.z - 0.5 * kFixed;
   float layer = floor(z * (1.0 / kFixed));
   float w = z - layer * kFixed;
-  vec4 c = round(textureLod(u_pool, vec3(p.xy * u_inv_pool_fixed.xy, layer), 0.0) * 255.0);
-  return (c.rg + floor(((c.ba - c.rg) * w + 128.0) * (1.0 / kFixed))) * (1.0 / 255.0);
+  vec4 c = textureLod(u_pool, vec3(p.xy * u_inv_pool_fixed.xy, layer), 0.0);
+  vec2 lower = round(c.rg * 255.0);
+  vec2 rise = floor(((c.ba - c.rg) * (255.0 * w) + 128.5) * (1.0 / kFixed));
+  return (lower + rise) * (1.0 / 255.0);
 }
 
 // Density and transmittance at fixed-point voxel position q, anywhere in pb's slot (clamped to
