@@ -270,8 +270,8 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     // Slots keep their coordinates: copy the old pool into the corner of the new one (on the
     // GPU, nothing re-packed) and free the slots that are new.
     const glm::ivec3 old = pool_texels_;
-    glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture,
-                       GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, old.x, old.y, old.z);
+    glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY,
+                       0, 0, 0, 0, old.x, old.y, old.z);
     glDeleteTextures(1, &pool_texture_);
     std::vector<glm::u8vec4> added;
     for (int z = cap.z - 1; z >= 0; --z)
@@ -468,7 +468,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         // What rays read there before: the empty slot for an added brick, else the slot's bytes.
         const uint8_t* old = emptySlotBytes().data();
         if (state[s] == kChanged) {
-          // Rows of 40 bytes: tight under any pack alignment (the project sets no other
+          // Rows of 80 bytes: tight under any pack alignment (the project sets no other
           // pack state).
           before.resize(kSlotBytes);
           glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,

@@ -81,8 +81,8 @@ TEST(BrickPoolSlot, HoldsTheBrickAndItsHighApronClampedToTheVolume) {
           const glm::ivec3 voxel = glm::min(b * 16 + glm::ivec3(i, j, k), v.dims() - 1);
           // The texel's own voxel, then the one above it in z (the slot's last layer repeats
           // its own).
-          const glm::ivec3 up = glm::min(b * 16 + glm::ivec3(i, j, std::min(k + 1, S - 1)),
-                                         v.dims() - 1);
+          const glm::ivec3 up =
+              glm::min(b * 16 + glm::ivec3(i, j, std::min(k + 1, S - 1)), v.dims() - 1);
           const uint8_t* t = &slot[BrickPool::kTexelBytes * size_t((k * S + j) * S + i)];
           ASSERT_EQ(t[0], unorm8(v.at(voxel.x, voxel.y, voxel.z))) << i << "," << j << "," << k;
           ASSERT_EQ(t[1], unorm8(light.at(voxel.x, voxel.y, voxel.z))) << i << "," << j << "," << k;
