@@ -190,9 +190,9 @@ void main() {
         continue;
       }
 #endif
-      // Per sample: one RG8 fetch, one exp2, the shading stage; no data-dependent branch (a
-      // zero density gives α = 0 and changes nothing) because llvmpipe runs a branch's code for
-      // all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
+      // Per sample: one bilinear RGBA8 fetch and a lerp in z (volume_pool.glsl), one exp2, the
+      // shading stage; no data-dependent branch (a zero density gives α = 0 and changes nothing)
+      // because llvmpipe runs a branch's code for all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
       // step (§4.5.2 compositing, see the header).
       for (int i = 0; i < CB_CHUNK; ++i) {
 #if CB_SURFACE

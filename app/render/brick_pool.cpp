@@ -10,8 +10,8 @@
 namespace cb {
 namespace {
 
-// The first pool: 64³ texels, 3³ slots of 20³ (the empty slot and 26 free ones, 512 KiB).
-constexpr glm::ivec3 kInitialTexels{64, 64, 64};
+// The first pool: 3 × 3 × 1 slots of 20³ texels (the empty slot and 8 free ones, 281 KiB).
+constexpr glm::ivec3 kInitialSlots{3, 3, 1};
 // Slots packed into one staging buffer before their uploads (≈ 5 MB).
 constexpr size_t kUploadBatch = 512;
 
@@ -34,9 +34,9 @@ bool valid(glm::ivec3 b, glm::ivec3 dims) {
 const std::vector<uint8_t>& emptySlotBytes() {
   static const std::vector<uint8_t> empty = [] {
     std::vector<uint8_t> e(BrickPool::kSlotBytes);
-    for (size_t i = 0; i < e.size(); i += 2) {
-      e[i] = 0;
-      e[i + 1] = 255;
+    for (size_t i = 0; i < e.size(); i += 4) {
+      e[i] = e[i + 2] = 0;
+      e[i + 1] = e[i + 3] = 255;
     }
     return e;
   }();
@@ -62,7 +62,8 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
   }
   const int nx = std::min(S, dims.x - lo.x);  // texels of a row inside the volume (≥ 1)
   float d[S], t[S];
-  const size_t row_bytes = 2 * size_t(S);
+  constexpr size_t T = BrickPool::kTexelBytes;
+  const size_t row_bytes = T * size_t(S);
   for (int k = 0; k < S; ++k)
     for (int j = 0; j < S; ++j) {
       uint8_t* o = out + row_bytes * size_t(k * S + j);
@@ -79,10 +80,21 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
       volume.readLine({lo.x, y, z}, 0, nx, d);
       light.readRow({lo.x, y, z}, nx, t);  // a row at a time: cheaper than at() per voxel
       for (int i = 0; i < S; ++i) {
-        o[2 * i] = unorm8(d[std::min(i, nx - 1)]);
-        o[2 * i + 1] = unorm8(t[std::min(i, nx - 1)]);
+        o[T * i] = unorm8(d[std::min(i, nx - 1)]);
+        o[T * i + 1] = unorm8(t[std::min(i, nx - 1)]);
       }
     }
+  // Bytes 2 and 3: the next layer's own bytes (the last layer repeats its own: the chunk reads
+  // it only with z weight 0).
+  const size_t layer_bytes = row_bytes * S;
+  for (int k = 0; k < S; ++k) {
+    uint8_t* o = out + layer_bytes * size_t(k);
+    const uint8_t* up = out + layer_bytes * size_t(std::min(k + 1, S - 1));
+    for (size_t i = 0; i < layer_bytes; i += T) {
+      o[i + 2] = up[i];
+      o[i + 3] = up[i + 1];
+    }
+  }
 }
 
 uint64_t slotHash(const uint8_t* slot) {
@@ -105,7 +117,8 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
   // dilation of the non-zero densities, one axis at a time).
   uint8_t near[N], scratch[N];
-  for (size_t i = 0; i < N; ++i) near[i] = now[2 * i] != 0;
+  constexpr size_t T = BrickPool::kTexelBytes;
+  for (size_t i = 0; i < N; ++i) near[i] = now[T * i] != 0;
   const size_t strides[3] = {1, size_t(S), size_t(S) * S};
   for (int axis = 0; axis < 3; ++axis) {
     const size_t st = strides[axis];
@@ -129,8 +142,9 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   for (int z = 0; z < S; ++z)
     for (int y = 0; y < S; ++y)
       for (int x = 0; x < S; ++x, ++i) {
-        const bool density = before[2 * i] != now[2 * i];
-        const bool light = before[2 * i + 1] != now[2 * i + 1];
+        // A texel's own bytes (0 and 1); bytes 2 and 3 repeat the next layer's.
+        const bool density = before[T * i] != now[T * i];
+        const bool light = before[T * i + 1] != now[T * i + 1];
         if (!density && !light) continue;
         const glm::ivec3 t(x, y, z);
         const int k = (z / B * blocks + y / B) * blocks + x / B;
@@ -189,32 +203,33 @@ void BrickPool::freeEverySlot() {
         if (x || y || z) free_slots_.push_back(glm::u8vec4(x, y, z, 1));
 }
 
-glm::ivec3 BrickPool::texelsFor(glm::ivec3 texels, size_t needed, bool* full) const {
-  GLint max_size = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max_size);
-  // Power-of-two sizes (volume_pool.glsl: exact fixed-point scaling), at most 255 slots per axis
-  // (slot coordinates are 8-bit).
-  int max_texels = 1;
-  while (max_texels * 2 <= max_size && (max_texels * 2) / kSlotTexels <= 255) max_texels *= 2;
-  // Double one axis at a time (the smallest first) until the slots fit.
+glm::ivec3 BrickPool::slotsFor(glm::ivec3 slots, size_t needed, bool* full) const {
+  GLint max_size = 0, max_layers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  // At most 255 slots per axis (slot coordinates are 8-bit) and what GL allows.
+  const int across = std::min(255, max_size / kSlotTexels);
+  const glm::ivec3 most(across, across, std::min(255, max_layers / kSlotTexels));
   *full = false;
-  while (slotsIn(texels) < needed) {
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-      if (texels[a] < texels[axis]) axis = a;
-    if (texels[axis] * 2 > max_texels) {
-      *full = true;  // the smallest axis is at the limit, so all are
+  while (slotCount(slots) < needed) {
+    // One more slot column, row or layer on the axis with the fewest (the pool stays near a
+    // cube, so each step adds few slots beyond what is needed).
+    int axis = -1;
+    for (int a = 0; a < 3; ++a)
+      if (slots[a] < most[a] && (axis < 0 || slots[a] < slots[axis])) axis = a;
+    if (axis < 0) {
+      *full = true;
       break;
     }
-    texels[axis] *= 2;
+    ++slots[axis];
   }
-  return texels;
+  return slots;
 }
 
 bool BrickPool::fitFresh(size_t slots, UpdateStats* stats) {
   bool full = false;
-  const glm::ivec3 fitted = texelsFor(kInitialTexels, slots + 1, &full);
-  if (!pool_texture_ || slotsIn(fitted) >= slotsIn(pool_texels_)) return false;
+  const glm::ivec3 fitted = slotsFor(kInitialSlots, withHeadroom(slots + 1), &full);
+  if (!pool_texture_ || slotCount(fitted) >= slotCapacity()) return false;
   glDeleteTextures(1, &pool_texture_);
   pool_texture_ = 0;
   capacity_ = glm::ivec3(0);
@@ -227,35 +242,36 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   const size_t needed = slots + 1;  // and the empty slot
   if (pool_texture_ && slotCapacity() >= needed) return true;
   bool full = false;
-  const glm::ivec3 texels = texelsFor(pool_texture_ ? pool_texels_ : kInitialTexels, needed, &full);
-  if (full && !full_reported_) {
+  const glm::ivec3 cap =
+      slotsFor(pool_texture_ ? capacity_ : kInitialSlots, withHeadroom(needed), &full);
+  if (slotCount(cap) < needed && !full_reported_) {
     std::fprintf(stderr,
                  "cloudbrush: render: the brick pool is full (%zu slots needed, at most %zu fit "
-                 "in 3D textures of %d texels per axis): bricks beyond it show empty\n",
-                 needed, slotsIn(texels), texels.x);
+                 "in a texture of %d x %d x %d slots): bricks beyond it show empty\n",
+                 needed, slotCount(cap), cap.x, cap.y, cap.z);
     full_reported_ = true;
   }
-  if (pool_texture_ && texels == pool_texels_) return false;
-  const glm::ivec3 cap = texels / kSlotTexels;
+  if (pool_texture_ && cap == capacity_) return false;
+  const glm::ivec3 texels = cap * kSlotTexels;
   GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_3D, 1, &texture);
-  glTextureStorage3D(texture, 1, GL_RG8, texels.x, texels.y, texels.z);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+  glTextureStorage3D(texture, 1, GL_RGBA8, texels.x, texels.y, texels.z);
   if (glGetError() == GL_OUT_OF_MEMORY) {
     glDeleteTextures(1, &texture);
     std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
-                 size_t(texels.x) * size_t(texels.y) * size_t(texels.z) * 2);
+                 slotCount(cap) * kSlotBytes);
     return false;
   }
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
     glTextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
   if (pool_texture_) {
     // Slots keep their coordinates: copy the old pool into the corner of the new one (on the
     // GPU, nothing re-packed) and free the slots that are new.
     const glm::ivec3 old = pool_texels_;
-    glCopyImageSubData(pool_texture_, GL_TEXTURE_3D, 0, 0, 0, 0, texture, GL_TEXTURE_3D, 0, 0, 0, 0,
-                       old.x, old.y, old.z);
+    glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY,
+                       0, 0, 0, 0, old.x, old.y, old.z);
     glDeleteTextures(1, &pool_texture_);
     std::vector<glm::u8vec4> added;
     for (int z = cap.z - 1; z >= 0; --z)
@@ -267,13 +283,13 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     stats->grew = true;
   } else {
     resetUnpackState();
-    glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+    glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RGBA,
                         GL_UNSIGNED_BYTE, emptySlotBytes().data());
   }
   pool_texture_ = texture;
   pool_texels_ = texels;
   capacity_ = cap;
-  return slotsIn(texels) >= needed;
+  return slotCount(cap) >= needed;
 }
 
 void BrickPool::uploadIndirection(const VoxelBox& bricks) {
@@ -452,11 +468,11 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         // What rays read there before: the empty slot for an added brick, else the slot's bytes.
         const uint8_t* old = emptySlotBytes().data();
         if (state[s] == kChanged) {
-          // Rows of 40 bytes: tight under any pack alignment (the project sets no other
+          // Rows of 80 bytes: tight under any pack alignment (the project sets no other
           // pack state).
           before.resize(kSlotBytes);
           glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                               kSlotTexels, GL_RG, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
+                               kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
                                before.data());
           old = before.data();
         }
@@ -474,7 +490,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         }
       }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
-                          GL_RG, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
+                          GL_RGBA, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
     }
     st.upload_ms += msSince(t0);
   }

@@ -1,11 +1,16 @@
 // The GPU copy of a sparse Volume and its light volume (issue 15): a brick pool texture with an
 // indirection table, after the bricks of GigaVoxels / NanoVDB-style sparse textures.
 //
-//  - Pool: one RG8 3D texture (r = density, g = transmittance towards the light) of slots of
-//    kSlotTexels³ = 20³ texels. The slot of brick b holds voxels 16b … 16b+19 on each axis: its
-//    own 16, the first voxel of the next brick and an apron of kApron = 3 more (so a chunk of up
-//    to 4 ray samples, looked up once, stays inside one slot); indices are clamped to the volume
-//    as a dense texture's CLAMP_TO_EDGE would.
+//  - Pool: one RGBA8 2D array texture of slots of kSlotTexels³ = 20³ texels (20 × 20 texels on
+//    20 layers). The slot of brick b holds voxels 16b … 16b+19 on each axis: its own 16, the
+//    first voxel of the next brick and an apron of kApron = 3 more (so a chunk of up to 4 ray
+//    samples, looked up once, stays inside one slot); indices are clamped to the volume as a
+//    dense texture's CLAMP_TO_EDGE would. A texel holds its voxel's density and transmittance
+//    towards the light (r, g) and those of the voxel above it in z, the next layer's r and g
+//    (b, a; the slot's last layer repeats its own). So one bilinear fetch reads all 8 voxels a
+//    trilinear sample needs — 4 texels where a 3D RG8 texture's trilinear fetch gathered 8,
+//    which llvmpipe's per-lane gathers are paid by — and the shader lerps in z. Twice the bytes
+//    of an RG8 3D pool.
 //  - Indirection: one RGBA8 texel per brick (Volume::brickDims), read with nearest filtering,
 //    holding the slot's coordinates in slots and a = 1; (0,0,0,0) is the empty slot (all density
 //    0), shared by every brick without one. (RGBA8 rather than an integer texture: llvmpipe's
@@ -13,21 +18,22 @@
 //
 // Lookup rule (shaders/volume_pool.glsl): a voxel-space point p is sampled in the slot of brick
 // b = ⌊(p − ½)/16⌋ (clamped to the bricks), its "cell" being [16b + ½, 16b + 16½) per axis.
-// Hardware trilinear filtering at p reads voxels ⌊p − ½⌋ and ⌊p − ½⌋ + 1, both within
-// 16b … 16b+16 (… 16b+19 for the rest of a chunk), so a sample inside its slot gives exactly what
-// the dense texture gave. Hence a brick needs a slot when any voxel it can read is non-zero,
-// i.e. when one of the bricks b + {0,1}³ is allocated (this covers an empty brick whose high
-// neighbour holds the density a sample within half a voxel of their face blends in). Every
-// other brick reads the empty slot: zero density, which is what the dense texture held there
-// (its transmittance is then never weighted: a sample of zero density is transparent, and an
-// iso-surface is never hit there).
+// Trilinear filtering at p (the texture unit's bilinear in x and y, the shader's lerp in z) reads
+// voxels ⌊p − ½⌋ and ⌊p − ½⌋ + 1, both within 16b … 16b+16 (… 16b+19 for the rest of a chunk),
+// so a sample inside its slot gives exactly what the dense texture gave. Hence a brick needs a slot
+// when any voxel it can read is non-zero, i.e. when one of the bricks b + {0,1}³ is allocated (this
+// covers an empty brick whose high neighbour holds the density a sample within half a voxel of
+// their face blends in). Every other brick reads the empty slot: zero density, which is what the
+// dense texture held there (its transmittance is then never weighted: a sample of zero density is
+// transparent, and an iso-surface is never hit there).
 //
 // Updates follow the bricks that changed: a changed density brick c refreshes the slots of
 // c − {0,1}³ (allocating or releasing them as the rule above now says) and a light box the slots
-// whose voxels meet it. Released slots are reused; the pool grows (doubling one axis of its
-// power-of-two size, copied on the GPU with glCopyImageSubData) only when it runs out, so slots
-// keep their coordinates and nothing is re-packed. A fresh volume (another one, or new dims) gets
-// a pool of the size it needs: one that held a bigger cloud before is made anew, smaller.
+// whose voxels meet it. Released slots are reused; the pool grows (a slot column, row or layer
+// at a time to a quarter more slots than needed, copied on the GPU with glCopyImageSubData) only
+// when it runs out, so slots keep their coordinates and nothing is re-packed. A fresh volume
+// (another one, or new dims) gets a pool of the size it needs: one that held a bigger cloud before
+// is made anew, smaller.
 #pragma once
 
 #include <cstddef>
@@ -48,7 +54,11 @@ class BrickPool {
   // Per axis: a brick, the first voxel of the next one and kApron more.
   static constexpr int kApron = 3;
   static constexpr int kSlotTexels = Volume::kBrickSize + 1 + kApron;
-  static constexpr size_t kSlotBytes = size_t(kSlotTexels) * kSlotTexels * kSlotTexels * 2;
+  // RGBA8 texels: density and transmittance of the texel's own voxel, then of the voxel above
+  // it in z (the next layer's r and g).
+  static constexpr size_t kTexelBytes = 4;
+  static constexpr size_t kSlotBytes =
+      size_t(kSlotTexels) * kSlotTexels * kSlotTexels * kTexelBytes;
   static_assert(kSlotTexels - Volume::kBrickSize == LightByteChanges::kLowVoxels);
 
   struct UpdateStats {
@@ -108,18 +118,18 @@ class BrickPool {
 
   GLuint poolTexture() const { return pool_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
-  // The pool texture's size in texels (powers of two; slots fill (size / 20)³ of it).
+  // The pool texture's size in texels (whole slots: 20 × its size in slots).
   glm::ivec3 poolTexels() const { return pool_texels_; }
   glm::ivec3 brickDims() const { return brick_dims_; }
   // Bricks holding a slot of their own (the empty slot not counted).
   size_t slotsInUse() const { return slots_in_use_; }
   // Slots the pool texture holds (including the empty slot and free ones).
-  size_t slotCapacity() const { return size_t(capacity_.x) * capacity_.y * capacity_.z; }
+  size_t slotCapacity() const { return slotCount(capacity_); }
   // The slot coordinates of brick b ((0,0,0): the empty slot).
   glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
   // GL texture bytes: the pool and the indirection table.
   size_t poolBytes() const {
-    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * 2;
+    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * kTexelBytes;
   }
   size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
   // CPU bytes of the tables (indirection copy, free list, marks).
@@ -133,14 +143,15 @@ class BrickPool {
   void resetTables(glm::ivec3 brick_dims);
   // Puts every slot but the empty one on the free list.
   void freeEverySlot();
-  // Slots a pool texture of `texels` holds.
-  static size_t slotsIn(glm::ivec3 texels) {
-    const glm::ivec3 c = texels / kSlotTexels;
-    return size_t(c.x) * size_t(c.y) * size_t(c.z);
+  static size_t slotCount(glm::ivec3 slots) {
+    return size_t(slots.x) * size_t(slots.y) * size_t(slots.z);
   }
-  // The pool size for `needed` slots: `texels` with one axis doubled at a time (the smallest
-  // first) until they fit; `full` when the GL limit stopped it short.
-  glm::ivec3 texelsFor(glm::ivec3 texels, size_t needed, bool* full) const;
+  // What a pool is sized for when it must hold `needed` slots: a quarter more, because growing
+  // copies the whole pool (so the strokes after a fresh volume or a growth rarely grow it).
+  static size_t withHeadroom(size_t needed) { return needed + needed / 4; }
+  // The pool size in slots for `needed` slots: `slots` grown one column, row or layer at a time
+  // (the axis with the fewest first) until they fit; `full` when the limits stopped it short.
+  glm::ivec3 slotsFor(glm::ivec3 slots, size_t needed, bool* full) const;
   // With every slot free (a fresh volume): remakes the pool texture at the size `slots` need if
   // that is smaller than it is. True if it did.
   bool fitFresh(size_t slots, UpdateStats* stats);
@@ -150,7 +161,7 @@ class BrickPool {
   void uploadIndirection(const VoxelBox& bricks);
 
   glm::ivec3 brick_dims_{0};
-  glm::ivec3 pool_texels_{0};               // pool texture size (powers of two)
+  glm::ivec3 pool_texels_{0};               // pool texture size: capacity_ · kSlotTexels
   glm::ivec3 capacity_{0};                  // pool size in slots, pool_texels_ / kSlotTexels
   std::vector<glm::u8vec4> slot_of_brick_;  // per brick, as uploaded to the indirection table
   std::vector<glm::u8vec4> free_slots_;     // a stack
@@ -161,9 +172,10 @@ class BrickPool {
   bool full_reported_ = false;
 };
 
-// Packs the slot of `brick` (BrickPool's layout: 20³ RG8 texels, x fastest; texel j on an axis
+// Packs the slot of `brick` (BrickPool's layout: 20³ RGBA8 texels, x fastest; texel j on an axis
 // is voxel min(16·b + j, dim − 1)): density clamped to [0,1] and the light's transmittance, both
-// rounded to 8 bits. Reads transmittance only through LightVolume::at.
+// rounded to 8 bits, of the texel's voxel (bytes 0, 1) and of the texel above it in z (bytes 2,
+// 3; the last layer's are its own). Reads transmittance only through LightVolume::at.
 void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out);
 
 // A 64-bit hash of one packed slot (kSlotBytes), never 0 (0 marks "no slot").
@@ -172,7 +184,8 @@ uint64_t slotHash(const uint8_t* slot);
 // The texels of two packed slots (kSlotBytes each) that differ: appends one SlotChange per
 // block of BrickPool::kChangeBlockTexels³ texels holding a changed one, its boxes in texel
 // coordinates of the slot (lo inclusive, hi exclusive; `weighted` judged by `now`'s densities)
-// and `brick` left 0. Nothing when the slots are equal.
+// and `brick` left 0. Nothing when the slots are equal. A texel counts by its own bytes (0 and 1):
+// bytes 2 and 3 repeat the next layer's, which counts for itself.
 void slotDifference(const uint8_t* before, const uint8_t* now,
                     std::vector<BrickPool::SlotChange>* out);
 

@@ -100,7 +100,7 @@ struct SyncStats {
   bool pool_grew = false;     // the brick pool was reallocated to hold more slots
   double occupancy_ms = 0.0;  // updateOccupancy
   double light_ms = 0.0;      // sweepLightVolume
-  double pack_ms = 0.0;       // packing density + transmittance into pool slots (RG8)
+  double pack_ms = 0.0;       // packing density + transmittance into pool slots (RGBA8)
   double upload_ms = 0.0;     // glTextureSubImage3D calls (occupancy, pool slots, indirection)
 };
 
