@@ -909,9 +909,11 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
-    if (!sky_under && bounds_rect != glm::ivec4(0, 0, w, h)) {
+    if (reduced && !sky_under && bounds_rect != glm::ivec4(0, 0, w, h)) {
       // Outside bounds_rect the image is the background, and so is every target pixel whose
       // bilinear footprint lies there: cleared (a memset per tile for llvmpipe), not filtered.
+      // (At full size the blit is a plain copy, cheaper whole than a clear and a smaller copy:
+      // 0.9 against 2.2 ms at 1920×1080.)
       // The blit keeps its whole-image mapping and is scissored to the target pixels whose
       // footprint (2 texels per axis) may meet bounds_rect.
       glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
