@@ -10,6 +10,7 @@
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
 #include "app/tools/procedural_mesh.h"
+#include "tests/support/session_painter.h"
 
 namespace cb {
 namespace {
@@ -22,25 +23,8 @@ double total(const Volume& v) {
   return sum;
 }
 
-struct Painter {
-  PaintSession session{{kW, kH, kGrid}, BrushConfig{}, MappingConfig{}};
-  PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  int64_t t = 1'000'000'000;
-  Painter() {
-    session.setQuietMapping(true);
-    session.setDevice(tablet, 0);
-  }
-  void stroke(const SyntheticStroke& s) {
-    for (const PenSample& sample : syntheticPenSamples(s, tablet, kW, kH, 200.0, t)) {
-      session.feed(sample);
-      t = sample.t_ns;
-    }
-    t += 100'000'000;
-  }
-  void apply(const UiChange& c) {
-    std::string error;
-    ASSERT_TRUE(session.apply(c, t, &error)) << error;
-  }
+struct Painter : test::SessionPainter {
+  Painter() : SessionPainter({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}) {}
 };
 
 TEST(SessionModes, OnlyPaintModePaintsAndRubOutCutsAlongTheView) {

@@ -27,6 +27,7 @@
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
 #include "app/volume/scene_generators.h"
+#include "tests/support/session_painter.h"
 #include "tests/unit/mapping/rendered_opacity.h"
 #include "tests/unit/render/gl_test_context.h"
 
@@ -58,26 +59,11 @@ Camera pannedPaintCamera(glm::vec3 shift) {
 // The view centred on the default sky's +x edge (x = 4): the gentle curve crosses it.
 const Camera kEdgeView = pannedPaintCamera(glm::vec3(float(kDefaultSkySpan), 0.0f, 0.0f));
 
-struct Painter {
+// The painter with the product's brushes and mapping.
+struct Painter : test::SessionPainter {
   explicit Painter(const PaintSessionSettings& settings = productSettings())
-      : session(settings, loadDefaultBrushConfig(), loadMappingConfig(configFile("mapping.toml"))) {
-    session.setQuietMapping(true);
-    session.setDevice(tablet, 0);
-  }
-  void stroke(const SyntheticStroke& s) {
-    for (const PenSample& sample : syntheticPenSamples(s, tablet, kW, kH, 200.0, t)) {
-      session.feed(sample);
-      t = sample.t_ns;
-    }
-    t += 100'000'000;
-  }
-  void apply(const UiChange& c) {
-    std::string error;
-    ASSERT_TRUE(session.apply(c, t, &error)) << error;
-  }
-  PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  PaintSession session;
-  int64_t t = 1'000'000'000;
+      : SessionPainter(settings, loadDefaultBrushConfig(),
+                       loadMappingConfig(configFile("mapping.toml"))) {}
 };
 
 // `v` (a sky of extent `from`) as it sits in the wider sky `to`: a copy grown around it.
