@@ -158,7 +158,12 @@ void main() {
 #if !CB_SURFACE
     float neg_optical_depth_log2 = -u_sigma * u_step * 1.4426950408889634;
 #endif
-    while (k < n) {
+    // A do-while, not a while: llvmpipe runs a loop's body until no lane is active and tests at
+    // the bottom, so a `while` costs every group of lanes one more whole body (a chunk of
+    // samples, all masked) in which the test at the top stops the last lanes. Here the test
+    // after the body stops them. (The `if` runs its body masked for lanes with nothing to cast;
+    // it is there for other GPUs.) Measured: the fresh 1920x1080 cast 8-9 % faster.
+    if (k < n) do {
       int k_end = n;
 #if CB_SKIP && CB_BRICK_STEPPING
       {
@@ -237,7 +242,7 @@ void main() {
 #else
       if (transmittance < u_cutoff) k = n;  // early termination: leave the outer loop too
 #endif
-    }
+    } while (k < n);
   }
 #if CB_SURFACE
   SurfaceSample surface;
