@@ -6,10 +6,12 @@
 // Ray casting of the density volume (thesis §4.3, Alg. 4) with lossless empty-space skipping
 // over a max-mip occupancy pyramid (the role of the octree of §4.4). Linked after a shading
 // stage (shaders/README.md) that defines, for a composited (volume) style,
+//   CB_SHADE                                           the type of a sample's shade: float (a
+//                                                      grey stage, tinted once per ray) or vec3
 //   void styleBeginRay(vec3 dir)                       once per ray (world direction, unit)
 //   float styleDensity(float density, vec3 texcoord)   the density actually composited
-//   vec3 shadeSample(float density, float transmittance)
-//   vec3 styleEndRay(vec3 colour, float transmittance)  the ray's colour before the background
+//   CB_SHADE shadeSample(float density, float transmittance)
+//   vec3 styleEndRay(CB_SHADE shade, float transmittance)  the ray's colour before the background
 // or, for an iso-surface style (CB_SURFACE), `vec4 shadeSurface(SurfaceSample s)` returning a
 // premultiplied colour and coverage (surface_sample.glsl, linked first, defines the struct and
 // the iso levels).
@@ -18,7 +20,7 @@
 // One ray per pixel from the near plane (so a camera inside the box works) through the box from
 // entry to exit, samples at t_k = t_enter + (k + ½)·step in voxel units. Compositing is
 // front-to-back "over" with opacity α = 1 − exp(−σ·density·step) (Beer–Lambert over the step):
-//   C += T·α·shade,  T *= 1 − α.
+//   C += T·α·shade,  T *= 1 − α,  computed as T' = T·exp(−σ·density·step), C += (T − T')·shade.
 // The thesis's blend (§4.5.2: C = S·F_d + (1 − F_d)·C_pre, α += F_d) is a back-to-front "over"
 // applied in front-to-back order, so its result depends on the step count and order and its
 // alpha exceeds 1; the standard operator here is order-correct and converges as step → 0.
@@ -98,6 +100,9 @@ void main() {
   float t_exit = min(min(tmax.x, tmax.y), tmax.z);
 
   vec3 colour = vec3(0.0);
+#if !CB_SURFACE
+  CB_SHADE shade_sum = CB_SHADE(0.0);  // Σ T·α·shade
+#endif
   float transmittance = 1.0;
   uint samples = 0u;
   vec3 inv_dims = 1.0 / u_dims;
@@ -204,8 +209,9 @@ void main() {
 #endif
       // Per sample: one bilinear RGBA8 fetch and a lerp in z (volume_pool.glsl), one exp2, the
       // shading stage; no data-dependent branch (a zero density gives α = 0 and changes nothing)
-      // because llvmpipe runs a branch's code for all lanes anyway. α = 1 − 2^(−σ·step·log2(e)·density) is the Beer–Lambert opacity of the
-      // step (§4.5.2 compositing, see the header).
+      // because llvmpipe runs a branch's code for all lanes anyway. 1 − α =
+      // 2^(−σ·step·log2(e)·density) is the Beer–Lambert transmittance of the step (§4.5.2
+      // compositing, see the header); T − T' is T·α with two operations fewer (3 % of a frame).
       for (int i = 0; i < CB_CHUNK; ++i) {
 #if CB_SURFACE
         if (k < chunk_end && !hit) {
@@ -224,14 +230,14 @@ void main() {
 #else
         // Straight-line code, no `if`: a sample past the chunk's end or after termination is
         // still read (inside the slot or clamped to it) but weighs nothing — its density is
-        // multiplied by 0, so α = 0 exactly and colour and transmittance stay as they are.
+        // multiplied by 0, so T' = T exactly and the shade and transmittance stay as they are.
         float live = float(k + i < chunk_end && transmittance >= u_cutoff);
         vec2 s = sampleChunk(roundEven(fixed_base + float(k + i) * fixed_delta), pb);
         samples += uint(live);
         float density = styleDensity(s.r, base + float(k + i) * delta) * live;
-        float alpha = 1.0 - exp2(neg_optical_depth_log2 * density);
-        colour += (transmittance * alpha) * shadeSample(density, s.g);
-        transmittance *= 1.0 - alpha;
+        float t_next = transmittance * exp2(neg_optical_depth_log2 * density);
+        shade_sum += (transmittance - t_next) * shadeSample(density, s.g);  // T·α·shade
+        transmittance = t_next;
 #endif
       }
 #if !CB_SURFACE
@@ -281,7 +287,7 @@ void main() {
   colour = shaded.rgb;
   transmittance = 1.0 - shaded.a;
 #else
-  colour = styleEndRay(colour, transmittance);
+  colour = styleEndRay(shade_sum, transmittance);
 #endif
 #if CB_STATS
   atomicAdd(ray_stats.total_samples, samples);

@@ -27,6 +27,8 @@
 // fBm detail (seed 004, "Texture generation"): a tileable 64³ texture of fbm = Σᵢ wⁱ·noise(sⁱ·x)
 // with w = ½, s = 2 (built on the CPU, detail_noise.h) erodes the density at render time:
 // ρ' = max(ρ − κ_e·n·(1 − ρ), 0), so thin edges break up finer than the voxels while cores stay.
+#define CB_SHADE vec3  // a sample's shade is a colour
+
 uniform vec3 u_light_colour;
 uniform vec3 u_light_dir;          // towards the sun, unit
 uniform vec3 u_sky_colour;         // ambient sky light (the background colour)
