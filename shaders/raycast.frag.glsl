@@ -278,8 +278,10 @@ void main() {
     // hit; it equals u_inner_iso where the ray grazes the inner surface (its silhouette).
     int inner_end = min(n, hit_k + 1 + int(u_inner_depth / u_step));
     float inner = hit_density;
-    for (int j = hit_k + 1; j < inner_end; ++j)
+    int j = hit_k + 1;
+    if (j < inner_end) do {  // a do-while, as the march (llvmpipe's extra masked body)
       inner = max(inner, sampleVolume(base + float(j) * delta).r);
+    } while (++j < inner_end);
     samples += uint(max(inner_end - hit_k - 1, 0)) + 7u;
     surface.inner_max_density = inner;
   }
