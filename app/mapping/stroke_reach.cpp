@@ -9,8 +9,8 @@
 
 namespace cb {
 
-StrokeReach strokeReach(const StrokeResult& stroke, const MappingConfig& config, float voxel_size) {
-  StrokeReach reach;
+SkyReach strokeReach(const StrokeResult& stroke, const MappingConfig& config, float voxel_size) {
+  SkyReach reach;
   const Footprint& f = stroke.footprint;
   if (f.width <= 0 || f.height <= 0 || f.values.size() != size_t(f.width) * size_t(f.height))
     return reach;

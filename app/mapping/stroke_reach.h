@@ -16,16 +16,13 @@
 
 #include "app/brush/stroke_result.h"
 #include "app/mapping/mapping_config.h"
+#include "app/volume/sky_extent.h"
 
 namespace cb {
 
-struct StrokeReach {
-  bool inked = false;    // some footprint pixel is above the empty threshold
-  bool bounded = false;  // every corner ray crosses the canvas mid-plane ahead of the eye
-  glm::vec2 xz_min{0.0f}, xz_max{0.0f};  // world x/z rectangle (valid when inked and bounded)
-};
-
-// `voxel_size`: the sky's voxel edge in world units (the margin's 8 voxels).
-StrokeReach strokeReach(const StrokeResult& stroke, const MappingConfig& config, float voxel_size);
+// `inked`: some footprint pixel is above the empty threshold; `bounded`: every corner ray crosses
+// the canvas mid-plane ahead of the eye. `voxel_size`: the sky's voxel edge in world units (the
+// margin's 8 voxels).
+SkyReach strokeReach(const StrokeResult& stroke, const MappingConfig& config, float voxel_size);
 
 }  // namespace cb

@@ -14,6 +14,7 @@
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
 #include "app/tools/cloud_morph_cells.h"
+#include "app/tools/mesh_loading.h"
 #include "app/tools/model_cloud.h"
 #include "app/tools/picture_cloud.h"
 #include "app/volume/volume_erase.h"
@@ -49,6 +50,7 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
          (settings.sky_max_span != settings.sky_span
               ? "\nsky_max_span = " + std::to_string(settings.sky_max_span)
               : std::string()) +
+         (settings.placementsGrowSky() ? "\nplacements_grow_sky = true" : std::string()) +
          "\nformat = " + std::to_string(settings.format) +
          (settings.format >= 2
               ? "\nauto_end_still_ms = " + std::to_string(settings.auto_end_still_ms) +
@@ -73,6 +75,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   parsed.auto_end_still_ms = parsed.auto_end_light_ms = 0;  // nor strokes that end by themselves
   parsed.sky_span = kLegacySkySpan;                         // nor a sky wider than one box
   parsed.sky_max_span = 0;  // nor one that grew: sky_span, set below
+  parsed.placements_grow_sky = false;  // nor placements that grew it (before specification 1.5)
   std::istringstream lines{std::string(text)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -104,6 +107,9 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
       if (!parseInt(value, 1, kMaxSkySpan, &v))
         return bad(("1.." + std::to_string(kMaxSkySpan)).c_str());
       parsed.sky_max_span = int(v);
+    } else if (key == "placements_grow_sky") {
+      if (value != "true" && value != "false") return bad("true or false");
+      parsed.placements_grow_sky = value == "true";
     } else if (key == "auto_end_still_ms" || key == "auto_end_light_ms") {
       if (!parseInt(value, 0, 600000, &v)) return bad("0..600000 ms");
       (key == "auto_end_still_ms" ? parsed.auto_end_still_ms : parsed.auto_end_light_ms) = int(v);
@@ -250,7 +256,11 @@ void PaintSession::recordStep(const SceneState& before, const std::string& label
 void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
   StrokeResult stroke;
   while (engine_.takeFinishedStroke(&stroke)) {
-    growSkyToHold(stroke);
+    if (growSkyToHold([&](const Volume& sky) {
+          const glm::vec3 voxel = sky.voxelSize();
+          return strokeReach(stroke, mapper_.config(), std::min({voxel.x, voxel.y, voxel.z}));
+        }))
+      last_growth_stroke_ = stroke.stroke_index;
     // §6: the finished footprint becomes voxels, max-merged; the stroke index seeds the noise.
     outcome->mapping = mapper_.map(stroke, volume_, method_);
     outcome->stroke_mapped = true;
@@ -266,23 +276,21 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
   }
 }
 
-void PaintSession::growSkyToHold(const StrokeResult& stroke) {
-  if (widest_span_ <= sky_.span) return;
-  const glm::vec3 voxel = volume_.voxelSize();
-  const StrokeReach reach =
-      strokeReach(stroke, mapper_.config(), std::min({voxel.x, voxel.y, voxel.z}));
-  if (!reach.inked) return;
-  // A stroke whose rays do not all meet the canvas is placed on the mapping's fallback plane,
-  // possibly far off: the sky becomes as wide as it may.
-  const SkyExtent to =
-      reach.bounded ? skyToHold(sky_, widest_span_, reach.xz_min, reach.xz_max) : reachableSky();
-  if (to.span <= sky_.span) return;
-  const glm::ivec3 offset = growthOffset(sky_, to);
-  volume_ = growSky(std::move(volume_), sky_, to);
-  history_.followGrowth(volume_, offset / Volume::kBrickSize);
-  sky_ = to;
-  ++sky_growths_;
-  last_growth_stroke_ = stroke.stroke_index;
+bool PaintSession::growSkyToHold(const std::function<SkyReach(const Volume&)>& reach_of) {
+  bool grew = false;
+  while (widest_span_ > sky_.span) {
+    // A reach whose rectangle is unknown (a stroke's ray missing the canvas is placed on the
+    // mapping's fallback plane, possibly far off) makes the sky as wide as it may be.
+    const SkyExtent to = skyToHold(sky_, widest_span_, reach_of(volume_));
+    if (to.span <= sky_.span) break;
+    const glm::ivec3 offset = growthOffset(sky_, to);
+    volume_ = growSky(std::move(volume_), sky_, to);
+    history_.followGrowth(volume_, offset / Volume::kBrickSize);
+    sky_ = to;
+    ++sky_growths_;
+    grew = true;
+  }
+  return grew;
 }
 
 void PaintSession::syncJournal() {
@@ -518,15 +526,29 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
       // places the same cloud.
       ToolView view{s.scene_.camera, s.settings_.screen_width, s.settings_.screen_height,
                     s.scene_.canvas};
+      // The file is read and checked first; then, when placements grow the sky (the Session
+      // record's placements_grow_sky), the sky grows to hold where the cloud can write, as for a
+      // stroke; then the cloud is written.
+      const bool grow = s.settings_.placementsGrowSky();
       try {
         if (c.model) {
+          const TriangleMesh mesh = loadClosedMesh(c.path);
+          if (grow)
+            s.growSkyToHold([&](const Volume& sky) {
+              return placementReach(modelReach(mesh, view, sky), sky);
+            });
           ModelCloudParams params;
           params.seed = uint32_t(s.history_.steps() + 1);
-          modelToCloud(c.path, view, params, &s.volume_);
+          meshToCloud(mesh, view, params, &s.volume_);
         } else {
+          const ShapeMask mask = loadShapeMask(c.path);
           PictureCloudParams params;
           params.seed = uint32_t(s.history_.steps() + 1);
-          pictureToCloud(c.path, view, params, &s.volume_);
+          if (grow)
+            s.growSkyToHold([&](const Volume& sky) {
+              return placementReach(pictureReach(mask, view, params, sky), sky);
+            });
+          maskToCloud(mask, view, params, &s.volume_);
         }
       } catch (const std::exception& e) {
         return *error = std::string(c.model ? "model" : "picture") + ": " + e.what() +
@@ -657,7 +679,9 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (recorded.screen_width != settings_.screen_width ||
           recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
           recorded.sky_span != settings_.sky_span ||
-          recorded.sky_max_span != settings_.sky_max_span || recorded.format != settings_.format ||
+          recorded.sky_max_span != settings_.sky_max_span ||
+          recorded.placementsGrowSky() != settings_.placementsGrowSky() ||
+          recorded.format != settings_.format ||
           recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
           recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
         *error = "session record (" + formatSessionSettings(recorded) +

@@ -50,6 +50,13 @@ struct PaintSessionSettings {
   // limits and the grid may allow fewer). A Session record without `sky_max_span` is from a sky
   // that did not grow (sky_span), so its strokes replay clipped to it as they were then.
   int sky_max_span = kMaxSkySpan;
+  // A placed picture or model (ui::PlaceShape) grows the sky as a stroke does, to hold where it
+  // can write (app/tools pictureReach, modelReach). A Session record without
+  // `placements_grow_sky` is from before they did (journal specification 1.4 and older), so its
+  // placements replay clipped to the sky as they were then.
+  bool placements_grow_sky = true;
+  // Whether a placement grows this session's sky: only a sky that may grow at all.
+  bool placementsGrowSky() const { return placements_grow_sky && sky_max_span > sky_span; }
   // The sky the session starts with.
   SkyExtent skyExtent() const { return {grid, sky_span}; }
   // Journal format of UI changes: 1 = the first landing (no modes; the paint view is
@@ -167,7 +174,8 @@ class PaintSession {
   const SkyExtent& sky() const { return sky_; }
   // The widest sky this session may grow to: where a stroke can land.
   SkyExtent reachableSky() const { return {sky_.grid, widest_span_}; }
-  // How often the sky grew, and the mapped stroke that grew it last (0: none).
+  // How often the sky grew (for a stroke or a placement), and the mapped stroke that grew it last
+  // (0: none).
   uint32_t skyGrowths() const { return sky_growths_; }
   uint32_t lastGrowthStroke() const { return last_growth_stroke_; }
 
@@ -216,7 +224,11 @@ class PaintSession {
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
-  void growSkyToHold(const StrokeResult& stroke);
+  // Before an edit writes: grows the sky (up to reachableSky) to hold where the edit can write,
+  // `reach_of` the sky as it is. A placement's reach depends on the sky it is placed in (its
+  // anchor's fallback, its voxel grid), so it is asked again after each growth until the sky holds
+  // it. True when the sky grew. The one growth path of strokes and placements.
+  bool growSkyToHold(const std::function<SkyReach(const Volume&)>& reach_of);
   void syncJournal();  // fsync at a stroke's end (paint or rub-out)
   void recordStep(const SceneState& before, const std::string& label);
   void takeFrame(const WindowFrame& frame);

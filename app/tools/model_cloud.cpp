@@ -25,6 +25,29 @@ ModelPlacement placeModel(const TriangleMesh& mesh, const ToolView& view, const 
   return placement;
 }
 
+namespace {
+
+// The mesh's vertices placed in continuous voxel coordinates of `volume`, and the grid around
+// them: the model's voxels plus one outside layer, so the box border is outside.
+VoxelBox placedVoxels(const TriangleMesh& mesh, const ModelPlacement& placement,
+                      const Volume& volume, std::vector<glm::vec3>* v) {
+  v->resize(mesh.vertices.size());
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (size_t i = 0; i < v->size(); ++i) {
+    (*v)[i] = volume.worldToVoxel(placement.toWorld(mesh.vertices[i]));
+    lo = glm::min(lo, (*v)[i]);
+    hi = glm::max(hi, (*v)[i]);
+  }
+  return VoxelBox{glm::ivec3(glm::floor(lo)) - 1, glm::ivec3(glm::ceil(hi)) + 1};
+}
+
+}  // namespace
+
+VoxelBox modelReach(const TriangleMesh& mesh, const ToolView& view, const Volume& volume) {
+  std::vector<glm::vec3> v;
+  return placedVoxels(mesh, placeModel(mesh, view, volume), volume, &v);
+}
+
 VoxelBox modelToCloud(const std::string& mesh_path, const ToolView& view,
                       const ModelCloudParams& params, Volume* volume) {
   const TriangleMesh mesh = loadClosedMesh(mesh_path);
@@ -35,16 +58,9 @@ VoxelBox meshToCloud(const TriangleMesh& input, const ToolView& view,
                      const ModelCloudParams& params, Volume* volume) {
   const TriangleMesh mesh = validatedClosedMesh(input, "mesh");
   const ModelPlacement placement = placeModel(mesh, view, *volume);
-  // Vertices in continuous voxel coordinates.
-  std::vector<glm::vec3> v(mesh.vertices.size());
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (size_t i = 0; i < v.size(); ++i) {
-    v[i] = volume->worldToVoxel(placement.toWorld(mesh.vertices[i]));
-    lo = glm::min(lo, v[i]);
-    hi = glm::max(hi, v[i]);
-  }
-  // The grid: the model's voxels plus one outside layer, so the box border is outside.
-  const VoxelBox grid{glm::ivec3(glm::floor(lo)) - 1, glm::ivec3(glm::ceil(hi)) + 1};
+  // Vertices in continuous voxel coordinates, and the grid around them.
+  std::vector<glm::vec3> v;
+  const VoxelBox grid = placedVoxels(mesh, placement, *volume, &v);
   const glm::ivec3 size = grid.hi - grid.lo;
   const size_t cells = size_t(size.x) * size.y * size.z;
   // Triangles per z row of the grid (by the z range of their projection).

@@ -39,6 +39,12 @@ struct ModelPlacement {
 };
 ModelPlacement placeModel(const TriangleMesh& mesh, const ToolView& view, const Volume& volume);
 
+// Where the cloud of `mesh` placed from `view` can write, in `volume`'s voxel grid and not
+// clipped to it: the placed mesh's voxel bounding box plus one voxel all round. meshToCloud
+// writes only inside it (noise only erodes); the session grows the sky to hold it first
+// (tool_view.h placementReach). `mesh` as validatedClosedMesh passes it.
+VoxelBox modelReach(const TriangleMesh& mesh, const ToolView& view, const Volume& volume);
+
 // Loads, checks (loadClosedMesh: ToolError before the volume is touched) and writes the cloud.
 VoxelBox modelToCloud(const std::string& mesh_path, const ToolView& view,
                       const ModelCloudParams& params, Volume* volume);

@@ -40,7 +40,72 @@ std::vector<uint8_t> medialAxis(const ShapeMask& mask) {
   return axis;
 }
 
+// §3.1.1.2: centre (x_e, y_e) and D_max per direction from it (the shape's outermost extent
+// along each of kAngleBins directions); Eq. (2.1) R = D_max − D. `mask` has a shape pixel.
+struct ShapeSpread {
+  explicit ShapeSpread(const ShapeMask& mask) : extent(kAngleBins, 0.0f) {
+    const int w = mask.width, h = mask.height;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (mask.at(x, y)) cx += x + 0.5, cy += y + 0.5;
+    const double count = double(mask.count());
+    cx /= count;
+    cy /= count;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (!mask.at(x, y)) continue;
+        // The pixel's far corner distance, so R stays > 0 inside the outermost pixel.
+        const float dx = float(x + 0.5 - cx), dy = float(y + 0.5 - cy);
+        const int b = binOf(dx, dy);
+        extent[b] = std::max(extent[b], std::sqrt(dx * dx + dy * dy) + 0.7072f);
+      }
+    // Bins no pixel fell into (thin shapes far from the centre) take the larger neighbour.
+    for (int pass = 0; pass < 2; ++pass)
+      for (int b = 0; b < kAngleBins; ++b)
+        if (extent[b] == 0.0f)
+          extent[b] =
+              std::max(extent[(b + kAngleBins - 1) % kAngleBins], extent[(b + 1) % kAngleBins]);
+    for (float e : extent) r_max = std::max(r_max, e);
+  }
+  static int binOf(float dx, float dy) {
+    const float a = std::atan2(dy, dx);  // [-pi, pi]
+    int b = int((a + float(M_PI)) * (kAngleBins / (2.0f * float(M_PI))));
+    return std::clamp(b, 0, kAngleBins - 1);
+  }
+  double cx = 0, cy = 0;
+  std::vector<float> extent;
+  float r_max = 0;  // the largest D_max: the deepest any particle is stretched (Eq. 2.4)
+};
+
+// The box the particles can reach: the picture's corners at the nearest and farthest depth
+// (±r_max·texel·depth_scale about the anchor plane), grown by the smoothing's radius + 1; in
+// `volume`'s voxel grid, not clipped to it.
+VoxelBox reachBox(const PicturePlacement& placement, int w, int h, float r_max,
+                  const PictureCloudParams& params, const Volume& volume) {
+  const float z_extent = r_max * placement.pictureTexelWorldSize() * params.depth_scale;
+  VoxelBox reach;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec2 corner((c & 1) ? float(w) : 0.0f, (c & 2) ? float(h) : 0.0f);
+    const glm::vec3 p = placement.worldPoint(corner, (c & 4) ? z_extent : -z_extent);
+    const glm::ivec3 v = glm::ivec3(glm::floor(volume.worldToVoxel(p)));
+    reach = reach.unite({v, v + 1});
+  }
+  return reach.grow(params.smoothing.radius_voxels + 1);
+}
+
+void requireShape(const ShapeMask& mask) {
+  if (mask.width <= 0 || mask.height <= 0 || mask.count() == 0)
+    throw ToolError(ToolErrorKind::kEmptyImage, "the picture has no shape pixel");
+}
+
 }  // namespace
+
+VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view,
+                      const PictureCloudParams& params, const Volume& volume) {
+  requireShape(mask);
+  const PicturePlacement placement(view, volume, mask.width, mask.height);
+  return reachBox(placement, mask.width, mask.height, ShapeSpread(mask).r_max, params, volume);
+}
 
 VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
                         const PictureCloudParams& params, Volume* volume) {
@@ -50,8 +115,7 @@ VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
 
 VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
                      Volume* volume) {
-  if (mask.width <= 0 || mask.height <= 0 || mask.count() == 0)
-    throw ToolError(ToolErrorKind::kEmptyImage, "the picture has no shape pixel");
+  requireShape(mask);
   const int w = mask.width, h = mask.height;
   const PicturePlacement placement(view, *volume, w, h);
   const float texel = placement.pictureTexelWorldSize();
@@ -68,37 +132,11 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
       if (mask.inside[i]) d_max = std::max(d_max, std::sqrt(axis_d2[i]));
   }
 
-  // §3.1.1.2: centre (x_e, y_e) and D_max per direction from it (the shape's outermost extent
-  // along each of kAngleBins directions); Eq. (2.1) R = D_max − D.
-  double cx = 0, cy = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (mask.at(x, y)) cx += x + 0.5, cy += y + 0.5;
-  const double count = double(mask.count());
-  cx /= count;
-  cy /= count;
-  auto binOf = [&](float dx, float dy) {
-    const float a = std::atan2(dy, dx);  // [-pi, pi]
-    int b = int((a + float(M_PI)) * (kAngleBins / (2.0f * float(M_PI))));
-    return std::clamp(b, 0, kAngleBins - 1);
-  };
-  std::vector<float> extent(kAngleBins, 0.0f);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!mask.at(x, y)) continue;
-      // The pixel's far corner distance, so R stays > 0 inside the outermost pixel.
-      const float dx = float(x + 0.5 - cx), dy = float(y + 0.5 - cy);
-      const int b = binOf(dx, dy);
-      extent[b] = std::max(extent[b], std::sqrt(dx * dx + dy * dy) + 0.7072f);
-    }
-  // Bins no pixel fell into (thin shapes far from the centre) take the larger neighbour.
-  for (int pass = 0; pass < 2; ++pass)
-    for (int b = 0; b < kAngleBins; ++b)
-      if (extent[b] == 0.0f)
-        extent[b] =
-            std::max(extent[(b + kAngleBins - 1) % kAngleBins], extent[(b + 1) % kAngleBins]);
-  float r_max = 0;
-  for (float e : extent) r_max = std::max(r_max, e);
+  const ShapeSpread spread(mask);
+  const double cx = spread.cx, cy = spread.cy;
+  const std::vector<float>& extent = spread.extent;
+  const float r_max = spread.r_max;
+  auto binOf = [](float dx, float dy) { return ShapeSpread::binOf(dx, dy); };
 
   // Particles per pixel from Eq. (5): D × (column volume / voxel volume); the column of a pixel
   // with range R holds, for the pdf of Eq. (2.2), an effective depth of about R.
@@ -118,16 +156,8 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
   const double density_factor =
       wanted > double(params.max_particles) ? double(params.max_particles) / wanted : 1.0;
 
-  // The box the particles can reach: the picture's corners at the nearest and farthest depth.
-  const float z_extent = r_max * texel * params.depth_scale;
-  VoxelBox reach;
-  for (int c = 0; c < 8; ++c) {
-    const glm::vec2 corner((c & 1) ? float(w) : 0.0f, (c & 2) ? float(h) : 0.0f);
-    const glm::vec3 p = placement.worldPoint(corner, (c & 4) ? z_extent : -z_extent);
-    const glm::ivec3 v = glm::ivec3(glm::floor(volume->worldToVoxel(p)));
-    reach = reach.unite({v, v + 1});
-  }
-  reach = reach.grow(params.smoothing.radius_voxels + 1).intersect(volume->bounds());
+  const VoxelBox reach =
+      reachBox(placement, w, h, r_max, params, *volume).intersect(volume->bounds());
   if (reach.empty()) return {};
 
   // The anchor plane is affine in picture coordinates; a depth offset scales along the eye ray.

@@ -1,6 +1,7 @@
 #include "app/tools/tool_view.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cb {
 
@@ -15,6 +16,19 @@ glm::vec3 toolAnchor(const ToolView& view, const Volume& volume) {
   glm::vec3 point;
   geometry.placeOnCanvas(view.canvas, origin, dir, fallback, max_distance, &point);
   return point;
+}
+
+SkyReach placementReach(const VoxelBox& voxels, const Volume& volume) {
+  SkyReach reach;
+  reach.inked = !voxels.empty();
+  if (!reach.inked) return reach;
+  const glm::vec3 lo = volume.voxelToWorld(glm::vec3(voxels.lo));
+  const glm::vec3 hi = volume.voxelToWorld(glm::vec3(voxels.hi));
+  reach.xz_min = glm::vec2(lo.x, lo.z);
+  reach.xz_max = glm::vec2(hi.x, hi.z);
+  reach.bounded = std::isfinite(lo.x) && std::isfinite(lo.z) && std::isfinite(hi.x) &&
+                  std::isfinite(hi.z);
+  return reach;
 }
 
 PicturePlacement::PicturePlacement(const ToolView& view, const Volume& volume, int picture_width,

@@ -9,6 +9,7 @@
 #include "app/mapping/paint_view_geometry.h"
 #include "app/scene/camera.h"
 #include "app/scene/canvas.h"
+#include "app/volume/sky_extent.h"
 #include "app/volume/volume.h"
 
 namespace cb {
@@ -52,5 +53,12 @@ class PicturePlacement {
 
 // The anchor alone: the view's centre ray on the canvas mid-plane (or the fallback plane).
 glm::vec3 toolAnchor(const ToolView& view, const Volume& volume);
+
+// A placement's reach — the box of `volume`'s voxel grid a tool writes only inside, before it is
+// clipped to the volume (picture_cloud.h pictureReach, model_cloud.h modelReach) — as the world
+// x/z rectangle the sky must hold (sky_extent.h): the box's outer voxel faces. An empty box writes
+// nothing; one whose faces are not finite (a degenerate view) is not bounded, and the sky then
+// grows as far as it may, as for a stroke whose rays miss the canvas.
+SkyReach placementReach(const VoxelBox& voxels, const Volume& volume);
 
 }  // namespace cb

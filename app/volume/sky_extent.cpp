@@ -42,6 +42,12 @@ SkyExtent skyToHold(const SkyExtent& from, int max_span, glm::vec2 xz_min, glm::
   return {from.grid, std::clamp(needed, from.span, widest)};
 }
 
+SkyExtent skyToHold(const SkyExtent& from, int max_span, const SkyReach& reach) {
+  if (!reach.inked) return from;
+  if (!reach.bounded) return {from.grid, widestSkySpan(from.grid, from.span, max_span)};
+  return skyToHold(from, max_span, reach.xz_min, reach.xz_max);
+}
+
 glm::ivec3 growthOffset(const SkyExtent& from, const SkyExtent& to) {
   return to.homeOffset() - from.homeOffset();
 }

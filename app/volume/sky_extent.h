@@ -54,6 +54,19 @@ int widestSkySpan(int grid, int span, int max_span);
 // holding the world-space x/z rectangle [xz_min, xz_max]; the widest one when none holds it.
 SkyExtent skyToHold(const SkyExtent& from, int max_span, glm::vec2 xz_min, glm::vec2 xz_max);
 
+// Where an edit can write, in world x/z, known before it writes: a finished stroke's
+// (app/mapping/stroke_reach.h) or a placed picture's or model's (app/tools/tool_view.h
+// `placementReach`). The session grows the sky to hold it first.
+struct SkyReach {
+  bool inked = false;    // the edit writes something at all
+  bool bounded = false;  // the rectangle is known (else the edit may land anywhere)
+  glm::vec2 xz_min{0.0f}, xz_max{0.0f};  // world x/z rectangle (valid when inked and bounded)
+};
+
+// The sky an edit of this reach needs: `from` when it writes nothing, the widest (as skyToHold
+// with no rectangle) when its rectangle is unknown, else skyToHold of its rectangle.
+SkyExtent skyToHold(const SkyExtent& from, int max_span, const SkyReach& reach);
+
 // `sky` (a sky of extent `from`) grown to the wider extent `to` around it: the same grid,
 // every brick moved to where it was in the world (the home box stays on [-1,1]³), the rest
 // empty; `sky` is left empty. std::invalid_argument when `to` is not a wider sky of the same

@@ -64,7 +64,7 @@ TEST(StrokeReach, EveryVoxelAStrokeWritesLiesInsideItsReach) {
         const StrokeResult stroke = paint(kind, camera, path);
         Volume sky = makeSkyVolume(widest);
         const glm::vec3 voxel = sky.voxelSize();
-        const StrokeReach reach = strokeReach(stroke, mapper.config(), voxel.x);
+        const SkyReach reach = strokeReach(stroke, mapper.config(), voxel.x);
         ASSERT_TRUE(reach.inked);
         ASSERT_TRUE(reach.bounded);
         mapper.map(stroke, sky, method);
@@ -108,12 +108,12 @@ TEST(StrokeReach, AnEmptyFootprintReachesNothingAndARayMissingTheCanvasIsUnbound
   stroke.view.camera = defaultPaintCamera(Canvas{}, glm::vec3(-1.0f), glm::vec3(1.0f), 16.0f / 9);
   EXPECT_FALSE(strokeReach(stroke, config, 2.0f / 256).inked);
   stroke.footprint.at(32, 18) = 1.0f;
-  const StrokeReach centre = strokeReach(stroke, config, 2.0f / 256);
+  const SkyReach centre = strokeReach(stroke, config, 2.0f / 256);
   EXPECT_TRUE(centre.inked && centre.bounded);
   // Looking level over the canvas: the top rows' rays pass above the horizon.
   stroke.view.camera.target = stroke.view.camera.eye + glm::vec3(0.0f, 0.0f, -1.0f);
   stroke.footprint.at(32, 0) = 1.0f;
-  const StrokeReach level = strokeReach(stroke, config, 2.0f / 256);
+  const SkyReach level = strokeReach(stroke, config, 2.0f / 256);
   EXPECT_TRUE(level.inked);
   EXPECT_FALSE(level.bounded);
 }
