@@ -74,7 +74,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   parsed.format = 1;  // records of the first landing have no format key
   parsed.auto_end_still_ms = parsed.auto_end_light_ms = 0;  // nor strokes that end by themselves
   parsed.sky_span = kLegacySkySpan;                         // nor a sky wider than one box
-  parsed.sky_max_span = 0;  // nor one that grew: sky_span, set below
+  parsed.sky_max_span = 0;             // nor one that grew: sky_span, set below
   parsed.placements_grow_sky = false;  // nor placements that grew it (before specification 1.5)
   std::istringstream lines{std::string(text)};
   std::string line;

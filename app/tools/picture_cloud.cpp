@@ -100,8 +100,8 @@ void requireShape(const ShapeMask& mask) {
 
 }  // namespace
 
-VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view,
-                      const PictureCloudParams& params, const Volume& volume) {
+VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
+                      const Volume& volume) {
   requireShape(mask);
   const PicturePlacement placement(view, volume, mask.width, mask.height);
   return reachBox(placement, mask.width, mask.height, ShapeSpread(mask).r_max, params, volume);

@@ -37,8 +37,8 @@ struct PictureCloudParams {
 // stretched to (Eq. 2.4), grown by the smoothing radius and a voxel. maskToCloud writes only
 // inside it; the session grows the sky to hold it first (tool_view.h placementReach). ToolError
 // kEmptyImage when the mask has no shape pixel.
-VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view,
-                      const PictureCloudParams& params, const Volume& volume);
+VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
+                      const Volume& volume);
 
 // Loads the PNG (all checks before the volume is touched; ToolError on a bad picture) and
 // writes its cloud. Returns the changed box (also marked dirty on the volume).

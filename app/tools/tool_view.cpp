@@ -26,8 +26,8 @@ SkyReach placementReach(const VoxelBox& voxels, const Volume& volume) {
   const glm::vec3 hi = volume.voxelToWorld(glm::vec3(voxels.hi));
   reach.xz_min = glm::vec2(lo.x, lo.z);
   reach.xz_max = glm::vec2(hi.x, hi.z);
-  reach.bounded = std::isfinite(lo.x) && std::isfinite(lo.z) && std::isfinite(hi.x) &&
-                  std::isfinite(hi.z);
+  reach.bounded =
+      std::isfinite(lo.x) && std::isfinite(lo.z) && std::isfinite(hi.x) && std::isfinite(hi.z);
   return reach;
 }
 

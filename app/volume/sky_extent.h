@@ -58,8 +58,8 @@ SkyExtent skyToHold(const SkyExtent& from, int max_span, glm::vec2 xz_min, glm::
 // (app/mapping/stroke_reach.h) or a placed picture's or model's (app/tools/tool_view.h
 // `placementReach`). The session grows the sky to hold it first.
 struct SkyReach {
-  bool inked = false;    // the edit writes something at all
-  bool bounded = false;  // the rectangle is known (else the edit may land anywhere)
+  bool inked = false;                    // the edit writes something at all
+  bool bounded = false;                  // the rectangle is known (else the edit may land anywhere)
   glm::vec2 xz_min{0.0f}, xz_max{0.0f};  // world x/z rectangle (valid when inked and bounded)
 };
 

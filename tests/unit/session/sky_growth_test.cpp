@@ -8,7 +8,12 @@
 //     recorded before the sky grew) clips it as before;
 //   - undo and redo go on across the growth;
 //   - a journal with growth replays byte-identically on 1, 2 and 8 threads;
-//   - the light of a cloud is the same before and after the sky grows around it.
+//   - the light of a cloud is the same before and after the sky grows around it;
+//   - a picture or model placed where the view looks past the sky's edge (the real tools, the
+//     bundled study picture and a generated torus) grows the sky first and lands whole, undo and
+//     redo go on across it, its journal replays byte-identically on 1 and 2 threads, and a
+//     journal of specification 1.4 (no `placements_grow_sky`) still clips it, to the checksum
+//     it replayed to before placements grew the sky.
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -26,6 +31,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
+#include "app/tools/procedural_mesh.h"
 #include "app/volume/scene_generators.h"
 #include "tests/support/session_painter.h"
 #include "tests/unit/mapping/rendered_opacity.h"
@@ -119,6 +125,20 @@ TEST(SkyGrowth, TheSessionRecordSaysHowFarTheSkyMayGrowAndOldRecordsDoNotGrow) {
       parseSessionSettings("grid = 256\nsky_span = 4\nsky_max_span = 3\n", &parsed, &error));
   EXPECT_NE(error.find("sky_max_span"), std::string::npos) << error;
   EXPECT_FALSE(parseSessionSettings("grid = 256\nsky_max_span = 9\n", &parsed, &error));
+  // Placements grow the sky since specification 1.5; a record without the key (1.4 and older)
+  // does not let them, and a sky that may not grow does not write it (the attract journal).
+  EXPECT_TRUE(defaults.placementsGrowSky());
+  ASSERT_TRUE(parseSessionSettings(formatSessionSettings(defaults), &parsed, &error)) << error;
+  EXPECT_TRUE(parsed.placementsGrowSky());
+  ASSERT_TRUE(parseSessionSettings("grid = 256\nsky_span = 4\nsky_max_span = 8\nformat = 2\n",
+                                   &parsed, &error));
+  EXPECT_FALSE(parsed.placementsGrowSky());
+  PaintSessionSettings fixed = defaults;
+  fixed.sky_max_span = fixed.sky_span;
+  EXPECT_EQ(formatSessionSettings(fixed).find("placements_grow_sky"), std::string::npos);
+  EXPECT_FALSE(parseSessionSettings("grid = 256\nsky_max_span = 8\nplacements_grow_sky = yes\n",
+                                    &parsed, &error));
+  EXPECT_EQ(error, "session line 3: placements_grow_sky: expected true or false, got 'yes'");
 }
 
 class SkyGrowthGl : public ::testing::Test {
@@ -365,6 +385,207 @@ TEST_F(SkyGrowthGl, TheLightOfACloudIsTheSameAfterTheSkyGrowsAroundIt) {
   // by an ulp, so a pixel here and there may round 2/255 apart (as for the far-edge cloud).
   EXPECT_LE(worst, 2);
   EXPECT_LE(off_by_more_than_one, kW * kH / 10000);
+}
+
+// ---- Placements (a picture or a model placed from the view) grow the sky as strokes do. ----
+
+// The bundled study picture (a duck-shaped cloud, 512×384) and a generated torus, as files.
+std::string duckPicture() {
+  return configFile("study/images/cloud1_duck.png");
+}
+std::string torusModel() {
+  static const std::string path = [] {
+    const std::string p = (std::filesystem::temp_directory_path() /
+                           ("cb_sky_growth_torus_" + std::to_string(::getpid()) + ".obj"))
+                              .string();
+    writeObj(p, makeDisplacedTorus(0.5f, 0.2f, 0.1f, 32, 24));
+    return p;
+  }();
+  return path;
+}
+
+// Settings of a journal recorded before placements grew the sky (specification 1.4): the sky
+// grows with strokes only.
+PaintSessionSettings strokesOnlySettings() {
+  PaintSessionSettings settings = productSettings();
+  settings.placements_grow_sky = false;
+  return settings;
+}
+
+// Non-zero voxels of `v` whose centre lies past world |x| or |z| = `edge`.
+long long voxelsPast(const Volume& v, float edge) {
+  long long n = 0;
+  for (const glm::ivec3& brick : v.allocatedBrickList()) {
+    const VoxelBox box = v.brickBox(brick);
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) {
+          const glm::vec3 w = v.voxelToWorld(glm::vec3(x, y, z) + 0.5f);
+          n += v.at(x, y, z) != 0.0f && (std::abs(w.x) > edge || std::abs(w.z) > edge);
+        }
+  }
+  return n;
+}
+
+// The view centred a home box past the default sky's -x edge (x = -5): wholly outside it.
+const Camera kFarEdgeView = pannedPaintCamera(glm::vec3(-float(kDefaultSkySpan + 1), 0.0f, 0.0f));
+
+TEST(SkyGrowth, APictureOrModelPlacedPastTheEdgeGrowsTheSkyAndLandsWhole) {
+  for (const bool model : {false, true}) {
+    SCOPED_TRACE(model ? "model" : "picture");
+    const ui::PlaceShape place{model, model ? torusModel() : duckPicture()};
+    const Camera view = model ? kFarEdgeView : kEdgeView;
+    // Growing (the default), and a session of a 1.4 journal.
+    Painter growing, old(strokesOnlySettings());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (Painter* p : {&growing, &old}) {
+      p->apply(ui::SetCamera{view});
+      p->apply(place);
+    }
+    const double ms = msSince(t0) / 2.0;
+    const PaintSession& g = growing.session;
+    // A sky as wide as the grown one from the start: the same voxel grid.
+    PaintSessionSettings wide_settings = productSettings();
+    wide_settings.sky_span = wide_settings.sky_max_span = g.sky().span;
+    Painter wide(wide_settings);
+    wide.apply(ui::SetCamera{view});
+    wide.apply(place);
+    EXPECT_GT(g.sky().span, kDefaultSkySpan) << "the placement past the edge did not grow the sky";
+    EXPECT_EQ(g.skyGrowths(), 1u);
+    EXPECT_EQ(g.lastGrowthStroke(), 0u);  // no stroke grew it
+    EXPECT_EQ(g.volume().dims(), g.sky().dims());
+    EXPECT_EQ(old.session.sky().span, kDefaultSkySpan);
+    EXPECT_EQ(old.session.skyGrowths(), 0u);
+
+    // It lands past the old edge, and whole: byte for byte what the sky as wide from the start
+    // holds.
+    const long long past = voxelsPast(g.volume(), float(kDefaultSkySpan));
+    const long long past_old = voxelsPast(old.session.volume(), float(kDefaultSkySpan));
+    const long long differing = differingVoxels(g.volume(), wide.session.volume());
+    long long voxels = 0;
+    const double sum = densitySum(g.volume(), &voxels),
+                 sum_wide = densitySum(wide.session.volume()),
+                 sum_old = densitySum(old.session.volume());
+    std::printf(
+        "%s placed across the edge (%.0f ms each): the sky grew to span %d; %lld voxels, %lld "
+        "past the old edge (1.4 session: %lld); density %.1f, in a sky that wide from the start "
+        "%.1f (%lld voxels differ), clipped %.1f\n",
+        model ? "model" : "picture", ms, g.sky().span, voxels, past, past_old, sum, sum_wide,
+        differing, sum_old);
+    EXPECT_GT(past, voxels / 10) << "nothing landed past the old edge";
+    EXPECT_EQ(past_old, 0);
+    EXPECT_EQ(differing, 0);
+    EXPECT_EQ(volumeChecksum(g.volume()), volumeChecksum(wide.session.volume()));
+    EXPECT_LT(sum_old, 0.9 * sum) << "the placement did not reach past the default edge";
+  }
+}
+
+TEST(SkyGrowth, UndoAndRedoGoOnAcrossAPlacementThatGrewTheSky) {
+  Painter p;
+  p.stroke(gentleCurve(kW, kH));  // in the home box
+  const SkyExtent home_sky = p.session.sky();
+  const Volume after_stroke = p.session.volume();
+  p.apply(ui::SetCamera{kEdgeView});
+  p.apply(ui::PlaceShape{false, duckPicture()});  // grows the sky
+  const SkyExtent grown_sky = p.session.sky();
+  ASSERT_GT(grown_sky.span, home_sky.span);
+  const uint64_t after_place = volumeChecksum(p.session.volume());
+  const uint64_t stroke_in_grown = volumeChecksum(grownCopy(after_stroke, home_sky, grown_sky));
+  ASSERT_NE(after_place, stroke_in_grown);
+
+  p.apply(ui::Undo{});  // the placement: gone, the sky stays grown
+  EXPECT_EQ(p.session.sky().span, grown_sky.span);
+  EXPECT_EQ(volumeChecksum(p.session.volume()), stroke_in_grown);
+  EXPECT_EQ(voxelsPast(p.session.volume(), float(kDefaultSkySpan)), 0);
+  p.apply(ui::Undo{});  // the camera
+  p.apply(ui::Undo{});  // the stroke
+  EXPECT_FALSE(p.session.volume().hasDensity());
+  p.apply(ui::Redo{});
+  EXPECT_EQ(volumeChecksum(p.session.volume()), stroke_in_grown);
+  p.apply(ui::Redo{});
+  p.apply(ui::Redo{});
+  EXPECT_EQ(volumeChecksum(p.session.volume()), after_place);
+  EXPECT_GT(voxelsPast(p.session.volume(), float(kDefaultSkySpan)), 0);
+}
+
+// Records camera moves and placements past the sky's edges into a journal at `path` and
+// returns the session's checksum.
+uint64_t recordPlacements(const PaintSessionSettings& settings, const std::string& path,
+                          SkyExtent* sky, uint32_t* growths) {
+  Painter p(settings);
+  p.session.setReproducibleRecord(true);
+  JournalWriter journal;
+  EXPECT_TRUE(journal.open(path)) << journal.error();
+  p.session.recordTo(&journal, 0);
+  p.apply(ui::SetCamera{kEdgeView});
+  p.apply(ui::PlaceShape{false, duckPicture()});
+  p.apply(ui::SetCamera{kFarEdgeView});
+  p.apply(ui::PlaceShape{true, torusModel()});
+  journal.close();
+  *sky = p.session.sky();
+  *growths = p.session.skyGrowths();
+  return volumeChecksum(p.session.volume());
+}
+
+std::string sessionRecordOf(const std::string& path) {
+  for (const JournalRecord& record : readJournal(path).records)
+    if (record.type == JournalRecordType::kSession) return std::string(record.text());
+  return {};
+}
+
+// Replays `path` on 1 and 2 worker threads and checks it ends as recorded.
+void expectReplays(const std::string& path, uint64_t sum, const SkyExtent& sky, uint32_t growths) {
+  const int threads = workerThreads();
+  for (int n : {1, 2}) {
+    setWorkerThreads(n);
+    const SessionReplay replay = replaySession(readJournal(path), BrushConfig{}, MappingConfig{});
+    ASSERT_TRUE(replay.session);
+    EXPECT_TRUE(replay.complete())
+        << replay.journal_error << (replay.problems.empty() ? "" : replay.problems[0]);
+    EXPECT_EQ(replay.session->sky().span, sky.span) << n << " threads";
+    EXPECT_EQ(replay.session->skyGrowths(), growths) << n << " threads";
+    EXPECT_EQ(volumeChecksum(replay.session->volume()), sum) << n << " threads";
+  }
+  setWorkerThreads(threads);
+}
+
+TEST(SkyGrowth, AJournalWithPlacementsThatGrewTheSkyReplaysByteIdentically) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("cb_sky_growth_place_" + std::to_string(::getpid()) + ".cbj"))
+                               .string();
+  SkyExtent sky;
+  uint32_t growths = 0;
+  const uint64_t sum = recordPlacements(productSettings(), path, &sky, &growths);
+  EXPECT_EQ(growths, 2u) << "the picture and the model should each grow the sky";
+  EXPECT_NE(sessionRecordOf(path).find("placements_grow_sky = true"), std::string::npos)
+      << sessionRecordOf(path);
+  expectReplays(path, sum, sky, growths);
+  std::filesystem::remove(path);
+}
+
+// A journal of specification 1.4 (its Session record has sky_max_span but no
+// placements_grow_sky): its placements are clipped at the sky's edge, and it replays to the
+// checksum cloudbrush gave it before placements grew the sky (measured with the build of
+// 2e857b0 by `cloudbrush replay` on the journal this test writes).
+TEST(SkyGrowth, AJournalOfSpecificationOneFourStillClipsItsPlacements) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("cb_sky_growth_place14_" + std::to_string(::getpid()) + ".cbj"))
+                               .string();
+  SkyExtent sky;
+  uint32_t growths = 0;
+  const uint64_t sum = recordPlacements(strokesOnlySettings(), path, &sky, &growths);
+  const std::string record = sessionRecordOf(path);
+  EXPECT_NE(record.find("sky_max_span = 8"), std::string::npos) << record;
+  EXPECT_EQ(record.find("placements_grow_sky"), std::string::npos) << record;
+  EXPECT_EQ(sky.span, kDefaultSkySpan);
+  EXPECT_EQ(growths, 0u);
+  std::printf("1.4 journal with two clipped placements: checksum %016llx\n",
+              (unsigned long long)sum);
+  if (const char* keep = std::getenv("CB_KEEP_JOURNAL"))
+    std::filesystem::copy_file(path, keep, std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(sum, 0x8ae6b72b256d1934ull) << "the clipped placements no longer replay as before";
+  expectReplays(path, sum, sky, growths);
+  std::filesystem::remove(path);
 }
 
 }  // namespace
