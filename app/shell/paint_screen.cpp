@@ -1033,9 +1033,11 @@ std::string PaintScreen::statusLine() const {
   if (s.mode() == Mode::kPaint || s.mode() == Mode::kCanvas) {
     // Where a stroke can land: the veil's edge is the sky's widest extent.
     const glm::ivec3 now = s.sky().dims(), reach = s.reachableSky().dims();
+    // A journal of specification 1.4 or older replays its placed pictures and models clipped:
+    // its sky grows with strokes only.
     if (reach.x > now.x)
-      std::snprintf(text, sizeof text, " | sky %dx%d voxels, grows to %dx%d as you paint", now.x,
-                    now.z, reach.x, reach.z);
+      std::snprintf(text, sizeof text, " | sky %dx%d voxels, grows to %dx%d as you paint%s", now.x,
+                    now.z, reach.x, reach.z, s.settings().placementsGrowSky() ? "" : " strokes");
     else
       std::snprintf(
           text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil is lost", now.x, now.z,

@@ -527,6 +527,14 @@ uint64_t recordPlacements(const PaintSessionSettings& settings, const std::strin
   return volumeChecksum(p.session.volume());
 }
 
+// CB_KEEP_JOURNALS=DIR keeps a journal as DIR/name (to replay with `cloudbrush replay`, e.g.
+// --frames to look at the painter's screen, or with an older build for its checksum).
+void keepJournal(const std::string& path, const char* name) {
+  if (const char* dir = std::getenv("CB_KEEP_JOURNALS"))
+    std::filesystem::copy_file(path, std::string(dir) + "/" + name,
+                               std::filesystem::copy_options::overwrite_existing);
+}
+
 std::string sessionRecordOf(const std::string& path) {
   for (const JournalRecord& record : readJournal(path).records)
     if (record.type == JournalRecordType::kSession) return std::string(record.text());
@@ -559,6 +567,7 @@ TEST(SkyGrowth, AJournalWithPlacementsThatGrewTheSkyReplaysByteIdentically) {
   EXPECT_EQ(growths, 2u) << "the picture and the model should each grow the sky";
   EXPECT_NE(sessionRecordOf(path).find("placements_grow_sky = true"), std::string::npos)
       << sessionRecordOf(path);
+  keepJournal(path, "placements.cbj");
   expectReplays(path, sum, sky, growths);
   std::filesystem::remove(path);
 }
@@ -566,7 +575,7 @@ TEST(SkyGrowth, AJournalWithPlacementsThatGrewTheSkyReplaysByteIdentically) {
 // A journal of specification 1.4 (its Session record has sky_max_span but no
 // placements_grow_sky): its placements are clipped at the sky's edge, and it replays to the
 // checksum cloudbrush gave it before placements grew the sky (measured with the build of
-// 2e857b0 by `cloudbrush replay` on the journal this test writes).
+// 2e857b0 by `cloudbrush replay` on the journal this test keeps with CB_KEEP_JOURNALS).
 TEST(SkyGrowth, AJournalOfSpecificationOneFourStillClipsItsPlacements) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("cb_sky_growth_place14_" + std::to_string(::getpid()) + ".cbj"))
@@ -581,8 +590,7 @@ TEST(SkyGrowth, AJournalOfSpecificationOneFourStillClipsItsPlacements) {
   EXPECT_EQ(growths, 0u);
   std::printf("1.4 journal with two clipped placements: checksum %016llx\n",
               (unsigned long long)sum);
-  if (const char* keep = std::getenv("CB_KEEP_JOURNAL"))
-    std::filesystem::copy_file(path, keep, std::filesystem::copy_options::overwrite_existing);
+  keepJournal(path, "placements_spec_1_4.cbj");
   EXPECT_EQ(sum, 0x8ae6b72b256d1934ull) << "the clipped placements no longer replay as before";
   expectReplays(path, sum, sky, growths);
   std::filesystem::remove(path);
