@@ -25,6 +25,7 @@
 
 #include "app/core/config_paths.h"
 #include "app/core/parallel_for.h"
+#include "app/render/image_io.h"
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/scene/paint_camera.h"
@@ -486,6 +487,19 @@ TEST(SkyGrowth, UndoAndRedoGoOnAcrossAPlacementThatGrewTheSky) {
   const SkyExtent home_sky = p.session.sky();
   const Volume after_stroke = p.session.volume();
   p.apply(ui::SetCamera{kEdgeView});
+  // A picture with no shape is refused before the sky grows: nothing changes.
+  const std::string blank = (std::filesystem::temp_directory_path() /
+                             ("cb_sky_growth_blank_" + std::to_string(::getpid()) + ".png"))
+                                .string();
+  ImageRgba8 white;
+  white.width = white.height = 32;
+  white.pixels.assign(32 * 32 * 4, 255);
+  writePng(blank, white);
+  std::string error;
+  EXPECT_FALSE(p.session.apply(ui::PlaceShape{false, blank}, p.t, &error));
+  EXPECT_NE(error.find("no shape pixel"), std::string::npos) << error;
+  EXPECT_EQ(p.session.sky().span, home_sky.span);
+  std::filesystem::remove(blank);
   p.apply(ui::PlaceShape{false, duckPicture()});  // grows the sky
   const SkyExtent grown_sky = p.session.sky();
   ASSERT_GT(grown_sky.span, home_sky.span);
