@@ -473,6 +473,23 @@ void LightBricks::recycle(glm::ivec3 brick_dims) {
   table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
 }
 
+void LightBricks::shift(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
+  std::vector<float*> table(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z),
+                            nullptr);
+  const glm::ivec3 old = brick_dims_;
+  for (int z = 0; z < old.z; ++z)
+    for (int y = 0; y < old.y; ++y)
+      for (int x = 0; x < old.x; ++x) {
+        float* p = table_[brickIndex({x, y, z})];
+        if (!p) continue;
+        const glm::ivec3 b = glm::ivec3(x, y, z) + brick_offset;
+        table[(size_t(b.z) * size_t(brick_dims.y) + size_t(b.y)) * size_t(brick_dims.x) +
+              size_t(b.x)] = p;
+      }
+  table_ = std::move(table);
+  brick_dims_ = brick_dims;
+}
+
 void LightBricks::dropSpare() {
   for (float* p : spare_) delete[] p;
   spare_.clear();
@@ -887,6 +904,36 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           lv.through.release(i);
       }
   return out;
+}
+
+void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,
+                      glm::ivec3 brick_offset) {
+  const glm::ivec3 old_bricks = old_dims >> Volume::kBrickShift;
+  // The columns: lateral bricks (tb, tc), tb fastest; depths from the light side.
+  const glm::ivec3 dims = grown.dims(), bd = grown.brickDims();
+  const SweepFrame f = makeFrame(lv.direction, dims);
+  const int ntb_old = old_bricks[f.b], ntc_old = old_bricks[f.c];
+  if (lv.dims != old_dims || lv.extinction < 0.0f || lv.through.brickDims() != old_bricks ||
+      lv.lit.brickDims() != old_bricks ||
+      lv.stored_slices.size() != size_t(ntb_old) * size_t(ntc_old) ||
+      old_dims % Volume::kBrickSize != glm::ivec3(0)) {
+    lv = LightVolume{};
+    return;
+  }
+  lv.lit.shift(bd, brick_offset);
+  lv.through.shift(bd, brick_offset);
+  lv.dims = dims;
+  const int ntb = bd[f.b], ntc = bd[f.c];
+  const int offset_slices = brick_offset[f.axis] * Volume::kBrickSize;
+  const int added = f.dir > 0 ? offset_slices : dims[f.axis] - old_dims[f.axis] - offset_slices;
+  std::vector<int> depth(size_t(ntb) * size_t(ntc), 0);
+  for (int tc = 0; tc < ntc_old; ++tc)
+    for (int tb = 0; tb < ntb_old; ++tb) {
+      const int d = lv.stored_slices[size_t(tc) * size_t(ntb_old) + size_t(tb)];
+      depth[size_t(tc + brick_offset[f.c]) * size_t(ntb) + size_t(tb + brick_offset[f.b])] =
+          d > 0 ? d + added : 0;
+    }
+  lv.stored_slices = std::move(depth);
 }
 
 std::vector<float> marchLightReference(const Volume& volume, const Light& light, int z_step) {

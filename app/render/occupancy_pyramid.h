@@ -38,6 +38,15 @@ struct OccupancyPyramid {
 // Allocates the pyramid for `volume`'s dims and computes every cell.
 OccupancyPyramid buildOccupancy(const Volume& volume);
 
+// The pyramid of `grown`, a volume whose bricks are those `pyramid` was built for moved by
+// `voxel_offset` voxels (Volume::movedInto; whole level-0 cells) and empty sky around them,
+// without looking at a voxel away from the old edge: each level whose cell size divides the
+// offset is copied across shifted (its cells cover the same voxels), the others are reduced from
+// the level below, and the cells along the old edge, whose dilated footprint now reaches into the
+// grown sky, are recomputed (updateOccupancy). Equal to buildOccupancy(grown).
+OccupancyPyramid shiftOccupancy(const OccupancyPyramid& pyramid, const Volume& grown,
+                                glm::ivec3 voxel_offset);
+
 // Recomputes the level-0 cells whose dilated footprint meets `dirty` (voxel box) and their
 // ancestors. Returns the box of level-0 cells updated (empty if nothing was dirty); with
 // `changed`, also whether any of them took a new value (an edit inside occupied cloud leaves the
