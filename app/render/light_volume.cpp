@@ -219,6 +219,8 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
 // 0), so a column stores at least as deep as every column it reads: the depths are a running
 // maximum over those offsets. Unstored tiles are read only by unstored tiles, and the sweep
 // reads only upstream, so they are neither computed nor stored (all 0 for an empty volume).
+void closeStoredDepths(std::vector<int>& depth, int ntb, int ntc, int ob, int oc);
+
 std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob, int oc) {
   const glm::ivec3 bd = volume.brickDims();
   const int layers = bd[f.axis], n = volume.dims()[f.axis], ntb = bd[f.b], ntc = bd[f.c];
@@ -233,6 +235,13 @@ std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob,
         d = std::max(d, end);
       }
   }
+  closeStoredDepths(depth, ntb, ntc, ob, oc);
+  return depth;
+}
+
+// The running maximum of storedSlices over a column's readers: a column t reads t + δ,
+// δ ∈ {lo_b, lo_b + 1} × {lo_c, lo_c + 1}, so depth(t + δ) ≥ depth(t) for every δ.
+void closeStoredDepths(std::vector<int>& depth, int ntb, int ntc, int ob, int oc) {
   // depth(t + δ) ≥ depth(t): visit t before t + δ and pull from t − δ.
   const int lo_b = ob < 0 ? -1 : 0, lo_c = oc < 0 ? -1 : 0;
   for (int jc = 0; jc < ntc; ++jc) {
@@ -248,7 +257,6 @@ std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob,
         }
     }
   }
-  return depth;
 }
 
 // The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
@@ -933,6 +941,11 @@ void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,
       depth[size_t(tc + brick_offset[f.c]) * size_t(ntb) + size_t(tb + brick_offset[f.b])] =
           d > 0 ? d + added : 0;
     }
+  // The old edge's columns read, upstream, columns of the grown sky that nothing stored (the old
+  // grid's outside, read as 1): these now store as deep as their readers, as storedSlices of the
+  // grown volume has them, so that a later edit's change there is followed into the columns
+  // reading it. Their light is 1 (absent bricks): all they read upstream is grown, empty sky.
+  closeStoredDepths(depth, ntb, ntc, int(std::floor(f.up[f.b])), int(std::floor(f.up[f.c])));
   lv.stored_slices = std::move(depth);
 }
 
