@@ -292,13 +292,25 @@ bool VolumeRenderer::drawSkyUnder(int w, int h, int width, int height,
   return true;
 }
 
-void VolumeRenderer::allocateOccupancyTexture() {
-  if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
-  const glm::ivec3 d0 = occupancy_.level_dims[0];
-  glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
-  glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
-  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+void VolumeRenderer::ensureOccupancyTexture() {
+  const glm::ivec3 d0 = occupancy_.level_dims.empty() ? glm::ivec3(0) : occupancy_.level_dims[0];
+  if (d0 == glm::ivec3(0)) return;
+  if (!occupancy_texture_ || occupancy_texture_dims_ != d0 ||
+      occupancy_texture_levels_ != occupancy_.levelCount()) {
+    if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
+    glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
+    glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
+    glTextureParameteri(occupancy_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glTextureParameteri(occupancy_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    occupancy_texture_dims_ = d0;
+    occupancy_texture_levels_ = occupancy_.levelCount();
+    occupancy_texture_stale_ = {glm::ivec3(0), d0};
+  }
+  uploadOccupancy(occupancy_texture_stale_);
+  occupancy_texture_stale_ = {};
+  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                   GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
+    glPixelStorei(p, 0);
 }
 
 void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
@@ -345,7 +357,6 @@ void VolumeRenderer::followGrowth(const Volume& volume) {
   dims_ = volume.dims();
   world_min_ = volume.worldMin();
   world_max_ = volume.worldMax();
-  allocateOccupancyTexture();
   // The frames held were cast in the old box's voxel coordinates: cast anew (the targets stay).
   history_ = FrameHistory{};
   spare_history_ = FrameHistory{};
@@ -410,7 +421,6 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     dims_ = volume.dims();
     world_min_ = volume.worldMin();
     world_max_ = volume.worldMax();
-    allocateOccupancyTexture();
   }
   // The pool follows the bricks that changed (or every allocated brick when fresh), and after a
   // growth the bricks along the old edge.
@@ -446,7 +456,9 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.pack_ms = pool.pack_ms;
 
   t0 = std::chrono::steady_clock::now();
-  uploadOccupancy(occupancy_cells);
+  // The occupancy texture is read only by brick stepping (off by default): it is brought up to
+  // date when a frame steps (ensureOccupancyTexture), not here.
+  occupancy_texture_stale_ = occupancy_texture_stale_.unite(occupancy_cells);
   if (!occupancy_cells.empty()) {
     // One boundary, drawn once without culling: its front faces are where rays enter occupied
     // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
@@ -906,6 +918,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   }
   glBindTextureUnit(0, pool_.poolTexture());
   glBindTextureUnit(5, pool_.indirectionTexture());
+  if (options.skip_empty_space && options.brick_stepping) ensureOccupancyTexture();
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);

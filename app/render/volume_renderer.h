@@ -198,7 +198,9 @@ class VolumeRenderer {
   // Whether `volume` was grown around exactly what was last synced (see sync), and following it.
   bool followsGrowth(const Volume& volume) const;
   void followGrowth(const Volume& volume);
-  void allocateOccupancyTexture();
+  // Makes the occupancy texture current (allocated at the pyramid's size, its stale cells
+  // uploaded): only frames that step over it (RenderOptions::brick_stepping) read it.
+  void ensureOccupancyTexture();
   void uploadOccupancy(const VoxelBox& cells);
   // Makes the frame targets of a w×h image current (keeping the previous size's as the spare).
   void useFrameTargets(int w, int h);
@@ -208,6 +210,10 @@ class VolumeRenderer {
   GLuint program_ = 0;                      // the variant in use
   std::map<std::string, GLuint> programs_;  // variants by shading file + defines
   GLuint vao_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
+  // The occupancy texture's size (level 0, levels) and the level-0 cells it lacks.
+  glm::ivec3 occupancy_texture_dims_{0};
+  int occupancy_texture_levels_ = 0;
+  VoxelBox occupancy_texture_stale_;
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
   uint64_t synced_volume_id_ = 0;  // Volume::instanceId() last synced, 0: none
