@@ -47,7 +47,7 @@ OccupancyPyramid emptyPyramid(glm::ivec3 dims) {
   glm::ivec3 d(nextPowerOfTwo(d0.x), nextPowerOfTwo(d0.y), nextPowerOfTwo(d0.z));
   for (;;) {
     p.level_dims.push_back(d);
-    p.levels.emplace_back(size_t(d.x) * d.y * d.z, uint8_t(0));
+    p.levels.emplace_back(size_t(d.x) * d.y * d.z);  // zeros, unwritten (ZeroedAllocator)
     if (d == glm::ivec3(1)) break;
     d = glm::max(d / 2, glm::ivec3(1));
   }
@@ -57,8 +57,8 @@ OccupancyPyramid emptyPyramid(glm::ivec3 dims) {
 // Level m's cells in `region` (cells of level m) as the max of their children at level m − 1.
 void reduceLevel(OccupancyPyramid& p, int m, const VoxelBox& region) {
   const glm::ivec3 dc = p.level_dims[size_t(m - 1)], dp = p.level_dims[size_t(m)];
-  const std::vector<uint8_t>& child = p.levels[size_t(m - 1)];
-  std::vector<uint8_t>& parent = p.levels[size_t(m)];
+  const OccupancyCells& child = p.levels[size_t(m - 1)];
+  OccupancyCells& parent = p.levels[size_t(m)];
   for (int z = region.lo.z; z < region.hi.z; ++z)
     for (int y = region.lo.y; y < region.hi.y; ++y)
       for (int x = region.lo.x; x < region.hi.x; ++x) {
@@ -130,7 +130,7 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   // (voxels.lo-1)/b rounds toward zero for lo = 0, which the max() above keeps at 0.
   {
     const glm::ivec3 d = p.level_dims[0];
-    std::vector<uint8_t>& level = p.levels[0];
+    OccupancyCells& level = p.levels[0];
     std::atomic<bool> any_changed{false};
     parallelFor(size_t(cells.hi.z - cells.lo.z), 1, [&](size_t, size_t z0, size_t z1) {
       bool chunk_changed = false;

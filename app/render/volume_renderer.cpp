@@ -492,7 +492,7 @@ RendererGpuMemory VolumeRenderer::gpuMemory() const {
   m.pool = pool_.poolBytes();
   m.indirection = pool_.indirectionBytes();
   if (occupancy_texture_)
-    for (const std::vector<uint8_t>& level : occupancy_.levels) m.occupancy += level.size();
+    for (const OccupancyCells& level : occupancy_.levels) m.occupancy += level.size();
   m.ray_bounds = bounds_vbo_bytes_;
   // RG32F bounds + RGBA8 frame + 24/8 depth-stencil per pixel, for the current and spare size.
   constexpr size_t kTargetBytesPerPixel = 8 + 4 + 4;
