@@ -172,15 +172,17 @@ size_t BrickPool::tableBytes() const {
          slot_hash_.capacity() * sizeof(uint64_t);
 }
 
+void BrickPool::makeIndirectionTexture(glm::ivec3 brick_dims) {
+  if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
+  glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
+  glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
+  glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  brick_dims_ = brick_dims;
+}
+
 void BrickPool::resetTables(glm::ivec3 brick_dims) {
-  if (brick_dims != brick_dims_ || !indirection_texture_) {
-    if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
-    glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
-    glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
-    glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    brick_dims_ = brick_dims;
-  }
+  if (brick_dims != brick_dims_ || !indirection_texture_) makeIndirectionTexture(brick_dims);
   const size_t bricks = size_t(brick_dims.x) * brick_dims.y * brick_dims.z;
   slot_of_brick_.assign(bricks, glm::u8vec4(0));
   mark_.assign(bricks, 0);
@@ -311,12 +313,7 @@ void BrickPool::followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
   slot_of_brick_ = std::move(slot_of_brick);
   slot_hash_ = std::move(slot_hash);
   mark_.assign(bricks, 0);
-  if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
-  glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
-  glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
-  glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  brick_dims_ = brick_dims;
+  makeIndirectionTexture(brick_dims);
   uploadIndirection({glm::ivec3(0), brick_dims});
 }
 

@@ -149,6 +149,8 @@ class BrickPool {
     return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
            size_t(b.x);
   }
+  // A new indirection texture of `brick_dims` texels (uninitialised) in place of the one held.
+  void makeIndirectionTexture(glm::ivec3 brick_dims);
   void resetTables(glm::ivec3 brick_dims);
   // Puts every slot but the empty one on the free list.
   void freeEverySlot();
