@@ -26,7 +26,9 @@ constexpr int kOccupancyBrick = 4;
 // An allocator whose memory comes zeroed from the system (calloc) and which leaves
 // value-initialised elements as they come: a level of n cells is made without writing them, so
 // the pages of a large, mostly empty pyramid (16 MB at level 0 for a 1536×256×1536 sky) cost
-// nothing until a cell in them is written or read. Only for trivially constructible T.
+// nothing until a cell in them is written or read. Only for trivially constructible T; a vector
+// grown by resize() within its capacity gets whatever those bytes held (levels are made at
+// their size and never resized).
 template <class T>
 struct ZeroedAllocator {
   using value_type = T;
