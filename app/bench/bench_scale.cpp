@@ -332,9 +332,10 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
       }
 
       // The sky growing (sky_extent.h): the strokes drawn from the default view panned to the
-      // default sky's +x edge, so the first grows the sky; its pen-up pays the renderer's fresh
-      // sync of the grown sky. Baseline in the same run: the same strokes in a sky made that
-      // wide from the start. Once, at 1920x1080 in the default sky.
+      // default sky's +x edge, so the first grows the sky; at its pen-up the renderer follows
+      // the growth (shifts what it holds, VolumeRenderer::sync) and the painter re-renders the
+      // stroke's region. Baseline in the same run: the same strokes in a sky made that wide from
+      // the start. Once, at 1920x1080 in the default sky.
       if (!quick && !journal.empty() && size.w == 1920 && size.h == 1080 &&
           sky.span == kDefaultSkySpan) {
         const Volume home = makeBundledCumulus(glm::ivec3(grid), 1);

@@ -172,15 +172,17 @@ size_t BrickPool::tableBytes() const {
          slot_hash_.capacity() * sizeof(uint64_t);
 }
 
+void BrickPool::makeIndirectionTexture(glm::ivec3 brick_dims) {
+  if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
+  glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
+  glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
+  glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  brick_dims_ = brick_dims;
+}
+
 void BrickPool::resetTables(glm::ivec3 brick_dims) {
-  if (brick_dims != brick_dims_ || !indirection_texture_) {
-    if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
-    glCreateTextures(GL_TEXTURE_3D, 1, &indirection_texture_);
-    glTextureStorage3D(indirection_texture_, 1, GL_RGBA8, brick_dims.x, brick_dims.y, brick_dims.z);
-    glTextureParameteri(indirection_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(indirection_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    brick_dims_ = brick_dims;
-  }
+  if (brick_dims != brick_dims_ || !indirection_texture_) makeIndirectionTexture(brick_dims);
   const size_t bricks = size_t(brick_dims.x) * brick_dims.y * brick_dims.z;
   slot_of_brick_.assign(bricks, glm::u8vec4(0));
   mark_.assign(bricks, 0);
@@ -290,6 +292,43 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   pool_texels_ = texels;
   capacity_ = cap;
   return slotCount(cap) >= needed;
+}
+
+void BrickPool::followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
+  const size_t bricks = size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z);
+  std::vector<glm::u8vec4> slot_of_brick(bricks, glm::u8vec4(0));
+  std::vector<uint64_t> slot_hash(bricks, 0);
+  const glm::ivec3 old = brick_dims_;
+  for (int z = 0; z < old.z; ++z)
+    for (int y = 0; y < old.y; ++y)
+      for (int x = 0; x < old.x; ++x) {
+        const size_t i = brickIndex({x, y, z});
+        if (slot_of_brick_[i].w == 0) continue;
+        const glm::ivec3 b = glm::ivec3(x, y, z) + brick_offset;
+        const size_t j =
+            (size_t(b.z) * size_t(brick_dims.y) + size_t(b.y)) * size_t(brick_dims.x) + size_t(b.x);
+        slot_of_brick[j] = slot_of_brick_[i];
+        slot_hash[j] = slot_hash_[i];
+      }
+  slot_of_brick_ = std::move(slot_of_brick);
+  slot_hash_ = std::move(slot_hash);
+  mark_.assign(bricks, 0);
+  makeIndirectionTexture(brick_dims);
+  uploadIndirection({glm::ivec3(0), brick_dims});
+}
+
+std::vector<glm::ivec3> growthEdgeBricks(const Volume& grown) {
+  const Volume::Growth& g = grown.growth();
+  const glm::ivec3 bd = grown.brickDims();
+  const glm::ivec3 lo = g.brick_offset, hi = g.brick_offset + g.from_dims / Volume::kBrickSize;
+  std::vector<glm::ivec3> edge;
+  for (const glm::ivec3 b : grown.allocatedBrickList()) {
+    bool on_edge = false;
+    for (int a = 0; a < 3; ++a)
+      on_edge |= (b[a] == lo[a] && lo[a] > 0) || (b[a] == hi[a] - 1 && hi[a] < bd[a]);
+    if (on_edge) edge.push_back(b);
+  }
+  return edge;
 }
 
 void BrickPool::uploadIndirection(const VoxelBox& bricks) {

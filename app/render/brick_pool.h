@@ -116,6 +116,15 @@ class BrickPool {
                      const LightByteChanges* light_bytes = nullptr,
                      std::vector<SlotChange>* changes = nullptr);
 
+  // Follows a growth of the volume (Volume::movedInto): brick b's slot becomes brick
+  // b + brick_offset's, in a table of `brick_dims` bricks. The slots stay where they are in the
+  // pool texture (nothing is packed or copied); the indirection table is made anew at the new
+  // size and uploaded. What the growth itself changes in the slots — the slots along the old edge,
+  // whose texels past it repeated the edge's voxels and now read the grown sky, and the bricks
+  // just outside it that now read an allocated brick — is for the next `update` to refresh: pass
+  // it the allocated bricks on the old edge among `changed_bricks` (growthEdgeBricks).
+  void followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset);
+
   GLuint poolTexture() const { return pool_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
   // The pool texture's size in texels (whole slots: 20 × its size in slots).
@@ -140,6 +149,8 @@ class BrickPool {
     return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
            size_t(b.x);
   }
+  // A new indirection texture of `brick_dims` texels (uninitialised) in place of the one held.
+  void makeIndirectionTexture(glm::ivec3 brick_dims);
   void resetTables(glm::ivec3 brick_dims);
   // Puts every slot but the empty one on the free list.
   void freeEverySlot();
@@ -171,6 +182,11 @@ class BrickPool {
   GLuint pool_texture_ = 0, indirection_texture_ = 0;
   bool full_reported_ = false;
 };
+
+// The allocated bricks of `grown` on the faces of the box a growth moved the old volume's bricks
+// into (Volume::Growth: from_dims bricks at brick_offset) that lie inside the grown grid: the
+// bricks whose slots (c − {0,1}³, BrickPool::update) the growth changes.
+std::vector<glm::ivec3> growthEdgeBricks(const Volume& grown);
 
 // Packs the slot of `brick` (BrickPool's layout: 20³ RGBA8 texels, x fastest; texel j on an axis
 // is voxel min(16·b + j, dim − 1)): density clamped to [0,1] and the light's transmittance, both

@@ -219,6 +219,8 @@ SweepFrame makeFrame(glm::vec3 l, glm::ivec3 dims) {
 // 0), so a column stores at least as deep as every column it reads: the depths are a running
 // maximum over those offsets. Unstored tiles are read only by unstored tiles, and the sweep
 // reads only upstream, so they are neither computed nor stored (all 0 for an empty volume).
+void closeStoredDepths(std::vector<int>& depth, int ntb, int ntc, int ob, int oc);
+
 std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob, int oc) {
   const glm::ivec3 bd = volume.brickDims();
   const int layers = bd[f.axis], n = volume.dims()[f.axis], ntb = bd[f.b], ntc = bd[f.c];
@@ -233,6 +235,13 @@ std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob,
         d = std::max(d, end);
       }
   }
+  closeStoredDepths(depth, ntb, ntc, ob, oc);
+  return depth;
+}
+
+// The running maximum of storedSlices over a column's readers: a column t reads t + δ,
+// δ ∈ {lo_b, lo_b + 1} × {lo_c, lo_c + 1}, so depth(t + δ) ≥ depth(t) for every δ.
+void closeStoredDepths(std::vector<int>& depth, int ntb, int ntc, int ob, int oc) {
   // depth(t + δ) ≥ depth(t): visit t before t + δ and pull from t − δ.
   const int lo_b = ob < 0 ? -1 : 0, lo_c = oc < 0 ? -1 : 0;
   for (int jc = 0; jc < ntc; ++jc) {
@@ -248,7 +257,6 @@ std::vector<int> storedSlices(const Volume& volume, const SweepFrame& f, int ob,
         }
     }
   }
-  return depth;
 }
 
 // The sweep over 16×16 tiles of a slice (a tile of slice s is the cross-section of one brick).
@@ -471,6 +479,23 @@ void LightBricks::recycle(glm::ivec3 brick_dims) {
   allocated_.store(0);
   brick_dims_ = brick_dims;
   table_.assign(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z), nullptr);
+}
+
+void LightBricks::shift(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
+  std::vector<float*> table(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z),
+                            nullptr);
+  const glm::ivec3 old = brick_dims_;
+  for (int z = 0; z < old.z; ++z)
+    for (int y = 0; y < old.y; ++y)
+      for (int x = 0; x < old.x; ++x) {
+        float* p = table_[brickIndex({x, y, z})];
+        if (!p) continue;
+        const glm::ivec3 b = glm::ivec3(x, y, z) + brick_offset;
+        table[(size_t(b.z) * size_t(brick_dims.y) + size_t(b.y)) * size_t(brick_dims.x) +
+              size_t(b.x)] = p;
+      }
+  table_ = std::move(table);
+  brick_dims_ = brick_dims;
 }
 
 void LightBricks::dropSpare() {
@@ -887,6 +912,41 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
           lv.through.release(i);
       }
   return out;
+}
+
+void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,
+                      glm::ivec3 brick_offset) {
+  const glm::ivec3 old_bricks = old_dims >> Volume::kBrickShift;
+  // The columns: lateral bricks (tb, tc), tb fastest; depths from the light side.
+  const glm::ivec3 dims = grown.dims(), bd = grown.brickDims();
+  const SweepFrame f = makeFrame(lv.direction, dims);
+  const int ntb_old = old_bricks[f.b], ntc_old = old_bricks[f.c];
+  if (lv.dims != old_dims || lv.extinction < 0.0f || lv.through.brickDims() != old_bricks ||
+      lv.lit.brickDims() != old_bricks ||
+      lv.stored_slices.size() != size_t(ntb_old) * size_t(ntc_old) ||
+      old_dims % Volume::kBrickSize != glm::ivec3(0)) {
+    lv = LightVolume{};
+    return;
+  }
+  lv.lit.shift(bd, brick_offset);
+  lv.through.shift(bd, brick_offset);
+  lv.dims = dims;
+  const int ntb = bd[f.b], ntc = bd[f.c];
+  const int offset_slices = brick_offset[f.axis] * Volume::kBrickSize;
+  const int added = f.dir > 0 ? offset_slices : dims[f.axis] - old_dims[f.axis] - offset_slices;
+  std::vector<int> depth(size_t(ntb) * size_t(ntc), 0);
+  for (int tc = 0; tc < ntc_old; ++tc)
+    for (int tb = 0; tb < ntb_old; ++tb) {
+      const int d = lv.stored_slices[size_t(tc) * size_t(ntb_old) + size_t(tb)];
+      depth[size_t(tc + brick_offset[f.c]) * size_t(ntb) + size_t(tb + brick_offset[f.b])] =
+          d > 0 ? d + added : 0;
+    }
+  // The old edge's columns read, upstream, columns of the grown sky that nothing stored (the old
+  // grid's outside, read as 1): these now store as deep as their readers, as storedSlices of the
+  // grown volume has them, so that a later edit's change there is followed into the columns
+  // reading it. Their light is 1 (absent bricks): all they read upstream is grown, empty sky.
+  closeStoredDepths(depth, ntb, ntc, int(std::floor(f.up[f.b])), int(std::floor(f.up[f.c])));
+  lv.stored_slices = std::move(depth);
 }
 
 std::vector<float> marchLightReference(const Volume& volume, const Light& light, int z_step) {

@@ -70,6 +70,9 @@ class LightBricks {
   // of them again; fresh pages cost more than the sweep's arithmetic); dropSpare frees the rest.
   void recycle(glm::ivec3 brick_dims);
   void dropSpare();
+  // Re-indexes the table for `brick_dims` bricks, brick b becoming brick b + brick_offset (the
+  // volume grew around it, Volume::movedInto): no brick is copied. Every brick must land inside.
+  void shift(glm::ivec3 brick_dims, glm::ivec3 brick_offset);
   glm::ivec3 brickDims() const { return brick_dims_; }
   size_t brickIndex(glm::ivec3 b) const {
     return (size_t(b.z) * size_t(brick_dims_.y) + size_t(b.y)) * size_t(brick_dims_.x) +
@@ -175,6 +178,19 @@ std::vector<glm::ivec3> lightBrickList(const Volume& volume);
 // the shadow the float values move but their 8 bits stay; brick_pool.h re-packs only those).
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
                           const VoxelBox& dirty, LightByteChanges* changes = nullptr);
+
+// Follows a growth of the volume (Volume::Growth: `grown` is the swept volume's bricks moved by
+// `brick_offset`, the rest empty sky) without sweeping: light is a function of the density and
+// the direction, growth only adds empty sky, and the sweep reads 1 outside the grid, so every
+// stored value stays what it was; the bricks are re-indexed and each column's stored depth is
+// carried over (counted from the light side, so it moves by the slices added there). Columns the
+// grown sky now lets the shadow reach (past the old edge, and one brick further where the old
+// edge cut a column short) are not stored yet: the next sweepLightVolume, incremental, sweeps
+// them as newly stored (exactly what it does when an edit deepens a column), so it ends equal to
+// a full sweep of the grown volume. A light volume that does not match `old_dims` (never swept,
+// a reduced preview's dims) is reset instead: the next sweep is then a full one.
+void shiftLightVolume(LightVolume& light_volume, glm::ivec3 old_dims, const Volume& grown,
+                      glm::ivec3 brick_offset);
 
 // The per-voxel reference march of Alg. 5 (slow: for tests and benchmarks). With z_step > 1 only
 // the z slices z % z_step == 0 are computed (the others are set to -1), for timing and checking

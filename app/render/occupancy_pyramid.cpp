@@ -39,20 +39,82 @@ uint8_t brickOccupied(const Volume& v, int brick, glm::ivec3 cell) {
   return 0;
 }
 
-}  // namespace
-
-OccupancyPyramid buildOccupancy(const Volume& volume) {
+// An empty pyramid for a volume of `dims`.
+OccupancyPyramid emptyPyramid(glm::ivec3 dims) {
   OccupancyPyramid p;
-  p.volume_dims = volume.dims();
-  glm::ivec3 d0 = (volume.dims() + p.brick - 1) / p.brick;
+  p.volume_dims = dims;
+  glm::ivec3 d0 = (dims + p.brick - 1) / p.brick;
   glm::ivec3 d(nextPowerOfTwo(d0.x), nextPowerOfTwo(d0.y), nextPowerOfTwo(d0.z));
   for (;;) {
     p.level_dims.push_back(d);
-    p.levels.emplace_back(size_t(d.x) * d.y * d.z, uint8_t(0));
+    p.levels.emplace_back(size_t(d.x) * d.y * d.z);  // zeros, unwritten (ZeroedAllocator)
     if (d == glm::ivec3(1)) break;
     d = glm::max(d / 2, glm::ivec3(1));
   }
+  return p;
+}
+
+// Level m's cells in `region` (cells of level m) as the max of their children at level m − 1.
+void reduceLevel(OccupancyPyramid& p, int m, const VoxelBox& region) {
+  const glm::ivec3 dc = p.level_dims[size_t(m - 1)], dp = p.level_dims[size_t(m)];
+  const OccupancyCells& child = p.levels[size_t(m - 1)];
+  OccupancyCells& parent = p.levels[size_t(m)];
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y)
+      for (int x = region.lo.x; x < region.hi.x; ++x) {
+        uint8_t v = 0;
+        for (int k = 0; k < 8; ++k) {
+          glm::ivec3 c = glm::ivec3(x, y, z) * 2 + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
+          if (c.x < dc.x && c.y < dc.y && c.z < dc.z) v |= child[cellIndex(dc, c.x, c.y, c.z)];
+        }
+        parent[cellIndex(dp, x, y, z)] = v;
+      }
+}
+
+}  // namespace
+
+OccupancyPyramid buildOccupancy(const Volume& volume) {
+  OccupancyPyramid p = emptyPyramid(volume.dims());
   updateOccupancy(p, volume, volume.bounds());
+  return p;
+}
+
+OccupancyPyramid shiftOccupancy(const OccupancyPyramid& old, const Volume& grown,
+                                glm::ivec3 voxel_offset) {
+  OccupancyPyramid p = emptyPyramid(grown.dims());
+  const glm::ivec3 cell_offset = voxel_offset / p.brick;
+  if (old.brick != p.brick || cell_offset * p.brick != voxel_offset || old.levelCount() == 0)
+    return buildOccupancy(grown);
+  for (int m = 0; m < p.levelCount(); ++m) {
+    const glm::ivec3 d = p.level_dims[size_t(m)];
+    const int size = 1 << m;
+    if (m < old.levelCount() && cell_offset % size == glm::ivec3(0)) {
+      // Cell c of the old level covers the voxels cell c + offset/size covers now.
+      const glm::ivec3 at = cell_offset / size;
+      const glm::ivec3 od = old.level_dims[size_t(m)];
+      const glm::ivec3 n = glm::min(od, d - at);
+      for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+          std::copy_n(
+              old.levels[size_t(m)].begin() + std::ptrdiff_t(cellIndex(od, 0, y, z)),
+              std::max(n.x, 0),
+              p.levels[size_t(m)].begin() + std::ptrdiff_t(cellIndex(d, at.x, at.y + y, at.z + z)));
+    } else {
+      reduceLevel(p, m, {glm::ivec3(0), d});
+    }
+  }
+  // The old edge's cells on both sides (a cell's footprint is dilated by one voxel): each face of
+  // the old box that lies inside the grown one.
+  const VoxelBox moved{voxel_offset, voxel_offset + old.volume_dims};
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int plane = side ? moved.hi[axis] : moved.lo[axis];
+      if (plane <= 0 || plane >= grown.dims()[axis]) continue;
+      VoxelBox slab{moved.lo - 1, moved.hi + 1};
+      slab.lo[axis] = plane - 1;
+      slab.hi[axis] = plane + 1;
+      updateOccupancy(p, grown, slab);
+    }
   return p;
 }
 
@@ -68,7 +130,7 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   // (voxels.lo-1)/b rounds toward zero for lo = 0, which the max() above keeps at 0.
   {
     const glm::ivec3 d = p.level_dims[0];
-    std::vector<uint8_t>& level = p.levels[0];
+    OccupancyCells& level = p.levels[0];
     std::atomic<bool> any_changed{false};
     parallelFor(size_t(cells.hi.z - cells.lo.z), 1, [&](size_t, size_t z0, size_t z1) {
       bool chunk_changed = false;
@@ -88,19 +150,7 @@ VoxelBox updateOccupancy(OccupancyPyramid& p, const Volume& volume, const VoxelB
   VoxelBox region = cells;
   for (int m = 1; m < p.levelCount(); ++m) {
     region = {region.lo / 2, glm::min((region.hi + 1) / 2, p.level_dims[size_t(m)])};
-    const glm::ivec3 dc = p.level_dims[size_t(m - 1)], dp = p.level_dims[size_t(m)];
-    const std::vector<uint8_t>& child = p.levels[size_t(m - 1)];
-    std::vector<uint8_t>& parent = p.levels[size_t(m)];
-    for (int z = region.lo.z; z < region.hi.z; ++z)
-      for (int y = region.lo.y; y < region.hi.y; ++y)
-        for (int x = region.lo.x; x < region.hi.x; ++x) {
-          uint8_t v = 0;
-          for (int k = 0; k < 8; ++k) {
-            glm::ivec3 c = glm::ivec3(x, y, z) * 2 + glm::ivec3(k & 1, (k >> 1) & 1, k >> 2);
-            if (c.x < dc.x && c.y < dc.y && c.z < dc.z) v |= child[cellIndex(dc, c.x, c.y, c.z)];
-          }
-          parent[cellIndex(dp, x, y, z)] = v;
-        }
+    reduceLevel(p, m, region);
   }
   return cells;
 }

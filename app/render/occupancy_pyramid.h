@@ -9,6 +9,9 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,11 +23,39 @@ namespace cb {
 
 constexpr int kOccupancyBrick = 4;
 
+// An allocator whose memory comes zeroed from the system (calloc) and which leaves
+// value-initialised elements as they come: a level of n cells is made without writing them, so
+// the pages of a large, mostly empty pyramid (16 MB at level 0 for a 1536×256×1536 sky) cost
+// nothing until a cell in them is written or read. Only for trivially constructible T; a vector
+// grown by resize() within its capacity gets whatever those bytes held (levels are made at
+// their size and never resized).
+template <class T>
+struct ZeroedAllocator {
+  using value_type = T;
+  ZeroedAllocator() = default;
+  template <class U>
+  ZeroedAllocator(const ZeroedAllocator<U>&) noexcept {}
+  T* allocate(size_t n) {
+    if (void* p = std::calloc(n, sizeof(T))) return static_cast<T*>(p);
+    throw std::bad_alloc();
+  }
+  void deallocate(T* p, size_t) noexcept { std::free(p); }
+  template <class U>
+  void construct(U*) noexcept {}  // value-initialisation: calloc's zeros stand
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  friend bool operator==(const ZeroedAllocator&, const ZeroedAllocator&) { return true; }
+};
+// One level's cells (x fastest; 1 = may hold density).
+using OccupancyCells = std::vector<uint8_t, ZeroedAllocator<uint8_t>>;
+
 struct OccupancyPyramid {
   int brick = kOccupancyBrick;
   glm::ivec3 volume_dims{0};
-  std::vector<glm::ivec3> level_dims;        // level_dims[0] = pow2(ceil(volume_dims / brick))
-  std::vector<std::vector<uint8_t>> levels;  // x fastest; 1 = may hold density
+  std::vector<glm::ivec3> level_dims;  // level_dims[0] = pow2(ceil(volume_dims / brick))
+  std::vector<OccupancyCells> levels;
 
   int levelCount() const { return int(levels.size()); }
   uint8_t at(int level, glm::ivec3 cell) const {
@@ -37,6 +68,15 @@ struct OccupancyPyramid {
 
 // Allocates the pyramid for `volume`'s dims and computes every cell.
 OccupancyPyramid buildOccupancy(const Volume& volume);
+
+// The pyramid of `grown`, a volume whose bricks are those `pyramid` was built for moved by
+// `voxel_offset` voxels (Volume::movedInto; whole level-0 cells) and empty sky around them,
+// without looking at a voxel away from the old edge: each level whose cell size divides the
+// offset is copied across shifted (its cells cover the same voxels), the others are reduced from
+// the level below, and the cells along the old edge, whose dilated footprint now reaches into the
+// grown sky, are recomputed (updateOccupancy). Equal to buildOccupancy(grown).
+OccupancyPyramid shiftOccupancy(const OccupancyPyramid& pyramid, const Volume& grown,
+                                glm::ivec3 voxel_offset);
 
 // Recomputes the level-0 cells whose dilated footprint meets `dirty` (voxel box) and their
 // ancestors. Returns the box of level-0 cells updated (empty if nothing was dirty); with

@@ -292,13 +292,25 @@ bool VolumeRenderer::drawSkyUnder(int w, int h, int width, int height,
   return true;
 }
 
-void VolumeRenderer::allocateOccupancyTexture() {
-  if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
-  const glm::ivec3 d0 = occupancy_.level_dims[0];
-  glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
-  glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
-  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-  glTextureParameteri(occupancy_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+void VolumeRenderer::ensureOccupancyTexture() {
+  const glm::ivec3 d0 = occupancy_.level_dims.empty() ? glm::ivec3(0) : occupancy_.level_dims[0];
+  if (d0 == glm::ivec3(0)) return;
+  if (!occupancy_texture_ || occupancy_texture_dims_ != d0 ||
+      occupancy_texture_levels_ != occupancy_.levelCount()) {
+    if (occupancy_texture_) glDeleteTextures(1, &occupancy_texture_);
+    glCreateTextures(GL_TEXTURE_3D, 1, &occupancy_texture_);
+    glTextureStorage3D(occupancy_texture_, occupancy_.levelCount(), GL_R8UI, d0.x, d0.y, d0.z);
+    glTextureParameteri(occupancy_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glTextureParameteri(occupancy_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    occupancy_texture_dims_ = d0;
+    occupancy_texture_levels_ = occupancy_.levelCount();
+    occupancy_texture_stale_ = {glm::ivec3(0), d0};
+  }
+  uploadOccupancy(occupancy_texture_stale_);
+  occupancy_texture_stale_ = {};
+  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+                   GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
+    glPixelStorei(p, 0);
 }
 
 void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
@@ -320,19 +332,60 @@ void VolumeRenderer::uploadOccupancy(const VoxelBox& cells) {
   }
 }
 
+bool VolumeRenderer::followsGrowth(const Volume& volume) const {
+  const Volume::Growth& g = volume.growth();
+  if (synced_volume_id_ == 0 || g.from_instance != synced_volume_id_ ||
+      g.from_generation != synced_generation_ || g.from_dims != dims_ || light_is_preview_)
+    return false;
+  // The grown volume places the synced one's voxels where they were in the world (a check of
+  // the record against the boxes: the same voxel size, the old box at the offset).
+  const glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
+  const glm::vec3 at = volume.voxelToWorld(glm::vec3(g.brick_offset * Volume::kBrickSize));
+  const glm::vec3 extent = volume.worldMax() - volume.worldMin();
+  const float tolerance = 1e-4f * std::max({extent.x, extent.y, extent.z});
+  return glm::all(glm::lessThanEqual(glm::abs(volume.voxelSize() - voxel), 1e-6f * voxel)) &&
+         glm::all(glm::lessThanEqual(glm::abs(at - world_min_), glm::vec3(tolerance)));
+}
+
+void VolumeRenderer::followGrowth(const Volume& volume) {
+  const Volume::Growth& g = volume.growth();
+  const glm::ivec3 voxel_offset = g.brick_offset * Volume::kBrickSize;
+  occupancy_ = shiftOccupancy(occupancy_, volume, voxel_offset);
+  shiftLightVolume(light_volume_, dims_, volume, g.brick_offset);
+  pool_.followGrowth(volume.brickDims(), g.brick_offset);
+  growth_edge_bricks_ = growthEdgeBricks(volume);
+  dims_ = volume.dims();
+  world_min_ = volume.worldMin();
+  world_max_ = volume.worldMax();
+  // The frames held were cast in the old box's voxel coordinates: cast anew (the targets stay).
+  history_ = FrameHistory{};
+  spare_history_ = FrameHistory{};
+  synced_volume_id_ = volume.instanceId();
+  synced_generation_ = g.generation;
+}
+
 SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   SyncStats st;
+  // A volume grown around the synced one (Volume::Growth): what the renderer holds is shifted by
+  // the growth's brick offset, and only what changed since is brought up to date.
+  auto t0 = std::chrono::steady_clock::now();
+  st.followed_growth = followsGrowth(volume);
+  if (st.followed_growth) followGrowth(volume);
+  st.growth_ms = msSince(t0);
   // A different volume (instance ids are unique per construction and assignment, so a new volume
   // at a reused address is recognised) or new dims/placement: upload everything.
   const bool fresh = synced_volume_id_ != volume.instanceId() || volume.dims() != dims_ ||
                      volume.worldMin() != world_min_ || volume.worldMax() != world_max_;
   st.dirty = fresh ? volume.bounds() : volume.dirtySince(synced_generation_);
 
-  auto t0 = std::chrono::steady_clock::now();
+  t0 = std::chrono::steady_clock::now();
   VoxelBox occupancy_cells;
   if (fresh) {
     occupancy_ = buildOccupancy(volume);
     occupancy_cells = {glm::ivec3(0), occupancy_.level_dims[0]};
+  } else if (st.followed_growth) {
+    updateOccupancy(occupancy_, volume, st.dirty);
+    occupancy_cells = {glm::ivec3(0), occupancy_.level_dims[0]};  // a new texture
   } else {
     // An edit inside cloud that is already occupied leaves the pyramid as it was: then neither
     // the occupancy texture nor the ray-bounds faces (a scan of all cells and a buffer upload of
@@ -368,11 +421,15 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     dims_ = volume.dims();
     world_min_ = volume.worldMin();
     world_max_ = volume.worldMax();
-    allocateOccupancyTexture();
   }
-  // The pool follows the bricks that changed (or every allocated brick when fresh).
-  const std::vector<glm::ivec3> changed_bricks =
+  // The pool follows the bricks that changed (or every allocated brick when fresh), and after a
+  // growth the bricks along the old edge.
+  std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
+  if (!fresh && !growth_edge_bricks_.empty())
+    changed_bricks.insert(changed_bricks.end(), growth_edge_bricks_.begin(),
+                          growth_edge_bricks_.end());
+  growth_edge_bricks_.clear();
   const BrickPool::UpdateStats pool = pool_.update(volume, light_volume_, fresh, changed_bricks,
                                                    st.light_box, &light_bytes, &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
@@ -399,7 +456,9 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.pack_ms = pool.pack_ms;
 
   t0 = std::chrono::steady_clock::now();
-  uploadOccupancy(occupancy_cells);
+  // The occupancy texture is read only by brick stepping (off by default): it is brought up to
+  // date when a frame steps (ensureOccupancyTexture), not here.
+  occupancy_texture_stale_ = occupancy_texture_stale_.unite(occupancy_cells);
   if (!occupancy_cells.empty()) {
     // One boundary, drawn once without culling: its front faces are where rays enter occupied
     // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
@@ -433,7 +492,7 @@ RendererGpuMemory VolumeRenderer::gpuMemory() const {
   m.pool = pool_.poolBytes();
   m.indirection = pool_.indirectionBytes();
   if (occupancy_texture_)
-    for (const std::vector<uint8_t>& level : occupancy_.levels) m.occupancy += level.size();
+    for (const OccupancyCells& level : occupancy_.levels) m.occupancy += level.size();
   m.ray_bounds = bounds_vbo_bytes_;
   // RG32F bounds + RGBA8 frame + 24/8 depth-stencil per pixel, for the current and spare size.
   constexpr size_t kTargetBytesPerPixel = 8 + 4 + 4;
@@ -859,6 +918,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   }
   glBindTextureUnit(0, pool_.poolTexture());
   glBindTextureUnit(5, pool_.indirectionTexture());
+  if (options.skip_empty_space && options.brick_stepping) ensureOccupancyTexture();
   glBindTextureUnit(1, occupancy_texture_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);

@@ -97,7 +97,11 @@ struct SyncStats {
   // (BrickPool::SlotChange; visibleChanges in changed_region.h picks a style's): a ray that
   // samples none of them renders as before the sync. Empty when nothing changed.
   std::vector<BrickPool::SlotChange> changes;
-  bool pool_grew = false;     // the brick pool was reallocated to hold more slots
+  bool pool_grew = false;  // the brick pool was reallocated to hold more slots
+  // The volume had grown around the one synced before (Volume::Growth): what the renderer held
+  // was shifted by the growth's offset instead of being rebuilt (growth_ms), then updated.
+  bool followed_growth = false;
+  double growth_ms = 0.0;
   double occupancy_ms = 0.0;  // updateOccupancy
   double light_ms = 0.0;      // sweepLightVolume
   double pack_ms = 0.0;       // packing density + transmittance into pool slots (RGBA8)
@@ -142,9 +146,12 @@ class VolumeRenderer {
   // Brings the GPU copies up to date with `volume` and `light`: only the voxels changed since the
   // last sync (Volume::dirtySince) are re-packed and uploaded; the occupancy is updated over the
   // dirty box; the light volume over the dirty box swept away from the light, or entirely when
-  // the light changed. A different Volume (by instanceId()) or new dims re-uploads
-  // everything; after replacing a volume's contents without markDirty (never do
-  // that) call invalidate().
+  // the light changed. A volume grown around the synced one (Volume::growth(): made by
+  // Volume::movedInto from the instance and generation last synced) keeps what was uploaded,
+  // shifted by the growth's brick offset (pool indirection, light bricks, occupancy), and updates
+  // what changed since as an edit; the result equals a fresh sync of it (sky_growth_test). Any
+  // other Volume (by instanceId()) or new dims re-uploads everything; after replacing a volume's
+  // contents without markDirty (never do that) call invalidate().
   SyncStats sync(const Volume& volume, const Light& light);
   // While the light is dragged: a light change is swept on a grid `divisor` times coarser per
   // axis (2: the thesis's 128³ for 256³; reduced_light_sweep.h); 1, the default, sweeps at full
@@ -188,7 +195,12 @@ class VolumeRenderer {
   // composites what is drawn next over it (premultiplied "over"). False when the style shows
   // no sky (then nothing is drawn).
   bool drawSkyUnder(int w, int h, int width, int height, const RenderOptions& options);
-  void allocateOccupancyTexture();
+  // Whether `volume` was grown around exactly what was last synced (see sync), and following it.
+  bool followsGrowth(const Volume& volume) const;
+  void followGrowth(const Volume& volume);
+  // Makes the occupancy texture current (allocated at the pyramid's size, its stale cells
+  // uploaded): only frames that step over it (RenderOptions::brick_stepping) read it.
+  void ensureOccupancyTexture();
   void uploadOccupancy(const VoxelBox& cells);
   // Makes the frame targets of a w×h image current (keeping the previous size's as the spare).
   void useFrameTargets(int w, int h);
@@ -198,10 +210,16 @@ class VolumeRenderer {
   GLuint program_ = 0;                      // the variant in use
   std::map<std::string, GLuint> programs_;  // variants by shading file + defines
   GLuint vao_ = 0, occupancy_texture_ = 0, stats_buffer_ = 0;
+  // The occupancy texture's size (level 0, levels) and the level-0 cells it lacks.
+  glm::ivec3 occupancy_texture_dims_{0};
+  int occupancy_texture_levels_ = 0;
+  VoxelBox occupancy_texture_stale_;
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
   uint64_t synced_volume_id_ = 0;  // Volume::instanceId() last synced, 0: none
   uint64_t synced_generation_ = 0;
+  // After following a growth: the allocated bricks on the old edge, for the pool's update.
+  std::vector<glm::ivec3> growth_edge_bricks_;
   Light synced_light_;
   BrickPool pool_;  // density and transmittance on the GPU (brick_pool.h)
   LightVolume light_volume_;

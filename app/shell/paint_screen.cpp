@@ -756,11 +756,18 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
     // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
     // a full-resolution frame also redoes what is still at the reduced resolution.
+    // A sky grown around the drawn volume, which the renderer followed (VolumeRenderer::sync),
+    // shows the same world: only what changed since is re-rendered, as after an edit.
+    const uint64_t drawn_volume =
+        drawn_ && sync.followed_growth && drawn_->volume == shownVolume().growth().from_instance
+            ? key.volume
+        : drawn_ ? drawn_->volume
+                 : 0;
     ScreenRegion region = ScreenRegion::wholeFrame(w, h);
     if (refine)
       region = {};
     else if (drawn_ && options_.region_rerender && !key.stats &&
-             SceneKey{drawn_->volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
+             SceneKey{drawn_volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
                       drawn_->style} == key)
       region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, key.style);
     // Right after a lift, a change the last refinements say can be cast at full resolution

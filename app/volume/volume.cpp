@@ -77,7 +77,8 @@ Volume::Volume(const Volume& o)
       brick_changed_(o.brick_changed_),
       generation_(o.generation_),
       instance_id_(nextInstanceId()),
-      changes_(o.changes_) {
+      changes_(o.changes_),
+      growth_(o.growth_) {
   copyBricksFrom(o);
 }
 
@@ -91,7 +92,8 @@ Volume::Volume(Volume&& o) noexcept
       allocated_(o.allocated_),
       generation_(o.generation_),
       instance_id_(nextInstanceId()),
-      changes_(std::move(o.changes_)) {
+      changes_(std::move(o.changes_)),
+      growth_(o.growth_) {
   o.table_.clear();
   o.allocated_ = 0;
 }
@@ -113,6 +115,7 @@ Volume& Volume::operator=(Volume&& o) noexcept {
   allocated_ = o.allocated_;
   generation_ = o.generation_;
   changes_ = std::move(o.changes_);
+  growth_ = o.growth_;
   instance_id_ = nextInstanceId();
   o.table_.clear();
   o.allocated_ = 0;
@@ -259,6 +262,7 @@ Volume Volume::movedInto(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_m
   to.allocated_ = allocated_;
   allocated_ = 0;
   to.markDirty(to.bounds());
+  to.growth_ = {instance_id_, generation_, dims_, brick_offset, to.generation_};
   return to;
 }
 

@@ -132,6 +132,21 @@ class Volume {
   // land outside the new grid.
   Volume movedInto(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_max,
                    glm::ivec3 brick_offset) &&;
+  // Where this volume's contents came from when movedInto made it: the moved volume's
+  // instanceId and generation at the move (nothing changed in between, since the move takes its
+  // bricks as they were), its dims and the brick offset, and this volume's generation right
+  // after the move (every change since is in dirtySince/changedBricksSince of it). A consumer
+  // that had seen exactly (from_instance, from_generation) can shift what it holds by the offset
+  // instead of starting over (VolumeRenderer::sync). Copies and moves keep it, as they keep the
+  // generation and the change list it refers to; from_instance 0: not made by a move.
+  struct Growth {
+    uint64_t from_instance = 0;
+    uint64_t from_generation = 0;
+    glm::ivec3 from_dims{0};
+    glm::ivec3 brick_offset{0};
+    uint64_t generation = 0;
+  };
+  const Growth& growth() const { return growth_; }
 
   // --- changes ---
   // Records a change (clipped to bounds) and returns the new generation.
@@ -188,6 +203,7 @@ class Volume {
     VoxelBox box;
   };
   std::deque<Change> changes_;  // most recent last, bounded
+  Growth growth_;
 };
 
 }  // namespace cb

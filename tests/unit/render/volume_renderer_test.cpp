@@ -207,6 +207,40 @@ TEST_F(VolumeRendererTest, SkippingIsLosslessAndSavesSamples) {
       }
     }
   }
+  // An edit that adds cloud where there was none: brick stepping reads the occupancy as it is now
+  // (its texture is brought up to date by the next frame that steps, not by sync).
+  Volume v = makeSparsePuffs(glm::ivec3(64), 2);
+  renderer.sync(v, Light{});
+  RenderOptions opt;
+  opt.brick_stepping = true;
+  const Camera cam = Camera::reference();
+  renderImage(renderer, cam, opt);
+  const ImageRgba8 before = renderImage(renderer, cam, opt);
+  // A 10³ box in a corner with no density and an empty voxel around it.
+  auto empty = [&](const VoxelBox& b) {
+    for (int z = b.lo.z - 1; z <= b.hi.z; ++z)
+      for (int y = b.lo.y - 1; y <= b.hi.y; ++y)
+        for (int x = b.lo.x - 1; x <= b.hi.x; ++x)
+          if (v.at(x, y, z) != 0.0f) return false;
+    return true;
+  };
+  VoxelBox added;
+  for (int corner = 0; corner < 8 && added.empty(); ++corner) {
+    const glm::ivec3 lo(corner & 1 ? 50 : 4, corner & 2 ? 50 : 4, corner & 4 ? 50 : 4);
+    if (empty({lo, lo + 10})) added = {lo, lo + 10};
+  }
+  ASSERT_FALSE(added.empty()) << "no empty corner";
+  for (int z = added.lo.z; z < added.hi.z; ++z)
+    for (int y = added.lo.y; y < added.hi.y; ++y)
+      for (int x = added.lo.x; x < added.hi.x; ++x) v.voxelForWrite(x, y, z) = 0.8f;
+  v.markDirty(added);
+  renderer.sync(v, Light{});
+  const ImageRgba8 stepped = renderImage(renderer, cam, opt);
+  opt.brick_stepping = false;
+  opt.skip_empty_space = false;
+  const ImageRgba8 full = renderImage(renderer, cam, opt);
+  EXPECT_GT(maxChannelDifference(before, full), 50) << "the added box does not show";
+  EXPECT_LE(maxChannelDifference(stepped, full), 1) << "brick stepping after an edit";
 }
 
 // With skipping, only the projected rectangle of the ray-bounds boundary is bounded, cast and

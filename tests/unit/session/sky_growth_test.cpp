@@ -14,6 +14,8 @@
 //     redo go on across it, its journal replays byte-identically on 1 and 2 threads, and a
 //     journal of specification 1.4 (no `placements_grow_sky`) still clips it, to the checksum
 //     it replayed to before placements grew the sky.
+//   - the renderer follows a growth (shifts what it holds) and then holds and draws what a fresh
+//     sync of the grown sky holds and draws.
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -211,11 +213,12 @@ TEST_F(SkyGrowthGl, AStrokePastTheDefaultEdgeGrowsTheSkyLandsWholeAndRenders) {
   EXPECT_NEAR(sum_grown, sum_wide, 1e-4 * sum_wide);
   EXPECT_LT(sum_fixed, 0.9 * sum_grown) << "the stroke did not reach past the default edge";
 
-  // It renders: the renderer that showed the sky before it grew syncs the grown one afresh and
-  // draws what a fresh renderer draws of the sky made wide from the start.
+  // It renders: the renderer that showed the sky before it grew follows the growth and draws what
+  // a fresh renderer draws of the sky made wide from the start.
   const auto t0 = std::chrono::steady_clock::now();
-  const SyncStats fresh = renderer.sync(g.volume(), Light{});
-  const double fresh_ms = msSince(t0);
+  const SyncStats synced = renderer.sync(g.volume(), Light{});
+  const double sync_ms = msSince(t0);
+  EXPECT_TRUE(synced.followed_growth);
   const std::vector<float> seen = test::renderedOpacity(renderer, target, g.volume(), kEdgeView);
   VolumeRenderer other;
   std::string err;
@@ -231,10 +234,11 @@ TEST_F(SkyGrowthGl, AStrokePastTheDefaultEdgeGrowsTheSkyLandsWholeAndRenders) {
     off += std::abs(seen[i] - seen_wide[i]) > 2.5f / 255.0f;
   }
   std::printf(
-      "fresh sync of the grown sky: %.1f ms (occupancy %.1f, light %.1f, pack %.1f, upload %.1f); "
+      "sync of the grown sky (followed: %d): %.1f ms (occupancy %.1f, light %.1f, pack %.1f, "
+      "upload %.1f); "
       "%lld cloud pixels (fixed sky: %lld), %lld differ from the wide sky's by > 2/255\n",
-      fresh_ms, fresh.occupancy_ms, fresh.light_ms, fresh.pack_ms, fresh.upload_ms, cloud,
-      cloud_fixed, off);
+      int(synced.followed_growth), sync_ms, synced.occupancy_ms, synced.light_ms, synced.pack_ms,
+      synced.upload_ms, cloud, cloud_fixed, off);
   EXPECT_GT(cloud, 20000);
   EXPECT_LT(cloud_fixed, cloud * 9 / 10);
   EXPECT_LE(off, kW * kH / 10000);
@@ -608,6 +612,159 @@ TEST(SkyGrowth, AJournalOfSpecificationOneFourStillClipsItsPlacements) {
   EXPECT_EQ(sum, 0x8ae6b72b256d1934ull) << "the clipped placements no longer replay as before";
   expectReplays(path, sum, sky, growths);
   std::filesystem::remove(path);
+}
+
+// How two renderers' copies of the same volume differ: occupancy cells, light bricks (values as
+// the pool reads them, LightVolume::brickTransmittance, and which bricks are stored), stored
+// light depths, bricks with a slot in one only, and bricks whose slots hold other bytes.
+struct StateDifferences {
+  long long occupancy = 0, light_values = 0, light_bricks = 0, light_depths = 0, slots = 0,
+            slot_bytes = 0;
+  long long total() const {
+    return occupancy + light_values + light_bricks + light_depths + slots + slot_bytes;
+  }
+};
+
+std::vector<uint8_t> poolTexels(const BrickPool& pool) {
+  const glm::ivec3 t = pool.poolTexels();
+  std::vector<uint8_t> texels(size_t(t.x) * size_t(t.y) * size_t(t.z) * 4);
+  glGetTextureImage(pool.poolTexture(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(texels.size()),
+                    texels.data());
+  return texels;
+}
+
+StateDifferences stateDifferences(const VolumeRenderer& a, const VolumeRenderer& b,
+                                  const Volume& volume) {
+  StateDifferences d;
+  const OccupancyPyramid &oa = a.occupancy(), &ob = b.occupancy();
+  if (oa.levels.size() != ob.levels.size()) d.occupancy = 1 << 30;
+  for (size_t m = 0; m < std::min(oa.levels.size(), ob.levels.size()); ++m) {
+    if (oa.levels[m].size() != ob.levels[m].size()) {
+      d.occupancy += 1 << 20;
+      continue;
+    }
+    for (size_t i = 0; i < oa.levels[m].size(); ++i)
+      d.occupancy += oa.levels[m][i] != ob.levels[m][i];
+  }
+  const LightVolume &la = a.lightVolume(), &lb = b.lightVolume();
+  const size_t columns = std::max(la.stored_slices.size(), lb.stored_slices.size());
+  for (size_t i = 0; i < columns; ++i)
+    d.light_depths += i >= la.stored_slices.size() || i >= lb.stored_slices.size() ||
+                      la.stored_slices[i] != lb.stored_slices[i];
+  const BrickPool &pa = a.brickPool(), &pb = b.brickPool();
+  const std::vector<uint8_t> ta = poolTexels(pa), tb = poolTexels(pb);
+  const glm::ivec3 bd = volume.brickDims();
+  constexpr int S = BrickPool::kSlotTexels;
+  for (int z = 0; z < bd.z; ++z)
+    for (int y = 0; y < bd.y; ++y)
+      for (int x = 0; x < bd.x; ++x) {
+        const glm::ivec3 brick(x, y, z);
+        const float *va = la.brickTransmittance(brick), *vb = lb.brickTransmittance(brick);
+        d.light_values += !va || !vb || !std::equal(va, va + Volume::kBrickVoxels, vb);
+        const size_t i = la.lit.brickIndex(brick);
+        d.light_bricks += (la.lit.get(i) != nullptr) != (lb.lit.get(i) != nullptr) ||
+                          (la.through.get(i) != nullptr) != (lb.through.get(i) != nullptr);
+        const glm::u8vec4 sa = pa.slotOf(brick), sb = pb.slotOf(brick);
+        if ((sa.w != 0) != (sb.w != 0)) {
+          ++d.slots;
+          continue;
+        }
+        if (sa.w == 0) continue;
+        bool same = true;
+        for (int k = 0; k < S && same; ++k)
+          for (int j = 0; j < S && same; ++j) {
+            auto row = [&](const std::vector<uint8_t>& t, const BrickPool& p, glm::u8vec4 slot) {
+              const glm::ivec3 at = glm::ivec3(slot) * S, n = p.poolTexels();
+              return t.data() + ((size_t(at.z + k) * size_t(n.y) + size_t(at.y + j)) * size_t(n.x) +
+                                 size_t(at.x)) *
+                                    4;
+            };
+            same = std::equal(row(ta, pa, sa), row(ta, pa, sa) + S * 4, row(tb, pb, sb));
+          }
+        d.slot_bytes += !same;
+      }
+  return d;
+}
+
+// The largest channel difference between two images of the same size.
+int worstPixel(const ImageRgba8& a, const ImageRgba8& b) {
+  int worst = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    worst = std::max(worst, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
+  return worst;
+}
+
+// A stroke that grows the sky does not cost a fresh renderer sync: the renderer that showed the
+// sky before shifts what it holds by the growth's offset (Volume::Growth) and updates the
+// stroke as an edit. What it then holds and draws equals what a renderer given the grown sky
+// afresh holds and draws: occupancy, light (values, stored bricks and depths), the pool's slots
+// brick by brick, and the images at the default camera and the two painting views — for the
+// default sun (from above: the sweep runs along y) and two low suns (along x, from the low and
+// the high side, whose depths count from the side the sky grew on), whose shadows cross the old
+// edge into the grown sky.
+TEST_F(SkyGrowthGl, TheRendererFollowsTheGrowthAndHoldsWhatAFreshSyncHolds) {
+  const std::vector<SyntheticStroke> strokes = referencePaintStrokes(kW, kH);
+  const Camera home_view = initialPaintCamera(productSettings());
+  const Camera far_view = pannedPaintCamera(glm::vec3(-6.0f, 0.0f, 5.0f));
+  struct Sun {
+    const char* name;
+    Light light;
+  };
+  std::vector<Sun> suns(3);
+  suns[0].name = "default sun";
+  suns[1].name = "low sun from -x";
+  suns[1].light.direction = glm::normalize(glm::vec3(-1.0f, 0.35f, 0.4f));
+  suns[2].name = "low sun from +x";
+  suns[2].light.direction = glm::normalize(glm::vec3(1.0f, 0.3f, -0.45f));
+  RenderOptions options;
+  for (const Sun& sun : suns) {
+    SCOPED_TRACE(sun.name);
+    Painter p;
+    VolumeRenderer followed;
+    std::string err;
+    ASSERT_TRUE(followed.init(&err)) << err;
+    p.stroke(gentleCurve(kW, kH));  // in the home box
+    followed.sync(p.session.volume(), sun.light);
+    const Camera views[] = {kEdgeView, far_view};
+    for (int growth = 0; growth < 2; ++growth) {
+      const int span_before = p.session.sky().span;
+      p.apply(ui::SetCamera{views[growth]});
+      p.stroke(strokes[size_t(growth)]);
+      ASSERT_GT(p.session.sky().span, span_before) << "the stroke did not grow the sky";
+      const Volume& v = p.session.volume();
+      auto t0 = std::chrono::steady_clock::now();
+      const SyncStats shifted = followed.sync(v, sun.light);
+      const double shifted_ms = msSince(t0);
+      EXPECT_TRUE(shifted.followed_growth);
+      VolumeRenderer fresh;
+      ASSERT_TRUE(fresh.init(&err)) << err;
+      t0 = std::chrono::steady_clock::now();
+      const SyncStats whole = fresh.sync(v, sun.light);
+      const double fresh_ms = msSince(t0);
+      EXPECT_FALSE(whole.followed_growth);
+      const StateDifferences d = stateDifferences(followed, fresh, v);
+      int worst = 0;
+      for (const Camera& view : {home_view, kEdgeView, far_view}) {
+        followed.render(view, kW, kH, target.fbo(), options);
+        const ImageRgba8 a = target.readRgba8();
+        fresh.render(view, kW, kH, target.fbo(), options);
+        worst = std::max(worst, worstPixel(a, target.readRgba8()));
+      }
+      std::printf(
+          "%s, sky span %d -> %d: followed sync %.1f ms (growth %.1f, light %.1f, pack %.1f, "
+          "%d slots uploaded), fresh sync %.1f ms; %zu light bricks, %zu slots; differences: "
+          "occupancy %lld, light values %lld, light bricks %lld, depths %lld, slots %lld, slot "
+          "bytes %lld; images by at most %d/255\n",
+          sun.name, span_before, p.session.sky().span, shifted_ms, shifted.growth_ms,
+          shifted.light_ms, shifted.pack_ms, shifted.slots_uploaded, fresh_ms,
+          fresh.lightVolume().lit.allocated() + fresh.lightVolume().through.allocated(),
+          fresh.brickPool().slotsInUse(), d.occupancy, d.light_values, d.light_bricks,
+          d.light_depths, d.slots, d.slot_bytes, worst);
+      EXPECT_EQ(d.total(), 0);
+      EXPECT_EQ(followed.brickPool().slotsInUse(), fresh.brickPool().slotsInUse());
+      EXPECT_LE(worst, 1);
+    }
+  }
 }
 
 }  // namespace
