@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "app/core/parallel_for.h"
+#include "app/volume/brick_table_shift.h"
 
 namespace cb {
 namespace {
@@ -295,24 +296,9 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
 }
 
 void BrickPool::followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
-  const size_t bricks = size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z);
-  std::vector<glm::u8vec4> slot_of_brick(bricks, glm::u8vec4(0));
-  std::vector<uint64_t> slot_hash(bricks, 0);
-  const glm::ivec3 old = brick_dims_;
-  for (int z = 0; z < old.z; ++z)
-    for (int y = 0; y < old.y; ++y)
-      for (int x = 0; x < old.x; ++x) {
-        const size_t i = brickIndex({x, y, z});
-        if (slot_of_brick_[i].w == 0) continue;
-        const glm::ivec3 b = glm::ivec3(x, y, z) + brick_offset;
-        const size_t j =
-            (size_t(b.z) * size_t(brick_dims.y) + size_t(b.y)) * size_t(brick_dims.x) + size_t(b.x);
-        slot_of_brick[j] = slot_of_brick_[i];
-        slot_hash[j] = slot_hash_[i];
-      }
-  slot_of_brick_ = std::move(slot_of_brick);
-  slot_hash_ = std::move(slot_hash);
-  mark_.assign(bricks, 0);
+  slot_of_brick_ = shiftedBrickTable(slot_of_brick_, brick_dims_, brick_dims, brick_offset);
+  slot_hash_ = shiftedBrickTable(slot_hash_, brick_dims_, brick_dims, brick_offset);
+  mark_.assign(slot_of_brick_.size(), 0);
   makeIndirectionTexture(brick_dims);
   uploadIndirection({glm::ivec3(0), brick_dims});
 }

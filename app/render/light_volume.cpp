@@ -14,6 +14,7 @@
 #endif
 
 #include "app/core/parallel_for.h"
+#include "app/volume/brick_table_shift.h"
 
 namespace cb {
 namespace {
@@ -482,19 +483,7 @@ void LightBricks::recycle(glm::ivec3 brick_dims) {
 }
 
 void LightBricks::shift(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
-  std::vector<float*> table(size_t(brick_dims.x) * size_t(brick_dims.y) * size_t(brick_dims.z),
-                            nullptr);
-  const glm::ivec3 old = brick_dims_;
-  for (int z = 0; z < old.z; ++z)
-    for (int y = 0; y < old.y; ++y)
-      for (int x = 0; x < old.x; ++x) {
-        float* p = table_[brickIndex({x, y, z})];
-        if (!p) continue;
-        const glm::ivec3 b = glm::ivec3(x, y, z) + brick_offset;
-        table[(size_t(b.z) * size_t(brick_dims.y) + size_t(b.y)) * size_t(brick_dims.x) +
-              size_t(b.x)] = p;
-      }
-  table_ = std::move(table);
+  table_ = shiftedBrickTable(table_, brick_dims_, brick_dims, brick_offset);
   brick_dims_ = brick_dims;
 }
 

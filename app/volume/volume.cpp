@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "app/volume/brick_table_shift.h"
+
 namespace cb {
 namespace {
 constexpr size_t kMaxKeptChanges = 256;
@@ -251,14 +253,8 @@ Volume Volume::movedInto(glm::ivec3 dims, glm::vec3 world_min, glm::vec3 world_m
         "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z) + " at brick offset " +
         std::to_string(brick_offset.x) + "," + std::to_string(brick_offset.y) + "," +
         std::to_string(brick_offset.z));
-  for (int z = 0; z < brick_dims_.z; ++z)
-    for (int y = 0; y < brick_dims_.y; ++y)
-      for (int x = 0; x < brick_dims_.x; ++x) {
-        float*& from = table_[brickIndexOf({x, y, z})];
-        if (!from) continue;
-        to.table_[to.brickIndexOf(glm::ivec3(x, y, z) + brick_offset)] = from;
-        from = nullptr;
-      }
+  to.table_ = shiftedBrickTable(table_, brick_dims_, to.brick_dims_, brick_offset);
+  std::fill(table_.begin(), table_.end(), nullptr);  // the bricks are `to`'s now
   to.allocated_ = allocated_;
   allocated_ = 0;
   to.markDirty(to.bounds());
