@@ -19,16 +19,6 @@ inline int wrap(int i, int period) {
 
 }  // namespace
 
-// "lowbias32" integer hash (Chris Wellons' hash-prospector).
-uint32_t hashU32(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 uint32_t hashCombine(uint32_t seed, int32_t a, int32_t b, int32_t c) {
   uint32_t h = hashU32(seed ^ 0x85ebca6bu);
   h = hashU32(h ^ uint32_t(a));

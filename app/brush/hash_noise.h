@@ -5,9 +5,10 @@
 
 #include <cstdint>
 
+#include "app/core/hash32.h"
+
 namespace cb {
 
-uint32_t hashU32(uint32_t x);
 uint32_t hashCombine(uint32_t seed, int32_t a, int32_t b = 0, int32_t c = 0);
 // Uniform in [0, 1) from a hash.
 inline float unitFloat(uint32_t h) {

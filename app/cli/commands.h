@@ -4,8 +4,8 @@
 
 namespace cb {
 
-int commandPaint(int argc, char** argv);
-int commandKiosk(int argc, char** argv);      // the painter as an exhibition kiosk (service)      // default: painter on a display, else headless render
+int commandPaint(int argc, char** argv);      // default: painter on a display, else headless render
+int commandKiosk(int argc, char** argv);      // the painter as an exhibition kiosk (service)
 int commandRender(int argc, char** argv);     // offline render of a saved volume
 int commandDevices(int argc, char** argv);    // list pens, --watch prints live samples
 int commandCalibrate(int argc, char** argv);  // N-point pen calibration

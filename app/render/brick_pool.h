@@ -80,7 +80,7 @@ class BrickPool {
   // A slot's changed texels are reported per block of this many texels on each axis (2³ blocks
   // a slot): one box around a slot's changes covers much that did not change (a stroke's edge,
   // a shadow's slanted front), and more blocks cost the mask more triangles than they save
-  // pixels (`cloudbrush bench scale`, app/render/README.md).
+  // pixels (`cloudbrush bench scale`, docs/render.md).
   static constexpr int kChangeBlockTexels = kSlotTexels / 2;
   // What one block of a slot's change can alter in an image, as voxel boxes (clamped to the
   // volume).

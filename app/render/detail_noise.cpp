@@ -5,17 +5,10 @@
 
 #include <glm/glm.hpp>
 
+#include "app/core/hash32.h"
+
 namespace cb {
 namespace {
-
-uint32_t hash(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
 
 // One of the 12 edge directions of a cube (Perlin's improved noise gradients).
 glm::vec3 gradient(glm::ivec3 cell, int period, uint32_t seed) {
@@ -23,7 +16,7 @@ glm::vec3 gradient(glm::ivec3 cell, int period, uint32_t seed) {
                                       {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
                                       {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
   glm::ivec3 c = ((cell % period) + period) % period;  // wrap: the noise repeats
-  uint32_t h = hash(uint32_t(c.x) + hash(uint32_t(c.y) + hash(uint32_t(c.z) + seed)));
+  uint32_t h = hashU32(uint32_t(c.x) + hashU32(uint32_t(c.y) + hashU32(uint32_t(c.z) + seed)));
   return kDirs[h % 12u];
 }
 

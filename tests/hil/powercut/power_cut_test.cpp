@@ -6,7 +6,7 @@
 // what it had written, and be byte for byte the source's first records (so the rest replays);
 // the guest then carries on appending. At the end the disk's journal is taken out of the image
 // (debugfs) and `cloudbrush replay` gives the source journal's volume. The seed is printed
-// (CB_POWERCUT_SEED=N repeats a run); CB_POWERCUT_RESETS sets the number of resets (10).
+// (CB_TEST_SEED=N repeats a run); CB_POWERCUT_RESETS sets the number of resets (10).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -25,6 +25,7 @@
 #include "app/session/synthetic_session.h"
 #include "qemu_vm.h"
 #include "tests/support/reference_journal.h"
+#include "tests/support/test_seed.h"
 
 namespace cb::hil {
 namespace {
@@ -84,13 +85,10 @@ TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
   std::filesystem::remove(disk);
   ASSERT_EQ(runCommand("mkfs.ext4 -q -F '" + disk + "' 32M 2>&1", &out), 0) << out;
 
-  unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
-  if (const char* fixed = std::getenv("CB_POWERCUT_SEED"))
-    seed = unsigned(std::strtoul(fixed, nullptr, 10));
+  const unsigned seed = cb::test::testSeed("power-cut test");
   const int resets =
       std::getenv("CB_POWERCUT_RESETS") ? std::atoi(std::getenv("CB_POWERCUT_RESETS")) : 10;
-  std::printf("power-cut test seed %u, %d resets (CB_POWERCUT_SEED=%u repeats it); %zu records\n",
-              seed, resets, seed, times.size());
+  std::printf("power-cut test: %d resets; %zu records\n", resets, times.size());
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> delay_ms(300, 4000);
 

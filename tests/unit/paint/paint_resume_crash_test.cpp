@@ -3,7 +3,7 @@
 // with SIGKILL at 20 random points and restarted on the same file each time. Every restart
 // resumes the session; no completed stroke is ever lost; and the final volume equals the one an
 // uninterrupted run paints, and `cloudbrush replay` of the resumed journal reproduces it. The
-// seed is printed (CB_CRASH_SEED=N repeats a run).
+// seed is printed (CB_TEST_SEED=N repeats a run).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -27,6 +27,7 @@
 
 #include "tests/support/command_run.h"
 #include "tests/support/reference_journal.h"
+#include "tests/support/test_seed.h"
 
 namespace cb {
 namespace {
@@ -102,10 +103,7 @@ TEST(PaintResumeCrash, KilledTwentyTimesTheSessionResumesAndEndsWithTheSameVolum
   ASSERT_FALSE(expected.empty()) << whole.out;
   EXPECT_EQ(completedStrokes(dir + "/whole.cbj"), source_strokes);
 
-  unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
-  if (const char* fixed = std::getenv("CB_CRASH_SEED"))
-    seed = unsigned(std::strtoul(fixed, nullptr, 10));
-  std::printf("crash test seed %u (CB_CRASH_SEED=%u repeats it)\n", seed, seed);
+  const unsigned seed = cb::test::testSeed("paint crash test");
   std::mt19937 random(seed);
   // One kill in five lands during startup (display, renderer, replay of the journal so far);
   // the others once the pen plays into the painter (it printed "pen connected"), 0–1 s into

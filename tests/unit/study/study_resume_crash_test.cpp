@@ -5,7 +5,7 @@
 // sample, completed stroke or answer is ever lost or doubled; and at the end the folder holds
 // what an uninterrupted run leaves: the same questionnaire answers, the same stage and answer
 // records, the same task volumes, and the same final volume (also from `cloudbrush replay` of
-// the resumed journal). The seed is printed (CB_CRASH_SEED=N repeats a run); CB_CRASH_KILLS sets
+// the resumed journal). The seed is printed (CB_TEST_SEED=N repeats a run); CB_CRASH_KILLS sets
 // the number of kills (ctest: 5 in CI, 20 in the `slow` variant).
 //
 // The protocol and the pen are tests/support/short_study.h's: consent, the participant's code,
@@ -35,6 +35,7 @@
 
 #include "tests/support/command_run.h"
 #include "tests/support/short_study.h"
+#include "tests/support/test_seed.h"
 
 namespace cb {
 namespace {
@@ -147,12 +148,9 @@ TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOn
     EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
   }
 
-  unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
-  if (const char* fixed = std::getenv("CB_CRASH_SEED"))
-    seed = unsigned(std::strtoul(fixed, nullptr, 10));
+  const unsigned seed = cb::test::testSeed("study crash test");
   const int kills = std::getenv("CB_CRASH_KILLS") ? std::atoi(std::getenv("CB_CRASH_KILLS")) : 20;
-  std::printf("study crash test seed %u, %d kills (CB_CRASH_SEED=%u repeats it)\n", seed, kills,
-              seed);
+  std::printf("study crash test: %d kills\n", kills);
   std::mt19937 random(seed);
   // One kill in five lands while the runner starts (display, renderer, the journal's replay);
   // the others once its loop is about to run (it printed its first study record, or that it
