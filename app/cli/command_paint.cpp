@@ -532,20 +532,4 @@ int commandPaint(int argc, char** argv) {
   return 0;
 }
 
-int commandKiosk(int argc, char** argv) {
-  // `cloudbrush kiosk --make-attract-journal FILE` writes the bundled attract journal
-  // (config/kiosk/attract.cbj; app/shell/attract_journal.h).
-  if (argc == 3 && std::string(argv[1]) == "--make-attract-journal") {
-    std::string error;
-    if (!writeAttractJournal(argv[2], &error)) return fail(error);
-    std::printf("%s\n", argv[2]);
-    return 0;
-  }
-  // The painter with --kiosk: one frame loop and one set of options for both.
-  std::vector<char*> args(argv, argv + argc);
-  static char kiosk_flag[] = "--kiosk";
-  args.insert(args.begin() + 1, kiosk_flag);
-  return commandPaint(int(args.size()), args.data());
-}
-
 }  // namespace cb
