@@ -18,7 +18,10 @@ command -v curl >/dev/null || { echo "SKIPPED: curl is not installed (config/set
 work=$(mktemp -d)
 exporter_pid=
 cleanup() {
-  [ -n "$exporter_pid" ] && kill "$exporter_pid" 2>/dev/null && wait "$exporter_pid" 2>/dev/null
+  if [ -n "$exporter_pid" ]; then
+    kill "$exporter_pid" 2>/dev/null || true
+    wait "$exporter_pid" 2>/dev/null || true
+  fi
   rm -rf "$work"
 }
 trap cleanup EXIT
