@@ -31,7 +31,7 @@ bool KioskErrorScreen::draw(FrameContext& frame, std::string* error) {
   labels.push_back({x, 0.24f * h, problem_, line, 0xffffffffu, false, 0, wrap});
   labels.push_back({x, 0.62f * h, hint(), line, 0xb8c4d0ffu, false, 0, wrap});
   ui_.drawLabels(frame.width, frame.height, labels);
-  drawn_ = true;
+  ++frames_drawn_;
   return true;
 }
 

@@ -20,7 +20,10 @@ class KioskErrorScreen : public Screen {
   const char* name() const override { return "kiosk error"; }
   void onCommand(Command, int64_t) override {}
   bool onKey(const DisplayEvent&, int64_t) override { return true; }  // no way out but the unit
-  bool needsFrame() const override { return !drawn_; }
+  // Drawn again for its first frames and after a resize (a window mapped or made fullscreen
+  // after the first frame would otherwise stay blank); then it only waits.
+  bool needsFrame() const override { return frames_drawn_ < kFramesToDraw; }
+  void onResize(int, int) override { frames_drawn_ = 0; }
   bool draw(FrameContext& frame, std::string* error) override;
   bool allowsQuit() const override { return false; }
   const std::string& problem() const { return problem_; }
@@ -31,7 +34,9 @@ class KioskErrorScreen : public Screen {
  private:
   std::string problem_;
   UiOverlay ui_;
-  bool ui_ready_ = false, drawn_ = false;
+  bool ui_ready_ = false;
+  int frames_drawn_ = 0;
+  static constexpr int kFramesToDraw = 30;
 };
 
 }  // namespace cb

@@ -2,9 +2,11 @@
 
 #include <malloc.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -131,8 +133,8 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
   if (std::filesystem::exists(range_path, range_ec)) {
     std::ifstream in(range_path);
     const std::string text{std::istreambuf_iterator<char>(in), {}};
-    std::string range_error;
-    pressure_range_ = pressureRangeFromToml(text, &range_error);
+    std::string range_error = in ? "" : std::string("cannot be read: ") + std::strerror(errno);
+    if (range_error.empty()) pressure_range_ = pressureRangeFromToml(text, &range_error);
     if (!pressure_range_)
       std::fprintf(stderr,
                    "cloudbrush kiosk: %s: %s (ignored: visitors get the pen's whole range)\n",
