@@ -40,6 +40,22 @@ bool writeFileAtomically(const std::string& path, std::string_view content, std:
   }
   if (::close(fd) != 0) return fail(temp, "close", errno);
   if (::rename(temp.c_str(), path.c_str()) != 0) return fail(path, "rename", errno);
+  return syncFolderOf(path, error);
+}
+
+bool syncFolderOf(const std::string& path, std::string* error) {
+  const std::string::size_type slash = path.rfind('/');
+  const std::string dir = slash == std::string::npos ? "."
+                          : slash == 0               ? "/"
+                                                     : path.substr(0, slash);
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const int err = errno;
+    if (fd >= 0) ::close(fd);
+    if (error) *error = dir + ": fsync of the folder: " + std::strerror(err);
+    return false;
+  }
+  ::close(fd);
   return true;
 }
 

@@ -1,5 +1,6 @@
 // Replacing a file so that readers see either the old or the new content, never a torn one:
-// write a temporary file next to it, fsync, rename over the target.
+// write a temporary file next to it, fsync, rename over the target, fsync the folder (so the
+// rename itself survives a power cut).
 #pragma once
 
 #include <string>
@@ -11,5 +12,8 @@ namespace cb {
 // directory (rename is atomic only within one file system) and is removed on failure. False with
 // *error naming the file and the errno text (e.g. the directory does not exist, disk full).
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string* error);
+
+// fsync of the folder holding `path` (a file or folder renamed into it). False with *error.
+bool syncFolderOf(const std::string& path, std::string* error);
 
 }  // namespace cb
