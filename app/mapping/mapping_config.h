@@ -57,11 +57,12 @@ struct SphereMappingConfig {
   // noise in [0, 1] of its circle's centre with features `billow_feature_radii` × the
   // stroke's median circle radius across, so a stroke of even width is a row of larger and smaller
   // lobes, not a tube. 0 (journals recorded before the key) leaves the radii as they were.
-  float billow_amplitude = 1.4f;
+  // Built in 0 (as journals before the key); the product's 1.4 is config/mapping.toml's.
+  float billow_amplitude = 0.0f;
   float billow_feature_radii = 1.0f;
   // Edge puffs (billows.h edgePuffs): the chance a sphere carries a small sphere on its surface;
   // 0 (journals recorded before the key) none.
-  float puff_probability = 0.7f;
+  float puff_probability = 0.0f;  // built in 0; config/mapping.toml 0.7
 };
 
 struct EdgeMappingConfig {
