@@ -1,5 +1,7 @@
 #include "app/brush/brush_config.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -150,6 +152,7 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
     // used them: its strokes always followed the calibration's contact).
     r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
     r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
+    r.number(*t, "stroke", "size", &c->stroke.size, kMinBrushSize, kMaxBrushSize);
     r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
     r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
     r.flag(*t, "stroke", "auto_end_light_by_hysteresis", &c->stroke.auto_end_light_by_hysteresis);
@@ -198,6 +201,7 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
     r.number(*t, "skeleton", "bristle_radius_px", &s.bristle_radius_px, 0.1, 32.0);
     r.integer(*t, "skeleton", "bristle_points", &s.bristle_points, 2, 256);
     r.integer(*t, "skeleton", "max_steps_per_sample", &s.max_steps_per_sample, 1, 100000);
+    r.number(*t, "skeleton", "stamp_spacing_px", &s.stamp_spacing_px, 0.0, 64.0);
     r.integer(*t, "skeleton", "seed", &s.seed, 0, 0xffffffffll);
   }
   if (c->brush2d.max_diameter_px < c->brush2d.min_diameter_px) {
@@ -210,6 +214,10 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
 }
 }  // namespace
 
+float steppedBrushSize(float size, int steps) {
+  return std::clamp(size * std::pow(kBrushSizeStep, float(steps)), kMinBrushSize, kMaxBrushSize);
+}
+
 std::string formatBrushConfig(const BrushConfig& c) {
   std::ostringstream o;
   char buf[64];
@@ -221,6 +229,7 @@ std::string formatBrushConfig(const BrushConfig& c) {
   o << "brush = \"" << brushKindName(c.default_brush) << "\"\n\n[stroke]\n";
   num("spacing_px", c.stroke.spacing_px);
   num("footprint_scale", c.stroke.footprint_scale);
+  num("size", c.stroke.size);
   integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
   integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
   o << "auto_end_light_by_hysteresis = "
@@ -262,6 +271,7 @@ std::string formatBrushConfig(const BrushConfig& c) {
   num("bristle_radius_px", c.skeleton.bristle_radius_px);
   integer("bristle_points", c.skeleton.bristle_points);
   integer("max_steps_per_sample", c.skeleton.max_steps_per_sample);
+  num("stamp_spacing_px", c.skeleton.stamp_spacing_px);
   integer("seed", c.skeleton.seed);
   return o.str();
 }

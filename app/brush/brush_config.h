@@ -10,9 +10,23 @@
 
 namespace cb {
 
+// The brush size's range (stroke.size, the journal's `brush_size=`) and the factor one step of
+// [ / ], the menu's − / + or a wheel click changes it by.
+constexpr float kMinBrushSize = 0.25f, kMaxBrushSize = 8.0f;
+constexpr float kBrushSizeStep = 1.25f;
+// The size one step up (steps > 0) or down from `size`, clamped to the range.
+float steppedBrushSize(float size, int steps);
+
 struct StrokeParams {
   float spacing_px = 1.5f;       // arc-length step between dabs of the texture brushes
   float footprint_scale = 1.0f;  // footprint pixels per screen pixel of the paint view
+  // The brush size at the start of a session (the painter's [ and ], the pen menu's − / +, the
+  // mouse wheel change it, journalled as `brush_size=`): every brush paints its footprint on a
+  // grid `size` times coarser than the screen, so the whole mark, and the cloud mapped from it,
+  // is `size` times larger; pressure still scales the mark within the size. 1 (the built-in
+  // value: footprint pixels are screen pixels) is the size before the key existed; the
+  // product's default is config/brush.toml's, chosen there from the thesis's figures.
+  float size = 1.0f;
   // An open stroke ends by itself when held still / touched only lightly this long (0 = never);
   // the painter copies these into its session (app/session, journalled there).
   int auto_end_still_ms = 2000;
@@ -68,6 +82,10 @@ struct SkeletonParams {
   float bristle_radius_px = 0.9f;
   int bristle_points = 12;         // Bezier evaluation points per bristle
   int max_steps_per_sample = 250;  // caps work after a long pause
+  // Bristles are stamped at spine positions this far apart (interpolated between simulation
+  // steps), so a fast stroke is continuous; 0 stamps once per step, as journals before the key
+  // (app/session/recorded_settings.h).
+  float stamp_spacing_px = 1.5f;
   unsigned seed = 5;
 };
 

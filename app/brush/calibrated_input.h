@@ -10,5 +10,7 @@ namespace cb {
 
 // `footprint_scale`: footprint pixels per screen pixel (config stroke.footprint_scale).
 BrushInput brushInputFromCalibrated(const MappedSample& sample, float footprint_scale);
+// The same with a scale per axis (a brush size's coarser footprint, stroke_engine.h).
+BrushInput brushInputFromCalibrated(const MappedSample& sample, glm::vec2 footprint_scale);
 
 }  // namespace cb

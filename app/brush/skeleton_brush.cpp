@@ -114,6 +114,18 @@ FootprintRect SkeletonBrush::continueStroke(const StrokePoint& point, Footprint*
     for (int k = 0; k < kJoints; ++k)
       moved = std::max(moved, glm::length(joints_[k] - stamped_joints_[k]));
     if (moved >= kMovedEpsPx) {
+      // Resampled along the spine's path: a fast pen moves the spine several pixels per step,
+      // and bristles stamped once per step left a dotted row (skeleton.stamp_spacing_px).
+      const float spacing = params_.stamp_spacing_px;
+      const int between = spacing > 0.0f ? int(std::ceil(moved / spacing)) - 1 : 0;
+      const std::array<glm::vec3, 4> to = joints_;
+      for (int j = 1; j <= between; ++j) {
+        const float f = float(j) / float(between + 1);
+        for (int k = 0; k < kJoints; ++k)
+          joints_[k] = stamped_joints_[k] + (to[k] - stamped_joints_[k]) * f;
+        changed = changed.united(stampBristles(pen.pressure, fp));
+      }
+      joints_ = to;
       stamped_joints_ = joints_;
       changed = changed.united(stampBristles(pen.pressure, fp));
     }

@@ -1,5 +1,7 @@
 #include "app/brush/stroke_engine.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "app/brush/calibrated_input.h"
@@ -7,11 +9,32 @@
 namespace cb {
 
 StrokeEngine::StrokeEngine(const BrushConfig& config, int width, int height)
-    : config_(config), width_(width), height_(height), selected_(config.default_brush) {
+    : config_(config),
+      base_width_(width),
+      base_height_(height),
+      width_(width),
+      height_(height),
+      input_scale_(config.stroke.footprint_scale),
+      selected_(config.default_brush) {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument("StrokeEngine: footprint size must be positive, got " +
                                 std::to_string(width) + "x" + std::to_string(height));
   prepareNextStroke();
+}
+
+void StrokeEngine::setBrushSize(float size) {
+  size_ = size;
+  if (size == 1.0f) {
+    width_ = base_width_;  // exactly the footprint and positions before the size existed
+    height_ = base_height_;
+    input_scale_ = glm::vec2(config_.stroke.footprint_scale);
+    return;
+  }
+  width_ = std::max(1, int(std::lround(double(base_width_) / double(size))));
+  height_ = std::max(1, int(std::lround(double(base_height_) / double(size))));
+  // Per axis, so the coarser footprint still spans exactly the screen the pen maps to.
+  input_scale_ = config_.stroke.footprint_scale * glm::vec2(float(width_) / float(base_width_),
+                                                            float(height_) / float(base_height_));
 }
 
 void StrokeEngine::prepareNextStroke() {
@@ -77,7 +100,7 @@ StrokeResult StrokeEngine::endStroke() {
 }
 
 FootprintRect StrokeEngine::feedCalibrated(const MappedSample& sample) {
-  BrushInput in = brushInputFromCalibrated(sample, config_.stroke.footprint_scale);
+  BrushInput in = brushInputFromCalibrated(sample, input_scale_);
   FootprintRect changed;
   if (sample.contact_began || (sample.contact && !in_stroke_))
     changed = beginStroke(in);

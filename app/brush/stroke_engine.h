@@ -22,6 +22,14 @@ class StrokeEngine {
 
   // Takes effect at the next tip-down.
   void selectBrush(BrushKind kind) { selected_ = kind; }
+  // The brush size (brush_config.h stroke.size): the footprint is the constructor's
+  // width × height divided by `size` (at least 1 × 1), and positions are scaled to it, so the
+  // brush's mark covers `size` times more of the screen. Takes effect at the next tip-down.
+  void setBrushSize(float size);
+  float brushSize() const { return size_; }
+  // The footprint the next stroke gets (the current stroke's while one is painted).
+  int footprintWidth() const { return in_stroke_ ? footprint_.width : width_; }
+  int footprintHeight() const { return in_stroke_ ? footprint_.height : height_; }
   BrushKind selectedBrush() const { return selected_; }
   void setPaintView(const PaintView& view, const Canvas& canvas) {
     view_ = view;
@@ -61,7 +69,10 @@ class StrokeEngine {
   StrokePoint toPoint(const BrushInput& in) const;
 
   BrushConfig config_;
-  int width_, height_;
+  int base_width_, base_height_;  // the footprint at size 1
+  int width_, height_;            // at size_
+  float size_ = 1.0f;
+  glm::vec2 input_scale_;  // footprint pixels per screen pixel at size_
   BrushKind selected_;
   std::unique_ptr<Brush> brushes_[3];
   Brush* active_ = nullptr;

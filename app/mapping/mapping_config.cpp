@@ -95,6 +95,12 @@ void validate(const MappingConfig& c) {
           "spheres.noise_modulation", "must be in [0,1]");
   require(c.spheres.outline_chord_voxels >= 0.0f && c.spheres.outline_chord_voxels <= 64.0f,
           "spheres.outline_chord_voxels", "must be in [0, 64]");
+  require(c.spheres.billow_amplitude >= 0.0f && c.spheres.billow_amplitude <= 2.0f,
+          "spheres.billow_amplitude", "must be in [0, 2]");
+  require(c.spheres.puff_probability >= 0.0f && c.spheres.puff_probability <= 1.0f,
+          "spheres.puff_probability", "must be in [0, 1]");
+  require(c.spheres.billow_feature_radii > 0.0f && c.spheres.billow_feature_radii <= 64.0f,
+          "spheres.billow_feature_radii", "must be in (0, 64]");
   require(c.edges.samples_per_pixel >= 1 && c.edges.samples_per_pixel <= 64,
           "edges.samples_per_pixel", "must be in 1..64");
   require(c.edges.depth_sigma_of_radius >= 0.0f, "edges.depth_sigma_of_radius", "must be >= 0");
@@ -145,6 +151,9 @@ std::string formatMappingConfig(const MappingConfig& c) {
   num("noise_erosion", c.spheres.noise_erosion);
   num("noise_modulation", c.spheres.noise_modulation);
   num("outline_chord_voxels", c.spheres.outline_chord_voxels);
+  num("billow_amplitude", c.spheres.billow_amplitude);
+  num("billow_feature_radii", c.spheres.billow_feature_radii);
+  num("puff_probability", c.spheres.puff_probability);
   o += "\n[edges]\n";
   integer("samples_per_pixel", c.edges.samples_per_pixel);
   num("depth_sigma_of_radius", c.edges.depth_sigma_of_radius);
@@ -196,6 +205,9 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
   read(root, path, "spheres", "noise_erosion", &c.spheres.noise_erosion);
   read(root, path, "spheres", "noise_modulation", &c.spheres.noise_modulation);
   read(root, path, "spheres", "outline_chord_voxels", &c.spheres.outline_chord_voxels);
+  read(root, path, "spheres", "billow_amplitude", &c.spheres.billow_amplitude);
+  read(root, path, "spheres", "billow_feature_radii", &c.spheres.billow_feature_radii);
+  read(root, path, "spheres", "puff_probability", &c.spheres.puff_probability);
   read(root, path, "edges", "samples_per_pixel", &c.edges.samples_per_pixel);
   read(root, path, "edges", "depth_sigma_of_radius", &c.edges.depth_sigma_of_radius);
   read(root, path, "edges", "lateral_sigma_px", &c.edges.lateral_sigma_px);

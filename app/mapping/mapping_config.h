@@ -53,6 +53,16 @@ struct SphereMappingConfig {
   // (sphereFillRadius): a sphere filled to the circle's own radius is seen edge-on there and its
   // rim is translucent, so a thin stroke's cloud looks thinner than its ink.
   float outline_chord_voxels = 2.5f;
+  // Billows (billows.h): each sphere's radius is scaled by 1 + amplitude·u², u a smooth seeded
+  // noise in [0, 1] of its circle's centre with features `billow_feature_radii` × the
+  // stroke's median circle radius across, so a stroke of even width is a row of larger and smaller
+  // lobes, not a tube. 0 (journals recorded before the key) leaves the radii as they were.
+  // Built in 0 (as journals before the key); the product's 1.4 is config/mapping.toml's.
+  float billow_amplitude = 0.0f;
+  float billow_feature_radii = 1.0f;
+  // Edge puffs (billows.h edgePuffs): the chance a sphere carries a small sphere on its surface;
+  // 0 (journals recorded before the key) none.
+  float puff_probability = 0.0f;  // built in 0; config/mapping.toml 0.7
 };
 
 struct EdgeMappingConfig {

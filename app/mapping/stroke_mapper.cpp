@@ -1,5 +1,6 @@
 #include "app/mapping/stroke_mapper.h"
 
+#include "app/mapping/billows.h"
 #include "app/mapping/sheet_mapping.h"
 
 #include <chrono>
@@ -111,7 +112,11 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
     t0 = std::chrono::steady_clock::now();
     report.spheres =
         mapCirclesToSpheres(growth.circles, view, stroke.canvas, fallback_point, max_distance);
-    dirty = fillSpheres(report.spheres, *noise_, config_.spheres, volume);
+    billowSpheres(growth.circles, id, config_.spheres, &report.spheres);
+    std::vector<MappedSphere> filled = report.spheres;
+    for (const MappedSphere& puff : edgePuffs(report.spheres, id, config_.spheres))
+      filled.push_back(puff);
+    dirty = fillSpheres(filled, *noise_, config_.spheres, volume);
     report.timings.sphere_mapping_ms = msSince(t0);
     long long off_canvas = 0;
     for (const MappedSphere& s : report.spheres) off_canvas += !s.on_canvas;

@@ -63,8 +63,10 @@ SkyReach strokeReach(const StrokeResult& stroke, const MappingConfig& config, fl
   const float a = config.circles.accept_white_ratio;
   const float r_px = std::min(0.5f * float(config.circles.initial_diameter_px),
                               a > 0.0f ? 2.0f * m / (3.14159265f * a) : 1e30f);
+  // Billows (billows.h) swell a sphere by up to 1 + billow_amplitude.
   const float r_world =
-      sphereFillRadius(r_px * view.pixelWorldSize(d_max), voxel_size, config.spheres);
+      sphereFillRadius(r_px * (1.0f + config.spheres.billow_amplitude) * view.pixelWorldSize(d_max),
+                       voxel_size, config.spheres);
   const float margin = 2.0f * r_world + 8.0f * voxel_size;
   const float near = std::max(d_min - margin, 0.0f), far = d_max + margin;
   reach.xz_min = glm::vec2(std::numeric_limits<float>::infinity());

@@ -146,6 +146,7 @@ PaintSession::PaintSession(const PaintSessionSettings& settings, const BrushConf
       mapper_(mapping),
       method_(mapping.method) {
   scene_.camera = initialPaintCamera(settings);
+  engine_.setBrushSize(brush.stroke.size);
   applyView();
   history_.reset(volume_);
 }
@@ -189,6 +190,11 @@ void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
         !std::holds_alternative<ui::SetMapping>(change))
       continue;  // format 1 knew brush and method only
     const UiRecordText record = formatUiChange(change);
+    journalText(record.type, t_ns, record.text);
+  }
+  // The brush size, when it is not the size of journals before it existed (those replay at 1).
+  if (engine_.brushSize() != 1.0f) {
+    const UiRecordText record = formatUiChange(ui::SetBrushSize{engine_.brushSize()});
     journalText(record.type, t_ns, record.text);
   }
   // A pressure range set before recording began (the kiosk's, from the operator's press
@@ -488,6 +494,10 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
     }
     bool operator()(const ui::SetBrush& c) {
       s.engine_.selectBrush(c.brush);
+      return true;
+    }
+    bool operator()(const ui::SetBrushSize& c) {
+      s.engine_.setBrushSize(c.size);
       return true;
     }
     bool operator()(const ui::SetMapping& c) {

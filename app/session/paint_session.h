@@ -204,8 +204,10 @@ class PaintSession {
   bool replaceVolume(const Volume& volume, int64_t t_ns, const std::string& source,
                      std::string* error);
   const PaintSessionSettings& settings() const { return settings_; }
-  int footprintWidth() const { return footprint_w_; }
-  int footprintHeight() const { return footprint_h_; }
+  // The footprint of the stroke being painted, or of the next one (the screen ÷ brush size).
+  int footprintWidth() const { return engine_.footprintWidth(); }
+  int footprintHeight() const { return engine_.footprintHeight(); }
+  float brushSize() const { return engine_.brushSize(); }
   uint32_t strokesMapped() const { return strokes_mapped_; }
   // The calibration in force (built-in defaults until setCalibration).
   const CalibrationProfile& calibration() const { return profile_; }

@@ -5,6 +5,8 @@ namespace cb {
 BrushConfig recordedBrushAbsentValues() {
   BrushConfig c;
   c.stroke.auto_end_light_by_hysteresis = false;
+  c.stroke.size = 1.0f;
+  c.skeleton.stamp_spacing_px = 0.0f;
   return c;
 }
 
@@ -12,6 +14,16 @@ MappingConfig recordedMappingAbsentValues() {
   MappingConfig c;
   c.spheres.outline_chord_voxels = 0.0f;
   c.edges.tangent_at_sphere_depth = false;
+  c.spheres.billow_amplitude = 0.0f;
+  c.spheres.puff_probability = 0.0f;
+  return c;
+}
+
+BrushConfig unrecordedBrush(const BrushConfig& local) {
+  const BrushConfig absent = recordedBrushAbsentValues();
+  BrushConfig c = local;
+  c.stroke.size = absent.stroke.size;
+  c.skeleton.stamp_spacing_px = absent.skeleton.stamp_spacing_px;
   return c;
 }
 

@@ -6,7 +6,12 @@
 //   key the text lacks                    value     what it reproduces (versions up to 9e22266)
 //   spheres.outline_chord_voxels          0         spheres filled to r / (1 − erosion/2)
 //   edges.tangent_at_sphere_depth         false     P_t at the ray's closest point to P_S
+//   spheres.billow_amplitude              0         spheres at their circles' radii (no billows)
+//   spheres.puff_probability              0         no edge puffs
 //   stroke.auto_end_light_by_hysteresis   false     "light touch" = calibrated pressure < 5%
+//   stroke.size                           1         footprint at the screen's resolution (a
+//                                                   journal with no brush.toml at all: also 1)
+//   skeleton.stamp_spacing_px             0         bristles stamped once per Verlet step
 //
 // A new key that changes what a journal paints gets its row here, in the same commit.
 #pragma once
@@ -23,6 +28,11 @@ namespace cb {
 // Today's defaults, with the rows above for keys a recorded text lacks.
 BrushConfig recordedBrushAbsentValues();
 MappingConfig recordedMappingAbsentValues();
+
+// The brush of a journal that recorded none (specification 1.0): the replaying machine's
+// `local` one, with the keys that came after such journals (stroke.size,
+// skeleton.stamp_spacing_px) at their absent values above.
+BrushConfig unrecordedBrush(const BrushConfig& local);
 
 // A recorded brush.toml text; false with "NAME:LINE:COL: what" in *errors if it is malformed
 // (fields that were bad keep their absent values).

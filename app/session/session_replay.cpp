@@ -13,7 +13,7 @@ RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
                                   const BrushConfig& brush, const MappingConfig& mapping,
                                   const PaintSessionSettings& settings_fallback) {
   RecordedSettings recorded{settings_fallback, brush, mapping, false, {}};
-  bool have_session = false;
+  bool have_session = false, have_brush = false;
   for (size_t i = 0; i < records.size(); ++i) {
     const JournalRecord& record = records[i];
     if (record.type == JournalRecordType::kPenSample) break;
@@ -33,7 +33,7 @@ RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
         if (!parseRecordedBrush(body, "record " + std::to_string(i) + " (brush.toml)",
                                 &recorded.brush, &errors))
           for (const std::string& e : errors) recorded.problems.push_back(e);
-        recorded.recorded_brush_or_mapping = true;
+        recorded.recorded_brush_or_mapping = have_brush = true;
       } else if (name == "mapping.toml") {
         try {
           recorded.mapping =
@@ -45,6 +45,9 @@ RecordedSettings recordedSettings(const std::vector<JournalRecord>& records,
       }
     }
   }
+  // A journal without a recorded brush.toml predates the brush size and the skeleton brush's
+  // stamp spacing, whatever the replaying machine's brush.toml says (recorded_settings.h).
+  if (!have_brush) recorded.brush = unrecordedBrush(recorded.brush);
   return recorded;
 }
 

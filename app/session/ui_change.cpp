@@ -84,6 +84,9 @@ UiRecordText formatUiChange(const UiChange& change) {
     UiRecordText operator()(const ui::SetBrush& c) const {
       return {JournalRecordType::kUi, std::string("brush=") + brushKindName(c.brush)};
     }
+    UiRecordText operator()(const ui::SetBrushSize& c) const {
+      return {JournalRecordType::kUi, "brush_size=" + formatFloats(&c.size, 1)};
+    }
     UiRecordText operator()(const ui::SetMapping& c) const {
       return {JournalRecordType::kUi, std::string("method=") + toString(c.method)};
     }
@@ -206,6 +209,10 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     BrushKind kind;
     if (!parseBrushKind(value, &kind)) return bad("2d, 3d or skeleton");
     *out = ui::SetBrush{kind};
+  } else if (key == "brush_size") {
+    if (!parseFloats(value, 1, v) || v[0] < kMinBrushSize || v[0] > kMaxBrushSize)
+      return bad("a size in [0.25, 8]");
+    *out = ui::SetBrushSize{v[0]};
   } else if (key == "method") {
     MappingMethod method;
     if (!parseMappingMethod(value, &method)) return bad("hybrid, ray-marching or sheet");

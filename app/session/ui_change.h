@@ -9,6 +9,7 @@
 //                                                 MOVE orbit|pan|zoom|view, absent = set)
 //   Ui      camera_orbit=DEG                      SetCamera: Camera::reference() orbited (format 1)
 //   Ui      brush=2d|3d|skeleton                  SetBrush
+//   Ui      brush_size=S                          SetBrushSize (0.25 … 8; specification 1.6)
 //   Ui      method=hybrid|ray-marching            SetMapping
 //   Ui      canvas=ALTITUDE,THICKNESS             SetCanvas (world units)
 //   Ui      light=DX,DY,DZ,R,G,B                  SetLight (direction towards the sun, colour)
@@ -67,6 +68,12 @@ struct SetCamera {
 };
 struct SetBrush {
   BrushKind brush;
+};
+// The brush size (app/brush/brush_config.h stroke.size): the footprint grid is `size` times
+// coarser than the screen, so the mark and its cloud are `size` times larger. A journal
+// without the record paints at its recorded brush.toml's size (1 when that lacks the key).
+struct SetBrushSize {
+  float size;
 };
 struct SetMapping {
   MappingMethod method;
@@ -137,11 +144,11 @@ struct Redo {};
 struct DeleteAll {};
 }  // namespace ui
 
-using UiChange =
-    std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping, ui::SetCanvas,
-                 ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter, ui::VacuumCut,
-                 ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo, ui::Redo, ui::DeleteAll,
-                 ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu, ui::SetPressureRange>;
+using UiChange = std::variant<ui::SetMode, ui::SetCamera, ui::SetBrush, ui::SetMapping,
+                              ui::SetCanvas, ui::SetLight, ui::SetEraseTool, ui::SetEraseDiameter,
+                              ui::VacuumCut, ui::PenCapture, ui::SetStyle, ui::PlaceShape, ui::Undo,
+                              ui::Redo, ui::DeleteAll, ui::ApplyMorph, ui::ApplyWind, ui::ShowMenu,
+                              ui::SetPressureRange, ui::SetBrushSize>;
 
 struct UiRecordText {
   JournalRecordType type;  // kMode or kUi

@@ -26,6 +26,8 @@ enum class Command {
   kSpace,            // Vacuum cut in Erase mode; pause the auto-rotation elsewhere
   kSmaller,          // − : vacuum / rub-out diameter, canvas thickness in Canvas mode
   kLarger,           // +
+  kBrushSmaller,     // [ , the mouse wheel towards the user, the menu's "Brush −"
+  kBrushLarger,      // ] , the wheel away, "Brush +"
   kRaise,            // PageUp: canvas altitude up (Canvas mode)
   kLower,            // PageDown
   kNextEraseTool,    // V: vacuum <-> rub-out

@@ -48,7 +48,9 @@ constexpr const char* kCommandNames[] = {"quit",
                                          "wind",
                                          "wind-direction",
                                          "apply-animation",
-                                         "leave-animation"};
+                                         "leave-animation",
+                                         "brush-smaller",
+                                         "brush-larger"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -60,14 +62,31 @@ struct NamedKey {
   uint32_t keysym;
 };
 constexpr NamedKey kNamedKeys[] = {
-    {"space", XKB_KEY_space},  {"esc", XKB_KEY_Escape},    {"delete", XKB_KEY_Delete},
-    {"up", XKB_KEY_Up},        {"down", XKB_KEY_Down},     {"left", XKB_KEY_Left},
-    {"right", XKB_KEY_Right},  {"minus", XKB_KEY_minus},   {"plus", XKB_KEY_plus},
-    {"pageup", XKB_KEY_Prior}, {"pagedown", XKB_KEY_Next}, {"f1", XKB_KEY_F1},
-    {"f2", XKB_KEY_F2},        {"f3", XKB_KEY_F3},         {"f4", XKB_KEY_F4},
-    {"f5", XKB_KEY_F5},        {"f6", XKB_KEY_F6},         {"f7", XKB_KEY_F7},
-    {"f8", XKB_KEY_F8},        {"f9", XKB_KEY_F9},         {"f10", XKB_KEY_F10},
-    {"f11", XKB_KEY_F11},      {"f12", XKB_KEY_F12},
+    {"space", XKB_KEY_space},
+    {"esc", XKB_KEY_Escape},
+    {"delete", XKB_KEY_Delete},
+    {"up", XKB_KEY_Up},
+    {"down", XKB_KEY_Down},
+    {"left", XKB_KEY_Left},
+    {"right", XKB_KEY_Right},
+    {"minus", XKB_KEY_minus},
+    {"plus", XKB_KEY_plus},
+    {"bracketleft", XKB_KEY_bracketleft},
+    {"bracketright", XKB_KEY_bracketright},
+    {"pageup", XKB_KEY_Prior},
+    {"pagedown", XKB_KEY_Next},
+    {"f1", XKB_KEY_F1},
+    {"f2", XKB_KEY_F2},
+    {"f3", XKB_KEY_F3},
+    {"f4", XKB_KEY_F4},
+    {"f5", XKB_KEY_F5},
+    {"f6", XKB_KEY_F6},
+    {"f7", XKB_KEY_F7},
+    {"f8", XKB_KEY_F8},
+    {"f9", XKB_KEY_F9},
+    {"f10", XKB_KEY_F10},
+    {"f11", XKB_KEY_F11},
+    {"f12", XKB_KEY_F12},
 };
 
 }  // namespace
@@ -169,6 +188,12 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
     case XKB_KEY_equal:
     case XKB_KEY_KP_Add:
       return Command::kLarger;
+    case XKB_KEY_bracketleft:
+    case XKB_KEY_braceleft:
+      return Command::kBrushSmaller;
+    case XKB_KEY_bracketright:
+    case XKB_KEY_braceright:
+      return Command::kBrushLarger;
     case XKB_KEY_Prior:
       return Command::kRaise;
     case XKB_KEY_Next:
@@ -324,6 +349,10 @@ std::string keyLabel(Command command) {
       return "A";
     case Command::kLeaveAnimation:
       return "X";
+    case Command::kBrushSmaller:
+      return "[";
+    case Command::kBrushLarger:
+      return "]";
     default:
       return "";
   }

@@ -318,6 +318,12 @@ void PaintScreen::afterSample(const SampleOutcome& outcome,
 
 void PaintScreen::onPointer(const DisplayEvent& event) {
   // A mouse (X11) drives the on-screen UI, and paints when no tablet is connected.
+  if (event.kind == DisplayEvent::Kind::PointerDown && (event.button == 4 || event.button == 5)) {
+    // The wheel: the mouse's stand-in for pressure is the brush size (away: larger).
+    if (session_ && session_->mode() == Mode::kPaint)
+      stepBrushSize(event.button == 4 ? 1 : -1, clockNs());
+    return;
+  }
   if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) mouse_down_ = true;
   if (event.kind == DisplayEvent::Kind::PointerUp && event.button == 1) mouse_down_ = false;
   if (ui_) ui_->pointer(event.x, event.y, mouse_down_);
@@ -334,7 +340,8 @@ void PaintScreen::onPointer(const DisplayEvent& event) {
     }
     char text[160];
     std::snprintf(text, sizeof text,
-                  "no tablet: the mouse paints with pressure %.2f (-/+ in Paint mode change it)",
+                  "no tablet: the mouse paints with pressure %.2f (-/+ change it; the wheel "
+                  "or [ ] the brush size)",
                   double(mouse_->pressure()));
     say(text);
   }
@@ -659,6 +666,10 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
       apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
       break;
     }
+    case Command::kBrushSmaller:
+    case Command::kBrushLarger:
+      stepBrushSize(command == Command::kBrushLarger ? 1 : -1, t_ns);
+      break;
     case Command::kMorph:
     case Command::kWind:
     case Command::kWindDirection:
@@ -672,6 +683,19 @@ void PaintScreen::onCommand(Command command, int64_t t_ns) {
     case Command::kCount:
       break;
   }
+}
+
+void PaintScreen::stepBrushSize(int steps, int64_t t_ns) {
+  if (!session_) return say("no pen session: the brush size is not used");
+  const float size = steppedBrushSize(session_->brushSize(), steps);
+  if (size == session_->brushSize())
+    return say(steps > 0 ? "brush size: already the largest" : "brush size: already the smallest");
+  std::string error;
+  if (!session_->apply(ui::SetBrushSize{size}, t_ns, &error)) return say(error);
+  char text[128];
+  std::snprintf(text, sizeof text, "brush size %.2f ([ ] or the mouse wheel; next stroke)",
+                double(size));
+  say(text);
 }
 
 bool PaintScreen::hasPaint() const {
@@ -1032,6 +1056,11 @@ std::string PaintScreen::statusLine() const {
                 modeName(s.mode()), brushKindName(s.selectedBrush()), toString(s.mappingMethod()),
                 altitude_voxels, double(s.canvas().thickness), renderStyleName(currentStyle()));
   std::string line = text;
+  if (s.mode() == Mode::kPaint) {
+    std::snprintf(text, sizeof text, " | size %.2f ([ ]%s)", double(s.brushSize()),
+                  mouse_ ? ", wheel" : "");
+    line += text;
+  }
   if (s.mode() == Mode::kErase) {
     std::snprintf(text, sizeof text, " | %s %.2f", eraseToolName(s.eraseTool()),
                   double(s.eraseDiameter(s.eraseTool())));

@@ -102,6 +102,8 @@ class PaintScreen : public Screen {
 
  private:
   void handleEvent(const PenEvent& event, const MappedSample& mapped);
+  // The brush size `steps` steps of [ / ] larger (negative: smaller), journalled, said.
+  void stepBrushSize(int steps, int64_t t_ns);
   // One raw sample (tablet or mouse) through the session, the overlay and the pen events.
   void feedSample(const PenSample& sample);
   void apply(const UiChange& change, int64_t t_ns);

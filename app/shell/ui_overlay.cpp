@@ -40,6 +40,8 @@ std::vector<MenuEntry> modeCommands(int mode) {
               {Command::kLarger, "Thicker"}};
     case 2:
       return {{Command::kNextBrush, "Next brush"},
+              {Command::kBrushSmaller, "Brush −\n笔刷缩小"},
+              {Command::kBrushLarger, "Brush +\n笔刷放大"},
               {Command::kNextMapping, "Mapping"},
               {Command::kToggleCircles, "Circles"},
               {Command::kGoodView, "Good view"}};
@@ -58,7 +60,7 @@ std::vector<MenuEntry> modeCommands(int mode) {
 // Every character of the shipped labels, for the font atlas (Latin comes from the default
 // range; the CJK characters are added one by one so the atlas stays small).
 const char* shippedText() {
-  return "相机画布绘画擦除光照菜单撤销重做";
+  return "相机画布绘画擦除光照菜单撤销重做笔刷缩小放大−";
 }
 
 }  // namespace

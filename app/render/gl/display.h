@@ -56,7 +56,8 @@ struct DisplayEvent {
   int width = 0;           // Resize: the new size
   int height = 0;
   float x = 0.0f, y = 0.0f;  // Pointer*: position, y down
-  int button = 0;            // PointerDown/Up: 1 left, 2 middle, 3 right
+  int button = 0;            // PointerDown/Up: 1 left, 2 middle, 3 right; PointerDown 4/5 a wheel
+                             // click away from / towards the user (X11 buttons 4, 5)
 
   static DisplayEvent key(uint32_t keysym, uint32_t modifiers = 0) {
     DisplayEvent event;

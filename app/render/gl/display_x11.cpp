@@ -123,8 +123,8 @@ class X11Display final : public Display {
         event.x = float(xev.xmotion.x);
         event.y = float(xev.xmotion.y);
         events.push_back(event);
-      } else if ((xev.type == ButtonPress || xev.type == ButtonRelease) &&
-                 xev.xbutton.button <= 3) {
+      } else if ((xev.type == ButtonPress && xev.xbutton.button <= 5) ||
+                 (xev.type == ButtonRelease && xev.xbutton.button <= 3)) {
         event.kind = xev.type == ButtonPress ? DisplayEvent::Kind::PointerDown
                                              : DisplayEvent::Kind::PointerUp;
         event.x = float(xev.xbutton.x);

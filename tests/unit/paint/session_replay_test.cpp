@@ -192,6 +192,10 @@ TEST(SessionReplay, JournalsFrom9e22266ReplayToTheirOldChecksums) {
     EXPECT_EQ(m.spheres.outline_chord_voxels, 0.0f);
     EXPECT_FALSE(m.edges.tangent_at_sphere_depth);
     EXPECT_FALSE(replay.session->brushConfig().stroke.auto_end_light_by_hysteresis);
+    // Keys of specification 1.6: painted at size 1, no billows, the skeleton once a step.
+    EXPECT_EQ(replay.session->brushSize(), 1.0f);
+    EXPECT_EQ(replay.session->brushConfig().skeleton.stamp_spacing_px, 0.0f);
+    EXPECT_EQ(m.spheres.billow_amplitude, 0.0f);
     EXPECT_EQ(volumeChecksum(replay.session->volume()), j.checksum);
   }
   // A local config lacking those keys gets today's defaults, not the recorded texts' values.

@@ -57,7 +57,8 @@ Painted paintSheet(int threads) {
       if (!(ink.at(px, py) > 0.2f)) continue;
       ++inked;
       glm::vec3 o, d;
-      session.camera().pixelRay(float(px), float(py), kW, kH, &o, &d);
+      // Footprint pixel (px, py) is the ray through it of a footprint-sized image (PaintView).
+      session.camera().pixelRay(float(px), float(py), ink.width, ink.height, &o, &d);
       float tau = 0;
       for (float t = 0; t < 8.0f; t += 0.004f) {
         const glm::vec3 q = v.worldToVoxel(o + t * d);

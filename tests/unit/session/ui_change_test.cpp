@@ -27,7 +27,9 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
       ui::PenCapture{true},
       ui::ShowMenu{true},
       ui::ShowMenu{false},
-      ui::SetStyle{"ink"}};
+      ui::SetStyle{"ink"},
+      ui::SetBrushSize{2.44140625f},
+      ui::SetBrushSize{0.8f * 3.0f}};
   for (const UiChange& change : changes) {
     const UiRecordText text = formatUiChange(change);
     UiChange parsed;
@@ -44,6 +46,9 @@ TEST(UiChange, EveryKindRoundTripsBitForBit) {
   EXPECT_EQ(std::get<ui::SetCamera>(parsed).camera.eye, camera.eye);
   EXPECT_EQ(std::get<ui::SetCamera>(parsed).camera.fov_y_deg, camera.fov_y_deg);
   EXPECT_EQ(formatUiChange(ui::SetMode{Mode::kLight}).type, JournalRecordType::kMode);
+  const UiRecordText size = formatUiChange(ui::SetBrushSize{0.8f * 3.0f});
+  ASSERT_TRUE(parseUiChange(size.type, size.text, &parsed, &error)) << error;
+  EXPECT_EQ(std::get<ui::SetBrushSize>(parsed).size, 0.8f * 3.0f) << size.text;
 }
 
 TEST(UiChange, CameraMovesAreJournalledAndOldCameraRecordsReadAsSet) {
@@ -87,6 +92,8 @@ TEST(UiChange, BadValuesAreNamed) {
              {JournalRecordType::kUi, "vacuum_cut=0,0,0,0", "radius"},
              {JournalRecordType::kUi, "erase_tool=spray", "spray"},
              {JournalRecordType::kUi, "zoom=2", "zoom"},
+             {JournalRecordType::kUi, "brush_size=9", "brush_size"},
+             {JournalRecordType::kUi, "brush_size=0.1", "brush_size"},
              {JournalRecordType::kUi, "nonsense", "nonsense"}};
   for (const auto& b : bad) {
     EXPECT_FALSE(parseUiChange(b.type, b.text, &parsed, &error)) << b.text;
