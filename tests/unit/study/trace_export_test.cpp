@@ -570,9 +570,8 @@ TEST(TraceExportStudy, TrialsHaveOneRowPerTaskWithStageClockDurationAndEndReason
   writeTrialsCsvRows(csv, trace);
   const std::vector<std::string> lines = split(csv.str(), '\n');
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[1],
-            "P07,trials,cloud3,1,4.999999000,5000000000,1800000004999999000,90,time-up,"
-            "2,1,1");
+  EXPECT_EQ(lines[1], "P07," + trace.id +
+                          ",cloud3,1,4.999999000,5000000000,1800000004999999000,90,time-up,2,1,1");
   std::filesystem::remove(path);
 }
 
