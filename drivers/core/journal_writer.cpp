@@ -138,7 +138,8 @@ bool JournalWriter::openForAppend(const std::string& path, std::string* warning)
     if (!keepTailAside(path, read.intact_bytes, &aside, &error_)) return false;
     *warning = "; its last " + std::to_string(size - read.intact_bytes) +
                " bytes (a damaged tail after the last whole record, byte " +
-               std::to_string(read.intact_bytes) + ") were moved to " + aside;
+               std::to_string(read.intact_bytes) + ") were moved to " + aside +
+               " and cut from the journal";
   }
   if (!read.error.empty()) *warning = read.error + *warning;
   fd_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
