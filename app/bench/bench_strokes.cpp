@@ -23,7 +23,7 @@
 #include "app/brush/stroke_gallery.h"
 #include "app/cli/args.h"
 #include "app/core/config_paths.h"
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/mapping/stroke_mapper.h"
 #include "app/render/gl/egl_context.h"
 #include "app/render/image_io.h"
@@ -148,7 +148,7 @@ int benchStrokes(int argc, char** argv) {
     }
   }
   if (sheet) {
-    // Encoded next to the target, then put in place atomically (app/kiosk/atomic_file.h).
+    // Encoded next to the target, then put in place atomically (app/core/atomic_file.h).
     const std::string encoded = sheet_path + ".png-encoding." + std::to_string(getpid());
     writePng(encoded, contact);
     std::ifstream in(encoded, std::ios::binary);

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
 
 namespace cb {

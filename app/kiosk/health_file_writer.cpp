@@ -3,7 +3,7 @@
 #include <chrono>
 #include <filesystem>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
 #include "app/kiosk/metrics_text.h"
 

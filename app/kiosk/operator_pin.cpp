@@ -12,7 +12,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 
 namespace cb {
 namespace {

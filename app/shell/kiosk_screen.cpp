@@ -12,7 +12,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/data_retention.h"
 #include "app/kiosk/disk_space.h"
 #include "app/render/gl/gl.h"

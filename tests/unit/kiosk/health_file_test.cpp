@@ -10,7 +10,7 @@
 #include <sstream>
 #include <thread>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
 #include "app/kiosk/health_file_writer.h"
 #include "app/kiosk/health_status.h"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/data_retention.h"
 #include "app/kiosk/gallery_store.h"
 #include "app/kiosk/kiosk_config.h"
