@@ -48,7 +48,8 @@ constexpr const char* kCommandNames[] = {"quit",
                                          "wind",
                                          "wind-direction",
                                          "apply-animation",
-                                         "leave-animation"};
+                                         "leave-animation",
+                                         "help"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -141,6 +142,9 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kApplyAnimation;
     case 'x':
       return Command::kLeaveAnimation;
+    case 'h':
+    case XKB_KEY_question:
+      return Command::kHelp;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -324,6 +328,8 @@ std::string keyLabel(Command command) {
       return "A";
     case Command::kLeaveAnimation:
       return "X";
+    case Command::kHelp:
+      return "H";
     default:
       return "";
   }
