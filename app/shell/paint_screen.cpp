@@ -841,8 +841,10 @@ void PaintScreen::appendStatsLabels(int w, int h, std::vector<UiLabel>* labels) 
 std::vector<std::string> PaintScreen::hint() const {
   if (!session_) return {msg::kNoSession.en, msg::kNoSession.zh};
   if (options_.visitor_mode) return {};  // the kiosk's own texts invite (kiosk/texts.toml)
+  // Until the first stroke (a camera or mode change is not one); a cloud opened or resumed
+  // needs no invitation either.
   if (session_->strokesMapped() > 0 || session_->engine().inStroke() ||
-      session_->history().canUndo())
+      session_->volume().allocatedBricks() > 0)
     return {};
   const Bilingual how =
       session_->mode() == Mode::kPaint ? msg::kHowToPaint : msg::kPressThreeToPaint;
