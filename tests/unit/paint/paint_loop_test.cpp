@@ -18,6 +18,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/paint_loop.h"
+#include "app/shell/paint_screen.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
 #include "tests/support/test_display.h"
