@@ -97,8 +97,7 @@ const Row& row(Command command) {
 std::string helpLine(Command command, Bilingual label) {
   std::string key = keyLabel(command);
   if (command == Command::kHelp) key = "H / ?";
-  key.resize(std::max<size_t>(key.size(), 12), ' ');
-  return key + label.oneLine();
+  return key + "\t" + label.oneLine();
 }
 
 }  // namespace

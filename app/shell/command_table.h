@@ -47,7 +47,7 @@ std::string refusalText(Command command, Mode mode);
 // both languages; `visitor` leaves out the operator's commands.
 struct HelpSection {
   Bilingual title;
-  std::vector<std::string> lines;  // "Ctrl+Z  Undo / 撤销"
+  std::vector<std::string> lines;  // "Ctrl+Z\tUndo / 撤销": the key, a tab, the label
 };
 std::vector<HelpSection> helpSections(bool visitor);
 

@@ -381,9 +381,12 @@ void PaintScreen::updateVacuumCentre(const MappedSample& mapped) {
   // mid-plane; a pen pressed moves it along that ray to the height its pressure gives (the
   // thesis's height from pressure). The mouse has no pressure: the canvas (Canvas mode) sets
   // the height.
+  // A mouse sends no samples while it rests, so its 1€-filtered position would stay behind the
+  // pointer: the sphere takes the pointer's own pixel (the mouse's units are screen pixels).
+  const float x = mouse_ ? float(mapped.raw.x_raw) : float(mapped.preview_x_px);
+  const float y = mouse_ ? float(mapped.raw.y_raw) : float(mapped.preview_y_px);
   glm::vec3 origin, dir;
-  session_->camera().pixelRay(float(mapped.x_px), float(mapped.y_px), display_.width(),
-                              display_.height(), &origin, &dir);
+  session_->camera().pixelRay(x, y, display_.width(), display_.height(), &origin, &dir);
   const Volume& v = session_->volume();
   float height = session_->canvas().altitude;
   if (mapped.contact && !mouse_)

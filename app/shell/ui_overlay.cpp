@@ -199,7 +199,7 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
     ImGui::End();
   }
 
-  drawMessages(width, height, bar_h, state);
+  if (state.help.empty()) drawMessages(width, height, bar_h, state);
 
   if (state.menu_open) {
     // Big pen targets (thesis Fig. 3.7): five across take 70% of the screen's width (about
@@ -328,8 +328,13 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
                   help[s].title.oneLine().c_str());
     y += 1.5f * line_h;
     for (const std::string& line : help[s].lines) {
-      draw->AddText(ImGui::GetFont(), size, ImVec2(x, y), IM_COL32(255, 255, 255, 255),
-                    line.c_str());
+      const size_t tab = line.find('\t');
+      const std::string key = line.substr(0, tab);
+      const std::string label = tab == std::string::npos ? "" : line.substr(tab + 1);
+      draw->AddText(ImGui::GetFont(), size, ImVec2(x, y), IM_COL32(255, 210, 100, 255),
+                    key.c_str());
+      draw->AddText(ImGui::GetFont(), size, ImVec2(x + 6.0f * size, y),
+                    IM_COL32(255, 255, 255, 255), label.c_str());
       y += line_h;
     }
     y += 0.5f * line_h;

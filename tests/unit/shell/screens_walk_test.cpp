@@ -349,7 +349,7 @@ TEST(ScreensWalk, EveryCommandIsLabelledInBothLanguages) {
   bool r_in_camera = false;
   for (const HelpSection& s : helpSections(false))
     for (const std::string& line : s.lines)
-      r_in_camera |= std::string(s.title.en) == "Camera" && line.rfind("R ", 0) == 0;
+      r_in_camera |= std::string(s.title.en) == "Camera" && line.rfind("R\t", 0) == 0;
   EXPECT_TRUE(r_in_camera);
 }
 
