@@ -136,8 +136,9 @@ class PaintScreen : public Screen {
   void setMenu(bool open, int64_t t_ns);
   // The footprint overlay, cursor and lift timing after the session mapped a sample.
   void afterSample(const SampleOutcome& outcome, std::chrono::steady_clock::time_point received);
-  void say(const std::string& message);   // stderr only
-  void tell(const std::string& message);  // on screen for a few seconds, and stderr
+  void say(const std::string& message);  // stderr only
+  // On screen for a few seconds (or for_ns), and stderr.
+  void tell(const std::string& message, int64_t for_ns = 0);
   // The command seams (paint_screen_commands.cpp).
   void onChoiceCommand(Command command, int64_t t_ns);
   void onViewCommand(Command command, int64_t t_ns);

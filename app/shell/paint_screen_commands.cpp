@@ -23,8 +23,9 @@
 namespace cb {
 namespace {
 
-// How long a first Esc or q waits for the second (or Y) before it is forgotten.
-constexpr int64_t kQuitConfirmNs = 4'000'000'000;
+// How long a first Esc or q waits for the second (or Y) before it is forgotten: time to read
+// the question in two languages; the question shows as long.
+constexpr int64_t kQuitConfirmNs = 10'000'000'000;
 
 // "cloud-2026-11-29_14-05-09.vol" in `dir` (local time: what the person's clock says), with
 // "-2", "-3" … when a save in the same second exists.
@@ -98,9 +99,9 @@ bool PaintScreen::visitorAllows(Command command) const {
   }
 }
 
-void PaintScreen::tell(const std::string& text) {
+void PaintScreen::tell(const std::string& text, int64_t for_ns) {
   toast_ = text;
-  toast_until_ns_ = clockNs() + kToastNs;
+  toast_until_ns_ = clockNs() + (for_ns > 0 ? for_ns : kToastNs);
   say(text);
 }
 
@@ -137,7 +138,7 @@ bool PaintScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
   }
   if (!allowsQuit() || !unsavedWork() || armed) return false;  // the loop quits (or refuses)
   quit_armed_until_ns_ = clockNs() + kQuitConfirmNs;
-  tell(msg::kQuitAsk.oneLine());
+  tell(msg::kQuitAsk.oneLine(), kQuitConfirmNs);
   return true;
 }
 
