@@ -52,12 +52,12 @@ namespace {
 constexpr const char* kUsage =
     "usage: cloudbrush [paint] [OPTIONS]\n"
     "\n"
-    "The painter. On a display it opens fullscreen with a slowly orbiting camera (Esc or q\n"
-    "quits, Space pauses/resumes the orbit). When a pen comes near the tablet the orbit stops and\n"
-    "you paint: the footprint shows live, and when the pen lifts the stroke becomes a lit cloud.\n"
-    "The session is journalled (its path is printed) for `cloudbrush replay`. Without a tablet\n"
-    "the bundled cloud orbits and the pen state is shown. With no display and no --backend it\n"
-    "renders the bundled cloud headlessly and writes a PNG and an EXR, printing their paths.\n"
+    "The painter. On a display it opens fullscreen at the paint view with a hint until the\n"
+    "first stroke: press and drag (the pen, or the mouse when no tablet is connected) and the\n"
+    "footprint shows live; when the pen lifts the stroke becomes a lit cloud. The session is\n"
+    "journalled (its path is printed) for `cloudbrush replay`. With --backend none the bundled\n"
+    "cloud orbits. With no display and no --backend it renders the bundled cloud headlessly and\n"
+    "writes a PNG and an EXR, printing their paths.\n"
     "\n"
     "options:\n"
     "  --display auto|kms|x11|surfaceless\n"
@@ -118,11 +118,20 @@ constexpr const char* kUsage =
     "  --morph-seconds S   how long the morph plays (default 5)\n"
     "  --help              this text\n"
     "\n"
-    "keys: Esc/q quit, Space pauses the orbit, S shows ray-sample statistics (histogram bars,\n"
-    "total/mean/max samples), C shows the last stroke's circles, B cycles the brush\n"
-    "(2d/3d/skeleton), M the mapping (hybrid/ray-marching); B and M apply from the next stroke\n"
-    "and are journalled. While the pen is in range a faint outline marks where the canvas slab\n"
-    "meets the volume: strokes outside it cannot land in the volume.\n";
+    "keys (H or ? shows them on screen; mode keys act only in their mode):\n"
+    "  every mode  1-5 modes (camera, canvas, paint, erase, light), M the menu, B the brush\n"
+    "              (2d/3d/skeleton), N the mapping (hybrid/ray-marching/sheet), T the style,\n"
+    "              G a good view, C the last stroke's circles, S details (statistics),\n"
+    "              Ctrl+Z/Ctrl+Y undo/redo, Delete clears (Ctrl+Z brings it back), Ctrl+S saves\n"
+    "              (cloud-DATE_TIME.vol in the state dir), Ctrl+O opens the last saved,\n"
+    "              Esc/q quits (with unsaved work: asks; Esc again or Y quits)\n"
+    "  1 camera    R reset, arrows top/front/left/3-4 views, Shift+arrows pan, P drag pans,\n"
+    "              -/+ zoom, Space auto-rotation\n"
+    "  2 canvas    PgUp/PgDn one voxel, -/+ thickness\n"
+    "  4 erase     V vacuum/rub-out, -/+ size, Space cuts (vacuum)\n"
+    "  5 light     -/+ warmer/cooler\n"
+    "B, N and T apply from the next stroke and are journalled. While the pen is in range the\n"
+    "screen outside where a stroke can land is veiled.\n";
 
 std::atomic<bool> g_stop{false};
 void onSignal(int) {
@@ -140,30 +149,33 @@ int fail(const std::string& message, int code = 1) {
   return code;
 }
 
-}  // namespace
-
-int commandPaint(int argc, char** argv) {
-  std::string error;
-  Args args(argc, argv, {"help", "stats", "no-record", "kiosk"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  const auto unknown = args.unknown(
-      {"help",       "stats",        "display",      "drm-device",      "size",     "out-dir",
-       "grid",       "seed",         "orbit",        "moving-scale",    "frames",   "backend",
-       "pen-device", "journal",      "session-dir",  "no-record",       "keys",     "open",
-       "place",      "kiosk",        "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery",      "resume",       "sync-udp",        "morph-to", "morph-seconds",
-       "sky-span",   "sky-max-span", "metrics-dir"});
-  if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
-  if (args.positional().size() > 1)
-    return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
-  // Before any thread starts (app/kiosk/kiosk_heap.h).
-  if (args.has("kiosk") && !setKioskHeapPolicy())
-    std::fprintf(stderr, "cloudbrush: kiosk: glibc refused the heap settings (kiosk_heap.h)\n");
-
+// The painter's command line, checked (parsePaintArgs).
+struct PaintArgs {
   DisplayOptions display_options;
+  long grid = 256, sky_span = kDefaultSkySpan, sky_max_span = kMaxSkySpan, seed = 1;
+  SkyExtent sky;
+  PaintLoopOptions loop_options;
+  bool kiosk = false;
+  KioskConfig kiosk_config;
+  // Kiosk: the first bad config file or unusable data dir. Shown on the screen (and logged)
+  // instead of exiting into a restart loop (app/shell/kiosk_error_screen.h); every config file
+  // alike. The painter exits with the message.
+  std::string kiosk_problem;
+  std::string backend, resume_path;
+};
+
+// Reads and checks the options into *p: -1 when they hold, else the exit status (said on
+// stderr).
+int parsePaintArgs(Args& args, PaintArgs* p) {
+  std::string error;
+  DisplayOptions& display_options = p->display_options;
+  long &grid = p->grid, &sky_span = p->sky_span, &sky_max_span = p->sky_max_span, &seed = p->seed;
+  SkyExtent& sky = p->sky;
+  PaintLoopOptions& loop_options = p->loop_options;
+  bool& kiosk = p->kiosk;
+  KioskConfig& kiosk_config = p->kiosk_config;
+  std::string& kiosk_problem = p->kiosk_problem;
+  std::string &backend = p->backend, &resume_path = p->resume_path;
   const std::string platform = args.get("display", "auto");
   if (!parseDisplayPlatform(platform, &display_options.platform))
     return fail("--display: expected auto, kms, x11 or surfaceless, got '" + platform + "'", 2);
@@ -172,12 +184,11 @@ int commandPaint(int argc, char** argv) {
   const std::string size = args.get("size", "1280x720");
   if (!parseSize(size, &display_options.width, &display_options.height))
     return fail("--size: expected WxH (1..16384 each), got '" + size + "'", 2);
-  const long grid = args.getInt("grid", 256);
-  const long sky_span = args.getInt("sky-span", kDefaultSkySpan);
-  const SkyExtent sky{int(grid), int(sky_span)};
-  const long sky_max_span = args.getInt("sky-max-span", std::max(long(kMaxSkySpan), sky_span));
-  const long seed = args.getInt("seed", 1);
-  PaintLoopOptions loop_options;
+  grid = args.getInt("grid", 256);
+  sky_span = args.getInt("sky-span", kDefaultSkySpan);
+  sky = SkyExtent{int(grid), int(sky_span)};
+  sky_max_span = args.getInt("sky-max-span", std::max(long(kMaxSkySpan), sky_span));
+  seed = args.getInt("seed", 1);
   loop_options.orbit_degrees_per_second = float(args.getDouble("orbit", 6.0));
   loop_options.moving_scale = float(args.getDouble("moving-scale", 0.5));
   loop_options.max_frames = args.getInt("frames", 0);
@@ -187,12 +198,7 @@ int commandPaint(int argc, char** argv) {
   loop_options.morph_seconds = args.getDouble("morph-seconds", 5.0);
   if (!(loop_options.morph_seconds > 0.0 && loop_options.morph_seconds <= 3600.0))
     return fail("--morph-seconds: expected a time in (0, 3600] seconds", 2);
-  const bool kiosk = args.has("kiosk");
-  KioskConfig kiosk_config;
-  // Kiosk: the first bad config file or unusable data dir. Shown on the screen (and logged)
-  // instead of exiting into a restart loop (app/shell/kiosk_error_screen.h); every config file
-  // alike. The painter exits with the message.
-  std::string kiosk_problem;
+  kiosk = args.has("kiosk");
   if (kiosk) {
     try {
       std::error_code ec;
@@ -241,7 +247,7 @@ int commandPaint(int argc, char** argv) {
   if (args.has("keys") && !parseKeyList(args.get("keys", ""), &loop_options.initial_keys, &error))
     return fail("--keys: " + error, 2);
 
-  const std::string backend = args.get("backend", "auto");
+  backend = args.get("backend", "auto");
   if (backend != "none" && backend != "auto" && backend != "evdev" && backend != "hidraw" &&
       backend != "libusb" && backend != "replay")
     return fail(
@@ -249,9 +255,140 @@ int commandPaint(int argc, char** argv) {
         2);
   if (backend == "replay" && !args.has("journal"))
     return fail("--backend replay needs --journal FILE", 2);
-  const std::string resume_path = args.get("resume", "");
+  resume_path = args.get("resume", "");
   if (!resume_path.empty() && args.has("no-record"))
     return fail("--resume records into its file; it cannot go with --no-record", 2);
+  return -1;
+}
+
+// What the run did, on stdout: frames, pen samples and strokes, the volume's checksum.
+void printPaintSummary(const PaintLoopSummary& summary, Display& display_ref, const PenSource* pen,
+                       const PaintSession* painted, long grid, bool resuming) {
+  Display* display = &display_ref;
+  std::printf(
+      "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f, "
+      "present %.1f ms\n",
+      summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
+      summary.median_frame_ms, summary.final_moving_scale, summary.median_present_ms);
+  if (pen && summary.pen_samples == 0)
+    std::printf("cloudbrush: no pen samples arrived; nothing painted or recorded\n");
+  if (pen && summary.pen_samples > 0)
+    std::printf(
+        "cloudbrush: %ld pen samples, %ld strokes mapped; pen-up -> first lit frame "
+        "median %.1f ms (%zu strokes, %dx%d, grid %ld); painting median %.1f ms/frame over %ld "
+        "frames\n",
+        summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
+        summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid,
+        summary.median_painting_frame_ms, summary.painting_frames);
+  // (The kiosk's visitors each have a journal of their own; no one checksum stands for them.)
+  if (painted && (summary.pen_samples > 0 || resuming))
+    std::printf(
+        "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "
+        "same)\n",
+        static_cast<unsigned long long>(volumeChecksum(painted->volume())));
+  if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
+    std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
+                last->vblank_sequence, double(last->shown_ns) / 1e9);
+}
+
+// The kiosk's visitor texts and attract journal into *setup (false: the texts did not load).
+bool loadKioskAssets(const KioskConfig& kiosk_config, KioskSetup* out, std::string* error) {
+  KioskSetup& setup = *out;
+  try {
+    setup.texts = KioskTexts::load(configFile("kiosk/texts.toml"), kiosk_config.language,
+                                   [](const std::string& line) {
+                                     std::fprintf(stderr, "cloudbrush kiosk: %s\n", line.c_str());
+                                   });
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
+  const std::filesystem::path attract_path =
+      std::filesystem::path(kiosk_config.attract_journal).is_absolute()
+          ? std::filesystem::path(kiosk_config.attract_journal)
+          : std::filesystem::path(defaultConfigDir()) / kiosk_config.attract_journal;
+  JournalReadResult attract = readJournal(attract_path.string());
+  if (!attract.error.empty())
+    std::fprintf(stderr, "cloudbrush kiosk: attract journal: %s (%zu records play)\n",
+                 attract.error.c_str(), attract.records.size());
+  setup.attract_journal = std::move(attract.records);
+  return true;
+}
+
+// --resume: what the resumed journal held (issue 10: restarting on the same session resumes
+// it from its journal).
+void reportResumed(const std::string& resume_path, const ResumedSession& resumed) {
+  if (!resumed.warning.empty())
+    std::fprintf(stderr, "cloudbrush: resume: %s\n", resumed.warning.c_str());
+  if (!resumed.resumed) return;
+  std::printf(
+      "resumed %s: %zu records, %zu pen samples, %u strokes; recording on after byte "
+      "%llu\n",
+      resume_path.c_str(), resumed.replay.records_applied, resumed.replay.pen_samples,
+      resumed.replay.strokes_mapped,
+      static_cast<unsigned long long>(std::filesystem::file_size(resume_path)));
+  std::fflush(stdout);
+}
+
+// The session's journal: into the --resume file, else <session dir>/<UTC time>.cbj.
+void startSessionJournal(PaintSession* session, JournalWriter* journal,
+                         const std::string& resume_path, const std::string& session_dir) {
+  if (!resume_path.empty()) {
+    session->recordTo(journal, 0);  // a new session in the --resume file
+    std::printf("journal: %s\n", resume_path.c_str());
+    std::fflush(stdout);
+    return;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(session_dir, ec);
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+  const std::string path = session_dir + "/" + stamp + ".cbj";
+  if (ec || !journal->open(path)) {
+    std::fprintf(stderr, "cloudbrush: NOT RECORDING: cannot write the session journal %s: %s\n",
+                 path.c_str(), ec ? ec.message().c_str() : journal->error().c_str());
+    return;
+  }
+  session->recordTo(journal, 0);
+  std::printf("journal: %s\n", path.c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int commandPaint(int argc, char** argv) {
+  std::string error;
+  Args args(argc, argv, {"help", "stats", "no-record", "kiosk"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const auto unknown = args.unknown(
+      {"help",       "stats",        "display",      "drm-device",      "size",     "out-dir",
+       "grid",       "seed",         "orbit",        "moving-scale",    "frames",   "backend",
+       "pen-device", "journal",      "session-dir",  "no-record",       "keys",     "open",
+       "place",      "kiosk",        "idle-seconds", "warning-seconds", "data-dir", "seconds",
+       "language",   "gallery",      "resume",       "sync-udp",        "morph-to", "morph-seconds",
+       "sky-span",   "sky-max-span", "metrics-dir"});
+  if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
+  if (args.positional().size() > 1)
+    return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
+  // Before any thread starts (app/kiosk/kiosk_heap.h).
+  if (args.has("kiosk") && !setKioskHeapPolicy())
+    std::fprintf(stderr, "cloudbrush: kiosk: glibc refused the heap settings (kiosk_heap.h)\n");
+
+  PaintArgs parsed;
+  if (const int status = parsePaintArgs(args, &parsed); status >= 0) return status;
+  const DisplayOptions& display_options = parsed.display_options;
+  const long grid = parsed.grid, sky_span = parsed.sky_span, seed = parsed.seed;
+  const long sky_max_span = parsed.sky_max_span;
+  const SkyExtent sky = parsed.sky;
+  PaintLoopOptions& loop_options = parsed.loop_options;
+  const bool kiosk = parsed.kiosk;
+  KioskConfig& kiosk_config = parsed.kiosk_config;
+  std::string& kiosk_problem = parsed.kiosk_problem;
+  const std::string &backend = parsed.backend, &resume_path = parsed.resume_path;
 
   std::string choice_note;
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
@@ -328,25 +465,14 @@ int commandPaint(int argc, char** argv) {
         2);
   if (pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
     if (!resume_path.empty()) {
-      // Issue 10: restarting on the same session resumes it from its journal.
       ResumedSession resumed;
       if (!resumeOrStartSession(resume_path, settings, brush, mapping, &journal, &resumed, &error))
         return fail("--resume: " + error, 2);
+      reportResumed(resume_path, resumed);
       session = std::move(resumed.session);
       resuming = resumed.resumed;
-      if (!resumed.warning.empty())
-        std::fprintf(stderr, "cloudbrush: resume: %s\n", resumed.warning.c_str());
-      if (resuming) {
-        resumed_after_ns = resumed.last_sample_ns;
-        std::printf(
-            "resumed %s: %zu records, %zu pen samples, %u strokes; recording on after byte "
-            "%llu\n",
-            resume_path.c_str(), resumed.replay.records_applied, resumed.replay.pen_samples,
-            resumed.replay.strokes_mapped,
-            static_cast<unsigned long long>(std::filesystem::file_size(resume_path)));
-        std::fflush(stdout);
-        loop_options.orbit_degrees_per_second = 0.0f;  // the view stays where the session left it
-      }
+      resumed_after_ns = resumed.last_sample_ns;
+      if (resuming) loop_options.orbit_degrees_per_second = 0.0f;  // the view stays as it was
     } else {
       session = std::make_unique<PaintSession>(settings, brush, mapping);
     }
@@ -392,26 +518,7 @@ int commandPaint(int argc, char** argv) {
   }
   const auto start_journal = [&]() {
     if (!record || !session || resuming) return;  // the kiosk journals each visitor itself
-    if (!resume_path.empty()) {
-      session->recordTo(&journal, 0);  // a new session in the --resume file
-      std::printf("journal: %s\n", resume_path.c_str());
-      std::fflush(stdout);
-      return;
-    }
-    std::error_code ec;
-    std::filesystem::create_directories(session_dir, ec);
-    char stamp[32];
-    const std::time_t now = std::time(nullptr);
-    std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
-    const std::string path = session_dir + "/" + stamp + ".cbj";
-    if (ec || !journal.open(path)) {
-      std::fprintf(stderr, "cloudbrush: NOT RECORDING: cannot write the session journal %s: %s\n",
-                   path.c_str(), ec ? ec.message().c_str() : journal.error().c_str());
-      return;
-    }
-    session->recordTo(&journal, 0);
-    std::printf("journal: %s\n", path.c_str());
-    std::fflush(stdout);
+    startSessionJournal(session.get(), &journal, resume_path, session_dir);
   };
   const auto generate_start = std::chrono::steady_clock::now();
   // Shown until a pen connects; then the session's volume (empty at first) is painted into.
@@ -445,8 +552,8 @@ int commandPaint(int argc, char** argv) {
                  kiosk_config.idle_seconds);
   else
     std::fprintf(stderr,
-                 "cloudbrush: Esc or q quits, 1-5 modes, M menu, B brush, N mapping, Ctrl+Z/Y "
-                 "undo/redo%s\n",
+                 "cloudbrush: H shows the keys; Esc or q quits (asks with unsaved work), 1-5 "
+                 "modes, M menu, B brush, N mapping, Ctrl+Z/Y undo/redo%s\n",
                  pen ? "; bring the pen near the tablet to paint" : "");
   loop_options.config_dir = defaultConfigDir();
   loop_options.state_dir = kiosk ? data_dir : stateDir();
@@ -503,23 +610,8 @@ int commandPaint(int argc, char** argv) {
   if (kiosk) {
     KioskSetup setup;
     setup.config = kiosk_config;
-    try {
-      setup.texts = KioskTexts::load(configFile("kiosk/texts.toml"), kiosk_config.language,
-                                     [](const std::string& line) {
-                                       std::fprintf(stderr, "cloudbrush kiosk: %s\n", line.c_str());
-                                     });
-    } catch (const std::exception& e) {
-      if (kiosk_problem.empty()) kiosk_problem = e.what();
-    }
-    const std::filesystem::path attract_path =
-        std::filesystem::path(kiosk_config.attract_journal).is_absolute()
-            ? std::filesystem::path(kiosk_config.attract_journal)
-            : std::filesystem::path(defaultConfigDir()) / kiosk_config.attract_journal;
-    JournalReadResult attract = readJournal(attract_path.string());
-    if (!attract.error.empty())
-      std::fprintf(stderr, "cloudbrush kiosk: attract journal: %s (%zu records play)\n",
-                   attract.error.c_str(), attract.records.size());
-    setup.attract_journal = std::move(attract.records);
+    if (!loadKioskAssets(kiosk_config, &setup, &error) && kiosk_problem.empty())
+      kiosk_problem = error;
     setup.data_dir = data_dir;
     setup.config_dir = defaultConfigDir();
     setup.visitor_settings = settings;
@@ -557,31 +649,7 @@ int commandPaint(int argc, char** argv) {
                 kiosk_screen->gallerySaved().size());
   }
   if (!ran) return fail(error);
-  std::printf(
-      "cloudbrush: %ld frames in %.1f s on %s (%s); orbit median %.1f ms/frame at scale %.2f, "
-      "present %.1f ms\n",
-      summary.frames, summary.seconds, display->platformName(), summary.quit_reason.c_str(),
-      summary.median_frame_ms, summary.final_moving_scale, summary.median_present_ms);
-  if (pen && summary.pen_samples == 0)
-    std::printf("cloudbrush: no pen samples arrived; nothing painted or recorded\n");
-  if (pen && summary.pen_samples > 0)
-    std::printf(
-        "cloudbrush: %ld pen samples, %ld strokes mapped; pen-up -> first lit frame "
-        "median %.1f ms (%zu strokes, %dx%d, grid %ld); painting median %.1f ms/frame over %ld "
-        "frames\n",
-        summary.pen_samples, summary.strokes_mapped, summary.median_pen_up_to_lit_ms(),
-        summary.pen_up_to_lit_ms.size(), display->width(), display->height(), grid,
-        summary.median_painting_frame_ms, summary.painting_frames);
-  // (The kiosk's visitors each have a journal of their own; no one checksum stands for them.)
-  const PaintSession* painted = session.get();
-  if (painted && (summary.pen_samples > 0 || resuming))
-    std::printf(
-        "cloudbrush: volume checksum %016llx (cloudbrush replay of the journal gives the "
-        "same)\n",
-        static_cast<unsigned long long>(volumeChecksum(painted->volume())));
-  if (const FrameTiming* last = display->frameTimings().last(); last && last->has_vblank)
-    std::printf("cloudbrush: last page flip: vblank sequence %u at %.6f s (monotonic)\n",
-                last->vblank_sequence, double(last->shown_ns) / 1e9);
+  printPaintSummary(summary, *display, pen.get(), session.get(), grid, resuming);
   if (summary.quit_reason == "operator shutdown") return kOperatorShutdownExitStatus;
   return 0;
 }

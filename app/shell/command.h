@@ -55,6 +55,7 @@ enum class Command {
   kWindDirection,   // D: turn the wind (eight compass directions)
   kApplyAnimation,  // A: apply the morph or wind shown (one undo step)
   kLeaveAnimation,  // X: leave the morph or wind without applying
+  kHelp,            // H or ?: the keys of every mode on screen (and again: hidden)
   kCount
 };
 

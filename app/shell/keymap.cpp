@@ -24,6 +24,8 @@ constexpr const char* kCommandNames[] = {"quit",
                                          "space",
                                          "smaller",
                                          "larger",
+                                         "brush-smaller",
+                                         "brush-larger",
                                          "raise",
                                          "lower",
                                          "next-erase-tool",
@@ -49,8 +51,7 @@ constexpr const char* kCommandNames[] = {"quit",
                                          "wind-direction",
                                          "apply-animation",
                                          "leave-animation",
-                                         "brush-smaller",
-                                         "brush-larger"};
+                                         "help"};
 static_assert(sizeof(kCommandNames) / sizeof(kCommandNames[0]) == size_t(Command::kCount));
 
 uint32_t lowerLetter(uint32_t keysym) {
@@ -160,6 +161,9 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers) {
       return Command::kApplyAnimation;
     case 'x':
       return Command::kLeaveAnimation;
+    case 'h':
+    case XKB_KEY_question:
+      return Command::kHelp;
     case 'r':
       return Command::kResetCamera;
     case 'v':
@@ -353,6 +357,8 @@ std::string keyLabel(Command command) {
       return "[";
     case Command::kBrushLarger:
       return "]";
+    case Command::kHelp:
+      return "H";
     default:
       return "";
   }

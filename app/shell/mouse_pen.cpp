@@ -38,7 +38,13 @@ PenSample MousePen::sample(const DisplayEvent& event, int64_t t_ns) {
   s.buttons = down_ ? kPenTip : 0u;
   s.tool = PenTool::kPen;
   s.in_proximity = true;
+  last_ = s;
   return s;
+}
+
+PenSample MousePen::repeat(int64_t t_ns) {
+  last_.t_ns = t_ns;
+  return last_;
 }
 
 }  // namespace cb

@@ -17,6 +17,8 @@ class MousePen {
   const PenDeviceInfo& device() const { return device_; }
   // The sample for a pointer event at t_ns (PointerMove/Down/Up; button 1 is the tip).
   PenSample sample(const DisplayEvent& event, int64_t t_ns);
+  // The last sample again at t_ns (the mouse held still: a tablet keeps sending samples).
+  PenSample repeat(int64_t t_ns);
   bool down() const { return down_; }
   float pressure() const { return pressure_; }
   void setPressure(float pressure);
@@ -24,6 +26,7 @@ class MousePen {
  private:
   PenDeviceInfo device_;
   bool down_ = false;
+  PenSample last_;
   float pressure_ = 0.6f;
 };
 

@@ -13,6 +13,7 @@
 #include "app/shell/hud_items.h"
 #include "app/shell/keymap.h"
 #include "app/shell/mouse_pen.h"
+#include "app/shell/painter_messages.h"
 #include "app/shell/ui_overlay.h"
 #include "app/volume/volume_file.h"
 #include "calibration/profile_store.h"
@@ -59,12 +60,19 @@ Camera orbitCamera(const Camera& base, float yaw_deg, float pitch_deg) {
   return c;
 }
 
-// The light ball: where the pen's ray meets a sphere of radius 1.5 about the scene origin (the
+// The light ball's sphere about the scene origin: radius 1.5 (the home box's corners), or less
+// so the whole sphere is on screen from this camera (a ball off screen cannot be dragged).
+float lightBallRadius(const Camera& camera) {
+  const float distance = glm::length(camera.eye);
+  return std::min(1.5f, 0.75f * distance * std::tan(glm::radians(0.5f * camera.fov_y_deg)));
+}
+
+// The light ball: where the pen's ray meets the light ball's sphere about the scene origin (the
 // nearest point of the ray when it misses); its direction from the origin is the sun's.
 glm::vec3 lightDirectionAt(const Camera& camera, float x, float y, int w, int h) {
   glm::vec3 origin, dir;
   camera.pixelRay(x, y, w, h, &origin, &dir);
-  const float radius = 1.5f;
+  const float radius = lightBallRadius(camera);
   const float b = glm::dot(origin, dir);
   const float c = glm::dot(origin, origin) - radius * radius;
   const float disc = b * b - c;
@@ -120,6 +128,16 @@ void PaintScreen::attachPen(PenSource* pen, PaintSession* session) {
   session_ = session;
   // A resumed session opens with the menu as it was.
   if (session_) menu_open_ = session_->menuOpen();
+  // The painter starts at the session's paint view, still, ready for the first stroke.
+  if (showsSession()) {
+    orbiting_ = false;
+    orbit_degrees_ = 0.0f;
+    refined_ = false;
+  }
+}
+
+bool PaintScreen::showsSession() const {
+  return session_ && (pen_connected_once_ || replay_view_ || !options_.visitor_mode);
 }
 
 bool PaintScreen::showReplay(PaintSession* session, std::string* error) {
@@ -147,12 +165,12 @@ void PaintScreen::setMenu(bool open, int64_t t_ns) {
 
 const Volume& PaintScreen::shownVolume() const {
   if (animation_ && animation_->active()) return animation_->shown();
-  return pen_connected_once_ ? session_->volume() : volume_;
+  return showsSession() ? session_->volume() : volume_;
 }
 
 Light PaintScreen::shownLight() const {
   if (drag_light_) return *drag_light_;
-  return pen_connected_once_ ? session_->light() : light_;
+  return showsSession() ? session_->light() : light_;
 }
 
 Camera PaintScreen::shownCamera() const {
@@ -303,7 +321,14 @@ void PaintScreen::afterSample(const SampleOutcome& outcome,
     overlay_.beginFootprint(session_->footprintWidth(), session_->footprintHeight());
   if (!outcome.changed.empty())
     texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
+  if (outcome.auto_ended && !replay_view_) tell(msg::kStrokeEnded.oneLine());
   if (outcome.stroke_mapped) {
+    // Ink in the veil (where the canvas is out of reach) is not dropped: the mapping places it
+    // on its fallback plane, off the canvas (app/mapping/stroke_mapper.cpp). Said so, once per
+    // stroke, with the way back.
+    long off_canvas = 0;
+    for (const MappedSphere& sphere : outcome.mapping.spheres) off_canvas += !sphere.on_canvas;
+    if (off_canvas > 0 && !replay_view_) tell(msg::kInkLost.oneLine());
     ++strokes_seen_;
     lift_time_ = received;
     lift_mapping_ms_ = outcome.mapping.timings.total_ms;
@@ -345,7 +370,39 @@ void PaintScreen::onPointer(const DisplayEvent& event) {
                   double(mouse_->pressure()));
     say(text);
   }
+  last_mouse_sample_ns_ = clockNs();
   feedSample(mouse_->sample(event, clockNs()));
+}
+
+void PaintScreen::repeatHeldMouse() {
+  if (!mouse_ || !mouse_->down() || !session_ || !session_->engine().inStroke()) return;
+  const int64_t now = clockNs();
+  if (now - last_mouse_sample_ns_ < 50'000'000) return;  // 20 Hz is enough to time 2 s
+  last_mouse_sample_ns_ = now;
+  feedSample(mouse_->repeat(now));
+}
+
+void PaintScreen::updateVacuumCentre(const MappedSample& mapped) {
+  if (session_->mode() != Mode::kErase || session_->eraseTool() != EraseTool::kVacuum) return;
+  // §3.5.1: the sphere under the pointer: on the pointer's ray, where it meets the canvas's
+  // mid-plane; a pen pressed moves it along that ray to the height its pressure gives (the
+  // thesis's height from pressure). The mouse has no pressure: the canvas (Canvas mode) sets
+  // the height.
+  // A mouse sends no samples while it rests, so its 1€-filtered position would stay behind the
+  // pointer: the sphere takes the pointer's own pixel (the mouse's units are screen pixels).
+  const float x = mouse_ ? float(mapped.raw.x_raw) : float(mapped.preview_x_px);
+  const float y = mouse_ ? float(mapped.raw.y_raw) : float(mapped.preview_y_px);
+  glm::vec3 origin, dir;
+  session_->camera().pixelRay(x, y, display_.width(), display_.height(), &origin, &dir);
+  const Volume& v = session_->volume();
+  float height = session_->canvas().altitude;
+  if (mapped.contact && !mouse_)
+    height = v.worldMin().y +
+             std::clamp(mapped.pressure, 0.0f, 1.0f) * (v.worldMax().y - v.worldMin().y);
+  if (std::abs(dir.y) < 1e-4f) return vacuum_centre_.reset();
+  const float t = (height - origin.y) / dir.y;
+  if (t <= 0.0f) return vacuum_centre_.reset();
+  vacuum_centre_ = origin + t * dir;
 }
 
 void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped) {
@@ -396,6 +453,7 @@ void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped)
       } else if (mode == Mode::kLight && drag_light_) {
         drag_light_->direction = lightDirectionAt(shownCamera(), event.x, event.y, w, h);
       }
+      updateVacuumCentre(mapped);
       return;
     }
     case PenEvent::Kind::kUp:
@@ -409,293 +467,9 @@ void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped)
       return;
     case PenEvent::Kind::kHover:
     case PenEvent::Kind::kProximityIn:
-      if (mode == Mode::kErase && session_->eraseTool() == EraseTool::kVacuum) {
-        glm::vec3 centre;
-        if (session_->vacuumCentre(mapped, &centre))
-          vacuum_centre_ = centre;
-        else
-          vacuum_centre_.reset();
-      }
+      updateVacuumCentre(mapped);
       return;
   }
-}
-
-Camera PaintScreen::presetView(Command command) const {
-  const Camera base = session_ ? session_->camera() : Camera::reference();
-  const float distance = glm::length(base.eye - base.target);
-  Camera c = base;
-  switch (command) {
-    case Command::kViewTop:  // straight down, the screen's top towards -z
-      c.eye = c.target + distance * glm::normalize(glm::vec3(0.0f, 1.0f, 0.02f));
-      break;
-    case Command::kViewFront:
-      c.eye = c.target + distance * glm::normalize(glm::vec3(0.0f, 0.15f, 1.0f));
-      break;
-    case Command::kViewLeft:
-      c.eye = c.target + distance * glm::normalize(glm::vec3(-1.0f, 0.15f, 0.0f));
-      break;
-    default:  // perspective, reset
-      c = session_ ? initialPaintCamera(session_->settings()) : Camera::reference();
-      break;
-  }
-  return c;
-}
-
-bool PaintScreen::visitorAllows(Command command) const {
-  // Visitor mode (issue 11): painting, erasing, camera, undo and start again; no operator
-  // commands (files, statistics, canvas and light set-up, style, quit).
-  switch (command) {
-    case Command::kQuit:
-    case Command::kModeCanvas:
-    case Command::kModeLight:
-    case Command::kSave:
-    case Command::kOpen:
-    case Command::kToggleStats:
-    case Command::kNextStyle:
-    case Command::kRaise:
-    case Command::kLower:
-      return false;
-    default:
-      return true;
-  }
-}
-
-void PaintScreen::onCommand(Command command, int64_t t_ns) {
-  if (options_.visitor_mode && !visitorAllows(command))
-    return say(std::string(commandName(command)) + " is for the operator, not in visitor mode");
-  const bool erase = session_ && session_->mode() == Mode::kErase;
-  switch (command) {
-    case Command::kQuit:
-      break;
-    case Command::kModeCamera:
-    case Command::kModeCanvas:
-    case Command::kModePaint:
-    case Command::kModeErase:
-    case Command::kModeLight:
-      apply(ui::SetMode{Mode(int(command) - int(Command::kModeCamera))}, t_ns);
-      vacuum_centre_.reset();
-      break;
-    case Command::kMenu:
-      setMenu(!menu_open_, t_ns);
-      break;
-    case Command::kNextBrush: {
-      if (!session_) return say("B: no pen session, the brush is not used");
-      const BrushKind order[3] = {BrushKind::k2D, BrushKind::k3D, BrushKind::kSkeleton};
-      int next = 0;
-      for (int i = 0; i < 3; ++i)
-        if (order[i] == session_->selectedBrush()) next = (i + 1) % 3;
-      apply(ui::SetBrush{order[next]}, t_ns);
-      break;
-    }
-    case Command::kNextMapping: {
-      if (!session_) return say("no pen session, no mapping");
-      // hybrid -> ray-marching -> sheet (a wide, thin, flat layer for stratus) -> hybrid
-      const MappingMethod m = session_->mappingMethod();
-      apply(ui::SetMapping{m == MappingMethod::kHybrid        ? MappingMethod::kRayMarching
-                           : m == MappingMethod::kRayMarching ? MappingMethod::kSheet
-                                                              : MappingMethod::kHybrid},
-            t_ns);
-      break;
-    }
-    case Command::kResetCamera:
-    case Command::kViewTop:
-    case Command::kViewFront:
-    case Command::kViewLeft:
-    case Command::kViewPerspective:
-      orbit_degrees_ = 0.0f;
-      apply(ui::SetCamera{presetView(command), CameraMove::kView}, t_ns);
-      break;
-    case Command::kPanDrag:
-      pan_drag_ = !pan_drag_;
-      say(pan_drag_ ? "camera mode: a pen drag pans the view (P orbits again)"
-                    : "camera mode: a pen drag orbits (P pans)");
-      break;
-    case Command::kPanLeft:
-    case Command::kPanRight:
-    case Command::kPanUp:
-    case Command::kPanDown: {
-      if (!session_) return say("no pen session: the view is the bundled cloud's");
-      // A twentieth of the screen height per press, in the arrow's direction (the view moves,
-      // so the scene moves the other way).
-      const Camera c = session_->camera();
-      const float step =
-          0.05f * float(display_.height()) * c.worldPerPixelAtTarget(display_.height());
-      const float right = command == Command::kPanRight  ? step
-                          : command == Command::kPanLeft ? -step
-                                                         : 0.0f;
-      const float up = command == Command::kPanUp     ? step
-                       : command == Command::kPanDown ? -step
-                                                      : 0.0f;
-      apply(ui::SetCamera{c.panned(right, up), CameraMove::kPan}, t_ns);
-      break;
-    }
-    case Command::kSpace:
-      if (erase && session_->eraseTool() == EraseTool::kVacuum) {
-        if (!vacuum_centre_)
-          return say("vacuum: bring the pen over the canvas to place the sphere");
-        apply(ui::VacuumCut{*vacuum_centre_, 0.5f * session_->eraseDiameter(EraseTool::kVacuum)},
-              t_ns);
-      } else {
-        orbiting_ = !orbiting_;
-        refined_ = false;
-        if (!orbiting_ && orbit_degrees_ != 0.0f && session_) {
-          const Camera here = shownCamera();
-          orbit_degrees_ = 0.0f;
-          apply(ui::SetCamera{here}, t_ns);
-        }
-        say(orbiting_ ? "auto-rotation on" : "auto-rotation paused");
-      }
-      break;
-    case Command::kSmaller:
-    case Command::kLarger: {
-      if (!session_) return;
-      const float factor = command == Command::kLarger ? 1.25f : 0.8f;
-      if (erase) {
-        const EraseTool tool = session_->eraseTool();
-        apply(ui::SetEraseDiameter{tool,
-                                   std::clamp(session_->eraseDiameter(tool) * factor, 0.02f, 2.0f)},
-              t_ns);
-      } else if (session_->mode() == Mode::kCamera) {
-        // Zoom for pens without side buttons: + closer, − further.
-        apply(ui::SetCamera{session_->camera().zoomed(command == Command::kLarger ? 0.8f : 1.25f),
-                            CameraMove::kZoom},
-              t_ns);
-      } else if (session_->mode() == Mode::kCanvas) {
-        const Canvas c = session_->canvas();
-        apply(ui::SetCanvas{c.altitude, std::clamp(c.thickness * factor, 0.02f, 2.0f)}, t_ns);
-      } else if (session_->mode() == Mode::kPaint && mouse_) {
-        mouse_->setPressure(mouse_->pressure() + (command == Command::kLarger ? 0.1f : -0.1f));
-        say("mouse pressure " + std::to_string(mouse_->pressure()).substr(0, 4));
-      } else if (session_->mode() == Mode::kPaint && tipOnlyPen()) {
-        tip_only_pressure_ = std::clamp(
-            tip_only_pressure_ + (command == Command::kLarger ? 0.1f : -0.1f), 0.05f, 1.0f);
-        say("pen without pressure: strokes at " + std::to_string(tip_only_pressure_).substr(0, 4));
-      } else if (session_->mode() == Mode::kLight) {
-        // Warmer (−) or cooler (+): towards an evening orange or a noon white-blue.
-        const Light l = session_->light();
-        const glm::vec3 towards = command == Command::kSmaller ? glm::vec3(1.0f, 0.72f, 0.48f)
-                                                               : glm::vec3(0.92f, 0.96f, 1.0f);
-        apply(ui::SetLight{l.direction, glm::mix(l.colour, towards, 0.25f)}, t_ns);
-      }
-      break;
-    }
-    case Command::kRaise:
-    case Command::kLower: {
-      if (!session_) return;
-      const Canvas c = session_->canvas();
-      const Volume& v = session_->volume();
-      const float step = v.voxelSize().y * (command == Command::kRaise ? 1.0f : -1.0f);
-      apply(
-          ui::SetCanvas{std::clamp(c.altitude + step, v.worldMin().y, v.worldMax().y), c.thickness},
-          t_ns);
-      break;
-    }
-    case Command::kNextEraseTool:
-      if (!session_) return;
-      apply(ui::SetEraseTool{session_->eraseTool() == EraseTool::kVacuum ? EraseTool::kRubOut
-                                                                         : EraseTool::kVacuum},
-            t_ns);
-      break;
-    case Command::kToggleCircles:
-      show_circles_ = !show_circles_;
-      refined_ = false;
-      break;
-    case Command::kToggleStats:
-      show_stats_ = !show_stats_;
-      refined_ = false;
-      break;
-    case Command::kDeleteAll:
-      if (options_.visitor_mode && options_.before_start_again && hasPaint())
-        options_.before_start_again();  // the kiosk keeps the finished cloud first
-      apply(ui::DeleteAll{}, t_ns);
-      break;
-    case Command::kUndo:
-      apply(ui::Undo{}, t_ns);
-      break;
-    case Command::kRedo:
-      apply(ui::Redo{}, t_ns);
-      break;
-    case Command::kOpen: {
-      if (!session_) return say("open: no pen session to open a cloud into");
-      // The most recently saved cloud of this state dir (--open FILE opens any file).
-      std::filesystem::path newest;
-      std::error_code ec;
-      for (const auto& entry : std::filesystem::directory_iterator(options_.state_dir, ec))
-        if (entry.path().extension() == ".vol" &&
-            (newest.empty() ||
-             entry.last_write_time() > std::filesystem::last_write_time(newest, ec)))
-          newest = entry.path();
-      if (newest.empty()) return say("open: no saved cloud in " + options_.state_dir + " yet");
-      try {
-        std::string error;
-        if (session_->replaceVolume(loadVolume(newest.string()), t_ns, newest.string(), &error))
-          say("opened " + newest.string());
-        else
-          say(error);
-      } catch (const std::exception& e) {
-        say(std::string("open failed, the cloud is unchanged: ") + e.what());
-      }
-      break;
-    }
-    case Command::kSave: {
-      if (!session_) return say("save: no pen session, nothing painted");
-      const std::string path = options_.state_dir + "/cloud-" + std::to_string(t_ns) + ".vol";
-      try {
-        saveVolume(session_->volume(), path);
-        say("saved " + path);
-      } catch (const std::exception& e) {
-        say(std::string("save failed: ") + e.what());
-      }
-      break;
-    }
-    case Command::kGoodView: {
-      if (!session_) return;
-      const SkyExtent reach = session_->reachableSky();
-      apply(ui::SetCamera{nearestGoodPaintView(session_->camera(), session_->canvas(),
-                                               reach.worldMin(), reach.worldMax(), display_.width(),
-                                               display_.height())},
-            t_ns);
-      break;
-    }
-    case Command::kNextStyle: {
-      if (!session_) return say("no pen session: the style is set in render.toml");
-      const RenderStyle now = currentStyle();
-      size_t next = 0;
-      for (size_t i = 0; i < kAllRenderStyles.size(); ++i)
-        if (kAllRenderStyles[i] == now) next = (i + 1) % kAllRenderStyles.size();
-      apply(ui::SetStyle{renderStyleName(kAllRenderStyles[next])}, t_ns);
-      break;
-    }
-    case Command::kBrushSmaller:
-    case Command::kBrushLarger:
-      stepBrushSize(command == Command::kBrushLarger ? 1 : -1, t_ns);
-      break;
-    case Command::kMorph:
-    case Command::kWind:
-    case Command::kWindDirection:
-    case Command::kApplyAnimation:
-    case Command::kLeaveAnimation:
-      onAnimationCommand(command, t_ns);
-      break;
-    case Command::kOperatorPause:  // the study runner's (study_run_screen.h)
-    case Command::kOperatorSkip:
-    case Command::kOperatorAbort:
-    case Command::kCount:
-      break;
-  }
-}
-
-void PaintScreen::stepBrushSize(int steps, int64_t t_ns) {
-  if (!session_) return say("no pen session: the brush size is not used");
-  const float size = steppedBrushSize(session_->brushSize(), steps);
-  if (size == session_->brushSize())
-    return say(steps > 0 ? "brush size: already the largest" : "brush size: already the smallest");
-  std::string error;
-  if (!session_->apply(ui::SetBrushSize{size}, t_ns, &error)) return say(error);
-  char text[128];
-  std::snprintf(text, sizeof text, "brush size %.2f ([ ] or the mouse wheel; next stroke)",
-                double(size));
-  say(text);
 }
 
 bool PaintScreen::hasPaint() const {
@@ -707,6 +481,12 @@ std::string PaintScreen::update(const FrameContext& frame) {
     menu_open_ = session_->menuOpen();  // as the replay has it; nothing else moves on its own
     return "";
   }
+  if (quit_confirmed_) return "q (confirmed)";
+  if (toast_until_ns_ != 0 && clockNs() >= toast_until_ns_) {
+    toast_until_ns_ = 0;  // one more frame draws the screen without it
+    pointer_moved_ = true;
+  }
+  repeatHeldMouse();
   if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
@@ -718,8 +498,8 @@ std::string PaintScreen::update(const FrameContext& frame) {
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
   if (animationPlaying()) return true;
-  if (menu_open_ || pointer_moved_) return true;  // the UI follows the pointer
-  if (pen_ && pen_connected_once_) return true;   // the cursor and footprint follow the pen
+  if (menu_open_ || pointer_moved_ || toast_until_ns_ != 0) return true;  // the UI moves
+  if (pen_ && pen_connected_once_) return true;  // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
 }
 
@@ -870,6 +650,12 @@ void PaintScreen::learnFullResolutionCost(double render_ms, const ScreenRegion& 
   full_ms_per_pixel_ = full_ms_per_pixel_ > 0.0 ? 0.5 * (full_ms_per_pixel_ + rate) : rate;
 }
 
+glm::vec2 PaintScreen::lightBallOnScreen() const {
+  const Camera camera = shownCamera();
+  return project(camera, lightBallRadius(camera) * shownLight().direction, display_.width(),
+                 display_.height());
+}
+
 bool PaintScreen::drawOverlays(std::string* error) {
   const int w = display_.width(), h = display_.height();
   const bool in_range = (pen_ || replay_view_) && !orbiting_ && cursor_.visible && session_;
@@ -923,7 +709,7 @@ bool PaintScreen::drawOverlays(std::string* error) {
     }
     if (mode == Mode::kLight) {
       // The light ball on its sphere about the scene origin, and the line to the origin.
-      const glm::vec3 ball = 1.5f * shownLight().direction;
+      const glm::vec3 ball = lightBallRadius(camera) * shownLight().direction;
       const glm::vec2 b = project(camera, ball, w, h);
       items.push_back(makeHudSegment(project(camera, glm::vec3(0.0f), w, h), b, 2.0f,
                                      {1.0f, 0.9f, 0.5f, 0.7f}));
@@ -1019,8 +805,12 @@ void PaintScreen::drawUi(const FrameContext& frame) {
     }
   }
   UiOverlayState state;
-  state.status = statusLine();
+  state.status = show_stats_ ? detailLine() : statusLine();
   state.notice = notice_;
+  state.toast = toast();
+  state.hint = hint();
+  if (help_open_) state.help = helpSections(options_.visitor_mode);
+  if (show_stats_) appendStatsLabels(frame.width, frame.height, &state.labels);
   // A morph or wind shown says what it is and how to apply or leave it.
   if (notice_.empty() && animation_ && animation_->active()) state.notice = animation_->status();
   state.menu_open = menu_open_;
@@ -1044,7 +834,85 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   }
 }
 
+void PaintScreen::appendStatsLabels(int w, int h, std::vector<UiLabel>* labels) const {
+  // The words of the statistics panel's rows (hud_items.cpp appendStatsPanel: three rows of
+  // 18 px from text_top, digits from left + 15 px; the bars below).
+  const RenderStats& stats = renderer_.lastStats();
+  if (!stats.has_samples || stats.histogram.empty()) return;
+  const StatsPanelLayout layout = statsPanelLayout(w, h);
+  const int line = 18, text_top = layout.baseline_y - layout.max_height - 3 * line - 8;
+  const Bilingual rows[3] = {msg::kStatsTotal, msg::kStatsMean, msg::kStatsMax};
+  const float x = float(layout.left + int(stats.histogram.size()) * layout.bar_pitch + 24);
+  for (int r = 0; r < 3; ++r)
+    labels->push_back({x, float(text_top + r * line - 3), rows[r].oneLine(), 18.0f});
+  labels->push_back({x, float(layout.baseline_y - 24), msg::kStatsHistogram.oneLine(), 18.0f});
+}
+
+std::vector<std::string> PaintScreen::hint() const {
+  if (!session_) return {msg::kNoSession.en, msg::kNoSession.zh};
+  if (options_.visitor_mode) return {};  // the kiosk's own texts invite (kiosk/texts.toml)
+  // Until the first stroke (a camera or mode change is not one); a cloud opened or resumed
+  // needs no invitation either.
+  if (session_->strokesMapped() > 0 || session_->engine().inStroke() ||
+      session_->volume().allocatedBricks() > 0)
+    return {};
+  const Bilingual how =
+      session_->mode() == Mode::kPaint ? msg::kHowToPaint : msg::kPressThreeToPaint;
+  const bool tablet = pen_ && pen_->connection() == PenConnection::kConnected;
+  const Bilingual input = tablet ? msg::kPenPaints : msg::kMousePaints;
+  return {how.en, how.zh, std::string(input.en) + " · " + msg::kHelpKey.en,
+          std::string(input.zh) + " · " + msg::kHelpKey.zh};
+}
+
 std::string PaintScreen::statusLine() const {
+  if (!session_) return msg::kNoSession.oneLine();
+  const PaintSession& s = *session_;
+  const Bilingual mode = modeLabel(s.mode());
+  std::string line = std::string(mode.en) + " " + mode.zh;
+  char text[160];
+  switch (s.mode()) {
+    case Mode::kCamera:
+      line += orbiting_   ? " · auto-rotating (Space stops)"
+              : pan_drag_ ? " · drag pans (P: orbit)"
+                          : " · drag turns the view";
+      break;
+    case Mode::kCanvas: {
+      const Volume& v = s.volume();
+      std::snprintf(text, sizeof text, " · altitude %d · thickness %.2f",
+                    int(std::lround((s.canvas().altitude - v.worldMin().y) / v.voxelSize().y)),
+                    double(s.canvas().thickness));
+      line += text;
+      break;
+    }
+    case Mode::kPaint:
+      std::snprintf(text, sizeof text, " · brush %s · size %.2f ([ ]%s)",
+                    brushKindName(s.selectedBrush()), double(s.brushSize()),
+                    mouse_ ? ", wheel" : "");
+      line += text;
+      break;
+    case Mode::kErase:
+      std::snprintf(text, sizeof text, " · %s · size %.2f", eraseToolName(s.eraseTool()),
+                    double(s.eraseDiameter(s.eraseTool())));
+      line += text;
+      break;
+    case Mode::kLight:
+      line += " · drag the light ball";
+      break;
+  }
+  if (s.mode() != Mode::kCamera && orbiting_) line += " · auto-rotating (Space in Camera mode)";
+  if (s.engine().inStroke()) line += " · lift to make the cloud";
+  const bool tablet = pen_ && pen_->connection() == PenConnection::kConnected;
+  if (tipOnlyPen())
+    line += " · pen without pressure: strokes at " +
+            std::to_string(tip_only_pressure_).substr(0, 4) + " (-/+), erase: 4 or Menu";
+  else if (tablet)
+    line += " · pen";
+  else if (pen_ || mouse_)
+    line += " · mouse, pressure " + std::to_string(mouse_ ? mouse_->pressure() : 0.6f).substr(0, 4);
+  return line + " · H help";
+}
+
+std::string PaintScreen::detailLine() const {
   if (!session_) return "no tablet: the bundled cloud orbits; connect a pen to paint";
   const PaintSession& s = *session_;
   char text[256];
@@ -1076,7 +944,8 @@ std::string PaintScreen::statusLine() const {
                     now.z, reach.x, reach.z, s.settings().placementsGrowSky() ? "" : " strokes");
     else
       std::snprintf(
-          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil is lost", now.x, now.z,
+          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil lands off the canvas", now.x,
+          now.z,
           s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed");
     line += text;
   }

@@ -3,23 +3,32 @@
 //
 //   1 Camera  drag the pen to orbit (lower side button held: zoom; after P: pan); R resets,
 //             arrows give the top / front / left / perspective views, Shift+arrows pan, −/+
-//             zoom; Space starts or stops the auto-rotation
+//             zoom; Space starts or stops the auto-rotation (the status line says it runs)
 //   2 Canvas  drag up/down to raise or lower the canvas, PgUp/PgDn by one voxel, −/+ thickness
-//   3 Paint   the live footprint; the cloud appears when the pen lifts (B brush)
+//   3 Paint   the live footprint; the cloud appears when the pen lifts
 //   4 Erase   Rub-out while the tip is down (diameter from pressure), or Vacuum: the sphere
-//             follows the pen (height from pressure), Space cuts; V switches, −/+ the diameter
+//             under the pointer, where its ray meets the canvas's mid-plane (with a pen pressed:
+//             the height from pressure, still on the pointer's ray), Space cuts; V switches,
+//             −/+ the diameter
 //   5 Light   drag the light ball: the sun's direction from the scene origin; −/+ warmer/cooler
 //
-// M or the pen's upper side button opens the pen menu (every command); Ctrl+Z / Ctrl+Y undo and
-// redo; Delete clears the cloud; C the circle overlay; S the ray-sample statistics. F morphs the
-// cloud into a saved cloud, W starts / stops the wind and D turns it; A applies what plays, X
-// leaves it (animation_preview.h).
+// Mode keys act only in their mode; a key pressed elsewhere says where it acts
+// (command_table.h, the one table the menu and the help overlay read). Every mode: M or the
+// pen's upper side button opens the pen menu; H or ? the keys on screen; B brush, N mapping,
+// G good view, T style; Ctrl+Z / Ctrl+Y undo and redo; Delete clears the cloud (Ctrl+Z brings it
+// back); Ctrl+S saves under a date-time name; C the circle overlay; S the details (developer
+// status line and ray-sample statistics). F morphs the cloud into a saved cloud, W starts /
+// stops the wind and D turns it; A applies what plays, X leaves it (animation_preview.h).
+// Esc or q with unsaved work asks first (again, or Y, quits). Every action answers on screen
+// (toast()), in English and Chinese; until the first stroke a hint says how to paint
+// (painter_messages.h).
 //
 // Every change goes to the PaintSession as a typed UI change (app/session/ui_change.h), so it
 // is journalled and replays. Drags show a preview and commit one change when the pen lifts.
-// Before a pen ever connects the bundled cloud orbits. The scene is re-rendered only when
-// what it shows changed (volume generation, camera, light); otherwise the cached image and the
-// live overlay are composited.
+// The painter (not a kiosk visitor) with a session starts at the session's paint view, still
+// and ready; without a session (no pen backend) the bundled cloud orbits. The scene is re-rendered
+// only when what it shows changed (volume generation, camera, light); otherwise the cached image
+// and the live overlay are composited.
 #pragma once
 
 #include <chrono>
@@ -45,6 +54,7 @@ class AnimationPreview;
 class MousePen;
 class PenSource;
 class UiOverlay;
+struct UiLabel;
 
 class PaintScreen : public Screen {
  public:
@@ -68,6 +78,9 @@ class PaintScreen : public Screen {
 
   const char* name() const override { return "paint"; }
   void onPenSamples(const std::vector<PenSample>& samples) override;
+  // Esc closes the help or menu first; Esc or q with unsaved work asks (tell) before the loop
+  // quits on the second press or Y.
+  bool onKey(const DisplayEvent& event, int64_t t_ns) override;
   void onCommand(Command command, int64_t t_ns) override;
   void onResize(int, int) override { refined_ = false; }
   void onPointer(const DisplayEvent& event) override;
@@ -86,8 +99,22 @@ class PaintScreen : public Screen {
 
   // Fills the summary's totals after the loop ended.
   void finish(PaintLoopSummary* summary) const;
-  // What the status line says (mode, brush, mapping, canvas altitude, pen state).
+  // What the status line says to a person: mode, brush, size, input, what runs.
   std::string statusLine() const;
+  // The developer's line (mapping, canvas altitude, sky size, pen state), shown with S.
+  std::string detailLine() const;
+  // The answer to the last action while it shows (a few seconds), else "".
+  const std::string& toast() const;
+  // The first screen's hint, until the first stroke (empty after).
+  std::vector<std::string> hint() const;
+  bool helpShown() const { return help_open_; }
+  // Painted since the last save (or since the start).
+  bool unsavedWork() const;
+  const std::string& lastSaved() const { return last_saved_; }
+  // Where the light ball is drawn, in screen pixels (tests).
+  glm::vec2 lightBallOnScreen() const;
+  // The vacuum sphere's centre shown (tests).
+  const std::optional<glm::vec3>& vacuumCentre() const { return vacuum_centre_; }
   bool menuOpen() const { return menu_open_; }
   bool edgeOnWarning() const { return edge_on_; }
   // The notice above the status line (edge-on view, kiosk countdown or invitation), or "".
@@ -111,7 +138,22 @@ class PaintScreen : public Screen {
   void setMenu(bool open, int64_t t_ns);
   // The footprint overlay, cursor and lift timing after the session mapped a sample.
   void afterSample(const SampleOutcome& outcome, std::chrono::steady_clock::time_point received);
-  void say(const std::string& message);
+  void say(const std::string& message);  // stderr only
+  // On screen for a few seconds (or for_ns), and stderr.
+  void tell(const std::string& message, int64_t for_ns = 0);
+  // The command seams (paint_screen_commands.cpp).
+  void onChoiceCommand(Command command, int64_t t_ns);
+  void onViewCommand(Command command, int64_t t_ns);
+  void onSpace(int64_t t_ns);
+  void onSizeCommand(Command command, int64_t t_ns);
+  void onCloudCommand(Command command, int64_t t_ns);
+  void openLastSaved(int64_t t_ns);
+  void saveCloud();
+  void updateVacuumCentre(const MappedSample& mapped);
+  // The mouse held still sends no events; a tablet streams samples. While the button is held in
+  // a stroke the last position is fed again, so a stroke held still ends as with a pen.
+  void repeatHeldMouse();
+  bool showsSession() const;
   void warnIfEdgeOn();
   const Volume& shownVolume() const;
   Light shownLight() const;
@@ -123,6 +165,7 @@ class PaintScreen : public Screen {
   bool liftFitsFullResolution(const ScreenRegion& region) const;
   void learnFullResolutionCost(double render_ms, const ScreenRegion& region);
   void drawUi(const FrameContext& frame);
+  void appendStatsLabels(int w, int h, std::vector<UiLabel>* labels) const;
   void selectCalibration(uint64_t tool_serial);
   int64_t clockNs() const;  // now on the frame loop's clock
   Camera presetView(Command command) const;
@@ -205,6 +248,15 @@ class PaintScreen : public Screen {
   bool visitorAllows(Command command) const;
   bool edge_on_ = false;  // the session's view is nearly edge-on to the canvas
   std::string last_message_;
+  static constexpr int64_t kToastNs = 4'000'000'000;
+  std::string toast_;
+  int64_t toast_until_ns_ = 0;
+  bool help_open_ = false;
+  int64_t quit_armed_until_ns_ = 0;
+  bool quit_confirmed_ = false;
+  uint64_t saved_volume_ = 0, saved_generation_ = 0;
+  std::string last_saved_;
+  int64_t last_mouse_sample_ns_ = 0;
 
   // Summary figures
   long pen_samples_ = 0, strokes_seen_ = 0;

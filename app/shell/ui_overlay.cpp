@@ -7,60 +7,61 @@
 
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include "app/shell/keymap.h"
+#include "app/shell/painter_messages.h"
 
 namespace cb {
 namespace {
 
 constexpr const char* kFontPath = "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc";
 
-struct MenuEntry {
-  Command command;
-  const char* label;  // English, then Chinese on the second line where the target is a mode
-};
-
-constexpr MenuEntry kModes[] = {{Command::kModeCamera, "Camera\n相机"},
-                                {Command::kModeCanvas, "Canvas\n画布"},
-                                {Command::kModePaint, "Paint\n绘画"},
-                                {Command::kModeErase, "Erase\n擦除"},
-                                {Command::kModeLight, "Light\n光照"}};
-
-// The current mode's commands (thesis §3.4–3.5, Appendix A).
-std::vector<MenuEntry> modeCommands(int mode) {
+// The current mode's commands (thesis §3.4–3.5, Appendix A); labels from command_table.h.
+std::vector<Command> modeCommands(int mode) {
   switch (mode) {
     case 0:
-      return {{Command::kResetCamera, "Reset view"},   {Command::kViewTop, "Top"},
-              {Command::kViewFront, "Front"},          {Command::kViewLeft, "Left"},
-              {Command::kViewPerspective, "3/4 view"}, {Command::kSpace, "Auto-rotate"}};
+      return {Command::kResetCamera,     Command::kViewTop, Command::kViewFront, Command::kViewLeft,
+              Command::kViewPerspective, Command::kSpace,   Command::kSmaller,   Command::kLarger};
     case 1:
-      return {{Command::kRaise, "Raise"},
-              {Command::kLower, "Lower"},
-              {Command::kSmaller, "Thinner"},
-              {Command::kLarger, "Thicker"}};
+      return {Command::kRaise, Command::kLower, Command::kSmaller, Command::kLarger};
     case 2:
-      return {{Command::kNextBrush, "Next brush"},
-              {Command::kBrushSmaller, "Brush −\n笔刷缩小"},
-              {Command::kBrushLarger, "Brush +\n笔刷放大"},
-              {Command::kNextMapping, "Mapping"},
-              {Command::kToggleCircles, "Circles"},
-              {Command::kGoodView, "Good view"}};
+      return {Command::kNextBrush,   Command::kBrushSmaller,  Command::kBrushLarger,
+              Command::kNextMapping, Command::kToggleCircles, Command::kGoodView};
     case 3:
-      return {{Command::kNextEraseTool, "Tool"},
-              {Command::kSmaller, "Smaller"},
-              {Command::kLarger, "Larger"},
-              {Command::kSpace, "Cut"}};
+      return {Command::kNextEraseTool, Command::kSmaller, Command::kLarger, Command::kSpace};
     default:
-      return {{Command::kSmaller, "Warmer"},
-              {Command::kLarger, "Cooler"},
-              {Command::kNextStyle, "Style"}};
+      return {Command::kSmaller, Command::kLarger, Command::kNextStyle};
   }
+}
+
+// The menu's words for `command` in `mode`, English over Chinese.
+std::string menuLabel(Command command, int mode) {
+  return commandLabelIn(command, Mode(mode)).twoLines();
 }
 
 // Every character of the shipped labels, for the font atlas (Latin comes from the default
 // range; the CJK characters are added one by one so the atlas stays small).
-const char* shippedText() {
-  return "相机画布绘画擦除光照菜单撤销重做笔刷缩小放大−";
+std::string shippedText() {
+  return commandTableText() + painterMessagesText() + "重新开始关闭";
+}
+
+// A box of lines centred at (x, y_top), drawn on the foreground (no window, no input).
+void drawTextBox(ImDrawList* draw, float x, float y, const std::vector<std::string>& lines,
+                 float size_px, ImU32 colour, ImU32 background) {
+  ImFont* font = ImGui::GetFont();
+  float w = 0.0f;
+  for (const std::string& l : lines)
+    w = std::max(w, font->CalcTextSizeA(size_px, 1e9f, 0.0f, l.c_str()).x);
+  const float line_h = size_px * 1.25f, pad = 0.6f * size_px;
+  const float h = line_h * float(lines.size());
+  draw->AddRectFilled(ImVec2(x - 0.5f * w - pad, y - pad), ImVec2(x + 0.5f * w + pad, y + h + pad),
+                      background, 0.4f * size_px);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const float lw = font->CalcTextSizeA(size_px, 1e9f, 0.0f, lines[i].c_str()).x;
+    draw->AddText(font, size_px, ImVec2(x - 0.5f * lw, y + line_h * float(i)), colour,
+                  lines[i].c_str());
+  }
 }
 
 }  // namespace
@@ -87,7 +88,7 @@ bool UiOverlay::init(std::string* error) {
   }
   ImFontGlyphRangesBuilder ranges_builder;
   ranges_builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
-  ranges_builder.AddText(shippedText());
+  ranges_builder.AddText(shippedText().c_str());
   ranges_builder.AddText(extra_glyphs_.c_str());
   // Must outlive the atlas build; one per overlay, since overlays may hold different glyphs.
   static std::list<ImVector<ImWchar>> all_ranges;
@@ -173,6 +174,8 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
                              text_pos.y + bar_h),
                       true);
   ImGui::TextUnformatted(state.status.c_str());
+  status_fits_ = ImGui::GetItemRectMax().x <=
+                 float(width) - button_w - 2.0f * ImGui::GetStyle().WindowPadding.x;
   ImGui::PopClipRect();
   ImGui::SameLine(std::max(0.0f, float(width) - button_w - ImGui::GetStyle().WindowPadding.x));
   if (ImGui::Button(state.menu_open ? "Close (M)" : "Menu (M)", ImVec2(button_w, 0.0f)))
@@ -196,6 +199,8 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
     ImGui::End();
   }
 
+  if (state.help.empty()) drawMessages(width, height, bar_h, state);
+
   if (state.menu_open) {
     // Big pen targets (thesis Fig. 3.7): five across take 70% of the screen's width (about
     // 75 mm each on a 24" screen), each a tenth of its height.
@@ -204,10 +209,11 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
                             ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("menu", nullptr, fixed | ImGuiWindowFlags_AlwaysAutoResize);
-    const auto button = [&](Command command, const char* label, bool selected, bool enabled) {
+    const auto button = [&](Command command, const std::string& label, bool selected,
+                            bool enabled) {
       const std::string key = keyLabel(command);
       const std::string text =
-          std::string(label) + (key.empty() ? "" : "  [" + key + "]") + "##" + commandName(command);
+          label + (key.empty() ? "" : "  [" + key + "]") + "##" + commandName(command);
       if (selected) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.85f, 1.0f));
       if (!enabled) ImGui::BeginDisabled();
       if (ImGui::Button(text.c_str(), target)) tapped.push_back(command);
@@ -220,47 +226,121 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
       if (state.visitor && (i == 1 || i == 4)) continue;  // canvas and light: the operator's
       if (!first) ImGui::SameLine();
       first = false;
-      button(kModes[i].command, kModes[i].label, state.mode == i, true);
+      const Command mode = Command(int(Command::kModeCamera) + i);
+      button(mode, modeLabel(Mode(i)).twoLines(), state.mode == i, true);
     }
     ImGui::Separator();
-    const std::vector<MenuEntry> commands = modeCommands(state.mode);
+    const std::vector<Command> commands = modeCommands(state.mode);
     for (size_t i = 0; i < commands.size(); ++i) {
       if (i % 5) ImGui::SameLine();
-      button(commands[i].command, commands[i].label, false, true);
+      button(commands[i], menuLabel(commands[i], state.mode), false, true);
     }
     if (!state.visitor) {
       // The animations (issue 14): morph into a saved cloud, wind; apply or leave what shows.
       ImGui::Separator();
-      button(Command::kMorph, "Morph", false, true);
-      ImGui::SameLine();
-      button(Command::kWind, "Wind", false, true);
-      ImGui::SameLine();
-      button(Command::kWindDirection, "Wind dir.", false, true);
-      ImGui::SameLine();
-      button(Command::kApplyAnimation, "Apply", false, state.animation);
-      ImGui::SameLine();
-      button(Command::kLeaveAnimation, "Leave", false, state.animation);
+      const Command animations[] = {Command::kMorph, Command::kWind, Command::kWindDirection,
+                                    Command::kApplyAnimation, Command::kLeaveAnimation};
+      for (Command c : animations) {
+        if (c != Command::kMorph) ImGui::SameLine();
+        const bool needs_animation = c == Command::kApplyAnimation || c == Command::kLeaveAnimation;
+        button(c, menuLabel(c, state.mode), false, !needs_animation || state.animation);
+      }
     }
     ImGui::Separator();
-    button(Command::kUndo, "Undo\n撤销", false, state.can_undo);
+    button(Command::kUndo, menuLabel(Command::kUndo, state.mode), false, state.can_undo);
     ImGui::SameLine();
-    button(Command::kRedo, "Redo\n重做", false, state.can_redo);
+    button(Command::kRedo, menuLabel(Command::kRedo, state.mode), false, state.can_redo);
     ImGui::SameLine();
-    button(Command::kDeleteAll, state.visitor ? "Start again" : "Delete all", false, true);
+    button(Command::kDeleteAll,
+           state.visitor ? std::string("Start again\n重新开始")
+                         : menuLabel(Command::kDeleteAll, state.mode),
+           false, true);
+    ImGui::SameLine();
+    button(Command::kHelp, menuLabel(Command::kHelp, state.mode), false, true);
     if (!state.visitor) {
-      ImGui::SameLine();
-      button(Command::kSave, "Save", false, true);
-      ImGui::SameLine();
-      button(Command::kOpen, "Open last", false, true);
-      ImGui::SameLine();
-      button(Command::kToggleStats, "Statistics", false, true);
+      const Command files[] = {Command::kSave, Command::kOpen, Command::kToggleStats};
+      for (Command c : files) {
+        if (c != Command::kSave) ImGui::SameLine();
+        button(c, menuLabel(c, state.mode), false, true);
+      }
     }
     ImGui::End();
   }
   over_ui_ = io.WantCaptureMouse;
+  if (!state.help.empty()) drawHelp(width, height, state.help);
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  for (const UiLabel& label : state.labels)
+    draw->AddText(ImGui::GetFont(), label.size_px * scale, ImVec2(label.x, label.y),
+                  IM_COL32(label.rgba >> 24, (label.rgba >> 16) & 0xff, (label.rgba >> 8) & 0xff,
+                           label.rgba & 0xff),
+                  label.text.c_str());
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   return tapped;
+}
+
+int UiOverlay::missingGlyphs(const std::string& utf8_text) const {
+  if (!ready_) return -1;
+  ImGui::SetCurrentContext(context_);
+  ImFont* font = ImGui::GetIO().Fonts->Fonts[0];
+  int missing = 0;
+  const char* p = utf8_text.c_str();
+  const char* end = p + utf8_text.size();
+  while (p < end) {
+    unsigned int c = 0;
+    const int n = ImTextCharFromUtf8(&c, p, end);
+    if (n <= 0) break;
+    p += n;
+    if (c > ' ' && !font->FindGlyphNoFallback(ImWchar(c))) ++missing;
+  }
+  return missing;
+}
+
+void UiOverlay::drawMessages(int width, int height, float bar_h, const UiOverlayState& state) {
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const float size = ImGui::GetFontSize();
+  // The answer to the last action, under the status line (and under a notice).
+  if (!state.toast.empty())
+    drawTextBox(draw, 0.5f * float(width), bar_h + (state.notice.empty() ? 1.0f : 3.2f) * size,
+                {state.toast}, size, IM_COL32(255, 255, 255, 255), IM_COL32(20, 40, 70, 215));
+  // The first screen's hint: low in the middle, where the eye goes after the cloud.
+  if (!state.hint.empty() && !state.menu_open)
+    drawTextBox(draw, 0.5f * float(width),
+                float(height) - (1.25f * float(state.hint.size()) + 2.5f) * size * 1.2f, state.hint,
+                1.2f * size, IM_COL32(255, 255, 255, 255), IM_COL32(0, 0, 0, 170));
+}
+
+void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& help) {
+  // Sections side by side: every mode's keys first, then each mode's own.
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const float size = 0.8f * ImGui::GetFontSize(), line_h = 1.3f * size;
+  const float column_w = (float(width) - 2.0f * size) / 3.0f;
+  draw->AddRectFilled(ImVec2(0.0f, 0.0f), ImVec2(float(width), float(height)),
+                      IM_COL32(0, 0, 0, 200));
+  float x = size, y = 3.0f * size;
+  for (size_t s = 0; s < help.size(); ++s) {
+    const float section_h = line_h * float(help[s].lines.size() + 2);
+    if (y + section_h > float(height) - size && y > 3.0f * size) {
+      x += column_w;
+      y = 3.0f * size;
+    }
+    draw->AddText(ImGui::GetFont(), 1.1f * size, ImVec2(x, y), IM_COL32(255, 210, 100, 255),
+                  help[s].title.oneLine().c_str());
+    y += 1.5f * line_h;
+    for (const std::string& line : help[s].lines) {
+      const size_t tab = line.find('\t');
+      const std::string key = line.substr(0, tab);
+      const std::string label = tab == std::string::npos ? "" : line.substr(tab + 1);
+      draw->AddText(ImGui::GetFont(), size, ImVec2(x, y), IM_COL32(255, 210, 100, 255),
+                    key.c_str());
+      draw->AddText(ImGui::GetFont(), size, ImVec2(x + 6.0f * size, y),
+                    IM_COL32(255, 255, 255, 255), label.c_str());
+      y += line_h;
+    }
+    y += 0.5f * line_h;
+  }
+  draw->AddText(ImGui::GetFont(), size, ImVec2(size, float(height) - 1.5f * size),
+                IM_COL32(200, 200, 200, 255), "H / ? / Esc: close  关闭");
 }
 
 }  // namespace cb

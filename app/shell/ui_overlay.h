@@ -16,10 +16,24 @@
 #include <vector>
 
 #include "app/shell/command.h"
+#include "app/shell/command_table.h"
 
 struct ImGuiContext;
 
 namespace cb {
+
+// A line of text drawn by drawLabels (and by draw, over the painter: UiOverlayState::labels)
+// (screens without the painter's status line and menu, such as calibration): at (x, y) in
+// framebuffer pixels, y down; `centred` centres it on x.
+struct UiLabel {
+  float x = 0.0f, y = 0.0f;
+  std::string text;
+  float size_px = 28.0f;
+  uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
+  bool centred = false;
+  uint32_t background_rgba = 0;  // a box behind the text when its alpha is not 0
+  float wrap_width = 0.0f;       // > 0: lines wrap at this width (pixels; not with `centred`)
+};
 
 struct UiOverlayState {
   std::string status;  // the status line
@@ -29,18 +43,10 @@ struct UiOverlayState {
   bool can_undo = false, can_redo = false;
   bool visitor = false;    // kiosk visitor mode: operator targets are not shown
   bool animation = false;  // a morph or wind is shown (apply and leave are enabled)
-};
-
-// A line of text drawn by drawLabels (screens without the painter's status line and menu, such
-// as calibration): at (x, y) in framebuffer pixels, y down; `centred` centres it on x.
-struct UiLabel {
-  float x = 0.0f, y = 0.0f;
-  std::string text;
-  float size_px = 28.0f;
-  uint32_t rgba = 0xffffffffu;  // 0xRRGGBBAA
-  bool centred = false;
-  uint32_t background_rgba = 0;  // a box behind the text when its alpha is not 0
-  float wrap_width = 0.0f;       // > 0: lines wrap at this width (pixels; not with `centred`)
+  std::string toast;       // a transient answer under the status line (a save, a refused key)
+  std::vector<std::string> hint;  // the first screen's lines, low in the middle, or none
+  std::vector<HelpSection> help;  // the help overlay (H or ?), or none
+  std::vector<UiLabel> labels;    // words over the heads-up items (the statistics panel's)
 };
 
 class UiOverlay {
@@ -64,12 +70,18 @@ class UiOverlay {
   void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
   bool pointerOverUi() const { return over_ui_; }
+  // Whether the last frame's status line fitted before the menu button (not clipped).
+  bool statusFits() const { return status_fits_; }
+  // Characters of `utf8_text` the font atlas lacks (0: every one is drawn); after init().
+  int missingGlyphs(const std::string& utf8_text) const;
   // The screen rectangle of the menu button, for tests (x0, y0, x1, y1).
   const float* menuButtonRect() const { return menu_button_; }
   // The rectangle of a command's target in the open menu, for tests; false when not shown.
   bool targetRect(Command command, float rect[4]) const;
 
  private:
+  void drawMessages(int width, int height, float bar_h, const UiOverlayState& state);
+  void drawHelp(int width, int height, const std::vector<HelpSection>& help);
   ImGuiContext* context_ = nullptr;
   bool ready_ = false;
   std::string extra_glyphs_;
@@ -82,6 +94,7 @@ class UiOverlay {
   std::vector<PointerState> pointer_queue_;
   PointerState pointer_{-1.0f, -1.0f, false};
   bool over_ui_ = false;
+  bool status_fits_ = true;
   float menu_button_[4] = {0, 0, 0, 0};
   struct Target {
     Command command;

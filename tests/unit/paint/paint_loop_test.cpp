@@ -18,6 +18,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/paint_loop.h"
+#include "app/shell/paint_screen.h"
 #include "drivers/open_pen_source.h"
 #include "drivers/replay/replay_pen_source.h"
 #include "tests/support/test_display.h"
@@ -244,8 +245,9 @@ TEST(PaintLoop, StrokeShowsLiveThenAsALitCloud) {
   std::filesystem::remove_all(dir);
 }
 
-// No tablet is a state, not an exit: the orbit runs with a searching pen source.
-TEST(PaintLoop, MissingTabletKeepsTheOrbitRunning) {
+// No tablet is a state, not an exit: with a searching pen source the painter shows its paint
+// view, ready for the mouse, and says so (not an orbit of the bundled cloud).
+TEST(PaintLoop, MissingTabletShowsThePaintViewReadyForTheMouse) {
   std::string error;
   std::unique_ptr<Display> display = test::openTestDisplay(320, 180, &error);
   ASSERT_TRUE(display) << error;
@@ -260,14 +262,17 @@ TEST(PaintLoop, MissingTabletKeepsTheOrbitRunning) {
   PaintSession session({320, 180, 16}, BrushConfig{}, MappingConfig{});
   PaintLoopOptions options;
   options.max_frames = 5;
-  long orbit_frames = 0;
-  options.on_frame = [&](const PaintFrameInfo& info) { orbit_frames += !info.painting_view; };
+  long painting_frames = 0;
+  options.on_frame = [&](const PaintFrameInfo& info) { painting_frames += info.painting_view; };
   PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
   loop.attachPen(pen.get(), &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
   EXPECT_EQ(summary.quit_reason, "frame limit");
-  EXPECT_EQ(orbit_frames, 5);
+  EXPECT_EQ(painting_frames, 5);
+  EXPECT_NE(loop.screen().statusLine().find("mouse"), std::string::npos)
+      << loop.screen().statusLine();
+  EXPECT_FALSE(loop.screen().hint().empty()) << "the first screen says how to paint";
 }
 
 // After a lift the change is shown at the moving scale and then refined, unless the cost per

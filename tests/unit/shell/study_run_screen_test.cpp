@@ -279,6 +279,8 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   d.frames(3);
   EXPECT_EQ(state.tutorialStep(), 0) << "nothing done, nothing advances";
   d.keys("r");
+  EXPECT_EQ(state.tutorialStep(), 0) << "R acts in Camera mode only";
+  d.keys("1,r");
   EXPECT_EQ(state.tutorialStep(), 1);
   d.keys("3");
   EXPECT_EQ(state.tutorialStep(), 1) << "Paint mode is not the Canvas mode asked for";
