@@ -1,4 +1,4 @@
-// `cloudbrush bench brush` (issue 3): the cost of each pen sample for every brush at 200 Hz input
+// `cloudbrush bench brush`: the cost of each pen sample for every brush at 200 Hz input
 // on a 1280×720 footprint, against the naive 3D brush that ray-marches a fresh slice for every
 // dab (the baseline, same run); and the painting-mode frame — cached scene + live footprint
 // overlay + cursor — at 1280×720 on this machine's GL (llvmpipe here), against re-rendering the

@@ -1,4 +1,4 @@
-// `cloudbrush bench history` (issue 9 "History"): undo/redo of a stroke at 1280×720 on the
+// `cloudbrush bench history` ("History"): undo/redo of a stroke at 1280×720 on the
 // product's defaults (256³ sky, default brush and mapping config, the default paint view), each
 // timed from the command's dispatch: → volume and light volume restored (History + the
 // renderer's sync), → glFinish of the first full-resolution frame that shows it. Also the bytes

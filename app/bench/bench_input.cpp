@@ -1,4 +1,4 @@
-// `cloudbrush bench input` (issue 5): what reading the pen costs.
+// `cloudbrush bench input`: what reading the pen costs.
 //  - decode cost per report for each backend's decoder on recorded buffers: the generic
 //    descriptor-driven decoder (hidraw/libusb, PTH-660 descriptor), the Intuos4 protocol decoder
 //    and the evdev frame state machine; baseline in the same run: copying the same bytes.

@@ -1,5 +1,5 @@
-// `cloudbrush bench scale`: how the painter's figures scale with the screen and the thread count
-// (issue 15), so an installer can size a machine. For each of 1280×720, 1920×1080 and 3840×2160
+// `cloudbrush bench scale`: how the painter's figures scale with the screen and the thread count,
+// so an installer can size a machine. For each of 1280×720, 1920×1080 and 3840×2160
 // and for 1 and 2 threads — each thread count in a child process of this binary with
 // CLOUDBRUSH_THREADS and LP_NUM_THREADS set, because llvmpipe reads LP_NUM_THREADS when its
 // context is created — on EGL surfaceless:
@@ -57,7 +57,7 @@ const char kHelp[] =
     "  --sky-spans L   sky spans of the sky-size table at 1920x1080 (default 1,2,4: 1x, 4x, 16x\n"
     "                  the home box's area; 0 skips the table)\n"
     "  (--child runs one thread count in this process; the parent starts it)\n"
-    "Targets at 1920x1080 with 2 threads (issue 15): fresh frame <= 100 ms, orbit >= 30 fps at\n"
+    "Targets at 1920x1080 with 2 threads: fresh frame <= 100 ms, orbit >= 30 fps at\n"
     "scale >= 0.5, painting >= 60 fps, pen-up -> first lit <= 100 ms, -> full resolution <= 150 "
     "ms.\n";
 
@@ -580,7 +580,7 @@ int benchScale(int argc, char** argv) {
         report.baseline(k + key, get(t, s, key, true));
     }
 
-  // Issue 15's targets, at 1920x1080 with 2 threads.
+  // The targets, at 1920x1080 with 2 threads.
   const Size hd{1920, 1080};
   if (std::find(threads.begin(), threads.end(), 2) != threads.end() &&
       std::any_of(sizes.begin(), sizes.end(),

@@ -1,4 +1,4 @@
-// `cloudbrush bench sky`: what the sparse volume (issue 15, "A sky without walls") costs as the
+// `cloudbrush bench sky`: what the sparse volume ("A sky without walls") costs as the
 // sky grows. For skies of 1×, 4× and 16× today's area at today's voxel size (256×256×256,
 // 512×256×512, 1024×256×1024 voxels, 2/256 world units each): the bytes an empty sky holds
 // (Volume::memoryBytes: the brick table, no bricks), the bytes with the bundled 256³ cumulus

@@ -3,7 +3,7 @@
 // linear EXR + PNG; the pen-trace exports (InkML, samples/strokes/events CSV) and the HTML report
 // for 20 synthetic sessions with 20 participants' answers. Baselines, measured in the same run:
 // writing the volume's bytes with one fwrite (the floor for any volume file), and reading the 20
-// journals (the floor for anything made from them). The journal's durability (issue 10): the
+// journals (the floor for anything made from them). The journal's durability: the
 // cost of writing one pen sample, and the stall of the fsync at each stroke end (p50, p99),
 // against the same writes with a flush but no fsync. Files go to a temporary directory that is
 // removed afterwards. Never fails on a missed target.

@@ -1,6 +1,6 @@
 // From calibration/ to the brushes: a MappedSample (filtered screen position, calibrated
 // pressure, contact with hysteresis, tilt) becomes a BrushInput in footprint pixels. The
-// footprint uses the unpredicted position; the prediction is for the cursor only (issue 6).
+// footprint uses the unpredicted position; the prediction is for the cursor only.
 #pragma once
 
 #include "app/brush/brush_input.h"

@@ -315,7 +315,7 @@ bool loadKioskAssets(const KioskConfig& kiosk_config, KioskSetup* out, std::stri
   return true;
 }
 
-// --resume: what the resumed journal held (issue 10: restarting on the same session resumes
+// --resume: what the resumed journal held (restarting on the same session resumes
 // it from its journal).
 void reportResumed(const std::string& resume_path, const ResumedSession& resumed) {
   if (!resumed.warning.empty())
@@ -483,7 +483,7 @@ int commandPaint(int argc, char** argv) {
     if (session) session->setSyncSender(&sync_sender);
   }
   if (session && !resuming) {
-    // The render settings in force, journalled with the brush and mapping (issue 10).
+    // The render settings in force, journalled with the brush and mapping.
     session->setRenderSettings(formatRenderConfig(render_config), 0);
     session->setStartingLight(light);
     session->setStartingStyle(renderStyleName(render_config.options.style));
@@ -569,7 +569,7 @@ int commandPaint(int argc, char** argv) {
     if (!session->apply(ui::PlaceShape{model, place}, 0, &place_error))
       std::fprintf(stderr, "cloudbrush: --place: %s\n", place_error.c_str());
   };
-  // Kiosk service (issue 11): READY after the first frame, watchdog pings from the loop itself
+  // Kiosk service: READY after the first frame, watchdog pings from the loop itself
   // (a hung loop stops them and systemd restarts the service), health.json for remote checks.
   const MonotonicClock clock;
   std::optional<KioskService> service;
@@ -595,7 +595,7 @@ int commandPaint(int argc, char** argv) {
       if (kiosk_screen) kiosk_screen->keepFinishedCloud("start again");
     };
   }
-  // Durability (issue 10): the journal syncs at every stroke end (PaintSession) and, from the
+  // Durability: the journal syncs at every stroke end (PaintSession) and, from the
   // frame loop, whenever records older than a second are not yet on the disk.
   {
     const std::function<void(bool)> kiosk_iteration = loop_options.each_iteration;

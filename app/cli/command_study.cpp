@@ -1,4 +1,4 @@
-// cloudbrush study: exports and the questionnaire report for user studies (issue 10), built on
+// cloudbrush study: exports and the questionnaire report for user studies, built on
 // app/study. `study export` writes pen traces (and, with --volumes, replayed volumes and renders)
 // of one or many sessions; `study volume` exports a saved volume; `study report` writes the
 // offline HTML report of questionnaire answers; `study check` validates a study protocol;

@@ -1,4 +1,4 @@
-// Deleting what the kiosk must not keep longer than configured (issue 11): session journals older
+// Deleting what the kiosk must not keep longer than configured: session journals older
 // than [journals] keep_days in config/kiosk.toml. Age is the file's modification time.
 #pragma once
 

@@ -1,6 +1,6 @@
 // The kiosk's malloc policy (glibc), set once at start-up before any thread starts, so the
 // resident memory after each idle reset is what the next visit needs, the same after weeks as
-// after the first hour (issue 11's soak, tests/unit/kiosk/kiosk_soak.cpp). Measured there per
+// after the first hour (the soak, tests/unit/kiosk/kiosk_soak.cpp). Measured there per
 // reset (smaps and mallinfo2, `kiosk_soak --memory-detail`), with glibc's defaults:
 //  - the mmap threshold is dynamic: freeing a block of up to 32 MiB that was mmapped (a grown
 //    brick pool, a frame target) raises it to that size, and so does the trim threshold (to

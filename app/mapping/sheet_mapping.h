@@ -1,4 +1,4 @@
-// The sheet stroke (issue 9; thesis §7.7.5 problem 1: the study's users found stratus and
+// The sheet stroke (thesis §7.7.5 problem 1: the study's users found stratus and
 // cirrostratus layers tedious to build from thin strokes). The footprint is laid on the canvas
 // mid-plane as a wide, thin, flat layer: every voxel near the plane takes the ink of the
 // footprint pixel its plane point projects to (bilinear), times a Gaussian across the plane

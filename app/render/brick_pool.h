@@ -1,4 +1,4 @@
-// The GPU copy of a sparse Volume and its light volume (issue 15): a brick pool texture with an
+// The GPU copy of a sparse Volume and its light volume: a brick pool texture with an
 // indirection table, after the bricks of GigaVoxels / NanoVDB-style sparse textures.
 //
 //  - Pool: one RGBA8 2D array texture of slots of kSlotTexels³ = 20³ texels (20 × 20 texels on

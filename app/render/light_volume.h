@@ -15,7 +15,7 @@
 //    x + i·L̂, i = 0, 1, …, until the point leaves the box). O(voxels × edge length); used by
 //    tests and the benchmark as the reference.
 //
-// Sparse (issue 15): the light volume is stored in the volume's 16³ bricks, and only where it
+// Sparse: the light volume is stored in the volume's 16³ bricks, and only where it
 // differs from "fully lit, empty":
 //  - `through` holds a brick wherever some voxel's passed-on value is not exactly 1 — the cloud
 //    and its shadow across empty space. Elsewhere every voxel is exactly 1: a voxel with no

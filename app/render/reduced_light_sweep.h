@@ -1,5 +1,5 @@
-// The light volume at reduced resolution, for feedback while the light ball is dragged (issue 9,
-// after the thesis's 128³ light volume for a 256³ cloud): the density is averaged over
+// The light volume at reduced resolution, for feedback while the light ball is dragged
+// (after the thesis's 128³ light volume for a 256³ cloud): the density is averaged over
 // divisor³ blocks, the light is swept on that coarse grid with the existing sweep
 // (sweepLightVolume) and the transmittance is interpolated back to the voxels of the light bricks
 // (lightBrickList, the ones the renderer reads). Both follow the sparse volume: only the coarse

@@ -1,4 +1,4 @@
-// Undo/redo of camera, canvas, light and cloud (issue 9 "History"). A step stores the scene
+// Undo/redo of camera, canvas, light and cloud ("History"). A step stores the scene
 // settings before and after it, and the cloud change as a delta of the bricks that changed: for
 // each changed 16³ brick the XOR of its old and new voxel bits, all of a step's bricks in one
 // zstd frame. XOR makes one delta serve both directions (old ^ delta = new, new ^ delta = old),

@@ -300,7 +300,7 @@ bool PaintSession::growSkyToHold(const std::function<SkyReach(const Volume&)>& r
 }
 
 void PaintSession::syncJournal() {
-  // Issue 10: every completed stroke is on the disk before the next one begins.
+  // Every completed stroke is on the disk before the next one begins.
   if (journal_ && !journal_->sync())
     std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
 }

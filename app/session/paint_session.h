@@ -117,7 +117,7 @@ class PaintSession {
   void setRenderSettings(const std::string& render_toml, int64_t t_ns);
   const std::string& renderSettings() const { return render_settings_; }  // empty: none recorded
 
-  // Sync markers (issue 10): task and stroke boundaries, journalled as Sync records and, when a
+  // Sync markers: task and stroke boundaries, journalled as Sync records and, when a
   // sender is set (not owned; null: none), sent as UDP datagrams. The session marks stroke_begin
   // and stroke_end (label: the stroke index) itself; the study runner marks its tasks
   // (task_begin / task_end, label: the task's name).
@@ -144,7 +144,7 @@ class PaintSession {
   // cannot apply now (undo with nothing to undo, ...); nothing is journalled then.
   bool apply(const UiChange& change, int64_t t_ns, std::string* error = nullptr);
 
-  // The painter's animations (issue 14): a morph or wind animated on a copy of the cloud is
+  // The painter's animations: a morph or wind animated on a copy of the cloud is
   // committed as the frame shown. `change` (ui::ApplyMorph or ui::ApplyWind) names how to
   // recompute it, `shown` is the frame on the tool's window (cloud_animation.h, tool_window.h:
   // the whole cloud in a one-box sky); the window of the cloud becomes `shown` as one history

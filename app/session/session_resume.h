@@ -1,4 +1,4 @@
-// Resuming a session from its own journal (issue 10: "restarting on the same session folder
+// Resuming a session from its own journal ("restarting on the same session folder
 // resumes it"). The journal at `path` is re-opened for appending after its last whole record (a
 // torn tail from a crash is cut, with a warning), replayed into a fresh PaintSession with the
 // journal's own session settings and recorded configuration, and the session carries on

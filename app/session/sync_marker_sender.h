@@ -1,4 +1,4 @@
-// Sync markers for other recorders (issue 10: video, eye trackers): task and stroke boundaries
+// Sync markers for other recorders (video, eye trackers): task and stroke boundaries
 // sent as one UDP datagram each, the text of drivers/core/journal_records.h's SyncMarker
 // ("cloudbrush-sync v1 seq=… kind=… mono_ns=… wall_ns=… label=…"). Off unless a port is given
 // (`cloudbrush paint --sync-udp [HOST:]PORT`); the same markers are always journalled (Sync

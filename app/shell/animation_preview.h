@@ -1,4 +1,4 @@
-// The painter's animations (issue 14): a morph from the cloud into a saved cloud over a set
+// The painter's animations: a morph from the cloud into a saved cloud over a set
 // time, or wind blowing it, played on a copy of the session's cloud for display. The session's
 // cloud is not touched while it plays: "apply" commits the frame shown as one history step and
 // one journal record (PaintSession::commitAnimation with ui::ApplyMorph / ui::ApplyWind, which

@@ -1,9 +1,9 @@
-// The kiosk's attract loop (issue 11): while nobody paints, a recorded session journal is
+// The kiosk's attract loop: while nobody paints, a recorded session journal is
 // replayed at the pace it was painted (times `speed`; the strokes are mapped once, on a thread of
 // their own: attract_replay.h, so no frame waits for a mapping), the camera
 // slowly orbiting, with the invitation over it; when the journal has played, the finished cloud
-// keeps orbiting for `hold_s`. Then, when the kiosk keeps a gallery, the cloud morphs (issue 14,
-// app/tools/cloud_morph.h, played as the painter plays it: AnimationPreview) into up to
+// keeps orbiting for `hold_s`. Then, when the kiosk keeps a gallery, the cloud morphs
+// (app/tools/cloud_morph.h, played as the painter plays it: AnimationPreview) into up to
 // `gallery_morphs` visitors' clouds in turn — newest first, each loop going on from the last
 // one shown — each over `morph_seconds` and held for `hold_s`; then the replay starts again on
 // an empty sky. A gallery cloud that cannot be read or does not fit the sky is skipped and

@@ -1,6 +1,6 @@
 // What a person can ask the painter to do, whatever the input: a key (keymap.h), a pen side
 // button, a tap on the pen menu or a scripted run. Screens act on commands, never on key codes.
-// The list follows thesis Appendix A and issue 9's key table.
+// The list follows thesis Appendix A's steps and keys.
 #pragma once
 
 #include <optional>

@@ -1,4 +1,4 @@
-// Saving a visitor's finished cloud into the kiosk's gallery (issue 11): a new pseudonymous
+// Saving a visitor's finished cloud into the kiosk's gallery: a new pseudonymous
 // entry (app/kiosk/gallery_store.h) holding the study exporters' files — the volume as
 // `cloud.vdb` + `cloud.cbvol` (app/study/volume_export.h) and its render from the visitor's last
 // view as `render.exr` + `render.png` (app/study/render_export.h) — plus `thumbnail.png`

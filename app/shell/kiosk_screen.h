@@ -1,4 +1,4 @@
-// The exhibition kiosk's screen (issue 11): what `cloudbrush kiosk` runs in the shell's one frame
+// The exhibition kiosk's screen: what `cloudbrush kiosk` runs in the shell's one frame
 // loop. It holds the painter (paint_screen.h, in visitor mode) and the kiosk's own screens and
 // routes input and frames to the one active:
 //

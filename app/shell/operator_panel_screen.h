@@ -1,4 +1,4 @@
-// The kiosk's operator panel (issue 11). It opens only with the key combination set in
+// The kiosk's operator panel. It opens only with the key combination set in
 // config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits, typed on
 // the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks for a
 // new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice as

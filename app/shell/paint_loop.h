@@ -69,14 +69,14 @@ struct PaintLoopOptions {
   // Resolution scale while moving; adapted each frame towards target_frame_ms within
   // [min_moving_scale, 1].
   float moving_scale = 0.5f;
-  float min_moving_scale = 0.5f;           // issue 15: never below half resolution
+  float min_moving_scale = 0.5f;           // never below half resolution
   double target_frame_ms = 1000.0 / 30.0;  // 30 fps
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;
   // After a lift the change is first shown at moving_scale, then refined, unless the last
   // full-resolution frames say it can be cast at full resolution within this long of the lift
-  // (issue 15: pen-up → first lit frame ≤ 100 ms); then it is shown so at once.
+  // (pen-up → first lit frame ≤ 100 ms); then it is shown so at once.
   double lift_budget_ms = 100.0;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
@@ -95,7 +95,7 @@ struct PaintLoopOptions {
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present
   std::function<void()> on_first_connection;            // the pen connected for the first time
   std::function<void(bool presented)> each_iteration;   // every loop iteration (kiosk watchdog)
-  // Exhibition kiosk (issue 11): visitor mode keeps quit keys and operator commands away
+  // Exhibition kiosk: visitor mode keeps quit keys and operator commands away
   // (only painting, erasing, camera, undo and start again). Idle reset, attract loop, operator
   // panel and gallery are the kiosk screen's (kiosk_screen.h), which runs this screen.
   bool visitor_mode = false;

@@ -787,7 +787,7 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   if (orbiting_ && frame.frame > 0) {
     moving_frame_ms_.push_back(frame_ms);
     // Keep the orbit fluid: shrink the resolution when a frame is over budget, grow it back
-    // when there is room (≥ 30 fps at scale ≥ 0.5 is the target, issue 15).
+    // when there is room (≥ 30 fps at scale ≥ 0.5 is the target).
     moving_scale_ = nextMovingScale(moving_scale_, frame_ms, options_);
   }
 }

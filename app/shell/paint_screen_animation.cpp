@@ -1,4 +1,4 @@
-// The painter's morph and wind (issue 14): the commands F, W, D, A, X and the per-frame advance.
+// The painter's morph and wind: the commands F, W, D, A, X and the per-frame advance.
 // The animation plays on a copy (animation_preview.h) that the screen shows instead of the
 // session's cloud; apply commits it through the session, leave drops it.
 #include <algorithm>

@@ -82,7 +82,7 @@ Camera PaintScreen::presetView(Command command) const {
 }
 
 bool PaintScreen::visitorAllows(Command command) const {
-  // Visitor mode (issue 11): painting, erasing, camera, undo and start again; no operator
+  // Visitor mode: painting, erasing, camera, undo and start again; no operator
   // commands (files, statistics, canvas and light set-up, style, quit).
   switch (command) {
     case Command::kQuit:

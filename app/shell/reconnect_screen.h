@@ -1,4 +1,4 @@
-// The kiosk's "reconnect the pen" screen (issue 11): the tablet was unplugged while a visitor
+// The kiosk's "reconnect the pen" screen: the tablet was unplugged while a visitor
 // painted. Drawn over the visitor's frame (their cloud stays visible and is kept): a veil and two
 // lines saying what happened and what to do. The kiosk screen shows it while the pen source
 // reports no connection and returns to painting when it reconnects.

@@ -1,5 +1,5 @@
 // `cloudbrush study run`: a study protocol (app/study/protocol.h) run as the shell's screens
-// (issue 10; thesis §7.5). One Screen for the frame loop that shows the runner's current stage:
+// (thesis §7.5). One Screen for the frame loop that shows the runner's current stage:
 // the form pages (consent, participant code, introduction, demographics, questionnaire, free
 // text; app/shell/study_page.h) answered with pen taps (or a mouse), and in the tutorial, free
 // drawing and tasks the painter's own screen (PaintScreen, composed, not changed) with the

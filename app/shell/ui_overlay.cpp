@@ -236,7 +236,7 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
       button(commands[i], menuLabel(commands[i], state.mode), false, true);
     }
     if (!state.visitor) {
-      // The animations (issue 14): morph into a saved cloud, wind; apply or leave what shows.
+      // The animations: morph into a saved cloud, wind; apply or leave what shows.
       ImGui::Separator();
       const Command animations[] = {Command::kMorph, Command::kWind, Command::kWindDirection,
                                     Command::kApplyAnimation, Command::kLeaveAnimation};

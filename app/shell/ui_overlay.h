@@ -1,4 +1,4 @@
-// The on-screen UI drawn with Dear ImGui inside the EGL frame (issue 9 "Pen menu and on-screen
+// The on-screen UI drawn with Dear ImGui inside the EGL frame ("Pen menu and on-screen
 // UI"): a status line (mode, brush, mapping, canvas altitude, what the painter waits for) and
 // the pen menu of big targets (thesis Fig. 3.7): the five modes, the current mode's commands,
 // undo/redo, delete, open and save, each labelled with its key. The pen (or a mouse) drives it

@@ -1,4 +1,4 @@
-// Pseudonymous participant ids (issue 10): never derived from names or anything a participant
+// Pseudonymous participant ids: never derived from names or anything a participant
 // says. Schemes:
 //   counter  PREFIX + the participant number, zero-padded to `digits` (P01, P02, ...)
 //   random   PREFIX + `length` characters from an alphabet without look-alikes (no 0/O, 1/I/L),

@@ -1,4 +1,4 @@
-// Withdrawal (issue 10): delete everything of one participant id under a study data directory,
+// Withdrawal: delete everything of one participant id under a study data directory,
 // and say what was deleted. What belongs to participant ID:
 //   - every file or folder (at any depth) whose name is ID, or starts with ID followed by
 //     '_', '-' or '.' (session folders P03_2026-11-02/, P03.cbj; P3 never matches P30);

@@ -1,4 +1,4 @@
-// A user-study protocol (issue 10; thesis ch. 7): everything a study session follows, read from
+// A user-study protocol (thesis ch. 7): everything a study session follows, read from
 // one TOML file and checked completely before any session starts. The bundled default is the
 // thesis's study, config/study/thesis_2014.toml, which documents every table and field; the
 // format in short:

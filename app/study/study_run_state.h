@@ -1,4 +1,4 @@
-// The study runner's state machine (issue 10; thesis §7.5): which stage of a protocol a session
+// The study runner's state machine (thesis §7.5): which stage of a protocol a session
 // is in, what it waits for, the answers given, the operator's pauses, skips and aborts, and the
 // journal records all of that leaves. Headless and clock-free: every call takes the time (ns,
 // monotonic) from its caller, so tests drive it with any clock; the painter's screens
@@ -19,7 +19,7 @@
 // Every stage change, tutorial step, answer and operator action is a record (takeRecords) that
 // the runner writes to the session journal as a Marker, text `study.EVENT key=value ...`.
 //
-// Resuming (issue 10: restarting on the same session folder resumes it): restore() rebuilds the
+// Resuming (restarting on the same session folder resumes it): restore() rebuilds the
 // state from those records as the journal holds them. The inputs among them (consent, continue,
 // a tutorial step done, answers, the operator's requests and reasons, time up, saved files, a
 // restart) are applied again at their recorded times; every other record must then be the one

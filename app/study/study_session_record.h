@@ -1,4 +1,4 @@
-// A study session's folder (issue 10 "The record"): one folder per session under the data
+// A study session's folder ("The record"): one folder per session under the data
 // directory, named `<participant id>-<UTC start, YYYYmmddTHHMMSSZ>` (so `study withdraw` finds
 // it by the id), holding
 //   session.json        what the session ran on (below), rewritten when the session ends

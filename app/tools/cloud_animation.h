@@ -1,4 +1,4 @@
-// What the painter's animations (issue 14: morphing and wind "live in the painter") need so that
+// What the painter's animations (morphing and wind "live in the painter") need so that
 // a committed frame can be recomputed from its journal record: the morph target by name, and a
 // wind run as its settings and step counts. The painter animates a copy of the session's cloud
 // with these; "apply" journals the record, and replay recomputes the same bytes from it.

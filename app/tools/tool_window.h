@@ -1,4 +1,4 @@
-// The part of the sky a modelling tool works on (issue 15, "a sky without walls"). Morph and wind
+// The part of the sky a modelling tool works on ("a sky without walls"). Morph and wind
 // were written for the one-box sky, where they walk every voxel and the wind's 64³ cells cover
 // the box; in a sky of span home boxes across (app/volume/sky_extent.h) that would cost span²
 // times as much and make the wind's cells span times coarser. So a tool works on a window: the

@@ -1,4 +1,4 @@
-// Wind (issue 14; seed 004 Part III "Fluid dynamics model", after Stam's stable fluids; the
+// Wind (seed 004 Part III "Fluid dynamics model", after Stam's stable fluids; the
 // thesis §8.1 names dynamics as future work): a coarse velocity grid over the volume's world box
 // that moves the density. One step (seed 004's loop without the diffusion step, ν = 0):
 //   1. self-advection of the velocity, semi-Lagrangian: u(x) ← u(x − u(x)·dt)        Eq. (3.7)

@@ -1,4 +1,4 @@
-// The sky's extent (issue 15, "A sky without walls"). The thesis's sky is one box of grid³ voxels
+// The sky's extent ("A sky without walls"). The thesis's sky is one box of grid³ voxels
 // over the world box [-1,1]³ (§3.3; "limited to 256³", §8.1). The painter's sky keeps that box
 // and its voxel size as the home box, at the centre of a wider extent: `span` home boxes across
 // in x and in z (one high), so the canvas reaches past the old walls and a stroke lands wherever

@@ -16,7 +16,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 fail=0
-# The directives issue 11 asks for, each on its own line.
+# The hardening directives the kiosk's unit must carry, each on its own line.
 for directive in 'Type=notify' 'WatchdogSec=10s' 'Restart=always' 'User=cloudbrush' \
     'SupplementaryGroups=input video render' 'TTYPath=/dev/tty7' 'StandardInput=tty-fail' \
     'StateDirectory=cloudbrush' 'Environment=MESA_SHADER_CACHE_DIR=/var/lib/cloudbrush/mesa-shader-cache' \

@@ -1,4 +1,4 @@
-// The kiosk's virtual terminal on the KMS platform (issue 11: no way out to a shell from the
+// The kiosk's virtual terminal on the KMS platform (no way out to a shell from the
 // keyboard). While locked, the VT on the given descriptor (the process's stdin: the unit's
 // TTYPath=/dev/tty7) is brought to the foreground and
 //   - handles no keys itself (KDSKBMODE K_OFF): Ctrl+Alt+Fn, Alt+arrows and the console's own

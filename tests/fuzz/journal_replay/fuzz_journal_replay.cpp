@@ -1,4 +1,4 @@
-// Fuzz target: replaying a journal past its CRC check (issue 10: "records that are well-formed
+// Fuzz target: replaying a journal past its CRC check ("records that are well-formed
 // but nonsensical"). A journal's CRCs only say the bytes arrived as written; a journal written
 // by another build, edited, or made up still reaches the replay. The input is read as records
 // (no CRC to get past) that go through the same replay a session journal does: a fresh

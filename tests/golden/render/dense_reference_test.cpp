@@ -1,4 +1,4 @@
-// The brick pool renders what the dense volume texture rendered (issue 15, stage 2). The images
+// The brick pool renders what the dense volume texture rendered. The images
 // in tests/golden/render/dense/ were written by the renderer as it was before the pool (one dense
 // RG8 3D texture over the whole grid, main at adb0e86) with this same file and
 // CB_WRITE_DENSE_REFERENCE=1; each case here must match its image within 1/255 in every channel

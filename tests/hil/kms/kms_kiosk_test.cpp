@@ -6,7 +6,7 @@
 //   - `cloudbrush kiosk --display kms` locks its VT, shows the attract loop by page flip (two
 //     screendumps differ: the camera orbits) and, with the kiosk running, Ctrl+Alt+F2 leaves
 //     /sys/class/tty/tty0/active at tty1;
-//   - the mode keys 1–5 reach the painter through the KMS keyboard path (evdev + keymap, issue 9):
+//   - the mode keys 1–5 reach the painter through the KMS keyboard path (evdev + keymap):
 //     3, 1 and 4 change the mode (paint, camera, erase), 2 and 5 are refused in visitor mode; Esc,
 //     q, Ctrl+C, Alt+F4, Ctrl+Alt+Backspace and Ctrl+Alt+Delete do not end the kiosk (or reboot the
 //     guest);

@@ -1,4 +1,4 @@
-// Power-cut test (issue 10, "Evidence"; label hil, slow): a session journal written with the
+// Power-cut test ("Evidence"; label hil, slow): a session journal written with the
 // project's JournalWriter and fsync policy onto a qemu virtio disk (ext4, `cache=none`, so what
 // the guest syncs is on the host file), the guest reset (`system_reset` on the qemu monitor) at
 // seeded random points while it writes. After each reset the guest boots again, and the

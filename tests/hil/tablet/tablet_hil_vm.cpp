@@ -205,7 +205,7 @@ std::string asNobody(const std::function<std::string()>& what) {
   return out;
 }
 
-// Slow strokes (issue 12): the input core's fuzz filter (drivers/input/input.c
+// Slow strokes: the input core's fuzz filter (drivers/input/input.c
 // input_defuzz_abs_event) drops or smooths small changes on evdev; the hidraw backend applies
 // the same filter by default. `reports` are injected back to back (well inside the driver's
 // 100 ms idle-proximity timer), then every source's samples up to the first out-of-proximity

@@ -1,4 +1,4 @@
-// Bad input (issue 3): NaN or out-of-range pressure, tilt and position are clamped or dropped
+// Bad input: NaN or out-of-range pressure, tilt and position are clamped or dropped
 // and counted, never propagated into the footprint.
 #include <cmath>
 #include <limits>

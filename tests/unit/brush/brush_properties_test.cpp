@@ -1,4 +1,4 @@
-// Properties every brush must keep (issue 3): area grows with pressure, the 3D brush's tilt makes
+// Properties every brush must keep: area grows with pressure, the 3D brush's tilt makes
 // an asymmetric split tip, the footprint does not depend on the report rate, a one-sample stroke
 // leaves a mark, fast strokes disperse ink, every change is inside the returned rectangle, and the
 // footprint is deterministic.

@@ -132,7 +132,7 @@ int64_t steadyNs() {
       .count();
 }
 
-// Issue 10: records older than a second reach the disk at the next timer tick or append; newer
+// Records older than a second reach the disk at the next timer tick or append; newer
 // ones wait for the stroke end (sync) or the second to pass.
 TEST(Journal, SyncIfDueSyncsOnlyRecordsOlderThanTheInterval) {
   const std::string path = tempPath("cb_journal_sync.cbj");

@@ -1,4 +1,4 @@
-// The kiosk soak (issue 11): hours of kiosk time compressed by driving the kiosk headless from
+// The kiosk soak: hours of kiosk time compressed by driving the kiosk headless from
 // the injectable clock. The real parts as `cloudbrush kiosk` wires them — EGL surfaceless on
 // llvmpipe, the bundled config (kiosk.toml, brush, mapping, render) and attract journal, the
 // shell's frame loop running KioskScreen over the painter, KioskService (sd_notify, watchdog

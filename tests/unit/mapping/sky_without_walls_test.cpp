@@ -1,8 +1,8 @@
-// A sky without walls (issue 15): with the product's defaults — the default sky (SkyExtent: 1024
+// A sky without walls: with the product's defaults — the default sky (SkyExtent: 1024
 // × 256 × 1024 voxels for the painter's grid 256), config/brush.toml and config/mapping.toml, the
 // real brushes, StrokeEngine, StrokeMapper and VolumeRenderer —
 //   - a stroke drawn where the thesis's 256³ box ended (the paint view panned past its wall, as
-//     the camera mode pans it) lands there and renders: issue 9's landed and IoU thresholds;
+//     the camera mode pans it) lands there and renders: the landed and IoU thresholds;
 //   - a cloud at the far edge of the sky is lit and shadowed as the same cloud at the centre:
 //     the sun is a direction, so the light volume and the rendered image move with the cloud;
 //   - memory follows the painting: an empty sky holds ≤ 50 MB (volume bricks + the renderer's
@@ -114,7 +114,7 @@ TEST_F(SkyWithoutWalls, AStrokePastTheOldBoxsWallLandsAndRenders) {
     const double iou = double(landed) / double(either);
     std::printf("%-8s past the wall: %zu bricks, landed %.3f, IoU %.3f\n", brushKindName(kind),
                 sky.allocatedBricks(), landed_fraction, iou);
-    EXPECT_GE(landed_fraction, 0.95) << brushKindName(kind);  // issue 9's thresholds
+    EXPECT_GE(landed_fraction, 0.95) << brushKindName(kind);  // the thresholds
     EXPECT_GE(iou, 0.85) << brushKindName(kind);
   }
 }

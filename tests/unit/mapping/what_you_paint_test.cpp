@@ -1,4 +1,4 @@
-// "What you paint is what you get" (issue 9), with nothing but product defaults: the default
+// "What you paint is what you get", with nothing but product defaults: the default
 // paint camera (app/scene/paint_camera.h) at the painter's default 1280×720 screen, the default
 // Canvas, the default sky (1024×256×1024 voxels for the painter's grid 256, its home box the
 // thesis's 256³ over [-1,1]³), config/brush.toml and config/mapping.toml as the
@@ -194,7 +194,7 @@ TEST_F(WhatYouPaint, TheStrokeIsDrawnInsideTheDrawableRegion) {
 }
 
 // What holds today for every brush: the stroke lands (>= 85 % of its ink shows; from
-// Camera::reference() 25–41 % did, issue 9) and most of
+// Camera::reference() 25–41 % did) and most of
 // its footprint is grown into circles (thesis §6.3.1 aim 3), not edge-mapped. Before the
 // half-maximum whiteness rule the 2D and skeleton brushes grew no circle at all.
 TEST_F(WhatYouPaint, EveryBrushsStrokeLandsAndMostOfItIsGrownIntoCircles) {
@@ -206,11 +206,11 @@ TEST_F(WhatYouPaint, EveryBrushsStrokeLandsAndMostOfItIsGrownIntoCircles) {
     EXPECT_GE(m.landed, 0.85) << brushKindName(kind);
     EXPECT_GT(m.covered, 0.5) << brushKindName(kind);
   }
-  // The 2D brush's straight stroke is already round in cross-section (issue 9's streak measure).
+  // The 2D brush's straight stroke is already round in cross-section (the streak measure).
   EXPECT_LE(measure(BrushKind::k2D, camera, straightAcross(kW, kH)).side_anisotropy, 1.3);
 }
 
-// Issue 9's acceptance thresholds, all three brushes at product defaults. What makes them hold
+// the acceptance thresholds, all three brushes at product defaults. What makes them hold
 // (app/mapping/README.md): spheres widened so they are opaque out to their circle
 // (spheres.outline_chord_voxels), edge pixels placed at their sphere's view depth with a depth
 // spread of at most a voxel or R_S/3 (no needles along the rays), the Empty Test on the smallest

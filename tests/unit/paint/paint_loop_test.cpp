@@ -2,7 +2,7 @@
 // replay pen backend into PaintLoop on the surfaceless display (EGL on llvmpipe), 1280×720.
 // Checks that the live footprint is on screen before the lift, that the lift maps voxels inside
 // the reported dirty box only, and that the first lit frame shows the cloud where the ink was.
-// Prints the pen-up -> first lit frame time (issue 4; target <= 200 ms).
+// Prints the pen-up -> first lit frame time (target <= 200 ms).
 #include <gtest/gtest.h>
 
 #include <array>

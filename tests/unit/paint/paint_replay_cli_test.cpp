@@ -158,7 +158,7 @@ TEST(PaintReplayCli, BrushAndMappingKeysReplayToTheSameVolume) {
   std::filesystem::remove_all(dir);
 }
 
-// Issue 10: the journal carries the brush, mapping and render settings in force, so `cloudbrush
+// The journal carries the brush, mapping and render settings in force, so `cloudbrush
 // replay` gives the same volume with a deliberately different local config; a journal without
 // them (as before) does take the local config. --frames writes one PNG per frame.
 TEST(PaintReplayCli, ReplayIgnoresADifferentLocalConfigAndWritesFrames) {

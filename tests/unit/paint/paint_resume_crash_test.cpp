@@ -1,4 +1,4 @@
-// Crash test (issue 10, "Evidence"): a recorded session is replayed into the real painter
+// Crash test ("Evidence"): a recorded session is replayed into the real painter
 // (`cloudbrush paint --display surfaceless --backend replay --resume FILE`), which is killed
 // with SIGKILL at 20 random points and restarted on the same file each time. Every restart
 // resumes the session; no completed stroke is ever lost; and the final volume equals the one an

@@ -509,7 +509,7 @@ TEST_F(BrickPoolTest, ACloudInTheFarCornerOfAWideSkyRendersLikeOneInTheMiddle) {
   EXPECT_LE(worst, 4);  // sample positions along the rays differ a little (they start at the box)
 }
 
-// Issue 15: an empty sky costs little on the GPU. The renderer's GL memory is counted in bytes;
+// An empty sky costs little on the GPU. The renderer's GL memory is counted in bytes;
 // at 512×128×512 (16× today's area: the light volume beside it is still dense until the sparse
 // light lands, 268 MB of CPU memory, so this test stays below the 1024×256×1024 default) and the
 // pool's share at the 1024×256×1024 sky itself.

@@ -1,4 +1,4 @@
-// The sparse light volume (light_volume.h, issue 15): stored only where the light is not 1, its
+// The sparse light volume (light_volume.h): stored only where the light is not 1, its
 // values are those of the dense sweep — in a large sky as in a box of the cloud's own size, with
 // shadows crossing empty space, after incremental edits and erases, on any thread count.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The session's record (issue 10): the journal is on the disk at every stroke end, a session
+// The session's record: the journal is on the disk at every stroke end, a session
 // resumes from its journal, replays with the settings in force (whatever the local config),
 // keeps each stroke's mapping time and marks task and stroke boundaries for other recorders.
 #include <gtest/gtest.h>
@@ -122,7 +122,7 @@ Painted paint(const std::string& path, const std::vector<PenSample>& samples, si
   return {volumeChecksum(session.volume()), session.strokesMapped()};
 }
 
-// Issue 10: restarting on the same journal resumes the session; what the pen does next lands
+// Restarting on the same journal resumes the session; what the pen does next lands
 // as if nothing had happened, even when the crash came in the middle of a stroke and tore the
 // record being written.
 TEST(SessionRecord, AResumedSessionEndsWithTheUninterruptedVolume) {
@@ -191,7 +191,7 @@ TEST(SessionRecord, AResumedSessionEndsWithTheUninterruptedVolume) {
   std::filesystem::remove(tempPath("whole.cbj"));
 }
 
-// Issue 10: the journal records the brush and mapping in force, so a replay on a machine whose
+// The journal records the brush and mapping in force, so a replay on a machine whose
 // config was tuned since gives the same volume; a journal without them replays with the local
 // config, as before.
 TEST(SessionRecord, ReplayUsesTheRecordedBrushAndMappingNotTheLocalOnes) {
@@ -235,7 +235,7 @@ TEST(SessionRecord, ReplayUsesTheRecordedBrushAndMappingNotTheLocalOnes) {
   std::filesystem::remove(path);
 }
 
-// Issue 10: each stroke's mapping time is journalled (a measurement: replay ignores it) and the
+// Each stroke's mapping time is journalled (a measurement: replay ignores it) and the
 // study's stroke table reads it.
 TEST(SessionRecord, MappingTimeOfEachStrokeIsInTheJournalAndTheStrokeTable) {
   const std::vector<PenSample> samples = referenceSamples();
@@ -265,7 +265,7 @@ TEST(SessionRecord, MappingTimeOfEachStrokeIsInTheJournalAndTheStrokeTable) {
   std::filesystem::remove(path);
 }
 
-// Issue 10: task and stroke boundaries reach another recorder as UDP datagrams on localhost,
+// Task and stroke boundaries reach another recorder as UDP datagrams on localhost,
 // and the journal holds the same markers.
 TEST(SessionRecord, SyncMarkersArriveOverUdpAndAreJournalled) {
   const int receiver = ::socket(AF_INET, SOCK_DGRAM, 0);

@@ -1,4 +1,4 @@
-// The sky grows with what is painted (issue 15, "growing with what is painted"), with the
+// The sky grows with what is painted ("growing with what is painted"), with the
 // product's defaults — the painter's 1280×720 screen and grid 256, the default sky (4 home boxes
 // across, growing up to 8), config/brush.toml and config/mapping.toml, the default paint camera
 // panned along the canvas as the camera mode pans it, the real brushes through PaintSession:

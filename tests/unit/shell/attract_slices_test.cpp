@@ -1,5 +1,5 @@
 // The attract loop's frame drawn in slices (app/shell/attract_screen.h, AttractOptions::slice_ms)
-// so that a pen plugged in during a long frame reaches the kiosk at once (issue 11: uhid creation
+// so that a pen plugged in during a long frame reaches the kiosk at once (uhid creation
 // → first sample on the screen ≤ 1 s; under TCG an attract frame took 0.5–1.5 s and the pen
 // waited for it). Real EGL surfaceless llvmpipe rendering, the bundled attract journal:
 //   - a frame drawn in 16 bands is the whole frame, pixel for pixel (invitation included), at the

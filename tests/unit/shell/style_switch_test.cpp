@@ -1,4 +1,4 @@
-// Issue 13: the first frame the painter presents after the style command (T) shows the next
+// The first frame the painter presents after the style command (T) shows the next
 // style. The bundled cumulus is opened (Ctrl+O), a few frames settle at full resolution in the
 // thesis style, T is pressed, and the very next frame drawn must differ from the settled thesis
 // frame, while what is on screen well after it (nothing changed since) equals that first frame.

@@ -1,4 +1,4 @@
-// `cloudbrush replay SESSION --frames DIR` of a recorded study session (issue 10: "re-runs the
+// `cloudbrush replay SESSION --frames DIR` of a recorded study session ("re-runs the
 // journal through the same input router and screens ... --frames DIR writes one image per
 // frame"). The short study of tests/support/short_study.h is run once by the real runner
 // (`study run --backend replay`, its clock the pen's time line), then its session.cbj is replayed

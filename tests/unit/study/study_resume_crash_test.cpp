@@ -1,4 +1,4 @@
-// Crash test for study sessions (issue 10, "Evidence"): a recorded pen session is replayed into
+// Crash test for study sessions ("Evidence"): a recorded pen session is replayed into
 // the real study runner (`cloudbrush study run --display surfaceless --backend replay --resume
 // FOLDER`), which is killed with SIGKILL at seeded random points and restarted on the same
 // folder each time. Every restart resumes the session (stage, task, answers, clock); no pen

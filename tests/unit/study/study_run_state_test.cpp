@@ -232,7 +232,7 @@ std::string snapshot(const StudyRunState& s, int64_t t) {
   return o.str();
 }
 
-// Resuming (issue 10): a state restored from any prefix of a session's records is the state the
+// Resuming: a state restored from any prefix of a session's records is the state the
 // session was in when it wrote them, and the records it made but the journal lost are made again.
 TEST(StudyRunState, RestoredFromItsRecordsTheSessionCarriesOnWhereItWas) {
   StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());

@@ -1,4 +1,4 @@
-// Morph and wind in a sky wider than one box (issue 15) work on a window of it (tool_window.h).
+// Morph and wind in a sky wider than one box work on a window of it (tool_window.h).
 // At grid 64 and span 4 (a 256×64×256 sky over [-4,4]×[-1,1]×[-4,4]; grid 64 for speed, the
 // rule is the same at 256): the window is the whole volume for one-box skies and other volumes;
 // it follows the content otherwise (the home-box tile, another tile, an edge tile, a home box

@@ -1,4 +1,4 @@
-// Bad volume files (issue 10; the stored box of version 2, issue 15): every size a header claims
+// Bad volume files (the stored box of version 2): every size a header claims
 // is checked before a voxel is allocated, and each failure is a VolumeFileError naming the file
 // and the header field. The largest
 // allocation made while a bad file is read is measured by replacing global operator new.

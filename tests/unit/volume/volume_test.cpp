@@ -94,7 +94,7 @@ TEST(Volume, EveryConstructionAndAssignmentHasItsOwnInstanceId) {
 }  // namespace
 }  // namespace cb
 
-// The sparse sky (issue 15): bricks exist only where something non-zero was written.
+// The sparse sky: bricks exist only where something non-zero was written.
 namespace cb {
 namespace {
 
