@@ -34,6 +34,8 @@ const Bench kBenches[] = {
     {"scale", "1280x720 .. 3840x2160 on 1 and 2 threads: frame, orbit, painting, pen-up",
      benchScale},
     {"sky", "the sparse volume's bytes for 1x, 4x, 16x sky area, against the dense grid", benchSky},
+    {"latency", "pen sample -> frame ready / present while painting, vs today's loop",
+     benchLatency},
 };
 
 }  // namespace

@@ -13,4 +13,5 @@ int benchStudy(int argc, char** argv);
 int benchTools(int argc, char** argv);
 int benchScale(int argc, char** argv);
 int benchSky(int argc, char** argv);
+int benchLatency(int argc, char** argv);
 }  // namespace cb
