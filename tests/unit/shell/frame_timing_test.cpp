@@ -154,16 +154,15 @@ void paintAndCheck(bool ink_first) {
   const JournalReadResult read = readJournal(recorded);
   ASSERT_TRUE(read.error.empty()) << read.error;
   std::vector<FrameRecord> frames;
-  std::vector<int64_t> sample_times;
+  std::vector<PenSample> samples;
   for (const JournalRecord& r : read.records) {
-    if (r.type == JournalRecordType::kPenSample)
-      sample_times.push_back(decodePenSample(r.payload)->t_ns);
+    if (r.type == JournalRecordType::kPenSample) samples.push_back(*decodePenSample(r.payload));
     if (r.type != JournalRecordType::kFrame) continue;
     const std::optional<FrameRecord> f = decodeFrameRecord(r.t_ns, r.payload);
     ASSERT_TRUE(f);
     frames.push_back(*f);
   }
-  ASSERT_EQ(sample_times.size(), pen_samples);
+  ASSERT_EQ(samples.size(), pen_samples);
   ASSERT_EQ(long(frames.size()), summary.frames) << "one Frame record per presented frame";
   size_t attributed = 0, lifts = 0, next_sample = 0;
   for (size_t i = 0; i < frames.size(); ++i) {
@@ -177,15 +176,20 @@ void paintAndCheck(bool ink_first) {
     if (!f.hasSample()) continue;
     // The frame first shows the next samples of the pen, in order: the oldest and newest it
     // names are the first and last of them (microsecond resolution).
-    ASSERT_LE(next_sample + f.new_samples, sample_times.size());
-    EXPECT_NEAR(double(f.oldest_sample_ns), double(sample_times[next_sample]), 1000.0);
-    EXPECT_NEAR(double(f.newest_sample_ns), double(sample_times[next_sample + f.new_samples - 1]),
+    ASSERT_LE(next_sample + f.new_samples, samples.size());
+    EXPECT_NEAR(double(f.oldest_sample_ns), double(samples[next_sample].t_ns), 1000.0);
+    EXPECT_NEAR(double(f.newest_sample_ns), double(samples[next_sample + f.new_samples - 1].t_ns),
                 1000.0);
     EXPECT_LE(f.newest_sample_ns, f.present_ns);
     next_sample += f.new_samples;
     attributed += f.new_samples;
   }
-  EXPECT_EQ(attributed, pen_samples) << "every sample is shown by exactly one frame";
+  // Every sample up to the last that changed the picture is shown by exactly one frame; the
+  // samples of the loop's last iteration (the pen leaving, read as the replay ended) may go
+  // unpresented, never a sample with the tip down.
+  EXPECT_GT(attributed, pen_samples / 2);
+  for (size_t i = attributed; i < samples.size(); ++i)
+    EXPECT_FALSE(samples[i].tipDown()) << "sample " << i << " of " << samples.size();
   EXPECT_EQ(lifts, 1u) << "the one stroke's cloud is shown by one lift frame";
   EXPECT_EQ(summary.lift_sample_to_lit_ms.size(), 1u) << "pen-up timed from the lift sample";
 
