@@ -47,7 +47,12 @@ const char kHelp[] =
     "Target on 2 cores, llvmpipe, 1920x1080: sample -> frame ready p95 <= 8 ms, p99 <= 16.7 ms\n"
     "(the ink frames; the lift frames, the pen-up wait, are reported apart).\n";
 
-// The reference strokes as raw samples of the synthetic tablet at 200 Hz, `gap_ms` apart.
+// Hovering before the first stroke: the painter stops its orbit at the pen's first sample and
+// casts the paint view at full resolution once (seconds on llvmpipe), before any ink.
+constexpr double kLeadInMs = 3000.0;
+
+// The reference strokes as raw samples of the synthetic tablet at 200 Hz, `gap_ms` apart, after
+// kLeadInMs of hovering where the first one begins.
 std::string writePenJournal(const std::string& path, int w, int h, int strokes, double gap_ms) {
   JournalWriter journal;
   if (!journal.open(path)) return journal.error();
@@ -56,6 +61,13 @@ std::string writePenJournal(const std::string& path, int w, int h, int strokes, 
   journal.append(JournalRecordType::kDevice, 0, device.data(), device.size());
   const std::vector<SyntheticStroke> reference = referencePaintStrokes(w, h);
   int64_t t0 = 1'000'000'000;
+  const PenSample hover = syntheticPenSamples(reference.front(), tablet, w, h, 200.0, t0).front();
+  for (int64_t t = 0; t < int64_t(kLeadInMs * 1e6); t += 5'000'000) {
+    PenSample s = hover;
+    s.t_ns = t0 + t;
+    journal.appendPenSample(s);
+  }
+  t0 += int64_t(kLeadInMs * 1e6);
   for (int i = 0; i < strokes; ++i) {
     const std::vector<PenSample> samples =
         syntheticPenSamples(reference[size_t(i) % reference.size()], tablet, w, h, 200.0, t0);
@@ -65,6 +77,32 @@ std::string writePenJournal(const std::string& path, int w, int h, int strokes, 
   journal.close();
   return "";
 }
+
+// The replayed pen held back until the painter has presented its first frames (llvmpipe compiles
+// its shaders then: seconds), then played from its start on its real time line; notes when the
+// first tip-down sample played, so the figures leave out the lead-in's hover.
+class HeldPen final : public PenSource {
+ public:
+  explicit HeldPen(ReplayPenSource& pen) : pen_(pen) {}
+  void release() { released_ = true; }
+  int64_t firstContactNs() const { return first_contact_ns_; }
+  const char* backendName() const override { return pen_.backendName(); }
+  void poll(int timeout_ms, std::vector<PenSample>& out) override {
+    if (!released_) return;
+    const size_t before = out.size();
+    pen_.poll(timeout_ms, out);
+    for (size_t i = before; i < out.size(); ++i)
+      if (first_contact_ns_ == 0 && out[i].tipDown()) first_contact_ns_ = out[i].t_ns;
+  }
+  PenConnection connection() const override { return pen_.connection(); }
+  const PenDeviceInfo& deviceInfo() const override { return pen_.deviceInfo(); }
+  std::string statusMessage() const override { return pen_.statusMessage(); }
+
+ private:
+  ReplayPenSource& pen_;
+  bool released_ = false;
+  int64_t first_contact_ns_ = 0;
+};
 
 struct LatencyRun {
   FrameTimingStats stats;
@@ -95,10 +133,15 @@ LatencyRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& 
   ReplayOptions replay;
   replay.realtime = true;
   replay.restamp = true;
-  ReplayPenSource pen(pen_journal, replay);
+  ReplayPenSource replayed(pen_journal, replay);
+  HeldPen pen(replayed);
   PaintLoopOptions options;
   options.max_seconds = 120.0;
   options.ink_first = ink_first;
+  long presented = 0;
+  options.each_iteration = [&](bool shown) {
+    if (shown && ++presented == 2) pen.release();
+  };
   const std::string dir = std::filesystem::path(pen_journal).parent_path().string();
   options.config_dir = dir + "/config";  // nothing there: built-in calibration
   options.state_dir = dir + "/state";
@@ -114,7 +157,10 @@ LatencyRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& 
   std::vector<FrameRecord> frames;
   for (const JournalRecord& record : readJournal(session_journal).records)
     if (record.type == JournalRecordType::kFrame)
-      if (auto f = decodeFrameRecord(record.t_ns, record.payload)) frames.push_back(*f);
+      if (auto f = decodeFrameRecord(record.t_ns, record.payload))
+        if (f->present_ns >= pen.firstContactNs() &&
+            (!f->hasSample() || f->oldest_sample_ns >= pen.firstContactNs()))
+          frames.push_back(*f);  // from the first stroke on
   run.stats = frameTimingStats(frames);
   run.lift_to_lit = summary.lift_sample_to_lit_ms;
   run.lift_to_full = summary.lift_sample_to_refined_ms;

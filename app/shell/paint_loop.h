@@ -83,11 +83,10 @@ struct PaintLoopOptions {
   // (issue 15: pen-up → first lit frame ≤ 100 ms); then it is shown so at once.
   double lift_budget_ms = 100.0;
   // The ink first: the live footprint and cursor are drawn from pen samples taken as late as
-  // possible (after the scene's work, FrameContext::latch_pen), and while the pen is near the
-  // tablet a refinement to full resolution is cast in bands of rows of at most
-  // ink_refine_budget_ms a frame. False: the loop before late latching (the bench's baseline).
+  // possible (after the scene's work, FrameContext::latch_pen), and a refinement to full
+  // resolution waits while a stroke is drawn (it is cast after the lift). False: the loop
+  // before (the bench's baseline).
   bool ink_first = true;
-  double ink_refine_budget_ms = 4.0;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame

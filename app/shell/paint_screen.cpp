@@ -776,12 +776,12 @@ void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
     info->rendered_pixels = work.rendered_pixels;
     info->render_scale = work.render_scale;
     lit_pending_ = false;
-    if (work.render_scale >= 1.0f && unrefined_.empty()) {  // nothing left to refine
+    if (work.render_scale >= 1.0f) {  // shown at full resolution at once: nothing to refine
       info->refined_after_lift = true;
       info->pen_up_to_refined_ms = since_lift;
       info->lift_sample_to_refined_ms = since_lift_sample;
     }
-  } else if (work.refine && unrefined_.empty()) {
+  } else if (work.refine) {
     info->refined_after_lift = true;
     info->pen_up_to_refined_ms = since_lift;
     info->lift_sample_to_refined_ms = since_lift_sample;
@@ -797,21 +797,7 @@ bool PaintScreen::sceneStale() const {
 }
 
 bool PaintScreen::inkLive() const {
-  return options_.ink_first && session_ && !replay_view_ &&
-         (session_->engine().inStroke() || cursor_.visible);
-}
-
-ScreenRegion PaintScreen::refineSlice() const {
-  // While the ink is live a refinement yields to it: a band of rows that the last
-  // full-resolution frames say casts within the budget (64 rows before any was timed).
-  if (!inkLive() || unrefined_.empty()) return unrefined_;
-  const glm::ivec4 r = unrefined_.rect;
-  int rows = 64;
-  if (full_ms_per_pixel_ > 0.0)
-    rows = int(options_.ink_refine_budget_ms / (full_ms_per_pixel_ * std::max(1, r.z)));
-  rows = std::clamp(rows, 8, r.w);
-  if (rows >= r.w) return unrefined_;
-  return ScreenRegion{glm::ivec4(r.x, r.y, r.z, rows), false};
+  return options_.ink_first && session_ && !replay_view_ && session_->engine().inStroke();
 }
 
 void PaintScreen::renderScene(SceneWork* work) {
@@ -822,7 +808,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   // thesis's 128³ for 256³); at release the first frame recomputes it in full.
   renderer_.setLightPreviewDivisor(drag_light_ ? 2 : 1);
   const bool stale = sceneStale();
-  const bool refine = refine_pending_ && !stale;
+  // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
+  // do: each cast pays the ray bounds and clears of the whole sky, 100+ ms on a loaded llvmpipe).
+  const bool refine = refine_pending_ && !stale && !inkLive();
   work->refine = work->refine || refine;
   if (!stale && !refine) return;
   const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
@@ -862,23 +850,14 @@ void PaintScreen::renderScene(SceneWork* work) {
     options.scale = 1.0f;
     options.moving = false;
   }
-  ScreenRegion left_over;  // a refinement's rows not cast this frame
-  if (refine) {
-    region = refineSlice();
-    if (!(region.rect == unrefined_.rect))
-      left_over = {glm::ivec4(unrefined_.rect.x, unrefined_.rect.y + region.rect.w,
-                              unrefined_.rect.z, unrefined_.rect.w - region.rect.w),
-                   false};
-  } else if (options.scale >= 1.0f) {
-    region = region.unite(unrefined_);
-  }
+  if (options.scale >= 1.0f) region = region.unite(unrefined_);
   if (!region.empty()) {
     options.region = region.renderRegion();
     renderer_.render(key.camera, w, h, scene_.fbo(), options);
     work->rendered_pixels = renderer_.lastStats().pixels_cast;
     work->render_scale = options.scale;
   }
-  unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : left_over;
+  unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : ScreenRegion{};
   if (lit_pending_ || refine) {
     glFinish();
     work->render_ms = msSince(synced);

@@ -125,11 +125,8 @@ class PaintScreen : public Screen {
   // Casts what the cached scene lacks (stale: all or the changed region; else a refinement).
   void renderScene(SceneWork* work);
   bool sceneStale() const;
-  // The ink is being drawn or the pen is near (ink_first): a refinement yields to it.
+  // A stroke is being drawn (ink_first): a refinement waits for its lift.
   bool inkLive() const;
-  // The part of the unrefined region cast this frame: all of it, or while the ink is live a
-  // band of rows within ink_refine_budget_ms.
-  ScreenRegion refineSlice() const;
   bool drawOverlays(std::string* error);
   // After a lift: whether re-rendering `region` at full resolution, at the cost per pixel the
   // last full-resolution frames took, still shows it within options_.lift_budget_ms of the lift.

@@ -171,7 +171,9 @@ void paintAndCheck(bool ink_first) {
     EXPECT_EQ(f.source, PresentSource::kFinish);  // the test display is surfaceless
     EXPECT_LE(f.begin_ns, f.ready_ns);
     EXPECT_LE(f.ready_ns, f.present_ns);
-    if (i > 0) EXPECT_GT(f.present_ns, frames[i - 1].present_ns);
+    if (i > 0) {
+      EXPECT_GT(f.present_ns, frames[i - 1].present_ns);
+    }
     if (f.lift) ++lifts;
     if (!f.hasSample()) continue;
     // The frame first shows the next samples of the pen, in order: the oldest and newest it
