@@ -251,10 +251,10 @@ int benchLatency(int argc, char** argv) {
       runs[i] =
           runPainter(*display, renderer, cumulus, pen_journal,
                      dir + (ink_first ? "/ink_first.cbj" : "/baseline.cbj"), w, h, sky, ink_first);
-      std::printf(
-          "%s:\n%s",
-          ink_first ? "ink first (late latching, refinement in bands)" : "baseline (today's loop)",
-          formatFrameTimingStats(runs[i].stats, "  ").c_str());
+      std::printf("%s:\n%s",
+                  ink_first ? "ink first (late latching, refinement held while a stroke is drawn)"
+                            : "baseline (today's loop)",
+                  formatFrameTimingStats(runs[i].stats, "  ").c_str());
       std::printf(
           "  pen-up from the lift sample (with the stroke-end sync): lit %.1f ms, full "
           "resolution %.1f ms (medians)\n",

@@ -20,6 +20,9 @@ int64_t threadCpuNs() {
 
 // A frame is late when it comes more than half a refresh after the one it should have met.
 constexpr double kLateFraction = 1.5;
+// A sample stamped later than the present, or more than this before it, is on another clock (a
+// recording replayed at its own times): its count is kept, its time is not.
+constexpr int64_t kMaxSampleAgeNs = 60'000'000'000;
 // Without the display's mode (offscreen, X11) frames are judged against a 60 Hz refresh.
 constexpr uint32_t kNominalRefreshUs = 16667;
 
@@ -85,7 +88,10 @@ FrameRecord FrameStamper::presented(bool after_idle, bool lift, int64_t clock_of
   r.ready_ns = ready_ns_ + clock_offset_ns;
   r.cpu_us = uint32_t(std::max<int64_t>(0, cpu_ready_ns_ - cpu_begin_ns_) / 1000);
   r.new_samples = new_samples_;
-  if (new_samples_ > 0) {
+  const auto onThisClock = [&](int64_t t) {
+    return t <= r.present_ns && r.present_ns - t < kMaxSampleAgeNs;
+  };
+  if (new_samples_ > 0 && onThisClock(newest_ns_) && onThisClock(oldest_ns_)) {
     r.newest_sample_ns = newest_ns_;
     r.oldest_sample_ns = oldest_ns_;
   }

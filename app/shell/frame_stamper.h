@@ -2,8 +2,9 @@
 // which pen samples it is the first to show, when it was ready (drawn and finished) and when it
 // reached the screen — on KMS the page-flip event's vblank time, on X11 when swap + glFinish
 // returned (no Present completion events are read), offscreen when glFinish returned — its CPU
-// time on the loop thread, and whether it missed a refresh. Samples taken for a frame that was
-// not presented (abandoned, idle) count for the next presented one.
+// time on the loop thread, and whether it missed a refresh. Samples stamped on another clock (a
+// recording replayed at its recorded times) are counted without a time. Samples taken for a frame
+// that was not presented (abandoned, idle) count for the next presented one.
 #pragma once
 
 #include <cstdint>

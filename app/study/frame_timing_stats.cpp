@@ -73,7 +73,8 @@ FrameTimingStats frameTimingStats(const std::vector<FrameRecord>& frames) {
       ++s.quarters[q].missed_frames;
       s.skipped_refreshes += f.skipped_refreshes;
     }
-    if (!f.hasSample()) {
+    if (f.hasSample() && !f.hasTimedSample()) ++s.untimed_frames;
+    if (!f.hasTimedSample()) {
       previous_ink = nullptr;
       continue;
     }
@@ -115,6 +116,13 @@ std::string formatFrameTimingStats(const FrameTimingStats& s, const std::string&
                 s.frames, s.ink_frames, s.source.c_str(), s.refresh_ms,
                 s.nominal_refresh ? " (assumed: the display reports no mode)" : "");
   out += indent + text;
+  if (s.untimed_frames > 0) {
+    std::snprintf(text, sizeof text,
+                  "  %zu frames showed samples stamped on another clock (a recording replayed at "
+                  "its own times): no latency for them\n",
+                  s.untimed_frames);
+    out += indent + text;
+  }
   out += indent + line("  sample -> present, newest sample shown", s.sample_to_present);
   out += indent + line("  sample -> frame ready", s.sample_to_ready);
   out += indent + line("  oldest new sample -> present", s.oldest_to_present);

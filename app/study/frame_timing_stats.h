@@ -20,8 +20,9 @@ Percentiles percentilesOf(std::vector<double> ms);
 
 struct FrameTimingStats {
   size_t frames = 0;
-  size_t ink_frames = 0;  // frames first showing pen samples, lift frames aside
-  std::string source;     // how present times were taken (the first frame's, "mixed" if not all)
+  size_t ink_frames = 0;      // frames first showing pen samples, lift frames aside
+  size_t untimed_frames = 0;  // showing samples stamped on another clock (no latency)
+  std::string source;  // how present times were taken (the first frame's, "mixed" if not all)
   double refresh_ms = 0;
   bool nominal_refresh = false;
   Percentiles sample_to_present;  // newest sample shown → present, ink frames

@@ -36,6 +36,9 @@ struct FrameRecord {
   uint32_t skipped_refreshes = 0;  // refreshes passed without a new frame (dropped frames)
 
   bool hasSample() const { return new_samples > 0; }
+  // New samples whose times are on the present's clock (a recording replayed at its own times
+  // is not): their latency can be told.
+  bool hasTimedSample() const { return new_samples > 0 && newest_sample_ns != 0; }
 };
 
 inline constexpr size_t kFrameRecordBytes = 36;

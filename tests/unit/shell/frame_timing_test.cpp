@@ -78,8 +78,16 @@ TEST(FrameTimingStats, PercentilesLiftsAndMissedRefreshes) {
     f.skipped_refreshes = f.missed_refresh ? 1 : 0;
     frames.push_back(f);
   }
+  // A frame showing a sample stamped on another clock (no time kept): counted, no latency.
+  FrameRecord untimed = frames.back();
+  untimed.frame = 101;
+  untimed.lift = false;
+  untimed.missed_refresh = false;
+  untimed.newest_sample_ns = untimed.oldest_sample_ns = 0;
+  frames.push_back(untimed);
   const FrameTimingStats s = frameTimingStats(frames);
-  EXPECT_EQ(s.frames, 101u);
+  EXPECT_EQ(s.frames, 102u);
+  EXPECT_EQ(s.untimed_frames, 1u);
   EXPECT_EQ(s.ink_frames, 100u);
   EXPECT_DOUBLE_EQ(s.sample_to_present.p50, 50.0);
   EXPECT_DOUBLE_EQ(s.sample_to_present.p95, 95.0);
