@@ -36,6 +36,8 @@ const Bench kBenches[] = {
     {"sky", "the sparse volume's bytes for 1x, 4x, 16x sky area, against the dense grid", benchSky},
     {"strokes", "the stroke gallery at product defaults; --sheet: strokes x styles contact sheet",
      benchStrokes},
+    {"latency", "pen sample -> frame ready / present while painting, vs today's loop",
+     benchLatency},
 };
 
 }  // namespace

@@ -10,8 +10,11 @@
 //     reference strokes): painting-frame time, pen-up → first lit frame (reduced scale) and →
 //     full-resolution lit frame, with the region re-render (changed_region.h) and, as the
 //     baseline in the same run, with whole-frame re-renders (PaintLoopOptions::region_rerender).
-// Pen-up is timed from the painter receiving the lift sample (a replayed pen has no kernel
-// timestamp; `bench input` measures kernel → consumer) to glFinish of the frame.
+// Pen-up is timed from the lift sample's own timestamp to glFinish of the frame: the replayed pen
+// plays on its real time line at 200 Hz and stamps each sample with the time it played, as a
+// tablet's kernel timestamp is (ReplayOptions::restamp), and the session journals to a file, so
+// the figure holds the wait for the loop, the mapping and the journal's stroke-end fsync (until
+// now it ran from the painter receiving the lift, without a journal: printed as "received").
 // Every run paints in the product's default sky (sky_extent.h: 4 × 4 home boxes, 1024×256×1024
 // for grid 256). The sky-size table then repeats the painter at 1920×1080 in skies of 1, 4 and
 // 16 home boxes' area (spans 1, 2, 4; span 1 is the thesis's one 256³ box, the baseline), with
@@ -92,6 +95,7 @@ struct Row {
   double painting_ms = -1;
   double lit_ms = -1, full_ms = -1, lit_pixels = -1, full_pixels = -1;  // region path
   double lit_base_ms = -1, full_base_ms = -1;                           // whole-frame baseline
+  double lit_received_ms = -1;  // pen-up -> lit from the painter receiving the lift
   double mapping_ms = -1, sync_ms = -1, lit_render_ms = -1, full_render_ms = -1;
 };
 
@@ -106,6 +110,7 @@ struct PaintRun {
   // The first stroke alone (the one that grows the sky in the growth case), and the sky after.
   double first_lit_ms = -1, first_full_ms = -1, first_sync_ms = -1;
   int sky_span = 0;
+  double lit_received_ms = -1;  // from the painter receiving the lift (the earlier figure)
 };
 
 std::string writeStrokeJournal(const std::string& dir, Size size, int strokes) {
@@ -153,14 +158,20 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
     std::printf("  painter: %s\n", error.c_str());
     return run;
   }
+  const std::string dir = std::filesystem::path(journal).parent_path().string();
+  JournalWriter session_journal;  // journalled as the product does: the stroke-end fsync counts
+  if (!session_journal.open(dir + "/session.cbj")) {
+    std::printf("  painter: %s\n", session_journal.error().c_str());
+    return run;
+  }
+  session.recordTo(&session_journal, 0);
   ReplayOptions replay;
-  replay.realtime = false;
-  replay.batch = size.huge() ? 8 : 4;  // ~20 ms of a 200 Hz pen per frame (40 ms at 4K)
+  replay.realtime = true;
+  replay.restamp = true;
   ReplayPenSource pen(journal, replay);
   PaintLoopOptions options;
-  options.max_frames = 3000;
+  options.max_seconds = 300.0;  // a bound for a stuck loop; the replay's end ends it
   options.region_rerender = region;
-  const std::string dir = std::filesystem::path(journal).parent_path().string();
   options.config_dir = dir + "/config";  // nothing there: built-in calibration
   options.state_dir = dir + "/state";
   std::vector<double> lit_pixels, full_pixels, lit_render, full_render, sync;
@@ -183,18 +194,21 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
     std::printf("  painter: %s\n", error.c_str());
     return run;
   }
+  session.recordTo(nullptr, 0);
   run.painting_ms = summary.median_painting_frame_ms;
-  run.lit_ms = medianOr(summary.pen_up_to_lit_ms);
-  run.full_ms = medianOr(summary.pen_up_to_refined_ms);
+  run.lit_ms = medianOr(summary.lift_sample_to_lit_ms);
+  run.full_ms = medianOr(summary.lift_sample_to_refined_ms);
+  run.lit_received_ms = medianOr(summary.pen_up_to_lit_ms);
   run.mapping_ms = medianOr(summary.mapping_ms);
   run.lit_pixels = medianOr(lit_pixels);
   run.full_pixels = medianOr(full_pixels);
   run.lit_render_ms = medianOr(lit_render);
   run.full_render_ms = medianOr(full_render);
   run.sync_ms = medianOr(sync);
-  if (!summary.pen_up_to_lit_ms.empty()) run.first_lit_ms = summary.pen_up_to_lit_ms.front();
-  if (!summary.pen_up_to_refined_ms.empty())
-    run.first_full_ms = summary.pen_up_to_refined_ms.front();
+  if (!summary.lift_sample_to_lit_ms.empty())
+    run.first_lit_ms = summary.lift_sample_to_lit_ms.front();
+  if (!summary.lift_sample_to_refined_ms.empty())
+    run.first_full_ms = summary.lift_sample_to_refined_ms.front();
   if (!sync.empty()) run.first_sync_ms = sync.front();
   run.sky_span = session.sky().span;
   run.volume_mb = mb(session.volume().memoryBytes());
@@ -330,15 +344,17 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
         row.sync_ms = region.sync_ms;
         row.lit_render_ms = region.lit_render_ms;
         row.full_render_ms = region.full_render_ms;
+        row.lit_received_ms = region.lit_received_ms;
         row.lit_base_ms = whole.lit_ms;
         row.full_base_ms = whole.full_ms;
         std::printf(
             "  %s: painting %.1f ms/frame; pen-up -> lit %.1f ms (mapping %.1f, sync %.1f, ray "
             "cast %.1f), -> full %.1f ms (ray cast %.1f) with the region (%.0f / %.0f pixels "
-            "cast); whole frame: %.1f, %.1f ms\n",
+            "cast); whole frame: %.1f, %.1f ms; all from the lift sample's timestamp with the "
+            "journal's stroke-end fsync (-> lit from the painter receiving the lift: %.1f ms)\n",
             size.name().c_str(), row.painting_ms, row.lit_ms, row.mapping_ms, row.sync_ms,
             row.lit_render_ms, row.full_ms, row.full_render_ms, row.lit_pixels, row.full_pixels,
-            row.lit_base_ms, row.full_base_ms);
+            row.lit_base_ms, row.full_base_ms, row.lit_received_ms);
         std::printf(
             "  %s: memory after the strokes: volume %.1f MiB, GPU copies %.1f MiB, light %.1f MiB "
             "(process RSS %.0f MiB)\n",
@@ -391,6 +407,7 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
     report.figure(k + "painting_ms", row.painting_ms);
     report.figure(k + "pen_up_to_lit_ms", row.lit_ms);
     report.figure(k + "pen_up_to_full_ms", row.full_ms);
+    report.figure(k + "pen_up_received_to_lit_ms", row.lit_received_ms);
     report.figure(k + "lit_pixels_cast", row.lit_pixels);
     report.figure(k + "full_pixels_cast", row.full_pixels);
     report.figure(k + "mapping_ms", row.mapping_ms);

@@ -14,4 +14,5 @@ int benchTools(int argc, char** argv);
 int benchScale(int argc, char** argv);
 int benchSky(int argc, char** argv);
 int benchStrokes(int argc, char** argv);
+int benchLatency(int argc, char** argv);
 }  // namespace cb

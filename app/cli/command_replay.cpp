@@ -21,6 +21,7 @@
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/session_replay.h"
+#include "app/study/frame_timing_stats.h"
 #include "app/study/study_marker_text.h"
 #include "app/volume/volume_file.h"
 
@@ -51,6 +52,9 @@ constexpr const char* kReplayHelp =
     "  --size WxH          render and frame size (default: --frames the session's screen as\n"
     "                      recorded, --render 1280x720)\n"
     "  --threads N         worker threads (default: CLOUDBRUSH_THREADS or all cores)\n"
+    "  --stats             also print the session's frame timing from its Frame records: pen\n"
+    "                      sample -> present latency (p50/p95/p99, histogram), frame intervals,\n"
+    "                      missed refreshes, by quarter of the session\n"
     "  --help              this text\n";
 
 int fail(const std::string& message, int code = 1) {
@@ -107,13 +111,13 @@ int renderPng(const PaintSession& session, const std::string& path, int width, i
 }  // namespace
 
 int commandReplay(int argc, char** argv) {
-  Args args(argc, argv, {"help"});
+  Args args(argc, argv, {"help", "stats"});
   if (args.has("help")) {
     std::fputs(kReplayHelp, stdout);
     return 0;
   }
   const auto unknown =
-      args.unknown({"help", "out-volume", "render", "size", "threads", "frames", "fps"});
+      args.unknown({"help", "out-volume", "render", "size", "threads", "frames", "fps", "stats"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() != 2)
     return fail("expected one journal file: cloudbrush replay SESSION.cbj (see --help)", 2);
@@ -238,6 +242,14 @@ int commandReplay(int argc, char** argv) {
                                     : "brush and mapping from the local config (none recorded)");
   for (const std::string& line : task_lines) std::printf("%s\n", line.c_str());
   std::printf("volume checksum: %016" PRIx64 "\n", volumeChecksum(session.volume()));
+  if (args.has("stats")) {
+    std::vector<FrameRecord> frames;
+    for (const JournalRecord& record : journal.records)
+      if (record.type == JournalRecordType::kFrame)
+        if (std::optional<FrameRecord> f = decodeFrameRecord(record.t_ns, record.payload))
+          frames.push_back(*f);
+    std::fputs(formatFrameTimingStats(frameTimingStats(frames), "").c_str(), stdout);
+  }
   if (task_differs)
     return fail("a task's replayed volume differs from the one saved in " + folder.string(), 4);
 

@@ -156,6 +156,14 @@ void PaintSession::journalText(JournalRecordType type, int64_t t_ns, const std::
     std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
 }
 
+void PaintSession::journalFrame(const FrameRecord& record) {
+  if (!journal_) return;
+  const std::vector<uint8_t> payload = encodeFrameRecord(record);
+  if (!journal_->append(JournalRecordType::kFrame, record.present_ns, payload.data(),
+                        payload.size()))
+    std::fprintf(stderr, "cloudbrush: journal: %s\n", journal_->error().c_str());
+}
+
 void PaintSession::recordTo(JournalWriter* journal, int64_t t_ns) {
   journal_ = journal;
   journalText(JournalRecordType::kSession, t_ns, formatSessionSettings(settings_));
@@ -753,6 +761,7 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
         sync_seq_ = std::max(sync_seq_, marker->seq);
       return true;
     case JournalRecordType::kStrokeMapped:
+    case JournalRecordType::kFrame:
       return true;  // a measurement of the recording run; this run measures its own
     case JournalRecordType::kMarker:
       if (record.text().rfind("opened ", 0) == 0) {

@@ -34,6 +34,7 @@
 #include "calibration/calibration_profile.h"
 #include "calibration/calibrator.h"
 #include "drivers/core/journal.h"
+#include "drivers/core/journal_frame.h"
 
 namespace cb {
 
@@ -165,6 +166,9 @@ class PaintSession {
   // without pressure report contact as full pressure).
   float rubOutDiameterAt(float pressure) const;
 
+  // One presented frame's timing (drivers/core/journal_frame.h) as a Frame record: a
+  // measurement of this run, which a replay skips.
+  void journalFrame(const FrameRecord& record);
   // Replay: applies one journal record as if it happened now (Session records must match the
   // settings this session was made with; Marker/Mode records are ignored). False with *error
   // naming the record's problem; the caller decides whether to go on.

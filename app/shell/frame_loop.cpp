@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "app/render/gl/gl.h"
+#include "app/shell/frame_stamper.h"
 #include "app/shell/keymap.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
@@ -30,8 +32,11 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
   std::vector<PenSample> samples;
   // Phase marks of one iteration (monotonic), for the slow-iteration log line.
   int64_t mark_start = 0, mark_pen = 0, mark_update = 0, mark_draw = 0;
+  FrameStamper stamper(display_);
+  bool idled = false;  // the loop slept (nothing to draw) since the last present
   while (true) {
     mark_start = monotonicNs();
+    stamper.begin(mark_start);
     std::string quit;
     for (const DisplayEvent& event : display_.pollEvents()) pending.push_back(event);
     for (const DisplayEvent& event : pending) {
@@ -77,7 +82,15 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     if (quit.empty() && pen_) {
       samples.clear();
       pen_->poll(0, samples);
+      stamper.samplesTaken(samples);
       screen.onPenSamples(samples);
+      frame.latch_pen = [&] {
+        samples.clear();
+        pen_->poll(0, samples);
+        if (samples.empty()) return;
+        stamper.samplesTaken(samples);
+        screen.onPenSamples(samples);
+      };
     }
     mark_pen = monotonicNs();
     if (quit.empty()) quit = screen.update(frame);
@@ -91,6 +104,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       // so `--frames N` ends even on a still scene.
       std::this_thread::sleep_for(std::chrono::milliseconds(15));
       if (options.max_frames > 0) ++result->frames;
+      idled = true;
       if (options.each_iteration) options.each_iteration(false);
       continue;
     }
@@ -102,9 +116,15 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
       continue;
     }
     if (options.after_draw) options.after_draw(frame);
+    glFinish();  // the frame is ready: drawn, not only queued (sample -> frame-ready)
     mark_draw = monotonicNs();
+    stamper.ready(mark_draw);
     if (!display_.present(error)) return false;
     const int64_t presented = monotonicNs();
+    const FrameRecord record = stamper.presented(
+        idled, frame.shows_lift, options.clock ? options.clock->nowNs() - monotonicNs() : 0);
+    idled = false;
+    frame.record = &record;
     if (options.slow_iteration_s > 0.0 &&
         double(presented - mark_start) / 1e9 >= options.slow_iteration_s)
       std::fprintf(stderr,

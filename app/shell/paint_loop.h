@@ -49,13 +49,17 @@ struct PaintFrameInfo {
   size_t texels_uploaded = 0;         // footprint texels uploaded for this frame
   bool first_lit_after_lift = false;  // first frame showing the volume after a stroke was mapped
   double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
-  double mapping_ms = 0.0;            // of which: the stroke mapper (StrokeMapper::map)
-  double sync_ms = 0.0;               // renderer sync: occupancy, light, pack, upload
-  double render_ms = 0.0;             // ray casting the scene (to glFinish; also when refined)
-  double composite_ms = 0.0;          // the scene to the display (a blit on the lit frame)
+  // The same from the lift sample's own timestamp (the kernel's; a replayed pen's restamped
+  // time), including the journal's stroke-end sync; 0 when the sample's clock is not this one.
+  double lift_sample_to_lit_ms = 0.0;
+  double mapping_ms = 0.0;    // of which: the stroke mapper (StrokeMapper::map)
+  double sync_ms = 0.0;       // renderer sync: occupancy, light, pack, upload
+  double render_ms = 0.0;     // ray casting the scene (to glFinish; also when refined)
+  double composite_ms = 0.0;  // the scene to the display (a blit on the lit frame)
   // The frame after the first lit one re-renders the scene at full resolution.
   bool refined_after_lift = false;
   double pen_up_to_refined_ms = 0.0;
+  double lift_sample_to_refined_ms = 0.0;  // from the lift sample's timestamp, as above
   // The scene render of this frame (lit or refined): pixels ray cast (RenderStats::pixels_cast,
   // of the image at render_scale) and that scale; 0 when the scene was not re-rendered.
   long long rendered_pixels = 0;
@@ -78,6 +82,11 @@ struct PaintLoopOptions {
   // full-resolution frames say it can be cast at full resolution within this long of the lift
   // (pen-up → first lit frame ≤ 100 ms); then it is shown so at once.
   double lift_budget_ms = 100.0;
+  // The ink first: the live footprint and cursor are drawn from pen samples taken as late as
+  // possible (after the scene's work, FrameContext::latch_pen), and a refinement to full
+  // resolution waits while a stroke is drawn (it is cast after the lift). False: the loop
+  // before (the bench's baseline).
+  bool ink_first = true;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame
@@ -119,6 +128,9 @@ struct PaintLoopSummary {
   std::vector<double> pen_up_to_lit_ms;  // per mapped stroke: lift received -> lit frame drawn
   std::vector<double> mapping_ms, sync_ms, render_ms;  // per mapped stroke, parts of the above
   std::vector<double> pen_up_to_refined_ms;  // per mapped stroke: lift -> full-resolution frame
+  // The same two from the lift sample's timestamp (with the stroke-end journal sync); empty
+  // when the pen's clock is not the loop's (a replay fed as fast as polled).
+  std::vector<double> lift_sample_to_lit_ms, lift_sample_to_refined_ms;
   double median_pen_up_to_lit_ms() const;
 };
 

@@ -34,6 +34,14 @@ double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
+// Milliseconds since the pen sample stamped `t_ns`, when the pen's clock is the monotonic one
+// (a kernel timestamp, a replayed pen restamped on its real time line: a lift at most 10 s
+// ago); 0 for a replay fed as fast as polled, which carries its recorded times.
+double msSinceSample(int64_t t_ns) {
+  const int64_t since = MonotonicClock().nowNs() - t_ns;
+  return t_ns > 0 && since >= 0 && since < 10'000'000'000 ? double(since) / 1e6 : 0.0;
+}
+
 double medianOf(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
@@ -302,6 +310,7 @@ void PaintScreen::feedSample(const PenSample& sample) {
   const auto received = std::chrono::steady_clock::now();  // pen-up -> lit counts the mapping
   const SampleOutcome outcome = session_->feed(sample);
   ++pen_samples_;
+  if (outcome.stroke_mapped) lift_sample_ns_ = sample.t_ns;
   afterSample(outcome, received);
   events_.clear();
   pen_events_.derive(outcome.mapped, &events_);
@@ -532,72 +541,16 @@ bool PaintScreen::paintingSetUp(std::string* error) {
   return true;
 }
 
-void PaintScreen::drawStill(PaintFrameInfo* info) {
+void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
-  double sync_ms = 0.0, render_ms = 0.0;
   const auto render_start = std::chrono::steady_clock::now();
-  const SceneKey key = currentKey();
-  // While the light ball is dragged the light volume is swept at half resolution per axis (the
-  // thesis's 128³ for 256³); at release the first frame recomputes it in full.
-  renderer_.setLightPreviewDivisor(drag_light_ ? 2 : 1);
-  const bool stale = !drawn_ || !(*drawn_ == key) || (renderer_.lightIsPreview() && !drag_light_);
-  const bool refine = refine_pending_ && !stale;
-  long long rendered_pixels = 0;
-  float render_scale = 0.0f;
-  if (stale || refine) {
-    const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
-    const auto synced = std::chrono::steady_clock::now();
-    sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
-    // Right after a lift, and while a drag moves the view or the light, the scene is shown at
-    // the moving resolution first, then refined to full resolution.
-    RenderOptions options = options_.render;
-    options.style = key.style;
-    options.collect_stats = show_stats_;
-    const bool dragging = drag_camera_ || drag_light_;
-    options.scale =
-        (lit_pending_ || dragging || animationPlaying()) && !refine ? moving_scale_ : 1.0f;
-    options.moving = options.scale < 1.0f;
-    // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
-    // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
-    // a full-resolution frame also redoes what is still at the reduced resolution.
-    // A sky grown around the drawn volume, which the renderer followed (VolumeRenderer::sync),
-    // shows the same world: only what changed since is re-rendered, as after an edit.
-    const uint64_t drawn_volume =
-        drawn_ && sync.followed_growth && drawn_->volume == shownVolume().growth().from_instance
-            ? key.volume
-        : drawn_ ? drawn_->volume
-                 : 0;
-    ScreenRegion region = ScreenRegion::wholeFrame(w, h);
-    if (refine)
-      region = {};
-    else if (drawn_ && options_.region_rerender && !key.stats &&
-             SceneKey{drawn_volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
-                      drawn_->style} == key)
-      region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, key.style);
-    // Right after a lift, a change the last refinements say can be cast at full resolution
-    // within the pen-up budget is shown so at once (no reduced frame, no refinement).
-    const bool full_at_once = lit_pending_ && !refine && !dragging && !animationPlaying() &&
-                              liftFitsFullResolution(region);
-    if (full_at_once) {
-      options.scale = 1.0f;
-      options.moving = false;
-    }
-    if (options.scale >= 1.0f) region = region.unite(unrefined_);
-    if (!region.empty()) {
-      options.region = region.renderRegion();
-      renderer_.render(key.camera, w, h, scene_.fbo(), options);
-      rendered_pixels = renderer_.lastStats().pixels_cast;
-      render_scale = options.scale;
-    }
-    unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : ScreenRegion{};
-    if (lit_pending_ || refine) {
-      glFinish();
-      render_ms = msSince(synced);
-      if (options.scale >= 1.0f) learnFullResolutionCost(render_ms, region);
-    }
-    overlay_.invalidate();
-    drawn_ = key;
-    refine_pending_ = !unrefined_.empty();
+  SceneWork work;
+  renderScene(&work);
+  // Late latching: the ink shows the samples that came while the scene was being cast. A
+  // latched lift (or a view the pen changed) makes the scene stale: cast it again.
+  if (options_.ink_first && frame.latch_pen && !lit_pending_ && !replay_view_) {
+    frame.latch_pen();
+    if (lit_pending_ || sceneStale()) renderScene(&work);
   }
   if (lit_pending_) {
     // The footprint was just cleared, so the frame is the scene alone: a blit instead of the
@@ -605,6 +558,7 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
     glBlitNamedFramebuffer(scene_.fbo(), display_.framebuffer(), 0, 0, w, h, 0, 0, w, h,
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
     overlay_.invalidate();
+    frame.shows_lift = true;
   } else {
     overlay_.draw(scene_.texture(), display_.framebuffer(), w, h, cursor_);
   }
@@ -612,29 +566,110 @@ void PaintScreen::drawStill(PaintFrameInfo* info) {
   info->in_stroke = session_ && session_->engine().inStroke();
   info->texels_uploaded = texels_this_frame_;
   texels_this_frame_ = 0;
-  if (lit_pending_ || refine) glFinish();  // the frame is really drawn, not only queued
+  if (lit_pending_ || work.refine) glFinish();  // the frame is really drawn, not only queued
   const double since_lift = msSince(lift_time_);
+  const double since_lift_sample = msSinceSample(lift_sample_ns_);
   if (lit_pending_) {
     info->first_lit_after_lift = true;
     info->pen_up_to_lit_ms = since_lift;
+    info->lift_sample_to_lit_ms = since_lift_sample;
     info->mapping_ms = lift_mapping_ms_;
-    info->sync_ms = sync_ms;
-    info->render_ms = render_ms;
-    info->composite_ms = msSince(render_start) - sync_ms - render_ms;
-    info->rendered_pixels = rendered_pixels;
-    info->render_scale = render_scale;
+    info->sync_ms = work.sync_ms;
+    info->render_ms = work.render_ms;
+    info->composite_ms = msSince(render_start) - work.sync_ms - work.render_ms;
+    info->rendered_pixels = work.rendered_pixels;
+    info->render_scale = work.render_scale;
     lit_pending_ = false;
-    if (render_scale >= 1.0f) {  // shown at full resolution at once: nothing left to refine
+    if (work.render_scale >= 1.0f) {  // shown at full resolution at once: nothing to refine
       info->refined_after_lift = true;
       info->pen_up_to_refined_ms = since_lift;
+      info->lift_sample_to_refined_ms = since_lift_sample;
     }
-  } else if (refine) {
+  } else if (work.refine) {
     info->refined_after_lift = true;
     info->pen_up_to_refined_ms = since_lift;
-    info->render_ms = render_ms;
-    info->rendered_pixels = rendered_pixels;
-    info->render_scale = render_scale;
+    info->lift_sample_to_refined_ms = since_lift_sample;
+    info->render_ms = work.render_ms;
+    info->rendered_pixels = work.rendered_pixels;
+    info->render_scale = work.render_scale;
   }
+}
+
+bool PaintScreen::sceneStale() const {
+  const SceneKey key = currentKey();
+  return !drawn_ || !(*drawn_ == key) || (renderer_.lightIsPreview() && !drag_light_);
+}
+
+bool PaintScreen::inkLive() const {
+  return options_.ink_first && session_ && !replay_view_ && session_->engine().inStroke();
+}
+
+void PaintScreen::renderScene(SceneWork* work) {
+  const int w = display_.width(), h = display_.height();
+  const auto render_start = std::chrono::steady_clock::now();
+  const SceneKey key = currentKey();
+  // While the light ball is dragged the light volume is swept at half resolution per axis (the
+  // thesis's 128³ for 256³); at release the first frame recomputes it in full.
+  renderer_.setLightPreviewDivisor(drag_light_ ? 2 : 1);
+  const bool stale = sceneStale();
+  // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
+  // do: each cast pays the ray bounds and clears of the whole sky, 100+ ms on a loaded llvmpipe).
+  const bool refine = refine_pending_ && !stale && !inkLive();
+  work->refine = work->refine || refine;
+  if (!stale && !refine) return;
+  const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
+  const auto synced = std::chrono::steady_clock::now();
+  work->sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
+  // Right after a lift, and while a drag moves the view or the light, the scene is shown at
+  // the moving resolution first, then refined to full resolution.
+  RenderOptions options = options_.render;
+  options.style = key.style;
+  options.collect_stats = show_stats_;
+  const bool dragging = drag_camera_ || drag_light_;
+  options.scale =
+      (lit_pending_ || dragging || animationPlaying()) && !refine ? moving_scale_ : 1.0f;
+  options.moving = options.scale < 1.0f;
+  // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
+  // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
+  // a full-resolution frame also redoes what is still at the reduced resolution.
+  // A sky grown around the drawn volume, which the renderer followed (VolumeRenderer::sync),
+  // shows the same world: only what changed since is re-rendered, as after an edit.
+  const uint64_t drawn_volume =
+      drawn_ && sync.followed_growth && drawn_->volume == shownVolume().growth().from_instance
+          ? key.volume
+      : drawn_ ? drawn_->volume
+               : 0;
+  ScreenRegion region = ScreenRegion::wholeFrame(w, h);
+  if (refine)
+    region = {};
+  else if (drawn_ && options_.region_rerender && !key.stats &&
+           SceneKey{drawn_volume, key.generation, drawn_->camera, drawn_->light, drawn_->stats,
+                    drawn_->style} == key)
+    region = changedScreenRegion(key.camera, w, h, shownVolume(), sync, key.style);
+  // Right after a lift, a change the last refinements say can be cast at full resolution
+  // within the pen-up budget is shown so at once (no reduced frame, no refinement).
+  const bool full_at_once =
+      lit_pending_ && !refine && !dragging && !animationPlaying() && liftFitsFullResolution(region);
+  if (full_at_once) {
+    options.scale = 1.0f;
+    options.moving = false;
+  }
+  if (options.scale >= 1.0f) region = region.unite(unrefined_);
+  if (!region.empty()) {
+    options.region = region.renderRegion();
+    renderer_.render(key.camera, w, h, scene_.fbo(), options);
+    work->rendered_pixels = renderer_.lastStats().pixels_cast;
+    work->render_scale = options.scale;
+  }
+  unrefined_ = options.scale < 1.0f ? unrefined_.unite(region) : ScreenRegion{};
+  if (lit_pending_ || refine) {
+    glFinish();
+    work->render_ms = msSince(synced);
+    if (options.scale >= 1.0f) learnFullResolutionCost(work->render_ms, region);
+  }
+  overlay_.invalidate();
+  drawn_ = key;
+  refine_pending_ = !unrefined_.empty();
 }
 
 bool PaintScreen::liftFitsFullResolution(const ScreenRegion& region) const {
@@ -731,7 +766,11 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
   info.frame = frame.frame;
   if ((pen_ || replay_view_) && !orbiting_) {
     if (!paintingSetUp(error)) return false;
-    drawStill(&info);
+    drawStill(frame, &info);
+    if (info.first_lit_after_lift && info.lift_sample_to_lit_ms > 0.0)
+      lift_sample_to_lit_ms_.push_back(info.lift_sample_to_lit_ms);
+    if (info.refined_after_lift && info.lift_sample_to_refined_ms > 0.0)
+      lift_sample_to_refined_ms_.push_back(info.lift_sample_to_refined_ms);
     if (info.first_lit_after_lift) {
       pen_up_to_lit_ms_.push_back(info.pen_up_to_lit_ms);
       mapping_ms_.push_back(info.mapping_ms);
@@ -777,6 +816,8 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
 }
 
 void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
+  // Every presented frame's timing goes to the session's journal (a replay draws, not records).
+  if (frame.record && session_ && !replay_view_) session_->journalFrame(*frame.record);
   const PaintFrameInfo& info = last_info_;
   if (info.painting_view) {
     // Frames while a stroke is drawn, except the lift frames (mapping + re-render).
@@ -972,6 +1013,8 @@ void PaintScreen::finish(PaintLoopSummary* summary) const {
   summary->sync_ms = sync_ms_;
   summary->render_ms = render_ms_;
   summary->pen_up_to_refined_ms = refined_ms_;
+  summary->lift_sample_to_lit_ms = lift_sample_to_lit_ms_;
+  summary->lift_sample_to_refined_ms = lift_sample_to_refined_ms_;
   summary->refined_frames = refined_frames_;
   summary->final_moving_scale = moving_scale_;
   summary->median_painting_frame_ms = medianOf(painting_frame_ms_);

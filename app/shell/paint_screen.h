@@ -158,7 +158,19 @@ class PaintScreen : public Screen {
   const Volume& shownVolume() const;
   Light shownLight() const;
   bool paintingSetUp(std::string* error);
-  void drawStill(PaintFrameInfo* info);
+  void drawStill(FrameContext& frame, PaintFrameInfo* info);
+  // What a scene render did this frame (renderScene may run twice: after a late-latched lift).
+  struct SceneWork {
+    bool refine = false;  // a refinement to full resolution was cast
+    double sync_ms = 0.0, render_ms = 0.0;
+    long long rendered_pixels = 0;
+    float render_scale = 0.0f;
+  };
+  // Casts what the cached scene lacks (stale: all or the changed region; else a refinement).
+  void renderScene(SceneWork* work);
+  bool sceneStale() const;
+  // A stroke is being drawn (ink_first): a refinement waits for its lift.
+  bool inkLive() const;
   bool drawOverlays(std::string* error);
   // After a lift: whether re-rendering `region` at full resolution, at the cost per pixel the
   // last full-resolution frames took, still shows it within options_.lift_budget_ms of the lift.
@@ -223,6 +235,7 @@ class PaintScreen : public Screen {
   bool refine_pending_ = false;
   ScreenRegion unrefined_;  // the part of scene_ still at the reduced resolution
   std::chrono::steady_clock::time_point lift_time_;
+  int64_t lift_sample_ns_ = 0;  // the lift sample's timestamp (the pen's clock)
   double lift_mapping_ms_ = 0.0;
   // Full-resolution ray-cast milliseconds per pixel of the re-rendered region, from the last
   // timed full-resolution frames (0: none yet); liftFitsFullResolution predicts with it.
@@ -262,6 +275,7 @@ class PaintScreen : public Screen {
   long pen_samples_ = 0, strokes_seen_ = 0;
   std::vector<double> moving_frame_ms_, painting_frame_ms_;
   std::vector<double> pen_up_to_lit_ms_, mapping_ms_, sync_ms_, render_ms_, refined_ms_;
+  std::vector<double> lift_sample_to_lit_ms_, lift_sample_to_refined_ms_;
   long refined_frames_ = 0;
   PaintFrameInfo last_info_;
 };

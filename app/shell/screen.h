@@ -12,6 +12,7 @@
 
 #include "app/render/gl/display.h"
 #include "app/shell/command.h"
+#include "drivers/core/journal_frame.h"
 #include "drivers/core/pen_sample.h"
 
 namespace cb {
@@ -29,6 +30,16 @@ struct FrameContext {
   // Set by draw() when it gave the frame up for waiting input: the loop does not present it (the
   // last frame stays on the screen) and goes round again at once, taking the input.
   bool abandoned = false;
+  // Late latching: hands the screen (onPenSamples) the pen samples that arrived since the frame
+  // began, so the ink drawn next shows them. A screen calls it after its slow work (the scene),
+  // right before drawing the ink. Null: no pen.
+  std::function<void()> latch_pen = nullptr;
+  // Set by draw() when the frame shows a lifted stroke's cloud (journalled: the pen-up wait, not
+  // the ink's).
+  bool shows_lift = false;
+  // In presented(): this frame's timing (present time, newest sample shown, CPU time, missed
+  // refresh), for the screen to journal. Null before present.
+  const FrameRecord* record = nullptr;
 };
 
 class Screen {

@@ -79,6 +79,11 @@ SessionTrace sessionTraceFromJournal(const JournalReadResult& journal, const std
                                 task < 0 ? "" : trace.task_ids[size_t(task)]});
         break;
       }
+      case JournalRecordType::kFrame:
+        // Frame timing (journal_frame.h): kept apart from the events, binary and one a frame.
+        if (std::optional<FrameRecord> frame = decodeFrameRecord(record.t_ns, record.payload))
+          trace.frames.push_back(*frame);
+        break;
       default:
         trace.events.push_back({i, record.type, record.t_ns, std::string(record.text()),
                                 task < 0 ? "" : trace.task_ids[size_t(task)]});

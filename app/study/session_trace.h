@@ -1,5 +1,6 @@
 // A session journal read for analysis: the device, every raw pen sample and every non-sample
-// record (UI/mode changes, markers, calibration, session metadata) in journal order, without
+// record (UI/mode changes, markers, calibration, session metadata) in journal order, the
+// presented frames' timing apart, without
 // replaying anything. This is what the pen-trace exports (InkML, CSV) are made from.
 #pragma once
 
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "drivers/core/journal.h"
+#include "drivers/core/journal_frame.h"
 #include "drivers/core/pen_sample.h"
 
 namespace cb {
@@ -40,8 +42,9 @@ struct SessionTrace {
   std::vector<PenSample> samples;
   std::vector<size_t> sample_records;  // journal record index of each sample
   std::vector<TraceEvent> events;
-  std::string journal_warning;  // the reader's message for a torn/corrupt tail, else empty
-  int64_t t0_ns = 0;            // t_ns of the first record: the session's time origin
+  std::vector<FrameRecord> frames;  // the Frame records (presented frames' timing), in order
+  std::string journal_warning;      // the reader's message for a torn/corrupt tail, else empty
+  int64_t t0_ns = 0;                // t_ns of the first record: the session's time origin
 };
 
 // t − origin in nanoseconds, saturated to the int64 range (journals from elsewhere may hold any

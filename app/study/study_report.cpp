@@ -6,6 +6,7 @@ namespace cb {
 
 SessionFigures sessionFigures(const SessionTrace& trace) {
   SessionFigures f;
+  f.timing = frameTimingStats(trace.frames);
   f.id = trace.id;
   f.samples = trace.samples.size();
   if (!trace.samples.empty())

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/study/frame_timing_stats.h"
 #include "app/study/likert_statistics.h"
 #include "app/study/session_trace.h"
 
@@ -28,6 +29,7 @@ struct SessionFigures {
   double tip_down_s = 0;                     // summed stroke durations
   std::vector<double> pressure_t, pressure;  // tip-down samples (at most ~2000, evenly kept)
   std::vector<double> stroke_start_s, stroke_speed;  // per stroke with a speed (mm/s)
+  FrameTimingStats timing;  // from the journal's Frame records (none in older journals)
 };
 
 struct StudyReport {

@@ -78,6 +78,8 @@ std::string sessionSection(const StudyReport& report) {
   html += "</table>\n";
   for (const SessionFigures& s : report.sessions) {
     html += "<h3>" + htmlEscape(s.id) + "</h3>\n";
+    // Pen sample -> present latency, frame intervals and missed refreshes (Frame records).
+    html += "<pre>" + htmlEscape(formatFrameTimingStats(s.timing, "")) + "</pre>\n";
     html +=
         timeSeriesSvg(s.pressure_t, s.pressure, "pressure while the tip is down", "0..1", 0.0, 1.0);
     const double top_speed = s.stroke_speed.empty()

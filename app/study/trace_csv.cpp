@@ -42,6 +42,8 @@ std::string eventKindName(JournalRecordType type) {
       return "stroke_mapped";
     case JournalRecordType::kSync:
       return "sync";
+    case JournalRecordType::kFrame:
+      return "frame";
   }
   return "type-" + std::to_string(static_cast<uint32_t>(type));
 }

@@ -36,8 +36,9 @@ enum class JournalRecordType : uint32_t {
   kSettings = 8,      // payload: one config file in force (TOML; first line "# NAME.toml")
   kStrokeMapped = 9,  // payload: a recorded measurement of one mapped stroke (TOML; not input)
   kSync = 10,         // payload: a sync marker (task or stroke boundary), as sent over UDP
+  kFrame = 11,        // payload: encodeFrameRecord() (journal_frame.h), one presented frame
 };
-inline constexpr uint32_t kLastJournalRecordType = 10;
+inline constexpr uint32_t kLastJournalRecordType = 11;
 
 struct JournalRecord {
   JournalRecordType type{};

@@ -54,8 +54,12 @@ void ReplayPenSource::poll(int timeout_ms, std::vector<PenSample>& out) {
       if (clock_ == &default_clock_ || options_.timeline)
         std::this_thread::sleep_for(std::chrono::nanoseconds(wait_ns));
     }
-    while (next_ < samples_.size() && due(next_) <= clock_->nowNs())
-      out.push_back(samples_[next_++]);
+    while (next_ < samples_.size() && due(next_) <= clock_->nowNs()) {
+      PenSample sample = samples_[next_];
+      if (options_.restamp) sample.t_ns = due(next_);
+      out.push_back(sample);
+      ++next_;
+    }
   }
   if (next_ >= samples_.size()) {
     if (options_.loop) {

@@ -20,6 +20,9 @@ struct ReplayOptions {
   // realtime: the clock reads the recording's own time line (a TimelineClock), so each sample
   // plays when the clock reaches its t_ns; false: the first sample plays at the first poll.
   bool timeline = false;
+  // realtime: each sample's t_ns becomes the clock's time at which it played, as a tablet's
+  // kernel timestamp is the time of the report (latency is measured from it).
+  bool restamp = false;
 };
 
 class ReplayPenSource final : public PenSource {
