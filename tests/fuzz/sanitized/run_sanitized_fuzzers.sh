@@ -19,6 +19,8 @@ launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
+# ccache keys on paths below this folder relative to it, so another clone or worktree hits.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(dirname "$(cd "$src" && pwd)")}
 start=$(date +%s)
 if [ ! -f "$build/build.ninja" ]; then
   if ! CC=clang CXX=clang++ cmake -S "$src" -B "$build" -G Ninja -DCLOUDBRUSH_FUZZ=ON \
