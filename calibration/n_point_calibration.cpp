@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -175,12 +176,13 @@ std::optional<TapFile> parseTapFile(std::string_view text, const std::string& na
       return fail(n.source(), "[[tap]] needs target_px = [x, y] and pen_mm = [x, y]");
     }
     Tap tap;
-    auto tx = (*tp)[0].value<double>(), ty = (*tp)[1].value<double>();
-    auto px = (*pm)[0].value<double>(), py = (*pm)[1].value<double>();
-    if (!tx || !ty || !px || !py || !std::isfinite(*tx) || !std::isfinite(*ty) ||
-        !std::isfinite(*px) || !std::isfinite(*py)) {
-      return fail(n.source(), "[[tap]] coordinates must be finite numbers");
-    }
+    auto coordinate = [&](const toml::node& c, const char* field) {
+      return toml_number::numberIn(c, name, field, -DBL_MAX, DBL_MAX, &why);
+    };
+    const auto tx = coordinate((*tp)[0], "tap.target_px"),
+               ty = coordinate((*tp)[1], "tap.target_px");
+    const auto px = coordinate((*pm)[0], "tap.pen_mm"), py = coordinate((*pm)[1], "tap.pen_mm");
+    if (!tx || !ty || !px || !py) return fail_with(why);
     tap.target_px = {*tx, *ty};
     tap.pen_mm = {*px, *py};
     f.taps.push_back(tap);

@@ -14,12 +14,14 @@
 
 namespace cb::toml_number {
 
-// "FILE:LINE: field: what" for a node (the file as toml++ recorded it when `file` is empty).
+// "FILE:LINE: field: what" for a node (the file as toml++ recorded it when `file` is empty;
+// "line LINE: field: what" when neither names one).
 inline std::string where(const toml::node& node, std::string_view file, std::string_view field,
                          std::string_view what) {
   std::string f(file);
   if (f.empty() && node.source().path) f = *node.source().path;
-  return f + ":" + std::to_string(node.source().begin.line) + ": " + std::string(field) + ": " +
+  const std::string line = std::to_string(node.source().begin.line);
+  return (f.empty() ? "line " + line : f + ":" + line) + ": " + std::string(field) + ": " +
          std::string(what);
 }
 
