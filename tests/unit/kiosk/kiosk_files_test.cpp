@@ -81,7 +81,8 @@ TEST(KioskConfig, BadValuesNameTheFileAndKey) {
             std::string::npos);
   EXPECT_NE(error_of("[operator]\npin = \"12\"\n").find("operator.pin must have 4 to 12"),
             std::string::npos);
-  EXPECT_NE(error_of("[visitor]\nidle_seconds = \"long\"\n").find("visitor.idle_seconds must be"),
+  EXPECT_NE(error_of("[visitor]\nidle_seconds = \"long\"\n")
+                .find(path + ":2: visitor.idle_seconds: expected a number"),
             std::string::npos);
   EXPECT_NE(error_of("[visitor]\nidle_seconds = 5\nwarning_seconds = 6\n")
                 .find("warning_seconds must be less than"),
