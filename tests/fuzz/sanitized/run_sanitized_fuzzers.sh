@@ -24,7 +24,8 @@ launcher=()
 if command -v ccache >/dev/null; then
   launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
-# ccache keys on paths below this folder relative to it, so another clone or worktree hits.
+# ccache keys on paths below this folder relative to it; with -g it also hashes the build folder
+# (hash_dir), so another clone hits only with CCACHE_NOHASHDIR=1. The same build folder always hits.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(dirname "$(cd "$src" && pwd)")}
 start=$(date +%s)
 # configure_and_build DIR UNITY TARGET...: the clang build in DIR (configured once).
