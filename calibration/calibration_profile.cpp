@@ -1,12 +1,14 @@
 #include "calibration/calibration_profile.h"
 
 #include <toml++/toml.h>
+#include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 
@@ -61,15 +63,12 @@ class ProfileReader {
               double hi, double* out) {
     const toml::node* n = t.get(key);
     if (!n) return;
-    std::optional<double> v = n->value<double>();
-    if (!v || n->is_boolean() || n->is_string()) {
-      error(*n, section + "." + key + " must be a number");
-    } else if (!std::isfinite(*v) || *v < lo || *v > hi) {
-      error(*n, section + "." + key + " = " + std::to_string(*v) + " is outside " +
-                    std::to_string(lo) + ".." + std::to_string(hi));
-    } else {
+    std::string why;  // NaN, infinities, booleans and strings refused
+    const auto v = toml_number::numberIn(*n, source_, section + "." + key, lo, hi, &why);
+    if (v)
       *out = *v;
-    }
+    else
+      result_->errors.push_back(why);
   }
   void number(const toml::table& t, const std::string& section, const std::string& key, double lo,
               double hi, float* out) {
@@ -129,8 +128,9 @@ class ProfileReader {
     }
     out->clear();
     for (const toml::node& e : *arr) {
-      std::optional<double> v = e.value<double>();
-      if (!v || e.is_boolean() || e.is_string() || !std::isfinite(*v)) {
+      const auto v =
+          toml_number::numberIn(e, source_, section + "." + key, -DBL_MAX, DBL_MAX, nullptr);
+      if (!v) {
         error(e, section + "." + key + " must hold finite numbers only");
         return false;
       }

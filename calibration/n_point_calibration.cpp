@@ -1,7 +1,10 @@
 #include "calibration/n_point_calibration.h"
 
+#include "drivers/core/toml_number.h"
+
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -112,6 +115,10 @@ std::optional<TapFile> parseTapFile(std::string_view text, const std::string& na
     if (error) *error = name + ":" + std::to_string(where.begin.line) + ": " + what;
     return std::nullopt;
   };
+  auto fail_with = [&](const std::string& message) {
+    if (error) *error = message;
+    return std::nullopt;
+  };
   toml::table root;
   try {
     root = toml::parse(text, name);
@@ -119,19 +126,33 @@ std::optional<TapFile> parseTapFile(std::string_view text, const std::string& na
     return fail(e.source(), std::string(e.description()));
   }
   TapFile f;
-  auto w = root["screen"]["width"].value<int64_t>();
-  auto h = root["screen"]["height"].value<int64_t>();
-  if (!w || !h || *w <= 0 || *h <= 0 || *w > 65536 || *h > 65536) {
+  // Numbers through toml_number (no float-to-integer conversion before the range check): a
+  // present but refused value says why at its own line, a missing one what is needed.
+  std::string why;
+  auto integer = [&](const char* table, const char* key, int64_t lo, int64_t hi) {
+    const toml::node* n = root[table][key].node();
+    return n ? toml_number::integerIn(*n, name, std::string(table) + "." + key, lo, hi, &why)
+             : std::nullopt;
+  };
+  auto number = [&](const char* table, const char* key, double lo, double hi) {
+    const toml::node* n = root[table][key].node();
+    return n ? toml_number::numberIn(*n, name, std::string(table) + "." + key, lo, hi, &why)
+             : std::nullopt;
+  };
+  auto w = integer("screen", "width", 1, 65536);
+  auto h = integer("screen", "height", 1, 65536);
+  if (!w || !h) {
+    if (!why.empty()) return fail_with(why);
     return fail(root.source(), "[screen] needs integer width and height (1..65536)");
   }
   f.screen_w = static_cast<int>(*w);
   f.screen_h = static_cast<int>(*h);
-  auto vendor = root["device"]["usb_vendor"].value<int64_t>();
-  auto product = root["device"]["usb_product"].value<int64_t>();
-  auto wmm = root["device"]["width_mm"].value<double>();
-  auto hmm = root["device"]["height_mm"].value<double>();
-  if (!vendor || !product || *vendor < 0 || *vendor > 0xffff || *product < 0 || *product > 0xffff ||
-      !wmm || !hmm || !(*wmm > 0 && *wmm < 10000) || !(*hmm > 0 && *hmm < 10000)) {
+  auto vendor = integer("device", "usb_vendor", 0, 0xffff);
+  auto product = integer("device", "usb_product", 0, 0xffff);
+  auto wmm = number("device", "width_mm", 1e-9, 9999.999);
+  auto hmm = number("device", "height_mm", 1e-9, 9999.999);
+  if (!vendor || !product || !wmm || !hmm) {
+    if (!why.empty()) return fail_with(why);
     return fail(root.source(),
                 "[device] needs usb_vendor, usb_product (0..0xffff) and width_mm, height_mm "
                 "(> 0)");
@@ -155,12 +176,13 @@ std::optional<TapFile> parseTapFile(std::string_view text, const std::string& na
       return fail(n.source(), "[[tap]] needs target_px = [x, y] and pen_mm = [x, y]");
     }
     Tap tap;
-    auto tx = (*tp)[0].value<double>(), ty = (*tp)[1].value<double>();
-    auto px = (*pm)[0].value<double>(), py = (*pm)[1].value<double>();
-    if (!tx || !ty || !px || !py || !std::isfinite(*tx) || !std::isfinite(*ty) ||
-        !std::isfinite(*px) || !std::isfinite(*py)) {
-      return fail(n.source(), "[[tap]] coordinates must be finite numbers");
-    }
+    auto coordinate = [&](const toml::node& c, const char* field) {
+      return toml_number::numberIn(c, name, field, -DBL_MAX, DBL_MAX, &why);
+    };
+    const auto tx = coordinate((*tp)[0], "tap.target_px"),
+               ty = coordinate((*tp)[1], "tap.target_px");
+    const auto px = coordinate((*pm)[0], "tap.pen_mm"), py = coordinate((*pm)[1], "tap.pen_mm");
+    if (!tx || !ty || !px || !py) return fail_with(why);
     tap.target_px = {*tx, *ty};
     tap.pen_mm = {*px, *py};
     f.taps.push_back(tap);

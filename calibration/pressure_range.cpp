@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -90,21 +91,27 @@ std::string pressureRangeToToml(const PressureRange& range) {
   return buf;
 }
 
-std::optional<PressureRange> pressureRangeFromToml(const std::string& text, std::string* error) {
+std::optional<PressureRange> pressureRangeFromToml(const std::string& text, std::string* error,
+                                                   std::string_view name) {
   try {
-    toml::table t = toml::parse(text);
-    auto lo = t["pressure_range"]["lo"].value<double>();
-    auto hi = t["pressure_range"]["hi"].value<double>();
-    if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || *lo < 0 || *hi > 1 ||
-        *lo >= *hi) {
-      if (error) *error = "[pressure_range] needs numbers 0 <= lo < hi <= 1";
+    toml::table t = toml::parse(text, std::string(name));
+    std::string why;
+    auto number = [&](const char* key) -> std::optional<double> {
+      const toml::node* n = t["pressure_range"][key].node();
+      return n ? toml_number::numberIn(*n, name, std::string("pressure_range.") + key, 0.0, 1.0,
+                                       &why)
+               : std::nullopt;
+    };
+    const auto lo = number("lo"), hi = number("hi");
+    if (!lo || !hi || *lo >= *hi) {
+      if (error) *error = !why.empty() ? why : "[pressure_range] needs numbers 0 <= lo < hi <= 1";
       return std::nullopt;
     }
     return PressureRange{static_cast<float>(*lo), static_cast<float>(*hi)};
   } catch (const toml::parse_error& e) {
     if (error) {
-      *error =
-          "line " + std::to_string(e.source().begin.line) + ": " + std::string(e.description());
+      *error = (name.empty() ? "line " : std::string(name) + ":") +
+               std::to_string(e.source().begin.line) + ": " + std::string(e.description());
     }
     return std::nullopt;
   }

@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cb {
@@ -61,8 +62,10 @@ class PressureRangeCollector {
 };
 
 // "[pressure_range]\nlo = ..\nhi = ..\n": the session record's text, and back. parse returns
-// nullopt (and says why) for anything else.
+// nullopt (and says why: "NAME:LINE: pressure_range.lo: what", NAME the file the text came
+// from, "line LINE: ..." without one) for anything else.
 std::string pressureRangeToToml(const PressureRange& range);
-std::optional<PressureRange> pressureRangeFromToml(const std::string& text, std::string* error);
+std::optional<PressureRange> pressureRangeFromToml(const std::string& text, std::string* error,
+                                                   std::string_view name = {});
 
 }  // namespace cb

@@ -6,7 +6,7 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 packages=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git clang clang-format libclang-rt-14-dev
+  build-essential cmake ninja-build pkg-config git clang clang-format libclang-rt-14-dev ccache
   # display: EGL/GL (libglvnd; libopengl-dev holds opengl.pc), GBM/KMS, X11, Mesa software
   # rasteriser (llvmpipe)
   libegl-dev libgl-dev libopengl-dev libgles-dev libgbm-dev libdrm-dev libx11-dev

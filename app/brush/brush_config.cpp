@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "app/core/config_paths.h"
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -28,12 +29,14 @@ class Reader {
               double hi) {
     const toml::node* n = t.get(key);
     if (!n) return;
-    std::optional<double> v = n->value<double>();
-    if (!v) return fail(*n, section, key, "expected a number");
-    if (*v < lo || *v > hi) {
-      std::ostringstream s;
-      s << "must be in [" << lo << ", " << hi << "], got " << *v;
-      return fail(*n, section, key, s.str());
+    // NaN, infinities and values outside lo..hi refused before any conversion.
+    std::string why;
+    const std::string name = *section ? std::string(section) + "." + key : std::string(key);
+    const std::optional<double> v = toml_number::numberIn(*n, path_, name, lo, hi, &why);
+    if (!v) {
+      errors_->push_back(why);
+      ok_ = false;
+      return;
     }
     *out = float(*v);
   }

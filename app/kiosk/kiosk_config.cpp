@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 
 #include "app/core/toml_file.h"
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -20,13 +21,11 @@ namespace {
 
 void readNumber(const toml::table& root, const std::string& path, const char* section,
                 const char* key, double lo, double hi, double* out) {
-  auto node = root[section][key];
+  const toml::node* node = root[section][key].node();
   if (!node) return;
-  const std::string name = std::string(section) + "." + key;
-  auto v = node.value<double>();
-  if (!node.is_number() || !v) bad(path, name, "must be a number", node);
-  if (*v < lo || *v > hi)
-    bad(path, name, "must be between " + std::to_string(lo) + " and " + std::to_string(hi), node);
+  std::string why;  // "FILE:LINE: section.key: what"; NaN and infinities refused too
+  const auto v = toml_number::numberIn(*node, path, std::string(section) + "." + key, lo, hi, &why);
+  if (!v) throw std::runtime_error(why);
   *out = *v;
 }
 

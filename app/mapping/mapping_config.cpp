@@ -1,12 +1,16 @@
 #include "app/mapping/mapping_config.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include <toml++/toml.h>
 
 #include "app/core/toml_file.h"
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -23,15 +27,22 @@ void read(const toml::table& root, const std::string& file, const char* table, c
       return;
     }
   } else if constexpr (std::is_integral_v<T>) {
-    if (auto v = node->value<int64_t>()) {
-      *out = T(*v);
-      return;
-    }
+    // Through toml_number: value<int64_t>() would convert a float before checking its range.
+    std::string why;
+    const auto v = toml_number::integerIn(
+        *node, file, std::string(table) + "." + key, int64_t(std::numeric_limits<T>::min()),
+        int64_t(std::min<uint64_t>(std::numeric_limits<T>::max(), INT64_MAX)), &why);
+    if (!v) throw std::runtime_error(why);
+    *out = T(*v);
+    return;
   } else {
-    if (auto v = node->value<double>()) {
-      *out = T(*v);
-      return;
-    }
+    std::string why;
+    const auto v = toml_number::numberIn(*node, file, std::string(table) + "." + key,
+                                         -std::numeric_limits<double>::max(),
+                                         std::numeric_limits<double>::max(), &why);
+    if (!v) throw std::runtime_error(why);
+    *out = T(*v);
+    return;
   }
   throw std::runtime_error(file + ": " + table + "." + key + " has the wrong type");
 }

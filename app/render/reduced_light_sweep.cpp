@@ -42,7 +42,7 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
           coarse_bricks.push_back({x, y, z});
   parallelFor(coarse_bricks.size(), 1, [&](size_t, size_t k0, size_t k1) {
     std::vector<float> row(size_t(Volume::kBrickSize * divisor));
-    std::vector<float> sums(size_t(Volume::kBrickSize));
+    std::vector<float> sums(static_cast<size_t>(Volume::kBrickSize));
     for (size_t k = k0; k < k1; ++k) {
       const VoxelBox cbox = coarse_.brickBox(coarse_bricks[k]);
       const int x0 = cbox.lo.x * divisor, x1 = std::min(cbox.hi.x * divisor, dims.x);

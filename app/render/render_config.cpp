@@ -1,5 +1,6 @@
 #include "app/render/render_config.h"
 
+#include <cfloat>
 #include <cstdio>
 #include <filesystem>
 #include <initializer_list>
@@ -11,6 +12,7 @@
 
 #include "app/core/toml_file.h"
 #include "app/scene/sun_position.h"
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -19,9 +21,12 @@ namespace {
   throw std::runtime_error(path + ": " + key + " " + what);
 }
 
+// A setting of the strict part of the file: a wrong type or value stops the program with
+// "FILE:LINE: section.key: what". Numbers are finite, in lo..hi and refused before any
+// conversion (1e40 does not fit a float, NaN is in no range).
 template <class T>
 void read(const toml::table& root, const std::string& path, const char* section, const char* key,
-          T* out) {
+          T* out, double lo = -FLT_MAX, double hi = FLT_MAX) {
   auto node = root[section][key];
   if (!node) return;
   if constexpr (std::is_same_v<T, bool>) {
@@ -29,8 +34,10 @@ void read(const toml::table& root, const std::string& path, const char* section,
     if (!v) bad(path, std::string(section) + "." + key, "must be true or false");
     *out = *v;
   } else {
-    auto v = node.template value<double>();
-    if (!v) bad(path, std::string(section) + "." + key, "must be a number");
+    std::string why;
+    const auto v =
+        toml_number::numberIn(*node.node(), path, std::string(section) + "." + key, lo, hi, &why);
+    if (!v) throw std::runtime_error(why);
     *out = T(*v);
   }
 }
@@ -46,8 +53,9 @@ bool readVec(const toml::table& root, const std::string& path, const char* secti
   if (!a || a->size() != size_t(N))
     bad(path, name, "must be an array of " + std::to_string(N) + " numbers");
   for (int i = 0; i < N; ++i) {
-    auto v = (*a)[size_t(i)].template value<double>();
-    if (!v) bad(path, name, "must be an array of numbers");
+    std::string why;
+    const auto v = toml_number::numberIn((*a)[size_t(i)], path, name, -FLT_MAX, FLT_MAX, &why);
+    if (!v) throw std::runtime_error(why);
     (*out)[i] = float(*v);
   }
   return true;
@@ -82,10 +90,11 @@ class Lenient {
             float* out) {
     const toml::node* n = t ? t->get(key) : nullptr;
     if (!n) return;
-    auto v = n->value<double>();
+    const auto v = toml_number::numberIn(*n, path_, table + "." + key, lo, hi, nullptr);
     const std::string range = "[" + number(lo) + ", " + number(hi) + "]";
-    if (!v || !(*v >= lo && *v <= hi))
-      warn(*n, table + "." + key, v ? "must be in " + range : "must be a number in " + range,
+    if (!v)
+      warn(*n, table + "." + key,
+           n->is_number() ? "must be in " + range : "must be a number in " + range,
            "the default " + number(*out));
     else
       *out = float(*v);
@@ -121,8 +130,8 @@ class Lenient {
     glm::vec3 v(0.0f);
     bool ok = a && a->size() == 3;
     for (size_t i = 0; ok && i < 3; ++i) {
-      auto x = (*a)[i].value<double>();
-      ok = x && *x >= lo && *x <= hi;
+      const auto x = toml_number::numberIn((*a)[i], path_, table + "." + key, lo, hi, nullptr);
+      ok = x.has_value();
       if (ok) v[int(i)] = float(*x);
     }
     if (!ok)
@@ -375,9 +384,9 @@ namespace {
 RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) {
   RenderConfig c;
   RenderOptions& o = c.options;
-  read(root, path, "raycast", "step_voxels", &o.step_voxels);
-  read(root, path, "raycast", "extinction_per_voxel", &o.extinction_per_voxel);
-  read(root, path, "raycast", "termination_transmittance", &o.termination_transmittance);
+  read(root, path, "raycast", "step_voxels", &o.step_voxels, 0.1, 8.0);
+  read(root, path, "raycast", "extinction_per_voxel", &o.extinction_per_voxel, 0.0);
+  read(root, path, "raycast", "termination_transmittance", &o.termination_transmittance, 0.0, 1.0);
   read(root, path, "raycast", "skip_empty_space", &o.skip_empty_space);
   read(root, path, "raycast", "brick_stepping", &o.brick_stepping);
   readVec<4>(root, path, "background", "colour", &o.background);
@@ -387,7 +396,7 @@ RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) 
     if (!style) bad(path, "style.name", "must be one of " + renderStyleNameList());
     o.style = *style;
   }
-  read(root, path, "motion", "moving_scale", &c.moving_scale);
+  read(root, path, "motion", "moving_scale", &c.moving_scale, 0.05, 1.0);
   // light.direction points towards the sun; the older light.position (a light ball seen from
   // the origin) gives the same direction.
   glm::vec3 towards(0.0f);
@@ -399,16 +408,11 @@ RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) 
     direction_given = true;
   }
   readVec<3>(root, path, "light", "colour", &c.light.colour);
-  read(root, path, "light", "extinction", &c.light.extinction);
-  if (!(o.step_voxels >= 0.1f && o.step_voxels <= 8.0f))
-    bad(path, "raycast.step_voxels", "must be in [0.1, 8]");
+  read(root, path, "light", "extinction", &c.light.extinction, 0.0, 1.0);
+  // The open ends the ranges above cannot say.
   if (!(o.extinction_per_voxel > 0.0f)) bad(path, "raycast.extinction_per_voxel", "must be > 0");
-  if (!(o.termination_transmittance >= 0.0f && o.termination_transmittance < 1.0f))
+  if (!(o.termination_transmittance < 1.0f))
     bad(path, "raycast.termination_transmittance", "must be in [0, 1)");
-  if (!(c.moving_scale >= 0.05f && c.moving_scale <= 1.0f))
-    bad(path, "motion.moving_scale", "must be in [0.05, 1]");
-  if (!(c.light.extinction >= 0.0f && c.light.extinction <= 1.0f))
-    bad(path, "light.extinction", "must be in [0, 1]");
   Lenient lenient(path, &c.warnings);
   readTimeOfDay(root, lenient, direction_given, &c.light);
   readStyleParams(root, lenient, &c.options.style_params);

@@ -1,5 +1,7 @@
 #include "app/study/protocol.h"
 
+#include "drivers/core/toml_number.h"
+
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
@@ -95,12 +97,10 @@ class ProtocolReader {
       return *fallback;
     }
     if (!node->is_integer()) fail(*node, join(path, key), "expected an integer");
-    const int64_t value = *node->value<int64_t>();
-    if (value < low || value > high)
-      fail(*node, join(path, key),
-           std::to_string(value) + " is outside " + std::to_string(low) + ".." +
-               std::to_string(high));
-    return value;
+    std::string why;
+    if (auto v = toml_number::integerIn(*node, source_, join(path, key), low, high, &why))
+      return *v;
+    throw StudyProtocolError(why);
   }
 
   double minutes(const toml::table& table, std::string_view key, const std::string& path,
@@ -108,7 +108,10 @@ class ProtocolReader {
     const toml::node* node = table.get(key);
     if (!node) return fallback;
     if (!node->is_number()) fail(*node, join(path, key), "expected a number of minutes");
-    const double value = *node->value<double>();
+    std::string why;
+    const auto number = toml_number::numberIn(*node, source_, join(path, key), 0, 600, &why);
+    if (!number) fail(*node, join(path, key), "minutes must be more than 0 and at most 600");
+    const double value = *number;
     if (!(value > 0 && value <= 600))
       fail(*node, join(path, key), "minutes must be more than 0 and at most 600");
     return value;

@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <initializer_list>
 #include <iterator>
 #include <set>
+#include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
@@ -86,8 +88,10 @@ class Reader {
       fail(parent, prefix + key, "missing");
       return std::nullopt;
     }
-    std::optional<double> v = n->value<double>();  // integers too
-    if (!v || !std::isfinite(*v)) {
+    // Integers too; NaN and infinities refused before any comparison.
+    const std::optional<double> v =
+        toml_number::numberIn(*n, {}, prefix + key, -DBL_MAX, DBL_MAX, nullptr);
+    if (!v) {
       fail(n->source(), prefix + key, "expected a number");
       return std::nullopt;
     }

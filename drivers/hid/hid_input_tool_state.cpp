@@ -43,7 +43,7 @@ bool HidInputToolState::update(const PenStateValues& v) {
     active |= v.tip;
     if (tool_ != PenTool::kEraser) touch_ = v.tip;
   }
-  if (usages_.pressure && !usages_.tip) {  // HID_QUIRK_NOTOUCH
+  if (usages_.pressure && !usages_.tip && !usages_.other_touch) {  // HID_QUIRK_NOTOUCH
     // a + ((b - a) >> 3), in the kernel's wrapping 32-bit int arithmetic.
     const auto span = static_cast<int32_t>(static_cast<uint32_t>(pressure_max_) -
                                            static_cast<uint32_t>(pressure_min_));

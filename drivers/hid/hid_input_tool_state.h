@@ -24,6 +24,8 @@ namespace cb::hid {
 // Which of the state usages the descriptor declares (fixed per device).
 struct PenStateUsages {
   bool eraser = false, invert = false, tip = false, pressure = false, in_range = false;
+  // Touch or Secondary Tip Switch: they map to BTN_TOUCH too, so no HID_QUIRK_NOTOUCH.
+  bool other_touch = false;
 };
 
 // One report's values of those usages (pressure already clamped to its logical range).
@@ -42,6 +44,8 @@ class HidInputToolState {
   bool update(const PenStateValues& v);
   PenTool tool() const { return tool_; }
   bool touch() const { return touch_; }
+  // BTN_TOUCH set by a usage processed after the state usages (Touch, Secondary Tip Switch).
+  void setTouch(bool t) { touch_ = t; }
   void reset() { tool_ = PenTool::kNone, touch_ = false; }
 
  private:

@@ -41,7 +41,8 @@ HidPenDecoder::HidPenDecoder(const PenLayout& layout, const PenDeviceInfo& info,
       rules_(rules),
       tools_(std::move(tools)),
       hid_input_(PenStateUsages{layout.eraser.present, layout.invert.present, layout.tip.present,
-                                layout.pressure.present, layout.in_range.present},
+                                layout.pressure.present, layout.in_range.present,
+                                layout.touch.present || layout.tip2.present},
                  layout.pressure.logical_min, layout.pressure.logical_max) {}
 
 DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns, PenSample& out) {
@@ -58,15 +59,17 @@ DecodeResult HidPenDecoder::decode(const uint8_t* report, size_t n, int64_t t_ns
                std::to_string(layout_.report_id);
     return r;
   }
-  if (n != layout_.report_bytes) {
+  // The kernel's HID core (hid-core.c, hid_report_raw_event): a report shorter than the
+  // descriptor says is refused (Linux 6.x: "Event data for report N was too short"), bytes past
+  // its end are not read.
+  if (n < layout_.report_bytes) {
     r.status = DecodeStatus::kRejected;
-    r.reason = std::string(n < layout_.report_bytes ? "short" : "oversized") +
-               " pen report: " + std::to_string(n) + " bytes, the descriptor says " +
+    r.reason = "short pen report: " + std::to_string(n) + " bytes, the descriptor says " +
                std::to_string(layout_.report_bytes);
     return r;
   }
   const uint8_t* p = report + id_bytes;
-  const size_t pn = n - id_bytes;
+  const size_t pn = layout_.report_bytes - id_bytes;
   return rules_ == PenDriverRules::kWacom ? decodeWacom(p, pn, t_ns, out)
                                           : decodeHidInput(p, pn, t_ns, out);
 }
@@ -139,6 +142,7 @@ DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t 
   applyHidInputRange(layout_.pressure, readValue(p, pn, layout_.pressure), state_.pressure_raw);
   applyHidInputRange(layout_.tilt_x, readValue(p, pn, layout_.tilt_x), state_.tilt_x_raw);
   applyHidInputRange(layout_.tilt_y, readValue(p, pn, layout_.tilt_y), state_.tilt_y_raw);
+  applyHidInputRange(layout_.z, readValue(p, pn, layout_.z), state_.distance_raw);
   int32_t serial = static_cast<int32_t>(state_.tool_serial);
   if (applyHidInputRange(layout_.serial, readValue(p, pn, layout_.serial), serial))
     state_.tool_serial = static_cast<uint32_t>(serial);  // MSC_SERIAL, a 32-bit value
@@ -150,9 +154,10 @@ DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t 
   v.in_range = readUnsigned(p, pn, layout_.in_range) != 0;
   v.pressure = state_.pressure_raw;
   const bool released_mid_report = hid_input_.update(v);
+  updateKeys(p, pn);
   uint32_t buttons = 0;
   if (readUnsigned(p, pn, layout_.barrel) != 0) buttons |= kPenStylus1;
-  if (readUnsigned(p, pn, layout_.barrel2) != 0) buttons |= kPenStylus2;
+  if (stylus2_.down()) buttons |= kPenStylus2;
 
   if (hid_input_.tool() == PenTool::kNone) return proximityOut(t_ns, out);
 
@@ -172,9 +177,28 @@ DecodeResult HidPenDecoder::decodeHidInput(const uint8_t* p, size_t pn, int64_t 
   return r;
 }
 
+// The keys several usages feed, in the order the report carries the usages.
+void HidPenDecoder::updateKeys(const uint8_t* p, size_t pn) {
+  auto update = [&](HidInputKey<2>& key, const FieldSlot& a, const FieldSlot& b) {
+    const bool a_first = !b.present || (a.present && a.bit_offset <= b.bit_offset);
+    const FieldSlot& first = a_first ? a : b;
+    const FieldSlot& second = a_first ? b : a;
+    const bool present[2] = {first.present, second.present};
+    const bool values[2] = {readUnsigned(p, pn, first) != 0, readUnsigned(p, pn, second) != 0};
+    return key.update(present, values);
+  };
+  update(stylus2_, layout_.barrel2, layout_.tablet_pick);
+  // Touch and Secondary Tip Switch come after the state usages (hidinput_usages_priorities):
+  // a change of theirs sets BTN_TOUCH last, also while the rubber is the tool.
+  if (update(other_touch_, layout_.touch, layout_.tip2) && hid_input_.tool() != PenTool::kNone)
+    hid_input_.setTouch(other_touch_.down());
+}
+
 bool HidPenDecoder::disconnect(int64_t t_ns, PenSample& out) {
   tool_ = PenTool::kNone;
   hid_input_.reset();
+  stylus2_.reset();
+  other_touch_.reset();
   if (!last_.in_proximity) return false;
   out = proximityOutSample(last_, t_ns);
   last_ = out;

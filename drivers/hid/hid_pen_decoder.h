@@ -18,6 +18,7 @@
 #include "drivers/core/pen_sample.h"
 #include "drivers/devices/device_entry.h"
 #include "drivers/hid/decode_result.h"
+#include "drivers/hid/hid_input_key.h"
 #include "drivers/hid/hid_input_tool_state.h"
 #include "drivers/hid/hid_pen_layout.h"
 
@@ -43,6 +44,7 @@ class HidPenDecoder {
   DecodeResult decodeWacom(const uint8_t* p, size_t pn, int64_t t_ns, PenSample& out);
   DecodeResult decodeHidInput(const uint8_t* p, size_t pn, int64_t t_ns, PenSample& out);
   DecodeResult proximityOut(int64_t t_ns, PenSample& out);
+  void updateKeys(const uint8_t* p, size_t pn);
 
   PenLayout layout_;
   PenDeviceInfo info_;
@@ -50,6 +52,8 @@ class HidPenDecoder {
   std::shared_ptr<const ToolTable> tools_;
   PenTool tool_ = PenTool::kNone;  // Wacom rules: the tool chosen on entering range
   HidInputToolState hid_input_;    // hid-input rules
+  HidInputKey<2> stylus2_;         // hid-input rules: Secondary Barrel Switch, Tablet Pick
+  HidInputKey<2> other_touch_;     // hid-input rules: Touch, Secondary Tip Switch
   PenSample state_{};              // hid-input rules: the axis values evdev holds
   PenSample last_{};
 };

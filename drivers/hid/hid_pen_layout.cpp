@@ -84,6 +84,12 @@ FieldSlot* slotForUsage(PenLayout& l, uint32_t extended_usage) {
       return &l.barrel;
     case pen_usage::kSecondaryBarrelSwitch:
       return &l.barrel2;
+    case pen_usage::kTabletPick:
+      return &l.tablet_pick;
+    case pen_usage::kTouch:
+      return &l.touch;
+    case pen_usage::kSecondaryTipSwitch:
+      return &l.tip2;
     case pen_usage::kEraser:
       return &l.eraser;
     case pen_usage::kInvert:
@@ -93,6 +99,7 @@ FieldSlot* slotForUsage(PenLayout& l, uint32_t extended_usage) {
     case pen_usage::kWacomSense:
       return &l.sense;
     case pen_usage::kToolSerial:
+    case pen_usage::kToolSerial2:  // hid-input maps both to MSC_SERIAL
       return &l.serial;
     case pen_usage::kWacomSerialHigh:
       return &l.serial_high;
@@ -115,7 +122,11 @@ PenLayout layoutOfReport(const ReportDescriptor& desc, uint8_t id) {
     // A variable field has one usage per element; the last one repeats (hid_add_field).
     const uint32_t elements = std::min<uint32_t>(f.count, static_cast<uint32_t>(f.usages.size()));
     for (uint32_t i = 0; i < elements; ++i) {
-      FieldSlot* target = slotForUsage(l, f.usageAt(i));
+      const uint32_t u = f.usageAt(i);
+      // hid-input (Linux 6.18, hidinput_configure_usage): Z is the hover distance only in a Pen
+      // application; elsewhere it is ABS_Z, which a pen does not use.
+      FieldSlot* target = u == pen_usage::kZ ? (f.application == pen_usage::kPen ? &l.z : nullptr)
+                                             : slotForUsage(l, u);
       if (target && !target->present) *target = slotFor(f, i);
     }
   }
@@ -125,7 +136,7 @@ PenLayout layoutOfReport(const ReportDescriptor& desc, uint8_t id) {
 bool isPenReport(const PenLayout& l) {
   return l.x.present && l.y.present &&
          (l.tip.present || l.in_range.present || l.sense.present || l.eraser.present ||
-          l.invert.present);
+          l.invert.present || l.touch.present || l.tip2.present);
 }
 
 }  // namespace
@@ -149,9 +160,10 @@ PenLayoutResult findPenLayout(const ReportDescriptor& desc) {
     }
   }
   if (!first) {
-    result.error = ids.empty()
-                       ? "no input field inside a Stylus, Pen or Digitizer collection"
-                       : "no pen report with X, Y and a Tip Switch, In Range, Invert or Eraser bit";
+    result.error =
+        ids.empty()
+            ? "no input field inside a Stylus, Pen or Digitizer collection"
+            : "no pen report with X, Y and a Tip Switch, Touch, In Range, Invert or Eraser bit";
     return result;
   }
   for (const Field& f : desc.fields)
@@ -225,7 +237,7 @@ PenDeviceInfo penDeviceInfo(const PenLayout& l, uint16_t vendor, uint16_t produc
     d.tilt_max = l.tilt_x.logical_max;
     d.tilt_res = kernelResolution(l.tilt_x, true) * M_PI / 180.0;  // per radian -> per degree
   }
-  d.distance_max = l.distance.present ? l.distance.logical_max : 0;
+  d.distance_max = l.distance.present ? l.distance.logical_max : l.z.present ? l.z.logical_max : 0;
   return d;
 }
 

@@ -23,6 +23,7 @@ namespace cb::hid {
 namespace pen_usage {
 inline constexpr uint32_t kX = usage(page::kGenericDesktop, 0x30);
 inline constexpr uint32_t kY = usage(page::kGenericDesktop, 0x31);
+inline constexpr uint32_t kZ = usage(page::kGenericDesktop, 0x32);
 inline constexpr uint32_t kDigitizer = usage(page::kDigitizer, 0x01);
 inline constexpr uint32_t kPen = usage(page::kDigitizer, 0x02);
 inline constexpr uint32_t kStylus = usage(page::kDigitizer, 0x20);
@@ -30,14 +31,18 @@ inline constexpr uint32_t kPuck = usage(page::kDigitizer, 0x21);
 inline constexpr uint32_t kFinger = usage(page::kDigitizer, 0x22);
 inline constexpr uint32_t kTipPressure = usage(page::kDigitizer, 0x30);
 inline constexpr uint32_t kInRange = usage(page::kDigitizer, 0x32);
+inline constexpr uint32_t kTouch = usage(page::kDigitizer, 0x33);
 inline constexpr uint32_t kInvert = usage(page::kDigitizer, 0x3C);
 inline constexpr uint32_t kTiltX = usage(page::kDigitizer, 0x3D);
 inline constexpr uint32_t kTiltY = usage(page::kDigitizer, 0x3E);
 inline constexpr uint32_t kTipSwitch = usage(page::kDigitizer, 0x42);
+inline constexpr uint32_t kSecondaryTipSwitch = usage(page::kDigitizer, 0x43);
 inline constexpr uint32_t kBarrelSwitch = usage(page::kDigitizer, 0x44);
 inline constexpr uint32_t kEraser = usage(page::kDigitizer, 0x45);
+inline constexpr uint32_t kTabletPick = usage(page::kDigitizer, 0x46);
 inline constexpr uint32_t kSecondaryBarrelSwitch = usage(page::kDigitizer, 0x5A);
 inline constexpr uint32_t kToolSerial = usage(page::kDigitizer, 0x5B);
+inline constexpr uint32_t kToolSerial2 = usage(page::kDigitizer, 0x6E);
 inline constexpr uint32_t kWacomSense = usage(page::kWacomVendor, 0x36);
 inline constexpr uint32_t kWacomSerialHigh = usage(page::kWacomVendor, 0x5C);
 inline constexpr uint32_t kWacomToolType = usage(page::kWacomVendor, 0x77);
@@ -64,6 +69,11 @@ struct PenLayout {
   size_t report_bytes = 0;  // as it travels, ID byte included
   FieldSlot x, y, pressure, tilt_x, tilt_y, distance;
   FieldSlot tip, barrel, barrel2, eraser, invert, in_range, sense;
+  // hid-input maps these onto the same evdev codes as the ones above (docs: the table in
+  // drivers/hid/README.md): Tablet Pick -> BTN_STYLUS2 like Secondary Barrel Switch, Touch and
+  // Secondary Tip Switch -> BTN_TOUCH like Tip Switch, Generic Desktop Z of a Pen application
+  // -> ABS_DISTANCE (Linux 6.18).
+  FieldSlot tablet_pick, touch, tip2, z;
   FieldSlot serial, serial_high, tool_type;
   // Feature report that switches a Wacom tablet into its full ("tablet") mode, 0 if none.
   uint8_t mode_report_id = 0;

@@ -125,6 +125,267 @@ size_t ReportDescriptor::reportBytes(ReportType type, uint8_t report_id) const {
   return 0;
 }
 
+namespace {
+
+// One short item (HID 1.11 §6.2.2.2): where it starts, its tag and type, its data.
+struct Item {
+  size_t at = 0;
+  uint8_t tag = 0;
+  ItemType type = kMain;
+  uint32_t size = 0;  // data bytes: 0, 1, 2 or 4
+  uint32_t value = 0;
+  int32_t svalue = 0;
+};
+
+// The parser state between items (hid-core.c: struct hid_parser). Each item kind has its own
+// method, as hid_parser_main/global/local() in the kernel; each returns an error message, empty
+// when the item is accepted.
+class DescriptorParser {
+ public:
+  std::string item(const Item& it) {
+    switch (it.type) {
+      case kMain:
+        return mainItem(it);
+      case kGlobal:
+        return globalItem(it);
+      case kLocal:
+        return localItem(it);
+      case kReserved:
+        return {};  // hid_parser_reserved(): ignored
+    }
+    return {};
+  }
+  // What is left open at the end of the descriptor, or why it describes nothing.
+  std::string finish() const {
+    if (!collections_.empty())
+      return "report descriptor ends inside " + std::to_string(collections_.size()) +
+             " open collection(s)";
+    if (local_.delimiter_depth != 0) return "report descriptor ends inside a delimiter";
+    if (desc_.fields.empty()) return "report descriptor declares no fields";
+    return {};
+  }
+  ReportDescriptor take() { return std::move(desc_); }
+
+ private:
+  std::string mainItem(const Item& it);
+  std::string field(const Item& it);
+  std::string globalItem(const Item& it);
+  std::string localItem(const Item& it);
+  std::string usageRange(const Item& it);
+
+  ReportDescriptor desc_;
+  GlobalState global_;
+  std::vector<GlobalState> stack_;
+  LocalState local_;
+  std::vector<Collection> collections_;
+  bool saw_unnumbered_main_ = false;
+};
+
+std::string DescriptorParser::mainItem(const Item& it) {
+  concatenateLastUsagePage(local_, global_.usage_page);
+  switch (it.tag) {
+    case kMainInput:
+    case kMainOutput:
+    case kMainFeature:
+      if (std::string error = field(it); !error.empty()) return error;
+      break;
+    case kMainCollection: {
+      if (static_cast<int>(collections_.size()) >= kMaxCollectionDepth)
+        return at(it.at, "collections nested too deeply");
+      Collection c;
+      c.kind = static_cast<uint8_t>(it.value & 0xFF);
+      c.usage = local_.usages.empty() ? 0 : local_.usages.front().usage;
+      collections_.push_back(c);
+      break;
+    }
+    case kMainEndCollection:
+      if (collections_.empty()) return at(it.at, "end collection without a collection");
+      collections_.pop_back();
+      break;
+    default:  // hid_parser_main(): "unknown main item tag", ignored
+      break;
+  }
+  local_ = LocalState{};
+  return {};
+}
+
+// An Input, Output or Feature item: a field appended to its report (hid-core.c:
+// hid_add_field()).
+std::string DescriptorParser::field(const Item& it) {
+  if (!logicalRangeValid(global_.logical_min, global_.logical_max))
+    return at(it.at, "logical maximum " + std::to_string(global_.logical_max) +
+                         " is below logical minimum " + std::to_string(global_.logical_min));
+  if (global_.report_id == 0) saw_unnumbered_main_ = true;
+  if (desc_.numbered && saw_unnumbered_main_)
+    return at(it.at, "fields both with and without report IDs");
+  const ReportType rtype = it.tag == kMainInput    ? ReportType::kInput
+                           : it.tag == kMainOutput ? ReportType::kOutput
+                                                   : ReportType::kFeature;
+  auto report = std::find_if(desc_.reports.begin(), desc_.reports.end(), [&](const ReportSize& r) {
+    return r.type == rtype && r.report_id == global_.report_id;
+  });
+  if (report == desc_.reports.end()) {
+    desc_.reports.push_back({rtype, global_.report_id, 0});
+    report = desc_.reports.end() - 1;
+  }
+  const uint64_t bits = uint64_t{global_.report_size} * global_.report_count;
+  if (report->bits + bits > kMaxReportBits) return at(it.at, "report is longer than 4096 bytes");
+  if (desc_.fields.size() >= kMaxFields) return at(it.at, "more than 1024 fields");
+  Field f;
+  f.type = rtype;
+  f.report_id = global_.report_id;
+  f.bit_offset = report->bits;
+  f.bit_size = global_.report_size;
+  f.count = global_.report_count;
+  f.flags = it.value;
+  f.usages.reserve(local_.usages.size());
+  for (const LocalUsage& u : local_.usages) f.usages.push_back(u.usage);
+  f.logical_min = global_.logical_min;
+  f.logical_max = global_.logical_max;
+  f.physical_min = global_.physical_min;
+  f.physical_max = global_.physical_max;
+  f.unit = global_.unit;
+  f.unit_exponent = global_.unit_exponent;
+  for (const Collection& c : collections_) {  // innermost wins (hid_lookup_collection)
+    if (c.kind == kApplication) f.application = c.usage;
+    if (c.kind == kPhysical) f.physical = c.usage;
+    if (c.kind == kLogical) f.logical = c.usage;
+  }
+  report->bits += static_cast<uint32_t>(bits);
+  desc_.fields.push_back(std::move(f));
+  return {};
+}
+
+std::string DescriptorParser::globalItem(const Item& it) {
+  GlobalState& g = global_;
+  switch (it.tag) {
+    case kGlobalUsagePage:
+      g.usage_page = static_cast<uint16_t>(it.value);
+      break;
+    case kGlobalLogicalMin:
+      g.logical_min = it.svalue;
+      break;
+    case kGlobalLogicalMax:
+      g.logical_max = maximumItem(g.logical_min, it.value, it.size);
+      break;
+    case kGlobalPhysicalMin:
+      g.physical_min = it.svalue;
+      break;
+    case kGlobalPhysicalMax:
+      g.physical_max = maximumItem(g.physical_min, it.value, it.size);
+      break;
+    case kGlobalUnitExponent:
+      // A 4-bit two's-complement nibble when it fits, else a plain signed value.
+      g.unit_exponent = (it.svalue & ~0x0F) == 0 ? signExtend(it.value, 4) : it.svalue;
+      break;
+    case kGlobalUnit:
+      g.unit = it.value;
+      break;
+    case kGlobalReportSize:
+      if (it.value > kMaxReportSizeBits)
+        return at(it.at, "report size " + std::to_string(it.value) + " is over 256 bits");
+      g.report_size = it.value;
+      break;
+    case kGlobalReportCount:
+      if (it.value > kMaxReportCount)
+        return at(it.at, "report count " + std::to_string(it.value) + " is over 12288");
+      g.report_count = it.value;
+      break;
+    case kGlobalReportId:
+      if (it.value == 0 || it.value > 255) return at(it.at, "report ID must be 1..255");
+      if (saw_unnumbered_main_) return at(it.at, "report ID after fields without one");
+      desc_.numbered = true;
+      g.report_id = static_cast<uint8_t>(it.value);
+      break;
+    case kGlobalPush:
+      if (static_cast<int>(stack_.size()) >= kMaxGlobalStackDepth)
+        return at(it.at, "push nested too deeply (Linux allows 4)");
+      stack_.push_back(g);
+      break;
+    case kGlobalPop:
+      if (stack_.empty()) return at(it.at, "pop without push");
+      g = stack_.back();
+      stack_.pop_back();
+      break;
+    default:
+      return at(it.at, "unknown global item tag");
+  }
+  return {};
+}
+
+// Local items. Usages after the first delimited set are alternatives the kernel ignores.
+std::string DescriptorParser::localItem(const Item& it) {
+  LocalState& l = local_;
+  switch (it.tag) {
+    case kLocalDelimiter:
+      if (it.value != 0) {
+        if (l.delimiter_depth != 0) return at(it.at, "nested delimiters");
+        ++l.delimiter_depth;
+        ++l.delimiter_branch;
+      } else {
+        if (l.delimiter_depth < 1) return at(it.at, "close delimiter without an open one");
+        --l.delimiter_depth;
+      }
+      break;
+    case kLocalUsage:
+      if (l.delimiter_branch > 1) break;
+      if (l.usages.size() >= kMaxUsagesPerItem) return at(it.at, "too many usages for one item");
+      l.usages.push_back(
+          {it.size <= 2 ? completeUsage(it.value, global_.usage_page) : it.value, it.size});
+      break;
+    case kLocalUsageMin:
+      if (l.delimiter_branch > 1) break;
+      l.have_min = true;
+      l.usage_min = it.value;
+      break;
+    case kLocalUsageMax:
+      if (l.delimiter_branch > 1) break;
+      return usageRange(it);
+    default:  // designators and strings carry nothing a decoder needs
+      break;
+  }
+  return {};
+}
+
+// Usage Maximum closes a range opened by Usage Minimum: every usage in it is added, cut at the
+// usage limit as the kernel cuts at HID_MAX_USAGES.
+std::string DescriptorParser::usageRange(const Item& it) {
+  LocalState& l = local_;
+  if (!l.have_min) return at(it.at, "usage maximum without usage minimum");
+  if (it.value < l.usage_min) return at(it.at, "usage range is inverted");
+  const uint64_t room = kMaxUsagesPerItem - l.usages.size();
+  const uint64_t last =
+      std::min<uint64_t>(it.value, uint64_t{l.usage_min} + (room == 0 ? 0 : room - 1));
+  if (room == 0) return at(it.at, "too many usages for one item");
+  for (uint64_t u = l.usage_min; u <= last; ++u) {
+    const auto raw = static_cast<uint32_t>(u);
+    l.usages.push_back({it.size <= 2 ? completeUsage(raw, global_.usage_page) : raw, it.size});
+  }
+  l.have_min = false;
+  return {};
+}
+
+// The next short item at `*pos`, or an error message (hid-core.c: fetch_item()).
+std::string fetchItem(const uint8_t* data, size_t n, size_t* pos, Item* it) {
+  it->at = *pos;
+  const uint8_t prefix = data[(*pos)++];
+  // fetch_item() reads every item with tag 15 as a long item, and hid_open_report() rejects the
+  // descriptor on the first one ("unexpected long global item").
+  if ((prefix >> 4) == 0x0F) return at(it->at, "long items are not supported (nor by Linux)");
+  static constexpr uint32_t kSizes[4] = {0, 1, 2, 4};
+  it->size = kSizes[prefix & 0x03];
+  if (*pos + it->size > n) return at(it->at, "item data runs past the end of the descriptor");
+  it->value = 0;
+  for (uint32_t i = 0; i < it->size; ++i) it->value |= uint32_t{data[*pos + i]} << (8 * i);
+  *pos += it->size;
+  it->svalue = signExtend(it->value, it->size * 8);
+  it->tag = prefix & 0xFC;
+  it->type = static_cast<ItemType>((prefix >> 2) & 0x03);
+  return {};
+}
+
+}  // namespace
+
 ParseResult parseReportDescriptor(const uint8_t* data, size_t n) {
   ParseResult result;
   if (n == 0) {
@@ -136,222 +397,15 @@ ParseResult parseReportDescriptor(const uint8_t* data, size_t n) {
                    " bytes (" + std::to_string(n) + ")";
     return result;
   }
-  ReportDescriptor desc;
-  GlobalState global;
-  std::vector<GlobalState> stack;
-  LocalState local;
-  std::vector<Collection> collections;
-  bool saw_unnumbered_main = false;
-  auto fail = [&](size_t item_at, const std::string& what) {
-    result.error = at(item_at, what);
-    return result;
-  };
-
-  size_t pos = 0;
-  while (pos < n) {
-    const size_t item_at = pos;
-    const uint8_t prefix = data[pos++];
-    // hid-core.c: fetch_item() reads every item with tag 15 as a long item, and
-    // hid_open_report() rejects the descriptor on the first one ("unexpected long global item").
-    if ((prefix >> 4) == 0x0F) return fail(item_at, "long items are not supported (nor by Linux)");
-    static constexpr uint32_t kSizes[4] = {0, 1, 2, 4};
-    const uint32_t size = kSizes[prefix & 0x03];
-    if (pos + size > n) return fail(item_at, "item data runs past the end of the descriptor");
-    uint32_t value = 0;
-    for (uint32_t i = 0; i < size; ++i) value |= uint32_t{data[pos + i]} << (8 * i);
-    pos += size;
-    const int32_t svalue = signExtend(value, size * 8);
-    const uint8_t tag = prefix & 0xFC;
-    const auto type = static_cast<ItemType>((prefix >> 2) & 0x03);
-
-    if (type == kReserved) continue;  // hid_parser_reserved(): ignored
-
-    if (type == kMain) {
-      concatenateLastUsagePage(local, global.usage_page);
-      switch (tag) {
-        case kMainInput:
-        case kMainOutput:
-        case kMainFeature: {
-          if (!logicalRangeValid(global.logical_min, global.logical_max))
-            return fail(item_at, "logical maximum " + std::to_string(global.logical_max) +
-                                     " is below logical minimum " +
-                                     std::to_string(global.logical_min));
-          if (global.report_id == 0) saw_unnumbered_main = true;
-          if (desc.numbered && saw_unnumbered_main)
-            return fail(item_at, "fields both with and without report IDs");
-          const ReportType rtype = tag == kMainInput    ? ReportType::kInput
-                                   : tag == kMainOutput ? ReportType::kOutput
-                                                        : ReportType::kFeature;
-          auto it =
-              std::find_if(desc.reports.begin(), desc.reports.end(), [&](const ReportSize& r) {
-                return r.type == rtype && r.report_id == global.report_id;
-              });
-          if (it == desc.reports.end()) {
-            desc.reports.push_back({rtype, global.report_id, 0});
-            it = desc.reports.end() - 1;
-          }
-          const uint64_t bits = uint64_t{global.report_size} * global.report_count;
-          if (it->bits + bits > kMaxReportBits)
-            return fail(item_at, "report is longer than 4096 bytes");
-          if (desc.fields.size() >= kMaxFields) return fail(item_at, "more than 1024 fields");
-          Field f;
-          f.type = rtype;
-          f.report_id = global.report_id;
-          f.bit_offset = it->bits;
-          f.bit_size = global.report_size;
-          f.count = global.report_count;
-          f.flags = value;
-          f.usages.reserve(local.usages.size());
-          for (const LocalUsage& u : local.usages) f.usages.push_back(u.usage);
-          f.logical_min = global.logical_min;
-          f.logical_max = global.logical_max;
-          f.physical_min = global.physical_min;
-          f.physical_max = global.physical_max;
-          f.unit = global.unit;
-          f.unit_exponent = global.unit_exponent;
-          for (const Collection& c : collections) {  // innermost wins (hid_lookup_collection)
-            if (c.kind == kApplication) f.application = c.usage;
-            if (c.kind == kPhysical) f.physical = c.usage;
-            if (c.kind == kLogical) f.logical = c.usage;
-          }
-          it->bits += static_cast<uint32_t>(bits);
-          desc.fields.push_back(std::move(f));
-          break;
-        }
-        case kMainCollection: {
-          if (static_cast<int>(collections.size()) >= kMaxCollectionDepth)
-            return fail(item_at, "collections nested too deeply");
-          Collection c;
-          c.kind = static_cast<uint8_t>(value & 0xFF);
-          c.usage = local.usages.empty() ? 0 : local.usages.front().usage;
-          collections.push_back(c);
-          break;
-        }
-        case kMainEndCollection:
-          if (collections.empty()) return fail(item_at, "end collection without a collection");
-          collections.pop_back();
-          break;
-        default:  // hid_parser_main(): "unknown main item tag", ignored
-          break;
-      }
-      local = LocalState{};
-      continue;
-    }
-
-    if (type == kGlobal) {
-      switch (tag) {
-        case kGlobalUsagePage:
-          global.usage_page = static_cast<uint16_t>(value);
-          break;
-        case kGlobalLogicalMin:
-          global.logical_min = svalue;
-          break;
-        case kGlobalLogicalMax:
-          global.logical_max = maximumItem(global.logical_min, value, size);
-          break;
-        case kGlobalPhysicalMin:
-          global.physical_min = svalue;
-          break;
-        case kGlobalPhysicalMax:
-          global.physical_max = maximumItem(global.physical_min, value, size);
-          break;
-        case kGlobalUnitExponent:
-          // A 4-bit two's-complement nibble when it fits, else a plain signed value.
-          global.unit_exponent = (svalue & ~0x0F) == 0 ? signExtend(value, 4) : svalue;
-          break;
-        case kGlobalUnit:
-          global.unit = value;
-          break;
-        case kGlobalReportSize:
-          if (value > kMaxReportSizeBits)
-            return fail(item_at, "report size " + std::to_string(value) + " is over 256 bits");
-          global.report_size = value;
-          break;
-        case kGlobalReportCount:
-          if (value > kMaxReportCount)
-            return fail(item_at, "report count " + std::to_string(value) + " is over 12288");
-          global.report_count = value;
-          break;
-        case kGlobalReportId:
-          if (value == 0 || value > 255) return fail(item_at, "report ID must be 1..255");
-          if (saw_unnumbered_main) return fail(item_at, "report ID after fields without one");
-          desc.numbered = true;
-          global.report_id = static_cast<uint8_t>(value);
-          break;
-        case kGlobalPush:
-          if (static_cast<int>(stack.size()) >= kMaxGlobalStackDepth)
-            return fail(item_at, "push nested too deeply (Linux allows 4)");
-          stack.push_back(global);
-          break;
-        case kGlobalPop:
-          if (stack.empty()) return fail(item_at, "pop without push");
-          global = stack.back();
-          stack.pop_back();
-          break;
-        default:
-          return fail(item_at, "unknown global item tag");
-      }
-      continue;
-    }
-
-    // Local items. Usages after the first delimited set are alternatives the kernel ignores.
-    switch (tag) {
-      case kLocalDelimiter:
-        if (value != 0) {
-          if (local.delimiter_depth != 0) return fail(item_at, "nested delimiters");
-          ++local.delimiter_depth;
-          ++local.delimiter_branch;
-        } else {
-          if (local.delimiter_depth < 1)
-            return fail(item_at, "close delimiter without an open one");
-          --local.delimiter_depth;
-        }
-        break;
-      case kLocalUsage:
-        if (local.delimiter_branch > 1) break;
-        if (local.usages.size() >= kMaxUsagesPerItem)
-          return fail(item_at, "too many usages for one item");
-        local.usages.push_back({size <= 2 ? completeUsage(value, global.usage_page) : value, size});
-        break;
-      case kLocalUsageMin:
-        if (local.delimiter_branch > 1) break;
-        local.have_min = true;
-        local.usage_min = value;
-        break;
-      case kLocalUsageMax: {
-        if (local.delimiter_branch > 1) break;
-        if (!local.have_min) return fail(item_at, "usage maximum without usage minimum");
-        if (value < local.usage_min) return fail(item_at, "usage range is inverted");
-        // Cut at the usage limit, as the kernel cuts at HID_MAX_USAGES.
-        const uint64_t room = kMaxUsagesPerItem - local.usages.size();
-        const uint64_t last =
-            std::min<uint64_t>(value, uint64_t{local.usage_min} + (room == 0 ? 0 : room - 1));
-        if (room == 0) return fail(item_at, "too many usages for one item");
-        for (uint64_t u = local.usage_min; u <= last; ++u) {
-          const auto raw = static_cast<uint32_t>(u);
-          local.usages.push_back({size <= 2 ? completeUsage(raw, global.usage_page) : raw, size});
-        }
-        local.have_min = false;
-        break;
-      }
-      default:  // designators and strings carry nothing a decoder needs
-        break;
-    }
+  DescriptorParser parser;
+  for (size_t pos = 0; pos < n;) {
+    Item it;
+    result.error = fetchItem(data, n, &pos, &it);
+    if (result.error.empty()) result.error = parser.item(it);
+    if (!result.error.empty()) return result;
   }
-  if (!collections.empty()) {
-    result.error = "report descriptor ends inside " + std::to_string(collections.size()) +
-                   " open collection(s)";
-    return result;
-  }
-  if (local.delimiter_depth != 0) {
-    result.error = "report descriptor ends inside a delimiter";
-    return result;
-  }
-  if (desc.fields.empty()) {
-    result.error = "report descriptor declares no fields";
-    return result;
-  }
-  result.descriptor = std::move(desc);
+  result.error = parser.finish();
+  if (result.error.empty()) result.descriptor = parser.take();
   return result;
 }
 

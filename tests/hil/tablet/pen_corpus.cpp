@@ -75,7 +75,7 @@ std::vector<CorpusDevice> readPenCorpus(const std::string& path, std::string* er
   return devices;
 }
 
-std::string corpusMismatch(const CorpusStep& st, const PenSample& s) {
+std::string corpusMismatch(const CorpusStep& st, const PenSample& s, bool z_is_distance) {
   if (st.expect == "any") return {};
   if (st.expect == "out") return s.in_proximity ? "in proximity, expected out" : "";
   std::ostringstream why;
@@ -92,6 +92,7 @@ std::string corpusMismatch(const CorpusStep& st, const PenSample& s) {
   check("pressure", s.pressure_raw, st.value("tippressure"));
   check("tilt_x", s.tilt_x_raw, st.value("xtilt"));
   check("tilt_y", s.tilt_y_raw, st.value("ytilt"));
+  if (z_is_distance) check("distance", s.distance_raw, st.value("z"));
   return why.str();
 }
 

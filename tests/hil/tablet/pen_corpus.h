@@ -42,7 +42,10 @@ struct CorpusDevice {
 std::vector<CorpusDevice> readPenCorpus(const std::string& path, std::string* error);
 
 // What a pen state must look like after `step`: empty when `got` matches, else what differs.
-// `out` steps need no proximity; `any` steps accept anything.
-std::string corpusMismatch(const CorpusStep& step, const PenSample& got);
+// `out` steps need no proximity; `any` steps accept anything. `z_is_distance`: Generic Desktop Z
+// of a Pen application is the hover distance (hid-input from Linux 6.18; older kernels report it
+// as ABS_Z, which the evdev path does not read).
+std::string corpusMismatch(const CorpusStep& step, const PenSample& got,
+                           bool z_is_distance = false);
 
 }  // namespace cb::hil

@@ -130,5 +130,36 @@ TEST(NPointCalibration, TapFileParsesAndReportsLines) {
   EXPECT_NE(err.find("t.toml:3:"), std::string::npos) << err;
 }
 
+// Numbers toml++ would convert to an integer before checking (1e40 into int64_t is undefined):
+// each is refused at its own line, naming the field.
+TEST(NPointCalibration, TapFileRefusesNumbersOutOfRange) {
+  const std::string device =
+      "[device]\nusb_vendor = 0x056a\nusb_product = 0x00b9\nwidth_mm = 223.52\n"
+      "height_mm = 139.7\n[[tap]]\ntarget_px = [192, 108]\npen_mm = [22.3, 14.0]\n";
+  const struct {
+    const char* screen;
+    const char* want;
+  } cases[] = {
+      {"[screen]\nwidth = 1920\nheight = 1e40\n", "t.toml:3: screen.height: outside 1..65536"},
+      {"[screen]\nwidth = -1\nheight = 1080\n", "t.toml:2: screen.width: -1 is outside 1..65536"},
+      {"[screen]\nwidth = nan\nheight = 1080\n",
+       "t.toml:2: screen.width: expected an integer in 1..65536"},
+      {"[screen]\nwidth = 9223372036854775808.0\nheight = 1080\n",
+       "t.toml:2: screen.width: outside 1..65536"},
+  };
+  for (const auto& c : cases) {
+    std::string err;
+    EXPECT_FALSE(parseTapFile(std::string(c.screen) + device, "t.toml", &err)) << c.screen;
+    EXPECT_EQ(err, c.want);
+  }
+  std::string err;
+  EXPECT_FALSE(
+      parseTapFile("[screen]\nwidth = 1920\nheight = 1080\n"
+                   "[device]\nusb_vendor = 0x056a\nusb_product = 0x00b9\n"
+                   "width_mm = nan\nheight_mm = 139.7\n",
+                   "t.toml", &err));
+  EXPECT_EQ(err.rfind("t.toml:7: device.width_mm: ", 0), 0u) << err;
+}
+
 }  // namespace
 }  // namespace cb

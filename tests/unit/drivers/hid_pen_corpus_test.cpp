@@ -73,12 +73,61 @@ TEST(HidPenCorpus, ScriptedMotionDecodesFieldByField) {
       DecodeResult r = decoder.decode(st.report.data(), st.report.size(), ++t, s);
       ASSERT_NE(r.status, DecodeStatus::kRejected) << r.reason;
       if (r.status != DecodeStatus::kSample) s = PenSample{};  // nothing in proximity
-      EXPECT_EQ(hil::corpusMismatch(st, s), "");
+      EXPECT_EQ(hil::corpusMismatch(st, s, /*z_is_distance=*/true), "");
       ++checked;
     }
   }
   EXPECT_GE(checked, 200u);
 }
+
+// One test per pen usage hid-input maps (drivers/hid/README.md, "Pen usages"): the corpus has a
+// device with it and steps that change it, and every step of those devices decodes as the
+// script (hid-tools' reports) says.
+class HidPenUsage : public testing::TestWithParam<const char*> {};
+
+TEST_P(HidPenUsage, DecodesAsHidInputMapsIt) {
+  const std::string usage = GetParam();
+  std::string error;
+  const std::vector<hil::CorpusDevice> devices =
+      hil::readPenCorpus(std::string(CB_HID_FIXTURE_DIR) + "/pen_corpus_reports.txt", &error);
+  ASSERT_TRUE(error.empty()) << error;
+  size_t changes = 0;
+  for (const hil::CorpusDevice& dev : devices) {
+    if (!dev.ranges.count(usage)) continue;
+    SCOPED_TRACE(dev.file);
+    const auto bytes = test::readFixture(dev.file);
+    ParseResult parsed = parseReportDescriptor(bytes.data(), bytes.size());
+    ASSERT_TRUE(parsed.descriptor) << parsed.error;
+    PenLayoutResult found = findPenLayout(*parsed.descriptor);
+    ASSERT_TRUE(found.layout) << found.error;
+    const PenDeviceInfo info = penDeviceInfo(*found.layout, dev.vendor, dev.product, "usage");
+    HidPenDecoder decoder(*found.layout, info,
+                          test::shippedDevices().rulesFor(dev.vendor, dev.product));
+    int32_t previous = dev.ranges.at(usage).min;
+    int64_t t = 0;
+    for (const hil::CorpusStep& st : dev.steps) {
+      SCOPED_TRACE("pen_corpus_reports.txt:" + std::to_string(st.line) + " " + st.name);
+      PenSample s;
+      DecodeResult r = decoder.decode(st.report.data(), st.report.size(), ++t, s);
+      ASSERT_NE(r.status, DecodeStatus::kRejected) << r.reason;
+      if (r.status != DecodeStatus::kSample) s = PenSample{};
+      EXPECT_EQ(hil::corpusMismatch(st, s, /*z_is_distance=*/true), "");
+      if (st.values.count(usage) && st.value(usage) != previous) ++changes;
+      if (st.values.count(usage)) previous = st.value(usage);
+    }
+  }
+  EXPECT_GE(changes, 1u) << "no corpus device changes " << usage;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryPenUsage, HidPenUsage,
+                         testing::Values("tipswitch", "touch", "secondarytipswitch", "inrange",
+                                         "invert", "eraser", "barrelswitch",
+                                         "secondarybarrelswitch", "tabletpick", "tippressure",
+                                         "xtilt", "ytilt", "z", "barrelpressure", "azimuth",
+                                         "altitude", "twist", "contactid", "znotdistance"),
+                         [](const testing::TestParamInfo<const char*>& i) {
+                           return std::string(i.param);
+                         });
 
 }  // namespace
 }  // namespace cb::hid

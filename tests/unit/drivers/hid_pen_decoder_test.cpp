@@ -72,21 +72,34 @@ TEST_F(HidPenDecoderTest, UnitConversion) {
   EXPECT_EQ(got.t_ns, 5);
 }
 
-TEST_F(HidPenDecoderTest, RejectsShortOversizedAndForeignReports) {
+// The kernel's HID core (hid-core.c, hid_report_raw_event): a short report is refused, bytes past
+// the descriptor's length are not read.
+TEST_F(HidPenDecoderTest, RejectsShortReportsAndIgnoresTrailingBytes) {
   HidPenDecoder decoder(layout_, info_, PenDriverRules::kWacom,
                         test::shippedEntry(0x056A, 0x0357).tools);
   hil::PenStep s;
+  s.tip = true;
+  s.pressure = 3000;
+  s.x = 2222;
   auto report = hil::encodePenReport(layout_, s);
   PenSample out;
-  DecodeResult r = decoder.decode(report.data(), 10, 0, out);
+  DecodeResult r = decoder.decode(report.data(), report.size() - 1, 0, out);
   EXPECT_EQ(r.status, DecodeStatus::kRejected);
-  EXPECT_NE(r.reason.find("short pen report: 10 bytes"), std::string::npos) << r.reason;
-  report.resize(64, 0);
-  r = decoder.decode(report.data(), report.size(), 0, out);
-  EXPECT_EQ(r.status, DecodeStatus::kRejected);
-  EXPECT_NE(r.reason.find("oversized"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("short pen report: " + std::to_string(report.size() - 1) + " bytes"),
+            std::string::npos)
+      << r.reason;
+  const size_t exact = report.size();
+  report.resize(exact + 1, 0xFF);  // one byte more, all bits set
+  r = decoder.decode(report.data(), report.size(), 1, out);
+  ASSERT_EQ(r.status, DecodeStatus::kSample) << r.reason;
+  EXPECT_EQ(out.x_raw, 2222);
+  EXPECT_EQ(out.pressure_raw, 3000);
+  report.resize(64, 0xFF);
+  r = decoder.decode(report.data(), report.size(), 2, out);
+  ASSERT_EQ(r.status, DecodeStatus::kSample) << r.reason;
+  EXPECT_EQ(out.x_raw, 2222);
   report[0] = 17;  // the pad report
-  r = decoder.decode(report.data(), report.size(), 0, out);
+  r = decoder.decode(report.data(), report.size(), 3, out);
   EXPECT_EQ(r.status, DecodeStatus::kOtherReport);
   EXPECT_EQ(decoder.decode(report.data(), 0, 0, out).status, DecodeStatus::kRejected);
 }

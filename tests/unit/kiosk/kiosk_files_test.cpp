@@ -86,7 +86,7 @@ TEST(KioskConfig, BadValuesNameTheFileAndKey) {
             std::string::npos)
       << "no PIN in a config file";
   EXPECT_NE(error_of("[visitor]\n\nidle_seconds = \"long\"\n")
-                .find(path + ":3: visitor.idle_seconds must be"),
+                .find(path + ":3: visitor.idle_seconds: expected a number"),
             std::string::npos)
       << "the file and the line of the key";
   EXPECT_NE(error_of("[gallery]\nmin_free_mb = -1\n").find(path + ":2: gallery.min_free_mb"),

@@ -50,5 +50,18 @@ TEST(MappingConfig, BadValuesNameTheFileAndKey) {
   EXPECT_THROW(loadMappingConfig("/nonexistent/mapping.toml"), std::runtime_error);
 }
 
+// An integer field given 1e40, -1 past an unsigned range, 2^63 or NaN: refused with
+// FILE:LINE: field (toml++'s value<int64_t>() would convert the float first, undefined).
+TEST(MappingConfig, RefusesNumbersPastTheFieldsType) {
+  for (const char* v : {"1e40", "9223372036854775808.0", "nan", "2.5"}) {
+    try {
+      parseMappingConfigText(std::string("[circles]\ndirections = ") + v + "\n", "m.toml");
+      ADD_FAILURE() << v << " accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("m.toml:2: circles.directions: ", 0), 0u) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cb
