@@ -42,9 +42,17 @@
 // Stencil (which pixels to cast) is tested before shading, statistics atomics or not.
 layout(early_fragment_tests) in;
 layout(location = 0) out vec4 o_colour;
+#if CB_DEPTH
+// The ray's transmittance-weighted depth (CB_DEPTH, temporal reprojection): Σ(T − T')·t_k over
+// Σ(T − T') = 1 − T, as a world distance from the eye; u_no_depth where 1 − T < u_depth_min.
+layout(location = 1) out float o_depth;
+uniform float u_no_depth;
+uniform float u_depth_min;
+#endif
 
 uniform mat4 u_inv_view_proj;
 uniform vec2 u_viewport;      // size of the image being rendered, pixels
+uniform vec2 u_jitter;        // the ray passes through the pixel centre plus this (pixels)
 uniform vec3 u_world_min;
 uniform vec3 u_voxel_size;    // world units per voxel
 uniform usampler3D u_occupancy;
@@ -83,7 +91,7 @@ float cellExit(vec3 origin, vec3 inv_dir, vec3 lo, float size) {
 }
 
 void main() {
-  vec2 ndc = gl_FragCoord.xy / u_viewport * 2.0 - 1.0;
+  vec2 ndc = (gl_FragCoord.xy + u_jitter) / u_viewport * 2.0 - 1.0;
   vec4 near_h = u_inv_view_proj * vec4(ndc, -1.0, 1.0);
   vec4 far_h = u_inv_view_proj * vec4(ndc, 1.0, 1.0);
   vec3 origin_world = near_h.xyz / near_h.w;
@@ -104,6 +112,9 @@ void main() {
   CB_SHADE shade_sum = CB_SHADE(0.0);  // Σ T·α·shade
 #endif
   float transmittance = 1.0;
+#if CB_DEPTH && !CB_SURFACE
+  float depth_sum = 0.0;  // Σ (T − T')·k, in samples
+#endif
   uint samples = 0u;
   vec3 inv_dims = 1.0 / u_dims;
   ivec3 max_voxel = ivec3(u_dims) - 1;
@@ -237,6 +248,9 @@ void main() {
         float density = styleDensity(s.r, base + float(k + i) * delta) * live;
         float t_next = transmittance * exp2(neg_optical_depth_log2 * density);
         shade_sum += (transmittance - t_next) * shadeSample(density, s.g);  // T·α·shade
+#if CB_DEPTH
+        depth_sum += (transmittance - t_next) * float(k + i);
+#endif
         transmittance = t_next;
 #endif
       }
@@ -296,6 +310,19 @@ void main() {
   atomicMax(ray_stats.max_samples, samples);
   atomicAdd(ray_stats.pixels, 1u);
   atomicAdd(ray_stats.histogram[min(samples / 8u, 63u)], 1u);
+#endif
+#if CB_DEPTH
+  {
+#if CB_SURFACE
+    float weight = hit ? 1.0 : 0.0;
+    float k_mean = float(hit_k);
+#else
+    float weight = 1.0 - transmittance;
+    float k_mean = depth_sum / max(weight, 1e-6);
+#endif
+    vec3 at = u_world_min + (origin + (t_enter + (k_mean + 0.5) * u_step) * dir) * u_voxel_size;
+    o_depth = weight >= u_depth_min ? distance(at, u_eye) : u_no_depth;
+  }
 #endif
   o_colour = vec4(colour + transmittance * u_background.rgb,
                   1.0 - transmittance + transmittance * u_background.a);

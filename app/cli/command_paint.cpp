@@ -401,6 +401,10 @@ int commandPaint(int argc, char** argv) {
   if (!choice_note.empty())
     std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
                  choice_note.c_str());
+  if (!display->context().device.empty())  // headless: which EGL device rendered
+    std::fprintf(stderr, "cloudbrush: rendered by %s%s%s\n", display->context().describe().c_str(),
+                 display->context().device_note.empty() ? "" : "; passed over: ",
+                 display->context().device_note.c_str());
 
   RenderConfig render_config;
   try {

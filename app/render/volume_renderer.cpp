@@ -38,6 +38,15 @@ std::string composeDefines(bool ink, bool bleed, bool over_sky) {
          (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") + "\n";
 }
 
+// Clip space moved so that pixel (i, j) of a w×h image is cast through (i + ½ + j.x, j + ½ + j.y)
+// (RenderOptions::jitter): NDC moves by −2·jitter/size, proportionally to w_clip.
+glm::mat4 jitterMatrix(glm::vec2 jitter, int w, int h) {
+  glm::mat4 m(1.0f);
+  m[3][0] = -2.0f * jitter.x / float(w);
+  m[3][1] = -2.0f * jitter.y / float(h);
+  return m;
+}
+
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -67,6 +76,7 @@ void VolumeRenderer::deleteTargets(FrameTargets* t) {
   if (t->bounds) glDeleteTextures(1, &t->bounds);
   if (t->frame) glDeleteTextures(1, &t->frame);
   if (t->stencil) glDeleteRenderbuffers(1, &t->stencil);
+  if (t->depth) glDeleteTextures(1, &t->depth);
   *t = FrameTargets{};
 }
 
@@ -109,7 +119,8 @@ VolumeRenderer::~VolumeRenderer() {
   if (bounds_vbo_) glDeleteBuffers(1, &bounds_vbo_);
   if (mask_vao_) glDeleteVertexArrays(1, &mask_vao_);
   if (mask_vbo_) glDeleteBuffers(1, &mask_vbo_);
-  FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+  FrameTargets current{
+      bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, depth_texture_, 0, 0};
   deleteTargets(&current);
   deleteTargets(&spare_targets_);
   if (detail_noise_texture_) glDeleteTextures(1, &detail_noise_texture_);
@@ -147,7 +158,8 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
       "\n#define CB_BRICK_STEPPING " + (options.brick_stepping ? "1" : "0") +
       "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n#define CB_SURFACE " +
       (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") +
-      "\n#define CB_CHUNK " + std::to_string(chunkSamples(rayStepVoxels(options))) + "\n";
+      "\n#define CB_CHUNK " + std::to_string(chunkSamples(rayStepVoxels(options))) +
+      "\n#define CB_DEPTH " + (options.write_depth && options.skip_empty_space ? "1" : "0") + "\n";
   const std::string stage = shadingStageFile(options.style);
   const std::string key = stage + "\n" + defines;
   auto it = programs_.find(key);
@@ -440,10 +452,11 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     // The frame targets hold frames of the volume before: given back, so that what the renderer
     // holds follows the sizes this volume is drawn at, not every size drawn before (a kiosk
     // resets to the attract loop after each visit; soak in tests/unit/kiosk/kiosk_soak.cpp).
-    FrameTargets current{bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, 0, 0};
+    FrameTargets current{
+        bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, depth_texture_, 0, 0};
     deleteTargets(&current);
     deleteTargets(&spare_targets_);
-    bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = 0;
+    bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = depth_texture_ = 0;
     bounds_w_ = bounds_h_ = 0;
   }
   st.slots_uploaded = pool.slots_uploaded;
@@ -495,6 +508,9 @@ RendererGpuMemory VolumeRenderer::gpuMemory() const {
   m.frame_targets = (size_t(bounds_w_) * size_t(bounds_h_) +
                      size_t(spare_targets_.w) * size_t(spare_targets_.h)) *
                     kTargetBytesPerPixel;
+  if (depth_texture_) m.frame_targets += size_t(bounds_w_) * size_t(bounds_h_) * 4;
+  if (spare_targets_.depth)
+    m.frame_targets += size_t(spare_targets_.w) * size_t(spare_targets_.h) * 4;
   for (const RenderTarget* t : {&low_res_, &style_image_, &bleed_})
     m.frame_targets += size_t(t->width()) * size_t(t->height()) *
                        (t->format() == RenderTarget::Format::kRgba8 ? 4 : 16);
@@ -510,15 +526,17 @@ void VolumeRenderer::useFrameTargets(int w, int h) {
   if (bounds_w_ != w || bounds_h_ != h) {
     // The painter alternates two sizes (a pen-up frame at the moving scale, then the full one):
     // the previous size's targets are kept as the spare instead of being reallocated.
-    FrameTargets current{bounds_fbo_,     bounds_texture_, frame_texture_,
-                         stencil_buffer_, bounds_w_,       bounds_h_};
+    FrameTargets current{bounds_fbo_,    bounds_texture_, frame_texture_, stencil_buffer_,
+                         depth_texture_, bounds_w_,       bounds_h_};
     std::swap(current, spare_targets_);
     std::swap(history_, spare_history_);
+    depth_texture_ = 0;
     if (current.w == w && current.h == h) {
       bounds_fbo_ = current.fbo;
       bounds_texture_ = current.bounds;
       frame_texture_ = current.frame;
       stencil_buffer_ = current.stencil;
+      depth_texture_ = current.depth;
       bounds_w_ = w;
       bounds_h_ = h;
     } else {
@@ -541,6 +559,15 @@ void VolumeRenderer::useFrameTargets(int w, int h) {
       bounds_h_ = h;
     }
   }
+}
+
+void VolumeRenderer::ensureDepthTarget() {
+  if (depth_texture_) return;
+  glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture_);
+  glTextureStorage2D(depth_texture_, 1, GL_R32F, bounds_w_, bounds_h_);
+  glTextureParameteri(depth_texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(depth_texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glNamedFramebufferTexture(bounds_fbo_, GL_COLOR_ATTACHMENT2, depth_texture_, 0);
 }
 
 void VolumeRenderer::drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h) {
@@ -753,7 +780,12 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   }
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
+  // The ray bounds and the projected rectangles move with the jitter; the rays are cast through
+  // the unmoved camera at the pixel centres plus the jitter (u_jitter), which for a power-of-two
+  // fraction of a frame is exactly the full frame's pixel position scaled by a power of two, so
+  // such a pixel's ray is the full frame's bit for bit.
+  const glm::mat4 plain_view_proj = camera.projection(float(width) / float(height)) * camera.view();
+  const glm::mat4 view_proj = jitterMatrix(options.jitter, w, h) * plain_view_proj;
   const bool skip = options.skip_empty_space;
   // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
   const bool partial = options.region.z > 0 && options.region.w > 0;
@@ -848,10 +880,22 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glStencilFunc(GL_EQUAL, 1, 1);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
+  if (skip && options.write_depth) {
+    // Output 1 -> the depth texture, cleared to "no depth" where this frame casts.
+    ensureDepthTarget();
+    const GLenum colour_and_depth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(2, colour_and_depth);
+    if (!masked) {
+      const float none[4] = {kNoDepth, 0.0f, 0.0f, 0.0f};
+      glClearBufferfv(GL_COLOR, 1, none);
+    }
+    glDisablei(GL_BLEND, 1);
+  }
   glUseProgram(program_);
-  glm::mat4 inv = glm::inverse(view_proj);
+  glm::mat4 inv = glm::inverse(plain_view_proj);
   auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
   glUniformMatrix4fv(loc("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
+  glUniform2fv(loc("u_jitter"), 1, glm::value_ptr(options.jitter));
   glUniform2f(loc("u_viewport"), float(w), float(h));
   glUniform3fv(loc("u_world_min"), 1, glm::value_ptr(world_min_));
   glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
@@ -875,6 +919,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1i(loc("u_ray_bounds"), 2);
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);
+  glUniform1f(loc("u_no_depth"), kNoDepth);
+  glUniform1f(loc("u_depth_min"), kDepthMinOpacity);
   if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
   // Style uniforms (a stage that does not declare one ignores it: location −1).

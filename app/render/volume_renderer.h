@@ -71,7 +71,21 @@ struct RenderOptions {
   // axis, and only R finished, so every pixel of R reads only fresh pixels and equals a
   // full-frame render (tested). The ray bounds are rasterised inside the cast rectangle only.
   glm::ivec4 region{0};
+  // The cast image's pixel centres moved by this many of its pixels (x right, y up): ray (i, j)
+  // passes through (i + ½ + jitter.x, j + ½ + jitter.y). The interleaved casts of
+  // temporal_reprojection.h cast every f-th pixel of a full frame as a 1/f-size image jittered
+  // onto those pixels. (0, 0): the plain frame.
+  glm::vec2 jitter{0.0f};
+  // Also write each pixel's transmittance-weighted depth, Σ(T − T')·t / Σ(T − T') as a world
+  // distance from the eye (kNoDepth where the ray gathers under kDepthMinOpacity), into
+  // frameDepthTexture(). Needs skip_empty_space (the frame targets hold it).
+  bool write_depth = false;
 };
+
+// The depth written where a ray meets (next to) nothing: reprojected as a direction (at infinity).
+constexpr float kNoDepth = 1e30f;
+// Below this opacity (1 − T) a ray's depth is kNoDepth: too thin to place.
+constexpr float kDepthMinOpacity = 0.02f;
 
 struct RenderStats {
   int width = 0, height = 0;  // the resolution actually ray cast
@@ -176,6 +190,9 @@ class VolumeRenderer {
   const LightVolume& lightVolume() const { return light_volume_; }
   const OccupancyPyramid& occupancy() const { return occupancy_; }
   const BrickPool& brickPool() const { return pool_; }
+  // The last frame's R32F depth (RenderOptions::write_depth) at the cast image's size; 0 before
+  // a frame wrote one.
+  GLuint frameDepthTexture() const { return depth_texture_; }
   // GL-side bytes, itemised (RendererGpuMemory); memoryBytes() is their total.
   RendererGpuMemory gpuMemory() const;
   size_t memoryBytes() const { return gpuMemory().total(); }
@@ -206,6 +223,8 @@ class VolumeRenderer {
   void useFrameTargets(int w, int h);
   // Into the targets useFrameTargets(w, h) made current.
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
+  // Attaches a depth texture to the current frame targets (RenderOptions::write_depth).
+  void ensureDepthTarget();
 
   GLuint program_ = 0;                      // the variant in use
   std::map<std::string, GLuint> programs_;  // variants by shading file + defines
@@ -246,9 +265,10 @@ class VolumeRenderer {
   // and a stencil marking pixels whose rays meet occupied cells: only those are ray cast
   // (llvmpipe tests stencil before shading), then the colour is blitted to the target.
   GLuint bounds_fbo_ = 0, bounds_texture_ = 0, frame_texture_ = 0, stencil_buffer_ = 0;
+  GLuint depth_texture_ = 0;  // attachment 2, made by the first frame that writes depth
   int bounds_w_ = 0, bounds_h_ = 0;
   struct FrameTargets {
-    GLuint fbo = 0, bounds = 0, frame = 0, stencil = 0;
+    GLuint fbo = 0, bounds = 0, frame = 0, stencil = 0, depth = 0;
     int w = 0, h = 0;
   };
   FrameTargets spare_targets_;  // the previous size's (see drawRayBounds)

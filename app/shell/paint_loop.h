@@ -75,6 +75,13 @@ struct PaintLoopOptions {
   float moving_scale = 0.5f;
   float min_moving_scale = 0.5f;           // never below half resolution
   double target_frame_ms = 1000.0 / 30.0;  // 30 fps
+  // While the view moves, full resolution by temporal reprojection (temporal_reprojection.h:
+  // one pixel in reprojectionFactor² cast a frame) instead of moving_scale; false: the reduced
+  // scale (also where reprojection does not apply: ink, sketch, sizes f does not divide). Off
+  // by default: on llvmpipe at 1920×1080 it is not faster than the half-resolution orbit (its
+  // full-resolution pass gathers ~7 texels a pixel; docs/reprojection.md), and it replaces the
+  // reduced scale only where it is.
+  bool reproject_moving = false;
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;

@@ -790,7 +790,7 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
                     info.pen_up_to_refined_ms);
     }
   } else {
-    renderer_.sync(shownVolume(), shownLight());
+    const SyncStats sync = renderer_.sync(shownVolume(), shownLight());
     RenderOptions render_options = options_.render;
     render_options.style = currentStyle();
     const bool moving = orbiting_ || animationPlaying();
@@ -799,8 +799,11 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
     render_options.scale = moving ? orbitRenderScale(moving_scale_, options_) : 1.0f;
     render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
-    renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
-                     render_options);
+    if (moving)
+      renderMoving(frame.frame, frame.width, frame.height, render_options, sync);
+    else
+      renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
+                       render_options);
     if (!moving) {
       refined_ = true;
       ++refined_frames_;

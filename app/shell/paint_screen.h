@@ -42,6 +42,7 @@
 #include "app/render/hud_overlay.h"
 #include "app/render/render_style.h"
 #include "app/render/render_target.h"
+#include "app/render/temporal_reprojection.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/shell/paint_loop.h"
@@ -186,6 +187,16 @@ class PaintScreen : public Screen {
   void advanceAnimation(const FrameContext& frame);
   bool animationPlaying() const;
   std::unique_ptr<AnimationPreview> animation_;
+  // A frame while the view moves (orbit, morph, wind): full resolution by temporal reprojection
+  // where it applies (PaintLoopOptions::reproject_moving; paint_screen_reprojection.cpp), else
+  // the reduced scale in `options`. `sync`: what this frame's sync changed.
+  void renderMoving(long frame, int width, int height, RenderOptions options,
+                    const SyncStats& sync);
+  std::unique_ptr<TemporalReprojection> reprojection_;
+  bool reprojection_failed_ = false;
+  std::string reprojection_key_;          // the shading inputs its history was made with
+  long reprojection_frame_ = -2;          // the frame loop's index of the last reprojected frame
+  uint64_t reprojection_generation_ = 0;  // the volume's generation then
 
   Display& display_;
   VolumeRenderer& renderer_;

@@ -1,9 +1,12 @@
 #include "app/render/gl/egl_context.h"
 
+#include <cstdlib>
 #include <cstring>
+#include <vector>
 
 #include <EGL/eglext.h>
 
+#include "app/render/gl/egl_device_choice.h"
 #include "app/render/gl/gl.h"
 
 namespace cb {
@@ -80,6 +83,8 @@ bool checkGlVersion(EglContext* ctx, std::string* error) {
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const char* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  const char* vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
+  ctx->vendor = vendor ? vendor : "";
   ctx->renderer = r ? r : "";
   ctx->version = v ? v : "";
   if (major * 10 + minor < 45) {
@@ -98,26 +103,80 @@ void destroyGlContext(EglContext* ctx) {
   *ctx = EglContext{};
 }
 
+std::string EglContext::describe() const {
+  return device + ": " + renderer + ", " + version + (vendor.empty() ? "" : " (" + vendor + ")");
+}
+
+namespace {
+
+// The devices eglQueryDevicesEXT lists (empty without EGL_EXT_device_enumeration).
+std::vector<EGLDeviceEXT> queryEglDevices(std::vector<EglDeviceInfo>* infos) {
+  auto query_devices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+  std::vector<EGLDeviceEXT> devices;
+  EGLint count = 0;
+  if (!query_devices || !query_string || !query_devices(0, nullptr, &count) || count <= 0)
+    return devices;
+  devices.resize(size_t(count));
+  if (!query_devices(count, devices.data(), &count)) count = 0;
+  devices.resize(size_t(count));
+  for (EGLDeviceEXT d : devices) {
+    EglDeviceInfo info;
+    const char* ext = query_string(d, EGL_EXTENSIONS);
+    info.extensions = ext ? ext : "";
+    if (hasEglExtension(info.extensions, "EGL_EXT_device_drm")) {
+      const char* node = query_string(d, EGL_DRM_DEVICE_FILE_EXT);
+      info.drm_node = node ? node : "";
+    }
+#ifdef EGL_DRM_RENDER_NODE_FILE_EXT
+    if (hasEglExtension(info.extensions, "EGL_EXT_device_drm_render_node")) {
+      const char* node = query_string(d, EGL_DRM_RENDER_NODE_FILE_EXT);
+      info.render_node = node ? node : "";
+    }
+#endif
+    infos->push_back(info);
+  }
+  eglGetError();  // a string a device lacks leaves an error behind
+  return devices;
+}
+
+}  // namespace
+
 bool createSurfacelessContext(EglContext* out, std::string* error) {
   const char* exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!exts || !std::strstr(exts, "EGL_MESA_platform_surfaceless")) {
-    *error = "EGL_MESA_platform_surfaceless is not available (install libegl-mesa0)";
+  const std::string client = exts ? exts : "";
+  std::vector<EglDeviceInfo> infos;
+  const std::vector<EGLDeviceEXT> devices = hasEglExtension(client, "EGL_EXT_platform_device")
+                                                ? queryEglDevices(&infos)
+                                                : std::vector<EGLDeviceEXT>{};
+  const char* override_choice = std::getenv("CLOUDBRUSH_EGL_DEVICE");
+  const HeadlessEglChoice choice =
+      chooseHeadlessEgl(client, infos, override_choice ? override_choice : "");
+  if (choice.kind == HeadlessEglChoice::Kind::kNone) {
+    *error = "no headless EGL platform: " + choice.passed_over;
     return false;
   }
   auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   EGLDisplay display =
-      get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+      !get_platform_display ? EGL_NO_DISPLAY
+      : choice.kind == HeadlessEglChoice::Kind::kDevice
+          ? get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[size_t(choice.device)], nullptr)
+          : get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display == EGL_NO_DISPLAY) {
-    *error = "cannot open the surfaceless EGL display";
+    *error = "cannot open the EGL display of " + choice.description;
     return false;
   }
   if (!createGlContext(display, EGL_PBUFFER_BIT, 0, out, error)) {
+    *error = choice.description + ": " + *error;
     destroyGlContext(out);
     return false;
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, out->context)) {
-    *error = "eglMakeCurrent without a surface failed (needs EGL_KHR_surfaceless_context)";
+    *error = choice.description +
+             ": eglMakeCurrent without a surface failed (needs EGL_KHR_surfaceless_context)";
     destroyGlContext(out);
     return false;
   }
@@ -125,6 +184,8 @@ bool createSurfacelessContext(EglContext* out, std::string* error) {
     destroyGlContext(out);
     return false;
   }
+  out->device = choice.description;
+  out->device_note = choice.passed_over;
   return true;
 }
 

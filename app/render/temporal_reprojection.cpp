@@ -1,0 +1,194 @@
+#include "app/render/temporal_reprojection.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "app/render/shader_program.h"
+
+namespace cb {
+namespace {
+
+// A cast pixel's history is kept while its depth and the reprojected point's distance from the
+// previous eye differ by at most this fraction: a cloud's weighted depth moves smoothly with the
+// view, a disocclusion (another cloud part, the background) jumps by far more.
+constexpr float kDepthTolerance = 0.1f;
+
+}  // namespace
+
+int reprojectionFactor(int width, int height) {
+  return double(width) * double(height) >= 1920.0 * 1080.0 ? 4 : 2;
+}
+
+glm::ivec2 reprojectionPhase(int factor, long frame) {
+  // Bayer order of a 2×2 block: (0,0), (1,1), (1,0), (0,1); the 4×4 order nests it.
+  static constexpr int kBayer2[4][2] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  if (factor <= 1) return glm::ivec2(0);
+  const long n = frame % long(factor * factor);
+  if (factor == 2) return {kBayer2[n][0], kBayer2[n][1]};
+  // f = 4: the coarse 2×2 step moves every frame, the fine one every 4 frames.
+  const int* coarse = kBayer2[n % 4];
+  const int* fine = kBayer2[(n / 4) % 4];
+  return {coarse[0] * 2 + fine[0], coarse[1] * 2 + fine[1]};
+}
+
+TemporalReprojection::~TemporalReprojection() {
+  releaseTargets();
+  if (program_) glDeleteProgram(program_);
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+}
+
+bool TemporalReprojection::init(std::string* error) {
+  program_ = linkProgram({"fullscreen.vert.glsl"}, {"reproject.frag.glsl"}, error);
+  if (!program_) return false;
+  glCreateVertexArrays(1, &vao_);
+  return true;
+}
+
+bool TemporalReprojection::supports(int width, int height, int factor, RenderStyle style) {
+  return (factor == 2 || factor == 4) && width % factor == 0 && height % factor == 0 &&
+         !hasScreenSpacePass(style);
+}
+
+void TemporalReprojection::releaseTargets() {
+  for (Frame& f : frames_) {
+    if (f.fbo) glDeleteFramebuffers(1, &f.fbo);
+    if (f.colour) glDeleteTextures(1, &f.colour);
+    if (f.depth) glDeleteTextures(1, &f.depth);
+    f = Frame{};
+  }
+  cast_.release();
+  width_ = height_ = factor_ = 0;
+  history_valid_ = false;
+}
+
+void TemporalReprojection::ensureTargets(int width, int height, int factor) {
+  if (width == width_ && height == height_ && factor == factor_) return;
+  releaseTargets();
+  for (Frame& f : frames_) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &f.colour);
+    glTextureStorage2D(f.colour, 1, GL_RGBA8, width, height);
+    glCreateTextures(GL_TEXTURE_2D, 1, &f.depth);
+    glTextureStorage2D(f.depth, 1, GL_R32F, width, height);
+    for (GLuint t : {f.colour, f.depth}) {
+      glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, t == f.colour ? GL_LINEAR : GL_NEAREST);
+      glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, t == f.colour ? GL_LINEAR : GL_NEAREST);
+      glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    glCreateFramebuffers(1, &f.fbo);
+    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT0, f.colour, 0);
+    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.depth, 0);
+    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(f.fbo, 2, both);
+  }
+  std::string error;
+  if (!cast_.create(width / factor, height / factor, RenderTarget::Format::kRgba8, &error))
+    std::fprintf(stderr, "cloudbrush: reprojection: %s\n", error.c_str());
+  width_ = width;
+  height_ = height;
+  factor_ = factor;
+  history_valid_ = false;
+}
+
+void TemporalReprojection::noteChanges(glm::ivec4 rect) {
+  if (rect.z <= 0 || rect.w <= 0) return;
+  if (reject_.z <= 0 || reject_.w <= 0) {
+    reject_ = rect;
+    return;
+  }
+  const glm::ivec2 lo = glm::min(glm::ivec2(reject_), glm::ivec2(rect));
+  const glm::ivec2 hi = glm::max(glm::ivec2(reject_) + glm::ivec2(reject_.z, reject_.w),
+                                 glm::ivec2(rect) + glm::ivec2(rect.z, rect.w));
+  reject_ = glm::ivec4(lo, hi - lo);
+}
+
+void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera, int width,
+                                  int height, GLuint target_fbo, const RenderOptions& options,
+                                  int factor) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ensureTargets(width, height, factor);
+  stats_ = ReprojectionStats{};
+  stats_.factor = factor;
+  const glm::ivec2 phase = reprojectionPhase(factor, frame_++);
+  stats_.phase = phase;
+  // The cast: pixel i of the 1/f image is full pixel f·i + phase, whose centre lies
+  // (phase + ½)/f − ½ of a cast pixel from the cast pixel's centre.
+  RenderOptions cast = options;
+  cast.scale = 1.0f;
+  cast.region = glm::ivec4(0);
+  cast.jitter = (glm::vec2(phase) + 0.5f) / float(factor) - 0.5f;
+  cast.write_depth = true;
+  cast.skip_empty_space = true;
+  cast.finish = false;
+  renderer.render(camera, width / factor, height / factor, cast_.fbo(), cast);
+  stats_.pixels_cast = renderer.lastStats().pixels_cast;
+
+  const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
+  const bool still = history_valid_ && view_proj == prev_view_proj_ && camera.eye == prev_eye_;
+  const int previous = current_;
+  current_ = 1 - current_;
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frames_[current_].fbo);
+  glViewport(0, 0, width, height);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program_);
+  auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
+  glUniform1i(loc("u_cast"), 0);
+  glUniform1i(loc("u_cast_depth"), 1);
+  glUniform1i(loc("u_history"), 2);
+  glUniform1i(loc("u_history_depth"), 3);
+  glUniform1i(loc("u_factor"), factor);
+  glUniform2i(loc("u_phase"), phase.x, phase.y);
+  glUniform2f(loc("u_size"), float(width), float(height));
+  // Directions through the screen's corners on the far plane, minus the eye: linear in the
+  // screen position, so the shader interpolates them.
+  const glm::mat4 inv = glm::inverse(view_proj);
+  const auto corner = [&](float x, float y) {
+    const glm::vec4 h = inv * glm::vec4(x, y, 1.0f, 1.0f);
+    return glm::vec3(h) / h.w - camera.eye;
+  };
+  const glm::vec3 c00 = corner(-1, -1), c10 = corner(1, -1), c01 = corner(-1, 1);
+  glUniform3fv(loc("u_ray_origin"), 1, glm::value_ptr(c00));
+  glUniform3fv(loc("u_ray_dx"), 1, glm::value_ptr(c10 - c00));
+  glUniform3fv(loc("u_ray_dy"), 1, glm::value_ptr(c01 - c00));
+  glUniformMatrix4fv(loc("u_prev_view_proj"), 1, GL_FALSE, glm::value_ptr(prev_view_proj_));
+  glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
+  glUniform3fv(loc("u_prev_eye"), 1, glm::value_ptr(prev_eye_));
+  glUniform1i(loc("u_history_valid"), history_valid_ ? 1 : 0);
+  glUniform1i(loc("u_static"), still ? 1 : 0);
+  glUniform4i(loc("u_reject"), reject_.x, reject_.y, reject_.z, reject_.w);
+  glUniform1f(loc("u_depth_tolerance"), kDepthTolerance);
+  glUniform1f(loc("u_no_depth"), kNoDepth);
+  glBindTextureUnit(0, cast_.texture());
+  const GLuint cast_depth = renderer.frameDepthTexture();
+  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the gather at edges
+  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTextureUnit(1, cast_depth);
+  glBindTextureUnit(2, frames_[previous].colour);
+  glBindTextureUnit(3, frames_[previous].depth);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  stats_.history_used = history_valid_;
+
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, frames_[current_].fbo);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+
+  prev_view_proj_ = view_proj;
+  prev_eye_ = camera.eye;
+  history_valid_ = true;
+  reject_ = glm::ivec4(0);
+  if (options.finish) {
+    glFinish();
+    stats_.frame_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+}
+
+}  // namespace cb
