@@ -11,7 +11,8 @@ namespace cb::test {
 
 inline unsigned testSeed(const char* test_name) {
   unsigned seed = unsigned(std::chrono::steady_clock::now().time_since_epoch().count());
-  if (const char* fixed = std::getenv("CB_TEST_SEED")) seed = unsigned(std::strtoul(fixed, nullptr, 10));
+  if (const char* fixed = std::getenv("CB_TEST_SEED"))
+    seed = unsigned(std::strtoul(fixed, nullptr, 10));
   std::printf("%s: seed %u (CB_TEST_SEED=%u reruns it)\n", test_name, seed, seed);
   std::fflush(stdout);
   return seed;
