@@ -36,7 +36,7 @@ constexpr Row kRows[] = {
     {Command::kSpace, kCamera | kErase, false, {"Auto-rotate / Cut", "自动旋转 / 切除"}},
     {Command::kSmaller, kEveryMode, false, {"Smaller", "变小"}},
     {Command::kLarger, kEveryMode, false, {"Larger", "变大"}},
-    {Command::kBrushSmaller, kPaint, false, {"Brush −", "笔刷缩小"}},
+    {Command::kBrushSmaller, kPaint, false, {"Brush -", "笔刷缩小"}},
     {Command::kBrushLarger, kPaint, false, {"Brush +", "笔刷放大"}},
     {Command::kRaise, kCanvas, true, {"Raise", "升高"}},
     {Command::kLower, kCanvas, true, {"Lower", "降低"}},

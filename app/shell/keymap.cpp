@@ -259,7 +259,7 @@ bool parseKeyList(std::string_view text, std::vector<DisplayEvent>* keys, std::s
     if (keysym == 0) {
       *error = "key '" + token +
                "' is not a letter, digit or one of space, esc, delete, up, down, left, right, "
-               "minus, plus, pageup, pagedown, f1-f12";
+               "minus, plus, bracketleft, bracketright, pageup, pagedown, f1-f12";
       return false;
     }
     keys->push_back(DisplayEvent::key(keysym, modifiers));

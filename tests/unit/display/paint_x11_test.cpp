@@ -127,8 +127,10 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
     pointer(MotionNotify, kW / 4 + i * kW / 80, kH / 2 + int(10 * std::sin(i * 0.2)));
   pointer(ButtonRelease, 3 * kW / 4, kH / 2);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  press(XK_Escape);
-  runner.join();  // the binary must end by itself after Esc (ctest's timeout guards this)
+  press(XK_Escape);  // a stroke is unsaved: the painter asks first
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  press(XK_Escape);  // and Esc again quits
+  runner.join();  // the binary must end by itself after Esc Esc (ctest's timeout guards this)
   XCloseDisplay(observer);
 
   auto slurp = [](const std::string& path) {

@@ -72,8 +72,11 @@ TEST(KioskCommand, ReadyWatchdogHealthVisitorModeAndIdleReset) {
   EXPECT_GE(received.count("STATUS="), 2u) << "with READY, then the attract loop after the reset";
   EXPECT_EQ(received.count("STOPPING=1"), 1u);
   EXPECT_NE(out.find("(time limit)"), std::string::npos) << "Esc and q did not quit: " << out;
-  EXPECT_NE(err.find("mode-light is for the operator"), std::string::npos) << err;
-  EXPECT_NE(err.find("save is for the operator"), std::string::npos) << err;
+  EXPECT_NE(err.find("That key is for the operator / 该按键仅供操作员使用 (5)"), std::string::npos)
+      << err;
+  EXPECT_NE(err.find("That key is for the operator / 该按键仅供操作员使用 (Ctrl+S)"),
+            std::string::npos)
+      << err;
   EXPECT_NE(err.find("idle reset"), std::string::npos) << err;
   EXPECT_NE(out.find(" 1 strokes mapped"), std::string::npos) << out;
   const std::string health = slurp(dir + "/data/health.json");

@@ -21,6 +21,8 @@ TEST(Keymap, EveryCommandHasAKeyThatGivesItBack) {
     if (name == "del") name = "delete";
     if (name == "-") name = "minus";
     if (name == "+") name = "plus";
+    if (name == "[") name = "bracketleft";
+    if (name == "]") name = "bracketright";
     std::vector<DisplayEvent> keys;
     std::string error;
     ASSERT_TRUE(parseKeyList(name + ",", &keys, &error) || parseKeyList(name, &keys, &error))

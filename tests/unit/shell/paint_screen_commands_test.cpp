@@ -64,7 +64,7 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   ASSERT_TRUE(
       parseKeyList("1,p,p,shift+left,shift+right,shift+up,shift+down,up,down,left,right,r,g,space,"
                    "space,2,pageup,pagedown,pageup,minus,"
-                   "plus,3,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
+                   "plus,3,bracketright,bracketleft,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
                    "ctrl+y,m,m,h,h,ctrl+s,ctrl+o,f,w,d,a,x,t,ctrl+alt+p,ctrl+alt+s,ctrl+alt+a,3",
                    &options.initial_keys, &error))
       << error;
