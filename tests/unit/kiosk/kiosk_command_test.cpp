@@ -171,7 +171,7 @@ TEST(KioskCommand, BadConfigOrUnusableDataDirShowsTheErrorScreenInsteadOfExiting
   EXPECT_EQ(run(root + "/data", &seconds), 3) << slurp(root + "/out");
   EXPECT_GE(seconds, 2.0) << "it stayed up (the error screen), it did not exit at once";
   std::string out = slurp(root + "/out");
-  EXPECT_NE(out.find("CANNOT START: " + kiosk_toml + ":8: visitor.idle_seconds must be a number"),
+  EXPECT_NE(out.find("CANNOT START: " + kiosk_toml + ":8: visitor.idle_seconds: expected a number"),
             std::string::npos)
       << out;
   EXPECT_NE(slurp(root + "/data/health.json").find("\"last_error\":\"" + kiosk_toml + ":8: "),
