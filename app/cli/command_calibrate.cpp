@@ -22,6 +22,7 @@
 
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
 #include "app/render/gl/display.h"
 #include "app/render/image_io.h"
@@ -315,10 +316,10 @@ int runInteractive(const Args& args, const Settings& s, bool pressure) {
     case CalibrateOutcome::Kind::kPressureRange:
       std::printf("%s", outcome->message.c_str());
       if (auto path = args.get("session-out")) {
-        std::ofstream out(*path, std::ios::binary | std::ios::trunc);
-        out << outcome->message;
-        if (!out) {
-          std::fprintf(stderr, "calibrate: %s: cannot be written\n", path->c_str());
+        std::string error;
+        if (!writeFileAtomically(*path, outcome->message, &error)) {
+          std::fprintf(stderr, "calibrate: %s: cannot be written: %s\n", path->c_str(),
+                       error.c_str());
           return 1;
         }
       }

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -21,6 +22,7 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/study_frame_render.h"
+#include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
@@ -46,6 +48,7 @@
 #include "app/study/study_run_state.h"
 #include "app/study/study_session_record.h"
 #include "app/study/trace_csv.h"
+#include "app/study/trial_table.h"
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
 #include "drivers/core/clock.h"
@@ -139,22 +142,30 @@ bool parseSize(const std::string& text, int* width, int* height) {
          *height <= 16384;
 }
 
-// Writes `path` with `write(stream)`; false with a message naming the file.
+// An export file written through a stream: at a temporary beside `path`, renamed over it once
+// whole and on the disk (app/core/atomic_file.h).
+struct AtomicStream {
+  explicit AtomicStream(const std::string& path)
+      : file(path), out(file.tempPath(), std::ios::binary) {}
+  // Closes, checks and commits; false with *error naming the file.
+  bool commit(std::string* error) {
+    out.close();
+    if (!out) return *error = file.path() + ": write failed (disk full?)", false;
+    if (!file.commit(error)) return false;
+    std::printf("%s\n", file.path().c_str());
+    return true;
+  }
+  AtomicFileReplacement file;
+  std::ofstream out;
+};
+
+// Writes `path` with `write(stream)` atomically; false with a message naming the file.
 template <typename Write>
 bool writeFile(const std::string& path, Write write, std::string* error) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    *error = path + ": cannot create";
-    return false;
-  }
-  write(out);
-  out.close();
-  if (!out) {
-    *error = path + ": write failed";
-    return false;
-  }
-  std::printf("%s\n", path.c_str());
-  return true;
+  AtomicStream file(path);
+  if (!file.out) return *error = path + ": cannot create", false;
+  write(file.out);
+  return file.commit(error);
 }
 
 int exportVolumeAndRender(const Volume& volume, const Camera& camera, const Light* light,
@@ -192,7 +203,7 @@ int runExport(Args& args) {
   std::vector<std::string> ids;
   for (const std::string& path : paths) {
     if (!std::filesystem::exists(path)) return fail("journal '" + path + "' does not exist");
-    ids.push_back(std::filesystem::path(path).stem().string());
+    ids.push_back(sessionIdForJournal(path));
     for (size_t k = 0; k + 1 < ids.size(); ++k)
       if (ids[k] == ids.back())
         return fail("two journals have the session id '" + ids.back() + "' (" + paths[k] + ", " +
@@ -215,17 +226,21 @@ int runExport(Args& args) {
   if (ec) return fail(out + ": cannot create the directory: " + ec.message());
   const std::filesystem::path dir(out);
   // One file per kind, written one session at a time so memory holds one session.
-  const std::string names[] = {"traces.inkml", "samples.csv", "strokes.csv", "events.csv"};
-  std::ofstream files[4];
-  for (int f = 0; f < 4; ++f) {
-    files[f].open(dir / names[f], std::ios::binary);
-    if (!files[f]) return fail((dir / names[f]).string() + ": cannot create");
+  const std::string names[] = {"traces.inkml", "samples.csv", "strokes.csv", "events.csv",
+                               "trials.csv"};
+  std::vector<std::unique_ptr<AtomicStream>> files;
+  for (const std::string& name : names) {
+    files.push_back(std::make_unique<AtomicStream>((dir / name).string()));
+    if (!files.back()->out) return fail((dir / name).string() + ": cannot create");
   }
-  std::ofstream &inkml = files[0], &samples = files[1], &strokes = files[2], &events = files[3];
+  std::ofstream &inkml = files[0]->out, &samples = files[1]->out, &strokes = files[2]->out,
+                &events = files[3]->out, &trials = files[4]->out;
+  std::vector<std::string> damaged;
   beginInkml(inkml);
   writeSamplesCsvHeader(samples);
   writeStrokesCsvHeader(strokes);
   writeEventsCsvHeader(events);
+  writeTrialsCsvHeader(trials);
   for (size_t i = 0; i < paths.size(); ++i) {
     if (paths.size() > 1)
       std::fprintf(stderr, "cloudbrush study: %s (%zu of %zu)\n", paths[i].c_str(), i + 1,
@@ -234,15 +249,18 @@ int runExport(Args& args) {
     if (journal.records.empty())
       return fail(paths[i] + ": no journal records" +
                   (journal.error.empty() ? "" : " (" + journal.error + ")"));
-    if (!journal.error.empty())
-      std::fprintf(stderr, "cloudbrush study: %s (exporting the intact records before it)\n",
+    if (!journal.error.empty()) {
+      std::fprintf(stderr, "cloudbrush study: %s (exporting every whole record around it)\n",
                    journal.error.c_str());
+      damaged.push_back(paths[i]);
+    }
     try {
       const SessionTrace trace = sessionTraceFromJournal(journal, paths[i], ids[i]);
       writeInkmlSession(inkml, trace, i);
       writeSamplesCsvRows(samples, trace);
       writeStrokesCsvRows(strokes, trace);
       writeEventsCsvRows(events, trace);
+      writeTrialsCsvRows(trials, trace);
     } catch (const StudyInputError& e) {
       return fail(e.what());
     }
@@ -259,11 +277,15 @@ int runExport(Args& args) {
       return status;
   }
   endInkml(inkml);
-  for (int f = 0; f < 4; ++f) {
-    files[f].close();
-    if (!files[f]) return fail((dir / names[f]).string() + ": write failed");
-    std::printf("%s\n", (dir / names[f]).c_str());
-  }
+  std::string error;
+  for (auto& file : files)
+    if (!file->commit(&error)) return fail(error);
+  // The exports hold every whole record, but a damaged journal lost the ones it skipped: say so
+  // in the exit status, as replay does.
+  if (!damaged.empty())
+    return fail(std::to_string(damaged.size()) + " journal(s) damaged (" + damaged[0] +
+                    (damaged.size() > 1 ? ", ..." : "") + "): the exports lack their skipped bytes",
+                3);
   return 0;
 }
 

@@ -1,15 +1,6 @@
-// Replacing a file so that readers see either the old or the new content, never a torn one:
-// write a temporary file next to it, fsync, rename over the target.
+// The kiosk's files are written with the project's one atomic writer (app/core/atomic_file.h:
+// temporary in the same folder, fsync, rename, fsync of the folder); this header is kept so the
+// kiosk's includes keep working.
 #pragma once
 
-#include <string>
-#include <string_view>
-
-namespace cb {
-
-// Writes `content` to `path` atomically. The temporary is "<path>.tmp.<pid>" in the same
-// directory (rename is atomic only within one file system) and is removed on failure. False with
-// *error naming the file and the errno text (e.g. the directory does not exist, disk full).
-bool writeFileAtomically(const std::string& path, std::string_view content, std::string* error);
-
-}  // namespace cb
+#include "app/core/atomic_file.h"

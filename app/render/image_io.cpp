@@ -12,6 +12,8 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <png.h>
 
+#include "app/core/atomic_file.h"
+
 namespace cb {
 namespace {
 
@@ -36,10 +38,14 @@ bool endsWith(const std::string& s, const std::string& suffix) {
                     [](char a, char b) { return std::tolower(a) == b; });
 }
 
-}  // namespace
+// Every image is written to a temporary beside `path` and renamed over it once on the disk
+// (app/core/atomic_file.h): a full disk or a crash never leaves a torn picture.
+void commitImage(AtomicFileReplacement& out) {
+  std::string error;
+  if (!out.commit(&error)) fail(out.path(), error);
+}
 
-void writePng(const std::string& path, const ImageRgba8& image) {
-  checkImage(path, image.width, image.height, image.pixels.size());
+void writePngFile(const std::string& path, const ImageRgba8& image) {
   FilePtr f(std::fopen(path.c_str(), "wb"));
   if (!f) fail(path, std::string("cannot open for writing: ") + std::strerror(errno));
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -60,6 +66,19 @@ void writePng(const std::string& path, const ImageRgba8& image) {
   for (int y = 0; y < image.height; ++y) png_write_row(png, const_cast<png_bytep>(image.at(0, y)));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
+  if (std::fflush(f.get()) != 0 || std::ferror(f.get()))
+    fail(path, std::string("write failed: ") + std::strerror(errno));
+  if (std::fclose(f.release()) != 0)
+    fail(path, std::string("write failed: ") + std::strerror(errno));
+}
+
+}  // namespace
+
+void writePng(const std::string& path, const ImageRgba8& image) {
+  checkImage(path, image.width, image.height, image.pixels.size());
+  AtomicFileReplacement out(path);
+  writePngFile(out.tempPath(), image);
+  commitImage(out);
 }
 
 ImageRgba8 readPng(const std::string& path, int64_t max_pixels) {
@@ -92,12 +111,13 @@ ImageRgba8 readPng(const std::string& path, int64_t max_pixels) {
 
 void writeExr(const std::string& path, const ImageRgbaF& image) {
   checkImage(path, image.width, image.height, image.pixels.size());
+  AtomicFileReplacement out(path);
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     const char* names[4] = {"R", "G", "B", "A"};
     for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::OutputFile file(out.tempPath().c_str(), header);
     Imf::FrameBuffer fb;
     char* base = reinterpret_cast<char*>(const_cast<float*>(image.pixels.data()));
     for (int c = 0; c < 4; ++c)
@@ -107,7 +127,8 @@ void writeExr(const std::string& path, const ImageRgbaF& image) {
     file.writePixels(image.height);
   } catch (const std::exception& e) {
     fail(path, std::string("OpenEXR: ") + e.what());
-  }
+  }  // the OutputFile is closed (flushed) here, before the commit
+  commitImage(out);
 }
 
 void writeImageByExtension(const std::string& path, const ImageRgba8& rgba8,

@@ -9,6 +9,7 @@
 #include "app/scene/paint_camera.h"
 #include "app/shell/paint_screen.h"
 #include "app/shell/ui_overlay.h"
+#include "app/study/reference_picture.h"
 #include "app/study/render_export.h"
 #include "app/study/study_marker_text.h"
 #include "app/study/volume_export.h"
@@ -186,7 +187,7 @@ bool StudyRunScreen::loadReferenceImage(std::string* error) {
     return true;
   }
   try {
-    const ImageRgba8 picture = readPng(task->image);
+    const ImageRgba8 picture = referencePictureForDisplay(readPng(task->image));
     if (!image_.create(picture.width, picture.height, RenderTarget::Format::kRgba8, error))
       return false;
     glTextureSubImage2D(image_.texture(), 0, 0, 0, picture.width, picture.height, GL_RGBA,

@@ -29,7 +29,9 @@ void writeContext(std::ostream& out, const SessionTrace& trace, size_t n) {
   out << "    <context xml:id=\"ctx-" << n << "\">\n";
   out << "      <inkSource xml:id=\"src-" << n << "\" model=\""
       << markupEscape(name.empty() ? "unknown device" : name) << "\" description=\""
-      << markupEscape("cloudbrush session " + trace.id) << "\">\n";
+      << markupEscape("cloudbrush session " + trace.id +
+                      (trace.participant.empty() ? "" : ", participant " + trace.participant))
+      << "\">\n";
   out << "        <traceFormat>\n";
   out << "          <channel name=\"X\" type=\"decimal\" units=\"mm\"/>\n";
   out << "          <channel name=\"Y\" type=\"decimal\" units=\"mm\"/>\n";
@@ -60,6 +62,9 @@ void writeContext(std::ostream& out, const SessionTrace& trace, size_t n) {
 void writeTraces(std::ostream& out, const SessionTrace& trace, size_t n) {
   out << "  <traceGroup contextRef=\"#ctx-" << n << "\">\n";
   out << "    <annotation type=\"session\">" << markupEscape(trace.id) << "</annotation>\n";
+  if (!trace.participant.empty())
+    out << "    <annotation type=\"participant\">" << markupEscape(trace.participant)
+        << "</annotation>\n";
   const std::vector<PenSample>& s = trace.samples;
   size_t i = 0;
   while (i < s.size()) {

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "app/core/atomic_file.h"
 #include "app/study/likert_answers.h"  // splitCsvLine
 
 namespace cb {
@@ -80,15 +81,9 @@ CsvPlan planCsv(const fs::path& path, const std::string& id) {
 }
 
 void replaceFile(const fs::path& path, const std::string& text) {
-  const fs::path temporary = path.string() + ".withdraw-tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out || !(out << text) || !out.flush())
-      throw WithdrawalError(temporary.string() + ": cannot write");
-  }
-  std::error_code ec;
-  fs::rename(temporary, path, ec);
-  if (ec) throw WithdrawalError(path.string() + ": cannot replace: " + ec.message());
+  std::string error;
+  if (!writeFileAtomically(path.string(), text, &error))
+    throw WithdrawalError(path.string() + ": cannot replace: " + error);
 }
 
 bool mentionsId(const fs::path& path, const std::string& id) {

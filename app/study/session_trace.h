@@ -24,11 +24,18 @@ struct TraceEvent {
   JournalRecordType type{};
   int64_t t_ns = 0;
   std::string text;  // the payload as text (device records: the device's name)
+  std::string task;  // the study task running when it was written, else empty
 };
 
 struct SessionTrace {
   std::string id;    // the journal's file name without extension (e.g. "2026-11-22T10-00-00")
   std::string path;  // where it was read from
+  // The study participant's id (the runner's `study.info` marker), else empty.
+  std::string participant;
+  // The study task each sample was written in (`study.stage-begin stage=task task=ID` until the
+  // stage's end): an index into task_ids, -1 outside tasks.
+  std::vector<std::string> task_ids;
+  std::vector<int> sample_task;
   std::optional<PenDeviceInfo> device;  // the first Device record, if any
   std::vector<PenSample> samples;
   std::vector<size_t> sample_records;  // journal record index of each sample
@@ -40,6 +47,16 @@ struct SessionTrace {
 // t − origin in nanoseconds, saturated to the int64 range (journals from elsewhere may hold any
 // timestamps; the plain difference could overflow).
 int64_t elapsedNs(int64_t t, int64_t origin);
+
+// The id of the session a journal holds: a study session's journal (`session.cbj` in its
+// folder `<participant>-<start>`) is named by its folder, any other by its file name.
+std::string sessionIdForJournal(const std::string& path);
+
+// The sample's task id, or empty outside tasks.
+inline std::string sampleTask(const SessionTrace& trace, size_t sample) {
+  const int t = sample < trace.sample_task.size() ? trace.sample_task[sample] : -1;
+  return t < 0 ? std::string() : trace.task_ids[size_t(t)];
+}
 
 // Reads `path`. A file that is not a journal, or has no records at all, raises StudyInputError
 // naming the file; a damaged tail keeps the intact prefix and sets journal_warning. A pen-sample

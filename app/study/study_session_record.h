@@ -19,6 +19,8 @@
 // monotonic), task_order [ids], stages_completed [names].
 #pragma once
 
+#include "app/core/atomic_file.h"  // writeFileAtomically, for the session files
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -69,10 +71,6 @@ std::string formatStudySessionJson(const StudySessionInfo& info);
 // The "device" object of a session.json this build wrote (formatStudySessionJson writes it on
 // one line), as JSON text; "" when it is null or not there.
 std::string deviceJsonIn(const std::string& session_json);
-
-// Writes `text` to `path` whole or not at all (a temporary file renamed over it, fsynced).
-// False with *error naming the file.
-bool writeFileAtomically(const std::string& path, const std::string& text, std::string* error);
 
 // The lowest participant number >= 1 whose id names no folder in `data_dir` yet (folders are
 // `<id>-...`).

@@ -47,14 +47,15 @@ std::string eventKindName(JournalRecordType type) {
 }
 
 void writeSamplesCsvHeader(std::ostream& out) {
-  out << "session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_raw,"
+  out << "participant,session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_"
+         "raw,"
          "tilt_y_raw,tilt_x_deg,tilt_y_deg,distance_raw,distance,buttons,tip,in_proximity,tool,"
-         "tool_id,tool_serial,stroke\n";
+         "tool_id,tool_serial,stroke,task\n";
 }
 
 void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
-    const std::string session = csvField(trace.id);
+    const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
     // Stroke index of each sample (strokes are runs of tip-down samples).
     std::vector<int64_t> stroke_of(trace.samples.size(), -1);
     for (const StrokeMeasures& m : measureStrokes(trace))
@@ -73,37 +74,39 @@ void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
         out << kCsvMissing;
       else
         out << stroke_of[i];
-      out << '\n';
+      out << ',' << csvFieldOrMissing(sampleTask(trace, i)) << '\n';
     }
   }
 }
 
 void writeStrokesCsvHeader(std::ostream& out) {
-  out << "session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_pressure,"
-         "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms\n";
+  out << "participant,session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_"
+         "pressure,"
+         "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms,task\n";
 }
 
 void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
-    const std::string session = csvField(trace.id);
+    const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
     for (const StrokeMeasures& m : measureStrokes(trace)) {
       out << session << ',' << m.index << ',' << csvDouble(m.start_s) << ','
           << csvDouble(m.duration_s) << ',' << m.sample_count << ',' << csvDouble(m.path_length_mm)
           << ',' << csvDouble(m.mean_pressure) << ',' << csvDouble(m.max_pressure) << ','
           << csvDouble(m.mean_tilt_deg) << ',' << csvOptional(m.speed_mm_s) << ','
           << csvFieldOrMissing(m.brush) << ',' << csvFieldOrMissing(m.mode) << ','
-          << csvOptional(m.mapping_ms) << '\n';
+          << csvOptional(m.mapping_ms) << ','
+          << csvFieldOrMissing(sampleTask(trace, m.first_sample)) << '\n';
     }
   }
 }
 
 void writeEventsCsvHeader(std::ostream& out) {
-  out << "session,t_s,record,kind,key,value\n";
+  out << "participant,session,t_s,record,kind,key,value,task\n";
 }
 
 void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
-    const std::string session = csvField(trace.id);
+    const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
     for (const TraceEvent& e : trace.events) {
       std::string key, value;
       if (e.type == JournalRecordType::kUi) {
@@ -118,7 +121,7 @@ void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace) {
       }
       out << session << ',' << decimalSecondsFromNs(elapsedNs(e.t_ns, trace.t0_ns)) << ','
           << e.record_index << ',' << eventKindName(e.type) << ',' << csvFieldOrMissing(key) << ','
-          << csvFieldOrMissing(value) << '\n';
+          << csvFieldOrMissing(value) << ',' << csvFieldOrMissing(e.task) << '\n';
     }
   }
 }

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/core/atomic_file.h"
+
 namespace cb {
 namespace {
 
@@ -96,22 +98,29 @@ VoxelBox nonZeroBox(const Volume& volume) {
 }  // namespace
 
 void saveVolume(const Volume& volume, const std::string& path) {
-  FilePtr f(std::fopen(path.c_str(), "wb"));
-  if (!f)
-    throw VolumeFileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
-  const VoxelBox stored = nonZeroBox(volume);
-  std::string header = volumeFileHeader(volume, stored) + "\n";
-  bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
-  // The stored box row by row, so a sparse sky is never made dense in memory nor walked whole.
-  std::vector<float> row(size_t(stored.hi.x - stored.lo.x));
-  if (!stored.empty())
-    for (int z = stored.lo.z; z < stored.hi.z && ok; ++z)
-      for (int y = stored.lo.y; y < stored.hi.y && ok; ++y) {
-        volume.readLine({stored.lo.x, y, z}, 0, int(row.size()), row.data());
-        ok = std::fwrite(row.data(), sizeof(float), row.size(), f.get()) == row.size();
-      }
-  if (!ok || std::fflush(f.get()) != 0)
-    throw VolumeFileError(path, std::string("write failed: ") + std::strerror(errno));
+  // Written beside `path` and renamed over it once on the disk (app/core/atomic_file.h): a full
+  // disk or a power cut never leaves a torn volume under the final name.
+  AtomicFileReplacement out(path);
+  {
+    FilePtr f(std::fopen(out.tempPath().c_str(), "wb"));
+    if (!f)
+      throw VolumeFileError(path, std::string("cannot open for writing: ") + std::strerror(errno));
+    const VoxelBox stored = nonZeroBox(volume);
+    std::string header = volumeFileHeader(volume, stored) + "\n";
+    bool ok = std::fwrite(header.data(), 1, header.size(), f.get()) == header.size();
+    // The stored box row by row, so a sparse sky is never made dense in memory nor walked whole.
+    std::vector<float> row(size_t(stored.hi.x - stored.lo.x));
+    if (!stored.empty())
+      for (int z = stored.lo.z; z < stored.hi.z && ok; ++z)
+        for (int y = stored.lo.y; y < stored.hi.y && ok; ++y) {
+          volume.readLine({stored.lo.x, y, z}, 0, int(row.size()), row.data());
+          ok = std::fwrite(row.data(), sizeof(float), row.size(), f.get()) == row.size();
+        }
+    if (!ok || std::fflush(f.get()) != 0 || std::fclose(f.release()) != 0)
+      throw VolumeFileError(path, std::string("write failed: ") + std::strerror(errno));
+  }
+  std::string error;
+  if (!out.commit(&error)) throw VolumeFileError(path, error);
 }
 
 Volume readVolume(std::istream& in, const std::string& name, std::optional<uint64_t> size) {

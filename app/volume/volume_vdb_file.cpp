@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <exception>
+#include <sstream>
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
+
+#include "app/core/atomic_file.h"
 
 namespace cb {
 
@@ -38,9 +42,15 @@ void saveVolumeVdb(const Volume& volume, const std::string& path) {
     grid->setTransform(xform);
     grid->setName(kVdbDensityGridName);
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-    openvdb::io::File file(path);
-    file.write({grid});
-    file.close();
+    // OpenVDB does not check its output stream: a full disk would leave a torn file that looks
+    // written. Serialise in memory, then write the bytes with the project's atomic writer
+    // (app/core/atomic_file.h), which reports every failed write.
+    std::ostringstream bytes(std::ios::binary);
+    openvdb::io::Stream(bytes).write({grid});
+    std::string error;
+    if (!writeFileAtomically(path, bytes.view(), &error)) throw VolumeVdbError(error);
+  } catch (const VolumeVdbError&) {
+    throw;
   } catch (const openvdb::Exception& e) {
     throw VolumeVdbError(path + ": " + e.what());
   } catch (const std::exception& e) {

@@ -91,12 +91,16 @@ TEST(Journal, CorruptByteIsCaughtByChecksum) {
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
   w.close();
   std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
-  f.seekp(16 + 16 + 4);  // inside the first record's payload
+  f.seekp(16 + 20 + 4);  // inside the first record's payload (after marker and head)
   f.put('\x7f');
   f.close();
   JournalReadResult r = readJournal(path);
-  EXPECT_TRUE(r.records.empty());
+  // Only the damaged record is lost: reading resynchronises on the next one.
+  EXPECT_EQ(r.records.size(), 2u);
   EXPECT_NE(r.error.find("checksum"), std::string::npos);
+  ASSERT_EQ(r.gaps.size(), 1u);
+  EXPECT_EQ(r.gaps[0].offset, 16u);
+  EXPECT_EQ(r.gaps[0].bytes, 4u + 16 + 82 + 4);
   std::filesystem::remove(path);
 }
 
@@ -154,8 +158,9 @@ TEST(Journal, SyncIfDueSyncsOnlyRecordsOlderThanTheInterval) {
 }
 
 // A crash mid-record leaves a torn tail: reading keeps every whole record and says where it
-// broke; re-opening for append cuts the tail and the next records follow the last whole one.
-TEST(Journal, OpenForAppendCutsATornTailAndCarriesOn) {
+// broke; re-opening for append moves the tail to a file beside it and the next records follow
+// the last whole one.
+TEST(Journal, OpenForAppendMovesATornTailAsideAndCarriesOn) {
   const std::string path = tempPath("cb_journal_append.cbj");
   {
     JournalWriter w;
@@ -167,12 +172,15 @@ TEST(Journal, OpenForAppendCutsATornTailAndCarriesOn) {
   const JournalReadResult torn = readJournal(path);
   EXPECT_EQ(torn.records.size(), 4u);
   EXPECT_NE(torn.error.find("byte "), std::string::npos) << torn.error;
-  EXPECT_EQ(torn.intact_bytes, whole - (16 + 82 + 4));
+  EXPECT_EQ(torn.intact_bytes, whole - (4 + 16 + 82 + 4));
+  const std::string aside = path + ".damaged-at-" + std::to_string(torn.intact_bytes);
   {
     JournalWriter w;
     std::string warning;
     ASSERT_TRUE(w.openForAppend(path, &warning)) << w.error();
-    EXPECT_NE(warning.find("cut 72 bytes"), std::string::npos) << warning;
+    EXPECT_NE(warning.find("last 76 bytes"), std::string::npos) << warning;
+    EXPECT_NE(warning.find("moved to " + aside), std::string::npos) << warning;
+    EXPECT_EQ(std::filesystem::file_size(aside), 76u);
     for (int i = 10; i < 13; ++i) ASSERT_TRUE(w.appendPenSample(sampleAt(i)));
   }
   const JournalReadResult resumed = readJournal(path);
@@ -196,6 +204,7 @@ TEST(Journal, OpenForAppendCutsATornTailAndCarriesOn) {
   EXPECT_NE(w.error().find("bad magic"), std::string::npos) << w.error();
   EXPECT_EQ(std::filesystem::file_size(foreign), 30u);
   std::filesystem::remove(foreign);
+  std::filesystem::remove(aside);
   std::filesystem::remove(path);
 }
 

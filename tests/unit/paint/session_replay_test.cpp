@@ -136,7 +136,8 @@ TEST(SessionReplay, TornJournalReplaysItsIntactPrefixAndSaysWhere) {
   const JournalReadResult full = readJournal(rec.path);
   size_t offset = 16, cut = 0;  // header: magic, version, flags
   for (const JournalRecord& r : full.records) {
-    const size_t size = 4 + 4 + 8 + r.payload.size() + 4;
+    // File version 2 framing: marker, type, length, t_ns, payload, CRC (JOURNAL.md section 1).
+    const size_t size = 4 + 4 + 4 + 8 + r.payload.size() + 4;
     if (r.type == JournalRecordType::kPenSample && r.t_ns > rec.lift_times[0] + 600'000'000) {
       cut = offset + size / 2;
       break;

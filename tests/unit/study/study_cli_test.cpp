@@ -70,9 +70,9 @@ TEST_F(StudyCli, ExportWritesEveryFileAndTheReplayedVolume) {
   const CommandRun exported = run(std::string(CB_CLOUDBRUSH_BIN) + " study export " + journal +
                                   " --out " + out + " --volumes --size 64x36");
   ASSERT_EQ(exported.status, 0) << exported.out;
-  for (const char* file :
-       {"traces.inkml", "samples.csv", "strokes.csv", "events.csv", "volumes/p01-task1.vdb",
-        "volumes/p01-task1.cbvol", "renders/p01-task1.exr", "renders/p01-task1.png"}) {
+  for (const char* file : {"traces.inkml", "samples.csv", "strokes.csv", "events.csv", "trials.csv",
+                           "volumes/p01-task1.vdb", "volumes/p01-task1.cbvol",
+                           "renders/p01-task1.exr", "renders/p01-task1.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir_ / "export" / file)) << file << "\n" << exported.out;
     EXPECT_NE(exported.out.find(file), std::string::npos) << "not reported: " << file;
   }
@@ -139,6 +139,33 @@ TEST_F(StudyCli, BadInputIsRefusedNamingFileAndField) {
   const CommandRun unknown = run(std::string(CB_CLOUDBRUSH_BIN) + " study frobnicate");
   EXPECT_EQ(unknown.status, 2);
   EXPECT_NE(unknown.out.find("unknown action 'frobnicate'"), std::string::npos) << unknown.out;
+}
+
+// A byte flipped in the middle of a journal: the export holds every sample around it, and
+// exits 3 (as replay does) naming where the damage is.
+TEST_F(StudyCli, ExportOfADamagedJournalKeepsEverythingAfterTheDamageAndExitsNonZero) {
+  const std::string journal = (dir_ / "p02-task1.cbj").string();
+  writeJournal(journal);
+  const JournalReadResult clean = readJournal(journal);
+  size_t samples = 0;
+  for (const JournalRecord& r : clean.records) samples += r.type == JournalRecordType::kPenSample;
+  {
+    std::fstream f(journal, std::ios::in | std::ios::out | std::ios::binary);
+    const auto middle = std::streamoff(std::filesystem::file_size(journal) / 2);
+    f.seekg(middle);
+    const char c = char(f.get());
+    f.seekp(middle);
+    f.put(char(c ^ 0x5a));
+  }
+  const CommandRun exported = run(std::string(CB_CLOUDBRUSH_BIN) + " study export " + journal +
+                                  " --out " + (dir_ / "damaged").string());
+  EXPECT_EQ(exported.status, 3) << exported.out;
+  EXPECT_NE(exported.out.find("skipped 106 damaged bytes in 1 stretch"), std::string::npos)
+      << exported.out;
+  std::ifstream csv(dir_ / "damaged" / "samples.csv");
+  size_t rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 1 + samples - 1) << "every sample but the damaged one";
 }
 
 }  // namespace

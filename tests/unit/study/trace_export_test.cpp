@@ -22,6 +22,7 @@
 #include "app/study/session_trace.h"
 #include "app/study/stroke_table.h"
 #include "app/study/trace_csv.h"
+#include "app/study/trial_table.h"
 #include "app/study/utf8_text.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/pen_units.h"
@@ -296,7 +297,7 @@ TEST_F(TraceExport, EventsListEveryChangeAndMarker) {
   std::istringstream in(out.str());
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "session,t_s,record,kind,key,value");
+  EXPECT_EQ(line, "participant,session,t_s,record,kind,key,value,task");
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> f;
   // The session record's value spans lines (RFC 4180 quoting); join until quotes balance.
@@ -326,20 +327,20 @@ TEST_F(TraceExport, EventsListEveryChangeAndMarker) {
     record.clear();
   }
   ASSERT_EQ(rows.size(), trace_.events.size());
-  for (const auto& row : rows) ASSERT_EQ(row.size(), 6u);
-  EXPECT_EQ(rows[0][3], "device");
-  EXPECT_EQ(rows[1][3], "session");
-  EXPECT_EQ(rows[1][5], "format = 2\ngrid = 64\n");
-  EXPECT_EQ(rows[2][3], "mode");
+  for (const auto& row : rows) ASSERT_EQ(row.size(), 8u);
+  EXPECT_EQ(rows[0][4], "device");
+  EXPECT_EQ(rows[1][4], "session");
+  EXPECT_EQ(rows[1][6], "format = 2\ngrid = 64\n");
   EXPECT_EQ(rows[2][4], "mode");
-  EXPECT_EQ(rows[2][5], "paint");
-  EXPECT_EQ(rows[2][1], "0.000001000");
-  EXPECT_EQ(rows[3][4], "brush");
-  EXPECT_EQ(rows[3][5], "3d");
-  EXPECT_EQ(rows[5][3], "marker");
-  EXPECT_EQ(rows[5][5], "task 1, stroke boundary, \"quoted\"");
-  EXPECT_EQ(rows[6][4], "undo");
-  EXPECT_EQ(rows[6][5], "NA");
+  EXPECT_EQ(rows[2][5], "mode");
+  EXPECT_EQ(rows[2][6], "paint");
+  EXPECT_EQ(rows[2][2], "0.000001000");
+  EXPECT_EQ(rows[3][5], "brush");
+  EXPECT_EQ(rows[3][6], "3d");
+  EXPECT_EQ(rows[5][4], "marker");
+  EXPECT_EQ(rows[5][6], "task 1, stroke boundary, \"quoted\"");
+  EXPECT_EQ(rows[6][5], "undo");
+  EXPECT_EQ(rows[6][6], "NA");
 }
 
 TEST_F(TraceExport, ManySessionsGoIntoOneFilePerKind) {
@@ -353,8 +354,9 @@ TEST_F(TraceExport, ManySessionsGoIntoOneFilePerKind) {
   writeInkml(ink, {trace_, b});
   const std::vector<std::string> sample_lines = split(samples.str(), '\n');
   EXPECT_EQ(sample_lines.size(), 1 + samples_.size() + second.size());
-  EXPECT_EQ(sample_lines[1].rfind(trace_.id + ",0,", 0), 0u) << sample_lines[1];
-  EXPECT_EQ(sample_lines[1 + samples_.size()].rfind(b.id + ",0,", 0), 0u);
+  // Not a study session: no participant (NA), the session is the journal's name.
+  EXPECT_EQ(sample_lines[1].rfind("NA," + trace_.id + ",0,", 0), 0u) << sample_lines[1];
+  EXPECT_EQ(sample_lines[1 + samples_.size()].rfind("NA," + b.id + ",0,", 0), 0u);
   EXPECT_EQ(split(strokes.str(), '\n').size(), 5u);
   xmlDoc* doc =
       xmlReadMemory(ink.str().data(), int(ink.str().size()), "t.inkml", nullptr, XML_PARSE_NONET);
@@ -456,6 +458,121 @@ TEST(TraceExportErrors, ForeignBytesStillGiveWellFormedInkmlAndReadableCsv) {
   EXPECT_NE(lines[1].find(",NaN,Inf,"), std::string::npos) << lines[1];
   EXPECT_NE(lines[1].find(",-Inf,"), std::string::npos) << lines[1];
   EXPECT_NE(events.str().find("note \xEF\xBF\xBD"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cb
+
+namespace cb {
+namespace {
+
+// Two study sessions' journals are both `session.cbj`: each is named by its folder, carries its
+// participant in every row, and its rows say which task they were written in.
+TEST(TraceExportStudy, SessionsAreNamedByFolderWithParticipantAndTaskInEveryRow) {
+  std::vector<SessionTrace> traces;
+  for (const std::string participant : {"P01", "P02"}) {
+    const std::filesystem::path dir =
+        std::filesystem::path(tempPath("study")) / (participant + std::string("-20261129T010000Z"));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "session.cbj").string();
+    {
+      JournalWriter journal;
+      ASSERT_TRUE(journal.open(path)) << journal.error();
+      journal.append(JournalRecordType::kSession, 0, "format = 2\ngrid = 64\n");
+      journal.append(JournalRecordType::kMarker, 0,
+                     "study.info protocol=thesis participant=" + participant + " number=1");
+      PenSample s;
+      s.t_ns = 10, s.buttons = kPenTip, s.in_proximity = true;
+      journal.appendPenSample(s);  // free drawing: no task
+      journal.append(JournalRecordType::kMarker, 20,
+                     "study.stage-begin stage=task task=cloud1 position=1 limit_s=600");
+      s.t_ns = 30;
+      journal.appendPenSample(s);
+      journal.append(JournalRecordType::kMarker, 40,
+                     "study.stage-end stage=task task=cloud1 "
+                     "position=1 how=done");
+    }
+    EXPECT_EQ(sessionIdForJournal(path), participant + std::string("-20261129T010000Z"));
+    traces.push_back(loadSessionTrace(path));
+    EXPECT_EQ(traces.back().participant, participant);
+  }
+  EXPECT_NE(traces[0].id, traces[1].id);
+  std::ostringstream samples, strokes, events;
+  writeSamplesCsv(samples, traces);
+  writeStrokesCsv(strokes, traces);
+  writeEventsCsv(events, traces);
+  const std::vector<std::string> rows = split(samples.str(), '\n');
+  ASSERT_EQ(rows.size(), 5u);  // header and two samples per session
+  EXPECT_EQ(rows[0].substr(0, 27), "participant,session,sample,");
+  EXPECT_EQ(rows[1].substr(0, 24), "P01,P01-20261129T010000Z");
+  EXPECT_EQ(rows[1].substr(rows[1].rfind(',')), ",NA");      // free drawing
+  EXPECT_EQ(rows[2].substr(rows[2].rfind(',')), ",cloud1");  // in the task
+  EXPECT_EQ(rows[4].substr(0, 24), "P02,P02-20261129T010000Z");
+  EXPECT_NE(strokes.str().find("\nP02,P02-20261129T010000Z,"), std::string::npos);
+  EXPECT_NE(events.str().find("study.stage-end"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cb
+
+namespace cb {
+namespace {
+
+// One row per task from the runner's markers: onset on both clocks, duration on the stage
+// clock (the closing marker's seconds, not end − begin), the end reason and the counts.
+TEST(TraceExportStudy, TrialsHaveOneRowPerTaskWithStageClockDurationAndEndReason) {
+  const std::string path = tempPath("trials.cbj");
+  {
+    JournalWriter j;
+    ASSERT_TRUE(j.open(path)) << j.error();
+    j.append(JournalRecordType::kSession, 1'000, "format = 2\ngrid = 64\n");
+    j.append(JournalRecordType::kMarker, 1'000,
+             "study.info participant=P07 number=7 monotonic_ns=1000 "
+             "wall_clock_unix_ns=1800000000000000000");
+    j.append(JournalRecordType::kMarker, 5'000'000'000,
+             "study.stage-begin stage=task task=cloud3 position=1 limit_s=90");
+    j.append(JournalRecordType::kMode, 5'000'000'001, "paint");
+    j.append(JournalRecordType::kStrokeMapped, 6'000'000'000, "stroke = 0\nmapping_ms = 4\n");
+    j.append(JournalRecordType::kStrokeMapped, 7'000'000'000, "stroke = 1\nmapping_ms = 4\n");
+    j.append(JournalRecordType::kUi, 8'000'000'000, "undo");
+    j.append(JournalRecordType::kMode, 9'000'000'000, "erase");
+    j.append(JournalRecordType::kStrokeMapped, 9'500'000'000, "stroke = 2\nmapping_ms = 4\n");
+    // 109 s after the onset on the monotonic clock, 90 s on the stage clock (a pause).
+    j.append(JournalRecordType::kMarker, 114'000'000'000,
+             "study.stage-closing stage=task task=cloud3 position=1 why=\"time up\" seconds=90");
+    j.append(JournalRecordType::kMarker, 115'000'000'000,
+             "study.stage-end stage=task task=cloud3 position=1 how=\"time up\"");
+    j.append(JournalRecordType::kMarker, 116'000'000'000,
+             "study.stage-begin stage=task task=cloud1 position=2 limit_s=90");
+    j.append(JournalRecordType::kMarker, 120'000'000'000,
+             "study.stage-closing stage=task task=cloud1 position=2 why=\"skipped: participant "
+             "left\" seconds=4");
+    j.append(JournalRecordType::kStrokeMapped, 120'500'000'000, "stroke = 3\nmapping_ms = 4\n");
+  }
+  const SessionTrace trace = loadSessionTrace(path);
+  const std::vector<TrialRow> trials = trialsOfSession(trace);
+  ASSERT_EQ(trials.size(), 2u);
+  EXPECT_EQ(trials[0].task, "cloud3");
+  EXPECT_EQ(trials[0].order, 1);
+  EXPECT_EQ(trials[0].onset_ns, 5'000'000'000);
+  ASSERT_TRUE(trials[0].onset_unix_ns.has_value());
+  EXPECT_EQ(*trials[0].onset_unix_ns, 1'800'000'000'000'000'000 + 5'000'000'000 - 1'000);
+  ASSERT_TRUE(trials[0].duration_s.has_value());
+  EXPECT_EQ(*trials[0].duration_s, 90.0);
+  EXPECT_EQ(trials[0].end_reason, "time-up");
+  EXPECT_EQ(trials[0].strokes, 2);
+  EXPECT_EQ(trials[0].erases, 1);
+  EXPECT_EQ(trials[0].undos, 1);
+  EXPECT_EQ(trials[1].end_reason, "skipped");
+  EXPECT_EQ(trials[1].erases, 1);  // the stroke after closing, before the stage's end, counts
+  std::ostringstream csv;
+  writeTrialsCsvHeader(csv);
+  writeTrialsCsvRows(csv, trace);
+  const std::vector<std::string> lines = split(csv.str(), '\n');
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1], "P07," + trace.id +
+                          ",cloud3,1,4.999999000,5000000000,1800000004999999000,90,time-up,2,1,1");
+  std::filesystem::remove(path);
 }
 
 }  // namespace
