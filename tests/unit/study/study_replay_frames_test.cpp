@@ -1,4 +1,4 @@
-// `cloudbrush replay SESSION --frames DIR` of a recorded study session (issue 10: "re-runs the
+// `cloudbrush replay SESSION --frames DIR` of a recorded study session ("re-runs the
 // journal through the same input router and screens ... --frames DIR writes one image per
 // frame"). The short study of tests/support/short_study.h is run once by the real runner
 // (`study run --backend replay`, its clock the pen's time line), then its session.cbj is replayed
@@ -22,6 +22,7 @@
 #include "app/shell/study_page.h"
 #include "app/study/protocol.h"
 #include "app/study/study_run_state.h"
+#include "app/study/reference_picture.h"
 #include "drivers/core/journal.h"
 
 #include "tests/support/command_run.h"
@@ -155,7 +156,8 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
   layout.tick(7 * kSecond);
   layout.closeStage(7 * kSecond);  // free drawing: the first task now
   ASSERT_EQ(layout.stage(), StudyStageKind::kTask);
-  const ImageRgba8 picture = readPng(dir + "/images/cloud1_duck.png");
+  // As the participant sees it: composited over the paper background (reference_picture.h).
+  const ImageRgba8 picture = referencePictureForDisplay(readPng(dir + "/images/cloud1_duck.png"));
   StudyPageInput task_input;
   task_input.image_aspect = float(picture.width) / float(picture.height);
   const StudyPage task = buildStudyPage(layout, task_input, kW, kH);
