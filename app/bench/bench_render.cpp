@@ -23,6 +23,7 @@
 #include "app/core/config_paths.h"
 #include "app/core/parallel_for.h"
 #include "app/render/gl/egl_context.h"
+#include "app/render/light_accuracy.h"
 #include "app/render/light_volume.h"
 #include "app/render/render_config.h"
 #include "app/render/render_target.h"
@@ -279,31 +280,20 @@ int benchRender(int argc, char** argv) {
     std::vector<float> ref;
     double ref_sampled_ms = timeMs([&] { ref = marchLightReference(cumulus, light, z_step); });
     const double ref_ms = ref_sampled_ms * z_step;
-    double abs_sum = 0, shadow_sum = 0;
-    size_t count = 0, shadow_count = 0;
-    const std::vector<float> swept = lv.toDense();
-    for (size_t i = 0; i < ref.size(); ++i) {
-      if (ref[i] < 0.0f) continue;
-      double e = std::abs(double(swept[i]) - double(ref[i]));
-      abs_sum += e;
-      ++count;
-      if (ref[i] < 0.999f) {
-        shadow_sum += e;
-        ++shadow_count;
-      }
-    }
-    const double mae = count ? abs_sum / double(count) : 0.0;
-    const double shadow_mae = shadow_count ? shadow_sum / double(shadow_count) : 0.0;
+    // Compared where the light volume is defined: the light bricks the renderer reads (past a
+    // column's lowest one the shadow falls on nothing and is not stored; light_accuracy.h).
+    const LightAccuracy accuracy = compareWithReference(lv, cumulus, ref);
+    const double mae = accuracy.mae;
     std::printf(
-        "  sweep %.1f ms; reference march %.0f ms (%s); MAE %.4f over %zu voxels "
-        "(%.4f over the %zu not fully lit)\n",
+        "  sweep %.1f ms; reference march %.0f ms (%s); MAE %.4f over the %zu voxels of the "
+        "light bricks (%.4f over the %zu not fully lit; %zu voxels outside them not compared)\n",
         sweep_ms, ref_ms, z_step > 1 ? "timed on every 32nd z slice, x32" : "all voxels", mae,
-        count, shadow_mae, shadow_count);
+        accuracy.voxels, accuracy.shadowed_mae, accuracy.shadowed_voxels, accuracy.unread_voxels);
     report.figure("light_sweep_ms", sweep_ms);
     report.baseline("light_reference_march_ms", ref_ms);
     report.figure("light_speedup", ref_ms / sweep_ms);
     report.figure("light_mae_vs_reference", mae);
-    report.figure("light_mae_shadowed_voxels", shadow_mae);
+    report.figure("light_mae_shadowed_voxels", accuracy.shadowed_mae);
 
     // Incremental update: a 24³ block changes in the middle of the cloud (its shadow falls into
     // cloud that is already dark) and on the cloud's lit upper side (its shadow crosses the

@@ -14,13 +14,11 @@ ScreenRegion ScreenRegion::unite(const ScreenRegion& o) const {
   return {glm::ivec4(lo, hi - lo), whole_frame || o.whole_frame};
 }
 
-float readReachVoxels(RenderStyle style, glm::ivec3 dims) {
+float readReachVoxels(RenderStyle style, glm::vec3 voxel_size) {
   // One voxel of trilinear footprint, one more for rounding of sample positions.
   float reach = 2.0f;
-  // The iso-surface normal reads u_gradient_voxels away from the hit (volume_renderer.cpp:
-  // max(1, largest dim / 64)).
-  if (drawsIsoSurface(style))
-    reach += std::max(1.0f, float(std::max({dims.x, dims.y, dims.z})) / 64.0f);
+  // The iso-surface normal reads isoSurfaceReach's gradient_voxels away from the hit.
+  if (drawsIsoSurface(style)) reach += isoSurfaceReach(voxel_size).gradient_voxels;
   return reach;
 }
 
@@ -78,7 +76,7 @@ std::vector<VoxelBox> visibleChanges(const std::vector<BrickPool::SlotChange>& c
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
                                  const SyncStats& sync, RenderStyle style) {
   return projectVoxelBoxes(camera, width, height, volume, visibleChanges(sync.changes, style),
-                           readReachVoxels(style, volume.dims()));
+                           readReachVoxels(style, volume.voxelSize()));
 }
 
 }  // namespace cb

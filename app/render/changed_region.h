@@ -44,7 +44,7 @@ struct ScreenRegion {
 
 // How far (voxels) outside a changed voxel a ray can still read it in `style`: the trilinear
 // footprint, plus the normal's central-difference offset for the iso-surface styles.
-float readReachVoxels(RenderStyle style, glm::ivec3 dims);
+float readReachVoxels(RenderStyle style, glm::vec3 voxel_size);
 
 // The voxels of a pool slot's change (BrickPool::SlotChange) whose change can alter an image in
 // `style`: `weighted` for the composited styles (a sample's light weighs nothing where its

@@ -75,4 +75,12 @@ int inkBleedRadius(float sigma) {
   return std::clamp(r, 1, kMaxInkBleedRadius);
 }
 
+IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size) {
+  // World distances of the thesis box's 4 voxels and 0.06 × 256 voxels (voxel 2/256).
+  constexpr float kGradientWorld = 4.0f * 2.0f / 256.0f;
+  constexpr float kInnerDepthWorld = 0.06f * 2.0f;
+  const float voxel = std::max({voxel_size.x, voxel_size.y, voxel_size.z});
+  return {std::max(1.0f, kGradientWorld / voxel), kInnerDepthWorld / voxel};
+}
+
 }  // namespace cb

@@ -19,6 +19,8 @@
 #include <string>
 #include <string_view>
 
+#include <glm/glm.hpp>
+
 #include "app/render/render_style_params.h"
 
 namespace cb {
@@ -41,6 +43,19 @@ const char* shadingStageFile(RenderStyle style);
 // True when the style draws an iso-surface of the density (first hit along the ray) rather
 // than compositing the whole volume.
 bool drawsIsoSurface(RenderStyle style);
+// Where an iso-surface style reads the density around a hit (raycast.frag.glsl, CB_SURFACE), in
+// voxels per axis of a grid with this voxel size (world units). Tuned on the thesis's box, 256³
+// voxels over [-1,1]³ (4 voxels of normal, 6 % of the box behind the hit; seed 003 §5), and held
+// at that world size on any grid: the painter's sky is 1024 voxels across at the same voxel size,
+// and a fraction of its width (16 voxels apart) straddled a painted stroke's whole thickness,
+// so the normal read empty space on both sides and turned at random (the ink's solid black,
+// the cartoon's dark blotches).
+struct IsoSurfaceReach {
+  float gradient_voxels = 1.0f;     // central differences this far apart (at least 1 voxel)
+  float inner_depth_voxels = 0.0f;  // searched behind the hit for the inner surface
+};
+IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size);
+
 // True when the ray-cast image is finished by a screen-space pass (style_compose.frag.glsl):
 // paper, ink bleeding, hatching.
 bool hasScreenSpacePass(RenderStyle style);

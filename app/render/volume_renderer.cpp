@@ -23,12 +23,8 @@ namespace {
 
 constexpr int kHistogramBins = 64;
 // Style parameters shared by the iso-surface styles (shade_{ink,cartoon,sketch}.glsl).
-constexpr float kIsoDensity = 0.3f;           // the outer surface (seed 003's threshold T)
-constexpr float kInnerIsoDensity = 0.75f;     // the inner detail surface (seed 003 §5)
-constexpr float kInnerDepthFraction = 0.06f;  // searched behind the hit, of the largest dim
-// Normals by central differences this fraction of the largest dim apart (1 voxel at 64³, 4 at
-// 256³): the shape's normal, not the rim noise's.
-constexpr float kGradientFraction = 1.0f / 64.0f;
+constexpr float kIsoDensity = 0.3f;        // the outer surface (seed 003's threshold T)
+constexpr float kInnerIsoDensity = 0.75f;  // the inner detail surface (seed 003 §5)
 // Physical style: the fBm cube spans this many voxels (its finest octave: ~1 voxel per cell)
 // (its erosion κ_e is a style parameter, PhysicalStyleParams::erosion).
 constexpr float kDetailNoisePeriodVoxels = 32.0f;
@@ -793,7 +789,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   // is what a whole cast would write again), when that frame colour can be trusted.
   const std::string key = skip ? imageKey(view_proj, w, h, options, background) : std::string();
   if (skip) useFrameTargets(w, h);
-  const float read_reach = readReachVoxels(options.style, dims_);
+  const float read_reach =
+      readReachVoxels(options.style, (world_max_ - world_min_) / glm::vec3(dims_));
   const std::vector<VoxelBox> pending = visibleChanges(history_.pending, options.style);
   const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
                       history_.key == key && !history_.pending.empty() &&
@@ -887,10 +884,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
       glm::value_ptr(sky_under ? skyAmbientColour(options.sky) : glm::vec3(options.background)));
   glUniform1f(loc("u_iso"), kIsoDensity);
   glUniform1f(loc("u_inner_iso"), kInnerIsoDensity);
-  glUniform1f(loc("u_gradient_voxels"),
-              std::max(1.0f, kGradientFraction * float(std::max({dims_.x, dims_.y, dims_.z}))));
-  glUniform1f(loc("u_inner_depth"),
-              kInnerDepthFraction * float(std::max({dims_.x, dims_.y, dims_.z})));
+  // Normals and the inner surface at the thesis box's world distances (render_style.h).
+  const IsoSurfaceReach iso_reach = isoSurfaceReach((world_max_ - world_min_) / glm::vec3(dims_));
+  glUniform1f(loc("u_gradient_voxels"), iso_reach.gradient_voxels);
+  glUniform1f(loc("u_inner_depth"), iso_reach.inner_depth_voxels);
   // Each style's parameters (render_style_params.h).
   const StyleParams& sp = options.style_params;
   const PhysicalStyleParams& ph = sp.physical;

@@ -132,7 +132,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   ASSERT_FALSE(sync.dirty.empty());
   const ScreenRegion region = changedScreenRegion(camera, kW, kH, volume, sync, c.style);
   const ScreenRegion stroke_only = projectVoxelBoxes(camera, kW, kH, volume, {sync.dirty},
-                                                     readReachVoxels(c.style, volume.dims()));
+                                                     readReachVoxels(c.style, volume.voxelSize()));
   ASSERT_FALSE(region.empty());
   EXPECT_FALSE(region.whole_frame);
   EXPECT_LT(region.pixels(), (long long)kW * kH) << "the region is the whole frame";
