@@ -22,6 +22,8 @@ packages=(
   libboost-dev
   # input devices
   libevdev-dev libhidapi-dev libusb-1.0-0-dev libudev-dev
+  # the operator PIN hash (crypt/yescrypt)
+  libcrypt-dev
   # tests and benchmarks (strace: the kiosk's data-dir confinement test)
   libgtest-dev libgmock-dev libbenchmark-dev strace
   # reading the study's InkML exports back in tests
@@ -31,6 +33,8 @@ packages=(
   # packaging checks: systemd-analyze verify on the kiosk unit, the .deb (dpkg-shlibdeps, lintian),
   # the .deb installed into a throwaway Debian 12 root (mmdebstrap; slow label)
   systemd dpkg-dev lintian mmdebstrap
+  # fleet monitoring: the kiosk's metrics scraped through node_exporter's textfile collector
+  prometheus-node-exporter curl
 )
 export DEBIAN_FRONTEND=noninteractive
 missing=()

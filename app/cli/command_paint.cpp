@@ -17,9 +17,12 @@
 #include <vector>
 
 #include "app/cli/args.h"
+#include "app/cli/command_kiosk.h"
 #include "app/cli/commands.h"
 #include "app/cli/paint_headless.h"
+#include "app/core/config_override.h"
 #include "app/core/config_paths.h"
+#include "app/kiosk/data_dir_check.h"
 #include "app/kiosk/kiosk_config.h"
 #include "app/kiosk/kiosk_heap.h"
 #include "app/kiosk/kiosk_service.h"
@@ -83,7 +86,7 @@ constexpr const char* kUsage =
     "  --no-record         do not journal this session\n"
     "  --sync-udp [HOST:]PORT\n"
     "                      send task and stroke boundaries as UDP datagrams (JOURNAL.md, Sync\n"
-    "                      records; default host 127.0.0.1; off by default)\n"
+    "                      records; default host 127.0.0.1; off by default; not in the kiosk)\n"
     "  --resume FILE       journal the session to FILE; when FILE already holds a session (the\n"
     "                      painter crashed or was stopped), replay it to rebuild the cloud, the\n"
     "                      history and the settings, and carry on after its last whole record\n"
@@ -102,6 +105,10 @@ constexpr const char* kUsage =
     "  --gallery on|off    kiosk: keep each visitor's cloud (kiosk.toml [gallery] enabled)\n"
     "  --data-dir DIR      kiosk: sessions, gallery, exports, operator.log, health.json\n"
     "                      (default the state dir)\n"
+    "  --metrics-dir DIR   kiosk: write cloudbrush.prom there for node_exporter's textfile\n"
+    "                      collector (kiosk.toml [monitoring] metrics_dir; default none)\n"
+    "  --set-pin           (`cloudbrush kiosk` only, with --data-dir at most) set the operator\n"
+    "                      PIN from stdin (4-12 digits; kept hashed in the data dir; no default)\n"
     "  --make-attract-journal FILE\n"
     "                      (`cloudbrush kiosk` only, alone) write the bundled attract journal\n"
     "  --place FILE        make a cloud from a picture (.png) or a model (.obj, .ply, .gltf)\n"
@@ -143,12 +150,12 @@ int commandPaint(int argc, char** argv) {
     return 0;
   }
   const auto unknown = args.unknown(
-      {"help",       "stats",       "display",      "drm-device",      "size",     "out-dir",
-       "grid",       "seed",        "orbit",        "moving-scale",    "frames",   "backend",
-       "pen-device", "journal",     "session-dir",  "no-record",       "keys",     "open",
-       "place",      "kiosk",       "idle-seconds", "warning-seconds", "data-dir", "seconds",
-       "language",   "gallery",     "resume",       "sync-udp",        "morph-to", "morph-seconds",
-       "sky-span",   "sky-max-span"});
+      {"help",       "stats",        "display",      "drm-device",      "size",     "out-dir",
+       "grid",       "seed",         "orbit",        "moving-scale",    "frames",   "backend",
+       "pen-device", "journal",      "session-dir",  "no-record",       "keys",     "open",
+       "place",      "kiosk",        "idle-seconds", "warning-seconds", "data-dir", "seconds",
+       "language",   "gallery",      "resume",       "sync-udp",        "morph-to", "morph-seconds",
+       "sky-span",   "sky-max-span", "metrics-dir"});
   if (!unknown.empty()) return fail("unknown option " + unknown.front() + " (see --help)", 2);
   if (args.positional().size() > 1)
     return fail("unexpected argument '" + args.positional()[1] + "' (see --help)", 2);
@@ -182,17 +189,28 @@ int commandPaint(int argc, char** argv) {
     return fail("--morph-seconds: expected a time in (0, 3600] seconds", 2);
   const bool kiosk = args.has("kiosk");
   KioskConfig kiosk_config;
+  // Kiosk: the first bad config file or unusable data dir. Shown on the screen (and logged)
+  // instead of exiting into a restart loop (app/shell/kiosk_error_screen.h); every config file
+  // alike. The painter exits with the message.
+  std::string kiosk_problem;
   if (kiosk) {
     try {
-      if (std::filesystem::exists(configFile("kiosk.toml")))
+      std::error_code ec;
+      if (std::filesystem::exists(configFile("kiosk.toml"), ec))
         kiosk_config = loadKioskConfig(configFile("kiosk.toml"));
+      else if (ec)
+        kiosk_problem = configFile("kiosk.toml") + ": " + ec.message();
+      // The administrator's /etc/cloudbrush/kiosk.toml, key by key over the shipped one.
+      if (const std::string local = configOverrideFile("kiosk.toml"); !local.empty())
+        kiosk_config = loadKioskConfig(local, kiosk_config);
     } catch (const std::exception& e) {
-      return fail(e.what(), 2);
+      kiosk_problem = e.what();
     }
     loop_options.visitor_mode = true;
     kiosk_config.idle_seconds = args.getDouble("idle-seconds", kiosk_config.idle_seconds);
     kiosk_config.warning_seconds = args.getDouble("warning-seconds", kiosk_config.warning_seconds);
     kiosk_config.language = args.get("language", kiosk_config.language);
+    kiosk_config.metrics_dir = args.get("metrics-dir", kiosk_config.metrics_dir);
     if (args.has("orbit"))
       kiosk_config.orbit_degrees_per_second = loop_options.orbit_degrees_per_second;
     if (args.has("gallery")) {
@@ -252,7 +270,8 @@ int commandPaint(int argc, char** argv) {
     if (std::filesystem::exists(configFile("render.toml")))
       render_config = loadRenderConfig(configFile("render.toml"));
   } catch (const std::exception& e) {
-    return fail(e.what());
+    if (!kiosk) return fail(e.what());
+    if (kiosk_problem.empty()) kiosk_problem = e.what();
   }
   const Light light = render_config.light;
   loop_options.render = render_config.options;
@@ -278,19 +297,35 @@ int commandPaint(int argc, char** argv) {
       if (std::filesystem::exists(configFile("mapping.toml")))
         mapping = loadMappingConfig(configFile("mapping.toml"));
     } catch (const std::exception& e) {
-      return fail(e.what());
+      if (!kiosk) return fail(e.what());
+      if (kiosk_problem.empty()) kiosk_problem = e.what();
     }
     settings.screen_width = display->width();
     settings.screen_height = display->height();
     settings.grid = int(grid);
     settings.sky_span = int(sky_span);
     settings.sky_max_span = int(sky_max_span);
-    brush = loadDefaultBrushConfig();
+    if (kiosk) {
+      std::vector<std::string> brush_errors;
+      bool brush_ok = loadBrushConfig(configFile("brush.toml"), &brush, &brush_errors);
+      if (const std::string local = configOverrideFile("brush.toml"); !local.empty())
+        brush_ok = loadBrushConfig(local, &brush, &brush_errors) && brush_ok;
+      if (!brush_ok && kiosk_problem.empty() && !brush_errors.empty())
+        kiosk_problem = brush_errors.front();
+    } else {
+      brush = loadDefaultBrushConfig();
+    }
     settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
     settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
   }
   if (kiosk && args.has("open")) return fail("--open is not a kiosk option", 2);
   if (kiosk && !resume_path.empty()) return fail("--resume is not a kiosk option", 2);
+  if (kiosk && args.has("sync-udp"))
+    return fail(
+        "--sync-udp is not a kiosk option: visitors' sessions are not synchronised with a "
+        "study's recorder (use `cloudbrush paint --sync-udp` or `cloudbrush study`), and the "
+        "kiosk's unit allows no IP sockets",
+        2);
   if (pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
     if (!resume_path.empty()) {
       // Issue 10: restarting on the same session resumes it from its journal.
@@ -339,6 +374,10 @@ int commandPaint(int argc, char** argv) {
   // Kiosk: everything it writes goes under the data dir (the state dir is not even created).
   const std::string data_dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
   // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
+  if (kiosk && kiosk_problem.empty()) {
+    std::string dir_error;
+    if (!checkDataDir(data_dir, &dir_error)) kiosk_problem = dir_error;
+  }
   const std::string session_dir =
       args.get("session-dir", (kiosk ? data_dir : stateDir()) + "/sessions");
   const bool record = !args.has("no-record");
@@ -427,6 +466,7 @@ int commandPaint(int argc, char** argv) {
   // (a hung loop stops them and systemd restarts the service), health.json for remote checks.
   const MonotonicClock clock;
   std::optional<KioskService> service;
+  std::unique_ptr<KioskScreen> kiosk_screen;
   if (kiosk) {
     std::string watchdog_error;
     const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
@@ -436,9 +476,11 @@ int commandPaint(int argc, char** argv) {
                     [](const std::string& problem) {
                       std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
                     });
-    loop_options.each_iteration = [&service](bool presented) { service->onIteration(presented); };
+    loop_options.each_iteration = [&service, &kiosk_screen](bool presented) {
+      if (kiosk_screen) service->setCounts(kiosk_screen->counts());
+      service->onIteration(presented);
+    };
   }
-  std::unique_ptr<KioskScreen> kiosk_screen;
   if (kiosk) {
     loop_options.orbit_degrees_per_second = 0.0f;  // the attract loop orbits; visitors paint
     loop_options.clock = &clock;
@@ -467,7 +509,7 @@ int commandPaint(int argc, char** argv) {
                                        std::fprintf(stderr, "cloudbrush kiosk: %s\n", line.c_str());
                                      });
     } catch (const std::exception& e) {
-      return fail(e.what(), 2);
+      if (kiosk_problem.empty()) kiosk_problem = e.what();
     }
     const std::filesystem::path attract_path =
         std::filesystem::path(kiosk_config.attract_journal).is_absolute()
@@ -491,12 +533,24 @@ int commandPaint(int argc, char** argv) {
     setup.record_journals = record;
     setup.on_status = [&service](const std::string& status) { service->onStatus(status); };
     setup.on_input = [&service]() { service->onInput(); };
-    kiosk_screen = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), pen.get(),
-                                                 clock, std::move(setup));
+    setup.on_problem = [&service](const std::string& problem) { service->onProblem(problem); };
+    setup.on_storage = [&service](const std::string& problem) { service->onStorage(problem); };
+    service->setMetricsDir(kiosk_config.metrics_dir);
+    try {
+      if (kiosk_problem.empty())
+        kiosk_screen = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), pen.get(),
+                                                     clock, std::move(setup));
+    } catch (const std::exception& e) {
+      kiosk_problem = e.what();
+    }
+    if (!kiosk_problem.empty())
+      return runKioskErrorScreen(*display, *service, kiosk_problem, loop_options, &g_stop);
   }
   PaintLoopSummary summary;
   const bool ran = loop.run(&g_stop, &summary, &error, kiosk_screen.get());
   if (kiosk) {
+    // Stopped by SIGTERM (systemctl stop, shutdown) mid-visit: the visitor's cloud is kept.
+    if (summary.quit_reason == "signal") kiosk_screen->stopping();
     service->stopping();
     std::printf("cloudbrush kiosk: %ld visits, %ld idle resets, %zu clouds kept in the gallery\n",
                 kiosk_screen->visits(), kiosk_screen->idleResets(),
@@ -530,22 +584,6 @@ int commandPaint(int argc, char** argv) {
                 last->vblank_sequence, double(last->shown_ns) / 1e9);
   if (summary.quit_reason == "operator shutdown") return kOperatorShutdownExitStatus;
   return 0;
-}
-
-int commandKiosk(int argc, char** argv) {
-  // `cloudbrush kiosk --make-attract-journal FILE` writes the bundled attract journal
-  // (config/kiosk/attract.cbj; app/shell/attract_journal.h).
-  if (argc == 3 && std::string(argv[1]) == "--make-attract-journal") {
-    std::string error;
-    if (!writeAttractJournal(argv[2], &error)) return fail(error);
-    std::printf("%s\n", argv[2]);
-    return 0;
-  }
-  // The painter with --kiosk: one frame loop and one set of options for both.
-  std::vector<char*> args(argv, argv + argc);
-  static char kiosk_flag[] = "--kiosk";
-  args.insert(args.begin() + 1, kiosk_flag);
-  return commandPaint(int(args.size()), args.data());
 }
 
 }  // namespace cb

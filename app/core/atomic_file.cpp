@@ -53,7 +53,11 @@ bool AtomicFileReplacement::commit(std::string* error) {
     ::unlink(temp_.c_str());
     return false;
   }
-  return syncPath(folderOf(path_), O_RDONLY | O_DIRECTORY, error, "fsync of its folder");
+  return syncFolderOf(path_, error);
+}
+
+bool syncFolderOf(const std::string& path, std::string* error) {
+  return syncPath(folderOf(path), O_RDONLY | O_DIRECTORY, error, "fsync of its folder");
 }
 
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string* error) {

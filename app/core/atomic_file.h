@@ -14,6 +14,10 @@ namespace cb {
 // removed and `path` keeps what it had.
 bool writeFileAtomically(const std::string& path, std::string_view content, std::string* error);
 
+// fsync of the folder holding `path` (after a file or folder was renamed into it; "DIR/." names
+// DIR itself). False with *error naming the folder.
+bool syncFolderOf(const std::string& path, std::string* error);
+
 // For code that writes a file by its path (OpenVDB, OpenEXR, libpng, a stream): write the whole
 // file at tempPath(), then commit(). A replacement not committed (an error, an exception) removes
 // its temporary when it goes out of scope, leaving `path` as it was.

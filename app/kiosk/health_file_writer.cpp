@@ -3,8 +3,9 @@
 #include <chrono>
 #include <filesystem>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
+#include "app/kiosk/metrics_text.h"
 
 namespace cb {
 
@@ -29,25 +30,41 @@ std::string HealthFileWriter::path() const {
   return (std::filesystem::path(data_dir_) / kFileName).string();
 }
 
+std::string HealthFileWriter::metricsPath() const {
+  return metrics_dir_.empty() ? ""
+                              : (std::filesystem::path(metrics_dir_) / "cloudbrush.prom").string();
+}
+
 bool HealthFileWriter::writeIfDue(std::string* error) {
-  if (written_ && clock_.nowNs() - last_write_ns_ < interval_ns_) return true;
-  return write(error);
+  if (written_ && clock_.nowNs() - last_write_ns_ < interval_ns_) {
+    if (!last_error_.empty() && error) *error = last_error_;
+    return last_error_.empty();
+  }
+  std::string write_error;
+  const bool ok = write(&write_error);
+  last_error_ = ok ? "" : write_error;
+  if (!ok && error) *error = write_error;
+  return ok;
 }
 
 bool HealthFileWriter::write(std::string* error) {
-  const int64_t now = clock_.nowNs();
+  written_ = true;
+  last_write_ns_ = clock_.nowNs();
   std::error_code ec;
   std::filesystem::create_directories(data_dir_, ec);
+  std::optional<DiskSpace> disk = diskSpaceAt(data_dir_, nullptr);
+  const HealthStatus status = tracker_.snapshot(disk ? &*disk : nullptr, wall_clock_());
+  std::string metrics_error;
+  const bool metrics_ok =
+      metrics_dir_.empty() ||
+      writeFileAtomically(metricsPath(), metricsText(status, CB_VERSION), &metrics_error);
   if (ec) {
     if (error) *error = data_dir_ + ": cannot create the data directory: " + ec.message();
     return false;
   }
-  std::optional<DiskSpace> disk = diskSpaceAt(data_dir_, nullptr);
-  const HealthStatus status = tracker_.snapshot(disk ? &*disk : nullptr, wall_clock_());
   if (!writeFileAtomically(path(), healthStatusJson(status), error)) return false;
-  written_ = true;
-  last_write_ns_ = now;
-  return true;
+  if (!metrics_ok && error) *error = metrics_error;
+  return metrics_ok;
 }
 
 }  // namespace cb

@@ -22,21 +22,29 @@ class HealthFileWriter {
                    std::function<int64_t()> wall_clock = nullptr);
 
   std::string path() const;
+  // Also replace <dir>/cloudbrush.prom (metrics_text.h) at each write; "" (the default): none.
+  void setMetricsDir(std::string dir) { metrics_dir_ = std::move(dir); }
+  std::string metricsPath() const;
 
-  // Writes if the interval has passed since the last write (the first call writes).
+  // Writes if the interval has passed since the last attempt (the first call writes; a failed
+  // write is tried again an interval later, not at every frame). Until then it answers as the
+  // last attempt did (false with the same *error).
   bool writeIfDue(std::string* error);
   // Writes now: creates the data directory if missing, measures its disk space (a failure there
   // leaves the disk fields null and is not an error), replaces health.json. False with *error
-  // naming the path when the directory cannot be created or the file cannot be written.
+  // naming the path when the directory cannot be created or a file cannot be written (the
+  // metrics file is written even when health.json is not).
   bool write(std::string* error);
 
  private:
   std::string data_dir_;
+  std::string metrics_dir_;
   const HealthTracker& tracker_;
   const Clock& clock_;
   int64_t interval_ns_;
   std::function<int64_t()> wall_clock_;
-  bool written_ = false;
+  bool written_ = false;    // attempted at least once
+  std::string last_error_;  // of the last writeIfDue() attempt
   int64_t last_write_ns_ = 0;
 };
 

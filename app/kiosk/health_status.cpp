@@ -32,6 +32,13 @@ std::string healthStatusJson(const HealthStatus& s) {
          (s.disk_total_bytes ? std::to_string(*s.disk_total_bytes) : std::string("null"));
   out +=
       ",\"last_error\":" + (s.last_error.empty() ? std::string("null") : jsonString(s.last_error));
+  out += ",\"storage\":" + jsonString(s.storage);
+  out += ",\"frames\":" + std::to_string(s.frames);
+  out += ",\"visits\":" + std::to_string(s.counts.visits);
+  out += ",\"strokes\":" + std::to_string(s.counts.strokes);
+  out += ",\"gallery_saved\":" + std::to_string(s.counts.gallery_saved);
+  out += ",\"saves_failed\":" + std::to_string(s.counts.saves_failed);
+  out += ",\"screen\":" + jsonString(s.counts.screen);
   out += "}\n";
   return out;
 }

@@ -11,6 +11,7 @@ HealthTracker::HealthTracker(const Clock& clock, int64_t fps_window_ns)
 void HealthTracker::onFrame() {
   const int64_t now = clock_.nowNs();
   ++window_frames_;
+  ++frames_;
   const int64_t elapsed = now - window_start_ns_;
   if (elapsed >= fps_window_ns_) {
     frames_per_second_ = window_frames_ * 1e9 / static_cast<double>(elapsed);
@@ -38,6 +39,9 @@ HealthStatus HealthTracker::snapshot(const DiskSpace* disk, int64_t wall_unix_s)
     s.disk_total_bytes = disk->total_bytes;
   }
   s.last_error = last_error_;
+  s.storage = storage_;
+  s.frames = frames_;
+  s.counts = counts_;
   return s;
 }
 

@@ -21,6 +21,10 @@ class HealthTracker {
   void onInput();
   void setDeviceState(std::string state) { device_state_ = std::move(state); }
   void setError(std::string error) { last_error_ = std::move(error); }
+  // "" or "ok": saving works; else what is not saved and why.
+  void setStorage(std::string problem) { storage_ = problem.empty() ? "ok" : std::move(problem); }
+  void setCounts(KioskCounts counts) { counts_ = std::move(counts); }
+  long frames() const { return frames_; }
 
   // The status now. `disk` null: the disk fields are null; `wall_unix_s` is copied as is.
   HealthStatus snapshot(const DiskSpace* disk, int64_t wall_unix_s) const;
@@ -36,6 +40,9 @@ class HealthTracker {
   int64_t last_input_ns_ = 0;
   std::string device_state_ = "unknown";
   std::string last_error_;
+  std::string storage_ = "ok";
+  long frames_ = 0;
+  KioskCounts counts_;
 };
 
 }  // namespace cb

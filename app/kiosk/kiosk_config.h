@@ -20,17 +20,27 @@ struct KioskConfig {
   double attract_speed = 1.0;          // journal time per clock time
   // [operator]
   std::string operator_keys = "ctrl+alt+o";  // then the PIN's digits
-  std::string operator_pin = "2468";         // 4..12 digits
+  // The PIN is no setting: it is kept hashed in the data dir (app/kiosk/operator_pin.h).
   // [gallery]
   bool gallery_enabled = false;
   uint64_t gallery_quota_bytes = 2000ull << 20;
   double gallery_keep_days = 30.0;
+  // The floor of free space on the data dir's file system (statvfs): the oldest entries go to
+  // keep it, and nothing is saved (the operator panel, health.json and the log say so) while
+  // even an empty gallery cannot keep it. Journals are not started below it either.
+  uint64_t min_free_bytes = 256ull << 20;
   // [journals]
   double journal_keep_days = 30.0;
+  // [monitoring]
+  // A folder for node_exporter's textfile collector: <dir>/cloudbrush.prom is replaced there
+  // with the health file (app/kiosk/metrics_text.h). Empty: no metrics file.
+  std::string metrics_dir;
 };
 
 // Throws std::runtime_error("FILE: section.key what") for a syntax error, a wrong type or a
 // value out of range.
-KioskConfig loadKioskConfig(const std::string& path);
+// Keys missing from the file keep their value in `base` (so /etc/cloudbrush/kiosk.toml is read
+// over the shipped one, key by key).
+KioskConfig loadKioskConfig(const std::string& path, KioskConfig base = {});
 
 }  // namespace cb

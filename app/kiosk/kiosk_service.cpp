@@ -27,7 +27,14 @@ void KioskService::onIteration(bool presented) {
     if (!notifier_.ready(&error) || !notifier_.status(status_, &error)) report_(error);
   }
   if (pinger_ && !pinger_->tick(&error)) report_("watchdog: " + error);
-  if (!health_file_.writeIfDue(&error)) health_.setError(error);
+  if (!health_file_.writeIfDue(&error)) {
+    if (error != health_file_error_) report_("health file NOT WRITTEN: " + error);
+    health_file_error_ = error;
+    health_.setError("health file: " + error);
+  } else if (!health_file_error_.empty()) {
+    report_("health file written again: " + health_file_.path());
+    health_file_error_.clear();
+  }
 }
 
 void KioskService::onStatus(const std::string& status) {
@@ -38,6 +45,9 @@ void KioskService::onStatus(const std::string& status) {
 
 void KioskService::stopping() {
   std::string error;
+  // The final figures (a stopped kiosk's last health and metrics are its whole run's).
+  if (!health_file_.write(&error)) report_("health file NOT WRITTEN: " + error);
+  error.clear();
   if (!notifier_.stopping(&error)) report_(error);
 }
 

@@ -2,7 +2,9 @@
 // and its soak and watchdog tests run the same code: READY=1 (with the first STATUS) after the
 // first presented frame, STATUS=… on every screen change after that, WATCHDOG=1 from the frame
 // loop's every iteration when the unit asks for a watchdog (WatchdogPinger: a hung loop stops the
-// pings), the health tracker and <data dir>/health.json, STOPPING=1 at the end. Problems are
+// pings), the health tracker and <data dir>/health.json (and the metrics file), STOPPING=1 at the
+// end. A health file that cannot be written is reported when it starts failing (and when it
+// works again) and becomes last_error. Problems are
 // reported through the `report` callback (stderr in the binary) and never stop the kiosk.
 #pragma once
 
@@ -38,6 +40,14 @@ class KioskService {
   void onStatus(const std::string& status);
   // KioskSetup::on_input.
   void onInput() { health_.onInput(); }
+  // KioskSetup::on_problem: a save, journal or other failure becomes health.json's last_error.
+  void onProblem(const std::string& problem) { health_.setError(problem); }
+  // KioskSetup::on_storage ("" : saving works).
+  void onStorage(const std::string& problem) { health_.setStorage(problem); }
+  // The kiosk screen's counts, for the health file and the metrics (every iteration is fine).
+  void setCounts(KioskCounts counts) { health_.setCounts(std::move(counts)); }
+  // [monitoring] metrics_dir: the metrics file goes there with health.json.
+  void setMetricsDir(const std::string& dir) { health_file_.setMetricsDir(dir); }
   // At the end of the run.
   void stopping();
 
@@ -53,6 +63,7 @@ class KioskService {
   HealthTracker health_;
   HealthFileWriter health_file_;
   bool ready_sent_ = false;
+  std::string health_file_error_;  // the last failure to write it, reported once
   std::string status_ = "attract loop: waiting for a visitor";
 };
 

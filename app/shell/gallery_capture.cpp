@@ -1,6 +1,7 @@
 #include "app/shell/gallery_capture.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <exception>
 
 #include "app/render/image_io.h"
@@ -22,6 +23,12 @@ bool renderInto(VolumeRenderer& renderer, const Camera& camera, const RenderOpti
   options.finish = true;
   renderer.render(camera, width, height, target->fbo(), options);
   return true;
+}
+
+std::string megabytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MB", double(bytes) / 1048576.0);
+  return text;
 }
 
 }  // namespace
@@ -57,13 +64,39 @@ bool exportCloudFiles(VolumeRenderer& renderer, const Volume& volume, const Came
 bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& volume,
                    const Camera& camera, const Light& light, const RenderOptions& render, int width,
                    int height, GallerySave* save, std::string* error) {
-  if (!store.allocate(&save->number, &save->dir, error)) return false;
-  if (!exportCloudFiles(renderer, volume, camera, light, render, width, height, save->dir,
-                        &save->written, &save->note, error))
+  // Room first: the oldest entries go until the floor of free space plus one entry (as large as
+  // the newest) is there; without it nothing is written (the floor is the journals' and logs').
+  std::string room_error;
+  const GalleryRoom room = store.makeRoom(store.typicalEntryBytes(), -1, &room_error);
+  save->cleanup.removed_for_space = room.removed;
+  if (!room.enough && room.free_bytes) {
+    *error = store.dir() + ": disk full: " + megabytes(*room.free_bytes) + " free, " +
+             megabytes(store.minFreeBytes()) + " kept free (gallery.min_free_mb) + " +
+             megabytes(store.typicalEntryBytes()) + " for the entry";
     return false;
+  }
+  GalleryWrite write;
+  if (!store.begin(&write, error)) return false;
+  std::vector<std::string> written;
+  if (!exportCloudFiles(renderer, volume, camera, light, render, width, height, write.temp_dir,
+                        &written, &save->note, error)) {
+    store.abandon(write);
+    return false;
+  }
+  if (!store.commit(write, error)) return false;
+  save->number = write.number;
+  save->dir = write.final_dir;
+  for (const std::string& path : written)
+    save->written.push_back(write.final_dir + path.substr(write.temp_dir.size()));
   std::string cleanup_error;
-  save->cleanup =
+  const GalleryCleanup cleanup =
       store.enforce(save->number, std::filesystem::file_time_type::clock::now(), &cleanup_error);
+  save->cleanup.removed_for_age = cleanup.removed_for_age;
+  save->cleanup.removed_for_quota = cleanup.removed_for_quota;
+  save->cleanup.removed_for_space.insert(save->cleanup.removed_for_space.end(),
+                                         cleanup.removed_for_space.begin(),
+                                         cleanup.removed_for_space.end());
+  save->cleanup.bytes_after = cleanup.bytes_after;
   if (!cleanup_error.empty()) {
     *error = "gallery cleanup: " + cleanup_error;
     return false;

@@ -2,7 +2,10 @@
 // entry (app/kiosk/gallery_store.h) holding the study exporters' files — the volume as
 // `cloud.vdb` + `cloud.cbvol` (app/study/volume_export.h) and its render from the visitor's last
 // view as `render.exr` + `render.png` (app/study/render_export.h) — plus `thumbnail.png`
-// (320 px wide). Then the quota and retention are enforced. Uses the kiosk's renderer and GL
+// (320 px wide), written into a temporary folder renamed into place (no half-written entry).
+// The oldest entries are deleted first to keep the floor of free space (gallery.min_free_mb); when
+// even then there is no room, nothing is written and the error says so. Then the quota,
+// retention and floor are enforced. Uses the kiosk's renderer and GL
 // context (the caller binds its framebuffer again).
 #pragma once
 

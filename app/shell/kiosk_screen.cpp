@@ -2,16 +2,19 @@
 
 #include <malloc.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/data_retention.h"
+#include "app/kiosk/disk_space.h"
 #include "app/render/gl/gl.h"
 #include "app/shell/gallery_capture.h"
 #include "app/shell/keymap.h"
@@ -81,9 +84,16 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
       session_dir_(setup_.data_dir + "/sessions"),
       attract_(renderer, clock, setup_.attract_journal, attractOptions(setup_), &ui_),
       reconnect_(&ui_),
-      panel_(clock, setup_.config.operator_pin, &ui_),
+      // The lockout's wall time runs on the injected clock from the real wall time at start.
+      pin_guard_(
+          setup_.data_dir,
+          [&clock, start_ns = clock.nowNs(),
+           start_s =
+               std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                   .count()] { return start_s + double(clock.nowNs() - start_ns) / 1e9; }),
+      panel_(clock, &pin_guard_, &ui_),
       gallery_(setup_.data_dir + "/gallery", setup_.config.gallery_quota_bytes,
-               setup_.config.gallery_keep_days),
+               setup_.config.gallery_keep_days, setup_.config.min_free_bytes),
       operator_log_(setup_.data_dir + "/operator.log") {
   std::vector<DisplayEvent> keys;
   std::string error;
@@ -100,17 +110,31 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
   if (ec)
     std::fprintf(stderr, "cloudbrush kiosk: data dir %s: %s\n", setup_.data_dir.c_str(),
                  ec.message().c_str());
+  if (!pin_guard_.problem().empty())
+    std::fprintf(stderr, "cloudbrush kiosk: operator PIN: %s\n", pin_guard_.problem().c_str());
+  if (!pin_guard_.hasPin())
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: NO OPERATOR PIN is set: the operator key combination asks for "
+                 "a new one (or set it beforehand: cloudbrush kiosk --set-pin --data-dir %s)\n",
+                 setup_.data_dir.c_str());
   for (const std::string& problem : attract_.problems())
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
   updateTexts();
+  for (const std::string& path : gallery_.removeIncomplete())
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: gallery: removed %s (a save the kiosk did not finish)\n",
+                 path.c_str());
   cleanUpOldData();
+  std::string why;
+  if (!roomToWrite(0, &why)) setStorageProblem("NOT SAVING: " + why);
   // The operator's last press calibration (P on the panel), for every visitor.
   const std::string range_path = setup_.data_dir + "/pressure_range.toml";
-  if (std::filesystem::exists(range_path)) {
+  std::error_code range_ec;
+  if (std::filesystem::exists(range_path, range_ec)) {
     std::ifstream in(range_path);
     const std::string text{std::istreambuf_iterator<char>(in), {}};
-    std::string range_error;
-    pressure_range_ = pressureRangeFromToml(text, &range_error);
+    std::string range_error = in ? "" : std::string("cannot be read: ") + std::strerror(errno);
+    if (range_error.empty()) pressure_range_ = pressureRangeFromToml(text, &range_error);
     if (!pressure_range_)
       std::fprintf(stderr,
                    "cloudbrush kiosk: %s: %s (ignored: visitors get the pen's whole range)\n",
@@ -131,6 +155,17 @@ KioskScreen::~KioskScreen() {
                                           : OperatorActionKind::kCalibrate)) +
                 " abandoned: the kiosk stopped (nothing saved)");
   if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+  closeJournal();
+}
+
+KioskCounts KioskScreen::counts() const {
+  KioskCounts c;
+  c.visits = visits_;
+  c.strokes = strokes();
+  c.gallery_saved = long(gallery_saved_.size());
+  c.saves_failed = saves_failed_;
+  c.screen = stateName(state_);
+  return c;
 }
 
 void KioskScreen::updateTexts() {
@@ -207,7 +242,10 @@ void KioskScreen::prepareVisitor() {
       std::fprintf(stderr, "cloudbrush kiosk: pressure range: %s\n", error.c_str());
   }
   paint_.attachPen(pen_, session.get());
-  if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+  if (visitor_) {
+    visitor_->recordTo(nullptr, clock_.nowNs());
+    strokes_done_ += long(visitor_->strokesMapped());
+  }
   visitor_ = std::move(session);
   next_visitor_pending_ = false;
   // The finished visitor's sky and undo history are freed now; hand the pages back, so the
@@ -219,26 +257,103 @@ void KioskScreen::prepareVisitor() {
 void KioskScreen::beginVisit(int64_t now) {
   ++visits_;
   if (!visitor_ || next_visitor_pending_) prepareVisitor();
-  if (setup_.record_journals) {
-    // A journal of the visitor's own.
-    std::error_code ec;
-    std::filesystem::create_directories(session_dir_, ec);
-    const std::string path =
-        session_dir_ + "/" + utcStamp() + "-visit" + std::to_string(visits_) + ".cbj";
-    journal_ = std::make_unique<JournalWriter>();
-    if (ec || !journal_->open(path)) {
-      std::fprintf(stderr, "cloudbrush kiosk: NOT RECORDING: %s: %s\n", path.c_str(),
-                   ec ? ec.message().c_str() : journal_->error().c_str());
-      journal_.reset();
-    } else {
-      visitor_->recordTo(journal_.get(), now);
-      std::printf("journal: %s\n", path.c_str());
-      std::fflush(stdout);
-    }
-  }
+  if (setup_.record_journals) openJournal(now);
   notice_.clear();
   input(clock_.nowNs());
   setState(State::kVisitor);
+}
+
+void KioskScreen::openJournal(int64_t now) {
+  // A journal of the visitor's own, when the disk has room for it above the floor (a full disk
+  // leaves no 0-byte journals behind).
+  journal_failed_ = false;
+  const std::string path =
+      session_dir_ + "/" + utcStamp() + "-visit" + std::to_string(visits_) + ".cbj";
+  std::string why;
+  if (!roomToWrite(0, &why)) {
+    ++saves_failed_;
+    reportProblem("NOT RECORDING visitor " + std::to_string(visits_) + ": " + why);
+    setStorageProblem("NOT SAVING: " + why);
+    return;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(session_dir_, ec);
+  journal_ = std::make_unique<JournalWriter>();
+  if (ec || !journal_->open(path)) {
+    const std::string error = path + ": " + (ec ? ec.message() : journal_->error());
+    closeJournal();
+    ++saves_failed_;
+    reportProblem("NOT RECORDING: " + error);
+    setStorageProblem("NOT SAVING journals: " + error);
+    return;
+  }
+  visitor_->recordTo(journal_.get(), now);
+  std::printf("journal: %s\n", path.c_str());
+  std::fflush(stdout);
+}
+
+void KioskScreen::closeJournal() {
+  if (!journal_) return;
+  const std::string path = journal_->path();
+  journal_->close();
+  journal_.reset();
+  std::error_code ec;
+  if (!path.empty() && std::filesystem::file_size(path, ec) == 0 && !ec)
+    std::filesystem::remove(path, ec);  // nothing could be written: no empty journal stays
+}
+
+bool KioskScreen::roomToWrite(uint64_t need_bytes, std::string* why) {
+  std::string error;
+  const GalleryRoom room = gallery_.makeRoom(need_bytes, -1, &error);
+  for (long n : room.removed)
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: gallery %06ld deleted (to keep %.0f MB free on the disk)\n", n,
+                 double(setup_.config.min_free_bytes) / 1048576.0);
+  if (room.enough || !room.free_bytes) return true;  // unknown: try, and a failure says why
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "disk full: %.1f MB free on the data dir's disk, %.1f MB kept free "
+                "(gallery.min_free_mb)%s",
+                double(*room.free_bytes) / 1048576.0,
+                double(setup_.config.min_free_bytes) / 1048576.0,
+                need_bytes ? " + room for one entry" : "");
+  *why = text;
+  return false;
+}
+
+void KioskScreen::reportProblem(const std::string& problem) {
+  std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
+  if (setup_.on_problem) setup_.on_problem(problem);
+}
+
+void KioskScreen::setStorageProblem(const std::string& problem) {
+  if (problem == storage_problem_) return;
+  storage_problem_ = problem;
+  if (problem.empty())
+    std::fprintf(stderr, "cloudbrush kiosk: storage: saving works again (%s)\n",
+                 storageSummary().c_str());
+  else
+    std::fprintf(stderr, "cloudbrush kiosk: storage: %s\n", problem.c_str());
+  if (setup_.on_storage) setup_.on_storage(problem);
+}
+
+void KioskScreen::checkStorage(int64_t now) {
+  // Recovers by itself: once the floor (plus an entry, with the gallery on) is free again.
+  if (storage_problem_.empty() || double(now - storage_checked_ns_) / 1e9 < kStorageCheckS) return;
+  storage_checked_ns_ = now;
+  std::string why;
+  if (roomToWrite(setup_.config.gallery_enabled ? gallery_.typicalEntryBytes() : 0, &why))
+    setStorageProblem("");
+}
+
+std::string KioskScreen::storageSummary() {
+  std::string error;
+  const std::optional<DiskSpace> disk = diskSpaceAt(setup_.data_dir, &error);
+  if (!disk) return error;
+  char text[96];
+  std::snprintf(text, sizeof text, "%.1f MB free of %.1f MB", double(disk->free_bytes) / 1048576.0,
+                double(disk->total_bytes) / 1048576.0);
+  return text;
 }
 
 void KioskScreen::keepFinishedCloud(const std::string& why) {
@@ -251,11 +366,17 @@ void KioskScreen::keepFinishedCloud(const std::string& why) {
                                 display_.height(), &save, &error);
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, display_.width(), display_.height());
+  for (long n : save.cleanup.removed_for_space)
+    std::fprintf(stderr,
+                 "cloudbrush kiosk: gallery %06ld deleted (to keep %.0f MB free on the disk)\n", n,
+                 double(setup_.config.min_free_bytes) / 1048576.0);
   if (!ok) {
-    std::fprintf(stderr, "cloudbrush kiosk: gallery: NOT SAVED (%s): %s\n", why.c_str(),
-                 error.c_str());
+    ++saves_failed_;
+    reportProblem("gallery: NOT SAVED (" + why + "): " + error);
+    setStorageProblem("NOT SAVING visitors' clouds: " + error);
     return;
   }
+  if (storage_problem_.rfind("NOT SAVING visitors", 0) == 0) setStorageProblem("");
   gallery_saved_.push_back(save.number);
   uint64_t bytes = 0;
   for (const std::string& path : save.written) {
@@ -275,11 +396,19 @@ void KioskScreen::keepFinishedCloud(const std::string& why) {
   saved_notice_until_ns_ = clock_.nowNs() + 6'000'000'000;
 }
 
+void KioskScreen::stopping() {
+  const bool paused_visit =
+      (state_ == State::kOperator || state_ == State::kCalibrate) &&
+      (before_operator_ == State::kVisitor || before_operator_ == State::kReconnect);
+  if (visiting() || paused_visit) keepFinishedCloud("the kiosk stopped");
+  if (visitor_) visitor_->recordTo(nullptr, clock_.nowNs());
+  closeJournal();
+}
+
 void KioskScreen::endVisit(int64_t now, const std::string& why) {
   keepFinishedCloud(why);
   if (visitor_) visitor_->recordTo(nullptr, now);
-  if (journal_) journal_->close();
-  journal_.reset();
+  closeJournal();
   // The next visitor's session is made in the loop iteration after the attract loop's first
   // frame (update()), not here: the attract loop's fresh session and the visitor's are each a
   // 256³ allocation, and together with the full volume upload of that frame they stalled one
@@ -522,6 +651,7 @@ void KioskScreen::runOperatorActions(int64_t now) {
     switch (action.kind) {
       case OperatorActionKind::kOpened:
       case OperatorActionKind::kClosed:
+      case OperatorActionKind::kPinSet:
         logOperator(name);
         break;
       case OperatorActionKind::kWrongPin:
@@ -583,6 +713,14 @@ void KioskScreen::runOperatorActions(int64_t now) {
 
 std::string KioskScreen::update(const FrameContext& frame) {
   const int64_t now = clock_.nowNs();
+  checkStorage(now);
+  if (journal_ && !journal_failed_ && !journal_->error().empty()) {
+    // The visitor paints on; what was written stays a readable journal up to its last record.
+    journal_failed_ = true;
+    ++saves_failed_;
+    reportProblem("journal: " + journal_->path() + ": " + journal_->error());
+    setStorageProblem("NOT SAVING journals: " + journal_->error());
+  }
   switch (state_) {
     case State::kCalibrate:
       calibration_->update(frame);
@@ -604,6 +742,9 @@ std::string KioskScreen::update(const FrameContext& frame) {
       values.gallery_enabled = setup_.config.gallery_enabled;
       values.gallery_entries = long(gallery_.entries().size());
       values.data_dir = setup_.data_dir;
+      values.storage_ok = storage_problem_.empty();
+      values.storage = values.storage_ok ? "ok, " + storageSummary()
+                                         : storage_problem_ + " (" + storageSummary() + ")";
       if (pressure_range_) {
         char range[64];
         std::snprintf(range, sizeof range, "%.3f..%.3f", double(pressure_range_->lo),

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "app/kiosk/gallery_store.h"
+#include "app/kiosk/health_status.h"
 #include "app/kiosk/kiosk_config.h"
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/operator_log.h"
@@ -63,6 +64,12 @@ struct KioskSetup {
   // Told about state changes ("attract: waiting for visitors", ...) and input (health file).
   std::function<void(const std::string& status)> on_status;
   std::function<void()> on_input;
+  // Every failure to save (a gallery entry, a journal), with its reason: health.json's
+  // last_error. (The kiosk logs it itself.)
+  std::function<void(const std::string& problem)> on_problem;
+  // The data dir's storage state changed: "" when saving works (again), else what is not saved
+  // and why (health.json's "storage", the metrics).
+  std::function<void(const std::string& storage_problem)> on_storage;
 };
 
 // The exit status of `cloudbrush kiosk` after the operator shut it down (the unit's
@@ -94,6 +101,9 @@ class KioskScreen : public Screen {
   // The visitor is about to clear their cloud ("start again"): keep it in the gallery (when on).
   // PaintLoopOptions::before_start_again calls this.
   void keepFinishedCloud(const std::string& why);
+  // The kiosk is being stopped (SIGTERM from systemd): the current visitor's cloud, if any, goes
+  // to the gallery (when on) and their journal is closed.
+  void stopping();
 
   State state() const { return state_; }
   static const char* stateName(State state);
@@ -106,6 +116,7 @@ class KioskScreen : public Screen {
   const PaintSession* visitorSession() const { return visitor_.get(); }
   const AttractScreen& attract() const { return attract_; }
   const OperatorPanelScreen& operatorPanel() const { return panel_; }
+  const OperatorPinGuard& operatorPin() const { return pin_guard_; }
   // The operator's calibration while the state is kCalibrate, else null.
   const CalibrateFlowScreen* calibration() const { return calibration_.get(); }
   // The pressure range the operator's press calibration set (null: the pen's whole range).
@@ -114,6 +125,14 @@ class KioskScreen : public Screen {
   // The countdown (or "saved as number N") shown over the painter, or "".
   const std::string& notice() const { return notice_; }
   const std::vector<long>& gallerySaved() const { return gallery_saved_; }
+  // Gallery entries and journals that could not be written (disk full, I/O error).
+  long savesFailed() const { return saves_failed_; }
+  // Strokes mapped by every visitor so far.
+  long strokes() const { return strokes_done_ + (visitor_ ? long(visitor_->strokesMapped()) : 0); }
+  // For the health file and the metrics.
+  KioskCounts counts() const;
+  // "" while saving works; else what is not saved and why (also on the operator panel).
+  const std::string& storageProblem() const { return storage_problem_; }
 
  private:
   void setState(State state);
@@ -122,6 +141,15 @@ class KioskScreen : public Screen {
   void endVisit(int64_t now, const std::string& why);
   void input(int64_t now);
   void cleanUpOldData();
+  // Storage (the floor of free space, gallery.min_free_mb): the oldest gallery entries go until
+  // `need_bytes` more than the floor are free; false with *why when even then they are not.
+  bool roomToWrite(uint64_t need_bytes, std::string* why);
+  void reportProblem(const std::string& problem);
+  void setStorageProblem(const std::string& problem);
+  void checkStorage(int64_t now);
+  void openJournal(int64_t now);
+  void closeJournal();
+  std::string storageSummary();
   void runOperatorActions(int64_t now);
   void logOperator(const std::string& action);
   void startCalibration(int64_t now, bool pressure);
@@ -140,6 +168,7 @@ class KioskScreen : public Screen {
   bool ui_ready_ = false, ui_failed_ = false;
   AttractScreen attract_;
   ReconnectScreen reconnect_;
+  OperatorPinGuard pin_guard_;
   OperatorPanelScreen panel_;
   DisplayEvent operator_keys_;
   GalleryStore gallery_;
@@ -166,6 +195,11 @@ class KioskScreen : public Screen {
   long idle_resets_ = 0, visits_ = 0;
   std::string notice_, quit_, message_;
   std::vector<long> gallery_saved_;
+  long saves_failed_ = 0, strokes_done_ = 0;
+  std::string storage_problem_;
+  int64_t storage_checked_ns_ = 0;
+  bool journal_failed_ = false;  // the visitor's journal stopped on a write error (reported)
+  static constexpr double kStorageCheckS = 10.0;  // how often a full disk is looked at again
 };
 
 }  // namespace cb

@@ -8,9 +8,7 @@
 namespace cb {
 namespace {
 
-constexpr uint32_t kEscape = 0xff1b, kBackSpace = 0xff08;
-constexpr int kMaxFailures = 3;
-constexpr double kLockSeconds = 60.0;
+constexpr uint32_t kEscape = 0xff1b, kBackSpace = 0xff08, kReturn = 0xff0d, kKpEnter = 0xff8d;
 constexpr double kPinTimeoutSeconds = 20.0, kPanelTimeoutSeconds = 120.0;
 
 uint32_t lower(uint32_t k) {
@@ -19,8 +17,8 @@ uint32_t lower(uint32_t k) {
 
 }  // namespace
 
-OperatorPanelScreen::OperatorPanelScreen(const Clock& clock, std::string pin, UiOverlay* ui)
-    : clock_(clock), pin_(std::move(pin)), ui_(ui) {}
+OperatorPanelScreen::OperatorPanelScreen(const Clock& clock, OperatorPinGuard* pin, UiOverlay* ui)
+    : clock_(clock), pin_(pin), ui_(ui) {}
 
 const char* OperatorPanelScreen::actionName(OperatorActionKind kind) {
   switch (kind) {
@@ -46,12 +44,14 @@ const char* OperatorPanelScreen::actionName(OperatorActionKind kind) {
       return "calibrate-pressure";
     case OperatorActionKind::kShutdown:
       return "shutdown";
+    case OperatorActionKind::kPinSet:
+      return "pin-set";
   }
   return "?";
 }
 
 void OperatorPanelScreen::askPin() {
-  state_ = State::kPin;
+  state_ = pin_->hasPin() ? State::kPin : State::kNewPin;
   typed_.clear();
   last_key_ns_ = clock_.nowNs();
 }
@@ -61,6 +61,61 @@ void OperatorPanelScreen::close() {
   state_ = State::kClosed;
   typed_.clear();
   if (was_open) actions_.push_back({OperatorActionKind::kClosed});
+}
+
+void OperatorPanelScreen::onPinKey(uint32_t k) {
+  if (k == kBackSpace && !typed_.empty()) typed_.pop_back();
+  const bool enter = k == kReturn || k == kKpEnter;
+  if (state_ != State::kPin && enter) return onNewPinEntered();
+  if (k < '0' || k > '9' || typed_.size() >= 12) return;  // other keys: ignored, still taken
+  if (state_ == State::kPin && pin_->lockedForSeconds() > 0.0) return;
+  typed_ += char(k);
+  if (state_ != State::kPin || int(typed_.size()) < pin_->digits()) return;
+  switch (pin_->check(typed_)) {
+    case OperatorPinGuard::Result::kRight:
+      state_ = State::kPanel;
+      values_.message.clear();
+      actions_.push_back({OperatorActionKind::kOpened});
+      break;
+    case OperatorPinGuard::Result::kWrong:
+      actions_.push_back({OperatorActionKind::kWrongPin, double(pin_->failures())});
+      break;
+    case OperatorPinGuard::Result::kLockedNow:
+      actions_.push_back({OperatorActionKind::kWrongPin, double(pin_->failures())});
+      actions_.push_back({OperatorActionKind::kLockedOut, pin_->lastLockSeconds()});
+      break;
+    case OperatorPinGuard::Result::kStillLocked:
+      break;
+  }
+  typed_.clear();
+}
+
+void OperatorPanelScreen::onNewPinEntered() {
+  // First start: no PIN yet. Typed twice, then hashed into the data dir (operator_pin.h).
+  if (state_ == State::kNewPin) {
+    pin_message_ = operatorPinProblem(typed_);
+    if (pin_message_.empty()) {
+      new_pin_ = typed_;
+      state_ = State::kConfirmNewPin;
+    }
+  } else if (typed_ != new_pin_) {
+    pin_message_ = "the two PINs differ: type the new PIN again";
+    state_ = State::kNewPin;
+  } else if (std::string error; !pin_->setPin(new_pin_, &error)) {
+    pin_message_ = "the PIN was NOT SAVED: " + error;
+    state_ = State::kNewPin;
+  } else {
+    pin_message_.clear();
+    state_ = State::kPanel;
+    values_.message = "the operator PIN is set (" + std::to_string(new_pin_.size()) + " digits)";
+    actions_.push_back({OperatorActionKind::kPinSet});
+    actions_.push_back({OperatorActionKind::kOpened});
+  }
+  if (state_ != State::kConfirmNewPin) {
+    std::fill(new_pin_.begin(), new_pin_.end(), '\0');
+    new_pin_.clear();
+  }
+  typed_.clear();
 }
 
 std::vector<OperatorAction> OperatorPanelScreen::takeActions() {
@@ -77,27 +132,8 @@ bool OperatorPanelScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
     close();
     return true;
   }
-  if (state_ == State::kPin) {
-    if (k == kBackSpace && !typed_.empty()) typed_.pop_back();
-    if (k < '0' || k > '9') return true;  // modifiers and other keys: ignored, still taken
-    if (t_ns < locked_until_ns_) return true;
-    typed_ += char(k);
-    if (typed_.size() < pin_.size()) return true;
-    if (typed_ == pin_) {
-      failures_ = 0;
-      state_ = State::kPanel;
-      values_.message.clear();
-      actions_.push_back({OperatorActionKind::kOpened});
-    } else {
-      ++failures_;
-      actions_.push_back({OperatorActionKind::kWrongPin, double(failures_)});
-      if (failures_ >= kMaxFailures) {
-        locked_until_ns_ = t_ns + int64_t(kLockSeconds * 1e9);
-        failures_ = 0;
-        actions_.push_back({OperatorActionKind::kLockedOut, kLockSeconds});
-      }
-    }
-    typed_.clear();
+  if (state_ == State::kPin || state_ == State::kNewPin || state_ == State::kConfirmNewPin) {
+    onPinKey(k);
     return true;
   }
   if (state_ == State::kConfirmShutdown) {
@@ -169,19 +205,28 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     y += size * 1.45f;
   };
   add("cloudbrush kiosk - operator panel", big, 0xffd266ffu);
-  if (state_ == State::kPin) {
-    const bool locked = clock_.nowNs() < locked_until_ns_;
-    if (locked) {
+  if (state_ == State::kNewPin || state_ == State::kConfirmNewPin) {
+    add(state_ == State::kNewPin
+            ? "No operator PIN is set yet. Type a new PIN (4 to 12 digits), then Enter:"
+            : "Type the new PIN again, then Enter:",
+        line, 0xffffffffu);
+    add(std::string(typed_.size(), '*') + "_", big, 0xffffffffu);
+    if (!pin_message_.empty()) add(pin_message_, line, 0xff8080ffu);
+    add("It is stored hashed in the data dir; Esc cancels.", line, 0xb8c4d0ffu);
+  } else if (state_ == State::kPin) {
+    const double locked_s = pin_->lockedForSeconds();
+    if (locked_s > 0.0) {
       char text[96];
       std::snprintf(text, sizeof text, "Too many wrong PINs: locked for %d s more",
-                    int(double(locked_until_ns_ - clock_.nowNs()) / 1e9 + 0.999));
+                    int(locked_s + 0.999));
       add(text, line, 0xff8080ffu);
     } else {
-      add("Type the PIN on the number row (" + std::to_string(pin_.size()) +
-              " digits; Esc cancels):",
+      const size_t digits = size_t(pin_->digits());
+      add("Type the PIN on the number row (" + std::to_string(digits) + " digits; Esc cancels):",
           line, 0xffffffffu);
-      add(std::string(typed_.size(), '*') + std::string(pin_.size() - typed_.size(), '_'), big,
-          0xffffffffu);
+      add(std::string(typed_.size(), '*') +
+              std::string(digits - std::min(digits, typed_.size()), '_'),
+          big, 0xffffffffu);
     }
     add("Waiting for the PIN. Visitors: please ask the staff.", line, 0xb8c4d0ffu);
   } else {
@@ -207,6 +252,8 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     add("Esc     close the panel (it closes by itself after 2 min)", line, 0xffffffffu);
     y += line;
     add("Every action is logged to " + values_.data_dir + "/operator.log", line, 0xb8c4d0ffu);
+    if (!values_.storage.empty())
+      add("Disk: " + values_.storage, line, values_.storage_ok ? 0xb8c4d0ffu : 0xff8080ffu);
     if (!values_.message.empty()) add(values_.message, line, 0x9be39bffu);
   }
   ui_->drawLabels(frame.width, frame.height, labels);

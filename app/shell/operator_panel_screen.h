@@ -1,6 +1,8 @@
 // The kiosk's operator panel (issue 11). It opens only with the key combination set in
 // config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits, typed on
-// the keyboard; three wrong PINs lock it for a minute. Open, it lists what the operator may do,
+// the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks for a
+// new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice as
+// long, kept across restarts). Open, it lists what the operator may do,
 // each on one key:
 //   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
 //   G      gallery on/off           E      export the current cloud
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "app/kiosk/operator_pin.h"
 #include "app/shell/screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/core/clock.h"
@@ -34,6 +37,7 @@ enum class OperatorActionKind {
   kCalibrate,
   kCalibratePressure,
   kShutdown,
+  kPinSet,  // the first PIN was set at the kiosk
 };
 
 struct OperatorAction {
@@ -49,11 +53,16 @@ struct OperatorPanelValues {
   std::string data_dir;
   std::string pressure_range = "the pen's whole range";  // in force for visitors
   std::string message;                                   // the result of the last action
+  // The data dir's disk: "ok: N MB free" or what cannot be saved ("NOT SAVING: ..."), shown
+  // in red when `storage_ok` is false.
+  std::string storage;
+  bool storage_ok = true;
 };
 
 class OperatorPanelScreen : public Screen {
  public:
-  OperatorPanelScreen(const Clock& clock, std::string pin, UiOverlay* ui);
+  // `pin` (not owned) checks the PIN, keeps the lockout and sets the first PIN.
+  OperatorPanelScreen(const Clock& clock, OperatorPinGuard* pin, UiOverlay* ui);
   const char* name() const override { return "operator"; }
   void onCommand(Command, int64_t) override {}
   // Every key while the panel (or its PIN prompt) is open; always taken.
@@ -73,15 +82,16 @@ class OperatorPanelScreen : public Screen {
   static const char* actionName(OperatorActionKind kind);
 
  private:
-  enum class State { kClosed, kPin, kPanel, kConfirmShutdown };
+  enum class State { kClosed, kPin, kNewPin, kConfirmNewPin, kPanel, kConfirmShutdown };
   void close();
+  void onPinKey(uint32_t keysym);
+  void onNewPinEntered();
   const Clock& clock_;
-  std::string pin_;
+  OperatorPinGuard* pin_;
+  std::string new_pin_, pin_message_;
   UiOverlay* ui_;
   State state_ = State::kClosed;
   std::string typed_;
-  int failures_ = 0;
-  int64_t locked_until_ns_ = 0;
   int64_t last_key_ns_ = 0;
   OperatorPanelValues values_;
   std::vector<OperatorAction> actions_;

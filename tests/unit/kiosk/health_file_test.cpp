@@ -10,11 +10,13 @@
 #include <sstream>
 #include <thread>
 
-#include "app/kiosk/atomic_file.h"
+#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
 #include "app/kiosk/health_file_writer.h"
 #include "app/kiosk/health_status.h"
 #include "app/kiosk/health_tracker.h"
+#include "app/kiosk/kiosk_service.h"
+#include "app/kiosk/metrics_text.h"
 
 namespace cb {
 namespace {
@@ -51,7 +53,8 @@ TEST(HealthStatusJson, AllFieldsWithEscapingAndNulls) {
             "{\"written_unix_s\":1700000000,\"uptime_s\":12.500,\"frames_per_second\":59.940,"
             "\"last_input_age_s\":3.250,\"device_state\":\"connected: \\\"Wacom\\\" Intuos4\\n\","
             "\"disk_free_bytes\":1000,\"disk_total_bytes\":4000,"
-            "\"last_error\":\"pen\\u0001lost\"}\n");
+            "\"last_error\":\"pen\\u0001lost\",\"storage\":\"ok\",\"frames\":0,\"visits\":0,"
+            "\"strokes\":0,\"gallery_saved\":0,\"saves_failed\":0,\"screen\":\"starting\"}\n");
   HealthStatus empty;
   empty.frames_per_second = std::numeric_limits<double>::quiet_NaN();
   const std::string json = healthStatusJson(empty);
@@ -179,6 +182,111 @@ TEST(HealthFileWriter, UnwritableDataDirectoryIsAClearError) {
   std::string error;
   EXPECT_FALSE(writer.write(&error));
   EXPECT_NE(error.find((blocker / "data").string()), std::string::npos) << error;
+}
+
+// The value of the one sample of `name` (with its labels) in Prometheus text, or "" when absent.
+std::string sampleOf(const std::string& text, const std::string& name_and_labels) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(name_and_labels + " ", 0) == 0) return line.substr(name_and_labels.size() + 1);
+  return "";
+}
+
+TEST(MetricsText, PrometheusTextWithEveryFigureTypedAndLabelsEscaped) {
+  HealthStatus s;
+  s.written_unix_s = 1700000000;
+  s.uptime_s = 3600.5;
+  s.frames_per_second = 59.5;
+  s.device_state = "libusb \"Wacom\"\nconnected";
+  s.disk_free_bytes = 123456789;
+  s.disk_total_bytes = 987654321;
+  s.storage = "NOT SAVING: disk full";
+  s.frames = 214200;
+  s.counts = {12, 345, 10, 2, "visitor"};
+  const std::string text = metricsText(s, "0.1");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_visits_total"), "12");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_strokes_total"), "345");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_gallery_saved_total"), "10");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_saves_failed_total"), "2");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_frames_total"), "214200");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_frames_per_second"), "59.5");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_last_input_age_seconds"), "NaN") << "no input yet";
+  EXPECT_EQ(sampleOf(text, "cloudbrush_disk_free_bytes"), "123456789");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_storage_ok"), "0");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_screen_info{screen=\"visitor\"}"), "1");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_version_info{version=\"0.1\"}"), "1");
+  EXPECT_EQ(sampleOf(text, "cloudbrush_device_info{state=\"libusb \\\"Wacom\\\"\\nconnected\"}"),
+            "1")
+      << text;
+  // Every sample has its HELP and TYPE, counters end in _total.
+  std::istringstream in(text);
+  int samples = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("# ", 0) == 0) continue;
+    ++samples;
+    const std::string name = line.substr(0, line.find_first_of("{ "));
+    EXPECT_NE(text.find("# HELP " + name + " "), std::string::npos) << name;
+    EXPECT_NE(text.find("# TYPE " + name + " "), std::string::npos) << name;
+    if (text.find("# TYPE " + name + " counter") != std::string::npos) {
+      EXPECT_EQ(name.substr(name.size() - 6), "_total") << name;
+    }
+  }
+  EXPECT_EQ(samples, 15);
+  s.storage = "ok";
+  s.last_input_age_s = 2.5;
+  const std::string ok = metricsText(s, "0.1");
+  EXPECT_EQ(sampleOf(ok, "cloudbrush_storage_ok"), "1");
+  EXPECT_EQ(sampleOf(ok, "cloudbrush_last_input_age_seconds"), "2.5");
+}
+
+TEST(HealthFileWriter, MetricsFileBesideTheHealthFile) {
+  TempDir dir;
+  ManualClock clock;
+  HealthTracker tracker(clock);
+  tracker.setCounts({3, 40, 2, 1, "attract"});
+  HealthFileWriter writer((dir.path / "data").string(), tracker, clock);
+  writer.setMetricsDir((dir.path / "textfile").string());
+  std::string error;
+  EXPECT_FALSE(writer.write(&error)) << "the metrics folder does not exist";
+  EXPECT_NE(error.find((dir.path / "textfile" / "cloudbrush.prom").string()), std::string::npos)
+      << error;
+  EXPECT_TRUE(fs::exists(dir.path / "data" / "health.json")) << "written all the same";
+  fs::create_directories(dir.path / "textfile");
+  ASSERT_TRUE(writer.write(&error)) << error;
+  const std::string metrics = readFile(dir.path / "textfile" / "cloudbrush.prom");
+  EXPECT_EQ(sampleOf(metrics, "cloudbrush_visits_total"), "3");
+  EXPECT_EQ(sampleOf(metrics, "cloudbrush_saves_failed_total"), "1");
+  EXPECT_NE(readFile(dir.path / "data" / "health.json").find("\"screen\":\"attract\""),
+            std::string::npos);
+}
+
+// A health file that cannot be written is logged once when it starts failing and once when it
+// works again, is health's last_error meanwhile, and is not retried at every frame.
+TEST(KioskService, HealthFileFailureIsLoggedOnceAndRecovers) {
+  TempDir dir;
+  const fs::path data = dir.path / "data";
+  std::ofstream(data.string()) << "a file where the data dir should be";
+  ManualClock clock;
+  std::vector<std::string> reports;
+  KioskService service(SdNotifier(), std::nullopt, clock, data.string(), nullptr,
+                       [&](const std::string& line) { reports.push_back(line); });
+  for (int i = 0; i < 20; ++i) {
+    service.onIteration(true);
+    clock.advance(500'000'000);  // 10 s: two more attempts
+  }
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_NE(reports[0].find("health file NOT WRITTEN: " + data.string()), std::string::npos)
+      << reports[0];
+  EXPECT_NE(service.health().snapshot(nullptr, 0).last_error.find("health file: "),
+            std::string::npos);
+  fs::remove(data);
+  clock.advance(5'000'000'000);
+  service.onIteration(true);
+  ASSERT_EQ(reports.size(), 2u);
+  EXPECT_NE(reports[1].find("health file written again"), std::string::npos) << reports[1];
+  EXPECT_NE(readFile(data / "health.json").find("\"last_error\":\"health file: "),
+            std::string::npos)
+      << "the last error stays until another one";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // stroke, the gallery, the idle reset) under strace writes nothing outside its data dir.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -115,7 +116,11 @@ TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
       (std::filesystem::temp_directory_path() / ("cb_kiosk_off_" + std::to_string(::getpid())))
           .string();
   std::filesystem::remove_all(data);
-  // The combination, the bundled PIN, X and Y: the panel shuts the kiosk down.
+  // The PIN set beforehand (no default one), as the installer does.
+  const std::string set_pin = "echo 2468 | '" + std::string(CB_CLOUDBRUSH_BIN) +
+                              "' kiosk --set-pin --data-dir '" + data + "'";
+  ASSERT_EQ(std::system(set_pin.c_str()), 0);
+  // The combination, the PIN, X and Y: the panel shuts the kiosk down.
   const std::string command = "LIBGL_ALWAYS_SOFTWARE=1 '" + std::string(CB_CLOUDBRUSH_BIN) +
                               "' kiosk --display surfaceless --size 160x90 --grid 16 --backend "
                               "none --no-record --data-dir '" +
@@ -133,6 +138,60 @@ TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
   std::filesystem::remove(data + ".out");
 }
 
+// Never a crash loop: a bad config file or an unusable data dir shows the error screen (logged,
+// health.json's last_error) and the kiosk stays up until stopped (here --seconds), exiting with 3
+// instead of 1 or 2 at once (under Restart=always a restart loop into a blank screen).
+TEST(KioskCommand, BadConfigOrUnusableDataDirShowsTheErrorScreenInsteadOfExiting) {
+  namespace fs = std::filesystem;
+  const std::string root =
+      (fs::temp_directory_path() / ("cb_kiosk_bad_" + std::to_string(::getpid()))).string();
+  fs::remove_all(root);
+  fs::create_directories(root);
+  fs::copy(std::string(CB_SOURCE_DIR) + "/config", root + "/config", fs::copy_options::recursive);
+  const auto run = [&](const std::string& data, double* seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string command = "CLOUDBRUSH_CONFIG_DIR='" + root +
+                                "/config' LIBGL_ALWAYS_SOFTWARE=1 '" + CB_CLOUDBRUSH_BIN +
+                                "' kiosk --display surfaceless --size 160x90 --grid 16 "
+                                "--backend none --no-record --data-dir '" +
+                                data + "' --seconds 2 >'" + root + "/out' 2>&1";
+    const int status = std::system(command.c_str());
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  // kiosk.toml with a bad value on line 8 (and every other config file handled the same way).
+  const std::string kiosk_toml = root + "/config/kiosk.toml";
+  std::string text = slurp(kiosk_toml);
+  text.replace(text.find("idle_seconds = 90"), 17, "idle_seconds = \"long\"");
+  std::ofstream(kiosk_toml) << text;
+  double seconds = 0.0;
+  EXPECT_EQ(run(root + "/data", &seconds), 3) << slurp(root + "/out");
+  EXPECT_GE(seconds, 2.0) << "it stayed up (the error screen), it did not exit at once";
+  std::string out = slurp(root + "/out");
+  EXPECT_NE(out.find("CANNOT START: " + kiosk_toml + ":8: visitor.idle_seconds must be a number"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(slurp(root + "/data/health.json").find("\"last_error\":\"" + kiosk_toml + ":8: "),
+            std::string::npos)
+      << slurp(root + "/data/health.json");
+  EXPECT_NE(slurp(root + "/data/health.json").find("\"screen\":\"error\""), std::string::npos);
+  // A syntax error in render.toml: the same screen, naming its line.
+  fs::copy_file(std::string(CB_SOURCE_DIR) + "/config/kiosk.toml", kiosk_toml,
+                fs::copy_options::overwrite_existing);
+  std::ofstream(root + "/config/render.toml", std::ios::app) << "\n[broken\n";
+  EXPECT_EQ(run(root + "/data", &seconds), 3);
+  out = slurp(root + "/out");
+  EXPECT_NE(out.find("CANNOT START: " + root + "/config/render.toml:"), std::string::npos) << out;
+  // A data dir the kiosk cannot use (a file in its place; as root, permissions would not stop it).
+  fs::copy_file(std::string(CB_SOURCE_DIR) + "/config/render.toml", root + "/config/render.toml",
+                fs::copy_options::overwrite_existing);
+  std::ofstream(root + "/not-a-dir") << "x";
+  EXPECT_EQ(run(root + "/not-a-dir", &seconds), 3);
+  out = slurp(root + "/out");
+  EXPECT_NE(out.find("CANNOT START: " + root + "/not-a-dir: "), std::string::npos) << out;
+  fs::remove_all(root);
+}
+
 TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
   namespace fs = std::filesystem;
   const std::string root =
@@ -142,6 +201,9 @@ TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
   std::ofstream(root + "/home/.profile") << "# a home with something in it\n";
   writeVisitorJournal(root + "/pen/pen.cbj");
   const std::string data = root + "/data";
+  const std::string set_pin = "echo 2468 | '" + std::string(CB_CLOUDBRUSH_BIN) +
+                              "' kiosk --set-pin --data-dir '" + data + "'";
+  ASSERT_EQ(std::system(set_pin.c_str()), 0);
   const auto before = snapshot(root, data);
   // As the unit runs it (HOME, MESA_SHADER_CACHE_DIR), no XDG or state-dir variables, the
   // working directory elsewhere; the operator opens the panel and exports, a visitor paints,

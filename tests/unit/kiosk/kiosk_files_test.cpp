@@ -1,7 +1,8 @@
 // The kiosk's files without a display: its settings (config/kiosk.toml), the visitor texts
 // (config/kiosk/texts.toml: English complete, Chinese bundled, a missing key falling back to
 // English with one log line), the gallery store (sequential pseudonymous numbers, quota
-// oldest-first, retention), journal retention, the operator log, and the bundled attract journal
+// oldest-first, retention, entries written atomically, the floor of free space on a real full
+// tmpfs), journal retention, the operator log, and the bundled attract journal
 // being exactly what its documented command writes.
 #include <gtest/gtest.h>
 
@@ -14,13 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "app/core/atomic_file.h"
 #include "app/kiosk/data_retention.h"
 #include "app/kiosk/gallery_store.h"
 #include "app/kiosk/kiosk_config.h"
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/operator_log.h"
+#include "app/kiosk/operator_pin.h"
 #include "app/shell/attract_journal.h"
 #include "drivers/core/journal.h"
+#include "small_tmpfs.h"
 
 namespace cb {
 namespace {
@@ -58,9 +62,10 @@ TEST(KioskConfig, BundledFileParsesToItsDocumentedValues) {
   EXPECT_EQ(c.warning_seconds, 10.0);
   EXPECT_EQ(c.attract_journal, "kiosk/attract.cbj");
   EXPECT_EQ(c.operator_keys, "ctrl+alt+o");
-  EXPECT_EQ(c.operator_pin, "2468");
   EXPECT_FALSE(c.gallery_enabled);
   EXPECT_EQ(c.gallery_quota_bytes, 2000ull << 20);
+  EXPECT_EQ(c.min_free_bytes, 256ull << 20);
+  EXPECT_EQ(c.metrics_dir, "");
   EXPECT_EQ(c.journal_keep_days, 30.0);
   EXPECT_TRUE(fs::exists(kConfigDir + "/" + c.attract_journal));
 }
@@ -77,11 +82,14 @@ TEST(KioskConfig, BadValuesNameTheFileAndKey) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error_of("[operator]\npin = \"12a4\"\n").find(path + ": operator.pin must be digits"),
-            std::string::npos);
-  EXPECT_NE(error_of("[operator]\npin = \"12\"\n").find("operator.pin must have 4 to 12"),
-            std::string::npos);
-  EXPECT_NE(error_of("[visitor]\nidle_seconds = \"long\"\n").find("visitor.idle_seconds must be"),
+  EXPECT_NE(error_of("[operator]\npin = \"2468\"\n").find(path + ":2: operator.pin is not read"),
+            std::string::npos)
+      << "no PIN in a config file";
+  EXPECT_NE(error_of("[visitor]\n\nidle_seconds = \"long\"\n")
+                .find(path + ":3: visitor.idle_seconds must be"),
+            std::string::npos)
+      << "the file and the line of the key";
+  EXPECT_NE(error_of("[gallery]\nmin_free_mb = -1\n").find(path + ":2: gallery.min_free_mb"),
             std::string::npos);
   EXPECT_NE(error_of("[visitor]\nidle_seconds = 5\nwarning_seconds = 6\n")
                 .find("warning_seconds must be less than"),
@@ -147,19 +155,34 @@ void fill(const std::string& dir, size_t bytes) {
   std::ofstream(dir + "/cloud.bin", std::ios::binary) << std::string(bytes, 'x');
 }
 
+// An entry with one file of `bytes`, written the way the kiosk writes one (temporary folder,
+// committed); its number.
+long addEntry(GalleryStore& store, size_t bytes) {
+  GalleryWrite write;
+  std::string error;
+  EXPECT_TRUE(store.begin(&write, &error)) << error;
+  fill(write.temp_dir, bytes);
+  EXPECT_TRUE(store.commit(write, &error)) << error;
+  return write.number;
+}
+
+std::vector<std::string> incomingFolders(const std::string& gallery) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& item : fs::directory_iterator(gallery, ec))
+    if (item.path().filename().string().rfind(".incoming-", 0) == 0)
+      found.push_back(item.path().string());
+  return found;
+}
+
 TEST(GalleryStore, SequentialNumbersQuotaOldestFirstAndRetention) {
   TempDir dir("cb_kiosk_gallery");
   GalleryStore store(dir.str() + "/gallery", 2500, 30.0);
   std::vector<long> numbers;
-  for (int i = 0; i < 3; ++i) {
-    long number = 0;
-    std::string path, error;
-    ASSERT_TRUE(store.allocate(&number, &path, &error)) << error;
-    fill(path, 1000);
-    numbers.push_back(number);
-  }
+  for (int i = 0; i < 3; ++i) numbers.push_back(addEntry(store, 1000));
   EXPECT_EQ(numbers, (std::vector<long>{1, 2, 3}));
   EXPECT_TRUE(fs::is_directory(dir.str() + "/gallery/000002"));
+  EXPECT_TRUE(incomingFolders(dir.str() + "/gallery").empty());
   std::string error;
   const auto now = fs::file_time_type::clock::now();
   GalleryCleanup cleanup = store.enforce(3, now, &error);
@@ -168,18 +191,144 @@ TEST(GalleryStore, SequentialNumbersQuotaOldestFirstAndRetention) {
   EXPECT_EQ(cleanup.bytes_after, 2000u);
   // Numbers are never reused, even when the newest entries are gone.
   fs::remove_all(dir.str() + "/gallery/000003");
-  long number = 0;
-  std::string path;
-  ASSERT_TRUE(store.allocate(&number, &path, &error)) << error;
-  EXPECT_EQ(number, 4);
+  const long fourth = addEntry(store, 10);
+  EXPECT_EQ(fourth, 4);
   // Retention: an entry last written 31 days ago goes, a fresh one stays.
-  fill(path, 10);
   fs::last_write_time(dir.str() + "/gallery/000002/cloud.bin", now - std::chrono::hours(24 * 31));
   fs::last_write_time(dir.str() + "/gallery/000002", now - std::chrono::hours(24 * 31));
   cleanup = store.enforce(-1, now, &error);
   EXPECT_EQ(cleanup.removed_for_age, (std::vector<long>{2}));
   ASSERT_EQ(store.entries().size(), 1u);
   EXPECT_EQ(store.entries()[0].number, 4);
+}
+
+TEST(GalleryStore, AnInterruptedSaveLeavesNoEntryAndIsCleanedUp) {
+  TempDir dir("cb_kiosk_gallery_interrupted");
+  GalleryStore store(dir.str() + "/gallery", 1u << 30, 30.0);
+  addEntry(store, 100);
+  GalleryWrite write;
+  std::string error;
+  ASSERT_TRUE(store.begin(&write, &error)) << error;
+  fill(write.temp_dir, 100);  // ... and the kiosk is killed here
+  ASSERT_EQ(store.entries().size(), 1u) << "a half-written entry is not an entry";
+  EXPECT_EQ(GalleryStore(dir.str() + "/gallery", 1u << 30, 30.0).removeIncomplete(),
+            (std::vector<std::string>{write.temp_dir}));
+  EXPECT_TRUE(incomingFolders(dir.str() + "/gallery").empty());
+  EXPECT_EQ(addEntry(store, 100), 2) << "the interrupted number is given again";
+}
+
+// A REAL full file system: a 5 MB tmpfs (needs root). The floor of free space is measured with
+// statvfs, whatever fills the disk; the oldest entries go to keep it; a write that meets ENOSPC
+// leaves no half-written entry and no temporary file; space coming back is seen at once.
+TEST(GalleryStore, KeepsTheFloorOfFreeSpaceOnARealFullDisk) {
+  test::SmallTmpfs disk(
+      fs::temp_directory_path().string() + "/cb_kiosk_full_" + std::to_string(::getpid()),
+      5u << 20);
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  constexpr uint64_t kFloor = 1u << 20;  // 1 MB kept free
+  GalleryStore store(disk.dir() + "/gallery", 1u << 30, 30.0, kFloor);
+  for (int i = 0; i < 3; ++i) addEntry(store, 1u << 20);  // 3 MB of entries: ~2 MB free
+  ASSERT_EQ(store.entries().size(), 3u);
+  std::string error;
+  GalleryRoom room = store.makeRoom(0, -1, &error);
+  EXPECT_TRUE(room.enough && room.removed.empty()) << "above the floor: nothing goes";
+  // Something else (journals, logs) fills the disk to half the floor: the oldest entry goes,
+  // and one is enough (1 MB back, the floor is 1 MB).
+  disk.fillLeaving(kFloor / 2, disk.dir() + "/filler-1");
+  ASSERT_LT(disk.freeBytes(), kFloor);
+  room = store.makeRoom(0, -1, &error);
+  EXPECT_TRUE(error.empty()) << error;
+  EXPECT_EQ(room.removed, (std::vector<long>{1}));
+  EXPECT_TRUE(room.enough);
+  ASSERT_TRUE(room.free_bytes);
+  EXPECT_GE(*room.free_bytes, kFloor);
+  EXPECT_EQ(*room.free_bytes, disk.freeBytes()) << "statvfs of the disk, not the gallery's sum";
+  // The disk completely full (ENOSPC): room for one more entry is asked; all but `keep` (3) go
+  // and it is still not enough.
+  disk.fillLeaving(0, disk.dir() + "/filler-2");
+  room = store.makeRoom(1u << 20, 3, &error);
+  EXPECT_EQ(room.removed, (std::vector<long>{2}));
+  EXPECT_FALSE(room.enough);
+  disk.fillLeaving(0, disk.dir() + "/filler-3");
+  // Writing an entry now fails; abandon leaves nothing behind.
+  GalleryWrite write;
+  ASSERT_TRUE(store.begin(&write, &error)) << error;  // a folder takes no data blocks on tmpfs
+  {
+    std::ofstream out(write.temp_dir + "/cloud.bin", std::ios::binary);
+    out << std::string(1u << 20, 'x');
+    out.flush();
+    EXPECT_FALSE(out.good()) << "the write met ENOSPC";
+  }
+  store.abandon(write);
+  EXPECT_TRUE(incomingFolders(store.dir()).empty());
+  ASSERT_EQ(store.entries().size(), 1u);
+  EXPECT_EQ(store.entries()[0].number, 3);
+  // An atomic replacement on the full disk fails, leaves no temporary and keeps the old file.
+  const std::string counter = store.dir() + "/last-number";
+  const std::string before = [&] {
+    std::ifstream in(counter);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  EXPECT_FALSE(writeFileAtomically(counter, std::string(64 * 1024, '9'), &error));
+  EXPECT_NE(error.find("No space left on device"), std::string::npos) << error;
+  std::ifstream in(counter);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), before);
+  for (const auto& item : fs::directory_iterator(store.dir()))
+    EXPECT_EQ(item.path().filename().string().find(".tmp."), std::string::npos) << item.path();
+  // Space returns: seen by the next look, nothing more deleted.
+  fs::remove(disk.dir() + "/filler-1");
+  fs::remove(disk.dir() + "/filler-2");
+  fs::remove(disk.dir() + "/filler-3");
+  room = store.makeRoom(1u << 20, -1, &error);
+  EXPECT_TRUE(room.enough);
+  EXPECT_TRUE(room.removed.empty());
+  EXPECT_EQ(addEntry(store, 1u << 20), 4);
+}
+
+TEST(OperatorPin, NoDefaultStoredHashedOnlyForTheServiceLockoutGrowsAndPersists) {
+  TempDir dir("cb_kiosk_pin");
+  double now = 1.7e9;
+  const auto wall = [&] { return now; };
+  OperatorPinGuard fresh(dir.str(), wall);
+  EXPECT_FALSE(fresh.hasPin()) << "no default PIN";
+  EXPECT_EQ(fresh.check("2468"), OperatorPinGuard::Result::kWrong);
+  std::string error;
+  EXPECT_FALSE(fresh.setPin("12a4", &error));
+  EXPECT_FALSE(fresh.setPin("123", &error));
+  ASSERT_TRUE(fresh.setPin("864213", &error)) << error;
+  const std::string file = dir.str() + "/" + OperatorPinGuard::kPinFile;
+  EXPECT_EQ(fs::status(file).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write);
+  std::ifstream in(file);
+  const std::string stored{std::istreambuf_iterator<char>(in), {}};
+  EXPECT_EQ(stored.find("864213"), std::string::npos) << "hashed: " << stored;
+  EXPECT_EQ(stored.rfind("6 $", 0), 0u) << stored;
+  // A restart reads it; two wrong PINs are free, the third locks for 60 s, the next 120 s.
+  OperatorPinGuard guard(dir.str(), wall);
+  ASSERT_TRUE(guard.hasPin());
+  EXPECT_EQ(guard.digits(), 6);
+  EXPECT_EQ(guard.check("111111"), OperatorPinGuard::Result::kWrong);
+  EXPECT_EQ(guard.check("222222"), OperatorPinGuard::Result::kWrong);
+  EXPECT_EQ(guard.check("333333"), OperatorPinGuard::Result::kLockedNow);
+  EXPECT_EQ(guard.lastLockSeconds(), 60.0);
+  EXPECT_EQ(guard.check("864213"), OperatorPinGuard::Result::kStillLocked) << "even the right one";
+  now += 30.0;
+  // Restarting the kiosk does not end the lock.
+  OperatorPinGuard restarted(dir.str(), wall);
+  EXPECT_NEAR(restarted.lockedForSeconds(), 30.0, 1e-3);
+  now += 31.0;
+  EXPECT_EQ(restarted.check("444444"), OperatorPinGuard::Result::kLockedNow);
+  EXPECT_EQ(restarted.lastLockSeconds(), 120.0) << "each further wrong PIN doubles the lock";
+  now += 121.0;
+  EXPECT_EQ(OperatorPinGuard(dir.str(), wall).check("864213"), OperatorPinGuard::Result::kRight);
+  OperatorPinGuard after(dir.str(), wall);
+  EXPECT_EQ(after.failures(), 0);
+  EXPECT_EQ(after.check("000000"), OperatorPinGuard::Result::kWrong) << "the right one reset it";
+  // A damaged lockout file keeps the panel locked (for the longest lock), it does not unlock it.
+  writeText(dir.str() + "/" + OperatorPinGuard::kLockoutFile, "garbage");
+  OperatorPinGuard damaged(dir.str(), wall);
+  EXPECT_NEAR(damaged.lockedForSeconds(), OperatorPinGuard::kLongestLockS, 1e-3);
+  EXPECT_NE(damaged.problem().find("unreadable"), std::string::npos);
 }
 
 TEST(DataRetention, DeletesOnlyOldJournals) {

@@ -18,11 +18,13 @@
 #include <map>
 
 #include "app/core/config_paths.h"
+#include "app/kiosk/operator_pin.h"
 #include "app/render/image_io.h"
 #include "app/session/session_replay.h"
 #include "app/shell/calibrate_result_screen.h"
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
+#include "app/shell/kiosk_error_screen.h"
 #include "app/shell/kiosk_screen.h"
 #include "app/study/volume_export.h"
 #include "app/volume/volume_file.h"
@@ -30,6 +32,7 @@
 #include "calibration/pressure_range.h"
 #include "calibration/profile_store.h"
 #include "scripted_pen_source.h"
+#include "small_tmpfs.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -69,14 +72,18 @@ void keep(const std::string& name, const ImageRgba8& image) {
 // scripted pen and a data dir of its own.
 class KioskRig {
  public:
+  // The operator PIN is set to "2468" unless `set_pin` is false (the first start).
   explicit KioskRig(const std::string& name, std::function<void(KioskConfig&)> adjust = {},
-                    std::function<void(const std::string& data_dir)> before = {})
+                    std::function<void(const std::string& data_dir)> before = {},
+                    bool set_pin = true)
       : data_dir_((fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string()),
         pen_(kW, kH) {
     fs::remove_all(data_dir_);
     fs::create_directories(data_dir_);
     if (before) before(data_dir_);
     std::string error;
+    if (set_pin && !OperatorPinGuard(data_dir_).setPin("2468", &error))
+      throw std::runtime_error(error);
     display_ = test::openTestDisplay(kW, kH, &error);
     if (!display_) throw std::runtime_error(error);
     if (!renderer_.init(&error)) throw std::runtime_error(error);
@@ -92,6 +99,8 @@ class KioskRig {
     setup.config_dir = kConfigDir;
     setup.visitor_settings = {kW, kH, kGrid};
     setup.on_status = [this](const std::string& status) { statuses_.push_back(status); };
+    setup.on_problem = [this](const std::string& problem) { problems_.push_back(problem); };
+    setup.on_storage = [this](const std::string& state) { storage_.push_back(state); };
     PaintLoopOptions options;
     options.visitor_mode = true;
     options.orbit_degrees_per_second = 0.0f;
@@ -106,7 +115,8 @@ class KioskRig {
   }
   ~KioskRig() {
     kiosk_.reset();
-    fs::remove_all(data_dir_);
+    std::error_code ec;  // a mount point (the disk-full test) stays; its owner unmounts it
+    fs::remove_all(data_dir_, ec);
   }
 
   // Runs `frames` loop iterations, the clock moving `step_s` after each; returns the quit reason.
@@ -154,6 +164,8 @@ class KioskRig {
   const ImageRgba8& lastFrame() const { return last_frame_; }
   const std::vector<std::string>& textLog() const { return log_; }
   const std::vector<std::string>& statuses() const { return statuses_; }
+  const std::vector<std::string>& problems() const { return problems_; }
+  const std::vector<std::string>& storageStates() const { return storage_; }
 
  private:
   std::string data_dir_;
@@ -165,11 +177,30 @@ class KioskRig {
   std::unique_ptr<PaintScreen> paint_;
   std::unique_ptr<KioskScreen> kiosk_;
   ImageRgba8 last_frame_;
-  std::vector<std::string> log_, statuses_;
+  std::vector<std::string> log_, statuses_, problems_, storage_;
   std::vector<DisplayEvent> keys_;
 };
 
 using State = KioskScreen::State;
+
+// Files under `dir` (recursively) whose name contains `part`.
+std::vector<std::string> filesNamed(const std::string& dir, const std::string& part) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& item : fs::recursive_directory_iterator(dir, ec))
+    if (item.path().filename().string().find(part) != std::string::npos)
+      found.push_back(item.path().string());
+  return found;
+}
+
+// A visitor paints, then idles until the attract loop is back.
+void paintAVisit(KioskRig& rig) {
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  ASSERT_TRUE(rig.runUntil([&] { return rig.kiosk().state() == State::kAttract; }, 80, 0.25));
+}
 
 TEST(KioskScreens, AttractReplaysOrbitsHandsOverAndResumesAfterIdle) {
   KioskRig rig("cb_kiosk_attract", [](KioskConfig& c) {
@@ -326,6 +357,94 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
         "export-cloud ", "shutdown", "panel-closed"})
     EXPECT_NE(log.find(std::string("Z ") + action), std::string::npos) << action << "\n" << log;
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 12) << log;
+}
+
+// systemctl stop mid-visit (SIGTERM ends the loop; `cloudbrush kiosk` then calls stopping()):
+// the visitor's cloud is kept in the gallery, their journal closed whole.
+TEST(KioskScreens, StoppedMidVisitTheVisitorsCloudIsKept) {
+  KioskRig rig("cb_kiosk_stop", [](KioskConfig& c) { c.gallery_enabled = true; });
+  KioskScreen& kiosk = rig.kiosk();
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  ASSERT_EQ(kiosk.state(), State::kVisitor);
+  const uint64_t painted = volumeChecksum(kiosk.visitorSession()->volume());
+  kiosk.stopping();
+  ASSERT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+  EXPECT_EQ(volumeChecksum(loadVolume(rig.dataDir() + "/gallery/000001/cloud.cbvol")), painted);
+  const std::vector<std::string> journals = filesNamed(rig.dataDir() + "/sessions", "-visit1");
+  ASSERT_EQ(journals.size(), 1u);
+  const SessionReplay replay =
+      replaySession(readJournal(journals[0]), BrushConfig{}, MappingConfig{});
+  ASSERT_TRUE(replay.session) << replay.journal_error;
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), painted) << "the journal replays to it";
+}
+
+// The screen a bad config file or data dir shows instead of a restart loop: the problem as given
+// (file and line) drawn as text on a plain background, and no key ends it.
+TEST(KioskScreens, ErrorScreenShowsTheFileAndLineAndNoKeyEndsIt) {
+  std::string error;
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
+  ASSERT_TRUE(display) << error;
+  KioskErrorScreen screen("/etc/cloudbrush/kiosk.toml:8: visitor.idle_seconds must be a number");
+  FrameLoopOptions options;
+  options.max_frames = 3;
+  ASSERT_TRUE(parseKeyList("esc,q,ctrl+c,alt+f4", &options.initial_keys, &error)) << error;
+  ImageRgba8 frame;
+  options.after_draw = [&](const FrameContext&) {
+    frame = readFramebufferRgba8(display->framebuffer(), kW, kH);
+  };
+  FrameLoop loop(*display, nullptr);
+  FrameLoopResult result;
+  ASSERT_TRUE(loop.run(screen, options, &result, &error)) << error;
+  EXPECT_EQ(result.quit_reason, "frame limit") << "Esc, q, Ctrl+C, Alt+F4 do not end it";
+  ASSERT_EQ(frame.width, kW);
+  // Text on the dark background: the title in red at the top (rows above 20 %), the problem in
+  // white in its rows (22 %..36 % down).
+  long red_title = 0, white_problem = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint8_t* p = frame.at(x, y);
+      if (y < 0.2 * kH && p[0] > 200 && p[1] < 170) ++red_title;
+      if (y > 0.22 * kH && y < 0.36 * kH && p[0] > 200 && p[1] > 200 && p[2] > 200) ++white_problem;
+    }
+  EXPECT_GT(red_title, 100) << "the title is drawn";
+  EXPECT_GT(white_problem, 200) << "the problem's line is drawn";
+  keep("kiosk_error_screen.png", frame);
+}
+
+// First start: no PIN and no default one. The combination asks for a new PIN, twice; it is
+// stored hashed, logged without its digits, and asked for from then on.
+TEST(KioskScreens, FirstStartAsksTheOperatorToSetThePin) {
+  KioskRig rig("cb_kiosk_first_pin", {}, {}, /*set_pin=*/false);
+  KioskScreen& kiosk = rig.kiosk();
+  EXPECT_FALSE(kiosk.operatorPin().hasPin());
+  ASSERT_TRUE(rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  rig.type("2468");  // the old default does nothing
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked());
+  rig.run(1, 0.0);
+  keep("kiosk_first_pin.png", rig.lastFrame());
+  rig.key(0xff0d);  // Enter: the new PIN once ...
+  rig.type("9135");
+  rig.key(0xff0d);  // ... differs from the first: asked again
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked());
+  rig.type("975310");
+  rig.key(0xff0d);
+  rig.type("975310");
+  rig.key(0xff0d);
+  ASSERT_TRUE(kiosk.operatorPanel().unlocked());
+  EXPECT_TRUE(kiosk.operatorPin().hasPin());
+  rig.key(0xff1b);
+  rig.run(1, 0.0);
+  const std::string log = slurp(rig.dataDir() + "/operator.log");
+  EXPECT_NE(log.find("Z pin-set\n"), std::string::npos) << log;
+  EXPECT_EQ(log.find("975310"), std::string::npos) << "never the digits";
+  EXPECT_EQ(slurp(rig.dataDir() + "/operator-pin").find("975310"), std::string::npos);
+  // From now on the PIN is asked for.
+  ASSERT_TRUE(rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  rig.type("975310");
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
 }
 
 // An operator combination with a function key (the KMS keyboard's built-in US table has them).
@@ -535,6 +654,83 @@ TEST(KioskScreens, GalleryKeepsFinishedCloudsWithinQuotaAndOldJournalsGo) {
   EXPECT_FALSE(fs::exists(entry)) << "over the quota: the oldest entry went";
   EXPECT_TRUE(fs::exists(rig.dataDir() + "/gallery/000002/thumbnail.png"));
   EXPECT_EQ(density(kiosk.visitorSession()->volume()), 0.0) << "start again cleared the sky";
+}
+
+// The data dir on a REAL small file system (a tmpfs, needs root) that something else fills up:
+// the kiosk deletes the oldest gallery entry to keep the floor; when even that is not enough it
+// keeps painting, saves nothing (no half-written entry, no empty journal), says so on the
+// operator panel, to the health file (on_problem / on_storage) and the log; when space returns
+// it saves again by itself.
+TEST(KioskScreens, AFullDiskKeepsThePaintingSaysSoAndRecovers) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to mount a 64 MB tmpfs as the data dir";
+  const std::string name = "cb_kiosk_full_disk";
+  std::unique_ptr<test::SmallTmpfs> disk;
+  constexpr uint64_t kFloor = 40ull << 20;
+  KioskRig rig(
+      name,
+      [](KioskConfig& c) {
+        c.gallery_enabled = true;
+        c.min_free_bytes = kFloor;
+        c.idle_seconds = 3.0;
+        c.warning_seconds = 1.0;
+      },
+      [&](const std::string& data_dir) {
+        disk = std::make_unique<test::SmallTmpfs>(data_dir, 64ull << 20);
+        if (!disk->mounted()) throw std::runtime_error(disk->why());
+      });
+  KioskScreen& kiosk = rig.kiosk();
+  const std::string data = rig.dataDir();
+  EXPECT_EQ(kiosk.storageProblem(), "");
+  paintAVisit(rig);
+  ASSERT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+  const uint64_t entry_bytes = GalleryStore(data + "/gallery", 0, 0).typicalEntryBytes();
+  std::printf("one gallery entry: %.2f MB; the floor %.0f MB on a 64 MB tmpfs\n",
+              double(entry_bytes) / 1048576.0, double(kFloor) / 1048576.0);
+  ASSERT_LT(entry_bytes + kFloor, 64ull << 20) << "the test's disk is too small for an entry";
+  // Something else fills the disk to the last byte.
+  disk->fillLeaving(0, data + "/filler");
+  ASSERT_LT(disk->freeBytes(), 64u * 1024);
+  // The next visitor: entry 1 is deleted for space, still below the floor: no journal.
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  rig.pen().stroke(rig.clock().nowNs());
+  rig.run(3);
+  EXPECT_EQ(kiosk.state(), State::kVisitor) << "the visitor paints on";
+  EXPECT_GT(density(kiosk.visitorSession()->volume()), 0.0);
+  EXPECT_FALSE(fs::exists(data + "/gallery/000001")) << "the oldest entry went for space";
+  EXPECT_NE(kiosk.storageProblem().find("disk full"), std::string::npos) << kiosk.storageProblem();
+  // The operator opens the panel: the disk line says what is not saved.
+  rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
+  rig.type("2468");
+  rig.run(1);
+  ASSERT_EQ(kiosk.state(), State::kOperator);
+  keep("kiosk_panel_disk_full.png", rig.lastFrame());
+  rig.key(0xff1b);  // Esc
+  rig.run(1);
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 80, 0.25));
+  EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1})) << "nothing more saved";
+  EXPECT_EQ(kiosk.savesFailed(), 2) << "the journal and the gallery entry of visitor 2";
+  const std::vector<std::string>& problems = rig.problems();
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_NE(problems[0].find("NOT RECORDING visitor 2: disk full"), std::string::npos)
+      << problems[0];
+  EXPECT_NE(problems[1].find("gallery: NOT SAVED (idle)"), std::string::npos) << problems[1];
+  EXPECT_TRUE(filesNamed(data, ".incoming-").empty()) << "no half-written entry";
+  EXPECT_TRUE(filesNamed(data, ".tmp.").empty()) << "no temporary file";
+  for (const std::string& journal : filesNamed(data + "/sessions", ".cbj"))
+    EXPECT_GT(fs::file_size(journal), 0u) << journal << ": no empty journal";
+  EXPECT_EQ(filesNamed(data + "/sessions", "-visit2").size(), 0u);
+  ASSERT_FALSE(rig.storageStates().empty());
+  EXPECT_NE(rig.storageStates().back().find("NOT SAVING"), std::string::npos);
+  // Space returns: within the check interval the kiosk says so, and saves the next visitor.
+  fs::remove(data + "/filler");
+  ASSERT_TRUE(rig.runUntil([&] { return kiosk.storageProblem().empty(); }, 60, 0.5))
+      << kiosk.storageProblem();
+  EXPECT_EQ(rig.storageStates().back(), "");
+  paintAVisit(rig);
+  EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1, 2})) << "numbers are not reused";
+  EXPECT_TRUE(fs::exists(data + "/gallery/000002/thumbnail.png"));
+  EXPECT_EQ(filesNamed(data + "/sessions", "-visit3").size(), 1u);
 }
 
 TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
