@@ -1,23 +1,17 @@
 // Writing a journal: append-only records that reach the disk whole or not at all.
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/journal_framing.h"
 
 namespace cb {
 namespace {
-
-int64_t monotonicNs() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 std::string directoryOf(const std::string& path) {
   const std::string dir = std::filesystem::path(path).parent_path().string();
@@ -191,7 +185,7 @@ bool JournalWriter::append(JournalRecordType type, int64_t t_ns, const uint8_t* 
     return false;
   }
   appendJournalRecord(version_, uint32_t(type), t_ns, data, n, &held_);
-  const int64_t now = monotonicNs();
+  const int64_t now = MonotonicClock().nowNs();
   if (unsynced_since_ns_ < 0) unsynced_since_ns_ = now;
   if (!writeHeld()) return false;
   return syncIfDue(now);
