@@ -547,8 +547,11 @@ void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
   SceneWork work;
   renderScene(&work);
   // Late latching: the ink shows the samples that came while the scene was being cast. A
-  // latched lift (or a view the pen changed) makes the scene stale: cast it again.
-  if (options_.ink_first && frame.latch_pen && !lit_pending_ && !replay_view_) {
+  // latched lift (or a view the pen changed) makes the scene stale: cast it again. Samples the
+  // on-screen UI holds (menu open, pen over a target) are not ink: they wait for the next
+  // frame, so the UI sees every press and release in its own frame.
+  const bool ui_holds_pen = menu_open_ || pointer_over_ui_ || (session_ && session_->penCaptured());
+  if (options_.ink_first && frame.latch_pen && !lit_pending_ && !replay_view_ && !ui_holds_pen) {
     frame.latch_pen();
     if (lit_pending_ || sceneStale()) renderScene(&work);
   }

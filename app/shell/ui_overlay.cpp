@@ -299,10 +299,13 @@ int UiOverlay::missingGlyphs(const std::string& utf8_text) const {
 void UiOverlay::drawMessages(int width, int height, float bar_h, const UiOverlayState& state) {
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const float size = ImGui::GetFontSize();
-  // The answer to the last action, under the status line (and under a notice).
+  // The answer to the last action, under the status line (and under a notice); below the
+  // open menu, which fills the middle, so neither hides the other.
+  const float toast_y = state.menu_open ? float(height) - 2.2f * size
+                                        : bar_h + (state.notice.empty() ? 1.0f : 3.2f) * size;
   if (!state.toast.empty())
-    drawTextBox(draw, 0.5f * float(width), bar_h + (state.notice.empty() ? 1.0f : 3.2f) * size,
-                {state.toast}, size, IM_COL32(255, 255, 255, 255), IM_COL32(20, 40, 70, 215));
+    drawTextBox(draw, 0.5f * float(width), toast_y, {state.toast}, size,
+                IM_COL32(255, 255, 255, 255), IM_COL32(20, 40, 70, 215));
   // The first screen's hint: low in the middle, where the eye goes after the cloud.
   if (!state.hint.empty() && !state.menu_open)
     drawTextBox(draw, 0.5f * float(width),

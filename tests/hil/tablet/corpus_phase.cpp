@@ -2,15 +2,20 @@
 
 #include "tests/hil/tablet/hil_devices.h"
 
+#include <fcntl.h>
 #include <linux/input.h>
+#include <sys/utsname.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <string>
 #include <vector>
 
 #include "drivers/core/clock.h"
 #include "drivers/evdev/evdev_pen_source.h"
+#include "drivers/hid/hid_report_descriptor.h"
 #include "drivers/hid/hidapi_pen_source.h"
 #include "tests/hil/tablet/pen_corpus.h"
 #include "tests/hil/tablet/uhid_device.h"
@@ -75,6 +80,67 @@ bool settle(PenSource& src, const CorpusStep& st, PenSample& state, int timeout_
   return out_then_in;
 }
 
+// The kernel's own account of the input nodes made for the device named `name`
+// (/proc/bus/input/devices: name, handlers, key and abs bits), for a check that fails.
+std::string kernelInputNodes(const std::string& name) {
+  std::ifstream in("/proc/bus/input/devices");
+  std::string line, block, found;
+  const auto flush = [&] {
+    if (block.find(name) != std::string::npos) found += block;
+    block.clear();
+  };
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      flush();
+      continue;
+    }
+    if (line.rfind("N:", 0) == 0 || line.rfind("H:", 0) == 0 || line.rfind("B: KEY", 0) == 0 ||
+        line.rfind("B: ABS", 0) == 0 || line.rfind("B: PROP", 0) == 0)
+      block += " [" + line + "]";
+  }
+  flush();
+  if (!found.empty()) return found;
+  // No node: what the kernel logged about HID devices (bound driver, hid-input's refusal).
+  std::string log;
+  if (FILE* kmsg = std::fopen("/dev/kmsg", "re")) {
+    const int fd = fileno(kmsg);
+    ::fcntl(fd, F_SETFL, O_NONBLOCK);
+    char record[2048];
+    ssize_t n;
+    while ((n = ::read(fd, record, sizeof record - 1)) > 0) {
+      record[n] = 0;
+      const std::string text(record);
+      if (text.find("hid") != std::string::npos || text.find("input") != std::string::npos)
+        log += " [" + text.substr(text.find(';') + 1, text.find('\n') - text.find(';') - 1) + "]";
+    }
+    std::fclose(kmsg);
+  }
+  return " (the kernel made no input node for it; its HID log:" + log + ")";
+}
+
+// Whether hid-input makes input nodes for the descriptor on the running kernel: only for an
+// application collection its IS_INPUT_APPLICATION names (include/linux/hid.h). Generic Desktop
+// Pointer..Multi-axis and Digitizer Pen..Whiteboard always; the Digitizer application (0x0D 0x01,
+// the usage hid-uclogic's pen templates switched to) only from Linux 6.2, where the range was
+// widened to start at HID_DG_DIGITIZER. Before that such a pen has hidraw but no input node.
+bool kernelMakesInputNode(const std::vector<uint8_t>& desc, std::string* why) {
+  const hid::ParseResult parsed = hid::parseReportDescriptor(desc.data(), desc.size());
+  if (!parsed.descriptor) return false;
+  utsname u{};
+  int major = 0, minor = 0;
+  if (::uname(&u) == 0) std::sscanf(u.release, "%d.%d", &major, &minor);
+  const bool digitizer_counts = major > 6 || (major == 6 && minor >= 2);
+  for (const hid::Field& f : parsed.descriptor->fields) {
+    const uint32_t a = f.application;
+    if ((a >= 0x00010000 && a <= 0x00010008) || (a >= 0x000d0002 && a <= 0x000d0006) ||
+        (a == 0x000d0001 && digitizer_counts))
+      return true;
+  }
+  *why = std::string("its application is no input application for hid-input on Linux ") +
+         u.release + " (the Digitizer application counts from 6.2)";
+  return false;
+}
+
 bool sameFields(const PenSample& a, const PenSample& b) {
   if (!a.in_proximity && !b.in_proximity) return true;
   return a.in_proximity == b.in_proximity && a.tool == b.tool && a.buttons == b.buttons &&
@@ -100,12 +166,21 @@ void runDevice(const std::string& fixtures, const CorpusDevice& dev, Checker& ch
                       dev.i2c() ? BUS_I2C : BUS_USB, dev.vendor, dev.product, &error),
              label + ": UHID_CREATE2 " + error))
     return;
-  // Without an In Range usage hid-input maps no BTN_TOOL_PEN: the node is no pen for evdev.
-  const bool kernel_pen = dev.ranges.count("inrange") == 1;
+  // Without an In Range usage hid-input maps no BTN_TOOL_PEN: the node is no pen for evdev;
+  // without an input application it makes no node at all.
+  std::string no_node;
+  const bool kernel_pen = dev.ranges.count("inrange") == 1 && kernelMakesInputNode(desc, &no_node);
   EvdevPenSource evdev({});
   hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, dev.vendor));
   const bool evdev_ok = kernel_pen && waitConnected(evdev, 5000);
-  if (kernel_pen) check(evdev_ok, label + ": evdev finds the pen node: " + evdev.statusMessage());
+  if (!no_node.empty()) {
+    EvdevPenSource absent({});
+    check(!waitConnected(absent, 1000),
+          label + ": no pen node, as the kernel's rule says (" + no_node + ")");
+  }
+  if (kernel_pen)
+    check(evdev_ok, label + ": evdev finds the pen node: " + evdev.statusMessage() +
+                        (evdev_ok ? "" : kernelInputNodes(dev.file.substr(0, dev.file.find('.')))));
   if (!check(waitConnected(hidraw, 5000),
              label + ": hidraw decodes the pen: " + hidraw.statusMessage()))
     return;

@@ -1,6 +1,7 @@
 // The main job on a display, as the real binary under a test-started Xvfb: `cloudbrush` opens
-// fullscreen on X11 by itself (DISPLAY set, no card to take), draws the orbiting cloud, and
-// quits on Esc with status 0.
+// fullscreen on X11 by itself (DISPLAY set, no card to take), shows the paintable sky, paints
+// a cloud where the mouse drags, and quits on Esc (asking first: the stroke is unsaved) with
+// status 0.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -55,32 +56,42 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
 
   ::Display* observer = XOpenDisplay(server.name().c_str());
   ASSERT_NE(observer, nullptr);
-  // Wait for the window and for a few frames of cloud: a bright middle on sky-blue corners.
+  // The screen's colours: the red of the middle row at x and of a corner, the corner's blue.
+  struct Look {
+    int centre_r = 0, corner_r = 0, corner_b = 0;
+  };
+  const auto look = [&](int x) {
+    Look l;
+    XImage* image =
+        XGetImage(observer, DefaultRootWindow(observer), 0, 0, kW, kH, AllPlanes, ZPixmap);
+    if (!image) return l;
+    auto channel = [&](int px, int py, unsigned long mask) {
+      const unsigned long p = XGetPixel(image, px, py) & mask;
+      return int(p / (mask & ~(mask << 1)));  // shift the masked bits down to 0..255
+    };
+    l.centre_r = channel(x, kH / 2, image->red_mask);
+    l.corner_r = channel(kW - 2, kH - 2, image->red_mask);
+    l.corner_b = channel(kW - 2, kH - 2, image->blue_mask);
+    XDestroyImage(image);
+    return l;
+  };
+  // Wait for the window and the sky it opens on (blue corners: the first screen is the
+  // paintable sky, with the hint over its middle).
   Window window = 0;
-  bool cloud_seen = false;
-  for (int i = 0; i < 600 && !cloud_seen; ++i) {
+  bool sky_seen = false;
+  for (int i = 0; i < 600 && !sky_seen; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (!window) window = findWindowNamed(observer, "cloudbrush");
     if (!window) continue;
-    XImage* image =
-        XGetImage(observer, DefaultRootWindow(observer), 0, 0, kW, kH, AllPlanes, ZPixmap);
-    if (!image) continue;
-    auto channel = [&](int x, int y, unsigned long mask) {
-      const unsigned long p = XGetPixel(image, x, y) & mask;
-      return int(p / (mask & ~(mask << 1)));  // shift the masked bits down to 0..255
-    };
-    const int centre_r = channel(kW / 2, kH / 2, image->red_mask);
-    const int corner_r = channel(1, 1, image->red_mask);
-    const int corner_b = channel(1, 1, image->blue_mask);
-    cloud_seen = corner_b > corner_r + 30 && centre_r > corner_r + 40;
-    XDestroyImage(image);
+    const Look l = look(kW / 2);
+    sky_seen = l.corner_b > l.corner_r + 30;
   }
   ASSERT_NE(window, 0u) << "no window named cloudbrush appeared";
   XWindowAttributes attributes{};
   XGetWindowAttributes(observer, window, &attributes);
   EXPECT_EQ(attributes.width, kW);
   EXPECT_EQ(attributes.height, kH);
-  EXPECT_TRUE(cloud_seen) << "the screen never showed a cloud in front of the sky";
+  EXPECT_TRUE(sky_seen) << "the screen never showed the sky";
 
   const auto press = [&](KeySym sym) {
     XEvent key{};
@@ -126,11 +137,19 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
   for (int i = 0; i <= 40; ++i)
     pointer(MotionNotify, kW / 4 + i * kW / 80, kH / 2 + int(10 * std::sin(i * 0.2)));
   pointer(ButtonRelease, 3 * kW / 4, kH / 2);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // The lifted stroke becomes a lit cloud where it was drawn (the hint is gone after it): a
+  // bright middle on the sky.
+  bool cloud_seen = false;
+  for (int i = 0; i < 300 && !cloud_seen; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const Look l = look(kW / 2);
+    cloud_seen = l.corner_b > l.corner_r + 30 && l.centre_r > l.corner_r + 40;
+  }
+  EXPECT_TRUE(cloud_seen) << "the painted stroke never showed as a cloud in front of the sky";
   press(XK_Escape);  // a stroke is unsaved: the painter asks first
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   press(XK_Escape);  // and Esc again quits
-  runner.join();  // the binary must end by itself after Esc Esc (ctest's timeout guards this)
+  runner.join();     // the binary must end by itself after Esc Esc (ctest's timeout guards this)
   XCloseDisplay(observer);
 
   auto slurp = [](const std::string& path) {

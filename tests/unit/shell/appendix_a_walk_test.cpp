@@ -22,6 +22,7 @@
 #include "app/shell/keymap.h"
 #include "app/shell/paint_screen.h"
 #include "app/shell/ui_overlay.h"
+#include "drivers/core/clock.h"
 #include "drivers/replay/replay_pen_source.h"
 
 #include "tests/support/test_display.h"
@@ -68,8 +69,10 @@ double density(const Volume& v) {
 // Steps the screen as the frame loop does.
 class Walk {
  public:
-  Walk(Display& display, PaintScreen& screen, PenSource& pen)
-      : display_(display), screen_(screen), pen_(pen) {}
+  Walk(Display& display, PaintScreen& screen, PenSource& pen, ManualClock& clock)
+      : display_(display), screen_(screen), pen_(pen), clock_(clock) {
+    clock_.set(now_);
+  }
   void keys(const char* list) {
     std::vector<DisplayEvent> events;
     std::string error;
@@ -96,6 +99,7 @@ class Walk {
     for (int i = 0; i < n; ++i) {
       FrameContext frame{display_, kW, kH, frame_, now_, 1.0 / 60.0};
       now_ += 16'666'667;
+      clock_.set(now_);  // messages time out on the walk's time line, not the machine's speed
       screen_.onPenSamples({});
       screen_.update(frame);
       std::string error;
@@ -111,6 +115,7 @@ class Walk {
   Display& display_;
   PaintScreen& screen_;
   PenSource& pen_;
+  ManualClock& clock_;
   int64_t now_ = 1'000'000'000;
   long frame_ = 0;
   ImageRgba8 last_;
@@ -176,11 +181,13 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   ReplayPenSource pen(pen_path, replay_options);
   PaintLoopOptions options;
   options.orbit_degrees_per_second = 0.0f;
+  ManualClock clock;
+  options.clock = &clock;
   options.state_dir = dir + "/state";
   options.config_dir = dir + "/config";
   PaintScreen screen(*display, renderer, session.volume(), Light{}, options);
   screen.attachPen(&pen, &session);
-  Walk walk(*display, screen, pen);
+  Walk walk(*display, screen, pen, clock);
   walk.frames(2);  // the pen connects; its calibration is chosen
   const auto shoot = [&](const char* name) {
     walk.keys("m");  // the menu open over the mode

@@ -140,8 +140,9 @@ TEST(AnimationPainter, TheMenuStartsAndStopsMorphAndWindAndApplyReplays) {
           blown = volumeChecksum(withFrame(session.volume(), a->fullFrame(session)));
           key('a');
         }
-        if (frames_in_stage == 10) key(XKB_KEY_Escape);  // unsaved work: the painter asks
-        if (frames_in_stage == 11) key(XKB_KEY_Escape);  // and Esc again quits
+        if (frames_in_stage == 10) key(XKB_KEY_Escape);  // Esc closes the open menu first,
+        if (frames_in_stage == 11) key(XKB_KEY_Escape);  // then asks (unsaved work),
+        if (frames_in_stage == 12) key(XKB_KEY_Escape);  // and Esc again quits
         break;
       }
     }
