@@ -32,6 +32,8 @@ vec4 shadeSurface(SurfaceSample s) {
   vec3 cel = kCel[celBand(d)] * u_light_colour;
   float outline =
       1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
-  float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));
+  float inner_off = abs(s.inner_max_density - u_inner_iso);
+  float inner = (1.0 - smoothstep(0.03, 0.06, inner_off)) *
+                (1.0 - smoothstep(1.0, 2.0, inner_off / max(fwidth(s.inner_max_density), 1e-4)));
   return vec4(mix(cel, kOutline, max(outline, 0.8 * inner)), 1.0);
 }

@@ -94,8 +94,9 @@ int benchStrokes(int argc, char** argv) {
   }
   const BrushConfig brush = loadDefaultBrushConfig();
   const MappingConfig mapping = loadMappingConfig(configFile("mapping.toml"));
-  BrushConfig old_brush = brush;  // as journals before the brush size replay
+  BrushConfig old_brush = brush;  // as journals before the brush size and billows replay
   old_brush.stroke.size = 1.0f;
+  old_brush.stroke.billow = 0.0f;
   MappingConfig old_mapping = mapping;
   old_mapping.spheres.billow_amplitude = 0.0f;
   StrokeMapper mapper(mapping), old_mapper(old_mapping);

@@ -33,7 +33,7 @@ BrushSample makeBristleTexture(const Brush2DParams& p) {
 }
 
 Brush2D::Brush2D(const BrushConfig& c)
-    : TextureBrush(c.stroke, c.dispersion),
+    : TextureBrush(c.stroke, c.dispersion, c.brush2d.max_diameter_px),
       params_(c.brush2d),
       texture_(makeBristleTexture(c.brush2d)) {}
 
@@ -45,7 +45,8 @@ float Brush2D::diameterFor(float pressure) const {
 FootprintRect Brush2D::stampDab(const Dab& dab, float dispersion, Footprint* fp) {
   SplatParams splat;
   splat.centre_px = dab.footprint_px;
-  splat.diameter_px = diameterFor(dab.pressure);  // tilt deliberately ignored (§5.3.1)
+  // Tilt deliberately ignored (§5.3.1); the edge billows along the stroke.
+  splat.diameter_px = diameterFor(dab.pressure) * dab.size_factor;
   splat.dispersion = dispersion;
   return splatSample(texture_, splat, dispersionField(), fp);
 }

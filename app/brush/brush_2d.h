@@ -16,7 +16,7 @@ class Brush2D : public TextureBrush {
  public:
   Brush2D(const BrushConfig& config);
   BrushKind kind() const override { return BrushKind::k2D; }
-  float reachPx() const override { return 0.5f * params_.max_diameter_px + 1.0f; }
+  float reachPx() const override { return 0.5f * billowedDiameter(params_.max_diameter_px) + 1.0f; }
   float diameterFor(float pressure) const;
   const BrushSample& texture() const { return texture_; }
 

@@ -8,7 +8,9 @@
 namespace cb {
 
 Brush3D::Brush3D(const BrushConfig& c, std::shared_ptr<const InkVolume> ink)
-    : TextureBrush(c.stroke, c.dispersion), params_(c.brush3d), ink_(std::move(ink)) {
+    : TextureBrush(c.stroke, c.dispersion, c.brush3d.diameter_px),
+      params_(c.brush3d),
+      ink_(std::move(ink)) {
   if (!ink_) ink_ = InkVolume::shared(params_.ink_volume_size, params_.ink_seed);
 }
 
@@ -42,7 +44,7 @@ FootprintRect Brush3D::stampDab(const Dab& dab, float dispersion, Footprint* fp)
   const BrushSample& sample = sampleFor(dab.pressure, dab.tilt_x_deg, dab.tilt_y_deg);
   SplatParams splat;
   splat.centre_px = dab.footprint_px;
-  splat.diameter_px = params_.diameter_px;
+  splat.diameter_px = params_.diameter_px * dab.size_factor;  // the edge billows
   splat.dispersion = dispersion;
   return splatSample(sample, splat, dispersionField(), fp);
 }

@@ -22,7 +22,7 @@ class Brush3D : public TextureBrush {
   // `ink` may be shared between brushes (it takes ~50 ms to build); null builds one.
   Brush3D(const BrushConfig& config, std::shared_ptr<const InkVolume> ink = nullptr);
   BrushKind kind() const override { return BrushKind::k3D; }
-  float reachPx() const override { return 0.5f * params_.diameter_px + 1.0f; }
+  float reachPx() const override { return 0.5f * billowedDiameter(params_.diameter_px) + 1.0f; }
 
   // The sample for a pen state (through the cache unless caching is off).
   const BrushSample& sampleFor(float pressure, float tilt_x_deg, float tilt_y_deg);

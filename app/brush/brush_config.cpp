@@ -156,6 +156,8 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
     r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
     r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
     r.number(*t, "stroke", "size", &c->stroke.size, kMinBrushSize, kMaxBrushSize);
+    r.number(*t, "stroke", "billow", &c->stroke.billow, 0.0, 0.9);
+    r.number(*t, "stroke", "billow_length", &c->stroke.billow_length, 0.25, 16.0);
     r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
     r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
     r.flag(*t, "stroke", "auto_end_light_by_hysteresis", &c->stroke.auto_end_light_by_hysteresis);
@@ -233,6 +235,8 @@ std::string formatBrushConfig(const BrushConfig& c) {
   num("spacing_px", c.stroke.spacing_px);
   num("footprint_scale", c.stroke.footprint_scale);
   num("size", c.stroke.size);
+  num("billow", c.stroke.billow);
+  num("billow_length", c.stroke.billow_length);
   integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
   integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
   o << "auto_end_light_by_hysteresis = "

@@ -27,6 +27,13 @@ struct StrokeParams {
   // value: footprint pixels are screen pixels) is the size before the key existed; the
   // product's default is config/brush.toml's, chosen there from the thesis's figures.
   float size = 1.0f;
+  // The brush's edge swells and narrows along the stroke (billow_profile.h): each dab of the
+  // texture brushes is scaled by up to 1 + billow in a lobe and 1 − billow/3 in a neck, a
+  // smooth noise of the arc length with lattice points billow_length × the brush's largest
+  // diameter apart. 0 (the built-in value): a
+  // stroke of even pressure is one width, as before the key existed.
+  float billow = 0.0f;
+  float billow_length = 1.5f;
   // An open stroke ends by itself when held still / touched only lightly this long (0 = never);
   // the painter copies these into its session (app/session, journalled there).
   int auto_end_still_ms = 2000;

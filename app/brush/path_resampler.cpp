@@ -14,6 +14,7 @@ PathResampler::PathResampler(float spacing_px, float speed_smoothing_ms)
 void PathResampler::begin(const StrokePoint& first, std::vector<Dab>* out) {
   last_ = first;
   travelled_since_dab_ = 0.0f;
+  arc_ = 0.0f;
   speed_ = 0.0f;
   out->push_back(
       {first.footprint_px, first.pressure, first.tilt_x_deg, first.tilt_y_deg, 0.0f, first.t_ns});
@@ -36,10 +37,10 @@ void PathResampler::add(const StrokePoint& p, std::vector<Dab>* out) {
     while (next <= length) {
       float s = next / length;
       auto mix = [s](float u, float v) { return u + (v - u) * s; };
-      out->push_back({a + (b - a) * s, mix(last_.pressure, p.pressure),
-                      mix(last_.tilt_x_deg, p.tilt_x_deg), mix(last_.tilt_y_deg, p.tilt_y_deg),
-                      mix(speed_before, speed_),
-                      last_.t_ns + int64_t(std::llround(double(p.t_ns - last_.t_ns) * s))});
+      out->push_back(
+          {a + (b - a) * s, mix(last_.pressure, p.pressure), mix(last_.tilt_x_deg, p.tilt_x_deg),
+           mix(last_.tilt_y_deg, p.tilt_y_deg), mix(speed_before, speed_),
+           last_.t_ns + int64_t(std::llround(double(p.t_ns - last_.t_ns) * s)), arc_ + next});
       next += spacing_;
     }
     travelled_since_dab_ = length - (next - spacing_);
@@ -50,9 +51,10 @@ void PathResampler::add(const StrokePoint& p, std::vector<Dab>* out) {
                           std::abs(p.tilt_x_deg - last_dab_.tilt_x_deg) >= kTiltStepDeg ||
                           std::abs(p.tilt_y_deg - last_dab_.tilt_y_deg) >= kTiltStepDeg;
   if (changed_in_place) {
-    out->push_back({b, p.pressure, p.tilt_x_deg, p.tilt_y_deg, speed_, p.t_ns});
+    out->push_back({b, p.pressure, p.tilt_x_deg, p.tilt_y_deg, speed_, p.t_ns, arc_ + length});
     last_dab_ = out->back();
   }
+  arc_ += length;
   last_ = p;
 }
 

@@ -18,6 +18,8 @@ struct Dab {
   float tilt_x_deg = 0.0f, tilt_y_deg = 0.0f;
   float speed_px_s = 0.0f;
   int64_t t_ns = 0;
+  float arc_px = 0.0f;       // distance along the path from the stroke's first dab
+  float size_factor = 1.0f;  // the dab's diameter scale (billow_profile.h; set by the brush)
 };
 
 class PathResampler {
@@ -34,6 +36,7 @@ class PathResampler {
   StrokePoint last_{};
   Dab last_dab_{};
   float travelled_since_dab_ = 0.0f;
+  float arc_ = 0.0f;  // path length up to last_
   float speed_ = 0.0f;
 };
 

@@ -20,7 +20,11 @@ class TextureBrush : public Brush {
   uint64_t dabCount() const { return dab_count_; }
 
  protected:
-  TextureBrush(const StrokeParams& stroke, const DispersionParams& dispersion);
+  // `nominal_diameter_px`: the brush's largest dab, the unit of stroke.billow_length.
+  TextureBrush(const StrokeParams& stroke, const DispersionParams& dispersion,
+               float nominal_diameter_px);
+  // The largest dab diameter a billowing edge reaches, for a nominal one.
+  float billowedDiameter(float diameter_px) const { return diameter_px * (1.0f + billow_); }
   // Splats one dab; returns the changed rectangle.
   virtual FootprintRect stampDab(const Dab& dab, float dispersion, Footprint* footprint) = 0;
   const DispersionField& dispersionField() const { return field_; }
@@ -29,6 +33,8 @@ class TextureBrush : public Brush {
   FootprintRect stampAll(Footprint* footprint);
 
   DispersionParams dispersion_;
+  float billow_, billow_feature_px_;
+  uint32_t stroke_index_ = 0;
   PathResampler resampler_;
   DispersionField field_;
   std::vector<Dab> dabs_;

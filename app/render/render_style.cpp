@@ -76,8 +76,8 @@ int inkBleedRadius(float sigma) {
 }
 
 IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size) {
-  // World distances of the thesis box's 4 voxels and 0.06 × 256 voxels (voxel 2/256).
-  constexpr float kGradientWorld = 4.0f * 2.0f / 256.0f;
+  // World distances of the thesis box's 1 voxel and 0.06 × 256 voxels (voxel 2/256).
+  constexpr float kGradientWorld = 1.0f * 2.0f / 256.0f;
   constexpr float kInnerDepthWorld = 0.06f * 2.0f;
   const float voxel = std::max({voxel_size.x, voxel_size.y, voxel_size.z});
   return {std::max(1.0f, kGradientWorld / voxel), kInnerDepthWorld / voxel};

@@ -44,12 +44,15 @@ const char* shadingStageFile(RenderStyle style);
 // than compositing the whole volume.
 bool drawsIsoSurface(RenderStyle style);
 // Where an iso-surface style reads the density around a hit (raycast.frag.glsl, CB_SURFACE), in
-// voxels per axis of a grid with this voxel size (world units). Tuned on the thesis's box, 256³
-// voxels over [-1,1]³ (4 voxels of normal, 6 % of the box behind the hit; seed 003 §5), and held
-// at that world size on any grid: the painter's sky is 1024 voxels across at the same voxel size,
-// and a fraction of its width (16 voxels apart) straddled a painted stroke's whole thickness,
-// so the normal read empty space on both sides and turned at random (the ink's solid black,
-// the cartoon's dark blotches).
+// voxels per axis of a grid with this voxel size (world units), held at a world size on any
+// grid (the thesis's box, 256³ voxels over [-1,1]³, and the painter's 1024-voxel sky share the
+// voxel 2/256): the normal's central differences 1 voxel apart and 6 % of the box behind the
+// hit (seed 003 §5). A painted cloud's surface is eroded by noise at the voxel scale (mapping
+// spheres.noise_erosion): a stencil 4 voxels wide sampled across those bumps and turned the
+// normal edge-on inside the cloud, which the styles draw as silhouette ink (painted strokes at
+// 1920×1080: 3.5 % of ink's pixels in solid dark patches, cartoon 1.4 %, sketch 2.0 %; at 1 voxel
+// 0.12, 0.02, 0.01 %; tests/unit/session/painted_styles_test.cpp). A fraction of the sky's
+// width (16 voxels) was worse still: it straddled a stroke's whole thickness.
 struct IsoSurfaceReach {
   float gradient_voxels = 1.0f;     // central differences this far apart (at least 1 voxel)
   float inner_depth_voxels = 0.0f;  // searched behind the hit for the inner surface

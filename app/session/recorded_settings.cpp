@@ -6,6 +6,7 @@ BrushConfig recordedBrushAbsentValues() {
   BrushConfig c;
   c.stroke.auto_end_light_by_hysteresis = false;
   c.stroke.size = 1.0f;
+  c.stroke.billow = 0.0f;
   c.skeleton.stamp_spacing_px = 0.0f;
   return c;
 }
@@ -23,6 +24,7 @@ BrushConfig unrecordedBrush(const BrushConfig& local) {
   const BrushConfig absent = recordedBrushAbsentValues();
   BrushConfig c = local;
   c.stroke.size = absent.stroke.size;
+  c.stroke.billow = absent.stroke.billow;
   c.skeleton.stamp_spacing_px = absent.skeleton.stamp_spacing_px;
   return c;
 }

@@ -11,6 +11,8 @@
 //   stroke.auto_end_light_by_hysteresis   false     "light touch" = calibrated pressure < 5%
 //   stroke.size                           1         footprint at the screen's resolution (a
 //                                                   journal with no brush.toml at all: also 1)
+//   stroke.billow                         0         dabs of one diameter along the stroke (no
+//                                                   billowing edge; also with no brush.toml)
 //   skeleton.stamp_spacing_px             0         bristles stamped once per Verlet step
 //
 // A new key that changes what a journal paints gets its row here, in the same commit.
@@ -30,7 +32,7 @@ BrushConfig recordedBrushAbsentValues();
 MappingConfig recordedMappingAbsentValues();
 
 // The brush of a journal that recorded none (specification 1.0): the replaying machine's
-// `local` one, with the keys that came after such journals (stroke.size,
+// `local` one, with the keys that came after such journals (stroke.size, stroke.billow,
 // skeleton.stamp_spacing_px) at their absent values above.
 BrushConfig unrecordedBrush(const BrushConfig& local);
 

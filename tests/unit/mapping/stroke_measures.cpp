@@ -163,9 +163,22 @@ PathMeasures measureAlongPath(const Silhouette& s, const std::vector<glm::vec2>&
     double mean;
     stats(m.half_widths, &mean, &m.cv);
   }
+  // A break is where the cloud is missing, not where the pen's centre line runs along the edge
+  // of a thin cloud (a light touch's ink lies to one side of the nib's path): a path point
+  // counts as covered when cloud lies within a quarter of the stroke's width of it.
+  const float near = 0.25f * float(m.width_px);
+  const auto covered = [&](size_t i) {
+    if (inside[i]) return true;
+    for (float r = 1.0f; r <= near; r += 1.0f)
+      for (int k = 0; k < 16; ++k) {
+        const float a = 6.2831853f * float(k) / 16.0f;
+        if (s.at(path[i] + r * glm::vec2(std::cos(a), std::sin(a))) >= kInside) return true;
+      }
+    return false;
+  };
   size_t run = 0, widest = 0;
   for (size_t i = 0; i < path.size(); ++i) {
-    run = inside[i] ? 0 : run + 1;
+    run = covered(i) ? 0 : run + 1;
     widest = std::max(widest, run);
   }
   m.widest_gap = m.width_px > 0.0 ? double(widest) * step / m.width_px : 1.0;

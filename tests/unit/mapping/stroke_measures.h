@@ -37,7 +37,7 @@ Silhouette silhouetteOpacity(const Volume& volume, const VoxelBox& box, const Ca
 struct PathMeasures {
   double width_px = 0;     // 2 × median half-width (point-like: 2 × mean radius), screen px
   double cv = 0;           // coefficient of variation of the half-width (radius)
-  double widest_gap = 0;   // longest run of the path outside the silhouette ÷ width_px
+  double widest_gap = 0;   // longest run of the path with no cloud within width_px / 4, ÷ width_px
   double ends_inside = 0;  // 1 when both path ends are inside the silhouette
   std::vector<float> half_widths;
 };

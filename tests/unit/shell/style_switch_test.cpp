@@ -16,6 +16,7 @@
 #include "app/shell/paint_screen.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
+#include "drivers/core/clock.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -58,8 +59,14 @@ TEST(StyleSwitch, TheFirstFrameAfterTShowsTheNextStyle) {
     if (t_pressed && ++draws_after_t == 1)
       after_t = readFramebufferRgba8(display->framebuffer(), kW, kH);
   };
+  // Messages time out on the test's own clock (a tick a 60th of a second), not the machine's
+  // speed: on a loaded machine 60 ticks outlasted the "Opened" message, which then vanished
+  // between the two frames compared.
+  ManualClock clock(1'000'000'000);
+  options.clock = &clock;
   options.each_iteration = [&](bool) {
     ++ticks;
+    clock.advance(16'666'667);
     if (ticks == 60) {  // the opened cloud, refined to full resolution long ago
       settled = readFramebufferRgba8(display->framebuffer(), kW, kH);
       style_at_t = session.styleName();
@@ -79,6 +86,7 @@ TEST(StyleSwitch, TheFirstFrameAfterTShowsTheNextStyle) {
   if (const char* keep = std::getenv("CB_KEEP_FRAMES")) {
     writePng(std::string(keep) + "/style_switch_thesis.png", settled);
     writePng(std::string(keep) + "/style_switch_first_after_t.png", after_t);
+    writePng(std::string(keep) + "/style_switch_later.png", after_that);
   }
   EXPECT_EQ(style_at_t, "thesis");
   EXPECT_EQ(session.styleName(), "physical");
