@@ -35,7 +35,12 @@ packages=(
   systemd dpkg-dev lintian mmdebstrap
   # fleet monitoring: the kiosk's metrics scraped through node_exporter's textfile collector
   prometheus-node-exporter curl
+  # the BIDS validator of the study export test (npm's bids-validator, installed by the test into
+  # the build folder; it runs on Debian 12's Node 18)
+  nodejs
 )
+# npm from Debian, unless the Node.js installed already bundles it (one that does conflicts with it)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 export DEBIAN_FRONTEND=noninteractive
 missing=()
 for p in "${packages[@]}"; do

@@ -21,6 +21,7 @@
 #include "app/brush/brush_config.h"
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
+#include "app/cli/study_bids_export.h"
 #include "app/cli/study_frame_render.h"
 #include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
@@ -60,6 +61,7 @@ namespace {
 
 const char kStudyHelp[] =
     "usage: cloudbrush study export SESSION.cbj... --out DIR [--volumes] [--size WxH]\n"
+    "                               [--bids DIR]\n"
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
     "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
     "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
@@ -84,6 +86,9 @@ const char kStudyHelp[] =
     "         --volumes replays each journal (brush and mapping from the config directory) and\n"
     "         writes DIR/volumes/ID.vdb and ID.cbvol and DIR/renders/ID.exr (linear light) and\n"
     "         ID.png from the session's last view, at --size (default 1280x720).\n"
+    "         --bids DIR writes the sessions as a BIDS dataset (--out then optional): per\n"
+    "         participant and session beh/ (trials, events) and motion/ (the pen trace),\n"
+    "         participants.tsv, sidecars describing every column (app/study/bids_dataset.h).\n"
     "volume   a saved volume as OUT/NAME.vdb (OpenVDB fog volume, grid 'density') and\n"
     "         OUT/NAME.cbvol; --render adds OUT/NAME.exr and NAME.png from the reference camera.\n"
     "report   an HTML page that opens offline: Likert distributions per item, construct\n"
@@ -189,13 +194,13 @@ int exportVolumeAndRender(const Volume& volume, const Camera& camera, const Ligh
 }
 
 int runExport(Args& args) {
-  auto unknown = args.unknown({"help", "out", "volumes", "size"});
+  auto unknown = args.unknown({"help", "out", "volumes", "size", "bids"});
   if (!unknown.empty()) return fail("export: unknown option " + unknown[0] + " (see --help)", 2);
   const std::vector<std::string>& positional = args.positional();
   if (positional.size() < 3)
     return fail("export: expected one or more journals: study export SESSION.cbj... --out DIR", 2);
-  const std::string out = args.get("out", "");
-  if (out.empty()) return fail("export: --out DIR is required", 2);
+  const std::string out = args.get("out", ""), bids = args.get("bids", "");
+  if (out.empty() && bids.empty()) return fail("export: --out DIR (or --bids DIR) is required", 2);
   int width = 1280, height = 720;
   if (!parseSize(args.get("size", "1280x720"), &width, &height))
     return fail("export: --size: expected WxH (1..16384 each)", 2);
@@ -208,6 +213,10 @@ int runExport(Args& args) {
       if (ids[k] == ids.back())
         return fail("two journals have the session id '" + ids.back() + "' (" + paths[k] + ", " +
                     path + "); rename one");
+  }
+  if (!bids.empty()) {
+    const int status = exportBidsDataset(paths, ids, bids);
+    if (status == 1 || out.empty()) return status;
   }
   const bool volumes = args.has("volumes");
   MappingConfig mapping;

@@ -1,0 +1,189 @@
+#include "app/study/bids_behaviour.h"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "app/study/bids_text.h"
+#include "app/study/study_marker_text.h"
+#include "app/study/trial_table.h"
+
+namespace cb {
+namespace {
+
+const char kEndReasonText[] =
+    "How the task ended: time-up (its time limit passed), done (the "
+    "participant tapped that they were done), skipped or aborted (by "
+    "the operator), other; n/a when the recording ends inside the task";
+
+const std::vector<std::pair<std::string, std::string>> kEndReasons = {
+    {"time-up", "the task's time limit passed"},
+    {"done", "the participant said they were done"},
+    {"skipped", "the operator skipped the task (reason in the journal)"},
+    {"aborted", "the operator aborted the session during the task"},
+    {"other", "another reason the runner recorded"}};
+
+const std::vector<BidsColumn>& behColumns() {
+  static const std::vector<BidsColumn> columns = {
+      {"participant", "The participant's pseudonymous code in the study (the runner's id)", "", {}},
+      {"session", "The session's id: the name of its folder, <participant>-<UTC start>", "", {}},
+      {"task", "The id of the painting task in the study protocol", "", {}},
+      {"order",
+       "The task's position in the participant's counterbalanced task order (1 = first)",
+       "",
+       {}},
+      {"onset_s", "When the task began, after the recording's first record", "s", {}},
+      {"onset_monotonic_ns",
+       "When the task began, on the recording computer's monotonic clock",
+       "ns",
+       {}},
+      {"onset_wall_clock_unix_ns",
+       "When the task began, as UTC wall-clock time since 1970-01-01 (from the session's "
+       "monotonic-to-wall-clock anchor); n/a when the recording has no anchor",
+       "ns",
+       {}},
+      {"duration_s",
+       "How long the task ran on the stage clock, which does not count operator pauses nor the "
+       "time a restarted runner was down; n/a when the task never closed",
+       "s",
+       {}},
+      {"end_reason", kEndReasonText, "", kEndReasons},
+      {"strokes",
+       "Strokes the painter mapped into the cloud in paint mode during the task",
+       "",
+       {}},
+      {"erases", "Erasing strokes and vacuum cuts during the task", "", {}},
+      {"undos", "Undo commands during the task", "", {}}};
+  return columns;
+}
+
+const std::vector<BidsColumn>& eventColumns() {
+  static const std::vector<BidsColumn> columns = {
+      {"onset",
+       "When the event began, after the recording's first record (the pen motion "
+       "recording's latency 0)",
+       "s",
+       {}},
+      {"duration",
+       "Recording time from the event's beginning to its end, operator pauses included; n/a "
+       "when the recording ends before it does",
+       "s",
+       {}},
+      {"trial_type",
+       "The stage of the study session (a row per stage, in the protocol's order), or an "
+       "operator pause",
+       "",
+       {{"consent", "the consent page"},
+        {"participant", "the participant's code is entered"},
+        {"introduction", "the introduction page"},
+        {"tutorial", "the guided tutorial on the painter"},
+        {"free-drawing", "free drawing on the painter"},
+        {"task", "a painting task (the task column names it)"},
+        {"demographics", "the demographic questions"},
+        {"questionnaire", "the Likert questionnaire"},
+        {"free-text", "the free-text questions"},
+        {"pause", "the operator paused the session (the stage clock stops)"}}},
+      {"task", "For task rows, the task's id in the study protocol", "", {}},
+      {"order",
+       "For task rows, the task's position in the participant's task order (1 = first)",
+       "",
+       {}},
+      {"active_duration",
+       "For task rows, how long the task ran on the stage clock (operator pauses and a "
+       "restarted runner's downtime not counted)",
+       "s",
+       {}},
+      {"end_reason", kEndReasonText, "", kEndReasons},
+      {"strokes", "For task rows, strokes mapped in paint mode", "", {}},
+      {"erases", "For task rows, erasing strokes and vacuum cuts", "", {}},
+      {"undos", "For task rows, undo commands", "", {}},
+      {"operator_reason", "For pause rows, the reason the operator chose", "", {}}};
+  return columns;
+}
+
+struct EventRow {
+  int64_t onset_ns = 0;
+  std::optional<int64_t> end_ns;
+  std::string type, task, reason;
+  std::optional<TrialRow> trial;
+};
+
+// The stages and pauses of a session from its study markers, in journal order.
+std::vector<EventRow> sessionEvents(const SessionTrace& trace) {
+  const std::vector<TrialRow> trials = trialsOfSession(trace);
+  size_t next_trial = 0;
+  std::vector<EventRow> rows;
+  constexpr size_t kNone = ~size_t(0);
+  size_t stage = kNone, pause = kNone;  // the open stage's and pause's rows
+  const auto close = [&](size_t& open, int64_t t) {
+    if (open != kNone) rows[open].end_ns = t;
+    open = kNone;
+  };
+  for (const TraceEvent& e : trace.events) {
+    if (e.type != JournalRecordType::kMarker || e.text.rfind("study.", 0) != 0) continue;
+    const StudyMarkerFields m = parseStudyMarker(e.text);
+    if (m.event == "study.stage-begin") {
+      close(stage, e.t_ns);
+      EventRow row{e.t_ns, std::nullopt, m.get("stage"), m.get("task"), "", std::nullopt};
+      if (row.type == "task" && next_trial < trials.size()) row.trial = trials[next_trial++];
+      rows.push_back(row);
+      stage = rows.size() - 1;
+    } else if (m.event == "study.stage-end" || m.event == "study.end") {
+      close(stage, e.t_ns);
+      close(pause, e.t_ns);
+    } else if (m.event == "study.operator" && m.get("action") == "pause") {
+      rows.push_back({e.t_ns, std::nullopt, "pause", "", m.get("reason"), std::nullopt});
+      pause = rows.size() - 1;
+    } else if (m.event == "study.operator" && m.get("action") == "resume") {
+      close(pause, e.t_ns);
+    }
+  }
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const EventRow& a, const EventRow& b) { return a.onset_ns < b.onset_ns; });
+  return rows;
+}
+
+std::string eventLine(const SessionTrace& trace, const EventRow& r) {
+  const std::string na = kBidsMissing;
+  std::string line = bidsSeconds(elapsedNs(r.onset_ns, trace.t0_ns)) + '\t' +
+                     (r.end_ns ? bidsSeconds(elapsedNs(*r.end_ns, r.onset_ns)) : na) + '\t' +
+                     bidsTsvText(r.type) + '\t' + bidsTsvText(r.task) + '\t';
+  if (r.trial)
+    line += std::to_string(r.trial->order) + '\t' + bidsTsvNumber(r.trial->duration_s) + '\t' +
+            bidsTsvText(r.trial->end_reason) + '\t' + std::to_string(r.trial->strokes) + '\t' +
+            std::to_string(r.trial->erases) + '\t' + std::to_string(r.trial->undos);
+  else
+    line += na + '\t' + na + '\t' + na + '\t' + na + '\t' + na + '\t' + na;
+  return line + '\t' + (r.type == "pause" ? bidsTsvText(r.reason) : na) + '\n';
+}
+
+}  // namespace
+
+std::string bidsBehTsv(const SessionTrace& trace) {
+  std::string out = bidsTsvHeader(behColumns());
+  const std::string session = bidsTsvText(trace.participant) + '\t' + bidsTsvText(trace.id);
+  for (const TrialRow& t : trialsOfSession(trace))
+    out += session + '\t' + bidsTsvText(t.task) + '\t' + std::to_string(t.order) + '\t' +
+           bidsSeconds(elapsedNs(t.onset_ns, trace.t0_ns)) + '\t' + std::to_string(t.onset_ns) +
+           '\t' + (t.onset_unix_ns ? std::to_string(*t.onset_unix_ns) : kBidsMissing) + '\t' +
+           bidsTsvNumber(t.duration_s) + '\t' + bidsTsvText(t.end_reason) + '\t' +
+           std::to_string(t.strokes) + '\t' + std::to_string(t.erases) + '\t' +
+           std::to_string(t.undos) + '\n';
+  return out;
+}
+
+std::string bidsBehJson() {
+  return bidsColumnsJson(behColumns());
+}
+
+std::string bidsEventsTsv(const SessionTrace& trace) {
+  std::string out = bidsTsvHeader(eventColumns());
+  for (const EventRow& r : sessionEvents(trace)) out += eventLine(trace, r);
+  return out;
+}
+
+std::string bidsEventsJson() {
+  return bidsColumnsJson(eventColumns());
+}
+
+}  // namespace cb
