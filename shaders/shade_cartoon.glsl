@@ -9,7 +9,9 @@
 //  - Detail layer (§5): a second, inner surface at density u_inner_iso (the seed shrinks the
 //    particles' radius and mass; a higher threshold of the same field does that), drawn only as
 //    its silhouette over the outer surface: rays whose largest density in u_inner_depth voxels
-//    behind the hit comes within ±0.06 of u_inner_iso graze it.
+//    behind the hit comes within ±0.06 of u_inner_iso graze it, and at most two pixels wide
+//    (that density's change to the next pixel, fwidth): a painted cloud's noisy interior stays
+//    near u_inner_iso over wide areas, which drew solid dark patches instead of lines.
 uniform vec3 u_light_dir;  // towards the sun, unit
 uniform vec3 u_light_colour;
 

@@ -13,8 +13,6 @@ vec4 shadeSurface(SurfaceSample s) {
   float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
   float outline =
       1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
-  float inner_off = abs(s.inner_max_density - u_inner_iso);
-  float inner = (1.0 - smoothstep(0.03, 0.06, inner_off)) *
-                (1.0 - smoothstep(1.0, 2.0, inner_off / max(fwidth(s.inner_max_density), 1e-4)));
+  float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));
   return vec4(1.0 - d, max(outline, 0.7 * inner), 0.0, 1.0);
 }

@@ -59,6 +59,10 @@ bool hasScreenSpacePass(RenderStyle style) {
   return style == RenderStyle::kInk || style == RenderStyle::kSketch;
 }
 
+bool shadesWithScreenDerivatives(RenderStyle style) {
+  return style == RenderStyle::kCartoon;
+}
+
 int screenSpaceReach(RenderStyle style) {
   // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side. Sketch's pass reads
   // only its own pixel (paper and hatching are functions of the pixel's position).

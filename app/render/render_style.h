@@ -62,6 +62,9 @@ IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size);
 // True when the ray-cast image is finished by a screen-space pass (style_compose.frag.glsl):
 // paper, ink bleeding, hatching.
 bool hasScreenSpacePass(RenderStyle style);
+// True when the shading stage reads screen-space derivatives (cartoon's inner line is held to
+// two pixels by fwidth): an image cast at a fraction of the pixels does not reproduce it.
+bool shadesWithScreenDerivatives(RenderStyle style);
 // How far, in pixels of the ray-cast image, the style's screen-space pass reads around the pixel
 // it writes (the Gaussian ink bleeding's half kernel; 0 for a style without such a pass).
 //

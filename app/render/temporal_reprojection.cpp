@@ -48,7 +48,7 @@ bool TemporalReprojection::init(std::string* error) {
 
 bool TemporalReprojection::supports(int width, int height, int factor, RenderStyle style) {
   return (factor == 2 || factor == 4) && width % factor == 0 && height % factor == 0 &&
-         !hasScreenSpacePass(style);
+         !hasScreenSpacePass(style) && !shadesWithScreenDerivatives(style);
 }
 
 void TemporalReprojection::releaseTargets() {

@@ -11,7 +11,10 @@
 //
 // Do not regenerate these with the pool: they are the dense path's record. If a deliberate change
 // to the images makes them stale, regenerate with CB_WRITE_DENSE_REFERENCE=1, review, and say in
-// the commit that they no longer come from the dense path.
+// the commit that they no longer come from the dense path. The iso-surface styles' images
+// (cumulus128_ink_reference, _cartoon_side, _sketch_reference, puffs128_cartoon_reference) were
+// so rewritten by the pool when the surface normal narrowed to 1 voxel and cartoon's inner line
+// to two pixels (render_style.h isoSurfaceReach); the others are still the dense path's.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

@@ -15,6 +15,7 @@
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/volume/scene_generators.h"
+#include "tests/support/golden_image.h"
 #include "tests/unit/render/gl_test_context.h"
 
 namespace cb {
@@ -38,29 +39,8 @@ void expectMatchesGolden(const std::string& name, const Volume& volume, const Li
   RenderTarget target;
   ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
   renderer.render(camera, kW, kH, target.fbo(), options);
-  ImageRgba8 image = target.readRgba8();
-  if (std::getenv("CB_UPDATE_GOLDENS")) {
-    writePng(goldenPath(name), image);
-    std::printf("updated %s\n", goldenPath(name).c_str());
-    return;
-  }
-  ASSERT_TRUE(std::filesystem::exists(goldenPath(name)))
-      << "no golden " << goldenPath(name) << " (CB_UPDATE_GOLDENS=1 creates it)";
-  ImageRgba8 golden = readPng(goldenPath(name));
-  ASSERT_EQ(golden.width, kW);
-  ASSERT_EQ(golden.height, kH);
-  int worst = 0;
-  double sum = 0;
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    int e = std::abs(int(image.pixels[i]) - int(golden.pixels[i]));
-    worst = std::max(worst, e);
-    sum += e;
-  }
-  double mean = sum / double(image.pixels.size());
-  if (worst > kMaxPixelError || mean > kMaxMeanError) writePng(name + ".actual.png", image);
-  EXPECT_LE(worst, kMaxPixelError)
-      << name << ": worst channel error (see " << name << ".actual.png)";
-  EXPECT_LE(mean, kMaxMeanError) << name << ": mean channel error";
+  test::expectImageMatchesGolden(goldenPath(name), name, target.readRgba8(), kMaxPixelError,
+                                 kMaxMeanError);
 }
 
 TEST(RenderGolden, EmptyVolume) {
