@@ -8,7 +8,10 @@
 #include <gtest/gtest.h>
 #include <xkbcommon/xkbcommon-keysyms.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +22,7 @@
 
 #include "app/core/config_paths.h"
 #include "app/kiosk/operator_pin.h"
+#include "app/kiosk/unsaved_visit.h"
 #include "app/render/image_io.h"
 #include "app/session/session_replay.h"
 #include "app/shell/calibrate_result_screen.h"
@@ -72,17 +76,22 @@ void keep(const std::string& name, const ImageRgba8& image) {
 // scripted pen and a data dir of its own.
 class KioskRig {
  public:
-  // The operator PIN is set to "2468" unless `set_pin` is false (the first start).
+  // The operator PIN is set to "2468" unless `set_pin` is false (the first start). A `name`
+  // that is an absolute path is the data dir as it is (a restart: nothing removed or set).
   explicit KioskRig(const std::string& name, std::function<void(KioskConfig&)> adjust = {},
                     std::function<void(const std::string& data_dir)> before = {},
                     bool set_pin = true)
-      : data_dir_((fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string()),
+      : data_dir_(
+            name.front() == '/'
+                ? name
+                : (fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string()),
         pen_(kW, kH) {
-    fs::remove_all(data_dir_);
+    const bool restart = name.front() == '/' && fs::exists(data_dir_);
+    if (!restart) fs::remove_all(data_dir_);
     fs::create_directories(data_dir_);
     if (before) before(data_dir_);
     std::string error;
-    if (set_pin && !OperatorPinGuard(data_dir_).setPin("2468", &error))
+    if (set_pin && !restart && !OperatorPinGuard(data_dir_).setPin("2468", &error))
       throw std::runtime_error(error);
     display_ = test::openTestDisplay(kW, kH, &error);
     if (!display_) throw std::runtime_error(error);
@@ -116,8 +125,9 @@ class KioskRig {
   ~KioskRig() {
     kiosk_.reset();
     std::error_code ec;  // a mount point (the disk-full test) stays; its owner unmounts it
-    fs::remove_all(data_dir_, ec);
+    if (!keep_data_dir_) fs::remove_all(data_dir_, ec);
   }
+  void keepDataDir() { keep_data_dir_ = true; }
 
   // Runs `frames` loop iterations, the clock moving `step_s` after each; returns the quit reason.
   std::string run(long frames, double step_s = 0.1) {
@@ -169,6 +179,7 @@ class KioskRig {
 
  private:
   std::string data_dir_;
+  bool keep_data_dir_ = false;
   std::unique_ptr<Display> display_;
   VolumeRenderer renderer_;
   ManualClock clock_{1'000'000'000};
@@ -379,6 +390,97 @@ TEST(KioskScreens, StoppedMidVisitTheVisitorsCloudIsKept) {
       replaySession(readJournal(journals[0]), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session) << replay.journal_error;
   EXPECT_EQ(volumeChecksum(replay.session->volume()), painted) << "the journal replays to it";
+}
+
+// The child of KilledMidVisitTheNextStartKeepsTheCloudOnce (run by it, not on its own): a
+// visitor paints two strokes with the gallery on, the checksum of their cloud goes to
+// $CB_KILLED_DATA_DIR/painted, then the process kills itself with SIGKILL mid-visit.
+TEST(KioskScreens, DISABLED_PaintThenBeKilled) {
+  const char* dir = std::getenv("CB_KILLED_DATA_DIR");
+  ASSERT_NE(dir, nullptr);
+  KioskRig rig(dir, [](KioskConfig& c) { c.gallery_enabled = true; });
+  rig.pen().hover(rig.clock().nowNs());
+  rig.run(1);
+  for (int i = 0; i < 2; ++i) {
+    rig.pen().stroke(rig.clock().nowNs());
+    rig.run(3);
+  }
+  ASSERT_EQ(rig.kiosk().state(), State::kVisitor);
+  ASSERT_GT(density(rig.kiosk().visitorSession()->volume()), 0.0);
+  std::ofstream(std::string(dir) + "/painted")
+      << volumeChecksum(rig.kiosk().visitorSession()->volume()) << "\n";
+  ::kill(::getpid(), SIGKILL);
+}
+
+// kill -9 in the middle of a visit (the test's child process, above): the visitor's journal is
+// left as the kill left it. The next start replays it into the gallery as one entry (the cloud
+// the visitor painted) and logs it; the start after that adds nothing. A kill between that save
+// and the end of the recovery (the record still names the journal, with the entry number before
+// the save) does not save it twice either.
+TEST(KioskScreens, KilledMidVisitTheNextStartKeepsTheCloudOnce) {
+  const std::string dir =
+      (fs::temp_directory_path() / ("cb_kiosk_killed_" + std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string error;
+  ASSERT_TRUE(OperatorPinGuard(dir).setPin("2468", &error)) << error;
+  // Everything the child needs is made before the fork (it only calls exec).
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  ::setenv("CB_KILLED_DATA_DIR", dir.c_str(), 1);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::execl(self.c_str(), self.c_str(), "--gtest_filter=KioskScreens.DISABLED_PaintThenBeKilled",
+            "--gtest_also_run_disabled_tests", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "status " << status;
+  const std::string painted = slurp(dir + "/painted");
+  ASSERT_FALSE(painted.empty()) << "the child painted";
+  const uint64_t checksum = std::stoull(painted);
+  ASSERT_EQ(filesNamed(dir + "/sessions", "-visit1").size(), 1u);
+  ASSERT_TRUE(fs::exists(dir + "/unsaved-visit")) << "the kill left the visit's record";
+  EXPECT_FALSE(fs::exists(dir + "/gallery/000001")) << "nothing was saved before the kill";
+  const auto entries = [&] { return filesNamed(dir + "/gallery", "cloud.cbvol").size(); };
+  {
+    testing::internal::CaptureStderr();
+    KioskRig restarted(dir, [](KioskConfig& c) { c.gallery_enabled = true; });
+    restarted.keepDataDir();
+    const std::string log = testing::internal::GetCapturedStderr();
+    std::fputs(log.c_str(), stderr);
+    EXPECT_EQ(restarted.kiosk().gallerySaved(), (std::vector<long>{1}));
+    EXPECT_EQ(entries(), 1u);
+    EXPECT_EQ(volumeChecksum(loadVolume(dir + "/gallery/000001/cloud.cbvol")), checksum)
+        << "the entry is the cloud the killed visitor painted";
+    EXPECT_NE(log.find("killed visit (journal " + dir + "/sessions/"), std::string::npos) << log;
+    EXPECT_NE(log.find("replayed (2 strokes) and saved to the gallery as 000001"),
+              std::string::npos)
+        << log;
+    EXPECT_FALSE(fs::exists(dir + "/unsaved-visit"));
+    EXPECT_EQ(restarted.kiosk().state(), State::kAttract);
+  }
+  {
+    KioskRig again(dir, [](KioskConfig& c) { c.gallery_enabled = true; });
+    again.keepDataDir();
+    EXPECT_TRUE(again.kiosk().gallerySaved().empty()) << "the next start adds nothing";
+    EXPECT_EQ(entries(), 1u);
+  }
+  // Killed after the save, before the record went: the record says which entry was the newest
+  // before the save (0), entry 1 is newer, so the cloud is in already.
+  const std::string journal = fs::path(filesNamed(dir + "/sessions", "-visit1")[0]).filename();
+  ASSERT_TRUE(writeUnsavedVisit(dir, {journal, 0}, &error)) << error;
+  {
+    testing::internal::CaptureStderr();
+    KioskRig again(dir, [](KioskConfig& c) { c.gallery_enabled = true; });
+    const std::string log = testing::internal::GetCapturedStderr();
+    std::fputs(log.c_str(), stderr);
+    EXPECT_TRUE(again.kiosk().gallerySaved().empty());
+    EXPECT_EQ(entries(), 1u) << "not saved twice";
+    EXPECT_NE(log.find("its cloud was saved as 1 before the last stop"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(dir + "/unsaved-visit"));
+  }  // removes the data dir
 }
 
 // The screen a bad config file or data dir shows instead of a restart loop: the problem as given
