@@ -124,6 +124,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
   for (const std::string& problem : attract_.problems())
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
   updateTexts();
+  // The painter speaks to visitors in the kiosk's words only (visitor_words.h).
+  paint_.setVisitorText([this](const std::string& key) { return setup_.texts.text(key); },
+                        setup_.texts.allText());
   for (const std::string& path : gallery_.removeIncomplete())
     std::fprintf(stderr,
                  "cloudbrush kiosk: gallery: removed %s (a save the kiosk did not finish)\n",
@@ -881,9 +884,13 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
     case State::kReconnect:
       // The painting as it was (no refinement while the pen is away), the message over it.
       if (!paint_.drawLastScene(frame) && !paint_.draw(frame, error)) return false;
+      // The pen's status (its driver's words) goes to the log, not to the visitor.
+      if (!reconnect_drawn_ && pen_)
+        std::fprintf(stderr, "cloudbrush kiosk: reconnect the pen: %s\n",
+                     pen_->statusMessage().c_str());
       reconnect_drawn_ = pen_ ? pen_->statusMessage() : std::string();
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
-                          *reconnect_drawn_);
+                          "");
       return reconnect_.draw(frame, error);
     case State::kVisitor:
       if (!paint_.draw(frame, error)) return false;

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <regex>
 
 #include "app/core/config_paths.h"
 #include "app/kiosk/operator_pin.h"
@@ -80,12 +81,14 @@ class KioskRig {
   // that is an absolute path is the data dir as it is (a restart: nothing removed or set).
   explicit KioskRig(const std::string& name, std::function<void(KioskConfig&)> adjust = {},
                     std::function<void(const std::string& data_dir)> before = {},
-                    bool set_pin = true)
-      : data_dir_(
+                    bool set_pin = true, glm::ivec2 size = {kW, kH})
+      : w_(size.x),
+        h_(size.y),
+        data_dir_(
             name.front() == '/'
                 ? name
                 : (fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string()),
-        pen_(kW, kH) {
+        pen_(w_, h_) {
     const bool restart = name.front() == '/' && fs::exists(data_dir_);
     if (!restart) fs::remove_all(data_dir_);
     fs::create_directories(data_dir_);
@@ -93,7 +96,7 @@ class KioskRig {
     std::string error;
     if (set_pin && !restart && !OperatorPinGuard(data_dir_).setPin("2468", &error))
       throw std::runtime_error(error);
-    display_ = test::openTestDisplay(kW, kH, &error);
+    display_ = test::openTestDisplay(w_, h_, &error);
     if (!display_) throw std::runtime_error(error);
     if (!renderer_.init(&error)) throw std::runtime_error(error);
     KioskSetup setup;
@@ -106,7 +109,7 @@ class KioskRig {
     setup.attract_journal = attract.records;
     setup.data_dir = data_dir_;
     setup.config_dir = kConfigDir;
-    setup.visitor_settings = {kW, kH, kGrid};
+    setup.visitor_settings = {w_, h_, kGrid};
     setup.on_status = [this](const std::string& status) { statuses_.push_back(status); };
     setup.on_problem = [this](const std::string& problem) { problems_.push_back(problem); };
     setup.on_storage = [this](const std::string& state) { storage_.push_back(state); };
@@ -137,7 +140,7 @@ class KioskRig {
     options.initial_keys.swap(keys_);
     options.each_iteration = [&](bool) { clock_.advance(int64_t(step_s * 1e9)); };
     options.after_draw = [&](const FrameContext&) {
-      last_frame_ = readFramebufferRgba8(display_->framebuffer(), kW, kH);
+      last_frame_ = readFramebufferRgba8(display_->framebuffer(), w_, h_);
     };
     FrameLoop loop(*display_, &pen_);
     FrameLoopResult result;
@@ -178,6 +181,7 @@ class KioskRig {
   const std::vector<std::string>& storageStates() const { return storage_; }
 
  private:
+  int w_, h_;
   std::string data_dir_;
   bool keep_data_dir_ = false;
   std::unique_ptr<Display> display_;
@@ -481,6 +485,140 @@ TEST(KioskScreens, KilledMidVisitTheNextStartKeepsTheCloudOnce) {
     EXPECT_NE(log.find("its cloud was saved as 1 before the last stop"), std::string::npos) << log;
     EXPECT_FALSE(fs::exists(dir + "/unsaved-visit"));
   }  // removes the data dir
+}
+
+DisplayEvent pointerEvent(DisplayEvent::Kind kind, float x, float y) {
+  DisplayEvent e;
+  e.kind = kind;
+  e.x = x;
+  e.y = y;
+  e.button = kind == DisplayEvent::Kind::PointerMove ? 0 : 1;
+  return e;
+}
+
+// A visitor at a 1920×1080 kiosk with only a mouse (no tablet), product defaults but for
+// `language`: everything the screens write on the way (attract, painting, an answer, the menu,
+// the help, start again and its gallery notice, the countdown) is one of the kiosk's visitor
+// texts in that language (config/kiosk/texts.toml), line by line, with numbers for its
+// {placeholders}: no keys, brush or pressure figures, paths or driver status. Every text drawn
+// is seen through UiOverlay's text observer, and the painter's font has each of its characters.
+// The frames go to CB_KEEP_FRAMES.
+void expectOnlyVisitorTexts(const std::string& language) {
+  constexpr int kW1080 = 1920, kH1080 = 1080;
+  std::vector<std::pair<std::string, std::string>> drawn;  // (screen, text)
+  std::string screen = "attract";
+  UiOverlay::setTextObserver([&](const std::string& text) { drawn.emplace_back(screen, text); });
+  {
+    KioskRig rig("cb_kiosk_visitor_texts_" + language,
+                 [&](KioskConfig& c) {
+                   c.language = language;
+                   c.gallery_enabled = true;
+                   c.idle_seconds = 8.0;
+                   c.warning_seconds = 3.0;
+                 },
+                 {}, true, {kW1080, kH1080});
+    KioskScreen& kiosk = rig.kiosk();
+    const auto shot = [&](const std::string& name) {
+      keep("visitor_1080_" + language + "_" + name + ".png", rig.lastFrame());
+    };
+    rig.pen().unplug();  // a kiosk without a tablet: the mouse paints
+    rig.run(2, 0.0);
+    shot("attract");
+    screen = "visitor";
+    const auto mouse = [&](DisplayEvent::Kind kind, float fx, float fy) {
+      kiosk.onPointer(pointerEvent(kind, fx * kW1080, fy * kH1080));
+    };
+    mouse(DisplayEvent::Kind::PointerMove, 0.5f, 0.5f);
+    rig.run(1);
+    ASSERT_EQ(kiosk.state(), State::kVisitor);
+    mouse(DisplayEvent::Kind::PointerMove, 0.35f, 0.55f);
+    mouse(DisplayEvent::Kind::PointerDown, 0.35f, 0.55f);
+    for (int i = 1; i <= 10; ++i) {
+      mouse(DisplayEvent::Kind::PointerMove, 0.35f + 0.03f * float(i), 0.55f - 0.01f * float(i));
+      rig.run(1, 0.05);
+    }
+    mouse(DisplayEvent::Kind::PointerUp, 0.65f, 0.45f);
+    rig.run(3);
+    EXPECT_GT(density(kiosk.visitorSession()->volume()), 0.0) << "the mouse painted";
+    shot("painted");
+    screen = "answer";
+    kiosk.onCommand(Command::kRedo, rig.clock().nowNs());
+    rig.run(1, 0.0);
+    shot("answer");
+    screen = "menu";
+    kiosk.onCommand(Command::kMenu, rig.clock().nowNs());
+    rig.run(2, 0.0);
+    shot("menu");
+    screen = "help";
+    kiosk.onCommand(Command::kHelp, rig.clock().nowNs());
+    rig.run(2, 0.0);
+    shot("help");
+    kiosk.onCommand(Command::kHelp, rig.clock().nowNs());
+    kiosk.onCommand(Command::kMenu, rig.clock().nowNs());
+    screen = "start again";
+    kiosk.onCommand(Command::kDeleteAll, rig.clock().nowNs());
+    rig.run(2, 0.0);
+    EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+    shot("start_again");
+    screen = "countdown";
+    ASSERT_TRUE(rig.runUntil([&] { return !kiosk.notice().empty(); }, 80, 0.25));
+    rig.run(1, 0.0);
+    shot("countdown");
+    ASSERT_NE(rig.paint().ui(), nullptr);
+    for (const auto& [where, text] : drawn)
+      EXPECT_EQ(rig.paint().ui()->missingGlyphs(text), 0) << where << ": " << text;
+  }
+  UiOverlay::setTextObserver({});
+  const KioskTexts texts = KioskTexts::load(kConfigDir + "/kiosk/texts.toml", language, {});
+  const auto escaped = [](const std::string& text) {
+    static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
+    return std::regex_replace(text, special, R"(\$&)");
+  };
+  // Line by line: a label may join texts (the attract notice: gallery and recording notices).
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+      out.push_back(text.substr(start, end - start));
+    out.push_back(text.substr(start));
+    return out;
+  };
+  std::vector<std::regex> allowed;
+  for (const char* key : kKioskTextKeys)
+    for (const std::string& line : lines(texts.text(key)))
+      allowed.emplace_back(
+          std::regex_replace(escaped(line), std::regex(R"(\\\{[a-z]+\\\})"), "[0-9]+"));
+  std::map<std::string, int> per_screen;
+  for (const auto& [where, text] : drawn) {
+    ++per_screen[where];
+    for (const std::string& line : lines(text)) {
+      if (line.empty()) continue;
+      const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const std::regex& r) {
+        return std::regex_match(line, r);
+      });
+      EXPECT_TRUE(known) << language << ", " << where << ": \"" << line
+                         << "\" is not one of the kiosk's visitor texts";
+    }
+  }
+  for (const char* where :
+       {"attract", "visitor", "answer", "menu", "help", "start again", "countdown"})
+    EXPECT_GT(per_screen[where], 0) << where << ": nothing drawn was seen";
+}
+
+TEST(KioskScreens, VisitorSeesOnlyTheKiosksTextsInEnglish) {
+  expectOnlyVisitorTexts("en");
+}
+
+TEST(KioskScreens, VisitorSeesOnlyTheKiosksTextsInChinese) {
+  expectOnlyVisitorTexts("zh");
+}
+
+// Every key the painter's visitor words read is one the kiosk's texts must hold in English (so
+// a texts.toml without it is refused at start instead of showing nothing).
+TEST(KioskScreens, EveryVisitorWordIsAKioskTextKey) {
+  const std::vector<std::string> required(std::begin(kKioskTextKeys), std::end(kKioskTextKeys));
+  for (const std::string& key : visitorWordKeys())
+    EXPECT_NE(std::find(required.begin(), required.end(), key), required.end()) << key;
 }
 
 // The screen a bad config file or data dir shows instead of a restart loop: the problem as given
