@@ -14,7 +14,9 @@
 // painted so far). Over the budget, the cloud of the stroke whose neighbours lie closest
 // together (in records) is dropped: its keyframes show the cloud before it, so that stroke
 // appears with the next one. The empty sky and the newest cloud always stay, so the copies hold
-// at most the budget plus the newest cloud, whatever the journal's length.
+// at most the budget plus the newest cloud, whatever the journal's length. Measured with a
+// generated 96-stroke journal at the kiosk's grid (256): a copy per stroke held 509 MiB; with
+// the default budget at most 134 MiB (24 of its 97 clouds kept).
 #pragma once
 
 #include <atomic>
