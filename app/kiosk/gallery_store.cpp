@@ -48,6 +48,12 @@ bool fsyncFile(const std::string& path, std::string* error) {
 
 }  // namespace
 
+long GalleryStore::lastNumber() const {
+  long last = readCounter(dir_ + "/last-number");
+  for (const GalleryEntry& e : entries()) last = std::max(last, e.number);
+  return last;
+}
+
 bool GalleryStore::begin(GalleryWrite* write, std::string* error) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
@@ -55,8 +61,7 @@ bool GalleryStore::begin(GalleryWrite* write, std::string* error) {
     *error = dir_ + ": " + ec.message();
     return false;
   }
-  long next = readCounter(dir_ + "/last-number") + 1;
-  for (const GalleryEntry& e : entries()) next = std::max(next, e.number + 1);
+  const long next = lastNumber() + 1;
   char name[32];
   std::snprintf(name, sizeof name, "%06ld", next);
   write->number = next;

@@ -68,6 +68,9 @@ class GalleryStore {
 
   // Entries in number order (temporary folders are not entries).
   std::vector<GalleryEntry> entries() const;
+  // The newest number ever given to an entry (kept in last-number, so it holds after the entry
+  // was deleted); 0 before the first.
+  long lastNumber() const;
   // The newest entry's bytes: what the next entry will likely need (0 without entries).
   uint64_t typicalEntryBytes() const;
   // Deletes the oldest entries (never `keep`) until the file system has the floor plus

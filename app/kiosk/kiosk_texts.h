@@ -21,6 +21,43 @@ inline constexpr const char* kKioskTextKeys[] = {
     "gallery_notice",    // {days}: what the gallery keeps and for how long
     "recording_notice",  // {days}: how long pen journals are kept
     "saved_notice",      // {number}: the visitor's cloud went into the gallery
+    // The painter's words for the visitor (app/shell/visitor_words.h): the status line per mode,
+    "status_camera",
+    "status_paint",
+    "status_erase",
+    // the menu's button (closed, open) and targets,
+    "menu_button",
+    "menu_close",
+    "menu_camera",
+    "menu_paint",
+    "menu_erase",
+    "menu_reset_view",
+    "menu_rotate",
+    "menu_zoom_out",
+    "menu_zoom_in",
+    "menu_next_brush",
+    "menu_smaller",
+    "menu_larger",
+    "menu_good_view",
+    "menu_next_eraser",
+    "menu_cut",
+    "menu_undo",
+    "menu_redo",
+    "menu_start_again",
+    "menu_help",
+    // the help (lines), the warning of a view edge-on to the canvas, and the answers to the
+    // visitor's actions.
+    "help",
+    "edge_on",
+    "nothing_to_undo",
+    "nothing_to_redo",
+    "cleared",
+    "ink_lost",
+    "stroke_ended",
+    "rotating",
+    "rotation_stopped",
+    "vacuum_place",
+    "vacuum_cut",
 };
 
 class KioskTexts {

@@ -15,7 +15,9 @@
 #include "app/core/atomic_file.h"
 #include "app/kiosk/data_retention.h"
 #include "app/kiosk/disk_space.h"
+#include "app/kiosk/unsaved_visit.h"
 #include "app/render/gl/gl.h"
+#include "app/session/session_replay.h"
 #include "app/shell/gallery_capture.h"
 #include "app/shell/keymap.h"
 #include "drivers/core/clock.h"
@@ -23,6 +25,8 @@
 
 namespace cb {
 namespace {
+
+namespace fs = std::filesystem;
 
 bool isModifierKey(uint32_t keysym) {
   return keysym >= 0xffe1 && keysym <= 0xffee;  // Shift, Control, Caps, Meta, Alt, Super, Hyper
@@ -120,6 +124,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
   for (const std::string& problem : attract_.problems())
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
   updateTexts();
+  // The painter speaks to visitors in the kiosk's words only (visitor_words.h).
+  paint_.setVisitorText([this](const std::string& key) { return setup_.texts.text(key); },
+                        setup_.texts.allText());
   for (const std::string& path : gallery_.removeIncomplete())
     std::fprintf(stderr,
                  "cloudbrush kiosk: gallery: removed %s (a save the kiosk did not finish)\n",
@@ -127,6 +134,7 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
   cleanUpOldData();
   std::string why;
   if (!roomToWrite(0, &why)) setStorageProblem("NOT SAVING: " + why);
+  recoverUnsavedVisit();
   // The operator's last press calibration (P on the panel), for every visitor.
   const std::string range_path = setup_.data_dir + "/pressure_range.toml";
   std::error_code range_ec;
@@ -288,6 +296,11 @@ void KioskScreen::openJournal(int64_t now) {
     return;
   }
   visitor_->recordTo(journal_.get(), now);
+  // Until the visit ends, the next start knows whose cloud a kill would leave unsaved.
+  std::string error;
+  if (!writeUnsavedVisit(setup_.data_dir, {fs::path(path).filename().string(), std::nullopt},
+                         &error))
+    reportProblem("visit record (a crash would not keep this cloud): " + error);
   std::printf("journal: %s\n", path.c_str());
   std::fflush(stdout);
 }
@@ -297,9 +310,60 @@ void KioskScreen::closeJournal() {
   const std::string path = journal_->path();
   journal_->close();
   journal_.reset();
+  std::string error;
+  if (!clearUnsavedVisit(setup_.data_dir, &error))
+    std::fprintf(stderr, "cloudbrush kiosk: %s\n", error.c_str());
   std::error_code ec;
   if (!path.empty() && std::filesystem::file_size(path, ec) == 0 && !ec)
     std::filesystem::remove(path, ec);  // nothing could be written: no empty journal stays
+}
+
+void KioskScreen::recoverUnsavedVisit() {
+  // The kiosk was killed mid-visit (unsaved_visit.h): that visitor's journal into the gallery.
+  std::string error;
+  const std::optional<UnsavedVisit> visit = readUnsavedVisit(setup_.data_dir, &error);
+  if (!visit) {
+    if (error.empty()) return;
+    reportProblem("killed visit not recovered: " + error + " (removed)");
+    clearUnsavedVisit(setup_.data_dir, &error);
+    return;
+  }
+  const std::string journal = session_dir_ + "/" + visit->journal;
+  const long newest = gallery_.lastNumber();
+  const auto done = [&](const std::string& what) {
+    std::fprintf(stderr, "cloudbrush kiosk: killed visit (journal %s): %s\n", journal.c_str(),
+                 what.c_str());
+    std::string clear_error;
+    if (!clearUnsavedVisit(setup_.data_dir, &clear_error)) reportProblem(clear_error);
+  };
+  if (visit->gallery_newest_before && newest > *visit->gallery_newest_before)
+    return done("its cloud was saved as " + std::to_string(newest) + " before the last stop");
+  if (!setup_.config.gallery_enabled) return done("not replayed: the gallery is off");
+  const SessionReplay replay =
+      replaySession(readJournal(journal), setup_.brush, setup_.mapping, setup_.visitor_settings);
+  if (!replay.session || !replay.session->volume().hasDensity())
+    return done(replay.session ? "nothing was painted" : "unreadable: " + replay.journal_error);
+  if (!writeUnsavedVisit(setup_.data_dir, {visit->journal, newest}, &error)) {
+    reportProblem("killed visit not recovered: " + error);
+    return;  // tried again at the next start
+  }
+  GallerySave save;
+  const bool ok = saveToGallery(gallery_, renderer_, replay.session->volume(),
+                                replay.session->camera(), replay.session->light(), setup_.render,
+                                display_.width(), display_.height(), &save, &error);
+  glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
+  glViewport(0, 0, display_.width(), display_.height());
+  if (!ok) {
+    ++saves_failed_;
+    reportProblem("gallery: NOT SAVED (killed visit, journal " + journal + "): " + error);
+    return done("its cloud could not be saved");
+  }
+  gallery_saved_.push_back(save.number);
+  char what[160];
+  std::snprintf(what, sizeof what, "replayed (%u strokes%s) and saved to the gallery as %06ld",
+                replay.strokes_mapped, replay.complete() ? "" : ", up to a damaged record",
+                save.number);
+  done(what);
 }
 
 bool KioskScreen::roomToWrite(uint64_t need_bytes, std::string* why) {
@@ -820,9 +884,13 @@ bool KioskScreen::draw(FrameContext& frame, std::string* error) {
     case State::kReconnect:
       // The painting as it was (no refinement while the pen is away), the message over it.
       if (!paint_.drawLastScene(frame) && !paint_.draw(frame, error)) return false;
+      // The pen's status (its driver's words) goes to the log, not to the visitor.
+      if (!reconnect_drawn_ && pen_)
+        std::fprintf(stderr, "cloudbrush kiosk: reconnect the pen: %s\n",
+                     pen_->statusMessage().c_str());
       reconnect_drawn_ = pen_ ? pen_->statusMessage() : std::string();
       reconnect_.setTexts(setup_.texts.text("reconnect_title"), setup_.texts.text("reconnect_hint"),
-                          *reconnect_drawn_);
+                          "");
       return reconnect_.draw(frame, error);
     case State::kVisitor:
       if (!paint_.draw(frame, error)) return false;

@@ -149,6 +149,9 @@ class KioskScreen : public Screen {
   void checkStorage(int64_t now);
   void openJournal(int64_t now);
   void closeJournal();
+  // At start: the cloud of a visit the kiosk was killed in (app/kiosk/unsaved_visit.h), replayed
+  // from its journal into the gallery, once.
+  void recoverUnsavedVisit();
   std::string storageSummary();
   void runOperatorActions(int64_t now);
   void logOperator(const std::string& action);

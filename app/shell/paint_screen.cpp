@@ -843,6 +843,7 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   if (ui_failed_) return;
   if (!ui_) {
     ui_ = std::make_unique<UiOverlay>();
+    ui_->addGlyphs(visitor_glyphs_);
     std::string error;
     if (!ui_->init(&error)) {
       say("on-screen UI unavailable (keys still work): " + error);
@@ -866,6 +867,17 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   state.can_redo = session_ && session_->history().canRedo();
   state.visitor = options_.visitor_mode;
   state.animation = animation_ && animation_->active();
+  if (visitorWords()) {
+    // Only the kiosk's words: its status line, menu and help, the edge-on warning as its text.
+    const Mode mode = session_ ? session_->mode() : Mode::kPaint;
+    state.status = visitorStatus(mode, visitor_text_);
+    state.notice = notice_.empty() ? "" : visitor_text_("edge_on");
+    state.help.clear();
+    state.labels.clear();
+    state.visitor_words = UiOverlayState::VisitorWords{
+        visitor_text_("menu_button"), visitor_text_("menu_close"), visitorMenu(mode, visitor_text_),
+        help_open_ ? visitorHelp(visitor_text_) : std::vector<std::string>{}};
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
   const std::vector<Command> tapped =

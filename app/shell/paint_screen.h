@@ -48,6 +48,7 @@
 #include "app/shell/paint_loop.h"
 #include "app/shell/pen_events.h"
 #include "app/shell/screen.h"
+#include "app/shell/visitor_words.h"
 
 namespace cb {
 
@@ -102,6 +103,13 @@ class PaintScreen : public Screen {
   void finish(PaintLoopSummary* summary) const;
   // What the status line says to a person: mode, brush, size, input, what runs.
   std::string statusLine() const;
+  // The kiosk's words for everything this screen says in visitor mode (visitor_words.h: status,
+  // menu, help, answers); without them a visitor sees the painter's own. `glyphs`: every
+  // character those words use (KioskTexts::allText), for the font atlas. Call before drawing.
+  void setVisitorText(VisitorText text, std::string glyphs) {
+    visitor_text_ = std::move(text);
+    visitor_glyphs_ = std::move(glyphs);
+  }
   // The developer's line (mapping, canvas altitude, sky size, pen state), shown with S.
   std::string detailLine() const;
   // The answer to the last action while it shows (a few seconds), else "".
@@ -268,6 +276,9 @@ class PaintScreen : public Screen {
   bool pointer_moved_ = false;  // a mouse event since the last frame  // the pen or mouse was over
                                 // a UI target last frame
   std::string notice_;          // shown above the status line
+  VisitorText visitor_text_;    // the kiosk's words (visitor mode), or none
+  std::string visitor_glyphs_;  // their characters
+  bool visitorWords() const { return options_.visitor_mode && bool(visitor_text_); }
   std::vector<Command> tapped_;
   bool visitorAllows(Command command) const;
   bool edge_on_ = false;  // the session's view is nearly edge-on to the canvas

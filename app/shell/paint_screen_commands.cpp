@@ -101,7 +101,8 @@ bool PaintScreen::visitorAllows(Command command) const {
 }
 
 void PaintScreen::tell(const std::string& text, int64_t for_ns) {
-  toast_ = text;
+  // A kiosk visitor is told in the kiosk's words, or not at all (the log has it).
+  toast_ = visitorWords() ? visitorAnswer(text, visitor_text_) : text;
   toast_until_ns_ = clockNs() + (for_ns > 0 ? for_ns : kToastNs);
   say(text);
 }

@@ -15,6 +15,16 @@
 namespace cb {
 namespace {
 
+std::function<void(const std::string&)>& textObserver() {
+  static std::function<void(const std::string&)> observer;
+  return observer;
+}
+
+// Tells the observer (if any) about a text drawn; a target's "##id" suffix is not drawn.
+void observe(const std::string& text) {
+  if (textObserver()) textObserver()(text.substr(0, text.find("##")));
+}
+
 constexpr const char* kFontPath = "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc";
 
 // The current mode's commands (thesis §3.4–3.5, Appendix A); labels from command_table.h.
@@ -58,6 +68,7 @@ void drawTextBox(ImDrawList* draw, float x, float y, const std::vector<std::stri
   draw->AddRectFilled(ImVec2(x - 0.5f * w - pad, y - pad), ImVec2(x + 0.5f * w + pad, y + h + pad),
                       background, 0.4f * size_px);
   for (size_t i = 0; i < lines.size(); ++i) {
+    observe(lines[i]);
     const float lw = font->CalcTextSizeA(size_px, 1e9f, 0.0f, lines[i].c_str()).x;
     draw->AddText(font, size_px, ImVec2(x - 0.5f * lw, y + line_h * float(i)), colour,
                   lines[i].c_str());
@@ -121,6 +132,10 @@ void UiOverlay::pointer(float x, float y, bool down) {
     pointer_queue_.push_back({x, y, down});
 }
 
+void UiOverlay::setTextObserver(std::function<void(const std::string&)> observer) {
+  textObserver() = std::move(observer);
+}
+
 bool UiOverlay::targetRect(Command command, float rect[4]) const {
   for (const Target& t : targets_)
     if (t.command == command) {
@@ -150,10 +165,6 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
   targets_.clear();
-  const auto remember = [&](Command command) {
-    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-    targets_.push_back({command, {a.x, a.y, b.x, b.y}});
-  };
   const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                  ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
@@ -164,8 +175,12 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
   ImGui::SetNextWindowSize(ImVec2(float(width), bar_h));
   ImGui::SetNextWindowBgAlpha(0.55f);
   ImGui::Begin("status", nullptr, fixed);
+  const std::string menu_label = state.visitor_words ? (state.menu_open ? state.visitor_words->close
+                                                                        : state.visitor_words->menu)
+                                                     : (state.menu_open ? "Close (M)" : "Menu (M)");
   const float button_w =
-      ImGui::CalcTextSize("Close (M)").x + 4.0f * ImGui::GetStyle().FramePadding.x;
+      std::max(ImGui::CalcTextSize("Close (M)").x, ImGui::CalcTextSize(menu_label.c_str()).x) +
+      4.0f * ImGui::GetStyle().FramePadding.x;
   ImGui::AlignTextToFramePadding();
   // The status text stops before the menu button (clipped on narrow screens).
   const ImVec2 text_pos = ImGui::GetCursorScreenPos();
@@ -173,13 +188,14 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
                       ImVec2(float(width) - button_w - 2.0f * ImGui::GetStyle().WindowPadding.x,
                              text_pos.y + bar_h),
                       true);
+  observe(state.status);
   ImGui::TextUnformatted(state.status.c_str());
   status_fits_ = ImGui::GetItemRectMax().x <=
                  float(width) - button_w - 2.0f * ImGui::GetStyle().WindowPadding.x;
   ImGui::PopClipRect();
   ImGui::SameLine(std::max(0.0f, float(width) - button_w - ImGui::GetStyle().WindowPadding.x));
-  if (ImGui::Button(state.menu_open ? "Close (M)" : "Menu (M)", ImVec2(button_w, 0.0f)))
-    tapped.push_back(Command::kMenu);
+  observe(menu_label);
+  if (ImGui::Button(menu_label.c_str(), ImVec2(button_w, 0.0f))) tapped.push_back(Command::kMenu);
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
   menu_button_[0] = a.x, menu_button_[1] = a.y, menu_button_[2] = b.x, menu_button_[3] = b.y;
   ImGui::End();
@@ -194,6 +210,7 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
     ImGui::SetNextWindowBgAlpha(0.8f);
     ImGui::Begin("notice", nullptr, fixed);
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.4f, 1.0f));
+    observe(state.notice);
     ImGui::TextUnformatted(state.notice.c_str());
     ImGui::PopStyleColor();
     ImGui::End();
@@ -201,79 +218,26 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
 
   if (state.help.empty()) drawMessages(width, height, bar_h, state);
 
-  if (state.menu_open) {
-    // Big pen targets (thesis Fig. 3.7): five across take 70% of the screen's width (about
-    // 75 mm each on a 24" screen), each a tenth of its height.
-    const ImVec2 target(0.14f * float(width), 0.1f * float(height));
-    ImGui::SetNextWindowPos(ImVec2(float(width) * 0.5f, float(height) * 0.45f), 0,
-                            ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowBgAlpha(0.85f);
-    ImGui::Begin("menu", nullptr, fixed | ImGuiWindowFlags_AlwaysAutoResize);
-    const auto button = [&](Command command, const std::string& label, bool selected,
-                            bool enabled) {
-      const std::string key = keyLabel(command);
-      const std::string text =
-          label + (key.empty() ? "" : "  [" + key + "]") + "##" + commandName(command);
-      if (selected) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.85f, 1.0f));
-      if (!enabled) ImGui::BeginDisabled();
-      if (ImGui::Button(text.c_str(), target)) tapped.push_back(command);
-      if (!enabled) ImGui::EndDisabled();
-      if (selected) ImGui::PopStyleColor();
-      remember(command);
-    };
-    bool first = true;
-    for (int i = 0; i < 5; ++i) {
-      if (state.visitor && (i == 1 || i == 4)) continue;  // canvas and light: the operator's
-      if (!first) ImGui::SameLine();
-      first = false;
-      const Command mode = Command(int(Command::kModeCamera) + i);
-      button(mode, modeLabel(Mode(i)).twoLines(), state.mode == i, true);
-    }
-    ImGui::Separator();
-    const std::vector<Command> commands = modeCommands(state.mode);
-    for (size_t i = 0; i < commands.size(); ++i) {
-      if (i % 5) ImGui::SameLine();
-      button(commands[i], menuLabel(commands[i], state.mode), false, true);
-    }
-    if (!state.visitor) {
-      // The animations: morph into a saved cloud, wind; apply or leave what shows.
-      ImGui::Separator();
-      const Command animations[] = {Command::kMorph, Command::kWind, Command::kWindDirection,
-                                    Command::kApplyAnimation, Command::kLeaveAnimation};
-      for (Command c : animations) {
-        if (c != Command::kMorph) ImGui::SameLine();
-        const bool needs_animation = c == Command::kApplyAnimation || c == Command::kLeaveAnimation;
-        button(c, menuLabel(c, state.mode), false, !needs_animation || state.animation);
-      }
-    }
-    ImGui::Separator();
-    button(Command::kUndo, menuLabel(Command::kUndo, state.mode), false, state.can_undo);
-    ImGui::SameLine();
-    button(Command::kRedo, menuLabel(Command::kRedo, state.mode), false, state.can_redo);
-    ImGui::SameLine();
-    button(Command::kDeleteAll,
-           state.visitor ? std::string("Start again\n重新开始")
-                         : menuLabel(Command::kDeleteAll, state.mode),
-           false, true);
-    ImGui::SameLine();
-    button(Command::kHelp, menuLabel(Command::kHelp, state.mode), false, true);
-    if (!state.visitor) {
-      const Command files[] = {Command::kSave, Command::kOpen, Command::kToggleStats};
-      for (Command c : files) {
-        if (c != Command::kSave) ImGui::SameLine();
-        button(c, menuLabel(c, state.mode), false, true);
-      }
-    }
-    ImGui::End();
-  }
+  if (state.menu_open) drawMenu(width, height, state, fixed, &tapped);
   over_ui_ = io.WantCaptureMouse;
   if (!state.help.empty()) drawHelp(width, height, state.help);
+  if (state.visitor_words && !state.visitor_words->help.empty()) {
+    // The visitor's help: the kiosk's lines in a box over the dimmed painting.
+    ImDrawList* back = ImGui::GetForegroundDrawList();
+    back->AddRectFilled(ImVec2(0.0f, bar_h), ImVec2(float(width), float(height)),
+                        IM_COL32(0, 0, 0, 150));
+    drawTextBox(back, 0.5f * float(width), 0.3f * float(height), state.visitor_words->help,
+                1.1f * ImGui::GetFontSize(), IM_COL32(255, 255, 255, 255),
+                IM_COL32(20, 40, 70, 230));
+  }
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  for (const UiLabel& label : state.labels)
+  for (const UiLabel& label : state.labels) {
+    observe(label.text);
     draw->AddText(ImGui::GetFont(), label.size_px * scale, ImVec2(label.x, label.y),
                   IM_COL32(label.rgba >> 24, (label.rgba >> 16) & 0xff, (label.rgba >> 8) & 0xff,
                            label.rgba & 0xff),
                   label.text.c_str());
+  }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   return tapped;
@@ -294,6 +258,92 @@ int UiOverlay::missingGlyphs(const std::string& utf8_text) const {
     if (c > ' ' && !font->FindGlyphNoFallback(ImWchar(c))) ++missing;
   }
   return missing;
+}
+
+void UiOverlay::drawMenu(int width, int height, const UiOverlayState& state, int window_flags,
+                         std::vector<Command>* tapped) {
+  // Big pen targets (thesis Fig. 3.7): five across take 70% of the screen's width (about
+  // 75 mm each on a 24" screen), each a tenth of its height.
+  const ImVec2 target(0.14f * float(width), 0.1f * float(height));
+  ImGui::SetNextWindowPos(ImVec2(float(width) * 0.5f, float(height) * 0.45f), 0,
+                          ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("menu", nullptr, window_flags | ImGuiWindowFlags_AlwaysAutoResize);
+  const auto button = [&](Command command, const std::string& label, bool selected, bool enabled) {
+    const std::string key = state.visitor_words ? "" : keyLabel(command);
+    const std::string text =
+        label + (key.empty() ? "" : "  [" + key + "]") + "##" + commandName(command);
+    if (selected) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.2f, 0.5f, 0.85f, 1.0f));
+    if (!enabled) ImGui::BeginDisabled();
+    observe(text);
+    if (ImGui::Button(text.c_str(), target)) tapped->push_back(command);
+    if (!enabled) ImGui::EndDisabled();
+    if (selected) ImGui::PopStyleColor();
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    targets_.push_back({command, {a.x, a.y, b.x, b.y}});
+  };
+  if (state.visitor_words) {
+    // The kiosk's visitor: its own words, rows as the kiosk lays them out.
+    const std::vector<VisitorMenuRow>& rows = state.visitor_words->rows;
+    for (size_t r = 0; r < rows.size(); ++r) {
+      if (r > 0) ImGui::Separator();
+      for (size_t i = 0; i < rows[r].size(); ++i) {
+        const Command c = rows[r][i].first;
+        if (i % 5) ImGui::SameLine();
+        const int mode = int(c) - int(Command::kModeCamera);
+        const bool enabled = c == Command::kUndo   ? state.can_undo
+                             : c == Command::kRedo ? state.can_redo
+                                                   : true;
+        button(c, rows[r][i].second, mode >= 0 && mode < 5 && mode == state.mode, enabled);
+      }
+    }
+    ImGui::End();
+    return;
+  }
+  bool first = true;
+  for (int i = 0; i < 5; ++i) {
+    if (state.visitor && (i == 1 || i == 4)) continue;  // canvas and light: the operator's
+    if (!first) ImGui::SameLine();
+    first = false;
+    const Command mode = Command(int(Command::kModeCamera) + i);
+    button(mode, modeLabel(Mode(i)).twoLines(), state.mode == i, true);
+  }
+  ImGui::Separator();
+  const std::vector<Command> commands = modeCommands(state.mode);
+  for (size_t i = 0; i < commands.size(); ++i) {
+    if (i % 5) ImGui::SameLine();
+    button(commands[i], menuLabel(commands[i], state.mode), false, true);
+  }
+  if (!state.visitor) {
+    // The animations: morph into a saved cloud, wind; apply or leave what shows.
+    ImGui::Separator();
+    const Command animations[] = {Command::kMorph, Command::kWind, Command::kWindDirection,
+                                  Command::kApplyAnimation, Command::kLeaveAnimation};
+    for (Command c : animations) {
+      if (c != Command::kMorph) ImGui::SameLine();
+      const bool needs_animation = c == Command::kApplyAnimation || c == Command::kLeaveAnimation;
+      button(c, menuLabel(c, state.mode), false, !needs_animation || state.animation);
+    }
+  }
+  ImGui::Separator();
+  button(Command::kUndo, menuLabel(Command::kUndo, state.mode), false, state.can_undo);
+  ImGui::SameLine();
+  button(Command::kRedo, menuLabel(Command::kRedo, state.mode), false, state.can_redo);
+  ImGui::SameLine();
+  button(Command::kDeleteAll,
+         state.visitor ? std::string("Start again\n重新开始")
+                       : menuLabel(Command::kDeleteAll, state.mode),
+         false, true);
+  ImGui::SameLine();
+  button(Command::kHelp, menuLabel(Command::kHelp, state.mode), false, true);
+  if (!state.visitor) {
+    const Command files[] = {Command::kSave, Command::kOpen, Command::kToggleStats};
+    for (Command c : files) {
+      if (c != Command::kSave) ImGui::SameLine();
+      button(c, menuLabel(c, state.mode), false, true);
+    }
+  }
+  ImGui::End();
 }
 
 void UiOverlay::drawMessages(int width, int height, float bar_h, const UiOverlayState& state) {
@@ -327,6 +377,7 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
       x += column_w;
       y = 3.0f * size;
     }
+    observe(help[s].title.oneLine());
     draw->AddText(ImGui::GetFont(), 1.1f * size, ImVec2(x, y), IM_COL32(255, 210, 100, 255),
                   help[s].title.oneLine().c_str());
     y += 1.5f * line_h;
@@ -334,6 +385,8 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
       const size_t tab = line.find('\t');
       const std::string key = line.substr(0, tab);
       const std::string label = tab == std::string::npos ? "" : line.substr(tab + 1);
+      observe(key);
+      observe(label);
       draw->AddText(ImGui::GetFont(), size, ImVec2(x, y), IM_COL32(255, 210, 100, 255),
                     key.c_str());
       draw->AddText(ImGui::GetFont(), size, ImVec2(x + 6.0f * size, y),
@@ -342,6 +395,7 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
     }
     y += 0.5f * line_h;
   }
+  observe("H / ? / Esc: close  关闭");
   draw->AddText(ImGui::GetFont(), size, ImVec2(size, float(height) - 1.5f * size),
                 IM_COL32(200, 200, 200, 255), "H / ? / Esc: close  关闭");
 }
@@ -365,6 +419,7 @@ void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& la
                                   (label.rgba >> 8) & 0xff, label.rgba & 0xff);
     ImFont* font = ImGui::GetFont();
     const float wrap = label.centred ? 0.0f : label.wrap_width;
+    observe(label.text);
     const ImVec2 size = font->CalcTextSizeA(label.size_px, 1e9f, wrap, label.text.c_str());
     float x = label.x;
     if (label.centred) x -= 0.5f * size.x;

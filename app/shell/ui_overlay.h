@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "app/shell/command.h"
 #include "app/shell/command_table.h"
+#include "app/shell/visitor_words.h"
 
 struct ImGuiContext;
 
@@ -47,6 +49,15 @@ struct UiOverlayState {
   std::vector<std::string> hint;  // the first screen's lines, low in the middle, or none
   std::vector<HelpSection> help;  // the help overlay (H or ?), or none
   std::vector<UiLabel> labels;    // words over the heads-up items (the statistics panel's)
+  // A kiosk visitor's screen in the kiosk's words (visitor_words.h): the menu button's (closed,
+  // open), the menu's rows (no key names) and, while the help is open, its lines; with them
+  // the painter's own menu and help are not drawn.
+  struct VisitorWords {
+    std::string menu, close;
+    std::vector<VisitorMenuRow> rows;
+    std::vector<std::string> help;
+  };
+  std::optional<VisitorWords> visitor_words;
 };
 
 class UiOverlay {
@@ -78,10 +89,17 @@ class UiOverlay {
   const float* menuButtonRect() const { return menu_button_; }
   // The rectangle of a command's target in the open menu, for tests; false when not shown.
   bool targetRect(Command command, float rect[4]) const;
+  // Told every text any overlay draws (status, notice, answer, hint, targets, help, labels), as
+  // drawn, for tests that check what a screen says; none by default. Not thread-safe: set it
+  // while nothing draws.
+  static void setTextObserver(std::function<void(const std::string&)> observer);
 
  private:
   void drawMessages(int width, int height, float bar_h, const UiOverlayState& state);
   void drawHelp(int width, int height, const std::vector<HelpSection>& help);
+  // The open menu (a window of big targets); taps go to *tapped.
+  void drawMenu(int width, int height, const UiOverlayState& state, int window_flags,
+                std::vector<Command>* tapped);
   ImGuiContext* context_ = nullptr;
   bool ready_ = false;
   std::string extra_glyphs_;
