@@ -74,7 +74,8 @@ class PageBuilder {
       at = end + 1;
     }
     const float n = float(lines.size());
-    const float size = std::min(body(), 0.42f * (y1 - y0) / (1.0f + 0.9f * (n - 1.0f)));
+    const float fill = n > 1.0f ? 0.8f / (1.25f * (n - 1.0f) + 1.2f) : 0.42f;
+    const float size = std::min(body(), fill * (y1 - y0));
     float y = 0.5f * (y0 + y1) - 0.5f * (1.25f * (n - 1.0f) + 1.2f) * size;
     for (const std::string& line : lines) {
       centred(0.5f * (x0 + x1), y, line, size);

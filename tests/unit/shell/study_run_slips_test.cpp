@@ -97,9 +97,12 @@ struct Rig {
     session->setQuietMapping(true);
     EXPECT_TRUE(journal.open(folder + "/session.cbj"));
     session->recordTo(&journal, now);
-    std::vector<JournalRecord> records(1);
+    // The pen: the synthetic tablet, connected (the test hands its samples to the screen).
+    std::vector<JournalRecord> records(2);
     records[0].type = JournalRecordType::kDevice;
     records[0].payload = encodeDeviceInfo(tablet);
+    records[1].type = JournalRecordType::kPenSample;
+    records[1].payload = encodePenSample(sampleAt(tablet, 1, 1, 0, false, false));
     ReplayOptions replay;
     replay.realtime = false;
     pen = std::make_unique<ReplayPenSource>(records, replay);
@@ -219,7 +222,7 @@ TEST(StudyRunSlips, DecliningConsentEndsTheSessionCleanly) {
   EXPECT_TRUE(anyStartsWith(markers, "study.end declined"));
   EXPECT_FALSE(anyStartsWith(markers, "study.stage-begin stage=participant"));
   EXPECT_EQ(rig.session->strokesMapped(), 0u) << "the tap never painted";
-  rig.frames(90, 16'666'667);  // the closing page shows end_seconds (1 s), then the loop ends
+  rig.frames(4, 400'000'000);  // the closing page shows end_seconds (1 s), then the loop ends
   EXPECT_EQ(rig.quit, "consent declined");
   EXPECT_FALSE(std::filesystem::exists(rig.folder + "/tasks")) << "no task data";
 }

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "tests/support/command_run.h"
@@ -88,6 +89,41 @@ TEST(StudyRunCli, TheBundledProtocolAsksForItsOperatorAndVenueThenRecords) {
   run = test::runCommand(base + " --operator XY --venue cityvarsity");
   ASSERT_EQ(run.status, 0) << run.out;
   EXPECT_NE(run.out.find("participant: P02 (number 2)"), std::string::npos) << run.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StudyRunCli, AParticipantWithASessionFolderAlreadyIsRefusedAndZeroIsNoNumber) {
+  const std::string dir = tempDir("cb_study_run_cli_dup_");
+  const std::string base = std::string(CB_CLOUDBRUSH_BIN) + " study run --data-dir " + dir +
+                           "/data --display surfaceless --backend none --frames 2 --operator XY "
+                           "--venue uct-lab";
+  test::CommandRun run = test::runCommand(base + " --participant 2");
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("participant: P02 (number 2)"), std::string::npos) << run.out;
+  std::vector<std::string> folders;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/data"))
+    folders.push_back(entry.path().string());
+  ASSERT_EQ(folders.size(), 1u);
+
+  // Participant 2 again: refused before any folder or display, naming the folder and --resume.
+  run = test::runCommand(base + " --participant 2");
+  EXPECT_EQ(run.status, 2) << run.out;
+  EXPECT_NE(run.out.find("P02 has a session folder already: " + folders[0]), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("--resume " + folders[0]), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("the next free number is 1"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("session folder:"), std::string::npos) << run.out;
+  const auto entries = std::filesystem::directory_iterator(dir + "/data");
+  EXPECT_EQ(std::distance(begin(entries), end(entries)), 1) << "no second folder of P02";
+
+  // 0 is not a participant number (P01 is 1); leaving the option out takes the next free one.
+  run = test::runCommand(base + " --participant 0");
+  EXPECT_EQ(run.status, 2) << run.out;
+  EXPECT_NE(run.out.find("--participant 0: expected N >= 1"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("leave --participant out"), std::string::npos) << run.out;
+  run = test::runCommand(base);
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("participant: P01 (number 1)"), std::string::npos) << run.out;
   std::filesystem::remove_all(dir);
 }
 
