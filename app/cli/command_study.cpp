@@ -126,7 +126,8 @@ const char kStudyHelp[] =
     "         demographics.csv and tasks/TASK.{vdb,cbvol,exr,png}; its path is printed first.\n"
     "         --participant N (N >= 1; 1 is the first id, P01) picks participant N (id and\n"
     "         task order); a participant with a session folder in DIR already is refused,\n"
-    "         naming the folder (carry it on with --resume FOLDER). Without --participant:\n"
+    "         naming the folder (carry it on with --resume FOLDER; --resume with a new\n"
+    "         FOLDER starts the session there as asked). Without --participant:\n"
     "         the first number whose id has no folder in DIR. --venue is required when the\n"
     "         protocol names more than one, --operator when it requires one.\n"
     "         Consent offers \"I agree\" and \"I do not agree\"; declining ends the session\n"
@@ -223,8 +224,8 @@ int writeCodebook(const std::string& protocol_path, const std::string& path) {
   }
   std::fprintf(stderr, "cloudbrush study: codebook of the protocol %s\n", source.c_str());
   std::string error;
-  if (!writeFile(path, [&](std::ostream& s) { writeCodebookCsv(s, studyCodebook(protocol)); },
-                 &error))
+  if (!writeFile(
+          path, [&](std::ostream& s) { writeCodebookCsv(s, studyCodebook(protocol)); }, &error))
     return fail(error);
   return 0;
 }
@@ -513,10 +514,12 @@ FolderJournal readFolderJournal(const std::string& path) {
   return f;
 }
 
-// A new session's participant and folder: --participant N, refused when N already has a
-// session folder in the data directory (a second folder of one participant would hold a second
-// first session; the one there is carried on with --resume), else the next free number; then
-// the clock anchor and the folder, made. 0, or the exit status after the error was printed.
+// A new session's participant and folder: --participant N, refused when the runner is to name
+// the folder and N already has a session folder in the data directory (a second folder of one
+// participant would hold a second first session; the one there is carried on with --resume),
+// else the next free number; then the clock anchor and the folder, made (--resume FOLDER with no
+// session in it yet starts one in FOLDER, the operator's choice). 0, or the exit status after the
+// error was printed.
 int newSessionFolder(Args& args, const StudyProtocol& protocol, const std::string& resume_folder,
                      int participant, StudySessionInfo* info, std::string* folder) {
   std::error_code ec;
@@ -526,13 +529,12 @@ int newSessionFolder(Args& args, const StudyProtocol& protocol, const std::strin
   std::filesystem::create_directories(data_dir.empty() ? "." : data_dir, ec);
   if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
   const auto id_for = [&](int n) { return protocol.participant_ids.idFor(n); };
-  if (participant > 0) {
-    std::vector<std::string> existing =
+  if (participant > 0 && resume_folder.empty()) {  // (--resume FOLDER names the folder itself)
+    const std::vector<std::string> existing =
         participantSessionFolders(data_dir.empty() ? "." : data_dir, id_for(participant));
-    existing.erase(std::remove(existing.begin(), existing.end(), resume_folder), existing.end());
     if (!existing.empty())
-      return fail("run: --participant " + std::to_string(participant) + ": " +
-                      id_for(participant) + " has a session folder already: " + existing.back() +
+      return fail("run: --participant " + std::to_string(participant) + ": " + id_for(participant) +
+                      " has a session folder already: " + existing.back() +
                       ". To carry that session on: cloudbrush study run --resume " +
                       existing.back() + " (same --size and --grid). To record a new participant, " +
                       "leave --participant out (the next free number is " +
@@ -546,9 +548,10 @@ int newSessionFolder(Args& args, const StudyProtocol& protocol, const std::strin
   info->anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                              std::chrono::system_clock::now().time_since_epoch())
                              .count();
-  *folder = resume_folder.empty() ? data_dir + "/" + studySessionFolderName(info->participant_id,
-                                                                            info->anchor_unix_ns)
-                                  : resume_folder;
+  *folder =
+      resume_folder.empty()
+          ? data_dir + "/" + studySessionFolderName(info->participant_id, info->anchor_unix_ns)
+          : resume_folder;
   if (resume_folder.empty() && std::filesystem::exists(*folder))
     return fail("run: " + *folder + " exists already (one session per folder)");
   std::filesystem::create_directories(*folder, ec);
@@ -671,7 +674,7 @@ int runStudySession(Args& args) {
                                    std::istreambuf_iterator<char>());
     info.earlier_device_json = deviceJsonIn(earlier_json);
   } else if (const int code = newSessionFolder(args, protocol, resume_folder, int(participant),
-                                                &info, &folder)) {
+                                               &info, &folder)) {
     return code;
   }
   const int number = info.participant_number;
@@ -842,9 +845,10 @@ int runStudySession(Args& args) {
   std::printf("cloudbrush study: volume checksum %016llx\n",
               static_cast<unsigned long long>(volumeChecksum(session->volume())));
   if (state.declined())
-    std::printf("cloudbrush study: %s declined consent; the session ended before any task. %s "
-                "holds session.json (status \"declined\") and the journal, no task data.\n",
-                state.participantId().c_str(), folder.c_str());
+    std::printf(
+        "cloudbrush study: %s declined consent; the session ended before any task. %s "
+        "holds session.json (status \"declined\") and the journal, no task data.\n",
+        state.participantId().c_str(), folder.c_str());
   for (const std::string& problem : screen.problems())
     std::fprintf(stderr, "cloudbrush study: problem: %s\n", problem.c_str());
   return screen.problems().empty() ? 0 : 1;

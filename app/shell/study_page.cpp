@@ -24,7 +24,8 @@ const Bilingual kDeclinedTitle{"Session ended", "会话已结束"};
 const Bilingual kDeclinedBody{
     "You did not agree to take part, so the session ends here: no task was started, and nothing "
     "you would have drawn or answered is recorded. Thank you for your time.",
-    "您没有同意参加，本次会话到此结束：没有开始任何任务，也不会记录您的绘画或回答。感谢您抽出时间。"};
+    "您没有同意参加，本次会话到此结束：没有开始任何任务，也不会记录您的绘画或回答。感谢您抽出时间"
+    "。"};
 const Bilingual kDoneText{"I'm done", "我画完了"};
 const Bilingual kDoneAskText{"Finish this task now?", "现在结束这个任务吗？"};
 const Bilingual kDoneYesText{"Yes, I'm done", "是的，画完了"};
@@ -285,8 +286,8 @@ void doneTargets(PageBuilder& b, float x0, float x1, bool asked) {
   b.text(x0, y, kDoneAskText.twoLines(), b.small(), kStudyHintColour);
   y += 2.7f * b.small();
   const float mid = 0.5f * (x0 + x1);
-  b.target(x0, y, mid - 0.5f * gap, y + h, StudyTargetAction::kDoneConfirm,
-           kDoneYesText.twoLines(), 0, false, kDoneColour);
+  b.target(x0, y, mid - 0.5f * gap, y + h, StudyTargetAction::kDoneConfirm, kDoneYesText.twoLines(),
+           0, false, kDoneColour);
   b.target(mid + 0.5f * gap, y, x1, y + h, StudyTargetAction::kDoneCancel,
            kKeepPaintingText.twoLines(), 0, false, kQuietColour);
 }

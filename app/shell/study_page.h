@@ -23,19 +23,19 @@ namespace cb {
 
 // What tapping a target does.
 enum class StudyTargetAction {
-  kAgree,      // consent
-  kDecline,    // consent: "I do not agree" (the session ends)
-  kContinue,   // participant code, introduction
-  kAnswer,     // questionnaire: value 1..n
-  kSkipItem,   // questionnaire: leave NA
-  kBackItem,   // questionnaire: the previous item
-  kKey,        // on-screen keyboard: `text` is typed
-  kBackspace,  // on-screen keyboard
-  kChoice,     // demographics choice: `text` is the answer
-  kOk,         // demographics / free text: take what was typed
-  kSkipField,  // demographics / free text: NA
-  kReason,     // operator chooser: value = reason index
-  kCancel,     // operator chooser
+  kAgree,        // consent
+  kDecline,      // consent: "I do not agree" (the session ends)
+  kContinue,     // participant code, introduction
+  kAnswer,       // questionnaire: value 1..n
+  kSkipItem,     // questionnaire: leave NA
+  kBackItem,     // questionnaire: the previous item
+  kKey,          // on-screen keyboard: `text` is typed
+  kBackspace,    // on-screen keyboard
+  kChoice,       // demographics choice: `text` is the answer
+  kOk,           // demographics / free text: take what was typed
+  kSkipField,    // demographics / free text: NA
+  kReason,       // operator chooser: value = reason index
+  kCancel,       // operator chooser
   kDone,         // task panel: "I'm done" (asks to confirm)
   kDoneConfirm,  // task panel: "Yes, I'm done" (the task ends, end reason `done`)
   kDoneCancel,   // task panel: "Keep painting"

@@ -154,7 +154,7 @@ void StudyRunScreen::writeAnswers() {
 void StudyRunScreen::writeSessionJson() {
   if (options_.replay_view) return;
   StudySessionInfo info = options_.info;
-  info.status = !state_.done()     ? "running"
+  info.status = !state_.done()      ? "running"
                 : state_.declined() ? "declined"
                 : state_.aborted()  ? "aborted"
                                     : "completed";
@@ -431,8 +431,8 @@ void StudyRunScreen::paintingSample(const PenSample& sample) {
   if (!panel_holds_pen_) {
     paint_->onPenSamples({sample});
     const PaintScreen::PenPoint p = paint_->penPoint();
-    panel_holds_pen_ = p.in_proximity && !p.down && !session_.engine().inStroke() &&
-                       panelTargetAt(p.x, p.y);
+    panel_holds_pen_ =
+        p.in_proximity && !p.down && !session_.engine().inStroke() && panelTargetAt(p.x, p.y);
     return;
   }
   formSample(sample);
@@ -632,7 +632,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
   }
   afterStateChange(now_ns_);
   if (state_.done() && done_since_ && double(now_ns_ - *done_since_) / 1e9 >= options_.end_seconds)
-    return state_.declined() ? "consent declined"
+    return state_.declined()  ? "consent declined"
            : state_.aborted() ? "study aborted"
                               : "study complete";
   return "";

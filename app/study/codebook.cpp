@@ -44,7 +44,8 @@ const ColumnMeaning kTrialColumns[] = {
      "how the task ended: time-up (its limit), done (the participant's \"I'm done\"), skipped "
      "(the operator), aborted (the operator ended the session), NA (the journal ends inside the "
      "task)"},
-    {"strokes", "integer", "strokes", "paint strokes the painter mapped into the cloud in the task"},
+    {"strokes", "integer", "strokes",
+     "paint strokes the painter mapped into the cloud in the task"},
     {"erases", "integer", "strokes", "rub-out strokes and vacuum cuts in the task"},
     {"undos", "integer", "count", "undo commands in the task"},
 };
@@ -98,8 +99,10 @@ const ColumnMeaning kSampleColumns[] = {
     {"in_proximity", "integer", "0/1", "1 while the pen is within the tablet's sensing range"},
     {"tool", "category", "NA", "pen, eraser (the pen's other end) or none"},
     {"tool_id", "integer", "NA", "the tool's type id as the tablet reports it (0: unknown)"},
-    {"tool_serial", "integer", "NA", "the tool's serial number as the tablet reports it (0: unknown)"},
-    {"stroke", "integer", "NA", "the stroke (strokes.csv) the sample belongs to; NA between strokes"},
+    {"tool_serial", "integer", "NA",
+     "the tool's serial number as the tablet reports it (0: unknown)"},
+    {"stroke", "integer", "NA",
+     "the stroke (strokes.csv) the sample belongs to; NA between strokes"},
 };
 
 const ColumnMeaning kEventColumns[] = {
@@ -163,8 +166,10 @@ void addAnswerRows(const StudyProtocol& protocol, std::vector<CodebookRow>* rows
                       (k < protocol.scale_labels_zh.size() ? " / " + protocol.scale_labels_zh[k]
                                                            : std::string()));
   for (const QuestionnaireItem& item : protocol.items) {
-    CodebookRow row = variableRow("questionnaire.csv", item.id, "integer", "points",
-                                  "agreement with the statement (Likert); NA: skipped");
+    CodebookRow row = variableRow(
+        "questionnaire.csv", item.id, "integer", "points",
+        "agreement with the statement text_en / text_zh (Likert; *...* marks the thesis's "
+        "emphasis, shown without the marks); NA: skipped");
     row.text_en = item.text;
     row.text_zh = item.text_zh;
     row.scale_min = "1";
@@ -182,8 +187,8 @@ void addAnswerRows(const StudyProtocol& protocol, std::vector<CodebookRow>* rows
   demographic_participant.file = "demographics.csv";
   rows->push_back(demographic_participant);
   for (const DemographicField& f : protocol.demographics) {
-    CodebookRow row =
-        variableRow("demographics.csv", f.id, "text", "NA", "the participant's answer; NA: skipped");
+    CodebookRow row = variableRow("demographics.csv", f.id, "text", "NA",
+                                  "the participant's answer; NA: skipped");
     row.text_en = f.label;
     if (f.kind == DemographicField::Kind::kInteger) {
       row.type = "integer";
@@ -232,9 +237,9 @@ void writeCodebookCsv(std::ostream& out, const std::vector<CodebookRow>& rows) {
   out << "file,variable,type,unit,meaning,text_en,text_zh,scale_min,scale_max,anchors,construct,"
          "section\n";
   for (const CodebookRow& r : rows) {
-    for (const std::string* field : {&r.file, &r.variable, &r.type, &r.unit, &r.meaning,
-                                     &r.text_en, &r.text_zh, &r.scale_min, &r.scale_max,
-                                     &r.anchors, &r.construct})
+    for (const std::string* field :
+         {&r.file, &r.variable, &r.type, &r.unit, &r.meaning, &r.text_en, &r.text_zh, &r.scale_min,
+          &r.scale_max, &r.anchors, &r.construct})
       out << csvFieldOrMissing(*field) << ',';
     out << csvFieldOrMissing(r.section) << '\n';
   }

@@ -160,10 +160,9 @@ void StudyRunState::enterStage(size_t index, int64_t t_ns) {
   closing_.reset();
   tutorial_step_ = item_index_ = field_index_ = free_text_index_ = 0;
   if (stage() == StudyStageKind::kDone) {
-    record(t_ns, std::string("study.end ") +
-                     (declined_  ? "declined"
-                      : aborted_ ? "aborted reason=" + quoted(abort_reason_)
-                                 : "completed"));
+    record(t_ns, std::string("study.end ") + (declined_  ? "declined"
+                                              : aborted_ ? "aborted reason=" + quoted(abort_reason_)
+                                                         : "completed"));
     return;
   }
   std::string text = "study.stage-begin " + stageLabel();

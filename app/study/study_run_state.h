@@ -5,10 +5,10 @@
 // (app/shell/study_*_screen) only show it and feed it.
 //
 // Stages, in order (a stage the protocol leaves empty is left out):
-//   consent (agreed, or declined: the session ends there, nothing else recorded) → participant (the pseudonymous id) → introduction → tutorial (one step at a time,
-//   each advancing when its check holds in the live session state) → free drawing → tasks (in
-//   the participant's counterbalanced order) → demographics → questionnaire (one Likert item at a
-//   time) → free text → done
+//   consent (agreed, or declined: the session ends there, nothing else recorded) → participant (the
+//   pseudonymous id) → introduction → tutorial (one step at a time, each advancing when its check
+//   holds in the live session state) → free drawing → tasks (in the participant's counterbalanced
+//   order) → demographics → questionnaire (one Likert item at a time) → free text → done
 // Timed stages: free drawing and tasks end when their time is up (the clock stops while paused
 // or while the operator chooses a reason); a task also ends when the participant says they are
 // done (finishTask: end reason `done`). A painting stage that ends (time up, done, skipped,

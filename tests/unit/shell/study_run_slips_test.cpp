@@ -91,9 +91,8 @@ struct Rig {
     display = test::openTestDisplay(kW, kH, &error);
     EXPECT_TRUE(display) << error;
     if (!display || !renderer.init(&error)) return false;
-    session = std::make_unique<PaintSession>(
-        PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
-        loadMappingConfig(configFile("mapping.toml")));
+    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
+                                             loadMappingConfig(configFile("mapping.toml")));
     session->setQuietMapping(true);
     EXPECT_TRUE(journal.open(folder + "/session.cbj"));
     session->recordTo(&journal, now);
@@ -143,8 +142,9 @@ struct Rig {
   void keep(const std::string& name) { frames(1, 16'666'667, name); }
   void pen_samples(const std::vector<PenSample>& samples, size_t per_frame) {
     for (size_t i = 0; i < samples.size(); i += per_frame) {
-      screen->onPenSamples(std::vector<PenSample>(
-          samples.begin() + long(i), samples.begin() + long(std::min(samples.size(), i + per_frame))));
+      screen->onPenSamples(
+          std::vector<PenSample>(samples.begin() + long(i),
+                                 samples.begin() + long(std::min(samples.size(), i + per_frame))));
       frames(1);
     }
     frames(2);
@@ -265,8 +265,10 @@ TEST(StudyRunSlips, ImDoneEndsTheTaskWithEndReasonDone) {
   rig.keep("after_done");
 
   const std::vector<std::string> markers = rig.markers();
-  EXPECT_TRUE(anyStartsWith(markers, "study.stage-closing stage=task task=cloud1 position=1 why=done"));
-  const std::vector<TrialRow> trials = trialsOfSession(loadSessionTrace(rig.folder + "/session.cbj"));
+  EXPECT_TRUE(
+      anyStartsWith(markers, "study.stage-closing stage=task task=cloud1 position=1 why=done"));
+  const std::vector<TrialRow> trials =
+      trialsOfSession(loadSessionTrace(rig.folder + "/session.cbj"));
   ASSERT_EQ(trials.size(), 1u);
   EXPECT_EQ(trials[0].end_reason, "done");
   ASSERT_TRUE(trials[0].duration_s);
@@ -274,6 +276,14 @@ TEST(StudyRunSlips, ImDoneEndsTheTaskWithEndReasonDone) {
   EXPECT_LT(*trials[0].duration_s, 120.0) << "ended before its two minutes";
   EXPECT_EQ(trials[0].strokes, 1);
   EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol")) << "saved as at time up";
+
+  // On to the questionnaire (demographics skipped): the item in English over Chinese.
+  while (rig.state->stage() == StudyStageKind::kDemographics)
+    ASSERT_NO_FATAL_FAILURE(rig.tap(StudyTargetAction::kSkipField));
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kQuestionnaire);
+  rig.keep("questionnaire");
+  EXPECT_TRUE(rig.shown("使用钢笔风格绘制笔触容易使用。")) << "Q1 in Chinese, without the marks";
+  EXPECT_TRUE(rig.shown("非常同意"));
 }
 
 }  // namespace

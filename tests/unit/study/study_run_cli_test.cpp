@@ -9,6 +9,10 @@
 #include <iterator>
 #include <sstream>
 
+#include "app/session/synthetic_session.h"
+#include "app/shell/study_page.h"
+#include "app/study/protocol.h"
+#include "drivers/core/journal.h"
 #include "tests/support/command_run.h"
 
 namespace cb {
@@ -124,6 +128,61 @@ TEST(StudyRunCli, AParticipantWithASessionFolderAlreadyIsRefusedAndZeroIsNoNumbe
   run = test::runCommand(base);
   ASSERT_EQ(run.status, 0) << run.out;
   EXPECT_NE(run.out.find("participant: P01 (number 1)"), std::string::npos) << run.out;
+  std::filesystem::remove_all(dir);
+}
+
+// A recorded pen (a Device record and samples) that taps the middle of `target` at `t_ns`, on
+// the synthetic tablet mapped onto a `w` × `h` screen.
+void recordTap(const StudyTarget* target, int w, int h, int64_t t_ns, const std::string& path) {
+  ASSERT_TRUE(target);
+  const PenDeviceInfo tablet = syntheticTablet(w, h);
+  JournalWriter journal;
+  ASSERT_TRUE(journal.open(path)) << journal.error();
+  const std::vector<uint8_t> device = encodeDeviceInfo(tablet);
+  ASSERT_TRUE(journal.append(JournalRecordType::kDevice, t_ns, device.data(), device.size()));
+  const float x = 0.5f * (target->x0 + target->x1), y = 0.5f * (target->y0 + target->y1);
+  for (int i = 0; i < 10; ++i) {
+    const bool tip = i >= 3 && i < 7, proximity = i < 9;
+    PenSample s;
+    s.t_ns = t_ns + (i + 1) * 5'000'000;
+    s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / w;
+    s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / h;
+    s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
+    s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
+    s.pressure_raw = tip ? tablet.pressure_max / 2 : 0;
+    s.pressure = tip ? 0.5f : 0.0f;
+    s.buttons = tip ? kPenTip : 0u;
+    s.tool = proximity ? PenTool::kPen : PenTool::kNone;
+    s.in_proximity = proximity;
+    ASSERT_TRUE(journal.appendPenSample(s));
+  }
+}
+
+TEST(StudyRunCli, DecliningConsentEndsTheRunWithExitZeroAndNoTaskData) {
+  const std::string dir = tempDir("cb_study_run_cli_decline_");
+  const int w = 1920, h = 1080;
+  const StudyProtocol protocol = loadStudyProtocol(defaultStudyProtocolPath());
+  const StudyRunState consent(protocol, 1, 0);
+  const StudyPage page = buildStudyPage(consent, StudyPageInput{}, w, h);
+  const std::string pen = dir + "/pen.cbj";
+  ASSERT_NO_FATAL_FAILURE(
+      recordTap(page.find(StudyTargetAction::kDecline), w, h, 5'000'000'000, pen));
+  const test::CommandRun run = test::runCommand(
+      std::string(CB_CLOUDBRUSH_BIN) + " study run --data-dir " + dir +
+      "/data --display surfaceless --size 1920x1080 --grid 64 --backend replay --journal " + pen +
+      " --operator XY --venue uct-lab --end-seconds 0.3 --seconds 30");
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("consent declined after"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("P01 declined consent; the session ended before any task"),
+            std::string::npos)
+      << run.out;
+  std::string folder;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/data"))
+    folder = entry.path().string();
+  const std::string json = readText(folder + "/session.json");
+  EXPECT_NE(json.find("\"status\": \"declined\""), std::string::npos) << json;
+  EXPECT_FALSE(std::filesystem::exists(folder + "/tasks"));
+  EXPECT_NE(readText(folder + "/questionnaire.csv").find("P01,NA,NA"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

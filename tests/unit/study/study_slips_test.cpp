@@ -113,8 +113,9 @@ TEST(StudySlips, ImDoneClosesTheTaskWithEndReasonDone) {
   const std::vector<StudyRunRecord> records = s.takeRecords();
   bool closing_done = false;
   for (const StudyRunRecord& r : records)
-    closing_done = closing_done || (r.text.rfind("study.stage-closing stage=task task=" + first, 0) == 0 &&
-                                    r.text.find(" why=done seconds=96") != std::string::npos);
+    closing_done =
+        closing_done || (r.text.rfind("study.stage-closing stage=task task=" + first, 0) == 0 &&
+                         r.text.find(" why=done seconds=96") != std::string::npos);
   EXPECT_TRUE(closing_done);
 
   StudyRunState again(p, 1, 100 * kSecond);
