@@ -144,6 +144,15 @@ void StudyRunScreen::flushRecords() {
 void StudyRunScreen::writeAnswers() {
   if (options_.replay_view) return;
   std::string error;
+  if (state_.declined()) {
+    // Declined: no answer files (a row of NAs would read as a participant who answered nothing).
+    std::error_code ec;
+    bool removed = false;
+    for (const char* name : {"/questionnaire.csv", "/demographics.csv"})
+      removed = std::filesystem::remove(options_.folder + name, ec) || removed;
+    if (removed && !syncFolderOf(options_.folder + "/session.json", &error)) problem(error);
+    return;
+  }
   if (!writeFileAtomically(options_.folder + "/questionnaire.csv", state_.questionnaireCsv(),
                            &error))
     problem(error);

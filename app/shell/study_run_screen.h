@@ -16,7 +16,8 @@
 // In a task the panel has an "I'm done" target (confirmed by a second tap: "Yes, I'm done"),
 // which closes the task with the end reason `done`; the pen over the panel's targets is the
 // panel's (journalled `pen_capture=on`, so the tap never paints), the mouse likewise. Consent
-// has "I do not agree": the session ends there (session.json status "declined").
+// has "I do not agree": the session ends there (session.json status "declined"; the answer
+// files removed, so the folder holds session.json and the journal only).
 //
 // Keys: Space = "I agree" / "Continue"; 1-5 answer the questionnaire item (and choose the
 // operator's reason); the painter's keys in painting stages. Operator: Ctrl+Alt+P pause/resume,

@@ -225,6 +225,8 @@ TEST(StudyRunSlips, DecliningConsentEndsTheSessionCleanly) {
   rig.frames(4, 400'000'000);  // the closing page shows end_seconds (1 s), then the loop ends
   EXPECT_EQ(rig.quit, "consent declined");
   EXPECT_FALSE(std::filesystem::exists(rig.folder + "/tasks")) << "no task data";
+  EXPECT_FALSE(std::filesystem::exists(rig.folder + "/questionnaire.csv")) << "no answer rows";
+  EXPECT_FALSE(std::filesystem::exists(rig.folder + "/demographics.csv"));
 }
 
 TEST(StudyRunSlips, ImDoneEndsTheTaskWithEndReasonDone) {
