@@ -36,6 +36,7 @@
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
 #include "app/shell/study_run_screen.h"
+#include "app/study/codebook.h"
 #include "app/study/construct_definitions.h"
 #include "app/study/inkml_writer.h"
 #include "app/study/likert_answers.h"
@@ -62,6 +63,7 @@ namespace {
 const char kStudyHelp[] =
     "usage: cloudbrush study export SESSION.cbj... --out DIR [--volumes] [--size WxH]\n"
     "                               [--bids DIR]\n"
+    "                               [--protocol FILE.toml]\n"
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
     "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
     "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
@@ -83,6 +85,12 @@ const char kStudyHelp[] =
     "           DIR/strokes.csv   per stroke: start, duration, path length, mean/max pressure,\n"
     "                             mean tilt, speed, brush, mode, mapping time (NA: not recorded)\n"
     "           DIR/events.csv    every UI/mode change, marker, calibration, session record\n"
+    "           DIR/trials.csv    one row per study task: order, onset, duration, end reason\n"
+    "           DIR/codebook.csv  every variable of these files and of questionnaire.csv and\n"
+    "                             demographics.csv: type, unit, meaning; each item's text in\n"
+    "                             English and Chinese, scale and anchors, construct, section\n"
+    "                             (items of --protocol FILE, else of the protocol the first\n"
+    "                             study session names, else of the bundled one)\n"
     "         --volumes replays each journal (brush and mapping from the config directory) and\n"
     "         writes DIR/volumes/ID.vdb and ID.cbvol and DIR/renders/ID.exr (linear light) and\n"
     "         ID.png from the session's last view, at --size (default 1280x720).\n"
@@ -121,9 +129,16 @@ const char kStudyHelp[] =
     "         DIR/ID-YYYYmmddTHHMMSSZ (DIR: --data-dir, default <state dir>/study) holds\n"
     "         session.json, session.cbj (the journal, stages as markers), questionnaire.csv,\n"
     "         demographics.csv and tasks/TASK.{vdb,cbvol,exr,png}; its path is printed first.\n"
-    "         --participant N picks participant N (id and task order; default: the first\n"
-    "         number whose id has no folder in DIR); --venue is required when the protocol\n"
-    "         names more than one, --operator when it requires one.\n"
+    "         --participant N (N >= 1; 1 is the first id, P01) picks participant N (id and\n"
+    "         task order); a participant with a session folder in DIR already is refused,\n"
+    "         naming the folder (carry it on with --resume FOLDER; --resume with a new\n"
+    "         FOLDER starts the session there as asked). Without --participant:\n"
+    "         the first number whose id has no folder in DIR. --venue is required when the\n"
+    "         protocol names more than one, --operator when it requires one.\n"
+    "         Consent offers \"I agree\" and \"I do not agree\"; declining ends the session\n"
+    "         there (session.json status \"declined\", no task data; exit 0). In a task the\n"
+    "         participant may tap \"I'm done\" (confirmed by a second tap): the task ends\n"
+    "         with the end reason `done` (trials.csv).\n"
     "         --resume FOLDER runs the session in FOLDER; when its journal already holds one (a\n"
     "         crash, a power cut), it is carried on: the journal is replayed (the cloud, the\n"
     "         stage, the tutorial step and its counters, the painter's menu, the answers, the\n"
@@ -193,8 +208,35 @@ int exportVolumeAndRender(const Volume& volume, const Camera& camera, const Ligh
   return 0;
 }
 
+// The protocol file a study session's study.info names (when it is still there), else "".
+std::string protocolFileOf(const SessionTrace& trace) {
+  for (const TraceEvent& e : trace.events) {
+    StudySessionInfo info;
+    if (e.type == JournalRecordType::kMarker && parseStudyInfoMarker(e.text, &info))
+      return std::filesystem::exists(info.protocol_file) ? info.protocol_file : "";
+  }
+  return "";
+}
+
+// codebook.csv of `protocol_path` (empty: the bundled protocol). 0, or the exit status.
+int writeCodebook(const std::string& protocol_path, const std::string& path) {
+  const std::string source = protocol_path.empty() ? defaultStudyProtocolPath() : protocol_path;
+  StudyProtocol protocol;
+  try {
+    protocol = loadStudyProtocol(source);
+  } catch (const StudyProtocolError& e) {
+    return fail(std::string("export: codebook: ") + e.what());
+  }
+  std::fprintf(stderr, "cloudbrush study: codebook of the protocol %s\n", source.c_str());
+  std::string error;
+  if (!writeFile(
+          path, [&](std::ostream& s) { writeCodebookCsv(s, studyCodebook(protocol)); }, &error))
+    return fail(error);
+  return 0;
+}
+
 int runExport(Args& args) {
-  auto unknown = args.unknown({"help", "out", "volumes", "size", "bids"});
+  auto unknown = args.unknown({"help", "out", "volumes", "size", "bids", "protocol"});
   if (!unknown.empty()) return fail("export: unknown option " + unknown[0] + " (see --help)", 2);
   const std::vector<std::string>& positional = args.positional();
   if (positional.size() < 3)
@@ -245,6 +287,7 @@ int runExport(Args& args) {
   std::ofstream &inkml = files[0]->out, &samples = files[1]->out, &strokes = files[2]->out,
                 &events = files[3]->out, &trials = files[4]->out;
   std::vector<std::string> damaged;
+  std::string codebook_protocol = args.get("protocol", "");
   beginInkml(inkml);
   writeSamplesCsvHeader(samples);
   writeStrokesCsvHeader(strokes);
@@ -265,6 +308,7 @@ int runExport(Args& args) {
     }
     try {
       const SessionTrace trace = sessionTraceFromJournal(journal, paths[i], ids[i]);
+      if (codebook_protocol.empty()) codebook_protocol = protocolFileOf(trace);
       writeInkmlSession(inkml, trace, i);
       writeSamplesCsvRows(samples, trace);
       writeStrokesCsvRows(strokes, trace);
@@ -289,6 +333,8 @@ int runExport(Args& args) {
   std::string error;
   for (auto& file : files)
     if (!file->commit(&error)) return fail(error);
+  if (const int code = writeCodebook(codebook_protocol, (dir / "codebook.csv").string()))
+    return code;
   // The exports hold every whole record, but a damaged journal lost the ones it skipped: say so
   // in the exit status, as replay does.
   if (!damaged.empty())
@@ -477,6 +523,51 @@ FolderJournal readFolderJournal(const std::string& path) {
   return f;
 }
 
+// A new session's participant and folder: --participant N, refused when the runner is to name
+// the folder and N already has a session folder in the data directory (a second folder of one
+// participant would hold a second first session; the one there is carried on with --resume),
+// else the next free number; then the clock anchor and the folder, made (--resume FOLDER with no
+// session in it yet starts one in FOLDER, the operator's choice). 0, or the exit status after the
+// error was printed.
+int newSessionFolder(Args& args, const StudyProtocol& protocol, const std::string& resume_folder,
+                     int participant, StudySessionInfo* info, std::string* folder) {
+  std::error_code ec;
+  const std::string data_dir = resume_folder.empty()
+                                   ? args.get("data-dir", stateDir() + "/study")
+                                   : std::filesystem::path(resume_folder).parent_path().string();
+  std::filesystem::create_directories(data_dir.empty() ? "." : data_dir, ec);
+  if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
+  const auto id_for = [&](int n) { return protocol.participant_ids.idFor(n); };
+  if (participant > 0 && resume_folder.empty()) {  // (--resume FOLDER names the folder itself)
+    const std::vector<std::string> existing =
+        participantSessionFolders(data_dir.empty() ? "." : data_dir, id_for(participant));
+    if (!existing.empty())
+      return fail("run: --participant " + std::to_string(participant) + ": " + id_for(participant) +
+                      " has a session folder already: " + existing.back() +
+                      ". To carry that session on: cloudbrush study run --resume " +
+                      existing.back() + " (same --size and --grid). To record a new participant, " +
+                      "leave --participant out (the next free number is " +
+                      std::to_string(nextFreeParticipantNumber(data_dir, id_for)) + ")",
+                  2);
+  }
+  info->participant_number =
+      participant > 0 ? participant : nextFreeParticipantNumber(data_dir, id_for);
+  info->participant_id = id_for(info->participant_number);
+  info->anchor_monotonic_ns = monotonicNowNs();
+  info->anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+  *folder =
+      resume_folder.empty()
+          ? data_dir + "/" + studySessionFolderName(info->participant_id, info->anchor_unix_ns)
+          : resume_folder;
+  if (resume_folder.empty() && std::filesystem::exists(*folder))
+    return fail("run: " + *folder + " exists already (one session per folder)");
+  std::filesystem::create_directories(*folder, ec);
+  if (ec) return fail("run: " + *folder + ": " + ec.message());
+  return 0;
+}
+
 int runStudySession(Args& args) {
   auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
                                "drm-device", "size", "grid", "backend", "pen-device", "journal",
@@ -544,7 +635,12 @@ int runStudySession(Args& args) {
   const double seconds = args.getDouble("seconds", 0.0);
   const double end_seconds = args.getDouble("end-seconds", 8.0);
   if (!args.error().empty()) return fail("run: " + args.error(), 2);
-  if (participant < 0) return fail("run: --participant: expected N >= 1", 2);
+  if (args.has("participant") && participant < 1)
+    return fail("run: --participant " + args.get("participant", "") +
+                    ": expected N >= 1 (participant numbers start at 1: " +
+                    protocol.participant_ids.idFor(1) +
+                    " is 1); leave --participant out to take the next free number",
+                2);
   if (grid < 8 || grid > 1024) return fail("run: --grid: expected 8..1024", 2);
   FrameLoopOptions loop_options;
   std::string error;
@@ -586,28 +682,9 @@ int runStudySession(Args& args) {
     const std::string earlier_json((std::istreambuf_iterator<char>(earlier)),
                                    std::istreambuf_iterator<char>());
     info.earlier_device_json = deviceJsonIn(earlier_json);
-  } else {
-    const std::string data_dir = resume_folder.empty()
-                                     ? args.get("data-dir", stateDir() + "/study")
-                                     : std::filesystem::path(resume_folder).parent_path().string();
-    std::filesystem::create_directories(data_dir.empty() ? "." : data_dir, ec);
-    if (ec) return fail("run: --data-dir " + data_dir + ": " + ec.message());
-    info.participant_number =
-        participant > 0 ? int(participant) : nextFreeParticipantNumber(data_dir, [&](int n) {
-          return protocol.participant_ids.idFor(n);
-        });
-    info.participant_id = protocol.participant_ids.idFor(info.participant_number);
-    info.anchor_monotonic_ns = monotonicNowNs();
-    info.anchor_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                              std::chrono::system_clock::now().time_since_epoch())
-                              .count();
-    folder = resume_folder.empty()
-                 ? data_dir + "/" + studySessionFolderName(info.participant_id, info.anchor_unix_ns)
-                 : resume_folder;
-    if (resume_folder.empty() && std::filesystem::exists(folder))
-      return fail("run: " + folder + " exists already (one session per folder)");
-    std::filesystem::create_directories(folder, ec);
-    if (ec) return fail("run: " + folder + ": " + ec.message());
+  } else if (const int code = newSessionFolder(args, protocol, resume_folder, int(participant),
+                                               &info, &folder)) {
+    return code;
   }
   const int number = info.participant_number;
   for (const StudyTask* task : protocol.tasksForParticipant(number))
@@ -776,6 +853,11 @@ int runStudySession(Args& args) {
               state.aborted() ? (", aborted: " + state.abortReason()).c_str() : "");
   std::printf("cloudbrush study: volume checksum %016llx\n",
               static_cast<unsigned long long>(volumeChecksum(session->volume())));
+  if (state.declined())
+    std::printf(
+        "cloudbrush study: %s declined consent; the session ended before any task. %s "
+        "holds session.json (status \"declined\") and the journal, no task data.\n",
+        state.participantId().c_str(), folder.c_str());
   for (const std::string& problem : screen.problems())
     std::fprintf(stderr, "cloudbrush study: problem: %s\n", problem.c_str());
   return screen.problems().empty() ? 0 : 1;

@@ -314,6 +314,9 @@ void PaintScreen::feedSample(const PenSample& sample) {
   afterSample(outcome, received);
   events_.clear();
   pen_events_.derive(outcome.mapped, &events_);
+  pen_x_ = float(outcome.mapped.x_px);
+  pen_y_ = float(outcome.mapped.y_px);
+  pen_in_proximity_ = outcome.mapped.in_proximity;
   if (ui_ && outcome.mapped.in_proximity)
     ui_->pointer(float(outcome.mapped.x_px), float(outcome.mapped.y_px), outcome.mapped.contact);
   for (const PenEvent& event : events_) {

@@ -131,6 +131,13 @@ class PaintScreen : public Screen {
   // Commands tapped on the on-screen UI so far (tests).
   const std::vector<Command>& tappedCommands() const { return tapped_; }
   const UiOverlay* ui() const { return ui_.get(); }
+  // Where the pen's last sample was on the screen (calibrated pixels), whether it was in
+  // proximity, and whether its tip is down (a host screen's own targets beside the painter).
+  struct PenPoint {
+    float x = 0.0f, y = 0.0f;
+    bool in_proximity = false, down = false;
+  };
+  PenPoint penPoint() const { return {pen_x_, pen_y_, pen_in_proximity_, pen_events_.down()}; }
   // The view being shown (a drag preview, the auto-rotation, or the session's camera).
   Camera shownCamera() const;
   // The morph or wind shown, if any (tests).
@@ -215,6 +222,8 @@ class PaintScreen : public Screen {
   PaintSession* session_ = nullptr;
   PenEventDeriver pen_events_;
   std::vector<PenEvent> events_;
+  float pen_x_ = 0.0f, pen_y_ = 0.0f;  // the last sample's screen position (penPoint)
+  bool pen_in_proximity_ = false;
 
   // Auto-rotation
   bool orbiting_ = true;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "app/shell/command_table.h"
+
 namespace cb {
 namespace {
 
@@ -12,6 +14,22 @@ const glm::vec4 kTargetColour{0.22f, 0.34f, 0.52f, 1.0f};
 const glm::vec4 kSelectedColour{0.95f, 0.62f, 0.18f, 1.0f};
 const glm::vec4 kQuietColour{0.25f, 0.27f, 0.31f, 1.0f};
 const glm::vec4 kVeil{0.0f, 0.0f, 0.0f, 0.72f};
+const glm::vec4 kDoneColour{0.18f, 0.55f, 0.3f, 1.0f};
+
+// What the participant taps and reads around it, English over Chinese (the painter's menu's
+// languages, app/shell/command_table.h).
+const Bilingual kAgreeText{"I agree", "我同意"};
+const Bilingual kDeclineText{"I do not agree", "我不同意"};
+const Bilingual kDeclinedTitle{"Session ended", "会话已结束"};
+const Bilingual kDeclinedBody{
+    "You did not agree to take part, so the session ends here: no task was started, and nothing "
+    "you would have drawn or answered is recorded. Thank you for your time.",
+    "您没有同意参加，本次会话到此结束：没有开始任何任务，也不会记录您的绘画或回答。感谢您抽出时间"
+    "。"};
+const Bilingual kDoneText{"I'm done", "我画完了"};
+const Bilingual kDoneAskText{"Finish this task now?", "现在结束这个任务吗？"};
+const Bilingual kDoneYesText{"Yes, I'm done", "是的，画完了"};
+const Bilingual kKeepPaintingText{"Keep painting", "继续画"};
 
 class PageBuilder {
  public:
@@ -49,8 +67,21 @@ class PageBuilder {
     t.x0 = x0, t.y0 = y0, t.x1 = x1, t.y1 = y1;
     t.action = action, t.value = value, t.label = label, t.selected = selected;
     page_.targets.push_back(t);
-    const float size = std::min(body(), 0.42f * (y1 - y0));
-    centred(0.5f * (x0 + x1), 0.5f * (y0 + y1) - 0.6f * size, label, size);
+    // One centred line per line of the label (English over Chinese), the block centred.
+    std::vector<std::string> lines;
+    for (size_t at = 0; at <= label.size();) {
+      const size_t end = std::min(label.find('\n', at), label.size());
+      lines.push_back(label.substr(at, end - at));
+      at = end + 1;
+    }
+    const float n = float(lines.size());
+    const float fill = n > 1.0f ? 0.8f / (1.25f * (n - 1.0f) + 1.2f) : 0.42f;
+    const float size = std::min(body(), fill * (y1 - y0));
+    float y = 0.5f * (y0 + y1) - 0.5f * (1.25f * (n - 1.0f) + 1.2f) * size;
+    for (const std::string& line : lines) {
+      centred(0.5f * (x0 + x1), y, line, size);
+      y += 1.25f * size;
+    }
     return page_.targets.back();
   }
   void setImage(float x0, float y0, float x1, float y1) {
@@ -117,12 +148,17 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
     y += 1.6f * b.title();
   };
   switch (state.stage()) {
-    case StudyStageKind::kConsent:
+    case StudyStageKind::kConsent: {
       heading("Consent");
       b.text(margin, y, p.consent, b.body(), kStudyTextColour, wrap);
-      b.target(0.5f * b.w() - button_w * 0.5f, button_y, 0.5f * b.w() + button_w * 0.5f,
-               button_y + button_h, StudyTargetAction::kAgree, "I agree");
+      // Agree and decline side by side, the same size: declining is as easy as agreeing.
+      const float gap = 0.04f * b.w();
+      b.target(0.5f * (b.w() - gap) - button_w, button_y, 0.5f * (b.w() - gap), button_y + button_h,
+               StudyTargetAction::kAgree, kAgreeText.twoLines());
+      b.target(0.5f * (b.w() + gap), button_y, 0.5f * (b.w() + gap) + button_w, button_y + button_h,
+               StudyTargetAction::kDecline, kDeclineText.twoLines(), 0, false, kQuietColour);
       break;
+    }
     case StudyStageKind::kParticipant:
       heading("Your participant code");
       b.centred(0.5f * b.w(), 0.3f * b.h(), state.participantId(), 2.4f * b.title(),
@@ -174,7 +210,7 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
               std::to_string(p.items.size()) +
               (item.section.empty() ? std::string() : " (" + item.section + ")"));
       // The thesis's *emphasis* marks are the protocol's transcription, not for the participant.
-      std::string text = item.text;
+      std::string text = item.text + (item.text_zh.empty() ? "" : "\n" + item.text_zh);
       text.erase(std::remove(text.begin(), text.end(), '*'), text.end());
       b.text(margin, y, text, 1.15f * b.body(), kStudyTextColour, wrap);
       // Five (n) big boxes in a row, the scale's words under each number.
@@ -189,8 +225,11 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
                  given && *given == k);
         b.centred(x + 0.5f * bw, by + bh + 0.3f * b.small(), p.scale_labels[size_t(k - 1)],
                   b.small());
+        if (size_t(k) <= p.scale_labels_zh.size())
+          b.centred(x + 0.5f * bw, by + bh + 1.55f * b.small(), p.scale_labels_zh[size_t(k - 1)],
+                    b.small());
       }
-      const float ry = by + bh + 2.2f * b.small();
+      const float ry = by + bh + (p.scale_labels_zh.empty() ? 2.2f : 3.4f) * b.small();
       if (i > 0)
         b.target(margin, ry, margin + button_w, ry + 0.7f * button_h, StudyTargetAction::kBackItem,
                  "Back", 0, false, kQuietColour);
@@ -207,6 +246,12 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
       break;
     }
     case StudyStageKind::kDone:
+      if (state.declined()) {
+        heading(kDeclinedTitle.oneLine());
+        b.text(margin, y, std::string(kDeclinedBody.en) + "\n\n" + kDeclinedBody.zh, b.body(),
+               kStudyTextColour, wrap);
+        break;
+      }
       heading(state.aborted() ? "Session stopped" : "Thank you");
       b.text(margin, y,
              state.aborted() ? "The operator stopped the session (" + state.abortReason() +
@@ -218,6 +263,33 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
     default:
       break;
   }
+}
+
+float countdownSize(const PageBuilder& b) {
+  return 1.5f * b.title();
+}
+float countdownTop(const PageBuilder& b) {
+  return b.h() - 2.2f * b.small() - 1.4f * countdownSize(b);
+}
+
+// The task's "I'm done": one target; tapped, a question with "Yes, I'm done" and "Keep
+// painting" in its place (a stray tap near the canvas's edge does not end a task).
+void doneTargets(PageBuilder& b, float x0, float x1, bool asked) {
+  const float h = 0.085f * b.h(), gap = 0.01f * b.w();
+  // Just above the countdown, where the task's time is read.
+  float y = countdownTop(b) - 0.02f * b.h() - h - (asked ? 2.7f * b.small() : 0.0f);
+  if (!asked) {
+    b.target(x0, y, x1, y + h, StudyTargetAction::kDone, kDoneText.twoLines(), 0, false,
+             kDoneColour);
+    return;
+  }
+  b.text(x0, y, kDoneAskText.twoLines(), b.small(), kStudyHintColour);
+  y += 2.7f * b.small();
+  const float mid = 0.5f * (x0 + x1);
+  b.target(x0, y, mid - 0.5f * gap, y + h, StudyTargetAction::kDoneConfirm, kDoneYesText.twoLines(),
+           0, false, kDoneColour);
+  b.target(mid + 0.5f * gap, y, x1, y + h, StudyTargetAction::kDoneCancel,
+           kKeepPaintingText.twoLines(), 0, false, kQuietColour);
 }
 
 void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input) {
@@ -266,6 +338,7 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
         y += ih + pad;
       }
       line("Paint a cloud like the picture.", b.small(), kStudyTextColour, 1.5f);
+      doneTargets(b, x0 + pad, b.w() - pad, input.done_asked);
       break;
     }
     default:
@@ -274,8 +347,7 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
   if (left >= 0) {
     char text[64];
     std::snprintf(text, sizeof text, "Time left %d:%02d", int(left) / 60, int(left) % 60);
-    const float size = 1.5f * b.title();
-    b.text(x0 + pad, b.h() - 2.2f * b.small() - 1.4f * size, text, size,
+    b.text(x0 + pad, countdownTop(b), text, countdownSize(b),
            left < 60 ? 0xff8060ffu : kStudyTextColour);
   }
 }
@@ -306,6 +378,24 @@ void operatorChooser(PageBuilder& b, const StudyRunState& state) {
 }
 
 }  // namespace
+
+std::string studyPageText(const StudyProtocol& p) {
+  std::string text;
+  for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
+                             kDoneAskText, kDoneYesText, kKeepPaintingText})
+    text += b.zh;
+  text += p.consent + p.introduction.text + p.free_drawing.text;
+  for (const TutorialStep& s : p.tutorial) text += s.instruction;
+  for (const StudyTask& t : p.tasks) text += t.title;
+  for (const DemographicField& f : p.demographics) {
+    text += f.label;
+    for (const std::string& c : f.choices) text += c;
+  }
+  for (const QuestionnaireItem& item : p.items) text += item.text + item.text_zh;
+  for (const std::string& label : p.scale_labels_zh) text += label;
+  for (const FreeTextQuestion& q : p.free_text) text += q.prompt;
+  return text;
+}
 
 const StudyTarget* StudyPage::find(StudyTargetAction action, int value) const {
   for (const StudyTarget& t : targets)

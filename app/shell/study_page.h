@@ -4,7 +4,9 @@
 // questionnaire one item at a time, free text, the end), the panel beside the painter in the
 // tutorial, free drawing and tasks (stage, instruction and its check, the countdown, the
 // reference image's place), and the operator's reason chooser and pause veil over any stage.
-// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot.
+// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot. The
+// participant's buttons (consent, "I'm done") are labelled in English over Chinese, like the
+// painter's menu.
 //
 // Drawn by the runner with the HUD overlay (boxes) and ui_overlay's labels (Noto Sans CJK).
 #pragma once
@@ -21,18 +23,22 @@ namespace cb {
 
 // What tapping a target does.
 enum class StudyTargetAction {
-  kAgree,      // consent
-  kContinue,   // participant code, introduction
-  kAnswer,     // questionnaire: value 1..n
-  kSkipItem,   // questionnaire: leave NA
-  kBackItem,   // questionnaire: the previous item
-  kKey,        // on-screen keyboard: `text` is typed
-  kBackspace,  // on-screen keyboard
-  kChoice,     // demographics choice: `text` is the answer
-  kOk,         // demographics / free text: take what was typed
-  kSkipField,  // demographics / free text: NA
-  kReason,     // operator chooser: value = reason index
-  kCancel,     // operator chooser
+  kAgree,        // consent
+  kDecline,      // consent: "I do not agree" (the session ends)
+  kContinue,     // participant code, introduction
+  kAnswer,       // questionnaire: value 1..n
+  kSkipItem,     // questionnaire: leave NA
+  kBackItem,     // questionnaire: the previous item
+  kKey,          // on-screen keyboard: `text` is typed
+  kBackspace,    // on-screen keyboard
+  kChoice,       // demographics choice: `text` is the answer
+  kOk,           // demographics / free text: take what was typed
+  kSkipField,    // demographics / free text: NA
+  kReason,       // operator chooser: value = reason index
+  kCancel,       // operator chooser
+  kDone,         // task panel: "I'm done" (asks to confirm)
+  kDoneConfirm,  // task panel: "Yes, I'm done" (the task ends, end reason `done`)
+  kDoneCancel,   // task panel: "Keep painting"
 };
 
 struct StudyTarget {
@@ -65,12 +71,17 @@ struct StudyPageInput {
   float image_aspect = 0.0f;
   int64_t now_ns = 0;
   bool painter_menu_open = false;  // the painter's pen menu is open: the panel steps aside
+  bool done_asked = false;         // "I'm done" was tapped: the panel asks to confirm
 };
 
 // The page of the current stage (a form, or the panel beside the painter), with the operator's
 // chooser or pause veil over it when one is open.
 StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
                          int height);
+
+// Every text the pages may show beyond Latin: their own Chinese and the protocol's texts (the
+// font atlas holds their characters).
+std::string studyPageText(const StudyProtocol& protocol);
 
 // The colours of the page's boxes and targets (RGBA, straight alpha).
 inline constexpr uint32_t kStudyTextColour = 0xf2f2f2ffu;

@@ -144,6 +144,15 @@ void StudyRunScreen::flushRecords() {
 void StudyRunScreen::writeAnswers() {
   if (options_.replay_view) return;
   std::string error;
+  if (state_.declined()) {
+    // Declined: no answer files (a row of NAs would read as a participant who answered nothing).
+    std::error_code ec;
+    bool removed = false;
+    for (const char* name : {"/questionnaire.csv", "/demographics.csv"})
+      removed = std::filesystem::remove(options_.folder + name, ec) || removed;
+    if (removed && !syncFolderOf(options_.folder + "/session.json", &error)) problem(error);
+    return;
+  }
   if (!writeFileAtomically(options_.folder + "/questionnaire.csv", state_.questionnaireCsv(),
                            &error))
     problem(error);
@@ -154,7 +163,10 @@ void StudyRunScreen::writeAnswers() {
 void StudyRunScreen::writeSessionJson() {
   if (options_.replay_view) return;
   StudySessionInfo info = options_.info;
-  info.status = !state_.done() ? "running" : state_.aborted() ? "aborted" : "completed";
+  info.status = !state_.done()      ? "running"
+                : state_.declined() ? "declined"
+                : state_.aborted()  ? "aborted"
+                                    : "completed";
   info.abort_reason = state_.abortReason();
   if (pen_ && pen_->connection() == PenConnection::kConnected) {
     info.device = pen_->deviceInfo();
@@ -217,6 +229,7 @@ void StudyRunScreen::enterStage(int64_t t_ns) {
   typed_.clear();
   message_.clear();
   pressed_.reset();
+  done_asked_ = false;
   if (state_.stage() == StudyStageKind::kTask) {
     if (!options_.replay_view) setUpTask(t_ns);  // a replay has the setup in its journal
     std::string error;
@@ -410,11 +423,32 @@ void StudyRunScreen::onPenSamples(const std::vector<PenSample>& samples) {
     }
   }
   const bool painting = isPaintingStage(state_.stage()) && !state_.paused() && !state_.choosing();
-  if (painting) {
-    paint_->onPenSamples(samples);
+  if (!painting) panel_holds_pen_ = false;
+  for (const PenSample& sample : samples) {
+    if (painting)
+      paintingSample(sample);
+    else
+      formSample(sample);
+  }
+}
+
+bool StudyRunScreen::panelTargetAt(float x, float y) const {
+  return isPaintingStage(state_.stage()) && page_.hit(x, y) != nullptr;
+}
+
+void StudyRunScreen::paintingSample(const PenSample& sample) {
+  if (!panel_holds_pen_) {
+    paint_->onPenSamples({sample});
+    const PaintScreen::PenPoint p = paint_->penPoint();
+    panel_holds_pen_ =
+        p.in_proximity && !p.down && !session_.engine().inStroke() && panelTargetAt(p.x, p.y);
     return;
   }
-  for (const PenSample& sample : samples) formSample(sample);
+  formSample(sample);
+  // Back to the painter once the pen is up and away from the targets (or gone).
+  if (!pen_events_.down() &&
+      (!pen_events_.inProximity() || !panelTargetAt(form_pen_x_, form_pen_y_)))
+    panel_holds_pen_ = false;
 }
 
 void StudyRunScreen::formSample(const PenSample& sample) {
@@ -424,6 +458,8 @@ void StudyRunScreen::formSample(const PenSample& sample) {
   const SampleOutcome outcome = session_.feed(sample);
   events_.clear();
   pen_events_.derive(outcome.mapped, &events_);
+  form_pen_x_ = float(outcome.mapped.x_px);
+  form_pen_y_ = float(outcome.mapped.y_px);
   for (const PenEvent& event : events_) {
     if (event.kind == PenEvent::Kind::kDown) tap(event.x, event.y, true, now_ns_);
     if (event.kind == PenEvent::Kind::kUp) tap(event.x, event.y, false, now_ns_);
@@ -455,6 +491,19 @@ void StudyRunScreen::activate(const StudyTarget& target, int64_t t_ns) {
   switch (target.action) {
     case StudyTargetAction::kAgree:
       state_.agree(t_ns);
+      break;
+    case StudyTargetAction::kDecline:
+      state_.decline(t_ns);
+      break;
+    case StudyTargetAction::kDone:
+      done_asked_ = state_.stage() == StudyStageKind::kTask;
+      break;
+    case StudyTargetAction::kDoneConfirm:
+      done_asked_ = false;
+      state_.finishTask(t_ns);
+      break;
+    case StudyTargetAction::kDoneCancel:
+      done_asked_ = false;
       break;
     case StudyTargetAction::kContinue:
       state_.proceed(t_ns);
@@ -544,8 +593,13 @@ void StudyRunScreen::onCommand(Command command, int64_t t_ns) {
 }
 
 void StudyRunScreen::onPointer(const DisplayEvent& event) {
-  if (isPaintingStage(state_.stage()) && !state_.paused() && !state_.choosing())
-    return paint_->onPointer(event);
+  if (isPaintingStage(state_.stage()) && !state_.paused() && !state_.choosing()) {
+    // A click on the panel's targets is the panel's; everything else the painter's.
+    const bool press = event.kind == DisplayEvent::Kind::PointerDown && event.button == 1;
+    const bool release =
+        event.kind == DisplayEvent::Kind::PointerUp && event.button == 1 && mouse_down_;
+    if (!(press && panelTargetAt(event.x, event.y)) && !release) return paint_->onPointer(event);
+  }
   if (event.kind == DisplayEvent::Kind::PointerDown && event.button == 1) {
     mouse_down_ = true;
     tap(event.x, event.y, true, now_ns_);
@@ -587,7 +641,9 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
   }
   afterStateChange(now_ns_);
   if (state_.done() && done_since_ && double(now_ns_ - *done_since_) / 1e9 >= options_.end_seconds)
-    return state_.aborted() ? "study aborted" : "study complete";
+    return state_.declined()  ? "consent declined"
+           : state_.aborted() ? "study aborted"
+                              : "study complete";
   return "";
 }
 
@@ -597,6 +653,7 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
   input.message = message_;
   input.now_ns = now_ns_;
   input.painter_menu_open = isPaintingStage(state_.stage()) && paint_->menuOpen();
+  input.done_asked = done_asked_;
   input.image_aspect = state_.stage() == StudyStageKind::kTask ? image_aspect_ : 0.0f;
   if (state_.stage() == StudyStageKind::kTutorial) {
     const TutorialState s = tutorialState();
@@ -633,6 +690,7 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
   }
   if (!ui_) {
     ui_ = std::make_unique<UiOverlay>();
+    ui_->addGlyphs(studyPageText(state_.protocol()));
     if (!ui_->init(error)) return false;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());

@@ -13,6 +13,12 @@
 // and at the end; questionnaire.csv and demographics.csv after every answer; each task's files
 // when it ends (once no stroke is open).
 //
+// In a task the panel has an "I'm done" target (confirmed by a second tap: "Yes, I'm done"),
+// which closes the task with the end reason `done`; the pen over the panel's targets is the
+// panel's (journalled `pen_capture=on`, so the tap never paints), the mouse likewise. Consent
+// has "I do not agree": the session ends there (session.json status "declined"; the answer
+// files removed, so the folder holds session.json and the journal only).
+//
 // Keys: Space = "I agree" / "Continue"; 1-5 answer the questionnaire item (and choose the
 // operator's reason); the painter's keys in painting stages. Operator: Ctrl+Alt+P pause/resume,
 // Ctrl+Alt+S skip, Ctrl+Alt+A abort, each followed by a reason (tap or digit; Esc cancels).
@@ -97,6 +103,10 @@ class StudyRunScreen : public Screen {
  private:
   void activate(const StudyTarget& target, int64_t t_ns);
   void formSample(const PenSample& sample);
+  // A painting stage's sample: to the painter, or to the panel's targets while the pen is over
+  // them (handed over only while the pen is up and no stroke is open).
+  void paintingSample(const PenSample& sample);
+  bool panelTargetAt(float x, float y) const;
   StudyPage currentPage(int width, int height) const;
   void tap(float x, float y, bool down, int64_t t_ns);
   void selectCalibration();
@@ -139,6 +149,9 @@ class StudyRunScreen : public Screen {
   uint64_t tool_serial_ = 0;
   std::optional<StudyTarget> pressed_;  // the target under the pen (or mouse) when it went down
   bool mouse_down_ = false;
+  bool panel_holds_pen_ = false;  // painting stage: the pen is over the panel's targets
+  float form_pen_x_ = 0.0f, form_pen_y_ = 0.0f;
+  bool done_asked_ = false;  // "I'm done" tapped: the panel asks to confirm
 
   // The stage the screen set up last (to notice changes)
   StudyStageKind last_stage_ = StudyStageKind::kDone;

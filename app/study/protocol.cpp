@@ -389,20 +389,27 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
 
   // Questionnaire (Appendix C).
   const toml::table& questionnaire = r.table(root, "questionnaire", "");
-  r.onlyKeys(questionnaire, "questionnaire", {"scale"});
+  r.onlyKeys(questionnaire, "questionnaire", {"scale", "scale_zh"});
   protocol.scale_labels = r.strings(questionnaire, "scale", "questionnaire", true);
   if (protocol.scale_labels.size() < 2 || protocol.scale_labels.size() > 11)
     r.fail(*questionnaire.get("scale"), "questionnaire.scale", "2 to 11 labels, lowest first");
+  protocol.scale_labels_zh = r.strings(questionnaire, "scale_zh", "questionnaire", false);
+  if (!protocol.scale_labels_zh.empty() &&
+      protocol.scale_labels_zh.size() != protocol.scale_labels.size())
+    r.fail(*questionnaire.get("scale_zh"), "questionnaire.scale_zh",
+           "as many labels as questionnaire.scale (" +
+               std::to_string(protocol.scale_labels.size()) + ")");
   const auto item_tables = r.tables(root, "item", "", true);
   for (size_t i = 0; i < item_tables.size(); ++i) {
     const toml::table& t = *item_tables[i];
     const std::string path = ProtocolReader::indexed("item", i);
-    r.onlyKeys(t, path, {"id", "text", "section", "origin"});
+    r.onlyKeys(t, path, {"id", "text", "text_zh", "section", "origin"});
     QuestionnaireItem item;
     item.id = r.identifier(t, "id", path);
     if (!answer_ids.insert(item.id).second)
       r.fail(*t.get("id"), path + ".id", "'" + item.id + "' is already an answer column");
     item.text = r.text(t, "text", path, true);
+    item.text_zh = r.text(t, "text_zh", path, false);
     item.section = r.text(t, "section", path, false);
     item.origin = r.text(t, "origin", path, false);
     protocol.items.push_back(std::move(item));

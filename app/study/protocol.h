@@ -19,8 +19,10 @@
 //                   save = ["journal", "volume_vdb", "volume_raw", "render_exr", "render_png"]
 //                   (Appendix B; §7.5 stage 3)
 //   [[demographic]] id, label, kind = "integer" (min, max) | "text" | "choice" (choices)
-//   [questionnaire] scale = ["strongly disagree", ..., "strongly agree"] (values 1..n)
-//   [[item]]        id, text, section (optional), origin (optional)          (Appendix C)
+//   [questionnaire] scale = ["strongly disagree", ..., "strongly agree"] (values 1..n),
+//                   scale_zh (optional: the same labels in Chinese)
+//   [[item]]        id, text, text_zh (optional: in Chinese), section (optional), origin
+//                   (optional)                                               (Appendix C)
 //   [[free_text]]   id, prompt (optional answers)
 //   [[construct]]   name, items (declared item ids; construct_definitions.h)
 //
@@ -81,6 +83,7 @@ struct DemographicField {
 
 struct QuestionnaireItem {
   std::string id, text, section, origin;
+  std::string text_zh;  // the statement in Chinese, or ""
 };
 
 struct FreeTextQuestion {
@@ -107,7 +110,8 @@ struct StudyProtocol {
   bool task_questions_allowed = false;
   std::vector<StudyTask> tasks;
   std::vector<DemographicField> demographics;
-  std::vector<std::string> scale_labels;  // answer k (1-based) is scale_labels[k-1]
+  std::vector<std::string> scale_labels;     // answer k (1-based) is scale_labels[k-1]
+  std::vector<std::string> scale_labels_zh;  // the same in Chinese (empty: none given)
   std::vector<QuestionnaireItem> items;
   std::vector<FreeTextQuestion> free_text;
   std::vector<ProtocolConstruct> constructs;

@@ -160,8 +160,9 @@ void StudyRunState::enterStage(size_t index, int64_t t_ns) {
   closing_.reset();
   tutorial_step_ = item_index_ = field_index_ = free_text_index_ = 0;
   if (stage() == StudyStageKind::kDone) {
-    record(t_ns, std::string("study.end ") +
-                     (aborted_ ? "aborted reason=" + quoted(abort_reason_) : "completed"));
+    record(t_ns, std::string("study.end ") + (declined_  ? "declined"
+                                              : aborted_ ? "aborted reason=" + quoted(abort_reason_)
+                                                         : "completed"));
     return;
   }
   std::string text = "study.stage-begin " + stageLabel();
@@ -179,6 +180,19 @@ void StudyRunState::agree(int64_t t_ns) {
   if (stage() != StudyStageKind::kConsent || paused_ || choosing()) return;
   record(t_ns, "study.consent agreed=yes participant=" + participant_id_);
   nextStage(t_ns, "agreed");
+}
+
+void StudyRunState::decline(int64_t t_ns) {
+  if (stage() != StudyStageKind::kConsent || paused_ || choosing()) return;
+  declined_ = true;
+  record(t_ns, "study.consent agreed=no participant=" + participant_id_);
+  record(t_ns, "study.stage-end " + stageLabel() + " how=declined");
+  enterStage(stages_.size() - 1, t_ns);
+}
+
+void StudyRunState::finishTask(int64_t t_ns) {
+  if (stage() != StudyStageKind::kTask || paused_ || choosing() || closing()) return;
+  endPaintingStage(t_ns, "done");
 }
 
 void StudyRunState::proceed(int64_t t_ns) {
@@ -425,7 +439,8 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
   if (closing_) return "Finishing (" + *closing_ + "): lift the pen; the work is being saved.";
   switch (stage()) {
     case StudyStageKind::kConsent:
-      return "Waiting for your consent: read the text, then tap \"I agree\" (or press Space).";
+      return "Waiting for your consent: read the text, then tap \"I agree\" (or press Space), "
+             "or \"I do not agree\" to end the session here.";
     case StudyStageKind::kParticipant:
       return "Your participant code is " + participant_id_ +
              ". Tap \"Continue\" (or press Space) to begin.";
@@ -440,11 +455,12 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
     case StudyStageKind::kTask: {
       const double left = secondsLeft(t_ns);
       char text[160];
+      const char* done = stage() == StudyStageKind::kTask ? " Tap \"I'm done\" when finished." : "";
       if (left >= 0)
-        std::snprintf(text, sizeof text, "Paint with the pen. Time left %d:%02d.", int(left) / 60,
-                      int(left) % 60);
+        std::snprintf(text, sizeof text, "Paint with the pen. Time left %d:%02d.%s", int(left) / 60,
+                      int(left) % 60, done);
       else
-        std::snprintf(text, sizeof text, "Paint with the pen.");
+        std::snprintf(text, sizeof text, "Paint with the pen.%s", done);
       return text;
     }
     case StudyStageKind::kDemographics:
@@ -454,6 +470,7 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
     case StudyStageKind::kFreeText:
       return "Type a comment with the on-screen keys and tap OK (Skip if you have none).";
     case StudyStageKind::kDone:
+      if (declined_) return "You did not agree, so the session has ended. Thank you for your time.";
       return aborted_ ? "The session was stopped by the operator. Thank you."
                       : "All done. Thank you for taking part!";
   }
@@ -479,7 +496,10 @@ bool StudyRunState::applyInput(const StudyRunRecord& r, std::string* error) {
   };
   const bool na = m.isNa("value");
   if (m.event == "study.consent") {
-    agree(t);
+    if (m.get("agreed") == "no")
+      decline(t);
+    else
+      agree(t);
   } else if (m.event == "study.stage-end") {
     if (closing())
       closeStage(t);

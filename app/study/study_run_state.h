@@ -5,12 +5,13 @@
 // (app/shell/study_*_screen) only show it and feed it.
 //
 // Stages, in order (a stage the protocol leaves empty is left out):
-//   consent → participant (the pseudonymous id) → introduction → tutorial (one step at a time,
-//   each advancing when its check holds in the live session state) → free drawing → tasks (in
-//   the participant's counterbalanced order) → demographics → questionnaire (one Likert item at a
-//   time) → free text → done
+//   consent (agreed, or declined: the session ends there, nothing else recorded) → participant (the
+//   pseudonymous id) → introduction → tutorial (one step at a time, each advancing when its check
+//   holds in the live session state) → free drawing → tasks (in the participant's counterbalanced
+//   order) → demographics → questionnaire (one Likert item at a time) → free text → done
 // Timed stages: free drawing and tasks end when their time is up (the clock stops while paused
-// or while the operator chooses a reason). A painting stage that ends (time up, skipped,
+// or while the operator chooses a reason); a task also ends when the participant says they are
+// done (finishTask: end reason `done`). A painting stage that ends (time up, done, skipped,
 // aborted) first asks the runner to close it (`closing()`): the runner saves what the task says
 // once no stroke is open, then calls closeStage().
 //
@@ -83,10 +84,13 @@ class StudyRunState {
   int taskCount() const { return int(task_order_.size()); }
   bool done() const { return stage() == StudyStageKind::kDone; }
   bool aborted() const { return aborted_; }
+  // The participant declined consent: the session ended at the consent page.
+  bool declined() const { return declined_; }
   const std::string& abortReason() const { return abort_reason_; }
 
   // --- participant
   void agree(int64_t t_ns);    // consent: "I agree"
+  void decline(int64_t t_ns);  // consent: "I do not agree" (the session ends, declined)
   void proceed(int64_t t_ns);  // participant id and introduction: "Continue"
   // Tutorial: the live session state; true when the current step's check held and it advanced.
   bool observeTutorial(const TutorialState& state, int64_t t_ns);
@@ -105,6 +109,9 @@ class StudyRunState {
   // Free text: the current question's answer (empty: NA), then the next.
   void answerFreeText(const std::string& text, int64_t t_ns);
   int freeTextIndex() const { return free_text_index_; }
+
+  // Task: the participant's "I'm done" (the task closes with the end reason `done`).
+  void finishTask(int64_t t_ns);
 
   // --- time
   // Ends a timed painting stage whose time is up (it then waits in closing()).
@@ -189,6 +196,7 @@ class StudyRunState {
   bool paused_ = false;
   std::string pause_reason_;
   bool aborted_ = false;
+  bool declined_ = false;
   std::string abort_reason_;
   std::vector<std::optional<int>> items_;
   std::vector<std::optional<std::string>> fields_, free_texts_;

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -133,6 +134,18 @@ std::string deviceJsonIn(const std::string& session_json) {
   const size_t end = session_json.find("},\n", begin);
   if (end == std::string::npos) return "";
   return session_json.substr(begin, end + 1 - begin);
+}
+
+std::vector<std::string> participantSessionFolders(const std::string& data_dir,
+                                                   const std::string& id) {
+  std::vector<std::string> folders;
+  std::error_code ec;
+  const std::string prefix = id + "-";
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir, ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0 && entry.is_directory(ec))
+      folders.push_back(entry.path().string());
+  std::sort(folders.begin(), folders.end());
+  return folders;
 }
 
 int nextFreeParticipantNumber(const std::string& data_dir,

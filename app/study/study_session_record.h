@@ -7,7 +7,8 @@
 //   demographics.csv    participant, demographic fields, free-text answers, NA for missing
 //   tasks/<task id>.*   what each task's `save` asks for (volume_export.h, render_export.h)
 //
-// session.json fields: format (1), status ("running" | "completed" | "aborted"), abort_reason,
+// session.json fields: format (1), status ("running" | "completed" | "aborted" | "declined": the
+// participant did not consent, so no stage after consent ran), abort_reason,
 // protocol {name, version, file}, participant {id, number}, venue, operator, software {name,
 // version}, device {name, usb_vendor, usb_product, serial (what the device reports, PenSource::
 // serialNumber; null when it reports none, with serial_note saying why), x_max, y_max,
@@ -71,6 +72,11 @@ std::string formatStudySessionJson(const StudySessionInfo& info);
 // The "device" object of a session.json this build wrote (formatStudySessionJson writes it on
 // one line), as JSON text; "" when it is null or not there.
 std::string deviceJsonIn(const std::string& session_json);
+
+// The session folders of participant `id` in `data_dir` (`<id>-...`), as paths, sorted; empty
+// when it has none (or `data_dir` does not exist).
+std::vector<std::string> participantSessionFolders(const std::string& data_dir,
+                                                   const std::string& id);
 
 // The lowest participant number >= 1 whose id names no folder in `data_dir` yet (folders are
 // `<id>-...`).

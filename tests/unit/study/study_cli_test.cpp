@@ -71,7 +71,7 @@ TEST_F(StudyCli, ExportWritesEveryFileAndTheReplayedVolume) {
                                   " --out " + out + " --volumes --size 64x36");
   ASSERT_EQ(exported.status, 0) << exported.out;
   for (const char* file : {"traces.inkml", "samples.csv", "strokes.csv", "events.csv", "trials.csv",
-                           "volumes/p01-task1.vdb", "volumes/p01-task1.cbvol",
+                           "codebook.csv", "volumes/p01-task1.vdb", "volumes/p01-task1.cbvol",
                            "renders/p01-task1.exr", "renders/p01-task1.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir_ / "export" / file)) << file << "\n" << exported.out;
     EXPECT_NE(exported.out.find(file), std::string::npos) << "not reported: " << file;

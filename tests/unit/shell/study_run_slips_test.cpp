@@ -1,0 +1,292 @@
+// The study runner's screens at 1920x1080 as a participant meets them (EGL surfaceless,
+// llvmpipe, the bundled thesis protocol, default brush and mapping): consent declined with a pen
+// tap ends the session on a page that says so in English and Chinese, with session.json
+// "declined", nothing after consent in the journal, and the loop ending by itself; a task ended
+// by "I'm done" (a click asks, "Keep painting" goes back, a pen tap confirms) closes with the end
+// reason `done` in trials.csv, and the taps on the panel never paint.
+//
+// CB_KEEP_FRAMES=DIR writes each screen as slips_*.png for looking.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/core/config_paths.h"
+#include "app/render/image_io.h"
+#include "app/session/paint_session.h"
+#include "app/session/synthetic_session.h"
+#include "app/shell/study_run_screen.h"
+#include "app/study/session_trace.h"
+#include "app/study/trial_table.h"
+#include "drivers/replay/replay_pen_source.h"
+
+#include "tests/support/test_display.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 1920, kH = 1080;
+constexpr int64_t kSecond = 1'000'000'000;
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// One raw sample of the synthetic tablet at screen pixel (x, y).
+PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, bool tip,
+                   bool proximity) {
+  PenSample s;
+  s.t_ns = t_ns;
+  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / kW;
+  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / kH;
+  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
+  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
+  s.pressure_raw = tip ? int32_t(0.6f * float(tablet.pressure_max)) : 0;
+  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
+  s.distance_raw = tip ? 0 : 10;
+  s.distance = float(s.distance_raw) / float(tablet.distance_max);
+  s.buttons = tip ? kPenTip : 0u;
+  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
+  s.tool_id = proximity ? 0x802u : 0u;
+  s.in_proximity = proximity;
+  return s;
+}
+
+// The bundled protocol without tutorial and free drawing, one task of two minutes.
+StudyProtocol slipsProtocol() {
+  StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
+  p.tutorial.clear();
+  p.free_drawing = StudyStage{};
+  p.tasks.resize(1);
+  p.tasks[0].minutes = 2;
+  return p;
+}
+
+// The runner's screen on a test display, driven as FrameLoop drives it with the test's clock.
+struct Rig {
+  std::string dir, folder;
+  std::unique_ptr<Display> display;
+  VolumeRenderer renderer;
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  std::unique_ptr<ReplayPenSource> pen;
+  StudyProtocol protocol = slipsProtocol();
+  std::unique_ptr<StudyRunState> state;
+  std::unique_ptr<StudyRunScreen> screen;
+  int64_t now = 50 * kSecond;
+  long frame_count = 0;
+  std::string quit;
+
+  bool open(const std::string& name) {
+    dir = (std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()))).string();
+    std::filesystem::remove_all(dir);
+    folder = dir + "/data/P01-test";
+    std::filesystem::create_directories(folder);
+    std::string error;
+    display = test::openTestDisplay(kW, kH, &error);
+    EXPECT_TRUE(display) << error;
+    if (!display || !renderer.init(&error)) return false;
+    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
+                                             loadMappingConfig(configFile("mapping.toml")));
+    session->setQuietMapping(true);
+    EXPECT_TRUE(journal.open(folder + "/session.cbj"));
+    session->recordTo(&journal, now);
+    // The pen: the synthetic tablet, connected (the test hands its samples to the screen).
+    std::vector<JournalRecord> records(2);
+    records[0].type = JournalRecordType::kDevice;
+    records[0].payload = encodeDeviceInfo(tablet);
+    records[1].type = JournalRecordType::kPenSample;
+    records[1].payload = encodePenSample(sampleAt(tablet, 1, 1, 0, false, false));
+    ReplayOptions replay;
+    replay.realtime = false;
+    pen = std::make_unique<ReplayPenSource>(records, replay);
+    state = std::make_unique<StudyRunState>(protocol, 1, now);
+    StudyRunOptions options;
+    options.folder = folder;
+    options.end_seconds = 1.0;
+    options.info.protocol_name = protocol.name;
+    options.info.participant_id = state->participantId();
+    options.info.participant_number = 1;
+    options.info.anchor_monotonic_ns = now;
+    options.paint.config_dir = dir + "/config";
+    options.paint.state_dir = dir + "/state";
+    screen = std::make_unique<StudyRunScreen>(*display, renderer, *session, pen.get(), &journal,
+                                              *state, options);
+    return true;
+  }
+  ~Rig() {
+    if (!dir.empty()) std::filesystem::remove_all(dir);
+  }
+
+  void frames(int n, int64_t step_ns = 16'666'667, const std::string& keep = "") {
+    for (int i = 0; i < n && quit.empty(); ++i) {
+      now += step_ns;
+      FrameContext frame{*display, kW, kH, frame_count, now, double(step_ns) / 1e9};
+      screen->onPenSamples({});
+      quit = screen->update(frame);
+      if (!quit.empty()) return;
+      std::string error;
+      ASSERT_TRUE(screen->draw(frame, &error)) << error;
+      if (const char* out = std::getenv("CB_KEEP_FRAMES"); out && !keep.empty() && i == n - 1)
+        writePng(std::string(out) + "/slips_" + keep + ".png",
+                 readFramebufferRgba8(display->framebuffer(), kW, kH));
+      ASSERT_TRUE(display->present(&error)) << error;
+      ++frame_count;
+    }
+  }
+  void keep(const std::string& name) { frames(1, 16'666'667, name); }
+  void pen_samples(const std::vector<PenSample>& samples, size_t per_frame) {
+    for (size_t i = 0; i < samples.size(); i += per_frame) {
+      screen->onPenSamples(
+          std::vector<PenSample>(samples.begin() + long(i),
+                                 samples.begin() + long(std::min(samples.size(), i + per_frame))));
+      frames(1);
+    }
+    frames(2);
+  }
+  // A pen tap: hover in, tip down, lift, out, in the middle of the page's target.
+  void tap(StudyTargetAction action) {
+    const StudyTarget* t = screen->page().find(action);
+    ASSERT_TRUE(t) << "no target " << int(action) << " on the page";
+    const float x = 0.5f * (t->x0 + t->x1), y = 0.5f * (t->y0 + t->y1);
+    std::vector<PenSample> s;
+    int64_t at = now;
+    for (int i = 0; i < 3; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, true));
+    for (int i = 0; i < 4; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, true, true));
+    for (int i = 0; i < 2; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, true));
+    s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, false));
+    pen_samples(s, 3);
+  }
+  void click(StudyTargetAction action) {
+    const StudyTarget* t = screen->page().find(action);
+    ASSERT_TRUE(t) << "no target " << int(action) << " on the page";
+    DisplayEvent e;
+    e.x = 0.5f * (t->x0 + t->x1), e.y = 0.5f * (t->y0 + t->y1), e.button = 1;
+    e.kind = DisplayEvent::Kind::PointerDown;
+    screen->onPointer(e);
+    e.kind = DisplayEvent::Kind::PointerUp;
+    screen->onPointer(e);
+    frames(2);
+  }
+  bool shown(const std::string& part) const {
+    for (const UiLabel& l : screen->page().labels)
+      if (l.text.find(part) != std::string::npos) return true;
+    return false;
+  }
+  std::vector<std::string> markers() {
+    journal.sync();
+    std::vector<std::string> out;
+    for (const JournalRecord& r : readJournal(folder + "/session.cbj").records)
+      if (r.type == JournalRecordType::kMarker) out.emplace_back(r.text());
+    return out;
+  }
+};
+
+bool anyStartsWith(const std::vector<std::string>& lines, const std::string& start) {
+  for (const std::string& l : lines)
+    if (l.rfind(start, 0) == 0) return true;
+  return false;
+}
+
+TEST(StudyRunSlips, DecliningConsentEndsTheSessionCleanly) {
+  Rig rig;
+  if (!rig.open("cb_study_decline_")) return;
+  rig.keep("consent");
+  EXPECT_TRUE(rig.shown("I agree"));
+  EXPECT_TRUE(rig.shown("我同意"));
+  EXPECT_TRUE(rig.shown("I do not agree"));
+  EXPECT_TRUE(rig.shown("我不同意"));
+  const StudyTarget* agree = rig.screen->page().find(StudyTargetAction::kAgree);
+  const StudyTarget* decline = rig.screen->page().find(StudyTargetAction::kDecline);
+  ASSERT_TRUE(agree && decline);
+  EXPECT_FLOAT_EQ(decline->x1 - decline->x0, agree->x1 - agree->x0) << "as easy to hit";
+  EXPECT_FLOAT_EQ(decline->y1 - decline->y0, agree->y1 - agree->y0);
+  rig.tap(StudyTargetAction::kDecline);
+  ASSERT_TRUE(rig.state->done());
+  EXPECT_TRUE(rig.state->declined());
+  rig.keep("declined");
+  EXPECT_TRUE(rig.shown("Session ended"));
+  EXPECT_TRUE(rig.shown("did not agree"));
+  EXPECT_TRUE(rig.shown("您没有同意参加"));
+  EXPECT_TRUE(rig.screen->page().targets.empty()) << "nothing more to tap";
+  EXPECT_NE(readText(rig.folder + "/session.json").find("\"status\": \"declined\""),
+            std::string::npos)
+      << readText(rig.folder + "/session.json");
+  const std::vector<std::string> markers = rig.markers();
+  EXPECT_TRUE(anyStartsWith(markers, "study.consent agreed=no participant=P01"));
+  EXPECT_TRUE(anyStartsWith(markers, "study.end declined"));
+  EXPECT_FALSE(anyStartsWith(markers, "study.stage-begin stage=participant"));
+  EXPECT_EQ(rig.session->strokesMapped(), 0u) << "the tap never painted";
+  rig.frames(4, 400'000'000);  // the closing page shows end_seconds (1 s), then the loop ends
+  EXPECT_EQ(rig.quit, "consent declined");
+  EXPECT_FALSE(std::filesystem::exists(rig.folder + "/tasks")) << "no task data";
+  EXPECT_FALSE(std::filesystem::exists(rig.folder + "/questionnaire.csv")) << "no answer rows";
+  EXPECT_FALSE(std::filesystem::exists(rig.folder + "/demographics.csv"));
+}
+
+TEST(StudyRunSlips, ImDoneEndsTheTaskWithEndReasonDone) {
+  Rig rig;
+  if (!rig.open("cb_study_done_")) return;
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
+  rig.tap(StudyTargetAction::kContinue);
+  if (rig.state->stage() == StudyStageKind::kIntroduction) rig.tap(StudyTargetAction::kContinue);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kTask) << rig.state->waitingFor(rig.now);
+  rig.frames(2);
+
+  // One stroke on the canvas, then the task panel's "I'm done".
+  const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+  rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
+  ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  rig.keep("task");
+  EXPECT_TRUE(rig.shown("I'm done"));
+  EXPECT_TRUE(rig.shown("我画完了"));
+  EXPECT_TRUE(rig.shown("Tap \"I'm done\" when finished"));
+  // Clicked: the panel asks; "Keep painting" goes back to the task.
+  rig.click(StudyTargetAction::kDone);
+  rig.keep("task_done_asked");
+  EXPECT_TRUE(rig.shown("Finish this task now?"));
+  EXPECT_TRUE(rig.screen->page().find(StudyTargetAction::kDoneConfirm));
+  EXPECT_FALSE(rig.state->closing()) << "one tap does not end a task";
+  rig.click(StudyTargetAction::kDoneCancel);
+  EXPECT_TRUE(rig.screen->page().find(StudyTargetAction::kDone));
+  EXPECT_EQ(rig.state->stage(), StudyStageKind::kTask);
+  // With the pen: asked, then confirmed.
+  rig.frames(1, 30 * kSecond);
+  rig.tap(StudyTargetAction::kDone);
+  ASSERT_TRUE(rig.screen->page().find(StudyTargetAction::kDoneConfirm));
+  rig.tap(StudyTargetAction::kDoneConfirm);
+  rig.frames(3);
+  EXPECT_EQ(rig.session->strokesMapped(), 1u) << "the panel's taps never paint";
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kDemographics) << rig.state->waitingFor(rig.now);
+  rig.keep("after_done");
+
+  const std::vector<std::string> markers = rig.markers();
+  EXPECT_TRUE(
+      anyStartsWith(markers, "study.stage-closing stage=task task=cloud1 position=1 why=done"));
+  const std::vector<TrialRow> trials =
+      trialsOfSession(loadSessionTrace(rig.folder + "/session.cbj"));
+  ASSERT_EQ(trials.size(), 1u);
+  EXPECT_EQ(trials[0].end_reason, "done");
+  ASSERT_TRUE(trials[0].duration_s);
+  EXPECT_GT(*trials[0].duration_s, 30.0) << "the 30 s the test's clock ran";
+  EXPECT_LT(*trials[0].duration_s, 120.0) << "ended before its two minutes";
+  EXPECT_EQ(trials[0].strokes, 1);
+  EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol")) << "saved as at time up";
+
+  // On to the questionnaire (demographics skipped): the item in English over Chinese.
+  while (rig.state->stage() == StudyStageKind::kDemographics)
+    ASSERT_NO_FATAL_FAILURE(rig.tap(StudyTargetAction::kSkipField));
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kQuestionnaire);
+  rig.keep("questionnaire");
+  EXPECT_TRUE(rig.shown("使用钢笔风格绘制笔触容易使用。")) << "Q1 in Chinese, without the marks";
+  EXPECT_TRUE(rig.shown("非常同意"));
+}
+
+}  // namespace
+}  // namespace cb
