@@ -192,27 +192,10 @@ void readToolTables(Reader& r, const toml::table& root,
   }
 }
 
-// The family of one file and its models; appends entries when the whole file is sound.
-void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
-                std::vector<DeviceEntry>& out) {
-  r.onlyKeys(root, "", {"family", "model", "report_fixup", "tool_table"});
-  const toml::node* fn = root.get("family");
-  if (!fn) {
-    if (root.get("model") || root.get("report_fixup"))
-      r.fail(root.source(), "family", "missing (models and fix-ups belong to a [family])");
-    return;
-  }
-  const toml::table* f = fn->as_table();
-  if (!f) {
-    r.fail(fn->source(), "family", "expected a table");
-    return;
-  }
+// The family's identity: name, vendor, driver rules, protocol, tool table, idle timeout.
+void readFamilyIdentity(Reader& r, const toml::table* f, const DeviceDatabase& db,
+                        DeviceEntry& base) {
   const toml::source_region& fs = f->source();
-  r.onlyKeys(*f, "family.",
-             {"name", "vendor", "driver", "protocol", "tool_table", "idle_proximity_timeout_ms",
-              "mode_switch", "fuzz", "ranges"});
-  DeviceEntry base;
-  base.where = where(r.file(), fs);
   if (auto v = r.text(*f, "name", "family.", fs, true)) base.family = *v;
   if (auto v = r.integer(*f, "vendor", "family.", fs, 0, 0xFFFF, true))
     base.vendor = static_cast<uint16_t>(*v);
@@ -242,6 +225,11 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
   }
   if (auto v = r.integer(*f, "idle_proximity_timeout_ms", "family.", fs, 0, 10000, false))
     base.idle_proximity_timeout_ms = static_cast<int>(*v);
+}
+
+// The Intuos4 mode switch and the input core's fuzz per axis.
+void readModeSwitchAndFuzz(Reader& r, const toml::table* f, DeviceEntry& base) {
+  const toml::source_region& fs = f->source();
   if (const toml::table* m = r.table(*f, "mode_switch", "family.", fs, false)) {
     r.onlyKeys(*m, "family.mode_switch.", {"feature_report", "value"});
     if (auto v = r.integer(*m, "feature_report", "family.mode_switch.", m->source(), 1, 255, true))
@@ -260,6 +248,11 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
     get("distance", base.fuzz.distance);
     get("pressure", base.fuzz.pressure);
   }
+}
+
+// The Intuos4 protocol's ranges (a descriptor gives its own).
+void readIntuos4Ranges(Reader& r, const toml::table* f, DeviceEntry& base) {
+  const toml::source_region& fs = f->source();
   const toml::table* ranges =
       r.table(*f, "ranges", "family.", fs, base.protocol == PenProtocol::kIntuos4);
   if (ranges && base.protocol != PenProtocol::kIntuos4)
@@ -285,7 +278,10 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
     if (auto v = r.integer(*ranges, "distance_max", p, rs, 0, 65535, true))
       d.distance_max = static_cast<int32_t>(*v);
   }
+}
 
+// Fix-ups belong to the whole family.
+void readReportFixups(Reader& r, const toml::table& root, DeviceEntry& base) {
   // Fix-ups belong to the whole family.
   if (const toml::node* xn = root.get("report_fixup")) {
     const toml::array* xs = xn->as_array();
@@ -321,7 +317,12 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
       }
     }
   }
+}
 
+// The family's models (or, for a descriptor family with none, every product of the vendor).
+void readModels(Reader& r, const toml::table& root, const DeviceEntry& base,
+                std::vector<DeviceEntry>& out) {
+  const toml::source_region& fs = root.get("family")->source();
   const toml::node* mn = root.get("model");
   const toml::array* models = mn ? mn->as_array() : nullptr;
   if (mn && (!models || !models->is_array_of_tables())) {
@@ -363,6 +364,33 @@ void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
     std::snprintf(e.info.name, sizeof e.info.name, "%s", e.name.c_str());
     out.push_back(std::move(e));
   }
+}
+
+// The family of one file and its models; appends entries when the whole file is sound.
+void readFamily(Reader& r, const toml::table& root, const DeviceDatabase& db,
+                std::vector<DeviceEntry>& out) {
+  r.onlyKeys(root, "", {"family", "model", "report_fixup", "tool_table"});
+  const toml::node* fn = root.get("family");
+  if (!fn) {
+    if (root.get("model") || root.get("report_fixup"))
+      r.fail(root.source(), "family", "missing (models and fix-ups belong to a [family])");
+    return;
+  }
+  const toml::table* f = fn->as_table();
+  if (!f) {
+    r.fail(fn->source(), "family", "expected a table");
+    return;
+  }
+  r.onlyKeys(*f, "family.",
+             {"name", "vendor", "driver", "protocol", "tool_table", "idle_proximity_timeout_ms",
+              "mode_switch", "fuzz", "ranges"});
+  DeviceEntry base;
+  base.where = where(r.file(), f->source());
+  readFamilyIdentity(r, f, db, base);
+  readModeSwitchAndFuzz(r, f, base);
+  readIntuos4Ranges(r, f, base);
+  readReportFixups(r, root, base);
+  readModels(r, root, base, out);
 }
 
 }  // namespace
