@@ -331,18 +331,9 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
   resetUnpackState();
 }
 
-BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
-                                         const std::vector<glm::ivec3>& changed_bricks,
-                                         const VoxelBox& light_box,
-                                         const LightByteChanges* light_bytes,
-                                         std::vector<SlotChange>* changes) {
-  UpdateStats st;
-  auto t0 = std::chrono::steady_clock::now();
-  const glm::ivec3 bd = volume.brickDims();
-  if (fresh || bd != brick_dims_) {
-    fresh = true;
-    resetTables(bd);
-  }
+std::vector<glm::ivec3> BrickPool::slotCandidates(const Volume& volume, bool fresh,
+                                                  const std::vector<glm::ivec3>& changed_bricks) {
+  const glm::ivec3 bd = brick_dims_;
   // Candidates: bricks whose slot may have to change (be added, released or refreshed).
   std::vector<glm::ivec3> candidates;
   auto addCandidatesAround = [&](glm::ivec3 c) {
@@ -366,6 +357,16 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
   std::sort(candidates.begin(), candidates.end(), [](glm::ivec3 a, glm::ivec3 b) {
     return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
   });
+  return candidates;
+}
+
+void BrickPool::assignSlots(const Volume& volume, bool fresh,
+                            const std::vector<glm::ivec3>& candidates,
+                            std::vector<glm::ivec3>* upload, VoxelBox* indirection_changed,
+                            std::vector<SlotChange>* changes, UpdateStats* stats) {
+  const glm::ivec3 bd = brick_dims_;
+  UpdateStats& st = *stats;
+  std::vector<glm::ivec3>& to_upload = *upload;
   auto needsSlot = [&](glm::ivec3 b) {
     for (int dz = 0; dz <= 1; ++dz)
       for (int dy = 0; dy <= 1; ++dy)
@@ -375,8 +376,6 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         }
     return false;
   };
-  VoxelBox indirection_changed;
-  std::vector<glm::ivec3> to_upload;
   std::vector<glm::ivec3> to_add;
   for (glm::ivec3 b : candidates) {
     const size_t i = brickIndex(b);
@@ -395,7 +394,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
       }
       --slots_in_use_;
       ++st.slots_released;
-      indirection_changed = indirection_changed.unite({b, b + 1});
+      *indirection_changed = indirection_changed->unite({b, b + 1});
     } else if (needs) {
       to_upload.push_back(b);
     }
@@ -413,9 +412,16 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     free_slots_.pop_back();
     ++slots_in_use_;
     ++st.slots_added;
-    indirection_changed = indirection_changed.unite({b, b + 1});
+    *indirection_changed = indirection_changed->unite({b, b + 1});
     to_upload.push_back(b);
   }
+}
+
+void BrickPool::addLightReaders(const Volume& volume, const VoxelBox& light_box,
+                                const LightByteChanges* light_bytes,
+                                std::vector<glm::ivec3>* upload) {
+  const glm::ivec3 bd = brick_dims_;
+  std::vector<glm::ivec3>& to_upload = *upload;
   // The light: the slots reading a voxel whose 8-bit light changed (of c − {0,1}³ for each such
   // brick c, those its `readers` name); without that list, those whose voxels 16b … 16b +
   // kSlotTexels − 1 meet the light box.
@@ -447,10 +453,13 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
         }
     for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
   }
-  // Added slots not given (a full pool) are not uploaded.
-  std::erase_if(to_upload, [&](glm::ivec3 b) { return slot_of_brick_[brickIndex(b)].w == 0; });
-  st.pack_ms += msSince(t0);
+}
 
+void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
+                            const std::vector<glm::ivec3>& to_upload,
+                            std::vector<SlotChange>* changes, UpdateStats* stats) {
+  UpdateStats& st = *stats;
+  auto t0 = std::chrono::steady_clock::now();
   resetUnpackState();
   std::vector<uint8_t> staging;  // packed slots of one batch
   std::vector<uint8_t> before;   // a slot's bytes before the update (for `changes`)
@@ -519,6 +528,29 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     }
     st.upload_ms += msSince(t0);
   }
+}
+
+BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume& light, bool fresh,
+                                         const std::vector<glm::ivec3>& changed_bricks,
+                                         const VoxelBox& light_box,
+                                         const LightByteChanges* light_bytes,
+                                         std::vector<SlotChange>* changes) {
+  UpdateStats st;
+  auto t0 = std::chrono::steady_clock::now();
+  const glm::ivec3 bd = volume.brickDims();
+  if (fresh || bd != brick_dims_) {
+    fresh = true;
+    resetTables(bd);
+  }
+  const std::vector<glm::ivec3> candidates = slotCandidates(volume, fresh, changed_bricks);
+  VoxelBox indirection_changed;
+  std::vector<glm::ivec3> to_upload;
+  assignSlots(volume, fresh, candidates, &to_upload, &indirection_changed, changes, &st);
+  addLightReaders(volume, light_box, light_bytes, &to_upload);
+  // Added slots not given (a full pool) are not uploaded.
+  std::erase_if(to_upload, [&](glm::ivec3 b) { return slot_of_brick_[brickIndex(b)].w == 0; });
+  st.pack_ms += msSince(t0);
+  uploadSlots(volume, light, fresh, to_upload, changes, &st);
   st.slots_uploaded = int(to_upload.size()) - st.slots_unchanged;
   t0 = std::chrono::steady_clock::now();
   uploadIndirection(fresh ? VoxelBox{glm::ivec3(0), bd} : indirection_changed);

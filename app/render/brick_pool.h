@@ -170,6 +170,23 @@ class BrickPool {
   // on 3D texture size is reached.
   bool reserve(size_t slots, UpdateStats* stats);
   void uploadIndirection(const VoxelBox& bricks);
+  // update()'s steps. The bricks whose slot may change (added, released or refreshed): those
+  // whose slot reads an allocated (fresh) or changed brick, in a fixed z, y, x order.
+  std::vector<glm::ivec3> slotCandidates(const Volume& volume, bool fresh,
+                                         const std::vector<glm::ivec3>& changed_bricks);
+  // Releases the slots no brick needs, gives slots to the bricks that now need one (growing
+  // the pool), and lists the slots to re-pack.
+  void assignSlots(const Volume& volume, bool fresh, const std::vector<glm::ivec3>& candidates,
+                   std::vector<glm::ivec3>* upload, VoxelBox* indirection_changed,
+                   std::vector<SlotChange>* changes, UpdateStats* stats);
+  // Adds the slots that read light bytes which changed.
+  void addLightReaders(const Volume& volume, const VoxelBox& light_box,
+                       const LightByteChanges* light_bytes, std::vector<glm::ivec3>* upload);
+  // Packs and uploads the slots in batches, skipping those whose bytes did not change, and
+  // reports what rays read differently (`changes`).
+  void uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
+                   const std::vector<glm::ivec3>& to_upload, std::vector<SlotChange>* changes,
+                   UpdateStats* stats);
 
   glm::ivec3 brick_dims_{0};
   glm::ivec3 pool_texels_{0};               // pool texture size: capacity_ · kSlotTexels
