@@ -67,26 +67,6 @@ namespace {
 constexpr int kW = kShortStudyWidth, kH = kShortStudyHeight;
 constexpr int64_t kSecond = 1'000'000'000, kT0 = kShortStudyT0;
 
-// One raw sample of the synthetic tablet at screen pixel (x, y).
-PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, bool tip,
-                   bool proximity) {
-  PenSample s;
-  s.t_ns = t_ns;
-  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / kW;
-  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / kH;
-  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
-  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
-  s.pressure_raw = tip ? int32_t(0.6f * float(tablet.pressure_max)) : 0;
-  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
-  s.distance_raw = tip ? 0 : 10;
-  s.distance = float(s.distance_raw) / float(tablet.distance_max);
-  s.buttons = tip ? kPenTip : 0u;
-  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
-  s.tool_id = proximity ? 0x802u : 0u;
-  s.in_proximity = proximity;
-  return s;
-}
-
 class PenScript {
  public:
   explicit PenScript(const PenDeviceInfo& tablet) : tablet_(tablet) {}
@@ -94,11 +74,7 @@ class PenScript {
   void tap(const StudyTarget* target, int64_t t) {
     ASSERT_TRUE(target);
     const float x = 0.5f * (target->x0 + target->x1), y = 0.5f * (target->y0 + target->y1);
-    const int64_t dt = 5'000'000;
-    for (int i = 0; i < 3; ++i) add(sampleAt(tablet_, x, y, t += dt, false, true));
-    for (int i = 0; i < 4; ++i) add(sampleAt(tablet_, x, y, t += dt, true, true));
-    for (int i = 0; i < 2; ++i) add(sampleAt(tablet_, x, y, t += dt, false, true));
-    add(sampleAt(tablet_, x, y, t += dt, false, false));
+    for (const PenSample& s : penTapSamples(tablet_, x, y, kW, kH, t)) add(s);
   }
   // Reference stroke `which` (referencePaintStrokes) from `t`; returns when it ended.
   int64_t stroke(size_t which, int64_t t) {
@@ -162,6 +138,39 @@ void recordShortStudyPen(const StudyProtocol& protocol, const std::string& path)
   const std::vector<uint8_t> device = encodeDeviceInfo(tablet);
   ASSERT_TRUE(journal.append(JournalRecordType::kDevice, kT0, device.data(), device.size()));
   for (const PenSample& s : pen.samples()) ASSERT_TRUE(journal.appendPenSample(s));
+}
+
+PenSample tabletSampleAt(const PenDeviceInfo& tablet, float x, float y, int w, int h, int64_t t_ns,
+                         bool tip, bool proximity) {
+  PenSample s;
+  s.t_ns = t_ns;
+  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / w;
+  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / h;
+  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
+  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
+  s.pressure_raw = tip ? int32_t(0.6f * float(tablet.pressure_max)) : 0;
+  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
+  s.distance_raw = tip ? 0 : 10;
+  s.distance = float(s.distance_raw) / float(tablet.distance_max);
+  s.buttons = tip ? kPenTip : 0u;
+  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
+  s.tool_id = proximity ? 0x802u : 0u;
+  s.in_proximity = proximity;
+  return s;
+}
+
+std::vector<PenSample> penTapSamples(const PenDeviceInfo& tablet, float x, float y, int w, int h,
+                                     int64_t t_ns) {
+  std::vector<PenSample> s;
+  const int64_t dt = 5'000'000;
+  for (int i = 0; i < 3; ++i)
+    s.push_back(tabletSampleAt(tablet, x, y, w, h, t_ns += dt, false, true));
+  for (int i = 0; i < 4; ++i)
+    s.push_back(tabletSampleAt(tablet, x, y, w, h, t_ns += dt, true, true));
+  for (int i = 0; i < 2; ++i)
+    s.push_back(tabletSampleAt(tablet, x, y, w, h, t_ns += dt, false, true));
+  s.push_back(tabletSampleAt(tablet, x, y, w, h, t_ns += dt, false, false));
+  return s;
 }
 
 }  // namespace cb::test

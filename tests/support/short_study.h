@@ -8,8 +8,10 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "app/study/protocol.h"
+#include "drivers/core/pen_sample.h"
 
 namespace cb::test {
 
@@ -27,5 +29,13 @@ extern const char* const kShortStudyProtocol;
 // without pen samples. Written to `path` as a journal (a Device record and the samples); gtest
 // assertions on failure.
 void recordShortStudyPen(const StudyProtocol& protocol, const std::string& path);
+
+// One raw sample of `tablet` at pixel (x, y) of a w × h screen mapped over its whole area: tip
+// down at pressure 0.6, or hovering 10 units above; a pen (tool id 0x802) in proximity, or none.
+PenSample tabletSampleAt(const PenDeviceInfo& tablet, float x, float y, int w, int h, int64_t t_ns,
+                         bool tip, bool proximity);
+// A pen tap there, 5 ms a sample after t_ns: hover in (3), tip down (4), lifted (2), out (1).
+std::vector<PenSample> penTapSamples(const PenDeviceInfo& tablet, float x, float y, int w, int h,
+                                     int64_t t_ns);
 
 }  // namespace cb::test

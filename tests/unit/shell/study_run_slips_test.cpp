@@ -21,6 +21,7 @@
 #include "app/study/trial_table.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/short_study.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -34,26 +35,6 @@ std::string readText(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// One raw sample of the synthetic tablet at screen pixel (x, y).
-PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, bool tip,
-                   bool proximity) {
-  PenSample s;
-  s.t_ns = t_ns;
-  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / kW;
-  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / kH;
-  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
-  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
-  s.pressure_raw = tip ? int32_t(0.6f * float(tablet.pressure_max)) : 0;
-  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
-  s.distance_raw = tip ? 0 : 10;
-  s.distance = float(s.distance_raw) / float(tablet.distance_max);
-  s.buttons = tip ? kPenTip : 0u;
-  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
-  s.tool_id = proximity ? 0x802u : 0u;
-  s.in_proximity = proximity;
-  return s;
 }
 
 // The bundled protocol without tutorial and free drawing, one task of two minutes.
@@ -101,7 +82,8 @@ struct Rig {
     records[0].type = JournalRecordType::kDevice;
     records[0].payload = encodeDeviceInfo(tablet);
     records[1].type = JournalRecordType::kPenSample;
-    records[1].payload = encodePenSample(sampleAt(tablet, 1, 1, 0, false, false));
+    records[1].payload =
+        encodePenSample(test::tabletSampleAt(tablet, 1, 1, kW, kH, 0, false, false));
     ReplayOptions replay;
     replay.realtime = false;
     pen = std::make_unique<ReplayPenSource>(records, replay);
@@ -154,13 +136,7 @@ struct Rig {
     const StudyTarget* t = screen->page().find(action);
     ASSERT_TRUE(t) << "no target " << int(action) << " on the page";
     const float x = 0.5f * (t->x0 + t->x1), y = 0.5f * (t->y0 + t->y1);
-    std::vector<PenSample> s;
-    int64_t at = now;
-    for (int i = 0; i < 3; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, true));
-    for (int i = 0; i < 4; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, true, true));
-    for (int i = 0; i < 2; ++i) s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, true));
-    s.push_back(sampleAt(tablet, x, y, at += 5'000'000, false, false));
-    pen_samples(s, 3);
+    pen_samples(test::penTapSamples(tablet, x, y, kW, kH, now), 3);
   }
   void click(StudyTargetAction action) {
     const StudyTarget* t = screen->page().find(action);
