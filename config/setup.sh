@@ -35,6 +35,8 @@ packages=(
   systemd dpkg-dev lintian mmdebstrap
   # fleet monitoring: the kiosk's metrics scraped through node_exporter's textfile collector
   prometheus-node-exporter curl
+  # a study re-exported as a Slurm job array on a one-node Slurm (slow label)
+  slurmctld slurmd slurm-client munge
   # the BIDS validator of the study export test (npm's bids-validator, installed by the test into
   # the build folder; it runs on Debian 12's Node 18)
   nodejs

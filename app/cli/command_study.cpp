@@ -22,7 +22,9 @@
 #include "app/cli/args.h"
 #include "app/cli/commands.h"
 #include "app/cli/study_bids_export.h"
+#include "app/cli/study_export_files.h"
 #include "app/cli/study_frame_render.h"
+#include "app/cli/study_trace_export.h"
 #include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/mapping_config.h"
@@ -64,6 +66,7 @@ const char kStudyHelp[] =
     "usage: cloudbrush study export SESSION.cbj... --out DIR [--volumes] [--size WxH]\n"
     "                               [--bids DIR]\n"
     "                               [--protocol FILE.toml]\n"
+    "       cloudbrush study export --manifest FILE --out DIR [--shard I/N | --merge] ...\n"
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
     "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
     "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
@@ -97,6 +100,12 @@ const char kStudyHelp[] =
     "         --bids DIR writes the sessions as a BIDS dataset (--out then optional): per\n"
     "         participant and session beh/ (trials, events) and motion/ (the pen trace),\n"
     "         participants.tsv, sidecars describing every column (app/study/bids_dataset.h).\n"
+    "         --manifest FILE: the journals, one per line (# comments; relative to FILE's\n"
+    "         folder) instead of as arguments. --shard I/N exports only the I-th of N\n"
+    "         contiguous blocks of them (volumes and renders into DIR, the trace rows as\n"
+    "         parts under DIR/shards/I-of-N), for a job array (docs/study-on-slurm.md);\n"
+    "         --merge then joins every shard's parts into DIR's files, byte for byte what\n"
+    "         one run over the whole manifest writes, and removes DIR/shards.\n"
     "volume   a saved volume as OUT/NAME.vdb (OpenVDB fog volume, grid 'density') and\n"
     "         OUT/NAME.cbvol; --render adds OUT/NAME.exr and NAME.png from the reference camera.\n"
     "report   an HTML page that opens offline: Likert distributions per item, construct\n"
@@ -151,197 +160,73 @@ const char kStudyHelp[] =
     "         page shows (default 8).\n";
 
 int fail(const std::string& message, int code = 1) {
-  std::fprintf(stderr, "cloudbrush study: %s\n", message.c_str());
-  return code;
+  return studyFail(message, code);
 }
 
-bool parseSize(const std::string& text, int* width, int* height) {
-  int consumed = 0;
-  return std::sscanf(text.c_str(), "%dx%d%n", width, height, &consumed) == 2 &&
-         consumed == int(text.size()) && *width >= 1 && *height >= 1 && *width <= 16384 &&
-         *height <= 16384;
-}
-
-// An export file written through a stream: at a temporary beside `path`, renamed over it once
-// whole and on the disk (app/core/atomic_file.h).
-struct AtomicStream {
-  explicit AtomicStream(const std::string& path)
-      : file(path), out(file.tempPath(), std::ios::binary) {}
-  // Closes, checks and commits; false with *error naming the file.
-  bool commit(std::string* error) {
-    out.close();
-    if (!out) return *error = file.path() + ": write failed (disk full?)", false;
-    if (!file.commit(error)) return false;
-    std::printf("%s\n", file.path().c_str());
-    return true;
+// The journals `study export` is given: its arguments, or the lines of --manifest FILE.
+int exportJournals(Args& args, std::vector<std::string>* paths) {
+  const std::vector<std::string>& positional = args.positional();
+  const std::string manifest = args.get("manifest", "");
+  if (!manifest.empty()) {
+    if (positional.size() > 2)
+      return fail("export: give the journals as arguments or in --manifest FILE, not both", 2);
+    try {
+      *paths = readExportManifest(manifest);
+    } catch (const StudyInputError& e) {
+      return fail(e.what());
+    }
+    return 0;
   }
-  AtomicFileReplacement file;
-  std::ofstream out;
-};
-
-// Writes `path` with `write(stream)` atomically; false with a message naming the file.
-template <typename Write>
-bool writeFile(const std::string& path, Write write, std::string* error) {
-  AtomicStream file(path);
-  if (!file.out) return *error = path + ": cannot create", false;
-  write(file.out);
-  return file.commit(error);
-}
-
-int exportVolumeAndRender(const Volume& volume, const Camera& camera, const Light* light,
-                          const std::string& volume_dir, const std::string& render_dir,
-                          const std::string& stem, bool render, int width, int height) {
-  try {
-    const VolumeExport exported = exportVolume(volume, volume_dir, stem);
-    for (const std::string& path : exported.written) std::printf("%s\n", path.c_str());
-    if (!exported.note.empty())
-      std::fprintf(stderr, "cloudbrush study: %s\n", exported.note.c_str());
-    if (!render) return 0;
-    ImageRgbaF frame;
-    std::string error;
-    if (!renderStudyFrame(volume, camera, light, width, height, &frame, &error)) return fail(error);
-    for (const std::string& path : exportRender(frame, render_dir, stem))
-      std::printf("%s\n", path.c_str());
-  } catch (const std::exception& e) {
-    return fail(e.what());
-  }
-  return 0;
-}
-
-// The protocol file a study session's study.info names (when it is still there), else "".
-std::string protocolFileOf(const SessionTrace& trace) {
-  for (const TraceEvent& e : trace.events) {
-    StudySessionInfo info;
-    if (e.type == JournalRecordType::kMarker && parseStudyInfoMarker(e.text, &info))
-      return std::filesystem::exists(info.protocol_file) ? info.protocol_file : "";
-  }
-  return "";
-}
-
-// codebook.csv of `protocol_path` (empty: the bundled protocol). 0, or the exit status.
-int writeCodebook(const std::string& protocol_path, const std::string& path) {
-  const std::string source = protocol_path.empty() ? defaultStudyProtocolPath() : protocol_path;
-  StudyProtocol protocol;
-  try {
-    protocol = loadStudyProtocol(source);
-  } catch (const StudyProtocolError& e) {
-    return fail(std::string("export: codebook: ") + e.what());
-  }
-  std::fprintf(stderr, "cloudbrush study: codebook of the protocol %s\n", source.c_str());
-  std::string error;
-  if (!writeFile(
-          path, [&](std::ostream& s) { writeCodebookCsv(s, studyCodebook(protocol)); }, &error))
-    return fail(error);
+  if (positional.size() < 3)
+    return fail(
+        "export: expected one or more journals: study export SESSION.cbj... --out DIR "
+        "(or --manifest FILE)",
+        2);
+  paths->assign(positional.begin() + 2, positional.end());
+  for (const std::string& path : *paths)
+    if (!std::filesystem::exists(path)) return fail("journal '" + path + "' does not exist");
   return 0;
 }
 
 int runExport(Args& args) {
-  auto unknown = args.unknown({"help", "out", "volumes", "size", "bids", "protocol"});
+  auto unknown = args.unknown(
+      {"help", "out", "volumes", "size", "bids", "protocol", "manifest", "shard", "merge"});
   if (!unknown.empty()) return fail("export: unknown option " + unknown[0] + " (see --help)", 2);
-  const std::vector<std::string>& positional = args.positional();
-  if (positional.size() < 3)
-    return fail("export: expected one or more journals: study export SESSION.cbj... --out DIR", 2);
-  const std::string out = args.get("out", ""), bids = args.get("bids", "");
-  if (out.empty() && bids.empty()) return fail("export: --out DIR (or --bids DIR) is required", 2);
-  int width = 1280, height = 720;
-  if (!parseSize(args.get("size", "1280x720"), &width, &height))
+  TraceExportRequest request;
+  if (const int status = exportJournals(args, &request.journals)) return status;
+  request.out = args.get("out", "");
+  const std::string bids = args.get("bids", "");
+  if (request.out.empty() && bids.empty())
+    return fail("export: --out DIR (or --bids DIR) is required", 2);
+  if (!parseStudySize(args.get("size", "1280x720"), &request.width, &request.height))
     return fail("export: --size: expected WxH (1..16384 each)", 2);
-  const std::vector<std::string> paths(positional.begin() + 2, positional.end());
-  std::vector<std::string> ids;
-  for (const std::string& path : paths) {
-    if (!std::filesystem::exists(path)) return fail("journal '" + path + "' does not exist");
-    ids.push_back(sessionIdForJournal(path));
-    for (size_t k = 0; k + 1 < ids.size(); ++k)
-      if (ids[k] == ids.back())
-        return fail("two journals have the session id '" + ids.back() + "' (" + paths[k] + ", " +
-                    path + "); rename one");
+  const bool merge = args.has("merge");
+  if (args.has("shard")) {
+    ShardSpec spec;
+    std::string error;
+    if (!parseShardSpec(args.get("shard", ""), &spec, &error)) return fail("export: " + error, 2);
+    request.shard = spec;
+  }
+  if ((request.shard || merge) &&
+      (request.out.empty() || !bids.empty() || (request.shard && merge)))
+    return fail(
+        "export: --shard I/N and --merge take --out DIR, one at a time, and no --bids "
+        "(a BIDS dataset is written from the whole manifest in one run)",
+        2);
+  for (const std::string& path : request.journals) {
+    request.ids.push_back(sessionIdForJournal(path));
+    for (size_t k = 0; k + 1 < request.ids.size(); ++k)
+      if (request.ids[k] == request.ids.back())
+        return fail("two journals have the session id '" + request.ids.back() + "' (" +
+                    request.journals[k] + ", " + path + "); rename one");
   }
   if (!bids.empty()) {
-    const int status = exportBidsDataset(paths, ids, bids);
-    if (status == 1 || out.empty()) return status;
+    const int status = exportBidsDataset(request.journals, request.ids, bids);
+    if (status == 1 || request.out.empty()) return status;
   }
-  const bool volumes = args.has("volumes");
-  MappingConfig mapping;
-  BrushConfig brush;
-  if (volumes) {
-    const std::string mapping_path = configFile("mapping.toml");
-    try {
-      if (std::filesystem::exists(mapping_path)) mapping = loadMappingConfig(mapping_path);
-    } catch (const std::exception& e) {
-      return fail(e.what());
-    }
-    brush = loadDefaultBrushConfig();
-  }
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) return fail(out + ": cannot create the directory: " + ec.message());
-  const std::filesystem::path dir(out);
-  // One file per kind, written one session at a time so memory holds one session.
-  const std::string names[] = {"traces.inkml", "samples.csv", "strokes.csv", "events.csv",
-                               "trials.csv"};
-  std::vector<std::unique_ptr<AtomicStream>> files;
-  for (const std::string& name : names) {
-    files.push_back(std::make_unique<AtomicStream>((dir / name).string()));
-    if (!files.back()->out) return fail((dir / name).string() + ": cannot create");
-  }
-  std::ofstream &inkml = files[0]->out, &samples = files[1]->out, &strokes = files[2]->out,
-                &events = files[3]->out, &trials = files[4]->out;
-  std::vector<std::string> damaged;
-  std::string codebook_protocol = args.get("protocol", "");
-  beginInkml(inkml);
-  writeSamplesCsvHeader(samples);
-  writeStrokesCsvHeader(strokes);
-  writeEventsCsvHeader(events);
-  writeTrialsCsvHeader(trials);
-  for (size_t i = 0; i < paths.size(); ++i) {
-    if (paths.size() > 1)
-      std::fprintf(stderr, "cloudbrush study: %s (%zu of %zu)\n", paths[i].c_str(), i + 1,
-                   paths.size());
-    const JournalReadResult journal = readJournal(paths[i]);
-    if (journal.records.empty())
-      return fail(paths[i] + ": no journal records" +
-                  (journal.error.empty() ? "" : " (" + journal.error + ")"));
-    if (!journal.error.empty()) {
-      std::fprintf(stderr, "cloudbrush study: %s (exporting every whole record around it)\n",
-                   journal.error.c_str());
-      damaged.push_back(paths[i]);
-    }
-    try {
-      const SessionTrace trace = sessionTraceFromJournal(journal, paths[i], ids[i]);
-      if (codebook_protocol.empty()) codebook_protocol = protocolFileOf(trace);
-      writeInkmlSession(inkml, trace, i);
-      writeSamplesCsvRows(samples, trace);
-      writeStrokesCsvRows(strokes, trace);
-      writeEventsCsvRows(events, trace);
-      writeTrialsCsvRows(trials, trace);
-    } catch (const StudyInputError& e) {
-      return fail(e.what());
-    }
-    if (!volumes) continue;
-    const SessionReplay replay = replaySession(journal, brush, mapping);
-    for (const std::string& problem : replay.problems)
-      std::fprintf(stderr, "cloudbrush study: %s: %s\n", paths[i].c_str(), problem.c_str());
-    if (!replay.session) return fail(paths[i] + ": nothing could be replayed");
-    const PaintSession& session = *replay.session;
-    if (int status = exportVolumeAndRender(session.volume(), session.camera(), &session.light(),
-                                           (dir / "volumes").string(), (dir / "renders").string(),
-                                           ids[i], true, width, height);
-        status != 0)
-      return status;
-  }
-  endInkml(inkml);
-  std::string error;
-  for (auto& file : files)
-    if (!file->commit(&error)) return fail(error);
-  if (const int code = writeCodebook(codebook_protocol, (dir / "codebook.csv").string()))
-    return code;
-  // The exports hold every whole record, but a damaged journal lost the ones it skipped: say so
-  // in the exit status, as replay does.
-  if (!damaged.empty())
-    return fail(std::to_string(damaged.size()) + " journal(s) damaged (" + damaged[0] +
-                    (damaged.size() > 1 ? ", ..." : "") + "): the exports lack their skipped bytes",
-                3);
-  return 0;
+  request.volumes = args.has("volumes");
+  request.protocol = args.get("protocol", "");
+  return merge ? mergeStudyTraceShards(request) : exportStudyTraces(request);
 }
 
 int runVolume(Args& args) {
@@ -352,7 +237,7 @@ int runVolume(Args& args) {
   const std::string out = args.get("out", "");
   if (out.empty()) return fail("volume: --out DIR is required", 2);
   int width = 1280, height = 720;
-  if (!parseSize(args.get("size", "1280x720"), &width, &height))
+  if (!parseStudySize(args.get("size", "1280x720"), &width, &height))
     return fail("volume: --size: expected WxH (1..16384 each)", 2);
   const std::string& path = args.positional()[2];
   Volume volume(glm::ivec3(1));
@@ -408,7 +293,7 @@ int runReport(Args& args) {
       sessions.push_back(loadSessionTrace(positional[i]));
     const StudyReport report = computeStudyReport(answers, options, sessions);
     std::string error;
-    if (!writeFile(
+    if (!writeStudyFile(
             out,
             [&](std::ostream& s) {
               s << studyReportHtml(report, options, answers.scale_min, answers.scale_max);
@@ -866,7 +751,7 @@ int runStudySession(Args& args) {
 }  // namespace
 
 int commandStudy(int argc, char** argv) {
-  Args args(argc, argv, {"help", "volumes", "render", "vocabulary", "dry-run"});
+  Args args(argc, argv, {"help", "volumes", "render", "vocabulary", "dry-run", "merge"});
   if (args.has("help") || args.positional().size() < 2) {
     std::fputs(kStudyHelp, args.has("help") ? stdout : stderr);
     return args.has("help") ? 0 : 2;

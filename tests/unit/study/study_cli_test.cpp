@@ -1,6 +1,7 @@
 // The real binary: `cloudbrush study export --volumes` on a recorded journal writes every file of
 // its documented layout, and the exported volume is the replayed one (same checksum as
-// `cloudbrush replay`); `study report` and `study export` refuse bad input naming file and field.
+// `cloudbrush replay`); a manifest exported as 3 shards and merged gives the single run's files
+// byte for byte; `study report` and `study export` refuse bad input naming file and field.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,6 +23,7 @@
 #include "drivers/core/journal.h"
 
 #include "tests/support/command_run.h"
+#include "tests/unit/study/sharded_export.h"
 
 namespace cb {
 namespace {
@@ -139,6 +141,54 @@ TEST_F(StudyCli, BadInputIsRefusedNamingFileAndField) {
   const CommandRun unknown = run(std::string(CB_CLOUDBRUSH_BIN) + " study frobnicate");
   EXPECT_EQ(unknown.status, 2);
   EXPECT_NE(unknown.out.find("unknown action 'frobnicate'"), std::string::npos) << unknown.out;
+}
+
+// Five sessions of a manifest as 3 shards (one run each, as a job array's tasks would), then
+// the merge: the same files as one run over the whole manifest, byte for byte (.vdb by grid).
+// A missing shard, a stale split and a mismatched manifest are refused, naming what.
+TEST_F(StudyCli, AShardedExportMergesToTheSingleRunByteForByte) {
+  const std::string manifest = test::writeShardedStudy(dir_, 5);
+  const std::string bin = std::string(CB_CLOUDBRUSH_BIN) + " study export --manifest " + manifest;
+  const std::string options = " --volumes --size 64x36";
+  const CommandRun single = run(bin + " --out " + (dir_ / "single").string() + options);
+  ASSERT_EQ(single.status, 0) << single.out;
+  const std::string out = (dir_ / "sharded").string();
+  const CommandRun early = run(bin + " --out " + out + " --shard 2/3" + options);
+  ASSERT_EQ(early.status, 0) << early.out;
+  const CommandRun incomplete = run(bin + " --out " + out + " --merge");
+  EXPECT_EQ(incomplete.status, 1) << incomplete.out;
+  EXPECT_NE(incomplete.out.find("shards/1-of-3/shard.txt: missing (shard 1 of 3 has not finished)"),
+            std::string::npos)
+      << incomplete.out;
+  for (const char* shard : {"3/3", "1/3"}) {
+    const CommandRun part = run(bin + " --out " + out + " --shard " + shard + options);
+    ASSERT_EQ(part.status, 0) << shard << "\n" << part.out;
+  }
+  std::filesystem::create_directories(out + "/shards/1-of-2");
+  const CommandRun stale = run(bin + " --out " + out + " --merge");
+  EXPECT_EQ(stale.status, 1) << stale.out;
+  EXPECT_NE(stale.out.find("shards of two splits"), std::string::npos) << stale.out;
+  std::filesystem::remove_all(out + "/shards/1-of-2");
+  // A manifest of other sessions: the shards' records name theirs.
+  const std::string other = (dir_ / "other.txt").string();
+  std::ofstream(other) << "P01-20261129T070001Z/session.cbj\nP02-20261129T070002Z/session.cbj\n";
+  const CommandRun foreign = run(std::string(CB_CLOUDBRUSH_BIN) + " study export --manifest " +
+                                 other + " --out " + out + " --merge");
+  EXPECT_EQ(foreign.status, 1) << foreign.out;
+  EXPECT_NE(foreign.out.find("its sessions are not this manifest's"), std::string::npos)
+      << foreign.out;
+  const CommandRun merged = run(bin + " --out " + out + " --merge");
+  ASSERT_EQ(merged.status, 0) << merged.out;
+  EXPECT_FALSE(std::filesystem::exists(out + "/shards")) << "the parts are removed once merged";
+  test::expectSameExport(dir_ / "single", out);
+
+  const CommandRun bad = run(bin + " --out " + out + " --shard 3/2");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--shard: expected I/N"), std::string::npos) << bad.out;
+  std::ofstream(manifest, std::ios::app) << "P09-20261129T070009Z/session.cbj\n";
+  const CommandRun missing = run(bin + " --out " + out + " --shard 1/2");
+  EXPECT_EQ(missing.status, 1) << missing.out;
+  EXPECT_NE(missing.out.find(manifest + ":7: journal: '"), std::string::npos) << missing.out;
 }
 
 // A byte flipped in the middle of a journal: the export holds every sample around it, and
