@@ -32,7 +32,8 @@ namespace {
 // others. uclogic_params_init sends this id to uclogic_params_huion_init.
 constexpr uint16_t kVendor = 0x256C, kProduct = 0x006E;
 const char* const kManufacturer = "HUION";
-const char* const kProductName = "PenTablet";  // hid name "HUION PenTablet", as the device's
+// The HID name becomes "HUION PenTablet", the name the H610 Pro's descriptor dump carries.
+const char* const kProductName = "PenTablet";
 const char* const kSerial = "CBHIL0003";
 // String 201: the firmware name uclogic_params_huion_init reads with usb_string(); only
 // "HUION_T153_160607" (a transition firmware) keeps it from probing the v2 parameters. This
@@ -43,7 +44,8 @@ const char* const kFirmware = "CBHIL_EMULATED_V2";
 // langid 0x0409; at least 18 bytes, not all UTF-16 text): X and Y logical maxima (24 bit at
 // bytes 2 and 5), pressure maximum (16 bit at 8), resolution in lines per inch (16 bit at 10).
 // Both maxima above 65535, so every far position needs the high bytes the driver moves
-// (fragmented_hires); 5080 lpi as Huion's tablets have. The bytes after 12 (unknown to the
+// (fragmented_hires); 5080 lpi, as in the HS610 block hid-uclogic quotes
+// (uclogic_params_huion_init, touch_ring_model_params_buf). The bytes after 12 (unknown to the
 // driver) are zero.
 constexpr int32_t kXMax = 120000, kYMax = 75000, kPressureMax = 8191, kLpi = 5080;
 constexpr uint8_t kV2PenReportId = 8;  // UCLOGIC_RDESC_V2_PEN_ID (hid-uclogic-rdesc.h)
@@ -372,6 +374,7 @@ int runUclogicPhase(const std::string& fixtures) {
   check(evdev.connection() != PenConnection::kConnected,
         "uclogic: closing the GadgetFS device unplugs it (evdev: " + evdev.statusMessage() + ")");
   hidraw.poll(50, drain);
+  std::printf("CB-HIL FIGURE uclogic_phase_s %.3f\n", (nowNs() - t0) / 1e9);
   return check.failures;
 }
 
