@@ -6,7 +6,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 common=$here/../common
-build=${1:?build dir}; binary=${2:?vm binary}; fixtures=${3:?fixture dir}; phases=${4:-uhid,intuos4,gadget,latency,corpus}
+build=${1:?build dir}; binary=${2:?vm binary}; fixtures=${3:?fixture dir}; phases=${4:-uhid,intuos4,gadget,latency,corpus,uclogic}
 if ! command -v qemu-system-x86_64 >/dev/null; then
   echo "************************************************************************" >&2
   echo "*** SKIPPED: qemu-system-x86_64 is not installed; the virtual tablet   ***" >&2
@@ -22,6 +22,7 @@ out=$(
     --init "$here/init.sh" \
     --module evdev --module uinput --module hid --module uhid --module usbhid --module wacom \
     --module hid-generic --module dummy_hcd --module libcomposite --module usb_f_hid \
+    --module gadgetfs --module hid-uclogic \
     --binary "$binary:/hil/cb_tablet_hil_vm" \
     --binary "$libdir/libhidapi-hidraw.so.0" --binary "$libdir/libhidapi-libusb.so.0" \
     --file "$fixtures:/hil/fixtures" --file "$here/../../../config/devices:/hil/devices"

@@ -1,9 +1,10 @@
-// Runs INSIDE the qemu guest (Debian's stock kernel, its own wacom driver): makes tablets with
-// uhid and with a USB gadget on dummy_hcd, injects the pen script, and checks that the evdev
-// backend and both hidapi backends report what was injected. Prints "CB-HIL CHECK ok|FAIL ..."
+// Runs INSIDE the qemu guest (Debian's stock kernel, its own wacom and hid-uclogic drivers):
+// makes tablets with uhid and with USB gadgets on dummy_hcd (configfs and GadgetFS), injects
+// the pen script, and checks that the evdev backend and both hidapi backends report what was
+// injected. Prints "CB-HIL CHECK ok|FAIL ..."
 // lines, "CB-HIL FIGURE name value" lines and a final "CB-HIL RESULT PASS|FAIL".
 //
-//   cb_tablet_hil_vm FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]
+//   cb_tablet_hil_vm FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus] [uclogic]
 #include <fcntl.h>
 #include <grp.h>
 #include <linux/input.h>
@@ -35,6 +36,7 @@
 #include "tests/hil/tablet/hil_devices.h"
 #include "tests/hil/tablet/intuos4_handbuilt.h"
 #include "tests/hil/tablet/pen_script.h"
+#include "tests/hil/tablet/uclogic_phase.h"
 #include "tests/hil/tablet/uhid_device.h"
 #include "tests/hil/tablet/usb_gadget.h"
 
@@ -669,9 +671,10 @@ void phaseLatency() {
 int main(int argc, char** argv) {
   using namespace cb::hil;
   if (argc < 3) {
-    std::fprintf(stderr,
-                 "usage: %s FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr,
+        "usage: %s FIXTURE_DIR DEVICE_DIR [uhid] [intuos4] [gadget] [latency] [corpus] [uclogic]\n",
+        argv[0]);
     return 2;
   }
   const std::string fixtures = argv[1];
@@ -683,7 +686,7 @@ int main(int argc, char** argv) {
     hilDevices() = load.database;
   }
   std::vector<std::string> phases(argv + 3, argv + argc);
-  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency", "corpus"};
+  if (phases.empty()) phases = {"uhid", "intuos4", "gadget", "latency", "corpus", "uclogic"};
   for (const std::string& p : phases) {
     std::printf("CB-HIL PHASE %s\n", p.c_str());
     std::fflush(stdout);
@@ -697,6 +700,8 @@ int main(int argc, char** argv) {
       phaseLatency();
     else if (p == "corpus")
       g_failures += runCorpusPhase(fixtures);
+    else if (p == "uclogic")
+      g_failures += runUclogicPhase(fixtures);
     else
       check(false, "unknown phase " + p);
   }

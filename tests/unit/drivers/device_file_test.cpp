@@ -31,7 +31,13 @@ protocol = "descriptor"
 TEST(DeviceFiles, ShippedFilesLoadCleanly) {
   const DeviceFileLoad load = loadDeviceDirectory(std::string(CB_SOURCE_DIR) + "/config/devices");
   EXPECT_TRUE(load.errors.empty()) << load.errors.front();
-  EXPECT_EQ(load.database->files().size(), 13u);
+  EXPECT_EQ(load.database->files().size(), 14u);
+  // hid-uclogic's v2 pens: hid-input's rules on the driver's descriptor, and its 100 ms
+  // in-range timer (uclogic_inrange_timeout) as the idle timeout.
+  const DeviceEntry* huion = load.database->find(0x256C, 0x006E);
+  ASSERT_NE(huion, nullptr);
+  EXPECT_EQ(huion->rules, PenDriverRules::kHidInput);
+  EXPECT_EQ(huion->idle_proximity_timeout_ms, 100);
   // Intuos4: the model table that was compiled into the decoder, now data.
   const DeviceEntry* i4 = load.database->find(0x056A, 0x00BB);
   ASSERT_NE(i4, nullptr);
