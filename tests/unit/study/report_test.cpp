@@ -122,13 +122,13 @@ TEST(StudyReportOracle, ThesisAnswersGiveTheThesisFigures) {
     return summariseItem(answers, size_t(i));
   };
   const auto round2 = [](double v) { return std::round(v * 100) / 100; };
-  EXPECT_EQ(round2(item("Q19").mean), 4.82);
-  EXPECT_EQ(round2(item("Q13").mean), 4.06);
+  EXPECT_EQ(round2(*item("Q19").mean), 4.82);
+  EXPECT_EQ(round2(*item("Q13").mean), 4.06);
   EXPECT_EQ(round2(*item("Q13").sd), 0.83);
-  EXPECT_EQ(round2(item("Q15").mean), 4.00);
+  EXPECT_EQ(round2(*item("Q15").mean), 4.00);
   EXPECT_EQ(round2(*item("Q15").sd), 0.71);
-  EXPECT_EQ(round2(item("Q3").mean), 3.88);
-  EXPECT_EQ(round2(item("Q6").mean), 4.06);
+  EXPECT_EQ(round2(*item("Q3").mean), 3.88);
+  EXPECT_EQ(round2(*item("Q6").mean), 4.06);
   EXPECT_EQ(item("Q3").n, 17u);
   size_t total = 0;
   for (size_t c : item("Q3").counts) total += c;
@@ -191,7 +191,9 @@ TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
   const SessionFigures f = sessionFigures(handTrace());
   EXPECT_EQ(f.samples, 7u);
   EXPECT_EQ(f.strokes, 2u);
-  EXPECT_NEAR(f.duration_s, 0.060, 1e-12);
+  // Not a study session: its own first to last record (the first sample is 10 ms after t0).
+  EXPECT_EQ(f.outcome.status, "not-a-study");
+  EXPECT_NEAR(f.outcome.duration_s, 0.070, 1e-12);
   EXPECT_NEAR(f.tip_down_s, 0.020 + 0.010, 1e-12);
   ASSERT_EQ(f.pressure.size(), 5u);
   EXPECT_NEAR(f.pressure_t.front(), 0.020, 1e-12);
@@ -208,7 +210,12 @@ TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
   for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1))
     ++svgs;
   EXPECT_EQ(svgs, 1u + 2u * 2u);  // items; pressure and speed per session (no constructs given)
-  EXPECT_NE(html.find("<tr><td>hand</td><td>0.1</td><td>7</td><td>2</td>"), std::string::npos);
+  EXPECT_NE(
+      html.find(
+          "<tr><td class=\"t\">hand</td><td class=\"t\">NA</td><td class=\"t\">not-a-study</td>"
+          "<td>0.1</td><td>0.0</td>"
+          "<td>7</td><td>2</td>"),
+      std::string::npos);
 }
 
 TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
@@ -221,7 +228,7 @@ TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
   ASSERT_EQ(c.size(), 1u);
   const ConstructSummary s = summariseConstruct(loadLikertAnswers(kThesisAnswers), c[0]);
   // Per participant the mean of Q3 and Q6; overall mean = (Q3 mean + Q6 mean) / 2 here.
-  EXPECT_NEAR(s.mean, (66.0 / 17 + 69.0 / 17) / 2, 1e-12);
+  EXPECT_NEAR(*s.mean, (66.0 / 17 + 69.0 / 17) / 2, 1e-12);
   const auto error = [&](const std::string& text) {
     write(text);
     try {
