@@ -58,7 +58,11 @@ std::string tsvOf(const std::vector<BidsPhenotypeRow>& rows, const std::vector<s
 std::string toolJson(const StudyProtocol& protocol, const std::string& what) {
   return "{\"Description\": " +
          jsonString(what + " of the study protocol '" + protocol.name + "' version " +
-                    protocol.version + ", answered on the kiosk after the painting tasks") +
+                    protocol.version +
+                    ", answered on the kiosk after the painting tasks. In a statement, text "
+                    "between asterisks (*...*) is the emphasis shown to the participant in "
+                    "bold; each answer is a level of the scale, n/a when skipped or never "
+                    "reached") +
          "}";
 }
 

@@ -60,8 +60,7 @@ std::string likertStackedBarsSvg(const std::vector<ItemSummary>& items, int scal
     }
     svg += "<text x=\"" + num(label_w + bar_w + 8) + "\" y=\"" + num(y + 14) +
            "\">n=" + std::to_string(item.n) +
-           (item.mean ? " mean " + num(*item.mean) : std::string(" mean NA")) +
-           "</text>\n";
+           (item.mean ? " mean " + num(*item.mean) : std::string(" mean NA")) + "</text>\n";
   }
   return svg + "</svg>\n";
 }
