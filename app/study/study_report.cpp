@@ -30,7 +30,9 @@ void measureSessionStrokes(const SessionTrace& trace, SessionFigures* f) {
   for (const StrokeMeasures& m : strokes) {
     f->tip_down_s += m.duration_s;
     tip_down += m.sample_count;
-    if (!m.speed_mm_s) continue;
+    // A tap on the runner's pages or a dab in place has no speed to speak of: only strokes
+    // that moved enter the speed figures (else a session of button taps has a median of 0).
+    if (!m.speed_mm_s || m.path_length_mm <= 0) continue;
     f->stroke_start_s.push_back(m.start_s);
     f->stroke_speed.push_back(*m.speed_mm_s);
     with_speed.push_back(&m);

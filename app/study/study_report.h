@@ -46,8 +46,9 @@ struct SessionFigures {
   size_t samples = 0, strokes = 0;
   double tip_down_s = 0;                     // summed stroke durations
   std::vector<double> pressure_t, pressure;  // tip-down samples (at most ~2000, evenly kept)
-  std::vector<double> stroke_start_s, stroke_speed;  // per stroke with a speed (mm/s)
-  std::optional<RobustSummary> speed;                // of stroke_speed
+  // Per stroke that moved (path length > 0: taps and dabs left out), its mean speed (mm/s).
+  std::vector<double> stroke_start_s, stroke_speed;
+  std::optional<RobustSummary> speed;  // of stroke_speed
   std::vector<StrokeOutlier> speed_outliers;
   std::vector<TrialRow> trials;  // trials.csv's rows
   FrameTimingStats timing;       // from the journal's Frame records (none in older journals)

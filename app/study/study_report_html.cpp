@@ -88,7 +88,8 @@ std::string setApartSection(const StudyReport& report) {
   if (report.set_apart.empty()) return "";
   std::string html =
       "<h2>Set apart</h2>\n<p>Not counted as participants: their answers are left out of every "
-      "statistic above and below (their sessions' figures are shown under Sessions).</p>\n"
+      "questionnaire statistic below (their trials and session figures are still shown under "
+      "Tasks and Sessions).</p>\n"
       "<table><tr><th>participant</th><th>session</th><th>why</th></tr>\n";
   for (const SetApartParticipant& p : report.set_apart)
     html += "<tr>" + cell(p.participant) + cell(p.session.empty() ? "–" : p.session) + cell(p.why) +
@@ -223,7 +224,8 @@ std::string sessionSection(const StudyReport& report) {
       "<h2>Sessions</h2>\n<p>Duration is the session's own clock, from the runner's start "
       "record to its end record (a journal that is not a study session: first to last record), "
       "less the time a restarted runner was down. Stroke speed is path length / duration per "
-      "stroke; median and quartiles resist a single artefact, which is named below its chart.</p>"
+      "stroke that moved (taps and dabs left out); median and quartiles resist a single "
+      "artefact, which is named below its chart.</p>"
       "\n" +
       sessionTable(report);
   for (const SessionFigures& s : report.sessions) html += sessionCharts(s);

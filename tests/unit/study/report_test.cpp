@@ -218,6 +218,24 @@ TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
       std::string::npos);
 }
 
+TEST(StudyReportSessions, TapsHaveNoSpeedAndDoNotPullTheMedianDown) {
+  SessionTrace trace = handTrace();
+  // The last stroke lifts; then three taps in place (two tip-down samples each, 10 ms apart),
+  // as on the runner's pages.
+  for (int i = 0; i < 1 + 3 * 3; ++i) {
+    PenSample s = trace.samples.back();
+    s.t_ns += 10'000'000;
+    s.buttons = i % 3 == 0 ? 0u : uint32_t(kPenTip);
+    trace.samples.push_back(s);
+    trace.sample_records.push_back(trace.sample_records.size());
+  }
+  const SessionFigures f = sessionFigures(trace);
+  EXPECT_EQ(f.strokes, 5u);
+  ASSERT_EQ(f.stroke_speed.size(), 2u) << "the two strokes that moved";
+  ASSERT_TRUE(f.speed.has_value());
+  EXPECT_NEAR(f.speed->median, (300.0 + 300.0) / 2, 1e-9);
+}
+
 TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("cb_constructs_" + std::to_string(::getpid()) + ".toml"))
