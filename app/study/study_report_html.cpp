@@ -208,8 +208,9 @@ std::string sessionCharts(const SessionFigures& s) {
   for (size_t i = 0; i < s.stroke_speed.size(); ++i)
     if (std::find(beyond.begin(), beyond.end(), i) == beyond.end())
       top = std::max(top, s.stroke_speed[i]);
-  html += scatterSvg(s.stroke_start_s, s.stroke_speed, "mean speed per stroke", "mm/s", top, beyond,
-                     titles);
+  // 10 % headroom, so the fastest ordinary stroke does not sit on the frame.
+  html += scatterSvg(s.stroke_start_s, s.stroke_speed, "mean speed per stroke", "mm/s", top * 1.1,
+                     beyond, titles);
   if (s.speed_outliers.empty()) return html;
   html += "<p>Outliers beyond Tukey's outer fence (" + fixed(s.speed->high_fence, 1) +
           " mm/s = Q3 + 3·IQR), drawn as red marks at the top, off the chart's scale:</p>\n<ul>";
@@ -241,7 +242,8 @@ std::string studyReportHtml(const StudyReport& report, const StudyReportOptions&
       htmlEscape(options.title) +
       "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:1em auto;padding:0 1em}"
       "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;"
-      "text-align:right}td:first-child,th:first-child,td.t{text-align:left}.problem{color:#a00}"
+      "text-align:right}td:first-child,th:first-child,td.t{text-align:left}.problem{color:#a00}pre{"
+      "white-space:pre-wrap}"
       "</style></head><body>\n";
   html += "<h1>" + htmlEscape(options.title) + "</h1>\n";
   html +=
