@@ -123,7 +123,8 @@ std::string taskSummaryTable(const StudyReport& report) {
 std::string trialTable(const StudyReport& report) {
   std::string html =
       "<table><tr><th>participant</th><th>session</th><th>task</th><th>order</th>"
-      "<th>onset (s)</th><th>duration (s)</th><th>ended</th><th>strokes</th><th>erases</th>"
+      "<th>onset (s after the session's start)</th><th>duration "
+      "(s)</th><th>ended</th><th>strokes</th><th>erases</th>"
       "<th>undos</th></tr>\n";
   for (const SessionFigures& s : report.sessions)
     for (const TrialRow& t : s.trials) {
@@ -256,6 +257,11 @@ std::string studyReportHtml(const StudyReport& report, const StudyReportOptions&
       ".." + std::to_string(scale_max) +
       " scale. Means and sample standard deviations (n − 1); missing answers are left out, and an "
       "item nobody answered has the mean NA.</p>\n";
+  if (report.sessions.empty())
+    html +=
+        "<p>No session journals were given, so who completed a session is not known here: only "
+        "participants who answered no item are set apart. Give the sessions' journals to set "
+        "aborted and declined sessions apart too.</p>\n";
   html += setApartSection(report);
   html += "<h2>Answers per item</h2>\n" + likertStackedBarsSvg(report.items, scale_min) +
           itemTable(report, scale_min);

@@ -236,6 +236,27 @@ TEST(StudyReportSessions, TapsHaveNoSpeedAndDoNotPullTheMedianDown) {
   EXPECT_NEAR(f.speed->median, (300.0 + 300.0) / 2, 1e-9);
 }
 
+TEST(StudyReportOracle, WithoutSessionsARowOfOnlyNAIsSetApartAndAnUnansweredItemIsNA) {
+  const LikertAnswers answers = parse("participant,Q1,Q2\nP1,5,NA\nP2,NA,NA\nP3,3,NA\n");
+  StudyReportOptions options;
+  options.constructs = {{"second", {"Q2"}}, {"missing", {"Q9"}}};
+  const StudyReport report = computeStudyReport(answers, options);
+  EXPECT_EQ(report.participants, 2u);
+  ASSERT_EQ(report.set_apart.size(), 1u);
+  EXPECT_EQ(report.set_apart[0].participant, "P2");
+  EXPECT_EQ(report.set_apart[0].why, "answered no item");
+  EXPECT_FALSE(report.items[1].mean.has_value());
+  ASSERT_EQ(report.constructs.size(), 2u);
+  EXPECT_FALSE(report.constructs[0].mean.has_value());
+  EXPECT_EQ(report.constructs[1].missing_items, std::vector<std::string>({"Q9"}));
+  const std::string html = studyReportHtml(report, options, 1, 5);
+  EXPECT_NE(html.find("<td>Q2</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td>"
+                      "<td>NA</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("missing: the answers have no Q9."), std::string::npos);
+  EXPECT_EQ(html.find(">0.00<"), std::string::npos) << "no mean of 0.00";
+}
+
 TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("cb_constructs_" + std::to_string(::getpid()) + ".toml"))
