@@ -69,7 +69,8 @@ const char kStudyHelp[] =
     "       cloudbrush study export --manifest FILE --out DIR [--shard I/N | --merge] ...\n"
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
     "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
-    "                               [--constructs FILE.toml] [--pair Q3,Q6] [--title TEXT]\n"
+    "                               [--constructs FILE.toml | --protocol FILE.toml]\n"
+    "                               [--pair Q3,Q6] [--title TEXT]\n"
     "       cloudbrush study check [PROTOCOL.toml] [--vocabulary]\n"
     "       cloudbrush study withdraw --data DIR --participant ID [--key-file FILE] [--dry-run]\n"
     "       cloudbrush study run [PROTOCOL.toml] [--data-dir DIR] [--participant N] [--venue ID]\n"
@@ -108,12 +109,16 @@ const char kStudyHelp[] =
     "         one run over the whole manifest writes, and removes DIR/shards.\n"
     "volume   a saved volume as OUT/NAME.vdb (OpenVDB fog volume, grid 'density') and\n"
     "         OUT/NAME.cbvol; --render adds OUT/NAME.exr and NAME.png from the reference camera.\n"
-    "report   an HTML page that opens offline: Likert distributions per item, construct\n"
-    "         summaries (--constructs FILE.toml, see app/study/construct_definitions.h;\n"
-    "         default: the questionnaire's Appendix C sections whose items are all present), the\n"
-    "         paired one-tailed t-test of --pair (default Q3,Q6: the 2D vs 3D brush ratings,\n"
-    "         thesis §7.7.2), and per-session pressure and speed when journals are given.\n"
-    "         ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n"
+    "report   an HTML page that opens offline: Likert distributions per item (NA where nobody\n"
+    "         answered), construct summaries (every construct of the protocol: --protocol\n"
+    "         FILE, else the one the first session names, else the bundled one; or\n"
+    "         --constructs FILE.toml, see app/study/construct_definitions.h), the paired\n"
+    "         one-tailed t-test of --pair (default Q3,Q6: the 2D vs 3D brush ratings, thesis\n"
+    "         §7.7.2); when journals are given, per-task times from their trials and per\n"
+    "         session its status, duration on the session's clock, pressure and stroke speed\n"
+    "         (median, IQR, outliers named). Participants whose sessions were aborted,\n"
+    "         declined or unfinished, and those who answered nothing, are set apart, not\n"
+    "         counted. ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n"
     "check    reads a study protocol (default: the bundled config/study/thesis_2014.toml;\n"
     "         format: app/study/protocol.h) and prints a summary: stages, tutorial steps and\n"
     "         their checks, tasks, the task order of each participant over one cycle, the\n"
@@ -221,7 +226,8 @@ int runExport(Args& args) {
                     request.journals[k] + ", " + path + "); rename one");
   }
   if (!bids.empty()) {
-    const int status = exportBidsDataset(request.journals, request.ids, bids);
+    const int status =
+        exportBidsDataset(request.journals, request.ids, bids, args.get("protocol", ""));
     if (status == 1 || request.out.empty()) return status;
   }
   request.volumes = args.has("volumes");
@@ -251,8 +257,26 @@ int runVolume(Args& args) {
                                width, height);
 }
 
+// The report's constructs: a --constructs file, else every construct of the study protocol
+// (--protocol, else the one the first session names, else the bundled one). Throws on bad input.
+void chooseReportConstructs(Args& args, const std::vector<SessionTrace>& sessions,
+                            StudyReportOptions* options) {
+  if (args.has("constructs")) {
+    options->constructs = loadConstructDefinitions(*args.get("constructs"));
+    options->constructs_source = "Constructs declared in " + *args.get("constructs");
+    return;
+  }
+  std::string path = args.get("protocol", "");
+  if (path.empty() && !sessions.empty()) path = protocolFileOf(sessions.front());
+  if (path.empty()) path = defaultStudyProtocolPath();
+  const StudyProtocol protocol = loadStudyProtocol(path);
+  for (const ProtocolConstruct& c : protocol.constructs)
+    options->constructs.push_back({c.name, c.items});
+  options->constructs_source = "Constructs of the study protocol " + path;
+}
+
 int runReport(Args& args) {
-  auto unknown = args.unknown({"help", "out", "constructs", "pair", "title"});
+  auto unknown = args.unknown({"help", "out", "constructs", "pair", "title", "protocol"});
   if (!unknown.empty()) return fail("report: unknown option " + unknown[0] + " (see --help)", 2);
   const std::vector<std::string>& positional = args.positional();
   if (positional.size() < 3)
@@ -270,27 +294,11 @@ int runReport(Args& args) {
     options.paired_second = pair->substr(comma + 1);
   }
   try {
-    options.constructs = args.has("constructs") ? loadConstructDefinitions(*args.get("constructs"))
-                                                : appendixCSections();
-    options.constructs_source =
-        args.has("constructs")
-            ? "Constructs declared in " + *args.get("constructs")
-            : "Constructs: the questionnaire's own sections (thesis Appendix C), not the "
-              "constructs of the thesis's Table 7.3, whose items the thesis does not give";
     const LikertAnswers answers = loadLikertAnswers(positional[2]);
-    if (!args.has("constructs")) {
-      // The default sections apply only when the answers have the questionnaire's items.
-      std::vector<ConstructDefinition> present;
-      for (const ConstructDefinition& c : options.constructs) {
-        bool all = true;
-        for (const std::string& id : c.items) all = all && answers.itemIndex(id) >= 0;
-        if (all) present.push_back(c);
-      }
-      options.constructs = present;
-    }
     std::vector<SessionTrace> sessions;
     for (size_t i = 3; i < positional.size(); ++i)
       sessions.push_back(loadSessionTrace(positional[i]));
+    chooseReportConstructs(args, sessions, &options);
     const StudyReport report = computeStudyReport(answers, options, sessions);
     std::string error;
     if (!writeStudyFile(
@@ -300,6 +308,10 @@ int runReport(Args& args) {
             },
             &error))
       return fail(error);
+    for (const ConstructSummary& c : report.constructs)
+      for (const std::string& id : c.missing_items)
+        std::fprintf(stderr, "cloudbrush study: report: construct '%s': no item %s in %s\n",
+                     c.definition.name.c_str(), id.c_str(), positional[2].c_str());
     if (!report.paired_problem.empty())
       std::fprintf(stderr, "cloudbrush study: %s\n", report.paired_problem.c_str());
   } catch (const std::exception& e) {

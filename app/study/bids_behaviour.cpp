@@ -5,99 +5,20 @@
 #include <vector>
 
 #include "app/study/bids_text.h"
+#include "app/study/export_columns.h"
 #include "app/study/study_marker_text.h"
 #include "app/study/trial_table.h"
 
 namespace cb {
 namespace {
 
-const char kEndReasonText[] =
-    "How the task ended: time-up (its time limit passed), done (the "
-    "participant tapped that they were done), skipped or aborted (by "
-    "the operator), other; n/a when the recording ends inside the task";
-
-const std::vector<std::pair<std::string, std::string>> kEndReasons = {
-    {"time-up", "the task's time limit passed"},
-    {"done", "the participant said they were done"},
-    {"skipped", "the operator skipped the task (reason in the journal)"},
-    {"aborted", "the operator aborted the session during the task"},
-    {"other", "another reason the runner recorded"}};
-
 const std::vector<BidsColumn>& behColumns() {
-  static const std::vector<BidsColumn> columns = {
-      {"participant", "The participant's pseudonymous code in the study (the runner's id)", "", {}},
-      {"session", "The session's id: the name of its folder, <participant>-<UTC start>", "", {}},
-      {"task", "The id of the painting task in the study protocol", "", {}},
-      {"order",
-       "The task's position in the participant's counterbalanced task order (1 = first)",
-       "",
-       {}},
-      {"onset_s", "When the task began, after the recording's first record", "s", {}},
-      {"onset_monotonic_ns",
-       "When the task began, on the recording computer's monotonic clock",
-       "ns",
-       {}},
-      {"onset_wall_clock_unix_ns",
-       "When the task began, as UTC wall-clock time since 1970-01-01 (from the session's "
-       "monotonic-to-wall-clock anchor); n/a when the recording has no anchor",
-       "ns",
-       {}},
-      {"duration_s",
-       "How long the task ran on the stage clock, which does not count operator pauses nor the "
-       "time a restarted runner was down; n/a when the task never closed",
-       "s",
-       {}},
-      {"end_reason", kEndReasonText, "", kEndReasons},
-      {"strokes",
-       "Strokes the painter mapped into the cloud in paint mode during the task",
-       "",
-       {}},
-      {"erases", "Erasing strokes and vacuum cuts during the task", "", {}},
-      {"undos", "Undo commands during the task", "", {}}};
+  static const std::vector<BidsColumn> columns = bidsColumnsOf(trialColumns());
   return columns;
 }
 
-const std::vector<BidsColumn>& eventColumns() {
-  static const std::vector<BidsColumn> columns = {
-      {"onset",
-       "When the event began, after the recording's first record (the pen motion "
-       "recording's latency 0)",
-       "s",
-       {}},
-      {"duration",
-       "Recording time from the event's beginning to its end, operator pauses included; n/a "
-       "when the recording ends before it does",
-       "s",
-       {}},
-      {"trial_type",
-       "The stage of the study session (a row per stage, in the protocol's order), or an "
-       "operator pause",
-       "",
-       {{"consent", "the consent page"},
-        {"participant", "the participant's code is entered"},
-        {"introduction", "the introduction page"},
-        {"tutorial", "the guided tutorial on the painter"},
-        {"free-drawing", "free drawing on the painter"},
-        {"task", "a painting task (the task column names it)"},
-        {"demographics", "the demographic questions"},
-        {"questionnaire", "the Likert questionnaire"},
-        {"free-text", "the free-text questions"},
-        {"pause", "the operator paused the session (the stage clock stops)"}}},
-      {"task", "For task rows, the task's id in the study protocol", "", {}},
-      {"order",
-       "For task rows, the task's position in the participant's task order (1 = first)",
-       "",
-       {}},
-      {"active_duration",
-       "For task rows, how long the task ran on the stage clock (operator pauses and a "
-       "restarted runner's downtime not counted)",
-       "s",
-       {}},
-      {"end_reason", kEndReasonText, "", kEndReasons},
-      {"strokes", "For task rows, strokes mapped in paint mode", "", {}},
-      {"erases", "For task rows, erasing strokes and vacuum cuts", "", {}},
-      {"undos", "For task rows, undo commands", "", {}},
-      {"operator_reason", "For pause rows, the reason the operator chose", "", {}}};
+const std::vector<BidsColumn>& eventTsvColumns() {
+  static const std::vector<BidsColumn> columns = bidsColumnsOf(bidsEventColumns());
   return columns;
 }
 
@@ -177,13 +98,13 @@ std::string bidsBehJson() {
 }
 
 std::string bidsEventsTsv(const SessionTrace& trace) {
-  std::string out = bidsTsvHeader(eventColumns());
+  std::string out = bidsTsvHeader(eventTsvColumns());
   for (const EventRow& r : sessionEvents(trace)) out += eventLine(trace, r);
   return out;
 }
 
 std::string bidsEventsJson() {
-  return bidsColumnsJson(eventColumns());
+  return bidsColumnsJson(eventTsvColumns());
 }
 
 }  // namespace cb

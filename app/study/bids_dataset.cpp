@@ -39,8 +39,10 @@ const char kReadme[] =
     "  *_channels.tsv describes each column. The events are repeated beside the recording.\n\n"
     "All times are seconds after the session journal's first record. participants.tsv holds\n"
     "the demographic answers; sub-*/sub-*_sessions.tsv the UTC start, protocol, venue and\n"
-    "operator of each session. The questionnaire answers are in the study's questionnaire.csv\n"
-    "files, not in this dataset.\n";
+    "operator of each session. phenotype/questionnaire.tsv holds the Likert answers (a row\n"
+    "per session; n/a: skipped or never reached) and phenotype/feedback.tsv the free-text\n"
+    "comments; their JSON sidecars give each question in English and Chinese, its scale\n"
+    "and the constructs it belongs to.\n";
 
 struct SessionFacts {
   std::string number, protocol, protocol_version, venue, operator_initials, ended;
@@ -106,7 +108,8 @@ const std::vector<BidsColumn>& sessionColumns() {
 
 }  // namespace
 
-BidsDatasetWriter::BidsDatasetWriter(std::string dir) : dir_(std::move(dir)) {}
+BidsDatasetWriter::BidsDatasetWriter(std::string dir, const StudyProtocol* protocol)
+    : dir_(std::move(dir)), protocol_(protocol) {}
 
 bool BidsDatasetWriter::write(const std::string& relative, const std::string& content,
                               std::string* error) {
@@ -142,6 +145,11 @@ bool BidsDatasetWriter::addSession(const SessionTrace& trace, std::string* error
   s.sessions.push_back({session, trace.id, facts.start_unix_ns ? acqTime(*facts.start_unix_ns) : "",
                         facts.protocol, facts.protocol_version, facts.venue,
                         facts.operator_initials, facts.ended});
+
+  BidsPhenotypeRow answers = phenotypeAnswers(trace);
+  answers.participant_id = "sub-" + subject;
+  answers.session_id = "ses-" + session;
+  phenotype_.push_back(std::move(answers));
 
   const std::string folder = "sub-" + subject + "/ses-" + session + "/";
   const std::string base = "sub-" + subject + "_ses-" + session + "_task-" + kTaskLabel;
@@ -217,6 +225,9 @@ bool BidsDatasetWriter::finish(std::string* error) {
     return false;
   for (const auto& [label, s] : subjects_)
     if (!writeSessions(label, s, error)) return false;
+  if (protocol_)
+    for (const auto& [path, content] : bidsPhenotypeFiles(*protocol_, phenotype_))
+      if (!write(path, content, error)) return false;
   return true;
 }
 

@@ -7,6 +7,9 @@
 //   sub-S/sub-S_sessions.tsv/.json  one row per session: acquisition time (UTC), folder id,
 //                                 protocol, venue, operator, how it ended
 //   sub-S/ses-T/beh/...task-cloudpainting_beh.tsv, _events.tsv + sidecars (bids_behaviour.h)
+//   phenotype/questionnaire.tsv/.json, feedback.tsv/.json  the questionnaire answers, a row per
+//                                 session, every question described (bids_phenotype.h; with a
+//                                 protocol only)
 //   sub-S/ses-T/motion/...task-cloudpainting_tracksys-tablet_motion.tsv, _channels.tsv,
 //                                 _motion.json (bids_motion.h), and the events again (events
 //                                 belong with the recording they time, in its own folder)
@@ -22,13 +25,16 @@
 #include <string>
 #include <vector>
 
+#include "app/study/bids_phenotype.h"
+#include "app/study/protocol.h"
 #include "app/study/session_trace.h"
 
 namespace cb {
 
 class BidsDatasetWriter {
  public:
-  explicit BidsDatasetWriter(std::string dir);
+  // `protocol` (may be null: no phenotype files) describes the questionnaires.
+  explicit BidsDatasetWriter(std::string dir, const StudyProtocol* protocol = nullptr);
 
   // Writes one session's beh/ and motion/ files. False with *error naming the file.
   bool addSession(const SessionTrace& trace, std::string* error);
@@ -53,6 +59,8 @@ class BidsDatasetWriter {
   bool writeSessions(const std::string& subject, const Subject& s, std::string* error);
 
   std::string dir_;
+  const StudyProtocol* protocol_ = nullptr;
+  std::vector<BidsPhenotypeRow> phenotype_;
   std::map<std::string, Subject> subjects_;  // by label
   std::string protocol_name_;
   std::vector<std::string> written_;

@@ -7,51 +7,42 @@
 #include "app/core/json_text.h"
 #include "app/study/bids_text.h"
 #include "app/study/csv_text.h"
+#include "app/study/export_columns.h"
 
 namespace cb {
 namespace {
 
 struct MotionChannel {
-  const char *name, *component, *type, *tracked_point, *units, *description;
+  const char *name, *component, *type, *tracked_point;
+  const char* column;  // the samples.csv column it carries, which describes it (export_columns.h)
+  const char* coding;  // how a category is written as a number, else ""
   std::string (*value)(const PenSample& s, int64_t t0_ns);
 };
 
 // One table: the channels.tsv rows and the motion.tsv columns come from it, in this order.
 const std::vector<MotionChannel>& channels() {
   static const std::vector<MotionChannel> table = {
-      {"latency", "n/a", "LATENCY", "n/a", "s",
-       "Time of the pen report after the recording's first record (kernel monotonic time of the "
-       "report); the tablet reports when the pen moves, so intervals vary",
+      {"latency", "n/a", "LATENCY", "n/a", "t_s", "",
        [](const PenSample& s, int64_t t0) { return bidsSeconds(elapsedNs(s.t_ns, t0)); }},
-      {"pen_x", "x", "POS", "pen", "mm",
-       "Pen tip position across the tablet's active area from its top-left corner, +x right",
+      {"pen_x", "x", "POS", "pen", "x_mm", "",
        [](const PenSample& s, int64_t) { return csvDouble(s.x_mm); }},
-      {"pen_y", "y", "POS", "pen", "mm",
-       "Pen tip position down the tablet's active area from its top-left corner, +y towards "
-       "the user",
+      {"pen_y", "y", "POS", "pen", "y_mm", "",
        [](const PenSample& s, int64_t) { return csvDouble(s.y_mm); }},
-      {"tilt_x", "x", "ORNT", "pen", "deg",
-       "Pen tilt from vertical in the x-z plane, +x to the right (0 when the tablet reports no "
-       "tilt)",
+      {"tilt_x", "x", "ORNT", "pen", "tilt_x_deg", "",
        [](const PenSample& s, int64_t) { return csvFloat(s.tilt_x_deg); }},
-      {"tilt_y", "y", "ORNT", "pen", "deg",
-       "Pen tilt from vertical in the y-z plane, +y towards the user (0 when the tablet reports "
-       "no tilt)",
+      {"tilt_y", "y", "ORNT", "pen", "tilt_y_deg", "",
        [](const PenSample& s, int64_t) { return csvFloat(s.tilt_y_deg); }},
-      {"pressure", "n/a", "MISC", "pen", "n/a",
-       "Tip pressure normalised to 0..1 by the tablet's maximum (dimensionless)",
+      {"pressure", "n/a", "MISC", "pen", "pressure", "",
        [](const PenSample& s, int64_t) { return csvFloat(s.pressure); }},
-      {"distance", "n/a", "MISC", "pen", "n/a",
-       "Hover distance normalised 0 (touching) .. 1 (edge of proximity) (dimensionless)",
+      {"distance", "n/a", "MISC", "pen", "distance", "",
        [](const PenSample& s, int64_t) { return csvFloat(s.distance); }},
-      {"tip", "n/a", "MISC", "pen", "n/a", "1 while the tip touches the tablet, else 0",
+      {"tip", "n/a", "MISC", "pen", "tip", "",
        [](const PenSample& s, int64_t) { return std::string(s.tipDown() ? "1" : "0"); }},
-      {"in_proximity", "n/a", "MISC", "pen", "n/a", "1 while the pen is in the tablet's range",
+      {"in_proximity", "n/a", "MISC", "pen", "in_proximity", "",
        [](const PenSample& s, int64_t) { return std::string(s.in_proximity ? "1" : "0"); }},
-      {"buttons", "n/a", "MISC", "pen", "n/a",
-       "Button bits: 1 tip contact, 2 lower barrel button, 4 upper barrel button",
+      {"buttons", "n/a", "MISC", "pen", "buttons", "",
        [](const PenSample& s, int64_t) { return std::to_string(s.buttons); }},
-      {"tool", "n/a", "MISC", "pen", "n/a", "The tool in range: 0 none, 1 pen tip, 2 eraser end",
+      {"tool", "n/a", "MISC", "pen", "tool", ", written as 0 none, 1 pen, 2 eraser",
        [](const PenSample& s, int64_t) { return std::to_string(int(s.tool)); }}};
   return table;
 }
@@ -98,9 +89,15 @@ std::string bidsMotionTsv(const SessionTrace& trace) {
 
 std::string bidsChannelsTsv() {
   std::string out = "name\tcomponent\ttype\ttracked_point\tunits\tdescription\n";
-  for (const MotionChannel& c : channels())
+  for (const MotionChannel& c : channels()) {
+    const ExportColumn& column = exportColumn(sampleColumns(), c.column);
+    const std::string units = bidsUnit(column.unit);
     out += std::string(c.name) + '\t' + c.component + '\t' + c.type + '\t' + c.tracked_point +
-           '\t' + c.units + '\t' + c.description + '\n';
+           '\t' + (units.empty() ? kBidsMissing : units) + '\t' +
+           bidsTsvText(bidsMissingWords(column.description) + c.coding +
+                       " (samples.csv: " + c.column + ")") +
+           '\n';
+  }
   return out;
 }
 

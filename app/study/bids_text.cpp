@@ -9,6 +9,29 @@
 
 namespace cb {
 
+std::string bidsMissingWords(const std::string& text) {
+  std::string out;
+  const auto word = [&](size_t i) {
+    return i < text.size() && std::isalnum(static_cast<unsigned char>(text[i]));
+  };
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text.compare(i, 2, "NA") == 0 && (i == 0 || !word(i - 1)) && !word(i + 2)) {
+      out += kBidsMissing;
+      ++i;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+std::vector<BidsColumn> bidsColumnsOf(const std::vector<ExportColumn>& table) {
+  std::vector<BidsColumn> columns;
+  for (const ExportColumn& c : table)
+    columns.push_back({c.name, bidsMissingWords(c.description), bidsUnit(c.unit), c.levels});
+  return columns;
+}
+
 std::string bidsTsvHeader(const std::vector<BidsColumn>& columns) {
   std::string out;
   for (size_t i = 0; i < columns.size(); ++i) out += (i ? "\t" : "") + columns[i].name;

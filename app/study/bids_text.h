@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/study/export_columns.h"
+
 namespace cb {
 
 inline constexpr const char* kBidsMissing = "n/a";
@@ -21,6 +23,12 @@ struct BidsColumn {
   std::string units;  // empty: dimensionless or text (no "Units" key)
   std::vector<std::pair<std::string, std::string>> levels;  // value → meaning (categorical)
 };
+
+// An exported table's columns (export_columns.h) as BIDS describes them: the unit only when it
+// is one BIDS takes (bidsUnit), "NA" in the text as BIDS writes a missing value, "n/a".
+std::vector<BidsColumn> bidsColumnsOf(const std::vector<ExportColumn>& table);
+// The text with every word "NA" made "n/a".
+std::string bidsMissingWords(const std::string& text);
 
 // The header row: the columns' names joined by tabs, then a newline.
 std::string bidsTsvHeader(const std::vector<BidsColumn>& columns);

@@ -39,7 +39,7 @@ ItemSummary summariseItem(const LikertAnswers& answers, size_t item) {
     values.push_back(v);
   }
   s.n = values.size();
-  s.mean = sampleMean(values);
+  if (!values.empty()) s.mean = sampleMean(values);
   s.sd = sampleStandardDeviation(values);
   return s;
 }
@@ -65,7 +65,7 @@ ConstructSummary summariseConstruct(const LikertAnswers& answers,
     if (n > 0) scores.push_back(sum / double(n));
   }
   s.participants = scores.size();
-  s.mean = sampleMean(scores);
+  if (!scores.empty()) s.mean = sampleMean(scores);
   s.sd = sampleStandardDeviation(scores);
   return s;
 }

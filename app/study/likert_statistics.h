@@ -24,8 +24,8 @@ struct ItemSummary {
   std::string item;
   size_t n = 0;
   std::vector<size_t> counts;  // counts[k] answers of scale_min + k
-  double mean = 0;
-  std::optional<double> sd;  // none with fewer than 2 answers
+  std::optional<double> mean;  // none when nobody answered (NA, never 0)
+  std::optional<double> sd;    // none with fewer than 2 answers
 };
 
 struct ConstructDefinition {
@@ -36,8 +36,9 @@ struct ConstructDefinition {
 struct ConstructSummary {
   ConstructDefinition definition;
   size_t participants = 0;
-  double mean = 0;
+  std::optional<double> mean;  // none when nobody answered any of its items
   std::optional<double> sd;
+  std::vector<std::string> missing_items;  // items not in the answers (the report says so)
 };
 
 struct PairedTTest {

@@ -25,4 +25,18 @@ std::string timeSeriesSvg(const std::vector<double>& times, const std::vector<do
                           const std::string& title, const std::string& y_label, double y_min,
                           double y_max);
 
+// Dots of `values` against `times` (seconds) on 0..y_max. The values at the indices `beyond`
+// lie off the scale: each is a red triangle on the top edge titled with beyond_titles[k], so one
+// artefact does not squash every other point to the floor.
+std::string scatterSvg(const std::vector<double>& times, const std::vector<double>& values,
+                       const std::string& title, const std::string& y_label, double y_max,
+                       const std::vector<size_t>& beyond,
+                       const std::vector<std::string>& beyond_titles);
+
+// One row per label: its values as dots on a shared axis from 0, the row's median as a tick.
+std::string dotStripSvg(const std::vector<std::string>& labels,
+                        const std::vector<std::vector<double>>& values,
+                        const std::vector<double>& medians, const std::string& title,
+                        const std::string& unit);
+
 }  // namespace cb

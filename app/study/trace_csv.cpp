@@ -1,6 +1,7 @@
 #include "app/study/trace_csv.h"
 
 #include "app/study/csv_text.h"
+#include "app/study/export_columns.h"
 #include "app/study/stroke_table.h"
 
 namespace cb {
@@ -49,10 +50,7 @@ std::string eventKindName(JournalRecordType type) {
 }
 
 void writeSamplesCsvHeader(std::ostream& out) {
-  out << "participant,session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_"
-         "raw,"
-         "tilt_y_raw,tilt_x_deg,tilt_y_deg,distance_raw,distance,buttons,tip,in_proximity,tool,"
-         "tool_id,tool_serial,stroke,task\n";
+  out << csvHeaderLine(sampleColumns());
 }
 
 void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
@@ -82,9 +80,7 @@ void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
 }
 
 void writeStrokesCsvHeader(std::ostream& out) {
-  out << "participant,session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_"
-         "pressure,"
-         "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms,task\n";
+  out << csvHeaderLine(strokeColumns());
 }
 
 void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
@@ -103,7 +99,7 @@ void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
 }
 
 void writeEventsCsvHeader(std::ostream& out) {
-  out << "participant,session,t_s,record,kind,key,value,task\n";
+  out << csvHeaderLine(eventColumns());
 }
 
 void writeEventsCsvRows(std::ostream& out, const SessionTrace& trace) {

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "app/study/csv_text.h"
+#include "app/study/export_columns.h"
 #include "app/study/study_marker_text.h"
 
 namespace cb {
@@ -64,8 +65,7 @@ std::vector<TrialRow> trialsOfSession(const SessionTrace& trace) {
 }
 
 void writeTrialsCsvHeader(std::ostream& out) {
-  out << "participant,session,task,order,onset_s,onset_monotonic_ns,onset_wall_clock_unix_ns,"
-         "duration_s,end_reason,strokes,erases,undos\n";
+  out << csvHeaderLine(trialColumns());
 }
 
 void writeTrialsCsvRows(std::ostream& out, const SessionTrace& trace) {

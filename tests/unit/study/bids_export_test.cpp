@@ -122,6 +122,25 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
   EXPECT_EQ(participants[2][0], "sub-C02");
   expectDescribed(bids + "/participants.tsv", bids + "/participants.json");
 
+  // phenotype/: the Likert answers (the short study's pen answers 4, 2, 5), a row per session,
+  // every item described with its statement and the scale's levels; no free-text questions.
+  const Table questionnaire = readTable(bids + "/phenotype/questionnaire.tsv", '\t');
+  const std::vector<std::vector<std::string>> expected_answers = {
+      {"participant_id", "session_id", "Q1", "Q2", "Q3"},
+      {"sub-C01", "ses-1", "4", "2", "5"},
+      {"sub-C02", "ses-1", "4", "2", "5"}};
+  EXPECT_EQ(questionnaire, expected_answers);
+  const std::string questionnaire_json = readText(bids + "/phenotype/questionnaire.json");
+  EXPECT_NE(questionnaire_json.find("\"MeasurementToolMetadata\": {\"Description\""),
+            std::string::npos)
+      << questionnaire_json;
+  for (const QuestionnaireItem& item : protocol.items)
+    EXPECT_NE(questionnaire_json.find("\"" + item.id + "\": {\"Description\": \"" + item.text +
+                                      "\", \"Levels\": {\"1\": \"strongly disagree\""),
+              std::string::npos)
+        << item.id << " in " << questionnaire_json;
+  EXPECT_FALSE(fs::exists(bids + "/phenotype/feedback.tsv")) << "the protocol has no free text";
+
   const Table trials = readTable(csv + "/trials.csv", ','),
               samples = readTable(csv + "/samples.csv", ',');
   for (size_t i = 0; i < ids.size(); ++i) {

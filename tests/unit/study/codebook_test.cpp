@@ -8,7 +8,10 @@
 #include <map>
 #include <sstream>
 
+#include "app/study/bids_behaviour.h"
+#include "app/study/bids_motion.h"
 #include "app/study/codebook.h"
+#include "app/study/export_columns.h"
 #include "app/study/protocol.h"
 #include "app/study/trace_csv.h"
 #include "app/study/trial_table.h"
@@ -156,6 +159,85 @@ TEST(Codebook, AProtocolWithoutChineseTextsLeavesThemNA) {
   const Codebook book = readCodebook(p);
   EXPECT_EQ(book.rows.at("questionnaire.csv/Q1").at("text_zh"), "NA");
   EXPECT_EQ(book.rows.at("questionnaire.csv/Q1").at("anchors").find(" / "), std::string::npos);
+}
+
+size_t countOf(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+size_t entriesNamed(const std::vector<ExportColumn>& table, const std::string& name) {
+  size_t n = 0;
+  for (const ExportColumn& c : table) n += c.name == name;
+  return n;
+}
+
+std::vector<std::string> tsvHeader(const std::string& tsv) {
+  std::vector<std::string> names(1);
+  for (char c : tsv.substr(0, tsv.find('\n'))) {
+    if (c == '\t')
+      names.emplace_back();
+    else
+      names.back() += c;
+  }
+  return names;
+}
+
+// One table of column meanings (export_columns.h): every column a CSV writer or a BIDS file
+// emits has exactly one entry there, with a description, and exactly one row in the codebook
+// and one key in its sidecar; nothing is described that is not exported.
+TEST(ExportColumns, EveryExportedColumnHasExactlyOneEntry) {
+  const StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
+  std::map<std::string, size_t> codebook_rows;  // "file/variable" → rows
+  for (const CodebookRow& row : studyCodebook(p)) ++codebook_rows[row.file + "/" + row.variable];
+  const struct {
+    const char* file;
+    void (*write_header)(std::ostream&);
+    const std::vector<ExportColumn>& table;
+  } csvs[] = {{"trials.csv", writeTrialsCsvHeader, trialColumns()},
+              {"strokes.csv", writeStrokesCsvHeader, strokeColumns()},
+              {"samples.csv", writeSamplesCsvHeader, sampleColumns()},
+              {"events.csv", writeEventsCsvHeader, eventColumns()}};
+  for (const auto& csv : csvs) {
+    const std::vector<std::string> header = csvHeaderColumns(csv.write_header);
+    EXPECT_EQ(header.size(), csv.table.size()) << csv.file << ": a column without an entry";
+    for (const std::string& column : header) {
+      EXPECT_EQ(entriesNamed(csv.table, column), 1u) << csv.file << " " << column;
+      EXPECT_EQ(codebook_rows[std::string(csv.file) + "/" + column], 1u)
+          << csv.file << " " << column;
+      EXPECT_FALSE(exportColumn(csv.table, column).description.empty()) << column;
+    }
+  }
+  // BIDS: beh.tsv is trials.csv; events.tsv has its own table; each sidecar key once.
+  const SessionTrace empty;
+  const std::pair<std::vector<std::string>, std::string> bids[] = {
+      {tsvHeader(bidsBehTsv(empty)), bidsBehJson()},
+      {tsvHeader(bidsEventsTsv(empty)), bidsEventsJson()}};
+  EXPECT_EQ(bids[0].first, csvHeaderColumns(writeTrialsCsvHeader));
+  for (const auto& [header, json] : bids) {
+    EXPECT_EQ(countOf(json, "\": {\"Description\""), header.size()) << json;
+    for (const std::string& column : header)
+      EXPECT_EQ(countOf(json, "\"" + column + "\": {\"Description\""), 1u) << column;
+  }
+  for (const std::string& column : bids[1].first)
+    EXPECT_EQ(entriesNamed(bidsEventColumns(), column), 1u) << "events.tsv " << column;
+  // The motion channels: each carries one samples.csv column and is described by its entry.
+  const std::string channels = bidsChannelsTsv();
+  std::istringstream lines(channels);
+  std::string line;
+  std::getline(lines, line);  // header
+  size_t rows = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    const size_t at = line.find("(samples.csv: ");
+    ASSERT_NE(at, std::string::npos) << line;
+    const std::string column = line.substr(at + 14, line.find(')', at) - at - 14);
+    ASSERT_EQ(entriesNamed(sampleColumns(), column), 1u) << line;
+    std::string description = exportColumn(sampleColumns(), column).description;
+    EXPECT_NE(line.find(description.substr(0, 30)), std::string::npos) << line;
+  }
+  EXPECT_EQ(rows, 11u) << channels;
 }
 
 }  // namespace

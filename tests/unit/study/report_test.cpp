@@ -122,13 +122,13 @@ TEST(StudyReportOracle, ThesisAnswersGiveTheThesisFigures) {
     return summariseItem(answers, size_t(i));
   };
   const auto round2 = [](double v) { return std::round(v * 100) / 100; };
-  EXPECT_EQ(round2(item("Q19").mean), 4.82);
-  EXPECT_EQ(round2(item("Q13").mean), 4.06);
+  EXPECT_EQ(round2(*item("Q19").mean), 4.82);
+  EXPECT_EQ(round2(*item("Q13").mean), 4.06);
   EXPECT_EQ(round2(*item("Q13").sd), 0.83);
-  EXPECT_EQ(round2(item("Q15").mean), 4.00);
+  EXPECT_EQ(round2(*item("Q15").mean), 4.00);
   EXPECT_EQ(round2(*item("Q15").sd), 0.71);
-  EXPECT_EQ(round2(item("Q3").mean), 3.88);
-  EXPECT_EQ(round2(item("Q6").mean), 4.06);
+  EXPECT_EQ(round2(*item("Q3").mean), 3.88);
+  EXPECT_EQ(round2(*item("Q6").mean), 4.06);
   EXPECT_EQ(item("Q3").n, 17u);
   size_t total = 0;
   for (size_t c : item("Q3").counts) total += c;
@@ -191,7 +191,9 @@ TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
   const SessionFigures f = sessionFigures(handTrace());
   EXPECT_EQ(f.samples, 7u);
   EXPECT_EQ(f.strokes, 2u);
-  EXPECT_NEAR(f.duration_s, 0.060, 1e-12);
+  // Not a study session: its own first to last record (the first sample is 10 ms after t0).
+  EXPECT_EQ(f.outcome.status, "not-a-study");
+  EXPECT_NEAR(f.outcome.duration_s, 0.070, 1e-12);
   EXPECT_NEAR(f.tip_down_s, 0.020 + 0.010, 1e-12);
   ASSERT_EQ(f.pressure.size(), 5u);
   EXPECT_NEAR(f.pressure_t.front(), 0.020, 1e-12);
@@ -208,7 +210,51 @@ TEST(StudyReportSessions, FiguresAndPlotsPerSession) {
   for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1))
     ++svgs;
   EXPECT_EQ(svgs, 1u + 2u * 2u);  // items; pressure and speed per session (no constructs given)
-  EXPECT_NE(html.find("<tr><td>hand</td><td>0.1</td><td>7</td><td>2</td>"), std::string::npos);
+  EXPECT_NE(
+      html.find(
+          "<tr><td class=\"t\">hand</td><td class=\"t\">NA</td><td class=\"t\">not-a-study</td>"
+          "<td>0.1</td><td>0.0</td>"
+          "<td>7</td><td>2</td>"),
+      std::string::npos);
+}
+
+TEST(StudyReportSessions, TapsHaveNoSpeedAndDoNotPullTheMedianDown) {
+  SessionTrace trace = handTrace();
+  // The last stroke lifts; then three taps in place (two tip-down samples each, 10 ms apart),
+  // as on the runner's pages.
+  for (int i = 0; i < 1 + 3 * 3; ++i) {
+    PenSample s = trace.samples.back();
+    s.t_ns += 10'000'000;
+    s.buttons = i % 3 == 0 ? 0u : uint32_t(kPenTip);
+    trace.samples.push_back(s);
+    trace.sample_records.push_back(trace.sample_records.size());
+  }
+  const SessionFigures f = sessionFigures(trace);
+  EXPECT_EQ(f.strokes, 5u);
+  ASSERT_EQ(f.stroke_speed.size(), 2u) << "the two strokes that moved";
+  ASSERT_TRUE(f.speed.has_value());
+  EXPECT_NEAR(f.speed->median, (300.0 + 300.0) / 2, 1e-9);
+}
+
+TEST(StudyReportOracle, WithoutSessionsARowOfOnlyNAIsSetApartAndAnUnansweredItemIsNA) {
+  const LikertAnswers answers = parse("participant,Q1,Q2\nP1,5,NA\nP2,NA,NA\nP3,3,NA\n");
+  StudyReportOptions options;
+  options.constructs = {{"second", {"Q2"}}, {"missing", {"Q9"}}};
+  const StudyReport report = computeStudyReport(answers, options);
+  EXPECT_EQ(report.participants, 2u);
+  ASSERT_EQ(report.set_apart.size(), 1u);
+  EXPECT_EQ(report.set_apart[0].participant, "P2");
+  EXPECT_EQ(report.set_apart[0].why, "answered no item");
+  EXPECT_FALSE(report.items[1].mean.has_value());
+  ASSERT_EQ(report.constructs.size(), 2u);
+  EXPECT_FALSE(report.constructs[0].mean.has_value());
+  EXPECT_EQ(report.constructs[1].missing_items, std::vector<std::string>({"Q9"}));
+  const std::string html = studyReportHtml(report, options, 1, 5);
+  EXPECT_NE(html.find("<td>Q2</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td>"
+                      "<td>NA</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("missing: the answers have no Q9."), std::string::npos);
+  EXPECT_EQ(html.find(">0.00<"), std::string::npos) << "no mean of 0.00";
 }
 
 TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
@@ -221,7 +267,7 @@ TEST(ConstructFile, DeclaredConstructsAndTheirErrors) {
   ASSERT_EQ(c.size(), 1u);
   const ConstructSummary s = summariseConstruct(loadLikertAnswers(kThesisAnswers), c[0]);
   // Per participant the mean of Q3 and Q6; overall mean = (Q3 mean + Q6 mean) / 2 here.
-  EXPECT_NEAR(s.mean, (66.0 / 17 + 69.0 / 17) / 2, 1e-12);
+  EXPECT_NEAR(*s.mean, (66.0 / 17 + 69.0 / 17) / 2, 1e-12);
   const auto error = [&](const std::string& text) {
     write(text);
     try {

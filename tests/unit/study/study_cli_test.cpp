@@ -110,9 +110,18 @@ TEST_F(StudyCli, ReportOnTheThesisAnswers) {
   std::ifstream in(html_path);
   const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(html.find("<td>0.265</td>"), std::string::npos);  // one-tailed p, Q3 vs Q6
-  EXPECT_NE(html.find("not the constructs of the thesis&#39;s Table 7.3"), std::string::npos);
-  EXPECT_NE(html.find("<td>Paint style</td><td>Q1 Q2 Q3 Q4 Q5 Q6</td><td>17</td>"),
+  // Every construct of the bundled protocol; the thesis's answers have no lag item (Q28), so
+  // that construct is NA and the page says why.
+  EXPECT_NE(html.find("Constructs of the study protocol "), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"t\">Paint style</td><td class=\"t\">Q1 Q2 Q3 Q4 Q5 Q6</td>"
+                      "<td>17</td>"),
             std::string::npos);
+  EXPECT_NE(html.find("<td class=\"t\">Lag acceptance</td><td class=\"t\">Q28</td><td>0</td>"
+                      "<td>NA</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("Lag acceptance: the answers have no Q28."), std::string::npos);
+  EXPECT_NE(report.out.find("construct 'Lag acceptance': no item Q28"), std::string::npos)
+      << report.out;
 }
 
 TEST_F(StudyCli, BadInputIsRefusedNamingFileAndField) {
