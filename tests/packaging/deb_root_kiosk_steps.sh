@@ -4,7 +4,8 @@
 #   - /etc/cloudbrush/kiosk.toml is a conffile (dpkg lists it) with every key commented out; an
 #     edited one survives a reinstall and an upgrade whose template changed (--force-confold, as
 #     an unattended installer runs apt; dpkg keeps the new template as .dpkg-dist);
-#   - `cloudbrush kiosk --set-pin` stores the PIN hashed, 0600, owned by the service's user;
+#   - `cloudbrush kiosk --set-pin` stores the PIN hashed (yescrypt), 0600, owned by the service's
+#     user;
 #   - cloudbrush-kiosk-setup without systemd says what it skipped (exit 3), with systemd
 #     installed but not running (this chroot) enables the unit and the target for the next boot;
 #   - the installed binary ignores the build tree's config/: broken files planted at the source
@@ -63,8 +64,8 @@ in_root install -d -m 0750 -o cloudbrush -g cloudbrush "$data"
 pin_file="$root$data/operator-pin"
 if echo 13579 | in_root cloudbrush kiosk --set-pin --data-dir "$data" >"$out/pin.log" 2>&1 &&
    [ "$(in_root stat -c '%a %U %G' "$data/operator-pin")" = "600 cloudbrush cloudbrush" ] &&
-   grep -q '^\$' "$pin_file" && ! grep -q 13579 "$pin_file"; then
-  echo "  cloudbrush kiosk --set-pin: $(cat "$out/pin.log"); $(in_root stat -c '%A %U:%G' "$data/operator-pin"), $(cut -c1-4 "$pin_file")... (crypt)"
+   grep -qE '^[0-9]+ \$y\$' "$pin_file" && ! grep -q 13579 "$pin_file"; then
+  echo "  cloudbrush kiosk --set-pin: $(cat "$out/pin.log"); $(in_root stat -c '%A %U:%G' "$data/operator-pin"), "$(cut -c1-7 "$pin_file")..." (digits, yescrypt)"
 else
   echo "FAIL: --set-pin in the root:"; cat "$out/pin.log"; in_root ls -l "$data/operator-pin" || true; fail=1
 fi

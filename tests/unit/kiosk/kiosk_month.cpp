@@ -51,6 +51,7 @@
 #include "app/kiosk/operator_pin.h"
 #include "app/mapping/mapping_config.h"
 #include "app/render/gl/display.h"
+#include "app/render/image_io.h"
 #include "app/render/render_config.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/synthetic_session.h"
@@ -262,6 +263,8 @@ class MonthRun {
   void judgeVisit();
   bool savedCompletely(long before) const;
   int finish(bool ran, const std::string& error);
+  // The frame last drawn, as a PNG under $CB_KEEP_FRAMES (when set), once per name.
+  void keepFrame(const std::string& name);
   int day() const { return int(clock_.nowNs() / kDay) + 1; }
   int64_t opening(int d) const { return int64_t(d - 1) * kDay + 9 * 3600 * kSecond; }
 
@@ -288,7 +291,17 @@ class MonthRun {
   int64_t freed_ns_ = -1;
   long visits_after_free_ = 0, saved_after_free_ = 0;
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  std::vector<std::string> kept_frames_;
 };
+
+void MonthRun::keepFrame(const std::string& name) {
+  const char* dir = std::getenv("CB_KEEP_FRAMES");
+  if (!dir || std::find(kept_frames_.begin(), kept_frames_.end(), name) != kept_frames_.end())
+    return;
+  kept_frames_.push_back(name);
+  writePng(std::string(dir) + "/" + name,
+           readFramebufferRgba8(display_->framebuffer(), display_->width(), display_->height()));
+}
 
 void MonthRun::setUp() {
   if (!setKioskHeapPolicy()) throw std::runtime_error("glibc refused the kiosk's heap settings");
@@ -482,6 +495,7 @@ void MonthRun::onIteration() {
         const OperatorPanelValues& values = kiosk_->operatorPanel().values();
         visit_.panel_open = true;
         visit_.panel_said = !values.storage_ok && values.storage.find("NOT SAVING") == 0;
+        keepFrame("kiosk_month_panel_disk_full.png");
         kiosk_->onKey(DisplayEvent::key(0xff1b), now);  // Esc
         phase_ = Phase::kPanelClosing;
       } else if (now - visit_.reset_ns > 30 * kSecond) {
