@@ -8,6 +8,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <functional>
@@ -390,6 +391,16 @@ int commandPaint(int argc, char** argv) {
   std::string& kiosk_problem = parsed.kiosk_problem;
   const std::string &backend = parsed.backend, &resume_path = parsed.resume_path;
 
+  // Mesa's shader cache goes into the kiosk's data dir with everything else it writes, unless the
+  // environment names one (the unit does): Mesa reads MESA_SHADER_CACHE_DIR when the display's
+  // context is made, and without it writes under the passwd entry's home (~/.cache), not $HOME.
+  // Mesa makes only the last folder: the data dir is made here (checked later, as before).
+  if (kiosk && !std::getenv("MESA_SHADER_CACHE_DIR")) {
+    const std::string dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    ::setenv("MESA_SHADER_CACHE_DIR", (dir + "/mesa-shader-cache").c_str(), 0);
+  }
   std::string choice_note;
   std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
   if (!display) return fail(error);

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <filesystem>
 
-#include "app/core/atomic_file.h"
 #include "app/kiosk/disk_space.h"
 #include "app/kiosk/metrics_text.h"
+#include "app/kiosk/reserved_file.h"
 
 namespace cb {
 
@@ -57,12 +57,14 @@ bool HealthFileWriter::write(std::string* error) {
   std::string metrics_error;
   const bool metrics_ok =
       metrics_dir_.empty() ||
-      writeFileAtomically(metricsPath(), metricsText(status, CB_VERSION), &metrics_error);
+      writeFileKeepingBlocks(metricsPath(), metricsText(status, CB_VERSION), &metrics_error);
   if (ec) {
     if (error) *error = data_dir_ + ": cannot create the data directory: " + ec.message();
     return false;
   }
-  if (!writeFileAtomically(path(), healthStatusJson(status), error)) return false;
+  // Through a spare copy whose blocks are kept: on a disk something else filled to the last
+  // byte, the health file still says so (reserved_file.h).
+  if (!writeFileKeepingBlocks(path(), healthStatusJson(status), error)) return false;
   if (!metrics_ok && error) *error = metrics_error;
   return metrics_ok;
 }

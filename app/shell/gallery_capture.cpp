@@ -66,13 +66,16 @@ bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& 
                    int height, GallerySave* save, std::string* error) {
   // Room first: the oldest entries go until the floor of free space plus one entry (as large as
   // the newest) is there; without it nothing is written (the floor is the journals' and logs').
+  // The entry's size is taken before the room is made (makeRoom may delete the entries it is
+  // measured from).
   std::string room_error;
-  const GalleryRoom room = store.makeRoom(store.typicalEntryBytes(), -1, &room_error);
+  const uint64_t entry_bytes = store.typicalEntryBytes();
+  const GalleryRoom room = store.makeRoom(entry_bytes, -1, &room_error);
   save->cleanup.removed_for_space = room.removed;
   if (!room.enough && room.free_bytes) {
     *error = store.dir() + ": disk full: " + megabytes(*room.free_bytes) + " free, " +
-             megabytes(store.minFreeBytes()) + " kept free (gallery.min_free_mb) + " +
-             megabytes(store.typicalEntryBytes()) + " for the entry";
+             megabytes(store.minFreeBytes()) + " kept free (gallery.min_free_mb)" +
+             (entry_bytes ? " + " + megabytes(entry_bytes) + " for the entry" : "");
     return false;
   }
   GalleryWrite write;

@@ -188,6 +188,26 @@ std::string OperatorPanelScreen::update(const FrameContext& frame) {
   return "";
 }
 
+namespace {
+
+// `text` cut at spaces into lines of at most `max_chars` (a word longer than that stays whole).
+std::vector<std::string> wrapWords(const std::string& text, size_t max_chars) {
+  std::vector<std::string> lines(1);
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t end = text.find(' ', at);
+    end = end == std::string::npos ? text.size() : end;
+    const std::string word = text.substr(at, end - at);
+    if (!lines.back().empty() && lines.back().size() + 1 + word.size() > max_chars)
+      lines.emplace_back();
+    lines.back() += (lines.back().empty() ? "" : " ") + word;
+    at = end + 1;
+  }
+  return lines;
+}
+
+}  // namespace
+
 bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
@@ -252,8 +272,12 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     add("Esc     close the panel (it closes by itself after 2 min)", line, 0xffffffffu);
     y += line;
     add("Every action is logged to " + values_.data_dir + "/operator.log", line, 0xb8c4d0ffu);
+    // The disk line names the data dir and the figures: wrapped to the screen (glyphs are taken
+    // as half the text size wide, more than this font's average).
+    const size_t max_chars = size_t(std::max(20.0f, 0.84f * w / (0.5f * line)));
     if (!values_.storage.empty())
-      add("Disk: " + values_.storage, line, values_.storage_ok ? 0xb8c4d0ffu : 0xff8080ffu);
+      for (const std::string& part : wrapWords("Disk: " + values_.storage, max_chars))
+        add(part, line, values_.storage_ok ? 0xb8c4d0ffu : 0xff8080ffu);
     if (!values_.message.empty()) add(values_.message, line, 0x9be39bffu);
   }
   ui_->drawLabels(frame.width, frame.height, labels);

@@ -77,6 +77,8 @@ class OperatorPanelScreen : public Screen {
   // Shown again after something that took a while (the calibration): its 2 min start anew.
   void shownAgain(int64_t t_ns) { last_key_ns_ = t_ns; }
   void setValues(const OperatorPanelValues& values) { values_ = values; }
+  // What the panel shows (the kiosk sets it every frame while the panel is open).
+  const OperatorPanelValues& values() const { return values_; }
   // Actions since the last call, in order.
   std::vector<OperatorAction> takeActions();
   static const char* actionName(OperatorActionKind kind);

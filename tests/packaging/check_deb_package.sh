@@ -8,6 +8,9 @@
 # bundled cloud headlessly there (EGL surfaceless, llvmpipe) as the `cloudbrush` user with the
 # unit's environment, and `apt-get purge cloudbrush` leaves the root's files as they were before
 # the install (apt's and dpkg's own records aside; the system user stays, as Debian does).
+# Then the installer's steps on a second install (deb_root_kiosk_steps.sh): the conffile kept
+# over a reinstall and an upgrade, --set-pin, cloudbrush-kiosk-setup without and with systemd,
+# the build tree's config ignored, purge.
 # usage: check_deb_package.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -142,5 +145,10 @@ else
   echo "FAIL: apt-get purge cloudbrush:"; tail -20 "$out/purge.log"; fail=1
 fi
 
-[ "$fail" -eq 0 ] && echo "PASS: $(basename "$deb") has the expected files and scripts, installs, renders and purges in Debian 12"
+# The installer's steps (conffile, PIN, cloudbrush-kiosk-setup, no build-tree path) on a second
+# install in the same root.
+source=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$build/CMakeCache.txt")
+. "$here/deb_root_kiosk_steps.sh"
+
+[ "$fail" -eq 0 ] && echo "PASS: $(basename "$deb") has the expected files and scripts, installs, renders and purges in Debian 12, keeps its conffile, takes the PIN and the kiosk setup"
 exit "$fail"

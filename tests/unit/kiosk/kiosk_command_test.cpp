@@ -141,6 +141,39 @@ TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
   std::filesystem::remove(data + ".out");
 }
 
+// --sync-udp is refused in kiosk mode with its reason (exit 2, before any window); a run without
+// MESA_SHADER_CACHE_DIR (by hand, not under the unit) still keeps Mesa's shader cache in the data
+// dir, as --help says of everything the kiosk writes (Mesa would use ~/.cache of the passwd entry).
+TEST(KioskCommand, SyncUdpRefusedWithItsReasonAndMesaCacheInTheDataDir) {
+  namespace fs = std::filesystem;
+  const std::string data =
+      (fs::temp_directory_path() / ("cb_kiosk_manual_" + std::to_string(::getpid()))).string();
+  fs::remove_all(data);
+  const std::string kiosk =
+      "env -u MESA_SHADER_CACHE_DIR -u XDG_CACHE_HOME LIBGL_ALWAYS_SOFTWARE=1 '" +
+      std::string(CB_CLOUDBRUSH_BIN) +
+      "' kiosk --display surfaceless --size 160x90 --grid 16 --backend none "
+      "--no-record --data-dir '" +
+      data + "' --seconds 2 ";
+  int status = std::system((kiosk + "--sync-udp 9999 >'" + data + ".out' 2>&1").c_str());
+  std::string out = slurp(data + ".out");
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_NE(out.find("--sync-udp is not a kiosk option"), std::string::npos) << out;
+  EXPECT_NE(out.find("allows no IP sockets"), std::string::npos) << out;
+  status = std::system((kiosk + ">'" + data + ".out' 2>&1").c_str());
+  out = slurp(data + ".out");
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  size_t cache_files = 0;
+  std::error_code ec;
+  for (const auto& e : fs::recursive_directory_iterator(data + "/mesa-shader-cache", ec))
+    cache_files += e.is_regular_file();
+  EXPECT_GT(cache_files, 0u) << "Mesa's shader cache under the data dir";
+  fs::remove_all(data);
+  fs::remove(data + ".out");
+}
+
 // Never a crash loop: a bad config file or an unusable data dir shows the error screen (logged,
 // health.json's last_error) and the kiosk stays up until stopped (here --seconds), exiting with 3
 // instead of 1 or 2 at once (under Restart=always a restart loop into a blank screen).

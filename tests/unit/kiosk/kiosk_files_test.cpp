@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,7 @@
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/operator_log.h"
 #include "app/kiosk/operator_pin.h"
+#include "app/kiosk/reserved_file.h"
 #include "app/shell/attract_journal.h"
 #include "drivers/core/journal.h"
 #include "small_tmpfs.h"
@@ -68,6 +70,45 @@ TEST(KioskConfig, BundledFileParsesToItsDocumentedValues) {
   EXPECT_EQ(c.metrics_dir, "");
   EXPECT_EQ(c.journal_keep_days, 30.0);
   EXPECT_TRUE(fs::exists(kConfigDir + "/" + c.attract_journal));
+}
+
+// Every field, for comparing two settings.
+std::string describe(const KioskConfig& c) {
+  return c.language + "|" + std::to_string(c.idle_seconds) + "|" +
+         std::to_string(c.warning_seconds) + "|" + c.attract_journal + "|" +
+         std::to_string(c.orbit_degrees_per_second) + "|" + std::to_string(c.attract_hold_seconds) +
+         "|" + std::to_string(c.attract_speed) + "|" + c.operator_keys + "|" +
+         std::to_string(c.gallery_enabled) + "|" + std::to_string(c.gallery_quota_bytes) + "|" +
+         std::to_string(c.gallery_keep_days) + "|" + std::to_string(c.min_free_bytes) + "|" +
+         std::to_string(c.journal_keep_days) + "|" + c.metrics_dir;
+}
+
+// The package's /etc/cloudbrush/kiosk.toml (made from the shipped file, config/CMakeLists.txt):
+// as installed it changes nothing over the defaults; every key it shows commented out parses
+// when uncommented, to the shipped default (so the template never shows a stale value).
+TEST(KioskConfig, EtcTemplateChangesNothingAndShowsTheDefaults) {
+  const std::string etc = CB_ETC_KIOSK_TOML;
+  const KioskConfig shipped = loadKioskConfig(kConfigDir + "/kiosk.toml");
+  KioskConfig other;
+  other.language = "zh", other.idle_seconds = 33.0, other.gallery_enabled = true;
+  other.min_free_bytes = 5ull << 20, other.metrics_dir = "/elsewhere";
+  EXPECT_EQ(describe(loadKioskConfig(etc, other)), describe(other)) << "every key is commented out";
+  TempDir dir("cb_kiosk_etc");
+  std::string text = slurp(etc), uncommented;
+  int keys = 0;
+  for (size_t at = 0; at < text.size();) {
+    size_t end = text.find('\n', at);
+    end = end == std::string::npos ? text.size() : end + 1;
+    std::string line = text.substr(at, end - at);
+    if (line.size() > 1 && line[0] == '#' && std::islower(static_cast<unsigned char>(line[1])) &&
+        line.find(" = ") != std::string::npos)
+      line.erase(0, 1), ++keys;
+    uncommented += line;
+    at = end;
+  }
+  writeText(dir.str() + "/kiosk.toml", uncommented);
+  EXPECT_EQ(keys, 14) << "one commented line per key of kiosk.toml";
+  EXPECT_EQ(describe(loadKioskConfig(dir.str() + "/kiosk.toml", other)), describe(shipped));
 }
 
 TEST(KioskConfig, BadValuesNameTheFileAndKey) {
@@ -329,6 +370,36 @@ TEST(OperatorPin, NoDefaultStoredHashedOnlyForTheServiceLockoutGrowsAndPersists)
   OperatorPinGuard damaged(dir.str(), wall);
   EXPECT_NEAR(damaged.lockedForSeconds(), OperatorPinGuard::kLongestLockS, 1e-3);
   EXPECT_NE(damaged.problem().find("unreadable"), std::string::npos);
+}
+
+// health.json and the metrics on a REAL disk filled to the last byte (a 1 MB tmpfs, needs
+// root): the temporary-and-rename writer cannot make its new file, the spare copy's kept blocks
+// take the new content, and the file a reader opens is whole, old or new.
+TEST(ReservedFile, KeepsBeingReplacedOnADiskFullToTheLastByte) {
+  test::SmallTmpfs disk(
+      fs::temp_directory_path().string() + "/cb_kiosk_reserved_" + std::to_string(::getpid()),
+      1u << 20);
+  if (!disk.mounted()) GTEST_SKIP() << disk.why();
+  const std::string path = disk.dir() + "/health.json";
+  const auto json = [](int n) {
+    return "{\"visits\":" + std::to_string(n) + ",\"storage\":\"" + std::string(400, 'x') + "\"}\n";
+  };
+  std::string error;
+  ASSERT_TRUE(writeFileKeepingBlocks(path, json(1), &error)) << error;
+  ASSERT_TRUE(writeFileKeepingBlocks(path, json(2), &error)) << error;  // makes the spare
+  disk.fillLeaving(0, disk.dir() + "/runaway.log");
+  ASSERT_EQ(disk.freeBytes(), 0u);
+  EXPECT_FALSE(writeFileAtomically(path, json(99), &error)) << "the disk is really full";
+  EXPECT_NE(error.find("No space left"), std::string::npos) << error;
+  for (int n = 3; n < 8; ++n) {
+    ASSERT_TRUE(writeFileKeepingBlocks(path, json(n), &error)) << n << ": " << error;
+    EXPECT_EQ(slurp(path), json(n));
+  }
+  for (const auto& e : fs::directory_iterator(disk.dir()))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << "left behind";
+  // Content past the blocks it had needs a new one: refused, and the file keeps what it had.
+  EXPECT_FALSE(writeFileKeepingBlocks(path, std::string(20000, 'y'), &error));
+  EXPECT_EQ(slurp(path), json(7));
 }
 
 TEST(DataRetention, DeletesOnlyOldJournals) {
