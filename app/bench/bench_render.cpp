@@ -52,12 +52,6 @@ double loadAverage() {
   return load;
 }
 
-double timeMs(const std::function<void()>& fn) {
-  auto t0 = Clock::now();
-  fn();
-  return msSince(t0);
-}
-
 void printTarget(const char* what, double value, const char* unit, double bound, bool at_most) {
   bool met = at_most ? value <= bound : value >= bound;
   std::printf("  target %-52s %9.2f %-4s (%s %g) %s\n", what, value, unit,

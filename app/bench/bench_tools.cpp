@@ -37,12 +37,6 @@
 namespace cb {
 namespace {
 
-double timeMs(const std::function<void()>& fn) {
-  const auto t0 = std::chrono::steady_clock::now();
-  fn();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::vector<uint8_t> silhouette(int w, int h) {
   struct Disc {
     float x, y, r;
