@@ -17,7 +17,7 @@
 
 namespace cb {
 
-enum class RenderStyle { kThesis, kPhysical, kInk, kCartoon, kSketch, kFlat };
+enum class RenderStyle { kThesis, kPhysical, kInk, kCartoon, kSketch };
 
 // The screen-space pass that finishes a style's ray-cast image (style_compose.frag.glsl).
 enum class ScreenPass {
@@ -73,9 +73,6 @@ inline constexpr RenderStyleRow kRenderStyleRows[] = {
     {RenderStyle::kSketch, "sketch", "shade_sketch.glsl", true, ScreenPass::kSketchPaper, false,
      false, false, [](const StyleParams& p) { return p.sketch.sky; },
      [](const StyleParams& p) { return p.sketch.outline_width; }, false},
-    // Scratch trial: the thesis shading under another name.
-    {RenderStyle::kFlat, "flat", "shade_flat.glsl", false, ScreenPass::kNone, false, true, false,
-     nullptr, nullptr, false},
 };
 inline constexpr size_t kRenderStyleCount = std::size(kRenderStyleRows);
 
