@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,8 @@ class BenchReport {
 
 // Wall time since t0, in ms.
 double msSince(std::chrono::steady_clock::time_point t0);
+// Wall time of fn(), in ms.
+double timeMs(const std::function<void()>& fn);
 // CPU time of the whole process so far (llvmpipe's threads included), in ms: less inflated by
 // other load on the machine than wall time.
 double processCpuMs();

@@ -223,6 +223,217 @@ PaintRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cu
   return run;
 }
 
+// Fresh full-resolution frames: every pixel ray cast (no cached image), after the first frame
+// that pays llvmpipe's shader compile; at the reference camera, at the painter's starting view
+// and of its empty sky there. False when the target cannot be made.
+bool measureFreshFrames(VolumeRenderer& renderer, const Volume& cumulus, Size size, int frames,
+                        int grid, Row* row) {
+  RenderTarget target;
+  std::string error;
+  if (!target.create(size.w, size.h, RenderTarget::Format::kRgba8, &error)) {
+    std::printf("  %s: %s\n", size.name().c_str(), error.c_str());
+    return false;
+  }
+  renderer.sync(cumulus, Light{});
+  RenderOptions still;
+  still.finish = true;
+  renderer.render(Camera::reference(), size.w, size.h, target.fbo(), still);
+  row->fresh_first_ms = renderer.lastStats().frame_ms;
+  std::vector<double> fresh, cpu;
+  const int n = size.huge() ? std::min(frames, 2) : frames;
+  for (int i = 0; i < n; ++i) {
+    const double c0 = processCpuMs();
+    renderer.render(Camera::reference().orbited(float(i)), size.w, size.h, target.fbo(), still);
+    cpu.push_back(processCpuMs() - c0);
+    fresh.push_back(renderer.lastStats().frame_ms);
+  }
+  row->fresh_ms = median(fresh);
+  row->fresh_cpu_ms = median(cpu);
+  // The same at the painter's starting view (framed on the drawable region: the cumulus fills
+  // more of the screen), which the pen-up figures are drawn from.
+  const Camera paint_view = initialPaintCamera(PaintSessionSettings{size.w, size.h, grid});
+  auto atPaintView = [&] {
+    fresh.clear();
+    for (int i = 0; i < std::max(1, n / 2); ++i) {
+      renderer.render(paint_view, size.w, size.h, target.fbo(), still);
+      fresh.push_back(renderer.lastStats().frame_ms);
+    }
+    return median(fresh);
+  };
+  row->fresh_paint_view_ms = atPaintView();
+  // The painter's first screen: its session's empty sky (the product's default span) at that
+  // view, as `cloudbrush paint` starts (app/shell/paint_screen.h).
+  const PaintSession empty(PaintSessionSettings{size.w, size.h, grid}, BrushConfig{},
+                           MappingConfig{});
+  renderer.sync(empty.volume(), Light{});
+  row->fresh_start_view_ms = atPaintView();
+  renderer.sync(cumulus, Light{});
+  std::printf(
+      "  %s: fresh frame %.1f ms (process CPU %.1f ms; first frame %.1f ms); at the painter's "
+      "starting view %.1f ms (its empty sky there, the first screen: %.1f ms)\n",
+      size.name().c_str(), row->fresh_ms, row->fresh_cpu_ms, row->fresh_first_ms,
+      row->fresh_paint_view_ms, row->fresh_start_view_ms);
+  std::fflush(stdout);
+  return true;
+}
+
+// The painter's orbit: its own loop and moving-frame policy, no pen. Full resolution by
+// temporal reprojection (the default); the baseline, in the same run: the half-resolution orbit
+// (PaintLoopOptions::reproject_moving off, the moving-scale policy). Then the reprojected orbit
+// against the half-resolution one in alternating blocks, from the painter's starting view
+// (frames as PNG into $CLOUDBRUSH_BENCH_SHOTS when set).
+void measureOrbits(Display& display, VolumeRenderer& renderer, const Volume& cumulus, Size size,
+                   int grid, Row* row) {
+  std::string error;
+  for (bool reproject : {false, true}) {
+    PaintLoopOptions options;
+    options.max_frames = size.huge() ? 24 : 48;
+    options.reproject_moving = reproject;
+    PaintLoop loop(display, renderer, cumulus, Light{}, options);
+    PaintLoopSummary summary;
+    const double cpu0 = processCpuMs();
+    double fps = -1, cpu = -1;
+    if (loop.run(nullptr, &summary, &error)) {
+      fps = summary.median_frame_ms > 0 ? 1000.0 / summary.median_frame_ms : -1;
+      // Mean process CPU per frame (all threads): the figure to compare on a loaded machine.
+      if (summary.frames > 0) cpu = (processCpuMs() - cpu0) / double(summary.frames);
+    }
+    const float scale = reproject ? 1.0f : orbitRenderScale(summary.final_moving_scale, options);
+    (reproject ? row->orbit_fps : row->orbit_base_fps) = fps;
+    (reproject ? row->orbit_cpu_ms : row->orbit_base_cpu_ms) = cpu;
+    (reproject ? row->orbit_scale : row->orbit_base_scale) = scale;
+    std::printf("  %s: painter's orbit %s %.1f fps at scale %.2f (process CPU %.1f ms a frame)\n",
+                size.name().c_str(), reproject ? "reprojected" : "(baseline, reduced)", fps, scale,
+                cpu);
+    std::fflush(stdout);
+  }
+  const Camera paint_view = initialPaintCamera(PaintSessionSettings{size.w, size.h, grid});
+  const char* shots = std::getenv("CLOUDBRUSH_BENCH_SHOTS");
+  row->reprojected = measureReprojectedOrbit(renderer, paint_view, size.w, size.h,
+                                             reprojectionFactor(size.w, size.h),
+                                             size.huge() ? 2 : 4, shots ? shots : "");
+  const ReprojectedOrbitFigures& r = row->reprojected;
+  std::printf(
+      "  %s: reprojected orbit (1 pixel in %d cast) %.1f ms a frame (%.1f fps; CPU %.1f ms), "
+      "error mean %.2f/255, p99 %.0f/255; half-resolution orbit (baseline) %.1f ms (%.1f "
+      "fps; CPU %.1f ms), error mean %.2f/255, p99 %.0f/255\n",
+      size.name().c_str(), r.factor * r.factor, r.ms, 1000.0 / r.ms, r.cpu_ms, r.error_mean,
+      r.error_p99, r.base_ms, 1000.0 / r.base_ms, r.base_cpu_ms, r.base_error_mean,
+      r.base_error_p99);
+  std::fflush(stdout);
+}
+
+// The painter with a pen: the region re-render, then the whole-frame baseline (not when quick).
+void measurePen(Display& display, VolumeRenderer& renderer, const Volume& cumulus,
+                const std::string& journal, Size size, const SkyExtent& sky, bool quick, Row* row) {
+  const PaintRun region = runPainter(display, renderer, cumulus, journal, size, sky, true);
+  const PaintRun whole =
+      quick ? PaintRun{} : runPainter(display, renderer, cumulus, journal, size, sky, false);
+  row->volume_mb = region.volume_mb;
+  row->gpu_mb = region.gpu_mb;
+  row->light_mb = region.light_mb;
+  row->rss_mb = region.rss_mb;
+  row->painting_ms = region.painting_ms;
+  row->lit_ms = region.lit_ms;
+  row->full_ms = region.full_ms;
+  row->lit_pixels = region.lit_pixels;
+  row->full_pixels = region.full_pixels;
+  row->mapping_ms = region.mapping_ms;
+  row->sync_ms = region.sync_ms;
+  row->lit_render_ms = region.lit_render_ms;
+  row->full_render_ms = region.full_render_ms;
+  row->lit_received_ms = region.lit_received_ms;
+  row->lit_base_ms = whole.lit_ms;
+  row->full_base_ms = whole.full_ms;
+  std::printf(
+      "  %s: painting %.1f ms/frame; pen-up -> lit %.1f ms (mapping %.1f, sync %.1f, ray "
+      "cast %.1f), -> full %.1f ms (ray cast %.1f) with the region (%.0f / %.0f pixels "
+      "cast); whole frame: %.1f, %.1f ms; all from the lift sample's timestamp with the "
+      "journal's stroke-end fsync (-> lit from the painter receiving the lift: %.1f ms)\n",
+      size.name().c_str(), row->painting_ms, row->lit_ms, row->mapping_ms, row->sync_ms,
+      row->lit_render_ms, row->full_ms, row->full_render_ms, row->lit_pixels, row->full_pixels,
+      row->lit_base_ms, row->full_base_ms, row->lit_received_ms);
+  std::printf(
+      "  %s: memory after the strokes: volume %.1f MiB, GPU copies %.1f MiB, light %.1f MiB "
+      "(process RSS %.0f MiB)\n",
+      size.name().c_str(), row->volume_mb, row->gpu_mb, row->light_mb, row->rss_mb);
+  std::fflush(stdout);
+}
+
+// The sky growing (sky_extent.h): the strokes drawn from the default view panned to the default
+// sky's +x edge, so the first grows the sky; at its pen-up the renderer follows the growth
+// (shifts what it holds, VolumeRenderer::sync) and the painter re-renders the stroke's region.
+// Baseline in the same run: the same strokes in a sky made that wide from the start.
+void measureGrowth(Display& display, VolumeRenderer& renderer, const std::string& journal,
+                   Size size, const SkyExtent& sky, const std::string& k, BenchReport& report) {
+  const int grid = sky.grid;
+  const Volume home = makeBundledCumulus(glm::ivec3(grid), 1);
+  const glm::vec3 edge(float(sky.span), 0.0f, 0.0f);
+  const Camera view = defaultPaintCamera(Canvas{}, glm::vec3(-1.0f) + edge, glm::vec3(1.0f) + edge,
+                                         float(size.w) / size.h);
+  const PaintRun grows =
+      runPainter(display, renderer, home, journal, size, sky, true, &view, kMaxSkySpan);
+  const PaintRun wide =
+      grows.sky_span > sky.span
+          ? runPainter(display, renderer, home, journal, size, {grid, grows.sky_span}, true, &view)
+          : PaintRun{};
+  std::printf(
+      "  %s: the stroke that grows the sky (span %d -> %d): pen-up -> lit %.1f ms (sync "
+      "%.1f), -> full %.1f ms; in a sky that wide from the start (baseline): %.1f ms "
+      "(sync %.1f), %.1f ms\n",
+      size.name().c_str(), sky.span, grows.sky_span, grows.first_lit_ms, grows.first_sync_ms,
+      grows.first_full_ms, wide.first_lit_ms, wide.first_sync_ms, wide.first_full_ms);
+  std::fflush(stdout);
+  report.figure(k + "growth_sky_span", double(grows.sky_span));
+  report.figure(k + "growth_pen_up_to_lit_ms", grows.first_lit_ms);
+  report.figure(k + "growth_pen_up_to_full_ms", grows.first_full_ms);
+  report.figure(k + "growth_sync_ms", grows.first_sync_ms);
+  report.baseline(k + "growth_pen_up_to_lit_ms", wide.first_lit_ms);
+  report.baseline(k + "growth_pen_up_to_full_ms", wide.first_full_ms);
+  report.baseline(k + "growth_sync_ms", wide.first_sync_ms);
+}
+
+// One size's row into the report, each key prefixed with `k` ("1920x1080_").
+void reportRow(BenchReport& report, const std::string& k, const Row& row) {
+  report.figure(k + "fresh_ms", row.fresh_ms);
+  report.figure(k + "fresh_first_ms", row.fresh_first_ms);
+  report.figure(k + "fresh_cpu_ms", row.fresh_cpu_ms);
+  report.figure(k + "fresh_paint_view_ms", row.fresh_paint_view_ms);
+  report.figure(k + "fresh_start_view_ms", row.fresh_start_view_ms);
+  report.figure(k + "orbit_fps", row.orbit_fps);
+  report.figure(k + "orbit_scale", row.orbit_scale);
+  report.figure(k + "orbit_cpu_ms", row.orbit_cpu_ms);
+  report.baseline(k + "orbit_fps", row.orbit_base_fps);
+  report.baseline(k + "orbit_scale", row.orbit_base_scale);
+  report.baseline(k + "orbit_cpu_ms", row.orbit_base_cpu_ms);
+  const ReprojectedOrbitFigures& rep = row.reprojected;
+  report.figure(k + "reprojected_orbit_fps", rep.ms > 0 ? 1000.0 / rep.ms : -1);
+  report.figure(k + "reprojected_orbit_cpu_ms", rep.cpu_ms);
+  report.figure(k + "reprojected_orbit_factor", rep.factor);
+  report.figure(k + "reprojected_error_mean", rep.error_mean);
+  report.figure(k + "reprojected_error_p99", rep.error_p99);
+  report.baseline(k + "reprojected_orbit_fps", rep.base_ms > 0 ? 1000.0 / rep.base_ms : -1);
+  report.baseline(k + "reprojected_orbit_cpu_ms", rep.base_cpu_ms);
+  report.baseline(k + "reprojected_error_mean", rep.base_error_mean);
+  report.baseline(k + "reprojected_error_p99", rep.base_error_p99);
+  report.figure(k + "painting_ms", row.painting_ms);
+  report.figure(k + "pen_up_to_lit_ms", row.lit_ms);
+  report.figure(k + "pen_up_to_full_ms", row.full_ms);
+  report.figure(k + "pen_up_received_to_lit_ms", row.lit_received_ms);
+  report.figure(k + "lit_pixels_cast", row.lit_pixels);
+  report.figure(k + "full_pixels_cast", row.full_pixels);
+  report.figure(k + "mapping_ms", row.mapping_ms);
+  report.figure(k + "sync_ms", row.sync_ms);
+  report.figure(k + "lit_ray_cast_ms", row.lit_render_ms);
+  report.figure(k + "full_ray_cast_ms", row.full_render_ms);
+  report.figure(k + "volume_mb", row.volume_mb);
+  report.figure(k + "gpu_mb", row.gpu_mb);
+  report.figure(k + "light_mb", row.light_mb);
+  report.figure(k + "rss_mb", row.rss_mb);
+  report.baseline(k + "pen_up_to_lit_ms", row.lit_base_ms);
+  report.baseline(k + "pen_up_to_full_ms", row.full_base_ms);
+}
+
 // One thread count (this process's): every size, in a sky of `sky`. `quick`: the fresh frames
 // and the painter with the region re-render only (the sky-size table).
 int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, bool quick) {
@@ -262,215 +473,19 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
         std::printf("  %s: renderer: %s\n", size.name().c_str(), error.c_str());
         continue;
       }
-      // Fresh full-resolution frames: every pixel ray cast (no cached image), after the first
-      // frame that pays llvmpipe's shader compile.
-      RenderTarget target;
-      if (!target.create(size.w, size.h, RenderTarget::Format::kRgba8, &error)) {
-        std::printf("  %s: %s\n", size.name().c_str(), error.c_str());
-        continue;
-      }
-      renderer.sync(cumulus, Light{});
-      RenderOptions still;
-      still.finish = true;
-      renderer.render(Camera::reference(), size.w, size.h, target.fbo(), still);
-      row.fresh_first_ms = renderer.lastStats().frame_ms;
-      std::vector<double> fresh, cpu;
-      const int n = size.huge() ? std::min(frames, 2) : frames;
-      for (int i = 0; i < n; ++i) {
-        const double c0 = processCpuMs();
-        renderer.render(Camera::reference().orbited(float(i)), size.w, size.h, target.fbo(), still);
-        cpu.push_back(processCpuMs() - c0);
-        fresh.push_back(renderer.lastStats().frame_ms);
-      }
-      row.fresh_ms = median(fresh);
-      row.fresh_cpu_ms = median(cpu);
-      // The same at the painter's starting view (framed on the drawable region: the cumulus
-      // fills more of the screen), which the pen-up figures below are drawn from.
-      const Camera paint_view = initialPaintCamera(PaintSessionSettings{size.w, size.h, grid});
-      fresh.clear();
-      for (int i = 0; i < std::max(1, n / 2); ++i) {
-        renderer.render(paint_view, size.w, size.h, target.fbo(), still);
-        fresh.push_back(renderer.lastStats().frame_ms);
-      }
-      row.fresh_paint_view_ms = median(fresh);
-      // The painter's first screen: its session's empty sky (the product's default span) at
-      // that view, as `cloudbrush paint` starts (app/shell/paint_screen.h).
-      {
-        const PaintSession empty(PaintSessionSettings{size.w, size.h, grid}, BrushConfig{},
-                                 MappingConfig{});
-        renderer.sync(empty.volume(), Light{});
-        fresh.clear();
-        for (int i = 0; i < std::max(1, n / 2); ++i) {
-          renderer.render(paint_view, size.w, size.h, target.fbo(), still);
-          fresh.push_back(renderer.lastStats().frame_ms);
-        }
-        row.fresh_start_view_ms = median(fresh);
-        renderer.sync(cumulus, Light{});
-      }
-      std::printf(
-          "  %s: fresh frame %.1f ms (process CPU %.1f ms; first frame %.1f ms); at the painter's "
-          "starting view %.1f ms (its empty sky there, the first screen: %.1f ms)\n",
-          size.name().c_str(), row.fresh_ms, row.fresh_cpu_ms, row.fresh_first_ms,
-          row.fresh_paint_view_ms, row.fresh_start_view_ms);
-      std::fflush(stdout);
-
-      // The painter's orbit: its own loop and moving-frame policy, no pen. Full resolution by
-      // temporal reprojection (the default); the baseline, in the same run: the half-resolution
-      // orbit (PaintLoopOptions::reproject_moving off, the moving-scale policy).
-      for (bool reproject : {false, true}) {
-        if (quick) break;
-        PaintLoopOptions options;
-        options.max_frames = size.huge() ? 24 : 48;
-        options.reproject_moving = reproject;
-        PaintLoop loop(*display, renderer, cumulus, Light{}, options);
-        PaintLoopSummary summary;
-        const double cpu0 = processCpuMs();
-        double fps = -1, cpu = -1;
-        if (loop.run(nullptr, &summary, &error)) {
-          fps = summary.median_frame_ms > 0 ? 1000.0 / summary.median_frame_ms : -1;
-          // Mean process CPU per frame (all threads): the figure to compare on a loaded machine.
-          if (summary.frames > 0) cpu = (processCpuMs() - cpu0) / double(summary.frames);
-        }
-        const float scale =
-            reproject ? 1.0f : orbitRenderScale(summary.final_moving_scale, options);
-        (reproject ? row.orbit_fps : row.orbit_base_fps) = fps;
-        (reproject ? row.orbit_cpu_ms : row.orbit_base_cpu_ms) = cpu;
-        (reproject ? row.orbit_scale : row.orbit_base_scale) = scale;
-        std::printf(
-            "  %s: painter's orbit %s %.1f fps at scale %.2f (process CPU %.1f ms a frame)\n",
-            size.name().c_str(), reproject ? "reprojected" : "(baseline, reduced)", fps, scale,
-            cpu);
-        std::fflush(stdout);
-      }
-
-      // The orbit at full resolution by temporal reprojection, against the half-resolution
-      // orbit in alternating blocks, from the painter's starting view. Frames as PNG into
-      // $CLOUDBRUSH_BENCH_SHOTS when set.
-      if (!quick) {
-        const char* shots = std::getenv("CLOUDBRUSH_BENCH_SHOTS");
-        row.reprojected = measureReprojectedOrbit(renderer, paint_view, size.w, size.h,
-                                                  reprojectionFactor(size.w, size.h),
-                                                  size.huge() ? 2 : 4, shots ? shots : "");
-        const ReprojectedOrbitFigures& r = row.reprojected;
-        std::printf(
-            "  %s: reprojected orbit (1 pixel in %d cast) %.1f ms a frame (%.1f fps; CPU %.1f ms), "
-            "error mean %.2f/255, p99 %.0f/255; half-resolution orbit (baseline) %.1f ms (%.1f "
-            "fps; CPU %.1f ms), error mean %.2f/255, p99 %.0f/255\n",
-            size.name().c_str(), r.factor * r.factor, r.ms, 1000.0 / r.ms, r.cpu_ms, r.error_mean,
-            r.error_p99, r.base_ms, 1000.0 / r.base_ms, r.base_cpu_ms, r.base_error_mean,
-            r.base_error_p99);
-        std::fflush(stdout);
-      }
-
-      // The painter with a pen: region re-render, then the whole-frame baseline.
+      if (!measureFreshFrames(renderer, cumulus, size, frames, grid, &row)) continue;
+      if (!quick) measureOrbits(*display, renderer, cumulus, size, grid, &row);
       const int strokes = size.huge() ? 1 : 2;
       const std::string journal = writeStrokeJournal(dir, size, strokes);
-      if (!journal.empty()) {
-        const PaintRun region = runPainter(*display, renderer, cumulus, journal, size, sky, true);
-        const PaintRun whole =
-            quick ? PaintRun{} : runPainter(*display, renderer, cumulus, journal, size, sky, false);
-        row.volume_mb = region.volume_mb;
-        row.gpu_mb = region.gpu_mb;
-        row.light_mb = region.light_mb;
-        row.rss_mb = region.rss_mb;
-        row.painting_ms = region.painting_ms;
-        row.lit_ms = region.lit_ms;
-        row.full_ms = region.full_ms;
-        row.lit_pixels = region.lit_pixels;
-        row.full_pixels = region.full_pixels;
-        row.mapping_ms = region.mapping_ms;
-        row.sync_ms = region.sync_ms;
-        row.lit_render_ms = region.lit_render_ms;
-        row.full_render_ms = region.full_render_ms;
-        row.lit_received_ms = region.lit_received_ms;
-        row.lit_base_ms = whole.lit_ms;
-        row.full_base_ms = whole.full_ms;
-        std::printf(
-            "  %s: painting %.1f ms/frame; pen-up -> lit %.1f ms (mapping %.1f, sync %.1f, ray "
-            "cast %.1f), -> full %.1f ms (ray cast %.1f) with the region (%.0f / %.0f pixels "
-            "cast); whole frame: %.1f, %.1f ms; all from the lift sample's timestamp with the "
-            "journal's stroke-end fsync (-> lit from the painter receiving the lift: %.1f ms)\n",
-            size.name().c_str(), row.painting_ms, row.lit_ms, row.mapping_ms, row.sync_ms,
-            row.lit_render_ms, row.full_ms, row.full_render_ms, row.lit_pixels, row.full_pixels,
-            row.lit_base_ms, row.full_base_ms, row.lit_received_ms);
-        std::printf(
-            "  %s: memory after the strokes: volume %.1f MiB, GPU copies %.1f MiB, light %.1f MiB "
-            "(process RSS %.0f MiB)\n",
-            size.name().c_str(), row.volume_mb, row.gpu_mb, row.light_mb, row.rss_mb);
-        std::fflush(stdout);
-      }
-
-      // The sky growing (sky_extent.h): the strokes drawn from the default view panned to the
-      // default sky's +x edge, so the first grows the sky; at its pen-up the renderer follows
-      // the growth (shifts what it holds, VolumeRenderer::sync) and the painter re-renders the
-      // stroke's region. Baseline in the same run: the same strokes in a sky made that wide from
-      // the start. Once, at 1920x1080 in the default sky.
+      if (!journal.empty())
+        measurePen(*display, renderer, cumulus, journal, size, sky, quick, &row);
+      // Once, at 1920x1080 in the default sky.
       if (!quick && !journal.empty() && size.w == 1920 && size.h == 1080 &&
-          sky.span == kDefaultSkySpan) {
-        const Volume home = makeBundledCumulus(glm::ivec3(grid), 1);
-        const glm::vec3 edge(float(sky.span), 0.0f, 0.0f);
-        const Camera view = defaultPaintCamera(Canvas{}, glm::vec3(-1.0f) + edge,
-                                               glm::vec3(1.0f) + edge, float(size.w) / size.h);
-        const PaintRun grows =
-            runPainter(*display, renderer, home, journal, size, sky, true, &view, kMaxSkySpan);
-        const PaintRun wide = grows.sky_span > sky.span
-                                  ? runPainter(*display, renderer, home, journal, size,
-                                               {grid, grows.sky_span}, true, &view)
-                                  : PaintRun{};
-        std::printf(
-            "  %s: the stroke that grows the sky (span %d -> %d): pen-up -> lit %.1f ms (sync "
-            "%.1f), -> full %.1f ms; in a sky that wide from the start (baseline): %.1f ms "
-            "(sync %.1f), %.1f ms\n",
-            size.name().c_str(), sky.span, grows.sky_span, grows.first_lit_ms, grows.first_sync_ms,
-            grows.first_full_ms, wide.first_lit_ms, wide.first_sync_ms, wide.first_full_ms);
-        std::fflush(stdout);
-        report.figure(k + "growth_sky_span", double(grows.sky_span));
-        report.figure(k + "growth_pen_up_to_lit_ms", grows.first_lit_ms);
-        report.figure(k + "growth_pen_up_to_full_ms", grows.first_full_ms);
-        report.figure(k + "growth_sync_ms", grows.first_sync_ms);
-        report.baseline(k + "growth_pen_up_to_lit_ms", wide.first_lit_ms);
-        report.baseline(k + "growth_pen_up_to_full_ms", wide.first_full_ms);
-        report.baseline(k + "growth_sync_ms", wide.first_sync_ms);
-      }
+          sky.span == kDefaultSkySpan)
+        measureGrowth(*display, renderer, journal, size, sky, k, report);
     }
     display.reset();
-    report.figure(k + "fresh_ms", row.fresh_ms);
-    report.figure(k + "fresh_first_ms", row.fresh_first_ms);
-    report.figure(k + "fresh_cpu_ms", row.fresh_cpu_ms);
-    report.figure(k + "fresh_paint_view_ms", row.fresh_paint_view_ms);
-    report.figure(k + "fresh_start_view_ms", row.fresh_start_view_ms);
-    report.figure(k + "orbit_fps", row.orbit_fps);
-    report.figure(k + "orbit_scale", row.orbit_scale);
-    report.figure(k + "orbit_cpu_ms", row.orbit_cpu_ms);
-    report.baseline(k + "orbit_fps", row.orbit_base_fps);
-    report.baseline(k + "orbit_scale", row.orbit_base_scale);
-    report.baseline(k + "orbit_cpu_ms", row.orbit_base_cpu_ms);
-    const ReprojectedOrbitFigures& rep = row.reprojected;
-    report.figure(k + "reprojected_orbit_fps", rep.ms > 0 ? 1000.0 / rep.ms : -1);
-    report.figure(k + "reprojected_orbit_cpu_ms", rep.cpu_ms);
-    report.figure(k + "reprojected_orbit_factor", rep.factor);
-    report.figure(k + "reprojected_error_mean", rep.error_mean);
-    report.figure(k + "reprojected_error_p99", rep.error_p99);
-    report.baseline(k + "reprojected_orbit_fps", rep.base_ms > 0 ? 1000.0 / rep.base_ms : -1);
-    report.baseline(k + "reprojected_orbit_cpu_ms", rep.base_cpu_ms);
-    report.baseline(k + "reprojected_error_mean", rep.base_error_mean);
-    report.baseline(k + "reprojected_error_p99", rep.base_error_p99);
-    report.figure(k + "painting_ms", row.painting_ms);
-    report.figure(k + "pen_up_to_lit_ms", row.lit_ms);
-    report.figure(k + "pen_up_to_full_ms", row.full_ms);
-    report.figure(k + "pen_up_received_to_lit_ms", row.lit_received_ms);
-    report.figure(k + "lit_pixels_cast", row.lit_pixels);
-    report.figure(k + "full_pixels_cast", row.full_pixels);
-    report.figure(k + "mapping_ms", row.mapping_ms);
-    report.figure(k + "sync_ms", row.sync_ms);
-    report.figure(k + "lit_ray_cast_ms", row.lit_render_ms);
-    report.figure(k + "full_ray_cast_ms", row.full_render_ms);
-    report.figure(k + "volume_mb", row.volume_mb);
-    report.figure(k + "gpu_mb", row.gpu_mb);
-    report.figure(k + "light_mb", row.light_mb);
-    report.figure(k + "rss_mb", row.rss_mb);
-    report.baseline(k + "pen_up_to_lit_ms", row.lit_base_ms);
-    report.baseline(k + "pen_up_to_full_ms", row.full_base_ms);
+    reportRow(report, k, row);
   }
   std::filesystem::remove_all(dir);
   report.print();
@@ -498,6 +513,175 @@ std::string cell(double v, const char* format) {
 
 const char* verdict(bool met) {
   return met ? "met" : "MISSED";
+}
+
+// A comma-separated list of integers in lo..hi; false when it is not one.
+bool parseIntList(const std::string& list, int lo, int hi, std::vector<int>* out) {
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find(',', start), list.size());
+    const int v = std::atoi(list.substr(start, end - start).c_str());
+    if (v < lo || v > hi) return false;
+    out->push_back(v);
+    start = end + 1;
+  }
+  return true;
+}
+
+using Figures = std::map<std::string, double>;
+
+// Starts this binary as `bench scale --child` with a thread count and reads its figures.
+struct ChildRunner {
+  std::string self;  // this binary
+  int frames = 5, grid = 256;
+
+  // One child process: `t` threads, the figures of its JSON line into *figures / *baselines
+  // (its other output passed through).
+  void run(int t, const std::string& sizes_arg, int span, bool quick, Figures* figures_out,
+           Figures* baselines_out) const {
+    const std::string command = "CLOUDBRUSH_THREADS=" + std::to_string(t) +
+                                " LP_NUM_THREADS=" + std::to_string(t) + " '" + self +
+                                "' bench scale --child --sizes " + sizes_arg + " --frames " +
+                                std::to_string(frames) + " --grid " + std::to_string(grid) +
+                                " --sky-span " + std::to_string(span) + (quick ? " --quick" : "");
+    FILE* p = popen((command + " 2>/dev/null").c_str(), "r");
+    if (!p) {
+      std::printf("  could not start the child process\n");
+      return;
+    }
+    std::string last;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, p)) {
+      const std::string line(buf);
+      if (line.rfind("{\"bench\"", 0) == 0)
+        last = line;
+      else
+        std::fputs(buf, stdout), std::fflush(stdout);
+    }
+    const int status = pclose(p);
+    if (last.empty()) {
+      std::printf("  the child process gave no figures (status %d)\n", status);
+      return;
+    }
+    parseReport(last, figures_out, baselines_out);
+  }
+};
+
+void noteLoadAverage(BenchReport& report) {
+  FILE* f = std::fopen("/proc/loadavg", "r");
+  if (!f) return;
+  char line[128] = {0};
+  if (std::fgets(line, sizeof line, f)) {
+    std::string load(line);
+    while (!load.empty() && load.back() == '\n') load.pop_back();
+    std::printf("load average at start: %s (wall-clock figures; other load inflates them)\n",
+                load.c_str());
+    report.note("loadavg", load);
+  }
+  std::fclose(f);
+}
+
+// The children's figures by thread count.
+struct ThreadFigures {
+  std::map<int, Figures> figures, baselines;
+  double get(int t, const Size& s, const std::string& key, bool baseline = false) const {
+    const auto& by_thread = baseline ? baselines : figures;
+    const auto m = by_thread.find(t);
+    if (m == by_thread.end()) return -1.0;
+    auto it = m->second.find(s.name() + "_" + key);
+    return it == m->second.end() ? -1.0 : it->second;
+  }
+};
+
+// The table of sizes and thread counts, into the report as t<threads>_<size>_<key>.
+void printSizeTable(BenchReport& report, const std::vector<Size>& sizes,
+                    const std::vector<int>& threads, const ThreadFigures& f) {
+  std::printf("\n%-10s %3s | %9s | %8s %5s | %9s | %-21s | %-21s\n", "size", "thr", "fresh ms",
+              "orbit fps", "scale", "paint ms", "pen-up->lit ms (base)", "->full res ms (base)");
+  for (const Size& s : sizes)
+    for (int t : threads) {
+      const std::string lit = cell(f.get(t, s, "pen_up_to_lit_ms"), "%.1f") + " (" +
+                              cell(f.get(t, s, "pen_up_to_lit_ms", true), "%.1f") + ")";
+      const std::string full = cell(f.get(t, s, "pen_up_to_full_ms"), "%.1f") + " (" +
+                               cell(f.get(t, s, "pen_up_to_full_ms", true), "%.1f") + ")";
+      std::printf("%-10s %3d | %9s | %8s %5s | %9s | %-21s | %-21s\n", s.name().c_str(), t,
+                  cell(f.get(t, s, "fresh_ms"), "%.1f").c_str(),
+                  cell(f.get(t, s, "orbit_fps"), "%.1f").c_str(),
+                  cell(f.get(t, s, "orbit_scale"), "%.2f").c_str(),
+                  cell(f.get(t, s, "painting_ms"), "%.1f").c_str(), lit.c_str(), full.c_str());
+      const std::string k = "t" + std::to_string(t) + "_" + s.name() + "_";
+      for (const char* key :
+           {"fresh_ms", "orbit_fps", "orbit_scale", "painting_ms", "pen_up_to_lit_ms",
+            "pen_up_to_full_ms", "lit_pixels_cast", "full_pixels_cast", "mapping_ms", "volume_mb",
+            "gpu_mb", "light_mb", "rss_mb"})
+        report.figure(k + key, f.get(t, s, key));
+      for (const char* key : {"pen_up_to_lit_ms", "pen_up_to_full_ms"})
+        report.baseline(k + key, f.get(t, s, key, true));
+    }
+}
+
+// The targets, at 1920x1080 with 2 threads.
+void printTargets(const ThreadFigures& f) {
+  const Size hd{1920, 1080};
+  const double fresh = f.get(2, hd, "fresh_ms"), fps = f.get(2, hd, "orbit_fps"),
+               scale = f.get(2, hd, "orbit_scale"), paint = f.get(2, hd, "painting_ms"),
+               lit = f.get(2, hd, "pen_up_to_lit_ms"), full = f.get(2, hd, "pen_up_to_full_ms");
+  std::printf("\ntargets at 1920x1080, 2 threads:\n");
+  std::printf("  fresh full-resolution lit frame %.1f ms <= 100 ms: %s\n", fresh,
+              verdict(fresh >= 0 && fresh <= 100));
+  std::printf("  orbit (half resolution, baseline) %.1f fps (process CPU %.1f ms a frame)\n",
+              f.get(2, hd, "orbit_fps", true), f.get(2, hd, "orbit_cpu_ms", true));
+  std::printf("  orbit %.1f fps >= 30 at scale %.2f >= 0.5: %s\n", fps, scale,
+              verdict(fps >= 30 && scale >= 0.5));
+  std::printf("  painting %.1f ms/frame (%.0f fps) >= 60 fps: %s\n", paint,
+              paint > 0 ? 1000 / paint : 0.0, verdict(paint > 0 && paint <= 1000.0 / 60.0));
+  std::printf("  pen-up -> first lit frame %.1f ms <= 100 ms: %s\n", lit,
+              verdict(lit >= 0 && lit <= 100));
+  std::printf("  pen-up -> full-resolution lit frame %.1f ms <= 150 ms: %s\n", full,
+              verdict(full >= 0 && full <= 150));
+}
+
+// The sky-size table: the painter at 1920x1080 in skies of 1x, 4x, 16x the home box's area;
+// span 1 (the thesis's one box) is the baseline.
+void benchSkySizes(BenchReport& report, const ChildRunner& runner, const std::vector<int>& threads,
+                   const std::vector<int>& spans) {
+  const Size hd{1920, 1080};
+  std::printf(
+      "\nsky sizes at %s (the painter with the region re-render; span 1 = one %d^3 box, "
+      "the baseline):\n",
+      hd.name().c_str(), runner.grid);
+  std::map<std::pair<int, int>, Figures> sky_figures;
+  for (int t : threads)
+    for (int span : spans) {
+      std::printf("threads %d, sky span %d:\n", t, span);
+      std::fflush(stdout);
+      Figures unused;
+      runner.run(t, hd.name(), span, true, &sky_figures[{t, span}], &unused);
+    }
+  std::printf("\n%-16s %3s | %8s | %14s | %14s | %9s %9s %9s %9s\n", "sky (voxels)", "thr",
+              "fresh ms", "pen-up->lit ms", "->full res ms", "volume MB", "GPU MB", "light MB",
+              "RSS MB");
+  for (int t : threads)
+    for (int span : spans) {
+      const Figures& m = sky_figures[{t, span}];
+      const auto at = [&](const std::string& key) {
+        auto it = m.find(hd.name() + "_" + key);
+        return it == m.end() ? -1.0 : it->second;
+      };
+      const glm::ivec3 d = SkyExtent{runner.grid, span}.dims();
+      const std::string name =
+          std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+      std::printf("%-16s %3d | %8s | %14s | %14s | %9s %9s %9s %9s\n", name.c_str(), t,
+                  cell(at("fresh_ms"), "%.1f").c_str(),
+                  cell(at("pen_up_to_lit_ms"), "%.1f").c_str(),
+                  cell(at("pen_up_to_full_ms"), "%.1f").c_str(),
+                  cell(at("volume_mb"), "%.1f").c_str(), cell(at("gpu_mb"), "%.1f").c_str(),
+                  cell(at("light_mb"), "%.1f").c_str(), cell(at("rss_mb"), "%.0f").c_str());
+      const std::string k = "t" + std::to_string(t) + "_sky" + std::to_string(span) + "_";
+      for (const char* key : {"fresh_ms", "pen_up_to_lit_ms", "pen_up_to_full_ms", "volume_mb",
+                              "gpu_mb", "light_mb", "rss_mb"})
+        (span == 1 ? report.baseline(k + key, at(key)) : report.figure(k + key, at(key)));
+    }
 }
 
 }  // namespace
@@ -534,47 +718,26 @@ int benchScale(int argc, char** argv) {
   }
   if (args.has("child")) return runChild(sizes, frames, sky, args.has("quick"));
 
-  // A comma-separated list of integers in lo..hi; false when it is not one.
-  const auto parseList = [](const std::string& list, int lo, int hi, std::vector<int>* out) {
-    size_t start = 0;
-    while (start <= list.size()) {
-      const size_t end = std::min(list.find(',', start), list.size());
-      const int v = std::atoi(list.substr(start, end - start).c_str());
-      if (v < lo || v > hi) return false;
-      out->push_back(v);
-      start = end + 1;
-    }
-    return true;
-  };
   std::vector<int> threads, spans;
-  if (!parseList(args.get("threads", "1,2"), 1, 64, &threads)) {
+  if (!parseIntList(args.get("threads", "1,2"), 1, 64, &threads)) {
     std::fprintf(stderr, "cloudbrush bench scale: --threads: expected 1..64, ...\n");
     return 2;
   }
-  if (!parseList(args.get("sky-spans", "1,2,4"), 0, kMaxSkySpan, &spans)) {
+  if (!parseIntList(args.get("sky-spans", "1,2,4"), 0, kMaxSkySpan, &spans)) {
     std::fprintf(stderr, "cloudbrush bench scale: --sky-spans: expected 0..%d, ...\n", kMaxSkySpan);
     return 2;
   }
   spans.erase(std::remove(spans.begin(), spans.end(), 0), spans.end());
   std::error_code ec;
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  const ChildRunner runner{std::filesystem::read_symlink("/proc/self/exe", ec).string(), frames,
+                           grid};
   if (ec) {
     std::fprintf(stderr, "cloudbrush bench scale: cannot find this binary (%s)\n",
                  ec.message().c_str());
     return 1;
   }
   BenchReport report("scale");
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    char line[128] = {0};
-    if (std::fgets(line, sizeof line, f)) {
-      std::string load(line);
-      while (!load.empty() && load.back() == '\n') load.pop_back();
-      std::printf("load average at start: %s (wall-clock figures; other load inflates them)\n",
-                  load.c_str());
-      report.note("loadavg", load);
-    }
-    std::fclose(f);
-  }
+  noteLoadAverage(report);
   std::printf("bench scale: sizes %s, threads", size_list.c_str());
   for (int t : threads) std::printf(" %d", t);
   std::printf(
@@ -582,134 +745,18 @@ int benchScale(int argc, char** argv) {
       "process)\n",
       grid, sky.span, sky.span);
 
-  // One child process: `t` threads, the figures of its JSON line into *figures / *baselines.
-  const auto runChildProcess = [&](int t, const std::string& sizes_arg, int span, bool quick,
-                                   std::map<std::string, double>* figures_out,
-                                   std::map<std::string, double>* baselines_out) {
-    const std::string command = "CLOUDBRUSH_THREADS=" + std::to_string(t) +
-                                " LP_NUM_THREADS=" + std::to_string(t) + " '" + self +
-                                "' bench scale --child --sizes " + sizes_arg + " --frames " +
-                                std::to_string(frames) + " --grid " + std::to_string(grid) +
-                                " --sky-span " + std::to_string(span) + (quick ? " --quick" : "");
-    FILE* p = popen((command + " 2>/dev/null").c_str(), "r");
-    if (!p) {
-      std::printf("  could not start the child process\n");
-      return;
-    }
-    std::string last;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) {
-      const std::string line(buf);
-      if (line.rfind("{\"bench\"", 0) == 0)
-        last = line;
-      else
-        std::fputs(buf, stdout), std::fflush(stdout);
-    }
-    const int status = pclose(p);
-    if (last.empty()) {
-      std::printf("  the child process gave no figures (status %d)\n", status);
-      return;
-    }
-    parseReport(last, figures_out, baselines_out);
-  };
-
-  std::map<int, std::map<std::string, double>> figures, baselines;
+  ThreadFigures f;
   for (int t : threads) {
     std::printf("threads %d:\n", t);
     std::fflush(stdout);
-    runChildProcess(t, size_list, sky.span, false, &figures[t], &baselines[t]);
+    runner.run(t, size_list, sky.span, false, &f.figures[t], &f.baselines[t]);
   }
-
-  auto get = [&](int t, const Size& s, const std::string& key, bool baseline = false) {
-    const auto& m = baseline ? baselines[t] : figures[t];
-    auto it = m.find(s.name() + "_" + key);
-    return it == m.end() ? -1.0 : it->second;
-  };
-  std::printf("\n%-10s %3s | %9s | %8s %5s | %9s | %-21s | %-21s\n", "size", "thr", "fresh ms",
-              "orbit fps", "scale", "paint ms", "pen-up->lit ms (base)", "->full res ms (base)");
-  for (const Size& s : sizes)
-    for (int t : threads) {
-      const std::string lit = cell(get(t, s, "pen_up_to_lit_ms"), "%.1f") + " (" +
-                              cell(get(t, s, "pen_up_to_lit_ms", true), "%.1f") + ")";
-      const std::string full = cell(get(t, s, "pen_up_to_full_ms"), "%.1f") + " (" +
-                               cell(get(t, s, "pen_up_to_full_ms", true), "%.1f") + ")";
-      std::printf("%-10s %3d | %9s | %8s %5s | %9s | %-21s | %-21s\n", s.name().c_str(), t,
-                  cell(get(t, s, "fresh_ms"), "%.1f").c_str(),
-                  cell(get(t, s, "orbit_fps"), "%.1f").c_str(),
-                  cell(get(t, s, "orbit_scale"), "%.2f").c_str(),
-                  cell(get(t, s, "painting_ms"), "%.1f").c_str(), lit.c_str(), full.c_str());
-      const std::string k = "t" + std::to_string(t) + "_" + s.name() + "_";
-      for (const char* key :
-           {"fresh_ms", "orbit_fps", "orbit_scale", "painting_ms", "pen_up_to_lit_ms",
-            "pen_up_to_full_ms", "lit_pixels_cast", "full_pixels_cast", "mapping_ms", "volume_mb",
-            "gpu_mb", "light_mb", "rss_mb"})
-        report.figure(k + key, get(t, s, key));
-      for (const char* key : {"pen_up_to_lit_ms", "pen_up_to_full_ms"})
-        report.baseline(k + key, get(t, s, key, true));
-    }
-
-  // The targets, at 1920x1080 with 2 threads.
-  const Size hd{1920, 1080};
+  printSizeTable(report, sizes, threads, f);
   if (std::find(threads.begin(), threads.end(), 2) != threads.end() &&
       std::any_of(sizes.begin(), sizes.end(),
-                  [&](const Size& s) { return s.name() == hd.name(); })) {
-    const double fresh = get(2, hd, "fresh_ms"), fps = get(2, hd, "orbit_fps"),
-                 scale = get(2, hd, "orbit_scale"), paint = get(2, hd, "painting_ms"),
-                 lit = get(2, hd, "pen_up_to_lit_ms"), full = get(2, hd, "pen_up_to_full_ms");
-    std::printf("\ntargets at 1920x1080, 2 threads:\n");
-    std::printf("  fresh full-resolution lit frame %.1f ms <= 100 ms: %s\n", fresh,
-                verdict(fresh >= 0 && fresh <= 100));
-    std::printf("  orbit (half resolution, baseline) %.1f fps (process CPU %.1f ms a frame)\n",
-                get(2, hd, "orbit_fps", true), get(2, hd, "orbit_cpu_ms", true));
-    std::printf("  orbit %.1f fps >= 30 at scale %.2f >= 0.5: %s\n", fps, scale,
-                verdict(fps >= 30 && scale >= 0.5));
-    std::printf("  painting %.1f ms/frame (%.0f fps) >= 60 fps: %s\n", paint,
-                paint > 0 ? 1000 / paint : 0.0, verdict(paint > 0 && paint <= 1000.0 / 60.0));
-    std::printf("  pen-up -> first lit frame %.1f ms <= 100 ms: %s\n", lit,
-                verdict(lit >= 0 && lit <= 100));
-    std::printf("  pen-up -> full-resolution lit frame %.1f ms <= 150 ms: %s\n", full,
-                verdict(full >= 0 && full <= 150));
-  }
-  // The sky-size table: the painter at 1920x1080 in skies of 1x, 4x, 16x the home box's area;
-  // span 1 (the thesis's one box) is the baseline.
-  if (!spans.empty()) {
-    std::printf(
-        "\nsky sizes at %s (the painter with the region re-render; span 1 = one %d^3 box, "
-        "the baseline):\n",
-        hd.name().c_str(), grid);
-    std::map<std::pair<int, int>, std::map<std::string, double>> sky_figures;
-    for (int t : threads)
-      for (int span : spans) {
-        std::printf("threads %d, sky span %d:\n", t, span);
-        std::fflush(stdout);
-        std::map<std::string, double> unused;
-        runChildProcess(t, hd.name(), span, true, &sky_figures[{t, span}], &unused);
-      }
-    std::printf("\n%-16s %3s | %8s | %14s | %14s | %9s %9s %9s %9s\n", "sky (voxels)", "thr",
-                "fresh ms", "pen-up->lit ms", "->full res ms", "volume MB", "GPU MB", "light MB",
-                "RSS MB");
-    for (int t : threads)
-      for (int span : spans) {
-        const auto& m = sky_figures[{t, span}];
-        const auto at = [&](const std::string& key) {
-          auto it = m.find(hd.name() + "_" + key);
-          return it == m.end() ? -1.0 : it->second;
-        };
-        const glm::ivec3 d = SkyExtent{grid, span}.dims();
-        const std::string name =
-            std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
-        std::printf("%-16s %3d | %8s | %14s | %14s | %9s %9s %9s %9s\n", name.c_str(), t,
-                    cell(at("fresh_ms"), "%.1f").c_str(),
-                    cell(at("pen_up_to_lit_ms"), "%.1f").c_str(),
-                    cell(at("pen_up_to_full_ms"), "%.1f").c_str(),
-                    cell(at("volume_mb"), "%.1f").c_str(), cell(at("gpu_mb"), "%.1f").c_str(),
-                    cell(at("light_mb"), "%.1f").c_str(), cell(at("rss_mb"), "%.0f").c_str());
-        const std::string k = "t" + std::to_string(t) + "_sky" + std::to_string(span) + "_";
-        for (const char* key : {"fresh_ms", "pen_up_to_lit_ms", "pen_up_to_full_ms", "volume_mb",
-                                "gpu_mb", "light_mb", "rss_mb"})
-          (span == 1 ? report.baseline(k + key, at(key)) : report.figure(k + key, at(key)));
-      }
-  }
+                  [](const Size& s) { return s.name() == "1920x1080"; }))
+    printTargets(f);
+  if (!spans.empty()) benchSkySizes(report, runner, threads, spans);
   report.print();
   return 0;
 }

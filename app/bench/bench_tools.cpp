@@ -37,12 +37,6 @@
 namespace cb {
 namespace {
 
-double timeMs(const std::function<void()>& fn) {
-  const auto t0 = std::chrono::steady_clock::now();
-  fn();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::vector<uint8_t> silhouette(int w, int h) {
   struct Disc {
     float x, y, r;
@@ -106,96 +100,75 @@ void writeToolImages(const std::string& dir, const ImageRgba8& silhouette_image,
   }
 }
 
-}  // namespace
-
-int benchTools(int argc, char** argv) {
-  Args args(argc, argv, {"help", "quick"});
-  if (args.has("help")) {
-    std::printf(
-        "usage: cloudbrush bench tools [--quick] [--out-dir DIR]\n"
-        "  --quick        one run of each figure instead of three\n"
-        "  --out-dir DIR  also write what each tool made, rendered at 640x360 from the view it\n"
-        "                 was placed from: the silhouette, its cloud, the model's cloud, the\n"
-        "                 morph between them at t = 0, 0.25, 0.5, 0.75, 1 and the wind after 0,\n"
-        "                 15 and 30 steps (DIR/tools-*.png)\n");
-    return 0;
-  }
-  const int runs = args.has("quick") ? 1 : 3;
-  const std::string out_dir = args.get("out-dir", "");
-  BenchReport report("tools");
-  const auto dir = std::filesystem::temp_directory_path();
+// What the parts of the bench share: the view the tools place from, runs per figure, the report.
+struct ToolsBench {
+  explicit ToolsBench(BenchReport& r) : report(r) {}
+  BenchReport& report;
   ToolView view;
-  view.camera = Camera::reference();
+  int runs = 3;
+  int frames = 6;  // in-betweens and wind steps timed
+  std::filesystem::path dir;
+};
 
-  // Picture → cloud.
-  ImageRgba8 image;
-  image.width = image.height = 512;
-  image.pixels = silhouette(512, 512);
-  const std::string png = (dir / "cloudbrush-bench-silhouette.png").string();
-  writePng(png, image);
+// Picture → cloud, against the naive uniform depth on one thread.
+void benchPicture(ToolsBench& t, const std::string& png) {
   std::vector<double> picture, picture_base;
-  for (int r = 0; r < runs; ++r) {
+  for (int r = 0; r < t.runs; ++r) {
     Volume volume;
-    picture.push_back(timeMs([&] { pictureToCloud(png, view, PictureCloudParams{}, &volume); }));
+    picture.push_back(timeMs([&] { pictureToCloud(png, t.view, PictureCloudParams{}, &volume); }));
     Volume base;
     PictureCloudParams naive;
     naive.naive_uniform_depth = true;
     setWorkerThreads(1);
-    picture_base.push_back(timeMs([&] { pictureToCloud(png, view, naive, &base); }));
+    picture_base.push_back(timeMs([&] { pictureToCloud(png, t.view, naive, &base); }));
     setWorkerThreads(0);
   }
   std::printf(
       "picture -> cloud 512x512 into 256^3: %.1f ms (baseline, naive uniform depth, one "
       "thread: %.1f ms; target <= 300)\n",
       median(picture), median(picture_base));
-  report.figure("picture_to_volume_ms", median(picture));
-  report.baseline("picture_naive_one_thread_ms", median(picture_base));
+  t.report.figure("picture_to_volume_ms", median(picture));
+  t.report.baseline("picture_naive_one_thread_ms", median(picture_base));
+}
 
-  // Model → cloud.
-  const TriangleMesh torus = makeDisplacedTorus(0.6f, 0.25f, 0.2f, 192, 184);
-  const std::string obj = (dir / "cloudbrush-bench-torus.obj").string();
-  writeObj(obj, torus);
+// Model → cloud, against one thread.
+void benchModel(ToolsBench& t, const std::string& obj, size_t triangles) {
   std::vector<double> model, model_base;
-  for (int r = 0; r < runs; ++r) {
+  for (int r = 0; r < t.runs; ++r) {
     Volume volume;
-    model.push_back(timeMs([&] { modelToCloud(obj, view, ModelCloudParams{}, &volume); }));
+    model.push_back(timeMs([&] { modelToCloud(obj, t.view, ModelCloudParams{}, &volume); }));
     Volume base;
     setWorkerThreads(1);
-    model_base.push_back(timeMs([&] { modelToCloud(obj, view, ModelCloudParams{}, &base); }));
+    model_base.push_back(timeMs([&] { modelToCloud(obj, t.view, ModelCloudParams{}, &base); }));
     setWorkerThreads(0);
   }
   std::printf(
       "model -> cloud %zu triangles into 256^3 (load + check + voxelise): %.1f ms "
       "(baseline, one thread: %.1f ms; target <= 500)\n",
-      torus.triangles.size(), median(model), median(model_base));
-  report.figure("model_to_volume_ms", median(model));
-  report.figure("model_triangles", double(torus.triangles.size()));
-  report.baseline("model_one_thread_ms", median(model_base));
+      triangles, median(model), median(model_base));
+  t.report.figure("model_to_volume_ms", median(model));
+  t.report.figure("model_triangles", double(triangles));
+  t.report.baseline("model_one_thread_ms", median(model_base));
+}
 
-  // Morph between the picture's cloud and the model's cloud, and wind on the picture's cloud:
-  // the in-between / step alone, then as the painter plays them — generated, synced to the
-  // renderer (upload, occupancy, light) and ray cast at 1280x720, moving scale 0.5.
-  // Baselines in the same run: the first versions (the one-thread scatter into a fresh volume
-  // per frame; the step sampling every voxel of the box).
-  Volume a, b;
-  pictureToCloud(png, view, PictureCloudParams{}, &a);
-  modelToCloud(obj, view, ModelCloudParams{}, &b);
+// The morph's plan, carry and in-between alone, against the first version (the one-thread
+// scatter into a fresh volume per frame) and a per-voxel cross-fade. Returns the plan.
+std::unique_ptr<CloudMorph> benchMorph(ToolsBench& t, const Volume& a, const Volume& b) {
   std::unique_ptr<CloudMorph> plan;
   const double plan_ms = timeMs([&] { plan = std::make_unique<CloudMorph>(a, b); });
   const double carry_ms = timeMs([&] { CloudMorph again(plan->plan(), a, b); });
-  const int frames = runs == 1 ? 3 : 6;
   std::vector<double> frame, frame_base, fade;
   const std::vector<float> dense_a = a.toDense(), dense_b = b.toDense();  // the cross-fade's grids
   Volume shown = a;
   VoxelBox written = shown.bounds();
-  for (int r = 0; r < frames; ++r) {
-    const float t = 0.2f + 0.1f * float(r);
-    frame.push_back(timeMs([&] { written = plan->frameInto(t, &shown, written); }));
-    frame_base.push_back(timeMs([&] { plan->frameOneThreadReference(t); }));
+  for (int r = 0; r < t.frames; ++r) {
+    const float f = 0.2f + 0.1f * float(r);
+    frame.push_back(timeMs([&] { written = plan->frameInto(f, &shown, written); }));
+    frame_base.push_back(timeMs([&] { plan->frameOneThreadReference(f); }));
     fade.push_back(timeMs([&] {
       Volume out(a.dims());
       std::vector<float> blend(dense_a.size());
-      for (size_t i = 0; i < blend.size(); ++i) blend[i] = (1 - t) * dense_a[i] + t * dense_b[i];
+      for (size_t i = 0; i < blend.size(); ++i) blend[i] = (1 - f) * dense_a[i] + f * dense_b[i];
       out.assignDense(blend.data());
     }));
   }
@@ -205,18 +178,22 @@ int benchTools(int argc, char** argv) {
       "cross-fade: %.1f ms)\n",
       plan_ms, carry_ms, plan->pairCount(), plan->splatCount(), median(frame), median(frame_base),
       median(fade));
-  report.figure("morph_plan_ms", plan_ms);
-  report.figure("morph_carry_ms", carry_ms);
-  report.figure("morph_inbetween_ms", median(frame));
-  report.figure("morph_pairs", double(plan->pairCount()));
-  report.figure("morph_splats", double(plan->splatCount()));
-  report.baseline("morph_inbetween_first_version_ms", median(frame_base));
-  report.baseline("crossfade_inbetween_ms", median(fade));
+  t.report.figure("morph_plan_ms", plan_ms);
+  t.report.figure("morph_carry_ms", carry_ms);
+  t.report.figure("morph_inbetween_ms", median(frame));
+  t.report.figure("morph_pairs", double(plan->pairCount()));
+  t.report.figure("morph_splats", double(plan->splatCount()));
+  t.report.baseline("morph_inbetween_first_version_ms", median(frame_base));
+  t.report.baseline("crossfade_inbetween_ms", median(fade));
+  return plan;
+}
 
-  // Wind: a breeze plus an updraft gust on the picture's cloud. A step moves the 64³ velocity
-  // and its flow map; the density shown is the start resampled once through the map. Baseline
-  // in the same run: the first version, the density itself advected every step (every voxel
-  // of its box sampled).
+// Wind: a breeze plus an updraft gust on the picture's cloud. A step moves the 64³ velocity and
+// its flow map; the density shown is the start resampled once through the map. Baseline in the
+// same run: the first version, the density itself advected every step (every voxel of its box
+// sampled). Then a long run recomputed at full resolution (replay; apply needs only the last
+// resampling): 150 steps, 10 s of wind, against the step-by-step advection.
+void benchWind(ToolsBench& t, const Volume& a) {
   auto windSolver = [&](const Volume& like) {
     WindSolver wind(like.worldMin(), like.worldMax());
     wind.setUniformWind({0.25f, 0.0f, 0.0f});
@@ -228,7 +205,7 @@ int benchTools(int argc, char** argv) {
     WindSolver wind = windSolver(a);
     Volume shown = a;
     VoxelBox written = shown.bounds();
-    for (int r = 0; r < frames + 1; ++r) {  // the first step faults the scratch grids in
+    for (int r = 0; r < t.frames + 1; ++r) {  // the first step faults the scratch grids in
       const double v = timeMs([&] { wind.stepVelocity(kWindStepSeconds); });
       const double m = timeMs([&] { wind.advectFlowMap(kWindStepSeconds); });
       const double d = timeMs([&] { written = wind.resampleDensity(a, &shown, written); });
@@ -239,7 +216,7 @@ int benchTools(int argc, char** argv) {
     }
     WindSolver base = windSolver(a);
     Volume cloud = a;
-    for (int r = 0; r < frames + 1; ++r) {
+    for (int r = 0; r < t.frames + 1; ++r) {
       const double v = timeMs([&] { base.stepVelocity(kWindStepSeconds); });
       const double d = timeMs([&] { base.advectDensityEveryVoxel(kWindStepSeconds, &cloud); });
       if (r == 0) continue;
@@ -255,222 +232,285 @@ int benchTools(int argc, char** argv) {
       "%.1f ms, density %.1f)\n",
       wind_step, median(wind_velocity), median(wind_map), median(wind_resample), wind_step_base,
       median(wind_density_base));
-  report.figure("wind_step_ms", wind_step);
-  report.figure("wind_velocity_ms", median(wind_velocity));
-  report.figure("wind_flow_map_ms", median(wind_map));
-  report.figure("wind_density_ms", median(wind_resample));
-  report.baseline("wind_step_first_version_ms", wind_step_base);
-  report.baseline("wind_density_first_version_ms", median(wind_density_base));
+  t.report.figure("wind_step_ms", wind_step);
+  t.report.figure("wind_velocity_ms", median(wind_velocity));
+  t.report.figure("wind_flow_map_ms", median(wind_map));
+  t.report.figure("wind_density_ms", median(wind_resample));
+  t.report.baseline("wind_step_first_version_ms", wind_step_base);
+  t.report.baseline("wind_density_first_version_ms", median(wind_density_base));
 
-  // A long run recomputed at full resolution (replay; apply needs only the last resampling):
-  // 150 steps, 10 s of wind, against the first version's step-by-step advection.
-  {
-    WindRun run;
-    run.segments = {{1.0f, 0.0f, 100}, {0.0f, -1.0f, 50}};
-    Volume blown = a, stepwise = a;
-    const double replay_ms = timeMs([&] { blowWind(run, &blown); });
-    const double stepwise_ms = timeMs([&] { blowWindStepByStep(run, &stepwise); });
-    std::printf(
-        "wind run of %d steps recomputed at 256^3: %.1f ms (baseline, the density advected "
-        "step by step: %.1f ms)\n",
-        run.steps(), replay_ms, stepwise_ms);
-    report.figure("wind_150_steps_replay_ms", replay_ms);
-    report.baseline("wind_150_steps_step_by_step_ms", stepwise_ms);
+  WindRun run;
+  run.segments = {{1.0f, 0.0f, 100}, {0.0f, -1.0f, 50}};
+  Volume blown = a, stepwise = a;
+  const double replay_ms = timeMs([&] { blowWind(run, &blown); });
+  const double stepwise_ms = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+  std::printf(
+      "wind run of %d steps recomputed at 256^3: %.1f ms (baseline, the density advected "
+      "step by step: %.1f ms)\n",
+      run.steps(), replay_ms, stepwise_ms);
+  t.report.figure("wind_150_steps_replay_ms", replay_ms);
+  t.report.baseline("wind_150_steps_step_by_step_ms", stepwise_ms);
+}
+
+// One way of playing a tool in the painter, per frame (medians).
+struct Played {
+  double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0, replay = 0, apply_base = 0;
+  glm::ivec3 window{0};
+};
+
+// The morph and the wind as the painter plays them: generate + sync + render at 1280x720,
+// moving scale 0.5.
+class PlayedBench {
+ public:
+  PlayedBench(ToolsBench& t, VolumeRenderer& renderer, RenderTarget& target)
+      : t_(t), renderer_(renderer), target_(target) {
+    options_.scale = 0.5f;
+    options_.moving = true;
+    options_.finish = true;
   }
 
-  // As the painter plays them: generate + sync + render at 1280x720, scale 0.5.
+  // frames + 1 frames of next() synced and rendered (the first a warm-up: textures and the
+  // reduced target): each one's total into *total, the parts into sync_ms_, render_ms_, cpu_ms_.
+  void played(const std::function<const Volume&()>& next, std::vector<double>* total) {
+    sync_ms_.clear();
+    render_ms_.clear();
+    cpu_ms_.clear();
+    for (int r = 0; r < t_.frames + 1; ++r) {
+      const std::clock_t c0 = std::clock();
+      const auto t0 = std::chrono::steady_clock::now();
+      const Volume& v = next();
+      const auto t1 = std::chrono::steady_clock::now();
+      renderer_.sync(v, light_);
+      const auto t2 = std::chrono::steady_clock::now();
+      renderer_.render(t_.view.camera, 1280, 720, target_.fbo(), options_);
+      const auto t3 = std::chrono::steady_clock::now();
+      if (r == 0) continue;
+      using ms = std::chrono::duration<double, std::milli>;
+      total->push_back(ms(t3 - t0).count());
+      sync_ms_.push_back(ms(t2 - t1).count());
+      render_ms_.push_back(ms(t3 - t2).count());
+      // Process CPU time (llvmpipe's threads included): on an idle 2-core machine a frame
+      // takes at least half of it.
+      cpu_ms_.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
+    }
+  }
+
+  // The painter's path: AnimationPreview on `session` (a morph towards target_path, or the
+  // wind), its display copy at half or full resolution; then the replay of its record and the
+  // apply (the full-resolution frame of the window committed, then undone so the next run
+  // starts from the same cloud). `one_box`: also times the wind advected step by step.
+  Played playPreview(PaintSession& session, const std::string& target_path, bool morph, bool half,
+                     bool one_box) {
+    std::string error;
+    AnimationPreview preview;
+    preview.setHalfResolution(half);
+    if (morph)
+      preview.startMorph(session, target_path, 5.0, &error);
+    else
+      preview.toggleWind(session, &error);
+    std::vector<double> total;
+    played(
+        [&]() -> const Volume& {
+          preview.advance(0.05);
+          return preview.shown();
+        },
+        &total);
+    Played result{median(total), median(sync_ms_), median(render_ms_), median(cpu_ms_)};
+    result.window = preview.window().dims();
+    // Replay recomputes the window's frame from the record (the morph re-planned).
+    const UiChange change = preview.change();
+    if (morph) {
+      const Volume target = loadMorphTarget(target_path, session.volume());
+      result.replay =
+          timeMs([&] { morphFrame(session.volume(), target, std::get<ui::ApplyMorph>(change).t); });
+    } else {
+      const WindRun run = std::get<ui::ApplyWind>(change).run;
+      result.replay = timeMs([&] { windFrame(run, session.volume()); });
+      if (one_box) {
+        Volume stepwise = session.volume();
+        result.apply_base = timeMs([&] { blowWindStepByStep(run, &stepwise); });
+      }
+    }
+    result.apply = timeMs([&] { preview.apply(&session, 0, &error); });
+    session.apply(ui::Undo{}, 0, &error);
+    return result;
+  }
+
+ private:
+  ToolsBench& t_;
+  VolumeRenderer& renderer_;
+  RenderTarget& target_;
+  RenderOptions options_;
+  const Light light_;
+  std::vector<double> sync_ms_, render_ms_, cpu_ms_;
+};
+
+// The figures of one tool played: in the default sky at half resolution (the figures), at full
+// resolution, and in the one-box sky (baselines).
+void reportPlayed(BenchReport& report, const char* tool, const Played& half, const Played& full,
+                  const Played& one_box) {
+  const std::string p = tool;
+  report.figure(p + "_played_ms", half.ms);
+  report.figure(p + "_played_fps", 1000.0 / half.ms);
+  report.figure(p + "_played_sync_ms", half.sync);
+  report.figure(p + "_played_render_ms", half.render);
+  report.figure(p + "_played_cpu_ms", half.cpu);
+  report.figure(p + "_apply_ms", half.apply);
+  report.figure(p + "_replay_ms", half.replay);
+  report.figure(p + "_played_full_res_ms", full.ms);
+  report.figure(p + "_played_full_res_sync_ms", full.sync);
+  report.baseline(p + "_played_one_box_ms", one_box.ms);
+  report.baseline(p + "_played_one_box_fps", 1000.0 / one_box.ms);
+  report.baseline(p + "_played_one_box_sync_ms", one_box.sync);
+  report.baseline(p + "_apply_one_box_ms", one_box.apply);
+  report.baseline(p + "_replay_one_box_ms", one_box.replay);
+}
+
+// The morph between the picture's cloud `a` and the model's cloud `b`, played.
+void benchMorphPlayed(ToolsBench& t, PlayedBench& bench, PaintSession& sky_session,
+                      PaintSession& one_box_session, const std::string& target_path,
+                      const CloudMorph& plan) {
+  const Played half = bench.playPreview(sky_session, target_path, true, true, false),
+               full = bench.playPreview(sky_session, target_path, true, false, false),
+               one_box = bench.playPreview(one_box_session, target_path, true, true, true);
+  std::vector<double> base;
+  Volume fresh;
+  int k = 0;
+  bench.played(
+      [&]() -> const Volume& {
+        fresh = plan.frameOneThreadReference(0.2f + 0.05f * float(k++));
+        return fresh;
+      },
+      &base);
+  std::printf(
+      "morph played in the painter at 1280x720, scale 0.5, in the default sky (window "
+      "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
+      "%.1f; CPU %.1f ms per frame; apply (full frame of the window + commit) %.1f ms, "
+      "replay re-planning %.1f ms); full-resolution copy: %.1f ms = %.1f fps (sync %.1f, "
+      "render %.1f); baseline, the one-box sky: %.1f ms = %.1f fps (sync %.1f, render "
+      "%.1f; apply %.1f ms, replay %.1f ms); baseline, one-thread fresh frames: %.1f ms = "
+      "%.1f fps; target >= 20 fps\n",
+      half.window.x, half.window.y, half.window.z, half.ms, 1000.0 / half.ms, half.sync,
+      half.render, half.cpu, half.apply, half.replay, full.ms, 1000.0 / full.ms, full.sync,
+      full.render, one_box.ms, 1000.0 / one_box.ms, one_box.sync, one_box.render, one_box.apply,
+      one_box.replay, median(base), 1000.0 / median(base));
+  reportPlayed(t.report, "morph", half, full, one_box);
+  t.report.baseline("morph_played_first_version_ms", median(base));
+}
+
+// The wind on the picture's cloud `a`, played.
+void benchWindPlayed(ToolsBench& t, PlayedBench& bench, PaintSession& sky_session,
+                     PaintSession& one_box_session, const std::string& target_path,
+                     const Volume& a) {
+  const Played half = bench.playPreview(sky_session, target_path, false, true, false),
+               full = bench.playPreview(sky_session, target_path, false, false, false),
+               one_box = bench.playPreview(one_box_session, target_path, false, true, true);
+  std::vector<double> base;
+  Volume cloud = a;
+  WindSolver solver(cloud.worldMin(), cloud.worldMax());
+  solver.setUniformWind({WindRun{}.speed, 0.0f, 0.0f});
+  solver.addForce({0.0f, WindRun{}.gust, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
+  bench.played(
+      [&]() -> const Volume& {
+        solver.stepVelocity(kWindStepSeconds);
+        solver.advectDensityEveryVoxel(kWindStepSeconds, &cloud);
+        return cloud;
+      },
+      &base);
+  std::printf(
+      "wind played in the painter at 1280x720, scale 0.5, in the default sky (window "
+      "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
+      "%.1f; CPU %.1f ms per frame; apply of its %d steps (the full window resampled "
+      "once + commit) %.1f ms, replay with the steps %.1f ms); full-resolution copy: %.1f "
+      "ms = %.1f fps (sync %.1f, render %.1f); baseline, the one-box sky: %.1f ms = %.1f "
+      "fps (sync %.1f, render %.1f; apply %.1f ms, replay %.1f ms, advecting the full "
+      "density step by step %.1f ms); baseline, first version: %.1f ms = %.1f fps; target "
+      ">= 15 fps\n",
+      half.window.x, half.window.y, half.window.z, half.ms, 1000.0 / half.ms, half.sync,
+      half.render, half.cpu, t.frames + 1, half.apply, half.replay, full.ms, 1000.0 / full.ms,
+      full.sync, full.render, one_box.ms, 1000.0 / one_box.ms, one_box.sync, one_box.render,
+      one_box.apply, one_box.replay, one_box.apply_base, median(base), 1000.0 / median(base));
+  reportPlayed(t.report, "wind", half, full, one_box);
+  t.report.baseline("wind_apply_step_by_step_ms", one_box.apply_base);
+  t.report.baseline("wind_played_first_version_ms", median(base));
+}
+
+// The painter's sessions holding the picture's cloud `a`, opened into the home box: in the
+// default sky (kDefaultSkySpan home boxes across: the tools work on their window of it,
+// tool_window.h) and, as the baseline, in the one-box sky. The display copy is played at half
+// resolution (the default for a 256³ home box) and at full resolution; the first version's
+// baseline is a fresh one-thread frame at full resolution.
+void benchPlayedTools(ToolsBench& t, const Volume& a, const Volume& b, const CloudMorph& plan) {
+  VolumeRenderer renderer;
+  RenderTarget target;
+  std::string error;
+  if (!renderer.init(&error) || !target.create(1280, 720, RenderTarget::Format::kRgba8, &error)) {
+    std::printf("renderer: %s\n", error.c_str());
+    return;
+  }
+  const int grid = a.dims().x;
+  PaintSession sky_session(PaintSessionSettings{1280, 720, grid}, BrushConfig{}, MappingConfig{});
+  PaintSessionSettings one_box_settings{1280, 720, grid};
+  one_box_settings.sky_span = one_box_settings.sky_max_span = kLegacySkySpan;
+  PaintSession one_box_session(one_box_settings, BrushConfig{}, MappingConfig{});
+  for (PaintSession* s : {&sky_session, &one_box_session})
+    if (!s->replaceVolume(a, 0, "bench", &error)) std::printf("open: %s\n", error.c_str());
+  const std::string target_path = (t.dir / "cloudbrush-bench-morph-target.vol").string();
+  saveVolume(b, target_path);
+  PlayedBench bench(t, renderer, target);
+  benchMorphPlayed(t, bench, sky_session, one_box_session, target_path, plan);
+  benchWindPlayed(t, bench, sky_session, one_box_session, target_path, a);
+}
+
+}  // namespace
+
+int benchTools(int argc, char** argv) {
+  Args args(argc, argv, {"help", "quick"});
+  if (args.has("help")) {
+    std::printf(
+        "usage: cloudbrush bench tools [--quick] [--out-dir DIR]\n"
+        "  --quick        one run of each figure instead of three\n"
+        "  --out-dir DIR  also write what each tool made, rendered at 640x360 from the view it\n"
+        "                 was placed from: the silhouette, its cloud, the model's cloud, the\n"
+        "                 morph between them at t = 0, 0.25, 0.5, 0.75, 1 and the wind after 0,\n"
+        "                 15 and 30 steps (DIR/tools-*.png)\n");
+    return 0;
+  }
+  BenchReport report("tools");
+  ToolsBench t(report);
+  t.runs = args.has("quick") ? 1 : 3;
+  t.frames = t.runs == 1 ? 3 : 6;
+  t.dir = std::filesystem::temp_directory_path();
+  t.view.camera = Camera::reference();
+  const std::string out_dir = args.get("out-dir", "");
+
+  ImageRgba8 image;
+  image.width = image.height = 512;
+  image.pixels = silhouette(512, 512);
+  const std::string png = (t.dir / "cloudbrush-bench-silhouette.png").string();
+  writePng(png, image);
+  benchPicture(t, png);
+  const TriangleMesh torus = makeDisplacedTorus(0.6f, 0.25f, 0.2f, 192, 184);
+  const std::string obj = (t.dir / "cloudbrush-bench-torus.obj").string();
+  writeObj(obj, torus);
+  benchModel(t, obj, torus.triangles.size());
+
+  // Morph between the picture's cloud and the model's cloud, and wind on the picture's cloud:
+  // the in-between / step alone, then as the painter plays them — generated, synced to the
+  // renderer (upload, occupancy, light) and ray cast at 1280x720, moving scale 0.5.
+  Volume a, b;
+  pictureToCloud(png, t.view, PictureCloudParams{}, &a);
+  modelToCloud(obj, t.view, ModelCloudParams{}, &b);
+  const std::unique_ptr<CloudMorph> plan = benchMorph(t, a, b);
+  benchWind(t, a);
+
   EglContext ctx;
   std::string error;
   if (!createSurfacelessContext(&ctx, &error)) {
     std::printf("no GL context (%s): the played frame rates are not measured\n", error.c_str());
   } else {
-    {
-      VolumeRenderer renderer;
-      RenderTarget target;
-      if (!renderer.init(&error) ||
-          !target.create(1280, 720, RenderTarget::Format::kRgba8, &error)) {
-        std::printf("renderer: %s\n", error.c_str());
-      } else {
-        RenderOptions options;
-        options.scale = 0.5f;
-        options.moving = true;
-        options.finish = true;
-        const Light light;
-        std::vector<double> sync_ms, render_ms, cpu_ms;
-        auto played = [&](const std::function<const Volume&()>& next, std::vector<double>* total) {
-          sync_ms.clear();
-          render_ms.clear();
-          cpu_ms.clear();
-          for (int r = 0; r < frames + 1; ++r) {
-            const std::clock_t c0 = std::clock();
-            const auto t0 = std::chrono::steady_clock::now();
-            const Volume& v = next();
-            const auto t1 = std::chrono::steady_clock::now();
-            renderer.sync(v, light);
-            const auto t2 = std::chrono::steady_clock::now();
-            renderer.render(view.camera, 1280, 720, target.fbo(), options);
-            const auto t3 = std::chrono::steady_clock::now();
-            if (r == 0) continue;  // warm-up: textures and the reduced target
-            using ms = std::chrono::duration<double, std::milli>;
-            total->push_back(ms(t3 - t0).count());
-            sync_ms.push_back(ms(t2 - t1).count());
-            render_ms.push_back(ms(t3 - t2).count());
-            // Process CPU time (llvmpipe's threads included): on an idle 2-core machine a
-            // frame takes at least half of it.
-            cpu_ms.push_back(1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC);
-          }
-        };
-        // The painter's path (AnimationPreview on a session holding the picture's cloud, opened
-        // into the home box): the display copy at half resolution (the default for a 256³ home
-        // box) and at full resolution, in the default sky (kDefaultSkySpan home boxes across:
-        // the tools work on their window of it, tool_window.h) and, as the baseline, in the
-        // one-box sky; the first version's baseline is a fresh one-thread frame at full
-        // resolution.
-        const int grid = a.dims().x;
-        PaintSession sky_session(PaintSessionSettings{1280, 720, grid}, BrushConfig{},
-                                 MappingConfig{});
-        PaintSessionSettings one_box_settings{1280, 720, grid};
-        one_box_settings.sky_span = one_box_settings.sky_max_span = kLegacySkySpan;
-        PaintSession one_box_session(one_box_settings, BrushConfig{}, MappingConfig{});
-        std::string session_error;
-        for (PaintSession* s : {&sky_session, &one_box_session})
-          if (!s->replaceVolume(a, 0, "bench", &session_error))
-            std::printf("open: %s\n", session_error.c_str());
-        const std::string target_path = (dir / "cloudbrush-bench-morph-target.vol").string();
-        saveVolume(b, target_path);
-        struct Played {
-          double ms = 0, sync = 0, render = 0, cpu = 0, apply = 0, replay = 0, apply_base = 0;
-          glm::ivec3 window{0};
-        };
-        auto playPreview = [&](PaintSession& session, bool morph, bool half) {
-          AnimationPreview preview;
-          preview.setHalfResolution(half);
-          if (morph)
-            preview.startMorph(session, target_path, 5.0, &session_error);
-          else
-            preview.toggleWind(session, &session_error);
-          std::vector<double> total;
-          played(
-              [&]() -> const Volume& {
-                preview.advance(0.05);
-                return preview.shown();
-              },
-              &total);
-          Played result{median(total), median(sync_ms), median(render_ms), median(cpu_ms)};
-          result.window = preview.window().dims();
-          // Replay recomputes the window's frame from the record (the morph re-planned).
-          const UiChange change = preview.change();
-          if (morph) {
-            const Volume target = loadMorphTarget(target_path, session.volume());
-            result.replay = timeMs(
-                [&] { morphFrame(session.volume(), target, std::get<ui::ApplyMorph>(change).t); });
-          } else {
-            const WindRun run = std::get<ui::ApplyWind>(change).run;
-            result.replay = timeMs([&] { windFrame(run, session.volume()); });
-            if (&session == &one_box_session) {
-              Volume stepwise = session.volume();
-              result.apply_base = timeMs([&] { blowWindStepByStep(run, &stepwise); });
-            }
-          }
-          // Apply: the full-resolution frame of the window committed (diffed into the cloud,
-          // one history step), then undone so the next run starts from the same cloud.
-          result.apply = timeMs([&] { preview.apply(&session, 0, &session_error); });
-          session.apply(ui::Undo{}, 0, &session_error);
-          return result;
-        };
-        const Played morph_half = playPreview(sky_session, true, true),
-                     morph_full = playPreview(sky_session, true, false),
-                     morph_one_box = playPreview(one_box_session, true, true);
-        std::vector<double> morph_played_base;
-        Volume fresh;
-        int k = 0;
-        played(
-            [&]() -> const Volume& {
-              fresh = plan->frameOneThreadReference(0.2f + 0.05f * float(k++));
-              return fresh;
-            },
-            &morph_played_base);
-        std::printf(
-            "morph played in the painter at 1280x720, scale 0.5, in the default sky (window "
-            "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
-            "%.1f; CPU %.1f ms per frame; apply (full frame of the window + commit) %.1f ms, "
-            "replay re-planning %.1f ms); full-resolution copy: %.1f ms = %.1f fps (sync %.1f, "
-            "render %.1f); baseline, the one-box sky: %.1f ms = %.1f fps (sync %.1f, render "
-            "%.1f; apply %.1f ms, replay %.1f ms); baseline, one-thread fresh frames: %.1f ms = "
-            "%.1f fps; target >= 20 fps\n",
-            morph_half.window.x, morph_half.window.y, morph_half.window.z, morph_half.ms,
-            1000.0 / morph_half.ms, morph_half.sync, morph_half.render, morph_half.cpu,
-            morph_half.apply, morph_half.replay, morph_full.ms, 1000.0 / morph_full.ms,
-            morph_full.sync, morph_full.render, morph_one_box.ms, 1000.0 / morph_one_box.ms,
-            morph_one_box.sync, morph_one_box.render, morph_one_box.apply, morph_one_box.replay,
-            median(morph_played_base), 1000.0 / median(morph_played_base));
-        report.figure("morph_played_ms", morph_half.ms);
-        report.figure("morph_played_fps", 1000.0 / morph_half.ms);
-        report.figure("morph_played_sync_ms", morph_half.sync);
-        report.figure("morph_played_render_ms", morph_half.render);
-        report.figure("morph_played_cpu_ms", morph_half.cpu);
-        report.figure("morph_apply_ms", morph_half.apply);
-        report.figure("morph_replay_ms", morph_half.replay);
-        report.figure("morph_played_full_res_ms", morph_full.ms);
-        report.figure("morph_played_full_res_sync_ms", morph_full.sync);
-        report.baseline("morph_played_one_box_ms", morph_one_box.ms);
-        report.baseline("morph_played_one_box_fps", 1000.0 / morph_one_box.ms);
-        report.baseline("morph_played_one_box_sync_ms", morph_one_box.sync);
-        report.baseline("morph_apply_one_box_ms", morph_one_box.apply);
-        report.baseline("morph_replay_one_box_ms", morph_one_box.replay);
-        report.baseline("morph_played_first_version_ms", median(morph_played_base));
-
-        const Played wind_half = playPreview(sky_session, false, true),
-                     wind_full = playPreview(sky_session, false, false),
-                     wind_one_box = playPreview(one_box_session, false, true);
-        std::vector<double> wind_played_base;
-        {
-          Volume cloud = a;
-          WindSolver solver(cloud.worldMin(), cloud.worldMax());
-          solver.setUniformWind({WindRun{}.speed, 0.0f, 0.0f});
-          solver.addForce({0.0f, WindRun{}.gust, 0.0f}, glm::vec3(0.0f), 0.5f, 0.1f);
-          played(
-              [&]() -> const Volume& {
-                solver.stepVelocity(kWindStepSeconds);
-                solver.advectDensityEveryVoxel(kWindStepSeconds, &cloud);
-                return cloud;
-              },
-              &wind_played_base);
-        }
-        std::printf(
-            "wind played in the painter at 1280x720, scale 0.5, in the default sky (window "
-            "%dx%dx%d), half-resolution copy: %.1f ms per frame = %.1f fps (sync %.1f, render "
-            "%.1f; CPU %.1f ms per frame; apply of its %d steps (the full window resampled "
-            "once + commit) %.1f ms, replay with the steps %.1f ms); full-resolution copy: %.1f "
-            "ms = %.1f fps (sync %.1f, render %.1f); baseline, the one-box sky: %.1f ms = %.1f "
-            "fps (sync %.1f, render %.1f; apply %.1f ms, replay %.1f ms, advecting the full "
-            "density step by step %.1f ms); baseline, first version: %.1f ms = %.1f fps; target "
-            ">= 15 fps\n",
-            wind_half.window.x, wind_half.window.y, wind_half.window.z, wind_half.ms,
-            1000.0 / wind_half.ms, wind_half.sync, wind_half.render, wind_half.cpu, frames + 1,
-            wind_half.apply, wind_half.replay, wind_full.ms, 1000.0 / wind_full.ms, wind_full.sync,
-            wind_full.render, wind_one_box.ms, 1000.0 / wind_one_box.ms, wind_one_box.sync,
-            wind_one_box.render, wind_one_box.apply, wind_one_box.replay, wind_one_box.apply_base,
-            median(wind_played_base), 1000.0 / median(wind_played_base));
-        report.figure("wind_played_ms", wind_half.ms);
-        report.figure("wind_played_fps", 1000.0 / wind_half.ms);
-        report.figure("wind_played_sync_ms", wind_half.sync);
-        report.figure("wind_played_render_ms", wind_half.render);
-        report.figure("wind_played_cpu_ms", wind_half.cpu);
-        report.figure("wind_apply_ms", wind_half.apply);
-        report.figure("wind_replay_ms", wind_half.replay);
-        report.figure("wind_played_full_res_ms", wind_full.ms);
-        report.figure("wind_played_full_res_sync_ms", wind_full.sync);
-        report.baseline("wind_played_one_box_ms", wind_one_box.ms);
-        report.baseline("wind_played_one_box_fps", 1000.0 / wind_one_box.ms);
-        report.baseline("wind_played_one_box_sync_ms", wind_one_box.sync);
-        report.baseline("wind_apply_one_box_ms", wind_one_box.apply);
-        report.baseline("wind_replay_one_box_ms", wind_one_box.replay);
-        report.baseline("wind_apply_step_by_step_ms", wind_one_box.apply_base);
-        report.baseline("wind_played_first_version_ms", median(wind_played_base));
-      }
-    }
-    if (!out_dir.empty()) writeToolImages(out_dir, image, a, b, view.camera);
+    benchPlayedTools(t, a, b, *plan);
+    if (!out_dir.empty()) writeToolImages(out_dir, image, a, b, t.view.camera);
     destroyGlContext(&ctx);
   }
   report.print();

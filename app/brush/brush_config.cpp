@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include "app/core/config_fields.h"
 #include "app/core/config_paths.h"
 #include "drivers/core/toml_number.h"
 
@@ -68,6 +69,20 @@ class Reader {
     if (!v || !parseBrushKind(*v, out))
       fail(*n, "", key, "expected \"2d\", \"3d\" or \"skeleton\"");
   }
+  // One row of kBrushFields by its member's type.
+  void field(const toml::table& t, const ConfigField<BrushConfig>& f, BrushConfig& c) {
+    std::visit(
+        [&](auto* member) {
+          using T = std::remove_pointer_t<decltype(member)>;
+          if constexpr (std::is_same_v<T, float>)
+            number(t, f.section, f.key, member, f.lo, f.hi);
+          else if constexpr (std::is_same_v<T, bool>)
+            flag(t, f.section, f.key, member);
+          else if constexpr (std::is_integral_v<T>)
+            integer(t, f.section, f.key, member, int64_t(f.lo), int64_t(f.hi));
+        },
+        f.at(c));
+  }
   const toml::table* section(const toml::table& root, const char* name) {
     const toml::node* n = root.get(name);
     if (!n) return nullptr;
@@ -87,6 +102,99 @@ class Reader {
   std::string path_;
   std::vector<std::string>* errors_;
   bool ok_ = true;
+};
+
+// Every field of brush.toml but the default brush, in the order the settings text lists them,
+// with the range each accepts. stroke.down_pressure / up_pressure are retired: pen contact is the
+// calibration's hysteresis alone (calibration profile pressure.contact_down/up). Older brush.toml
+// files and journals' Settings records still carry them; they are ignored (the painter never
+// used them: its strokes always followed the calibration's contact).
+const ConfigField<BrushConfig> kBrushFields[] = {
+    {"stroke", "spacing_px", [](BrushConfig& c) -> FieldRef { return &c.stroke.spacing_px; }, 0.25,
+     64.0},
+    {"stroke", "footprint_scale",
+     [](BrushConfig& c) -> FieldRef { return &c.stroke.footprint_scale; }, 0.1, 4.0},
+    {"stroke", "size", [](BrushConfig& c) -> FieldRef { return &c.stroke.size; }, kMinBrushSize,
+     kMaxBrushSize},
+    {"stroke", "billow", [](BrushConfig& c) -> FieldRef { return &c.stroke.billow; }, 0.0, 0.9},
+    {"stroke", "billow_length", [](BrushConfig& c) -> FieldRef { return &c.stroke.billow_length; },
+     0.25, 16.0},
+    {"stroke", "auto_end_still_ms",
+     [](BrushConfig& c) -> FieldRef { return &c.stroke.auto_end_still_ms; }, 0, 600000},
+    {"stroke", "auto_end_light_ms",
+     [](BrushConfig& c) -> FieldRef { return &c.stroke.auto_end_light_ms; }, 0, 600000},
+    {"stroke", "auto_end_light_by_hysteresis",
+     [](BrushConfig& c) -> FieldRef { return &c.stroke.auto_end_light_by_hysteresis; }},
+    {"dispersion", "slow_speed_px_s",
+     [](BrushConfig& c) -> FieldRef { return &c.dispersion.slow_speed_px_s; }, 0.0, 1e6},
+    {"dispersion", "fast_speed_px_s",
+     [](BrushConfig& c) -> FieldRef { return &c.dispersion.fast_speed_px_s; }, 1.0, 1e6},
+    {"dispersion", "max_dispersion",
+     [](BrushConfig& c) -> FieldRef { return &c.dispersion.max_dispersion; }, 0.0, 1.0},
+    {"dispersion", "speed_smoothing_ms",
+     [](BrushConfig& c) -> FieldRef { return &c.dispersion.speed_smoothing_ms; }, 0.0, 1000.0},
+    {"dispersion", "noise_scale_px",
+     [](BrushConfig& c) -> FieldRef { return &c.dispersion.noise_scale_px; }, 1.0, 256.0},
+    {"brush2d", "min_diameter_px",
+     [](BrushConfig& c) -> FieldRef { return &c.brush2d.min_diameter_px; }, 0.5, 1024.0},
+    {"brush2d", "max_diameter_px",
+     [](BrushConfig& c) -> FieldRef { return &c.brush2d.max_diameter_px; }, 0.5, 1024.0},
+    {"brush2d", "texture_size", [](BrushConfig& c) -> FieldRef { return &c.brush2d.texture_size; },
+     8, 1024},
+    {"brush2d", "bristles", [](BrushConfig& c) -> FieldRef { return &c.brush2d.bristles; }, 1,
+     10000},
+    {"brush2d", "texture_seed", [](BrushConfig& c) -> FieldRef { return &c.brush2d.texture_seed; },
+     0, 0xffffffffu},
+    {"brush3d", "diameter_px", [](BrushConfig& c) -> FieldRef { return &c.brush3d.diameter_px; },
+     1.0, 1024.0},
+    {"brush3d", "ink_volume_size",
+     [](BrushConfig& c) -> FieldRef { return &c.brush3d.ink_volume_size; }, 8, 256},
+    {"brush3d", "ink_seed", [](BrushConfig& c) -> FieldRef { return &c.brush3d.ink_seed; }, 0,
+     0xffffffffu},
+    {"brush3d", "sample_size", [](BrushConfig& c) -> FieldRef { return &c.brush3d.sample_size; }, 8,
+     512},
+    {"brush3d", "slab_thickness",
+     [](BrushConfig& c) -> FieldRef { return &c.brush3d.slab_thickness; }, 0.01, 2.0},
+    {"brush3d", "absorption", [](BrushConfig& c) -> FieldRef { return &c.brush3d.absorption; }, 0.0,
+     1000.0},
+    {"brush3d", "max_tilt_deg", [](BrushConfig& c) -> FieldRef { return &c.brush3d.max_tilt_deg; },
+     0.0, 80.0},
+    {"brush3d", "pressure_quantum",
+     [](BrushConfig& c) -> FieldRef { return &c.brush3d.pressure_quantum; }, 1e-4, 0.25},
+    {"brush3d", "tilt_quantum_deg",
+     [](BrushConfig& c) -> FieldRef { return &c.brush3d.tilt_quantum_deg; }, 0.01, 15.0},
+    {"brush3d", "cache_entries",
+     [](BrushConfig& c) -> FieldRef { return &c.brush3d.cache_entries; }, 0, 1 << 20},
+    {"skeleton", "segment_length_px",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.segment_length_px; }, 1.0, 512.0},
+    {"skeleton", "time_step_ms",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.time_step_ms; }, 0.1, 20.0},
+    {"skeleton", "constraint_iterations",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.constraint_iterations; }, 1, 100},
+    {"skeleton", "gravity_px_s2",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.gravity_px_s2; }, 0.0, 1e7},
+    {"skeleton", "damping", [](BrushConfig& c) -> FieldRef { return &c.skeleton.damping; }, 0.0,
+     1.0},
+    {"skeleton", "press_depth", [](BrushConfig& c) -> FieldRef { return &c.skeleton.press_depth; },
+     0.0, 1.0},
+    {"skeleton", "paper_softness_px",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.paper_softness_px; }, 0.1, 64.0},
+    {"skeleton", "bristles", [](BrushConfig& c) -> FieldRef { return &c.skeleton.bristles; }, 1,
+     1000},
+    {"skeleton", "bristle_spread_px",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.bristle_spread_px; }, 0.0, 256.0},
+    {"skeleton", "bristle_splay",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.bristle_splay; }, 0.0, 10.0},
+    {"skeleton", "bristle_radius_px",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.bristle_radius_px; }, 0.1, 32.0},
+    {"skeleton", "bristle_points",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.bristle_points; }, 2, 256},
+    {"skeleton", "max_steps_per_sample",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.max_steps_per_sample; }, 1, 100000},
+    {"skeleton", "stamp_spacing_px",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.stamp_spacing_px; }, 0.0, 64.0},
+    {"skeleton", "seed", [](BrushConfig& c) -> FieldRef { return &c.skeleton.seed; }, 0,
+     0xffffffffu},
 };
 
 }  // namespace
@@ -148,66 +256,11 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
                      std::vector<std::string>* errors) {
   Reader r(path, errors);
   r.kind(root, "brush", &c->default_brush);
-  if (const toml::table* t = r.section(root, "stroke")) {
-    // stroke.down_pressure / up_pressure are retired: pen contact is the calibration's
-    // hysteresis alone (calibration profile pressure.contact_down/up). Older brush.toml files
-    // and journals' Settings records still carry them; they are ignored (the painter never
-    // used them: its strokes always followed the calibration's contact).
-    r.number(*t, "stroke", "spacing_px", &c->stroke.spacing_px, 0.25, 64.0);
-    r.number(*t, "stroke", "footprint_scale", &c->stroke.footprint_scale, 0.1, 4.0);
-    r.number(*t, "stroke", "size", &c->stroke.size, kMinBrushSize, kMaxBrushSize);
-    r.number(*t, "stroke", "billow", &c->stroke.billow, 0.0, 0.9);
-    r.number(*t, "stroke", "billow_length", &c->stroke.billow_length, 0.25, 16.0);
-    r.integer(*t, "stroke", "auto_end_still_ms", &c->stroke.auto_end_still_ms, 0, 600000);
-    r.integer(*t, "stroke", "auto_end_light_ms", &c->stroke.auto_end_light_ms, 0, 600000);
-    r.flag(*t, "stroke", "auto_end_light_by_hysteresis", &c->stroke.auto_end_light_by_hysteresis);
-  }
-  if (const toml::table* t = r.section(root, "dispersion")) {
-    DispersionParams& d = c->dispersion;
-    r.number(*t, "dispersion", "slow_speed_px_s", &d.slow_speed_px_s, 0.0, 1e6);
-    r.number(*t, "dispersion", "fast_speed_px_s", &d.fast_speed_px_s, 1.0, 1e6);
-    r.number(*t, "dispersion", "max_dispersion", &d.max_dispersion, 0.0, 1.0);
-    r.number(*t, "dispersion", "speed_smoothing_ms", &d.speed_smoothing_ms, 0.0, 1000.0);
-    r.number(*t, "dispersion", "noise_scale_px", &d.noise_scale_px, 1.0, 256.0);
-  }
-  if (const toml::table* t = r.section(root, "brush2d")) {
-    Brush2DParams& b = c->brush2d;
-    r.number(*t, "brush2d", "min_diameter_px", &b.min_diameter_px, 0.5, 1024.0);
-    r.number(*t, "brush2d", "max_diameter_px", &b.max_diameter_px, 0.5, 1024.0);
-    r.integer(*t, "brush2d", "texture_size", &b.texture_size, 8, 1024);
-    r.integer(*t, "brush2d", "bristles", &b.bristles, 1, 10000);
-    r.integer(*t, "brush2d", "texture_seed", &b.texture_seed, 0, 0xffffffffll);
-  }
-  if (const toml::table* t = r.section(root, "brush3d")) {
-    Brush3DParams& b = c->brush3d;
-    r.number(*t, "brush3d", "diameter_px", &b.diameter_px, 1.0, 1024.0);
-    r.integer(*t, "brush3d", "ink_volume_size", &b.ink_volume_size, 8, 256);
-    r.integer(*t, "brush3d", "ink_seed", &b.ink_seed, 0, 0xffffffffll);
-    r.integer(*t, "brush3d", "sample_size", &b.sample_size, 8, 512);
-    r.number(*t, "brush3d", "slab_thickness", &b.slab_thickness, 0.01, 2.0);
-    r.number(*t, "brush3d", "absorption", &b.absorption, 0.0, 1000.0);
-    r.number(*t, "brush3d", "max_tilt_deg", &b.max_tilt_deg, 0.0, 80.0);
-    r.number(*t, "brush3d", "pressure_quantum", &b.pressure_quantum, 1e-4, 0.25);
-    r.number(*t, "brush3d", "tilt_quantum_deg", &b.tilt_quantum_deg, 0.01, 15.0);
-    r.integer(*t, "brush3d", "cache_entries", &b.cache_entries, 0, 1 << 20);
-  }
-  if (const toml::table* t = r.section(root, "skeleton")) {
-    SkeletonParams& s = c->skeleton;
-    r.number(*t, "skeleton", "segment_length_px", &s.segment_length_px, 1.0, 512.0);
-    r.number(*t, "skeleton", "time_step_ms", &s.time_step_ms, 0.1, 20.0);
-    r.integer(*t, "skeleton", "constraint_iterations", &s.constraint_iterations, 1, 100);
-    r.number(*t, "skeleton", "gravity_px_s2", &s.gravity_px_s2, 0.0, 1e7);
-    r.number(*t, "skeleton", "damping", &s.damping, 0.0, 1.0);
-    r.number(*t, "skeleton", "press_depth", &s.press_depth, 0.0, 1.0);
-    r.number(*t, "skeleton", "paper_softness_px", &s.paper_softness_px, 0.1, 64.0);
-    r.integer(*t, "skeleton", "bristles", &s.bristles, 1, 1000);
-    r.number(*t, "skeleton", "bristle_spread_px", &s.bristle_spread_px, 0.0, 256.0);
-    r.number(*t, "skeleton", "bristle_splay", &s.bristle_splay, 0.0, 10.0);
-    r.number(*t, "skeleton", "bristle_radius_px", &s.bristle_radius_px, 0.1, 32.0);
-    r.integer(*t, "skeleton", "bristle_points", &s.bristle_points, 2, 256);
-    r.integer(*t, "skeleton", "max_steps_per_sample", &s.max_steps_per_sample, 1, 100000);
-    r.number(*t, "skeleton", "stamp_spacing_px", &s.stamp_spacing_px, 0.0, 64.0);
-    r.integer(*t, "skeleton", "seed", &s.seed, 0, 0xffffffffll);
+  const char* open = nullptr;
+  const toml::table* t = nullptr;
+  for (const ConfigField<BrushConfig>& f : kBrushFields) {
+    if (!open || std::string_view(open) != f.section) t = r.section(root, open = f.section);
+    if (t) r.field(*t, f, *c);
   }
   if (c->brush2d.max_diameter_px < c->brush2d.min_diameter_px) {
     errors->push_back(path + ": brush2d.max_diameter_px is below min_diameter_px; both reset");
@@ -224,63 +277,9 @@ float steppedBrushSize(float size, int steps) {
 }
 
 std::string formatBrushConfig(const BrushConfig& c) {
-  std::ostringstream o;
-  char buf[64];
-  const auto num = [&](const char* key, double v) {
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    o << key << " = " << buf << "\n";
-  };
-  const auto integer = [&](const char* key, long long v) { o << key << " = " << v << "\n"; };
-  o << "brush = \"" << brushKindName(c.default_brush) << "\"\n\n[stroke]\n";
-  num("spacing_px", c.stroke.spacing_px);
-  num("footprint_scale", c.stroke.footprint_scale);
-  num("size", c.stroke.size);
-  num("billow", c.stroke.billow);
-  num("billow_length", c.stroke.billow_length);
-  integer("auto_end_still_ms", c.stroke.auto_end_still_ms);
-  integer("auto_end_light_ms", c.stroke.auto_end_light_ms);
-  o << "auto_end_light_by_hysteresis = "
-    << (c.stroke.auto_end_light_by_hysteresis ? "true" : "false") << "\n";
-  o << "\n[dispersion]\n";
-  num("slow_speed_px_s", c.dispersion.slow_speed_px_s);
-  num("fast_speed_px_s", c.dispersion.fast_speed_px_s);
-  num("max_dispersion", c.dispersion.max_dispersion);
-  num("speed_smoothing_ms", c.dispersion.speed_smoothing_ms);
-  num("noise_scale_px", c.dispersion.noise_scale_px);
-  o << "\n[brush2d]\n";
-  num("min_diameter_px", c.brush2d.min_diameter_px);
-  num("max_diameter_px", c.brush2d.max_diameter_px);
-  integer("texture_size", c.brush2d.texture_size);
-  integer("bristles", c.brush2d.bristles);
-  integer("texture_seed", c.brush2d.texture_seed);
-  o << "\n[brush3d]\n";
-  num("diameter_px", c.brush3d.diameter_px);
-  integer("ink_volume_size", c.brush3d.ink_volume_size);
-  integer("ink_seed", c.brush3d.ink_seed);
-  integer("sample_size", c.brush3d.sample_size);
-  num("slab_thickness", c.brush3d.slab_thickness);
-  num("absorption", c.brush3d.absorption);
-  num("max_tilt_deg", c.brush3d.max_tilt_deg);
-  num("pressure_quantum", c.brush3d.pressure_quantum);
-  num("tilt_quantum_deg", c.brush3d.tilt_quantum_deg);
-  integer("cache_entries", c.brush3d.cache_entries);
-  o << "\n[skeleton]\n";
-  num("segment_length_px", c.skeleton.segment_length_px);
-  num("time_step_ms", c.skeleton.time_step_ms);
-  integer("constraint_iterations", c.skeleton.constraint_iterations);
-  num("gravity_px_s2", c.skeleton.gravity_px_s2);
-  num("damping", c.skeleton.damping);
-  num("press_depth", c.skeleton.press_depth);
-  num("paper_softness_px", c.skeleton.paper_softness_px);
-  integer("bristles", c.skeleton.bristles);
-  num("bristle_spread_px", c.skeleton.bristle_spread_px);
-  num("bristle_splay", c.skeleton.bristle_splay);
-  num("bristle_radius_px", c.skeleton.bristle_radius_px);
-  integer("bristle_points", c.skeleton.bristle_points);
-  integer("max_steps_per_sample", c.skeleton.max_steps_per_sample);
-  num("stamp_spacing_px", c.skeleton.stamp_spacing_px);
-  integer("seed", c.skeleton.seed);
-  return o.str();
+  std::string o = std::string("brush = \"") + brushKindName(c.default_brush) + "\"\n";
+  appendSections<BrushConfig>(o, kBrushFields, c);
+  return o;
 }
 
 BrushConfig loadDefaultBrushConfig() {

@@ -9,6 +9,7 @@
 
 #include <toml++/toml.h>
 
+#include "app/core/config_fields.h"
 #include "app/core/toml_file.h"
 #include "drivers/core/toml_number.h"
 
@@ -46,6 +47,64 @@ void read(const toml::table& root, const std::string& file, const char* table, c
   }
   throw std::runtime_error(file + ": " + table + "." + key + " has the wrong type");
 }
+
+// Every field of mapping.toml but [mapping] method, in the order the settings text lists them
+// (the ranges are validate()'s).
+const ConfigField<MappingConfig> kMappingFields[] = {
+    {"circles", "initial_diameter_px",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.initial_diameter_px; }},
+    {"circles", "min_radius_px",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.min_radius_px; }},
+    {"circles", "directions", [](MappingConfig& c) -> FieldRef { return &c.circles.directions; }},
+    {"circles", "accept_white_ratio",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.accept_white_ratio; }},
+    {"circles", "drop_empty_ratio",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.drop_empty_ratio; }},
+    {"circles", "white_threshold",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.white_threshold; }},
+    {"circles", "empty_threshold",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.empty_threshold; }},
+    {"circles", "white_relative_to_peak",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.white_relative_to_peak; }},
+    {"circles", "reseed_along_path",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.reseed_along_path; }},
+    {"circles", "empty_test_on_smallest",
+     [](MappingConfig& c) -> FieldRef { return &c.circles.empty_test_on_smallest; }},
+    {"spheres", "density", [](MappingConfig& c) -> FieldRef { return &c.spheres.density; }},
+    {"spheres", "edge_softness",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.edge_softness; }},
+    {"spheres", "noise_erosion",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.noise_erosion; }},
+    {"spheres", "noise_modulation",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.noise_modulation; }},
+    {"spheres", "outline_chord_voxels",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.outline_chord_voxels; }},
+    {"spheres", "billow_amplitude",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.billow_amplitude; }},
+    {"spheres", "billow_feature_radii",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.billow_feature_radii; }},
+    {"spheres", "puff_probability",
+     [](MappingConfig& c) -> FieldRef { return &c.spheres.puff_probability; }},
+    {"edges", "samples_per_pixel",
+     [](MappingConfig& c) -> FieldRef { return &c.edges.samples_per_pixel; }},
+    {"edges", "depth_sigma_of_radius",
+     [](MappingConfig& c) -> FieldRef { return &c.edges.depth_sigma_of_radius; }},
+    {"edges", "lateral_sigma_px",
+     [](MappingConfig& c) -> FieldRef { return &c.edges.lateral_sigma_px; }},
+    {"edges", "min_depth_sigma_voxels",
+     [](MappingConfig& c) -> FieldRef { return &c.edges.min_depth_sigma_voxels; }},
+    {"edges", "density_scale", [](MappingConfig& c) -> FieldRef { return &c.edges.density_scale; }},
+    {"edges", "tangent_at_sphere_depth",
+     [](MappingConfig& c) -> FieldRef { return &c.edges.tangent_at_sphere_depth; }},
+    {"ray_marching", "density",
+     [](MappingConfig& c) -> FieldRef { return &c.ray_marching.density; }},
+    {"sheet", "sigma_voxels", [](MappingConfig& c) -> FieldRef { return &c.sheet.sigma_voxels; }},
+    {"sheet", "erosion", [](MappingConfig& c) -> FieldRef { return &c.sheet.erosion; }},
+    {"noise", "seed", [](MappingConfig& c) -> FieldRef { return &c.noise.seed; }},
+    {"noise", "size", [](MappingConfig& c) -> FieldRef { return &c.noise.size; }},
+    {"noise", "period_voxels", [](MappingConfig& c) -> FieldRef { return &c.noise.period_voxels; }},
+    {"noise", "octaves", [](MappingConfig& c) -> FieldRef { return &c.noise.octaves; }},
+};
 
 void require(bool ok, const char* field, const char* rule) {
   if (!ok) throw std::invalid_argument(std::string("mapping config: ") + field + " " + rule);
@@ -133,55 +192,8 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
 }  // namespace
 
 std::string formatMappingConfig(const MappingConfig& c) {
-  std::string o;
-  char buf[64];
-  const auto num = [&](const char* key, double v) {
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    o += std::string(key) + " = " + buf + "\n";
-  };
-  const auto integer = [&](const char* key, long long v) {
-    o += std::string(key) + " = " + std::to_string(v) + "\n";
-  };
-  const auto flag = [&](const char* key, bool v) {
-    o += std::string(key) + " = " + (v ? "true" : "false") + "\n";
-  };
-  o += std::string("[mapping]\nmethod = \"") + toString(c.method) + "\"\n\n[circles]\n";
-  integer("initial_diameter_px", c.circles.initial_diameter_px);
-  integer("min_radius_px", c.circles.min_radius_px);
-  integer("directions", c.circles.directions);
-  num("accept_white_ratio", c.circles.accept_white_ratio);
-  num("drop_empty_ratio", c.circles.drop_empty_ratio);
-  num("white_threshold", c.circles.white_threshold);
-  num("empty_threshold", c.circles.empty_threshold);
-  flag("white_relative_to_peak", c.circles.white_relative_to_peak);
-  flag("reseed_along_path", c.circles.reseed_along_path);
-  flag("empty_test_on_smallest", c.circles.empty_test_on_smallest);
-  o += "\n[spheres]\n";
-  num("density", c.spheres.density);
-  num("edge_softness", c.spheres.edge_softness);
-  num("noise_erosion", c.spheres.noise_erosion);
-  num("noise_modulation", c.spheres.noise_modulation);
-  num("outline_chord_voxels", c.spheres.outline_chord_voxels);
-  num("billow_amplitude", c.spheres.billow_amplitude);
-  num("billow_feature_radii", c.spheres.billow_feature_radii);
-  num("puff_probability", c.spheres.puff_probability);
-  o += "\n[edges]\n";
-  integer("samples_per_pixel", c.edges.samples_per_pixel);
-  num("depth_sigma_of_radius", c.edges.depth_sigma_of_radius);
-  num("lateral_sigma_px", c.edges.lateral_sigma_px);
-  num("min_depth_sigma_voxels", c.edges.min_depth_sigma_voxels);
-  num("density_scale", c.edges.density_scale);
-  flag("tangent_at_sphere_depth", c.edges.tangent_at_sphere_depth);
-  o += "\n[ray_marching]\n";
-  num("density", c.ray_marching.density);
-  o += "\n[sheet]\n";
-  num("sigma_voxels", c.sheet.sigma_voxels);
-  num("erosion", c.sheet.erosion);
-  o += "\n[noise]\n";
-  integer("seed", c.noise.seed);
-  integer("size", c.noise.size);
-  num("period_voxels", c.noise.period_voxels);
-  integer("octaves", c.noise.octaves);
+  std::string o = std::string("[mapping]\nmethod = \"") + toString(c.method) + "\"\n";
+  appendSections<MappingConfig>(o, kMappingFields, c);
   return o;
 }
 
@@ -201,37 +213,8 @@ MappingConfig mappingConfigFrom(const toml::table& root, const std::string& path
       throw std::runtime_error(path + ": mapping.method '" + *m +
                                "' is not one of hybrid, ray-marching, sheet");
   }
-  read(root, path, "circles", "initial_diameter_px", &c.circles.initial_diameter_px);
-  read(root, path, "circles", "min_radius_px", &c.circles.min_radius_px);
-  read(root, path, "circles", "directions", &c.circles.directions);
-  read(root, path, "circles", "accept_white_ratio", &c.circles.accept_white_ratio);
-  read(root, path, "circles", "drop_empty_ratio", &c.circles.drop_empty_ratio);
-  read(root, path, "circles", "white_threshold", &c.circles.white_threshold);
-  read(root, path, "circles", "empty_threshold", &c.circles.empty_threshold);
-  read(root, path, "circles", "white_relative_to_peak", &c.circles.white_relative_to_peak);
-  read(root, path, "circles", "reseed_along_path", &c.circles.reseed_along_path);
-  read(root, path, "circles", "empty_test_on_smallest", &c.circles.empty_test_on_smallest);
-  read(root, path, "spheres", "density", &c.spheres.density);
-  read(root, path, "spheres", "edge_softness", &c.spheres.edge_softness);
-  read(root, path, "spheres", "noise_erosion", &c.spheres.noise_erosion);
-  read(root, path, "spheres", "noise_modulation", &c.spheres.noise_modulation);
-  read(root, path, "spheres", "outline_chord_voxels", &c.spheres.outline_chord_voxels);
-  read(root, path, "spheres", "billow_amplitude", &c.spheres.billow_amplitude);
-  read(root, path, "spheres", "billow_feature_radii", &c.spheres.billow_feature_radii);
-  read(root, path, "spheres", "puff_probability", &c.spheres.puff_probability);
-  read(root, path, "edges", "samples_per_pixel", &c.edges.samples_per_pixel);
-  read(root, path, "edges", "depth_sigma_of_radius", &c.edges.depth_sigma_of_radius);
-  read(root, path, "edges", "lateral_sigma_px", &c.edges.lateral_sigma_px);
-  read(root, path, "edges", "tangent_at_sphere_depth", &c.edges.tangent_at_sphere_depth);
-  read(root, path, "edges", "min_depth_sigma_voxels", &c.edges.min_depth_sigma_voxels);
-  read(root, path, "edges", "density_scale", &c.edges.density_scale);
-  read(root, path, "ray_marching", "density", &c.ray_marching.density);
-  read(root, path, "sheet", "sigma_voxels", &c.sheet.sigma_voxels);
-  read(root, path, "sheet", "erosion", &c.sheet.erosion);
-  read(root, path, "noise", "seed", &c.noise.seed);
-  read(root, path, "noise", "size", &c.noise.size);
-  read(root, path, "noise", "period_voxels", &c.noise.period_voxels);
-  read(root, path, "noise", "octaves", &c.noise.octaves);
+  for (const ConfigField<MappingConfig>& f : kMappingFields)
+    std::visit([&](auto* member) { read(root, path, f.section, f.key, member); }, f.at(c));
   try {
     validate(c);
   } catch (const std::invalid_argument& e) {

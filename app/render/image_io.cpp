@@ -154,28 +154,30 @@ void flipRowsToTopDown(std::vector<T>* pixels, int width, int height) {
 
 }  // namespace
 
-ImageRgba8 readFramebufferRgba8(GLuint fbo, int width, int height) {
-  ImageRgba8 out;
+namespace {
+
+// The framebuffer's colour as `Image` (RGBA of `type`), rows top-down.
+template <class Image>
+Image readFramebuffer(GLuint fbo, int width, int height, GLenum type, int alignment) {
+  Image out;
   out.width = width;
   out.height = height;
   out.pixels.resize(size_t(width) * height * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.pixels.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+  glReadPixels(0, 0, width, height, GL_RGBA, type, out.pixels.data());
   flipRowsToTopDown(&out.pixels, width, height);
   return out;
 }
 
+}  // namespace
+
+ImageRgba8 readFramebufferRgba8(GLuint fbo, int width, int height) {
+  return readFramebuffer<ImageRgba8>(fbo, width, height, GL_UNSIGNED_BYTE, 1);
+}
+
 ImageRgbaF readFramebufferRgbaF(GLuint fbo, int width, int height) {
-  ImageRgbaF out;
-  out.width = width;
-  out.height = height;
-  out.pixels.resize(size_t(width) * height * 4);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
-  flipRowsToTopDown(&out.pixels, width, height);
-  return out;
+  return readFramebuffer<ImageRgbaF>(fbo, width, height, GL_FLOAT, 4);
 }
 
 }  // namespace cb

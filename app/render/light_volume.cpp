@@ -671,6 +671,217 @@ void sweepAllTiles(const TileSweep& t, const std::vector<int>& depth) {
   for (auto& th : pool) th.join();
 }
 
+// Slice s's index in sweep order: 0 at the light side.
+int sweepIndex(const SweepFrame& f, int s) {
+  return (s - f.first) * f.dir;
+}
+
+// How the columns' stored depths moved since the last sweep (storedSlices before and after).
+struct DepthChange {
+  Rect grown_rect;                 // the newly stored columns' bounding rectangle (voxels)
+  int grown_lo = 0, grown_hi = 0;  // their newly stored slices (sweep indices)
+  int stored_end = 0;              // the deepest stored slice + 1
+  bool grown() const { return grown_hi > 0; }
+};
+
+// Columns an erase made shallower free their bricks past the new depth (marked in
+// changed_bytes when tracked); columns an edit made deeper (a brick allocated further downstream)
+// are to be swept whole over their newly stored slices [depth_before, depth): nothing of them
+// was kept.
+DepthChange applyStoredDepths(LightVolume& lv, const Volume& volume, const SweepFrame& f,
+                              const std::vector<int>& depth, const std::vector<int>& depth_before,
+                              std::vector<uint8_t>& changed_bytes) {
+  const glm::ivec3 dims = volume.dims(), bd = volume.brickDims();
+  const int ntb = bd[f.b];
+  DepthChange d;
+  d.grown_lo = dims[f.axis];
+  for (size_t i = 0; i < depth.size(); ++i) {
+    d.stored_end = std::max(d.stored_end, depth[i]);
+    glm::ivec3 b;
+    b[f.b] = int(i % size_t(ntb));
+    b[f.c] = int(i / size_t(ntb));
+    if (depth[i] > depth_before[i]) {
+      d.grown_rect = d.grown_rect.unite(
+          Rect{{b[f.b] * kTile, b[f.c] * kTile}, {(b[f.b] + 1) * kTile, (b[f.c] + 1) * kTile}});
+      d.grown_lo = std::min(d.grown_lo, depth_before[i]);
+      d.grown_hi = std::max(d.grown_hi, depth[i]);
+    } else if (depth[i] < depth_before[i]) {
+      for (b[f.axis] = 0; b[f.axis] < bd[f.axis]; ++b[f.axis]) {
+        const int s0 = b[f.axis] * Volume::kBrickSize;
+        if (std::min(sweepIndex(f, s0), sweepIndex(f, std::min(dims[f.axis], s0 + kTile) - 1)) <
+            depth[i])
+          continue;
+        lv.through.release(lv.through.brickIndex(b));
+        lv.lit.release(lv.lit.brickIndex(b));
+        if (!changed_bytes.empty()) changed_bytes[lv.through.brickIndex(b)] = 0xFF;
+      }
+    }
+  }
+  return d;
+}
+
+// The bricks marked in changed_bytes, in the volume's brick order (z, y, x).
+void collectBrickChanges(const LightVolume& lv, glm::ivec3 bd,
+                         const std::vector<uint8_t>& changed_bytes, LightByteChanges* changes) {
+  if (changed_bytes.empty()) return;
+  for (int z = 0; z < bd.z; ++z)
+    for (int y = 0; y < bd.y; ++y)
+      for (int x = 0; x < bd.x; ++x)
+        if (const uint8_t readers = changed_bytes[lv.through.brickIndex({x, y, z})])
+          changes->bricks.push_back({{x, y, z}, readers});
+}
+
+// An incremental sweep's slices: from `first` (a sweep index; slice `start`) over `slices`
+// slices; the dirty box's rectangle on its slices dirty_lo … + dirty_slices.
+struct ChangedSlices {
+  const TileSweep& t;
+  const std::vector<int>& depth;
+  const std::vector<int>& depth_before;
+  const DepthChange& grow;
+  int first, start, slices, dirty_lo, dirty_slices;
+  Rect dirty_rect, all;
+};
+
+// What an incremental sweep rewrote: each slice's rectangle, and per thread the newly stored
+// tiles that are not all 1.
+struct SweptSlices {
+  struct Fresh {
+    Rect lateral;
+    int first = -1, last = -1;
+  };
+  std::vector<Rect> swept;
+  std::vector<Fresh> fresh;
+};
+
+// A slice's rectangle is the set of voxels whose bilinear upstream footprint meets a voxel whose
+// passed-on transmittance changed in the previous slice (by more than kChangeEpsilon, which is
+// 0), plus the dirty box on its slices, so the update follows the actual shadow of the edit and
+// stops where it no longer changes anything or falls into shadow that is already black. Tiles
+// past their column's stored depth are passed over (only unstored tiles read them); newly stored
+// tiles are swept whole (a tile stored before reads only tiles stored before, so their values
+// need no change tracking).
+//
+// Slices depend on their upstream neighbour, so threads split each slice's tile rows (a tile
+// belongs to one thread) and meet at a barrier between slices. Small edits run on one thread
+// (a barrier per slice costs more than they do). Each thread's changed rectangle is
+// double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
+// independent of the split (deterministic).
+SweptSlices sweepChangedSlices(const ChangedSlices& in) {
+  const TileSweep& t = in.t;
+  const SweepFrame& f = t.f;
+  const int ntb = t.volume.brickDims()[f.b];
+  const int threads =
+      in.dirty_rect.area() >= kThreadedArea || in.grow.grown_rect.area() >= kThreadedArea
+          ? std::max(1, std::min(workerThreads(), 16))
+          : 1;
+  // The voxels of the next slice whose upstream footprint (b + ob + {0,1}, c + oc + {0,1})
+  // meets `changed`.
+  auto downstreamOf = [&](Rect changed) {
+    if (changed.empty()) return Rect{};
+    return Rect{changed.lo - glm::ivec2(t.ob, t.oc) - 1, changed.hi - glm::ivec2(t.ob, t.oc)}
+        .intersect(in.all);
+  };
+  std::vector<Rect> changed_by_thread(size_t(2 * threads));
+  SweptSlices out;
+  out.swept.resize(size_t(in.slices));  // each slice's rectangle (thread 0)
+  out.fresh.resize(size_t(threads));
+  const bool grown = in.grow.grown();
+  auto worker = [&](int id, std::barrier<>* sync) {
+    for (int j = 0; j < in.slices; ++j) {
+      Rect changed;
+      if (j > 0)
+        for (int i = 0; i < threads; ++i)
+          changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
+      Rect rect = downstreamOf(changed);
+      if (j >= in.dirty_lo && j < in.dirty_lo + in.dirty_slices) rect = rect.unite(in.dirty_rect);
+      const int k = in.first + j;  // the slice's sweep index
+      const bool growing = grown && k >= in.grow.grown_lo && k < in.grow.grown_hi;
+      // Every thread sees the same rectangles and stops together; before newly stored slices
+      // an empty slice is passed over.
+      if (rect.empty() && !(grown && k < in.grow.grown_hi)) break;
+      const Rect work = growing ? rect.unite(in.grow.grown_rect).intersect(in.all) : rect;
+      const int s = in.start + j * f.dir;
+      const int tr0 = work.lo.y / kTile, tr1 = (work.hi.y - 1) / kTile + 1;
+      const int parts = work.area() < kThreadedArea ? 1 : threads;
+      const int r0 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * id / parts : tr0;
+      const int r1 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
+      Rect mine;
+      for (int tc = r0; tc < r1; ++tc)
+        for (int tb = work.lo.x / kTile; tb * kTile < work.hi.x; ++tb) {
+          const size_t column = size_t(tc) * size_t(ntb) + size_t(tb);
+          if (k >= in.depth[column]) continue;  // not stored
+          const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
+          if (k >= in.depth_before[column]) {  // newly stored: swept whole
+            // `at` read 1 there before: the tile is rewritten only where it is not 1 now.
+            if (t.processTile(s, tb, tc, tile.intersect(in.all), false, nullptr)) {
+              SweptSlices::Fresh& mine_fresh = out.fresh[size_t(id)];
+              mine_fresh.lateral = mine_fresh.lateral.unite(tile.intersect(in.all));
+              if (mine_fresh.first < 0) mine_fresh.first = j;
+              mine_fresh.last = j;
+            }
+            continue;
+          }
+          const Rect r = rect.intersect(tile);
+          if (!r.empty()) t.processTile(s, tb, tc, r, true, &mine);
+        }
+      changed_by_thread[size_t(2 * id + j % 2)] = mine;
+      if (id == 0) out.swept[size_t(j)] = rect;
+      if (sync) sync->arrive_and_wait();
+    }
+  };
+  if (threads == 1) {
+    worker(0, nullptr);
+  } else {
+    std::barrier<> sync(threads);
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i, &sync);
+    worker(0, &sync);
+    for (auto& th : pool) th.join();
+  }
+  return out;
+}
+
+// The rewritten box: the union of the per-slice rectangles and the newly stored tiles not 1
+// (empty when nothing was rewritten); bricks the update left all 1 (an erase's shadow gone)
+// are dropped there: absent reads the same.
+VoxelBox rewrittenBox(LightVolume& lv, const Volume& volume, const SweepFrame& f, int start,
+                      const SweptSlices& done) {
+  Rect lateral;
+  int first_rewritten = int(done.swept.size()), last = -1;
+  for (size_t j = 0; j < done.swept.size(); ++j) {
+    if (done.swept[j].empty()) continue;
+    lateral = lateral.unite(done.swept[j]);
+    first_rewritten = std::min(first_rewritten, int(j));
+    last = int(j);
+  }
+  for (const SweptSlices::Fresh& f_id : done.fresh) {
+    if (f_id.last < 0) continue;
+    lateral = lateral.unite(f_id.lateral);
+    first_rewritten = std::min(first_rewritten, f_id.first);
+    last = std::max(last, f_id.last);
+  }
+  if (last < 0) return {};
+  VoxelBox out;
+  const int begin = start + first_rewritten * f.dir, end = start + last * f.dir;
+  out.lo[f.axis] = std::min(begin, end);
+  out.hi[f.axis] = std::max(begin, end) + 1;
+  out.lo[f.b] = lateral.lo.x;
+  out.hi[f.b] = lateral.hi.x;
+  out.lo[f.c] = lateral.lo.y;
+  out.hi[f.c] = lateral.hi.y;
+  out = out.intersect(volume.bounds());
+  const glm::ivec3 blo = out.lo >> Volume::kBrickShift, bhi = (out.hi - 1) >> Volume::kBrickShift;
+  for (int z = blo.z; z <= bhi.z; ++z)
+    for (int y = blo.y; y <= bhi.y; ++y)
+      for (int x = blo.x; x <= bhi.x; ++x) {
+        const size_t i = lv.through.brickIndex({x, y, z});
+        const float* p = lv.through.get(i);
+        if (p && std::all_of(p, p + Volume::kBrickVoxels, [](float v) { return v == 1.0f; }))
+          lv.through.release(i);
+      }
+  return out;
+}
+
 }  // namespace
 
 VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& light,
@@ -728,179 +939,33 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
     return volume.bounds();
   }
   if (depth_before.size() != depth.size()) depth_before.assign(depth.size(), 0);
-  // Columns an erase made shallower free their bricks past the new depth; columns an edit made
-  // deeper (a brick allocated further downstream) are swept whole over their newly stored
-  // slices [depth_before, depth): nothing of them was kept.
-  auto sweepIndex = [&](int s) { return (s - f.first) * f.dir; };  // 0 at the light side
-  const glm::ivec3 bd = volume.brickDims();
-  const int ntb = bd[f.b];
-  Rect grown_rect;  // the newly stored columns' bounding rectangle (voxels)
-  int grown_lo = dims[f.axis], grown_hi = 0, stored_end = 0;
-  for (size_t i = 0; i < depth.size(); ++i) {
-    stored_end = std::max(stored_end, depth[i]);
-    glm::ivec3 b;
-    b[f.b] = int(i % size_t(ntb));
-    b[f.c] = int(i / size_t(ntb));
-    if (depth[i] > depth_before[i]) {
-      grown_rect = grown_rect.unite(
-          Rect{{b[f.b] * kTile, b[f.c] * kTile}, {(b[f.b] + 1) * kTile, (b[f.c] + 1) * kTile}});
-      grown_lo = std::min(grown_lo, depth_before[i]);
-      grown_hi = std::max(grown_hi, depth[i]);
-    } else if (depth[i] < depth_before[i]) {
-      for (b[f.axis] = 0; b[f.axis] < bd[f.axis]; ++b[f.axis]) {
-        const int s0 = b[f.axis] * Volume::kBrickSize;
-        if (std::min(sweepIndex(s0), sweepIndex(std::min(dims[f.axis], s0 + kTile) - 1)) < depth[i])
-          continue;
-        lv.through.release(lv.through.brickIndex(b));
-        lv.lit.release(lv.lit.brickIndex(b));
-        if (!changed_bytes.empty()) changed_bytes[lv.through.brickIndex(b)] = 0xFF;
-      }
-    }
-  }
-  const bool grown = grown_hi > 0;
+  const DepthChange grow = applyStoredDepths(lv, volume, f, depth, depth_before, changed_bytes);
 
-  // An incremental sweep: slices from the dirty box's upstream face towards the far edge. The
-  // first `dirty_slices` slices hold the dirty box; beyond it, a slice's rectangle is the set of
-  // voxels whose bilinear upstream footprint meets a voxel whose passed-on transmittance changed
-  // in the previous slice (by more than kChangeEpsilon, which is 0), so the update follows the
-  // actual shadow of the edit and stops where it no longer changes anything or falls into
-  // shadow that is already black. Voxels left alone are exactly what a full recompute gives, so
-  // undo/redo restore the light volume bit for bit (app/session/history.h). Tiles past their
-  // column's stored depth are passed over (only unstored tiles read them); newly stored tiles
-  // are swept whole (a tile stored before reads only tiles stored before, so their values need
-  // no change tracking).
-  const int dirty_start = sweepIndex(f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis]);
-  const int first = grown ? std::min(dirty_start, grown_lo) : dirty_start;
+  // An incremental sweep: slices from the dirty box's upstream face (or the first newly stored
+  // slice) towards the far edge. Voxels left alone are exactly what a full recompute gives, so
+  // undo/redo restore the light volume bit for bit (app/session/history.h).
+  const int dirty_start = sweepIndex(f, f.dir < 0 ? region.hi[f.axis] - 1 : region.lo[f.axis]);
+  const int first = grow.grown() ? std::min(dirty_start, grow.grown_lo) : dirty_start;
   const int start = f.first + first * f.dir;  // the first slice swept
-  const int slices = stored_end - first;
-  const int dirty_slices = region.hi[f.axis] - region.lo[f.axis];
-  const int dirty_lo = dirty_start - first;  // the dirty box's slices: dirty_lo … + dirty_slices
-  const Rect dirty_rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}};
-  const Rect all{glm::ivec2(0), lateral_dims};
-  // The voxels of the next slice whose upstream footprint (b + ob + {0,1}, c + oc + {0,1})
-  // meets `changed`.
-  auto downstreamOf = [&](Rect changed) {
-    if (changed.empty()) return Rect{};
-    return Rect{changed.lo - glm::ivec2(ob, oc) - 1, changed.hi - glm::ivec2(ob, oc)}.intersect(
-        all);
-  };
-  // Slices depend on their upstream neighbour, so threads split each slice's tile rows (a tile
-  // belongs to one thread) and meet at a barrier between slices. Small edits run on one thread
-  // (a barrier per slice costs more than they do). Each thread's changed rectangle is
-  // double-buffered by slice parity, so one barrier per slice suffices; every voxel's value is
-  // independent of the split (deterministic).
-  // The bricks marked in changed_bytes, in the volume's brick order (z, y, x).
-  auto collectChanges = [&] {
-    if (changed_bytes.empty()) return;
-    for (int z = 0; z < bd.z; ++z)
-      for (int y = 0; y < bd.y; ++y)
-        for (int x = 0; x < bd.x; ++x)
-          if (const uint8_t readers = changed_bytes[lv.through.brickIndex({x, y, z})])
-            changes->bricks.push_back({{x, y, z}, readers});
-  };
+  const int slices = grow.stored_end - first;
   if (slices <= 0) {
-    collectChanges();
+    collectBrickChanges(lv, volume.brickDims(), changed_bytes, changes);
     return {};
   }
-  const int threads = dirty_rect.area() >= kThreadedArea || grown_rect.area() >= kThreadedArea
-                          ? std::max(1, std::min(workerThreads(), 16))
-                          : 1;
-  std::vector<Rect> changed_by_thread(size_t(2 * threads));
-  std::vector<Rect> swept(static_cast<size_t>(slices));  // each slice's rectangle (thread 0)
-  struct Fresh {  // newly stored tiles that are not all 1, per thread
-    Rect lateral;
-    int first = -1, last = -1;
-  };
-  std::vector<Fresh> fresh(static_cast<size_t>(threads));
-  auto worker = [&](int id, std::barrier<>* sync) {
-    for (int j = 0; j < slices; ++j) {
-      Rect changed;
-      if (j > 0)
-        for (int i = 0; i < threads; ++i)
-          changed = changed.unite(changed_by_thread[size_t(2 * i + (j - 1) % 2)]);
-      Rect rect = downstreamOf(changed);
-      if (j >= dirty_lo && j < dirty_lo + dirty_slices) rect = rect.unite(dirty_rect);
-      const int k = first + j;  // the slice's sweep index
-      const bool growing = grown && k >= grown_lo && k < grown_hi;
-      // Every thread sees the same rectangles and stops together; before newly stored slices
-      // an empty slice is passed over.
-      if (rect.empty() && !(grown && k < grown_hi)) break;
-      const Rect work = growing ? rect.unite(grown_rect).intersect(all) : rect;
-      const int s = start + j * f.dir;
-      const int tr0 = work.lo.y / kTile, tr1 = (work.hi.y - 1) / kTile + 1;
-      const int parts = work.area() < kThreadedArea ? 1 : threads;
-      const int r0 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * id / parts : tr0;
-      const int r1 = id < parts && !work.empty() ? tr0 + (tr1 - tr0) * (id + 1) / parts : tr0;
-      Rect mine;
-      for (int tc = r0; tc < r1; ++tc)
-        for (int tb = work.lo.x / kTile; tb * kTile < work.hi.x; ++tb) {
-          const size_t column = size_t(tc) * size_t(ntb) + size_t(tb);
-          if (k >= depth[column]) continue;  // not stored
-          const Rect tile{{tb * kTile, tc * kTile}, {(tb + 1) * kTile, (tc + 1) * kTile}};
-          if (k >= depth_before[column]) {  // newly stored: swept whole
-            // `at` read 1 there before: the tile is rewritten only where it is not 1 now.
-            if (t.processTile(s, tb, tc, tile.intersect(all), false, nullptr)) {
-              Fresh& mine_fresh = fresh[size_t(id)];
-              mine_fresh.lateral = mine_fresh.lateral.unite(tile.intersect(all));
-              if (mine_fresh.first < 0) mine_fresh.first = j;
-              mine_fresh.last = j;
-            }
-            continue;
-          }
-          const Rect r = rect.intersect(tile);
-          if (!r.empty()) t.processTile(s, tb, tc, r, true, &mine);
-        }
-      changed_by_thread[size_t(2 * id + j % 2)] = mine;
-      if (id == 0) swept[size_t(j)] = rect;
-      if (sync) sync->arrive_and_wait();
-    }
-  };
-  if (threads == 1) {
-    worker(0, nullptr);
-  } else {
-    std::barrier<> sync(threads);
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i, &sync);
-    worker(0, &sync);
-    for (auto& th : pool) th.join();
-  }
-  // The rewritten box: the union of the per-slice rectangles and the newly stored tiles not 1.
-  Rect lateral;
-  int first_rewritten = slices, last = -1;
-  for (int j = 0; j < slices; ++j) {
-    if (swept[size_t(j)].empty()) continue;
-    lateral = lateral.unite(swept[size_t(j)]);
-    first_rewritten = std::min(first_rewritten, j);
-    last = j;
-  }
-  for (const Fresh& f_id : fresh) {
-    if (f_id.last < 0) continue;
-    lateral = lateral.unite(f_id.lateral);
-    first_rewritten = std::min(first_rewritten, f_id.first);
-    last = std::max(last, f_id.last);
-  }
-  collectChanges();
-  if (last < 0) return {};
-  VoxelBox out;
-  const int begin = start + first_rewritten * f.dir, end = start + last * f.dir;
-  out.lo[f.axis] = std::min(begin, end);
-  out.hi[f.axis] = std::max(begin, end) + 1;
-  out.lo[f.b] = lateral.lo.x;
-  out.hi[f.b] = lateral.hi.x;
-  out.lo[f.c] = lateral.lo.y;
-  out.hi[f.c] = lateral.hi.y;
-  out = out.intersect(volume.bounds());
-  // Bricks the update left all 1 (an erase's shadow gone) are dropped: absent reads the same.
-  const glm::ivec3 blo = out.lo >> Volume::kBrickShift, bhi = (out.hi - 1) >> Volume::kBrickShift;
-  for (int z = blo.z; z <= bhi.z; ++z)
-    for (int y = blo.y; y <= bhi.y; ++y)
-      for (int x = blo.x; x <= bhi.x; ++x) {
-        const size_t i = lv.through.brickIndex({x, y, z});
-        const float* p = lv.through.get(i);
-        if (p && std::all_of(p, p + Volume::kBrickVoxels, [](float v) { return v == 1.0f; }))
-          lv.through.release(i);
-      }
-  return out;
+  const ChangedSlices in{t,
+                         depth,
+                         depth_before,
+                         grow,
+                         first,
+                         start,
+                         slices,
+                         dirty_start - first,
+                         region.hi[f.axis] - region.lo[f.axis],
+                         Rect{{region.lo[f.b], region.lo[f.c]}, {region.hi[f.b], region.hi[f.c]}},
+                         Rect{glm::ivec2(0), lateral_dims}};
+  const SweptSlices done = sweepChangedSlices(in);
+  collectBrickChanges(lv, volume.brickDims(), changed_bytes, changes);
+  return rewrittenBox(lv, volume, f, start, done);
 }
 
 void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,

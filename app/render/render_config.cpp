@@ -3,19 +3,115 @@
 #include <cfloat>
 #include <cstdio>
 #include <filesystem>
-#include <initializer_list>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include <toml++/toml.h>
 
+#include "app/core/config_fields.h"
 #include "app/core/toml_file.h"
 #include "app/scene/sun_position.h"
 #include "drivers/core/toml_number.h"
 
 namespace cb {
 namespace {
+
+// The fields of render.toml, each listed once for reading and writing (config_fields.h), in the
+// order the settings text lists them. Set by hand beside them: [style] name, [light] direction
+// (or the older position, or time_of_day), [sky] kind and image.
+//
+// The strict part: a wrong type or value stops the program.
+const ConfigField<RenderConfig> kStrictFields[] = {
+    {"raycast", "step_voxels", [](RenderConfig& c) -> FieldRef { return &c.options.step_voxels; },
+     0.1, 8.0},
+    {"raycast", "extinction_per_voxel",
+     [](RenderConfig& c) -> FieldRef { return &c.options.extinction_per_voxel; }, 0.0, FLT_MAX},
+    {"raycast", "termination_transmittance",
+     [](RenderConfig& c) -> FieldRef { return &c.options.termination_transmittance; }, 0.0, 1.0},
+    {"raycast", "skip_empty_space",
+     [](RenderConfig& c) -> FieldRef { return &c.options.skip_empty_space; }},
+    {"raycast", "brick_stepping",
+     [](RenderConfig& c) -> FieldRef { return &c.options.brick_stepping; }},
+    {"background", "colour", [](RenderConfig& c) -> FieldRef { return &c.options.background; },
+     -FLT_MAX, FLT_MAX},
+    {"motion", "moving_scale", [](RenderConfig& c) -> FieldRef { return &c.moving_scale; }, 0.05,
+     1.0},
+    {"light", "colour", [](RenderConfig& c) -> FieldRef { return &c.light.colour; }, -FLT_MAX,
+     FLT_MAX},
+    {"light", "extinction", [](RenderConfig& c) -> FieldRef { return &c.light.extinction; }, 0.0,
+     1.0},
+};
+// The newer settings warn and keep their default (Lenient). The sky's colours, then its LIC
+// cloud layer (sky.image is written between them).
+const ConfigField<RenderConfig> kSkyLookFields[] = {
+    {"sky", "zenith", [](RenderConfig& c) -> FieldRef { return &c.options.sky.zenith; }, 0.0, 1.0},
+    {"sky", "horizon", [](RenderConfig& c) -> FieldRef { return &c.options.sky.horizon; }, 0.0,
+     1.0},
+    {"sky", "sun_glow", [](RenderConfig& c) -> FieldRef { return &c.options.sky.sun_glow; }, 0.0,
+     4.0},
+};
+const ConfigField<RenderConfig> kSkyLicFields[] = {
+    {"sky", "lic_seed", [](RenderConfig& c) -> FieldRef { return &c.options.sky.lic_seed; }, 0,
+     0x7fffffff},
+    {"sky", "lic_size", [](RenderConfig& c) -> FieldRef { return &c.options.sky.lic_size; }, 16,
+     4096},
+    {"sky", "lic_length", [](RenderConfig& c) -> FieldRef { return &c.options.sky.lic_length; }, 1,
+     256},
+    {"sky", "lic_coverage", [](RenderConfig& c) -> FieldRef { return &c.options.sky.lic_coverage; },
+     0.0, 1.0},
+    {"sky", "lic_scale", [](RenderConfig& c) -> FieldRef { return &c.options.sky.lic_scale; }, 0.01,
+     100.0},
+};
+// Each style's parameters (render_style_params.h), a [style.NAME] table per style.
+const ConfigField<RenderConfig> kStyleFields[] = {
+    {"style.physical", "reflection",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.reflection; }, 0.0,
+     4.0},
+    {"style.physical", "scattering",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.scattering; }, 0.0,
+     4.0},
+    {"style.physical", "forward_g",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.forward_g; }, -0.95,
+     0.95},
+    {"style.physical", "back_g",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.back_g; }, -0.95,
+     0.95},
+    {"style.physical", "forward_weight",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.forward_weight; },
+     0.0, 1.0},
+    {"style.physical", "octaves",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.octaves; }, 1, 3},
+    {"style.physical", "ambient",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.ambient; }, 0.0,
+     4.0},
+    {"style.physical", "exposure",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.exposure; }, 0.1,
+     10.0},
+    {"style.physical", "erosion",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.physical.erosion; }, 0.0,
+     1.0},
+    {"style.ink", "wash",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.ink.wash; }, 0.0, 1.0},
+    {"style.ink", "line_width",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.ink.line_width; }, 0.05, 1.0},
+    {"style.ink", "bleed_sigma",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.ink.bleed_sigma; }, 0.3,
+     float(kMaxInkBleedRadius) / 2.1213f},
+    {"style.ink", "sky",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.ink.sky; }},
+    {"style.cartoon", "band_thresholds",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.cartoon.band_thresholds; },
+     0.0, 1.0},
+    {"style.cartoon", "outline_width",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.cartoon.outline_width; },
+     0.02, 1.0},
+    {"style.sketch", "outline_width",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.sketch.outline_width; }, 0.02,
+     1.0},
+    {"style.sketch", "sky",
+     [](RenderConfig& c) -> FieldRef { return &c.options.style_params.sketch.sky; }},
+};
 
 [[noreturn]] void bad(const std::string& path, const std::string& key, const std::string& what) {
   throw std::runtime_error(path + ": " + key + " " + what);
@@ -142,9 +238,30 @@ class Lenient {
     else
       *out = v;
   }
+  // One row of a field list, by its member's type (a uint32_t is read as a whole number).
+  void field(const toml::table* t, const ConfigField<RenderConfig>& f, RenderConfig& c) {
+    std::visit(
+        [&](auto* member) {
+          using T = std::remove_pointer_t<decltype(member)>;
+          if constexpr (std::is_same_v<T, float>) {
+            real(t, f.section, f.key, float(f.lo), float(f.hi), member);
+          } else if constexpr (std::is_same_v<T, int>) {
+            integer(t, f.section, f.key, int64_t(f.lo), int64_t(f.hi), member);
+          } else if constexpr (std::is_same_v<T, uint32_t>) {
+            int v = int(*member & 0x7fffffff);
+            integer(t, f.section, f.key, int64_t(f.lo), int64_t(f.hi), &v);
+            *member = uint32_t(v);
+          } else if constexpr (std::is_same_v<T, bool>) {
+            boolean(t, f.section, f.key, member);
+          } else if constexpr (std::is_same_v<T, glm::vec3>) {
+            vec3(t, f.section, f.key, float(f.lo), float(f.hi), member);
+          }
+        },
+        f.at(c));
+  }
   // Keys a table may hold; anything else is reported (a typo would otherwise pass silently).
   void onlyKeys(const toml::table* t, const std::string& table,
-                std::initializer_list<const char*> keys) {
+                const std::vector<const char*>& keys) {
     if (!t) return;
     for (const auto& [k, node] : *t) {
       bool known = false;
@@ -162,64 +279,44 @@ class Lenient {
   std::vector<std::string>* warnings_;
 };
 
-const toml::table* subTable(const toml::table& root, const char* section, const char* name) {
-  const toml::table* s = root[section].as_table();
-  return s ? (*s)[name].as_table() : nullptr;
+// The keys of `section` in `fields`, with `extra` (set by hand) in front.
+std::vector<const char*> keysOf(std::span<const ConfigField<RenderConfig>> fields,
+                                std::string_view section, std::vector<const char*> extra = {}) {
+  for (const ConfigField<RenderConfig>& f : fields)
+    if (section == f.section) extra.push_back(f.key);
+  return extra;
 }
 
-void readStyleParams(const toml::table& root, Lenient& in, StyleParams* p) {
-  const toml::table* t = subTable(root, "style", "physical");
-  in.onlyKeys(t, "style.physical",
-              {"reflection", "scattering", "forward_g", "back_g", "forward_weight", "octaves",
-               "ambient", "exposure", "erosion"});
-  in.real(t, "style.physical", "reflection", 0.0f, 4.0f, &p->physical.reflection);
-  in.real(t, "style.physical", "scattering", 0.0f, 4.0f, &p->physical.scattering);
-  in.real(t, "style.physical", "forward_g", -0.95f, 0.95f, &p->physical.forward_g);
-  in.real(t, "style.physical", "back_g", -0.95f, 0.95f, &p->physical.back_g);
-  in.real(t, "style.physical", "forward_weight", 0.0f, 1.0f, &p->physical.forward_weight);
-  in.integer(t, "style.physical", "octaves", 1, 3, &p->physical.octaves);
-  in.real(t, "style.physical", "ambient", 0.0f, 4.0f, &p->physical.ambient);
-  in.real(t, "style.physical", "exposure", 0.1f, 10.0f, &p->physical.exposure);
-  in.real(t, "style.physical", "erosion", 0.0f, 1.0f, &p->physical.erosion);
-  t = subTable(root, "style", "ink");
-  in.onlyKeys(t, "style.ink", {"wash", "line_width", "bleed_sigma", "sky"});
-  in.real(t, "style.ink", "wash", 0.0f, 1.0f, &p->ink.wash);
-  in.real(t, "style.ink", "line_width", 0.05f, 1.0f, &p->ink.line_width);
-  in.real(t, "style.ink", "bleed_sigma", 0.3f, float(kMaxInkBleedRadius) / 2.1213f,
-          &p->ink.bleed_sigma);
-  in.boolean(t, "style.ink", "sky", &p->ink.sky);
-  t = subTable(root, "style", "cartoon");
-  in.onlyKeys(t, "style.cartoon", {"band_thresholds", "outline_width"});
-  glm::vec3 bands = p->cartoon.band_thresholds;
-  in.vec3(t, "style.cartoon", "band_thresholds", 0.0f, 1.0f, &bands);
-  if (bands.x < bands.y && bands.y < bands.z)
-    p->cartoon.band_thresholds = bands;
-  else
-    in.warn(*t->get("band_thresholds"), "style.cartoon.band_thresholds",
+// [style.NAME]: each style's parameters.
+void readStyleParams(const toml::table& root, Lenient& in, RenderConfig* c) {
+  const glm::vec3 bands = c->options.style_params.cartoon.band_thresholds;
+  std::string_view open;
+  const toml::table* t = nullptr;
+  for (const ConfigField<RenderConfig>& f : kStyleFields) {
+    if (f.section != open) {
+      open = f.section;
+      t = root.at_path(f.section).as_table();
+      in.onlyKeys(t, f.section, keysOf(kStyleFields, f.section));
+    }
+    in.field(t, f, *c);
+  }
+  glm::vec3& read = c->options.style_params.cartoon.band_thresholds;
+  if (!(read.x < read.y && read.y < read.z)) {
+    in.warn(*root.at_path("style.cartoon.band_thresholds").node(), "style.cartoon.band_thresholds",
             "must rise from the first to the third", "the default");
-  in.real(t, "style.cartoon", "outline_width", 0.02f, 1.0f, &p->cartoon.outline_width);
-  t = subTable(root, "style", "sketch");
-  in.onlyKeys(t, "style.sketch", {"outline_width", "sky"});
-  in.real(t, "style.sketch", "outline_width", 0.02f, 1.0f, &p->sketch.outline_width);
-  in.boolean(t, "style.sketch", "sky", &p->sketch.sky);
+    read = bands;
+  }
 }
 
-void readSky(const toml::table& root, const std::string& path, Lenient& in, SkySettings* sky) {
+void readSky(const toml::table& root, const std::string& path, Lenient& in, RenderConfig* c) {
+  SkySettings* sky = &c->options.sky;
   const toml::table* t = root["sky"].as_table();
   if (!t) return;
-  in.onlyKeys(t, "sky",
-              {"kind", "zenith", "horizon", "sun_glow", "image", "lic_seed", "lic_size",
-               "lic_length", "lic_coverage", "lic_scale"});
-  in.vec3(t, "sky", "zenith", 0.0f, 1.0f, &sky->zenith);
-  in.vec3(t, "sky", "horizon", 0.0f, 1.0f, &sky->horizon);
-  in.real(t, "sky", "sun_glow", 0.0f, 4.0f, &sky->sun_glow);
-  int seed = int(sky->lic_seed & 0x7fffffff);
-  in.integer(t, "sky", "lic_seed", 0, 0x7fffffff, &seed);
-  sky->lic_seed = uint32_t(seed);
-  in.integer(t, "sky", "lic_size", 16, 4096, &sky->lic_size);
-  in.integer(t, "sky", "lic_length", 1, 256, &sky->lic_length);
-  in.real(t, "sky", "lic_coverage", 0.0f, 1.0f, &sky->lic_coverage);
-  in.real(t, "sky", "lic_scale", 0.01f, 100.0f, &sky->lic_scale);
+  std::vector<const char*> keys = keysOf(kSkyLookFields, "sky", {"kind"});
+  keys.push_back("image");
+  in.onlyKeys(t, "sky", keysOf(kSkyLicFields, "sky", keys));
+  for (const ConfigField<RenderConfig>& f : kSkyLookFields) in.field(t, f, *c);
+  for (const ConfigField<RenderConfig>& f : kSkyLicFields) in.field(t, f, *c);
   const toml::node* kind = t->get("kind");
   if (kind) {
     auto name = kind->value<std::string>();
@@ -300,75 +397,26 @@ RenderConfig renderConfigFrom(const toml::table& root, const std::string& path);
 }  // namespace
 
 std::string formatRenderConfig(const RenderConfig& c) {
-  std::string o;
-  char buf[64];
-  const auto num = [&](const char* key, double v) {
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    o += std::string(key) + " = " + buf + "\n";
-  };
-  const auto vec = [&](const char* key, const float* v, int n) {
-    o += std::string(key) + " = [";
-    for (int i = 0; i < n; ++i) {
-      std::snprintf(buf, sizeof buf, "%s%.9g", i ? ", " : "", double(v[i]));
-      o += buf;
-    }
-    o += "]\n";
-  };
-  const auto integer = [&](const char* key, long long v) {
-    o += std::string(key) + " = " + std::to_string(v) + "\n";
-  };
-  const RenderOptions& r = c.options;
-  o += "[raycast]\n";
-  num("step_voxels", r.step_voxels);
-  num("extinction_per_voxel", r.extinction_per_voxel);
-  num("termination_transmittance", r.termination_transmittance);
-  o += std::string("skip_empty_space = ") + (r.skip_empty_space ? "true" : "false") + "\n";
-  o += std::string("brick_stepping = ") + (r.brick_stepping ? "true" : "false") + "\n";
+  std::string o = "[raycast]\n";
+  appendSection<RenderConfig>(o, kStrictFields, c, "raycast");
   o += "\n[background]\n";
-  vec("colour", &r.background.x, 4);
-  o += std::string("\n[style]\nname = \"") + renderStyleName(r.style) + "\"\n\n[motion]\n";
-  num("moving_scale", c.moving_scale);
+  appendSection<RenderConfig>(o, kStrictFields, c, "background");
+  o += std::string("\n[style]\nname = \"") + renderStyleName(c.options.style) + "\"\n\n[motion]\n";
+  appendSection<RenderConfig>(o, kStrictFields, c, "motion");
   o += "\n[light]\n";
-  vec("direction", &c.light.direction.x, 3);  // after [light] time_of_day: that hour's sun
-  vec("colour", &c.light.colour.x, 3);
-  num("extinction", c.light.extinction);
-  const SkySettings& sky = r.sky;
+  glm::vec3 direction = c.light.direction;  // after [light] time_of_day: that hour's sun
+  appendField(o, "direction", &direction);
+  appendSection<RenderConfig>(o, kStrictFields, c, "light");
+  const SkySettings& sky = c.options.sky;
   o += std::string("\n[sky]\nkind = \"") + skyKindName(sky.kind) + "\"\n";
-  vec("zenith", &sky.zenith.x, 3);
-  vec("horizon", &sky.horizon.x, 3);
-  num("sun_glow", sky.sun_glow);
+  appendSection<RenderConfig>(o, kSkyLookFields, c, "sky");
   if (!sky.image_path.empty()) {
     std::ostringstream quoted;  // the path as a TOML string (escaped by toml++)
     quoted << toml::value<std::string>(sky.image_path);
     o += "image = " + quoted.str() + "\n";
   }
-  integer("lic_seed", sky.lic_seed);
-  integer("lic_size", sky.lic_size);
-  integer("lic_length", sky.lic_length);
-  num("lic_coverage", sky.lic_coverage);
-  num("lic_scale", sky.lic_scale);
-  const StyleParams& p = r.style_params;
-  o += "\n[style.physical]\n";
-  num("reflection", p.physical.reflection);
-  num("scattering", p.physical.scattering);
-  num("forward_g", p.physical.forward_g);
-  num("back_g", p.physical.back_g);
-  num("forward_weight", p.physical.forward_weight);
-  integer("octaves", p.physical.octaves);
-  num("ambient", p.physical.ambient);
-  num("exposure", p.physical.exposure);
-  num("erosion", p.physical.erosion);
-  o += "\n[style.ink]\n";
-  num("wash", p.ink.wash);
-  num("line_width", p.ink.line_width);
-  num("bleed_sigma", p.ink.bleed_sigma);
-  o += std::string("sky = ") + (p.ink.sky ? "true" : "false") + "\n";
-  o += "\n[style.cartoon]\n";
-  vec("band_thresholds", &p.cartoon.band_thresholds.x, 3);
-  num("outline_width", p.cartoon.outline_width);
-  o += "\n[style.sketch]\n";
-  num("outline_width", p.sketch.outline_width);
-  o += std::string("sky = ") + (p.sketch.sky ? "true" : "false") + "\n";
+  appendSection<RenderConfig>(o, kSkyLicFields, c, "sky");
+  appendSections<RenderConfig>(o, kStyleFields, c);
   return o;
 }
 
@@ -384,19 +432,22 @@ namespace {
 RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) {
   RenderConfig c;
   RenderOptions& o = c.options;
-  read(root, path, "raycast", "step_voxels", &o.step_voxels, 0.1, 8.0);
-  read(root, path, "raycast", "extinction_per_voxel", &o.extinction_per_voxel, 0.0);
-  read(root, path, "raycast", "termination_transmittance", &o.termination_transmittance, 0.0, 1.0);
-  read(root, path, "raycast", "skip_empty_space", &o.skip_empty_space);
-  read(root, path, "raycast", "brick_stepping", &o.brick_stepping);
-  readVec<4>(root, path, "background", "colour", &o.background);
+  for (const ConfigField<RenderConfig>& f : kStrictFields)
+    std::visit(
+        [&](auto* member) {
+          using T = std::remove_pointer_t<decltype(member)>;
+          if constexpr (std::is_same_v<T, glm::vec3> || std::is_same_v<T, glm::vec4>)
+            readVec<T::length()>(root, path, f.section, f.key, member);
+          else
+            read(root, path, f.section, f.key, member, f.lo, f.hi);
+        },
+        f.at(c));
   if (auto node = root["style"]["name"]) {
     auto name = node.value<std::string>();
     auto style = name ? parseRenderStyle(*name) : std::nullopt;
     if (!style) bad(path, "style.name", "must be one of " + renderStyleNameList());
     o.style = *style;
   }
-  read(root, path, "motion", "moving_scale", &c.moving_scale, 0.05, 1.0);
   // light.direction points towards the sun; the older light.position (a light ball seen from
   // the origin) gives the same direction.
   glm::vec3 towards(0.0f);
@@ -407,16 +458,14 @@ RenderConfig renderConfigFrom(const toml::table& root, const std::string& path) 
     c.light.direction = Light::directionTowards(towards);
     direction_given = true;
   }
-  readVec<3>(root, path, "light", "colour", &c.light.colour);
-  read(root, path, "light", "extinction", &c.light.extinction, 0.0, 1.0);
   // The open ends the ranges above cannot say.
   if (!(o.extinction_per_voxel > 0.0f)) bad(path, "raycast.extinction_per_voxel", "must be > 0");
   if (!(o.termination_transmittance < 1.0f))
     bad(path, "raycast.termination_transmittance", "must be in [0, 1)");
   Lenient lenient(path, &c.warnings);
   readTimeOfDay(root, lenient, direction_given, &c.light);
-  readStyleParams(root, lenient, &c.options.style_params);
-  readSky(root, path, lenient, &c.options.sky);
+  readStyleParams(root, lenient, &c);
+  readSky(root, path, lenient, &c);
   return c;
 }
 }  // namespace

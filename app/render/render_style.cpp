@@ -6,19 +6,7 @@
 namespace cb {
 
 const char* renderStyleName(RenderStyle style) {
-  switch (style) {
-    case RenderStyle::kThesis:
-      return "thesis";
-    case RenderStyle::kPhysical:
-      return "physical";
-    case RenderStyle::kInk:
-      return "ink";
-    case RenderStyle::kCartoon:
-      return "cartoon";
-    case RenderStyle::kSketch:
-      return "sketch";
-  }
-  return "thesis";
+  return renderStyleRow(style).name;
 }
 
 std::optional<RenderStyle> parseRenderStyle(std::string_view name) {
@@ -35,32 +23,19 @@ std::string renderStyleNameList() {
 }
 
 const char* shadingStageFile(RenderStyle style) {
-  switch (style) {
-    case RenderStyle::kThesis:
-      return "shade_thesis.glsl";
-    case RenderStyle::kPhysical:
-      return "shade_physical.glsl";
-    case RenderStyle::kInk:
-      return "shade_ink.glsl";
-    case RenderStyle::kCartoon:
-      return "shade_cartoon.glsl";
-    case RenderStyle::kSketch:
-      return "shade_sketch.glsl";
-  }
-  return "shade_thesis.glsl";
+  return renderStyleRow(style).stage;
 }
 
 bool drawsIsoSurface(RenderStyle style) {
-  return style == RenderStyle::kInk || style == RenderStyle::kCartoon ||
-         style == RenderStyle::kSketch;
+  return renderStyleRow(style).iso_surface;
 }
 
 bool hasScreenSpacePass(RenderStyle style) {
-  return style == RenderStyle::kInk || style == RenderStyle::kSketch;
+  return renderStyleRow(style).screen_pass != ScreenPass::kNone;
 }
 
 bool shadesWithScreenDerivatives(RenderStyle style) {
-  return style == RenderStyle::kCartoon;
+  return renderStyleRow(style).screen_derivatives;
 }
 
 int screenSpaceReach(RenderStyle style) {
@@ -70,7 +45,9 @@ int screenSpaceReach(RenderStyle style) {
 }
 
 int screenSpaceReach(RenderStyle style, const StyleParams& params) {
-  return style == RenderStyle::kInk ? inkBleedRadius(params.ink.bleed_sigma) : 0;
+  return renderStyleRow(style).screen_pass == ScreenPass::kInkWash
+             ? inkBleedRadius(params.ink.bleed_sigma)
+             : 0;
 }
 
 int inkBleedRadius(float sigma) {

@@ -1,20 +1,12 @@
 // Render styles: the run-time choice of how the ray caster turns density and light into colour.
-// The thesis's shading curve (§4.5.2) is the default; the others come from the seed documents:
-//
-//   name        seed                          what it draws
-//   "thesis"    Chen 2014 §4.5.2              composited volume, cosine shading curve
-//   "physical"  Jiménez de Parga (seed 004)   composited volume, Beer–Lambert, Henyey–Greenstein,
-//                                             in-scattering light grid, fBm edge erosion
-//   "ink"       Cao 2016 (seed 001)           iso-surface, banded ink wash, blurred silhouette on
-//                                             xuan paper (screen-space pass)
-//   "cartoon"   Álvarez et al. (seed 003)     iso-surface, cel bands, outline, inner-surface lines
-//   "sketch"    Álvarez et al. (seed 003)     iso-surface as pencil outline and hatching on paper
-//
-// The names are what config (render.toml `[style] name`), the command line (`--style NAME`) and
-// the session journal use; they never change once shipped.
+// The thesis's shading curve (§4.5.2) is the default; the others come from the seed documents
+// (ink: Cao 2016, seed 001; cartoon and sketch: Álvarez et al., seed 003; physical: Jiménez de
+// Parga, seed 004). Each style is one row of kRenderStyleRows below.
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,9 +19,84 @@ namespace cb {
 
 enum class RenderStyle { kThesis, kPhysical, kInk, kCartoon, kSketch };
 
-inline constexpr std::array<RenderStyle, 5> kAllRenderStyles = {
-    RenderStyle::kThesis, RenderStyle::kPhysical, RenderStyle::kInk, RenderStyle::kCartoon,
-    RenderStyle::kSketch};
+// The screen-space pass that finishes a style's ray-cast image (style_compose.frag.glsl).
+enum class ScreenPass {
+  kNone,         // the ray cast writes the frame
+  kInkWash,      // Gaussian ink bleeding (ink_bleed.frag.glsl), smoothstep, xuan paper (seed 001)
+  kSketchPaper,  // pencil lines and hatching on drawing paper (seed 003)
+};
+
+// Everything the renderer, the sky and the temporal reprojection ask of a style: one row each,
+// in the enum's order. Adding a style: its enum value, its row, its shaders/shade_NAME.glsl (and,
+// if it has parameters, their struct in render_style_params.h and their fields in
+// render_config.cpp's field list).
+struct RenderStyleRow {
+  RenderStyle style;
+  // The name config (render.toml `[style] name`), the command line (`--style NAME`) and the
+  // session journal use; never changes once shipped.
+  const char* name;
+  const char* stage;  // the shading stage (shaders/) linked in front of the ray caster
+  // Draws an iso-surface of the density (first hit along the ray) rather than compositing the
+  // whole volume: compiled with CB_SURFACE, linked after surface_sample.glsl.
+  bool iso_surface;
+  ScreenPass screen_pass;
+  // The shading stage reads screen-space derivatives (cartoon's inner line is held to two pixels
+  // by fwidth): an image cast at a fraction of the pixels does not reproduce it.
+  bool screen_derivatives;
+  // The temporal reprojection may make its full frame from a 1/f cast: only for a style whose
+  // pixels are independent of their neighbours (no screen pass, no screen derivatives).
+  bool reprojects;
+  bool posterised_sky;  // the sky drawn in bands (CB_SKY_POSTERISE, sky_function.cpp)
+  // Whether the configured sky shows behind the cloud; null: whenever one is configured.
+  bool (*shows_sky)(const StyleParams&);
+  // The outline width uniform (u_outline_width) of a stage that draws outlines; null: none.
+  float (*outline_width)(const StyleParams&);
+  // Samples the multiple-scattering light table and the fBm detail noise (shade_physical.glsl).
+  bool light_table;
+};
+
+inline constexpr RenderStyleRow kRenderStyleRows[] = {
+    // Chen 2014 §4.5.2: composited volume, cosine shading curve.
+    {RenderStyle::kThesis, "thesis", "shade_thesis.glsl", false, ScreenPass::kNone, false, true,
+     false, nullptr, nullptr, false},
+    // Jiménez de Parga (seed 004): Beer–Lambert, Henyey–Greenstein, in-scattering light grid,
+    // fBm edge erosion.
+    {RenderStyle::kPhysical, "physical", "shade_physical.glsl", false, ScreenPass::kNone, false,
+     true, false, nullptr, nullptr, true},
+    // Cao 2016 (seed 001): banded ink wash, blurred silhouette on xuan paper.
+    {RenderStyle::kInk, "ink", "shade_ink.glsl", true, ScreenPass::kInkWash, false, false, false,
+     [](const StyleParams& p) { return p.ink.sky; }, nullptr, false},
+    // Álvarez et al. (seed 003): cel bands, outline, inner-surface lines; a posterised sky.
+    {RenderStyle::kCartoon, "cartoon", "shade_cartoon.glsl", true, ScreenPass::kNone, true, false,
+     true, nullptr, [](const StyleParams& p) { return p.cartoon.outline_width; }, false},
+    // Álvarez et al. (seed 003): pencil outline and hatching on paper.
+    {RenderStyle::kSketch, "sketch", "shade_sketch.glsl", true, ScreenPass::kSketchPaper, false,
+     false, false, [](const StyleParams& p) { return p.sketch.sky; },
+     [](const StyleParams& p) { return p.sketch.outline_width; }, false},
+};
+inline constexpr size_t kRenderStyleCount = std::size(kRenderStyleRows);
+
+constexpr bool renderStyleRowsHoldTheirRules() {
+  for (size_t i = 0; i < kRenderStyleCount; ++i) {
+    const RenderStyleRow& r = kRenderStyleRows[i];
+    if (size_t(r.style) != i) return false;  // rows in the enum's order
+    if (r.reprojects && (r.screen_pass != ScreenPass::kNone || r.screen_derivatives)) return false;
+  }
+  return true;
+}
+static_assert(renderStyleRowsHoldTheirRules(),
+              "kRenderStyleRows: one row per enum value in order; no reprojection with a screen "
+              "pass or screen derivatives");
+
+constexpr const RenderStyleRow& renderStyleRow(RenderStyle style) {
+  return kRenderStyleRows[size_t(style)];
+}
+
+inline constexpr std::array<RenderStyle, kRenderStyleCount> kAllRenderStyles = [] {
+  std::array<RenderStyle, kRenderStyleCount> all{};
+  for (size_t i = 0; i < kRenderStyleCount; ++i) all[i] = kRenderStyleRows[i].style;
+  return all;
+}();
 
 // "thesis", "physical", "ink", "cartoon", "sketch".
 const char* renderStyleName(RenderStyle style);
@@ -38,11 +105,11 @@ std::optional<RenderStyle> parseRenderStyle(std::string_view name);
 // "thesis|physical|ink|cartoon|sketch" (for help texts and error messages).
 std::string renderStyleNameList();
 
-// The shading stage file (shaders/shade_<name>.glsl) linked in front of the ray caster.
+// The row's stage, iso_surface, screen pass and screen derivatives, for callers that ask one.
 const char* shadingStageFile(RenderStyle style);
-// True when the style draws an iso-surface of the density (first hit along the ray) rather
-// than compositing the whole volume.
 bool drawsIsoSurface(RenderStyle style);
+bool hasScreenSpacePass(RenderStyle style);
+bool shadesWithScreenDerivatives(RenderStyle style);
 // Where an iso-surface style reads the density around a hit (raycast.frag.glsl, CB_SURFACE), in
 // voxels per axis of a grid with this voxel size (world units), held at a world size on any
 // grid (the thesis's box, 256³ voxels over [-1,1]³, and the painter's 1024-voxel sky share the
@@ -59,12 +126,6 @@ struct IsoSurfaceReach {
 };
 IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size);
 
-// True when the ray-cast image is finished by a screen-space pass (style_compose.frag.glsl):
-// paper, ink bleeding, hatching.
-bool hasScreenSpacePass(RenderStyle style);
-// True when the shading stage reads screen-space derivatives (cartoon's inner line is held to
-// two pixels by fwidth): an image cast at a fraction of the pixels does not reproduce it.
-bool shadesWithScreenDerivatives(RenderStyle style);
 // How far, in pixels of the ray-cast image, the style's screen-space pass reads around the pixel
 // it writes (the Gaussian ink bleeding's half kernel; 0 for a style without such a pass).
 //

@@ -44,7 +44,7 @@ glm::vec3 imageBilinear(const ImageRgba8& image, glm::vec2 t) {
 
 // The cartoon's posterising of a parameter into `levels` steps (sky.glsl's posterise).
 float posterise(const SkyScene& s, float v, float levels) {
-  return s.style == RenderStyle::kCartoon ? std::floor(v * levels + 0.5f) / levels : v;
+  return renderStyleRow(s.style).posterised_sky ? std::floor(v * levels + 0.5f) / levels : v;
 }
 
 float gradientT(glm::vec3 dir) {
@@ -100,7 +100,7 @@ glm::vec3 skyColour(const SkyScene& s, glm::vec3 dir, glm::vec2 pixel) {
                                         s.frame_width, s.frame_height, pixel));
       break;
   }
-  if (s.style == RenderStyle::kCartoon && s.settings.kind == SkyKind::kImage) {
+  if (renderStyleRow(s.style).posterised_sky && s.settings.kind == SkyKind::kImage) {
     // A picture: its luminance in 5 bands, hues kept.
     const float luma = glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f));
     c *= (std::floor(luma * 5.0f + 0.5f) / 5.0f) / std::max(luma, 1e-3f);
@@ -110,7 +110,7 @@ glm::vec3 skyColour(const SkyScene& s, glm::vec3 dir, glm::vec2 pixel) {
 
 bool skyNearPosteriseStep(const SkyScene& s, glm::vec3 dir, float margin) {
   // (An image's luminance bands depend on the pixel, not dir: not covered here.)
-  if (s.style != RenderStyle::kCartoon) return false;
+  if (!renderStyleRow(s.style).posterised_sky) return false;
   auto near = [&](float v, float levels) {
     const float x = v * levels + 0.5f;
     return std::abs(x - std::round(x)) < margin * levels;

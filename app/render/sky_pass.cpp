@@ -21,15 +21,14 @@ SkyPass::~SkyPass() {
 bool SkyPass::shows(const SkySettings& sky, RenderStyle style, const StyleParams& params) {
   if (sky.kind == SkyKind::kNone) return false;
   if (sky.kind == SkyKind::kImage && !sky.image) return false;
-  if (style == RenderStyle::kInk) return params.ink.sky;
-  if (style == RenderStyle::kSketch) return params.sketch.sky;
-  return true;
+  const RenderStyleRow& row = renderStyleRow(style);
+  return !row.shows_sky || row.shows_sky(params);
 }
 
 GLuint SkyPass::program(const SkySettings& sky, RenderStyle style, std::string* error) {
   const std::string defines = "#define CB_SKY_KIND " + std::to_string(int(sky.kind)) +
                               "\n#define CB_SKY_POSTERISE " +
-                              (style == RenderStyle::kCartoon ? "1" : "0") + "\n";
+                              (renderStyleRow(style).posterised_sky ? "1" : "0") + "\n";
   auto it = programs_.find(defines);
   if (it != programs_.end()) return it->second;
   GLuint p = linkProgram({"fullscreen.vert.glsl"}, {"sky.glsl", "sky.frag.glsl"}, error, defines);

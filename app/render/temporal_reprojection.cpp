@@ -48,7 +48,7 @@ bool TemporalReprojection::init(std::string* error) {
 
 bool TemporalReprojection::supports(int width, int height, int factor, RenderStyle style) {
   return (factor == 2 || factor == 4) && width % factor == 0 && height % factor == 0 &&
-         !hasScreenSpacePass(style) && !shadesWithScreenDerivatives(style);
+         renderStyleRow(style).reprojects;
 }
 
 void TemporalReprojection::releaseTargets() {

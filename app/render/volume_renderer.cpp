@@ -38,6 +38,13 @@ std::string composeDefines(bool ink, bool bleed, bool over_sky) {
          (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") + "\n";
 }
 
+// The rectangle (x, y, width, height) from lo to hi, clipped to a cw×ch image.
+glm::ivec4 clipRect(glm::ivec2 lo, glm::ivec2 hi, int cw, int ch) {
+  lo = glm::max(lo, glm::ivec2(0));
+  hi = glm::min(hi, glm::ivec2(cw, ch));
+  return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
+}
+
 // Clip space moved so that pixel (i, j) of a w×h image is cast through (i + ½ + j.x, j + ½ + j.y)
 // (RenderOptions::jitter): NDC moves by −2·jitter/size, proportionally to w_clip.
 glm::mat4 jitterMatrix(glm::vec2 jitter, int w, int h) {
@@ -181,7 +188,7 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
 bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
   bool ok = ensureProgram(options);
   if (ok && hasScreenSpacePass(options.style)) {
-    const bool ink = options.style == RenderStyle::kInk;
+    const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
     const bool bleed = ink && !options.moving;
     const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
     ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky)) != 0 &&
@@ -223,7 +230,7 @@ void VolumeRenderer::ensurePhysicalTextures() {
 void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width,
                                        int height, const RenderOptions& options, bool partial,
                                        glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
-  const bool ink = options.style == RenderStyle::kInk;
+  const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
   const bool bleed = ink && !options.moving;
   const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
   GLuint compose =
@@ -735,6 +742,40 @@ void VolumeRenderer::drawChangedMask(const std::vector<VoxelBox>& boxes, float r
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
+// A frame's plan: the sizes, the rectangles and what the frame colour can be trusted with,
+// decided before any pixel is drawn (render's first half); its passes read it.
+struct VolumeRenderer::FramePlan {
+  int width = 0, height = 0;  // the target
+  int w = 0, h = 0;           // the ray-cast image (options.scale of the target)
+  bool reduced = false;       // w×h is smaller than the target (upscaled by the blit)
+  // A screen-space style casts into an image of its own (ink amounts, not colours) and its pass
+  // draws the target; the ray cast then sees a transparent black background.
+  bool screen_space = false;
+  // With a sky the ray cast writes the cloud alone (premultiplied, α = 1 − T), blended over it.
+  bool sky_under = false;
+  bool skip = false;     // options.skip_empty_space
+  bool partial = false;  // options.region (partial re-rendering)
+  bool masked = false;   // re-cast only the changed pixels (a stencil mask)
+  glm::vec4 background{0.0f};
+  GLuint draw_fbo = 0;  // without skipping: where the ray cast writes
+  // The ray bounds and the projected rectangles move with the jitter; the rays are cast through
+  // the unmoved camera at the pixel centres plus the jitter (u_jitter), which for a power-of-two
+  // fraction of a frame is exactly the full frame's pixel position scaled by a power of two, so
+  // such a pixel's ray is the full frame's bit for bit.
+  glm::mat4 plain_view_proj{1.0f}, view_proj{1.0f};
+  // Rectangles as (x, y, width, height). out_rect: the target pixels rewritten. image_rect: the
+  // ray-cast image's pixels they read — the same at full size; at a reduced one, the rectangle
+  // scaled down and grown by a pixel for the bilinear upscale's neighbours. cast_rect: grown by
+  // the style's screen-space reach; bleed_rect: by the first blur axis (x) only.
+  glm::ivec4 out_rect{0}, image_rect{0}, cast_rect{0}, bleed_rect{0};
+  // bounds_rect: the pixels the ray-bounds pass can cover. frame_rect: what this frame touches;
+  // pass_rect: where the ray bounds and the cast run (their intersection).
+  glm::ivec4 bounds_rect{0}, frame_rect{0}, pass_rect{0};
+  std::string key;  // the image key (FrameHistory), with skipping
+  float read_reach = 0.0f;
+  std::vector<VoxelBox> pending;  // the changes the style's image shows
+};
+
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
                             const RenderOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
@@ -743,160 +784,176 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;
   }
-  const float scale = std::clamp(options.scale, 0.05f, 1.0f);
-  int w = std::max(1, int(std::lround(width * scale)));
-  int h = std::max(1, int(std::lround(height * scale)));
-  const bool reduced = w != width || h != height;
-  if (reduced && !options.skip_empty_space && (low_res_.width() != w || low_res_.height() != h)) {
-    std::string err;
-    if (!low_res_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
-      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
-      return;
-    }
-  }
-  const bool screen_space = hasScreenSpacePass(options.style);
-  if (screen_space && !options.skip_empty_space &&
-      (style_image_.width() != w || style_image_.height() != h)) {
-    std::string err;
-    if (!style_image_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
-      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
-      return;
-    }
-  }
-  // A screen-space style casts into an image of its own (ink amounts, not colours) and its pass
-  // draws the target; the ray cast then sees a transparent black background.
-  GLuint draw_fbo = screen_space ? style_image_.fbo() : reduced ? low_res_.fbo() : target_fbo;
-  // With a sky the ray cast writes the cloud alone (premultiplied, α = 1 − T), blended over it.
-  const bool sky_under =
-      !screen_space && SkyPass::shows(options.sky, options.style, options.style_params);
-  const glm::vec4 background = screen_space || sky_under ? glm::vec4(0.0f) : options.background;
+  FramePlan plan;
+  if (!ensureCastImages(width, height, target_fbo, options, &plan)) return;
   frame_camera_ = camera;
-  stats_.width = w;
-  stats_.height = h;
-
+  stats_.width = plan.w;
+  stats_.height = plan.h;
   if (options.collect_stats) {
     std::vector<uint32_t> zero(3 + kHistogramBins, 0u);
     glNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(zero.size() * 4), zero.data());
   }
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  // The ray bounds and the projected rectangles move with the jitter; the rays are cast through
-  // the unmoved camera at the pixel centres plus the jitter (u_jitter), which for a power-of-two
-  // fraction of a frame is exactly the full frame's pixel position scaled by a power of two, so
-  // such a pixel's ray is the full frame's bit for bit.
-  const glm::mat4 plain_view_proj = camera.projection(float(width) / float(height)) * camera.view();
-  const glm::mat4 view_proj = jitterMatrix(options.jitter, w, h) * plain_view_proj;
-  const bool skip = options.skip_empty_space;
-  // Partial re-rendering (RenderOptions::region): rectangles as (x, y, width, height).
-  const bool partial = options.region.z > 0 && options.region.w > 0;
-  auto clipTo = [](glm::ivec2 lo, glm::ivec2 hi, int cw, int ch) {
-    lo = glm::max(lo, glm::ivec2(0));
-    hi = glm::min(hi, glm::ivec2(cw, ch));
-    return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
-  };
+  planFrame(camera, options, &plan);
+  bindCastTargets(plan, camera, options);
+  glUseProgram(program_);
+  setCastUniforms(plan, camera, options);
+  setStyleUniforms(options, plan.sky_under);
+  castRays(plan, options);
+  if (plan.skip) updateFrameHistory(plan, options);
+  glDisable(GL_BLEND);
+  finishFrame(plan, target_fbo, options);
+  glDisable(GL_SCISSOR_TEST);
+  if (options.collect_stats) readSampleStats(plan.w, plan.h);
+  if (options.finish) {
+    glFinish();
+    stats_.frame_ms = msSince(t0);
+  }
+}
+
+bool VolumeRenderer::ensureCastImages(int width, int height, GLuint target_fbo,
+                                      const RenderOptions& options, FramePlan* plan) {
+  FramePlan& p = *plan;
+  p.width = width;
+  p.height = height;
+  const float scale = std::clamp(options.scale, 0.05f, 1.0f);
+  p.w = std::max(1, int(std::lround(width * scale)));
+  p.h = std::max(1, int(std::lround(height * scale)));
+  p.reduced = p.w != width || p.h != height;
+  std::string err;
+  if (p.reduced && !options.skip_empty_space &&
+      (low_res_.width() != p.w || low_res_.height() != p.h) &&
+      !low_res_.create(p.w, p.h, RenderTarget::Format::kRgba8, &err)) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+    return false;
+  }
+  p.screen_space = hasScreenSpacePass(options.style);
+  if (p.screen_space && !options.skip_empty_space &&
+      (style_image_.width() != p.w || style_image_.height() != p.h) &&
+      !style_image_.create(p.w, p.h, RenderTarget::Format::kRgba8, &err)) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+    return false;
+  }
+  p.draw_fbo = p.screen_space ? style_image_.fbo() : p.reduced ? low_res_.fbo() : target_fbo;
+  p.sky_under = !p.screen_space && SkyPass::shows(options.sky, options.style, options.style_params);
+  p.background = p.screen_space || p.sky_under ? glm::vec4(0.0f) : options.background;
+  return true;
+}
+
+void VolumeRenderer::planFrame(const Camera& camera, const RenderOptions& options,
+                               FramePlan* plan) {
+  FramePlan& p = *plan;
+  const int w = p.w, h = p.h;
+  p.plain_view_proj = camera.projection(float(p.width) / float(p.height)) * camera.view();
+  p.view_proj = jitterMatrix(options.jitter, w, h) * p.plain_view_proj;
+  p.skip = options.skip_empty_space;
+  p.partial = options.region.z > 0 && options.region.w > 0;
   auto grow = [&](glm::ivec4 r, int gx, int gy) {
-    return clipTo(glm::ivec2(r.x - gx, r.y - gy), glm::ivec2(r.x + r.z + gx, r.y + r.w + gy), w, h);
+    return clipRect(glm::ivec2(r.x - gx, r.y - gy), glm::ivec2(r.x + r.z + gx, r.y + r.w + gy), w,
+                    h);
   };
-  // out_rect: the target pixels rewritten. image_rect: the ray-cast image's pixels they read —
-  // the same at full size; at a reduced one, the rectangle scaled down and grown by a pixel for
-  // the bilinear upscale's neighbours.
-  const glm::ivec4 out_rect =
-      clipTo(glm::ivec2(options.region.x, options.region.y),
-             glm::ivec2(options.region.x + options.region.z, options.region.y + options.region.w),
-             width, height);
-  glm::ivec4 image_rect = out_rect;
-  if (reduced) {
-    const glm::vec2 s(float(w) / float(width), float(h) / float(height));
-    const glm::ivec2 lo = glm::ivec2(glm::floor(glm::vec2(out_rect.x, out_rect.y) * s)) - 1;
-    const glm::ivec2 hi =
-        glm::ivec2(glm::ceil(glm::vec2(out_rect.x + out_rect.z, out_rect.y + out_rect.w) * s)) + 1;
-    image_rect = clipTo(lo, hi, w, h);
+  p.out_rect =
+      clipRect(glm::ivec2(options.region.x, options.region.y),
+               glm::ivec2(options.region.x + options.region.z, options.region.y + options.region.w),
+               p.width, p.height);
+  p.image_rect = p.out_rect;
+  if (p.reduced) {
+    const glm::vec2 s(float(w) / float(p.width), float(h) / float(p.height));
+    const glm::ivec4& o = p.out_rect;
+    const glm::ivec2 lo = glm::ivec2(glm::floor(glm::vec2(o.x, o.y) * s)) - 1;
+    const glm::ivec2 hi = glm::ivec2(glm::ceil(glm::vec2(o.x + o.z, o.y + o.w) * s)) + 1;
+    p.image_rect = clipRect(lo, hi, w, h);
   }
   const int reach = screenSpaceReach(options.style, options.style_params);
-  const glm::ivec4 cast_rect = grow(image_rect, reach, reach);
-  const glm::ivec4 bleed_rect = grow(image_rect, 0, reach);  // the first blur axis is x
-  stats_.pixels_cast = partial ? (long long)cast_rect.z * cast_rect.w : (long long)w * h;
+  p.cast_rect = grow(p.image_rect, reach, reach);
+  p.bleed_rect = grow(p.image_rect, 0, reach);  // the first blur axis is x
+  stats_.pixels_cast = p.partial ? (long long)p.cast_rect.z * p.cast_rect.w : (long long)w * h;
   // Re-cast only the changed pixels (a stencil mask of the pool slots changed since this size's
   // targets last held a whole frame of the same image key; every other pixel of the frame colour
   // is what a whole cast would write again), when that frame colour can be trusted.
-  const std::string key = skip ? imageKey(view_proj, w, h, options, background) : std::string();
-  if (skip) useFrameTargets(w, h);
-  const float read_reach =
-      readReachVoxels(options.style, (world_max_ - world_min_) / glm::vec3(dims_));
-  const std::vector<VoxelBox> pending = visibleChanges(history_.pending, options.style);
-  const bool masked = partial && skip && !screen_space && !sky_under && history_.valid &&
-                      history_.key == key && !history_.pending.empty() &&
-                      projectedRect(pending, read_reach, view_proj, w, h, nullptr);
-  // bounds_rect: the pixels the ray-bounds pass can cover — the projected rectangle of the
-  // boundary's corners (all pixels when the eye is in or next to an occupied cell, or when the
-  // masked re-cast must also reach pixels an erase emptied). Only these are ray cast; the rest of
-  // the frame is the background.
-  glm::ivec4 bounds_rect(0, 0, w, h);
-  if (skip) {
+  if (p.skip) p.key = imageKey(p.view_proj, w, h, options, p.background);
+  if (p.skip) useFrameTargets(w, h);
+  p.read_reach = readReachVoxels(options.style, (world_max_ - world_min_) / glm::vec3(dims_));
+  p.pending = visibleChanges(history_.pending, options.style);
+  p.masked = p.partial && p.skip && !p.screen_space && !p.sky_under && history_.valid &&
+             history_.key == p.key && !history_.pending.empty() &&
+             projectedRect(p.pending, p.read_reach, p.view_proj, w, h, nullptr);
+  // The projected rectangle of the boundary's corners (all pixels when the eye is in or next to
+  // an occupied cell, or when the masked re-cast must also reach pixels an erase emptied). Only
+  // these are ray cast; the rest of the frame is the background.
+  p.bounds_rect = glm::ivec4(0, 0, w, h);
+  if (p.skip) {
     const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
     const glm::vec3 eye_voxel =
         (camera.eye - world_min_) / ((world_max_ - world_min_) / glm::vec3(dims_));
     eye_near_occupied_ = occupiedNear(occupancy_, level, eye_voxel);
-    if (eye_near_occupied_ || masked ||
-        !projectedPointsRect(bounds_corners_, view_proj, w, h, &bounds_rect))
-      bounds_rect = glm::ivec4(0, 0, w, h);
+    if (eye_near_occupied_ || p.masked ||
+        !projectedPointsRect(bounds_corners_, p.view_proj, w, h, &p.bounds_rect))
+      p.bounds_rect = glm::ivec4(0, 0, w, h);
   }
-  const glm::ivec4 frame_rect = partial ? cast_rect : glm::ivec4(0, 0, w, h);
-  const glm::ivec4 pass_rect =
-      clipTo(glm::max(glm::ivec2(frame_rect), glm::ivec2(bounds_rect)),
-             glm::min(glm::ivec2(frame_rect) + glm::ivec2(frame_rect.z, frame_rect.w),
-                      glm::ivec2(bounds_rect) + glm::ivec2(bounds_rect.z, bounds_rect.w)),
-             w, h);
+  p.frame_rect = p.partial ? p.cast_rect : glm::ivec4(0, 0, w, h);
+  const glm::ivec4 &f = p.frame_rect, &b = p.bounds_rect;
+  p.pass_rect = clipRect(
+      glm::max(glm::ivec2(f), glm::ivec2(b)),
+      glm::min(glm::ivec2(f) + glm::ivec2(f.z, f.w), glm::ivec2(b) + glm::ivec2(b.z, b.w)), w, h);
+}
+
+void VolumeRenderer::bindCastTargets(const FramePlan& p, const Camera& camera,
+                                     const RenderOptions& options) {
   // Everything below (ray bounds, clears, the cast, the blit) stays inside frame_rect; the ray
   // bounds and the cast inside pass_rect.
   glEnable(GL_SCISSOR_TEST);
-  glScissor(pass_rect.x, pass_rect.y, pass_rect.z, pass_rect.w);
-  if (skip) {
-    drawRayBounds(camera, view_proj, w, h);  // costs per triangle, and per pixel in the scissor
-    glScissor(frame_rect.x, frame_rect.y, frame_rect.z, frame_rect.w);
+  glScissor(p.pass_rect.x, p.pass_rect.y, p.pass_rect.z, p.pass_rect.w);
+  if (p.skip) {
+    drawRayBounds(camera, p.view_proj, p.w, p.h);  // costs per triangle, and per scissored pixel
+    glScissor(p.frame_rect.x, p.frame_rect.y, p.frame_rect.z, p.frame_rect.w);
     // Ray cast only the pixels whose rays meet occupied cells; the rest is background. (With the
     // eye in or next to an occupied cell every pixel is cast from the near plane.)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bounds_fbo_);
     const GLenum colour_only = GL_COLOR_ATTACHMENT0;
     glDrawBuffers(1, &colour_only);
-    if (masked) {
+    if (p.masked) {
       // The changed pixels get stencil bit 2 and are all cast (an unoccupied one casts no sample
       // and writes the background); the frame colour keeps every other pixel.
-      drawChangedMask(pending, read_reach, view_proj);
+      drawChangedMask(p.pending, p.read_reach, p.view_proj);
     } else {
-      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
+      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(p.background));
     }
   } else {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, draw_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p.draw_fbo);
   }
-  glViewport(0, 0, w, h);
-  if (sky_under) drawSkyUnder(w, h, width, height, options);
-  if (masked) {
+  glViewport(0, 0, p.w, p.h);
+  if (p.sky_under) drawSkyUnder(p.w, p.h, p.width, p.height, options);
+  if (p.masked) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 2, 2);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  } else if (skip && !eye_near_occupied_) {
+  } else if (p.skip && !eye_near_occupied_) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 1, 1);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
-  if (skip && options.write_depth) {
+  if (p.skip && options.write_depth) {
     // Output 1 -> the depth texture, cleared to "no depth" where this frame casts.
     ensureDepthTarget();
     const GLenum colour_and_depth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT2};
     glDrawBuffers(2, colour_and_depth);
-    if (!masked) {
+    if (!p.masked) {
       const float none[4] = {kNoDepth, 0.0f, 0.0f, 0.0f};
       glClearBufferfv(GL_COLOR, 1, none);
     }
     glDisablei(GL_BLEND, 1);
   }
-  glUseProgram(program_);
-  glm::mat4 inv = glm::inverse(plain_view_proj);
+}
+
+void VolumeRenderer::setCastUniforms(const FramePlan& p, const Camera& camera,
+                                     const RenderOptions& options) {
+  glm::mat4 inv = glm::inverse(p.plain_view_proj);
   auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
   glUniformMatrix4fv(loc("u_inv_view_proj"), 1, GL_FALSE, glm::value_ptr(inv));
   glUniform2fv(loc("u_jitter"), 1, glm::value_ptr(options.jitter));
-  glUniform2f(loc("u_viewport"), float(w), float(h));
+  glUniform2f(loc("u_viewport"), float(p.w), float(p.h));
   glUniform3fv(loc("u_world_min"), 1, glm::value_ptr(world_min_));
   glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
   glUniform3fv(loc("u_voxel_size"), 1, glm::value_ptr(voxel));
@@ -915,7 +972,7 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_step"), step);
   glUniform1f(loc("u_sigma"), options.extinction_per_voxel);
   glUniform1f(loc("u_cutoff"), options.termination_transmittance);
-  glUniform4fv(loc("u_background"), 1, glm::value_ptr(background));
+  glUniform4fv(loc("u_background"), 1, glm::value_ptr(p.background));
   glUniform1i(loc("u_ray_bounds"), 2);
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform1i(loc("u_bounds_from_near_plane"), eye_near_occupied_ ? 1 : 0);
@@ -923,7 +980,13 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_depth_min"), kDepthMinOpacity);
   if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
-  // Style uniforms (a stage that does not declare one ignores it: location −1).
+}
+
+// The shading stages' uniforms: set for every stage (a stage that does not declare one ignores
+// it: location −1), from the style's row and parameters (render_style.h).
+void VolumeRenderer::setStyleUniforms(const RenderOptions& options, bool sky_under) {
+  auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
+  const RenderStyleRow& row = renderStyleRow(options.style);
   glUniform3fv(loc("u_light_dir"), 1, glm::value_ptr(synced_light_.direction));
   glUniform3fv(
       loc("u_sky_colour"), 1,
@@ -946,10 +1009,8 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glUniform1f(loc("u_ink_wash"), sp.ink.wash);
   glUniform1f(loc("u_ink_line_width"), sp.ink.line_width);
   glUniform3fv(loc("u_cel_thresholds"), 1, glm::value_ptr(sp.cartoon.band_thresholds));
-  glUniform1f(loc("u_outline_width"), options.style == RenderStyle::kSketch
-                                          ? sp.sketch.outline_width
-                                          : sp.cartoon.outline_width);
-  if (options.style == RenderStyle::kPhysical) {
+  if (row.outline_width) glUniform1f(loc("u_outline_width"), row.outline_width(sp));
+  if (row.light_table) {
     ensurePhysicalTextures();
     glUniform1i(loc("u_detail_noise"), 3);
     glUniform1i(loc("u_light_table"), 4);
@@ -959,6 +1020,9 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     glUniform1f(loc("u_erosion"), ph.erosion);
     glBindTextureUnit(3, detail_noise_texture_);
   }
+}
+
+void VolumeRenderer::castRays(const FramePlan& p, const RenderOptions& options) {
   glBindTextureUnit(0, pool_.poolTexture());
   glBindTextureUnit(5, pool_.indirectionTexture());
   if (options.skip_empty_space && options.brick_stepping) ensureOccupancyTexture();
@@ -966,13 +1030,13 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, stats_buffer_);
   glBindVertexArray(vao_);
   GLuint cast_query = 0;
-  if (masked) {
+  if (p.masked) {
     glCreateQueries(GL_SAMPLES_PASSED, 1, &cast_query);
     glBeginQuery(GL_SAMPLES_PASSED, cast_query);
   }
-  glScissor(pass_rect.x, pass_rect.y, pass_rect.z, pass_rect.w);
+  glScissor(p.pass_rect.x, p.pass_rect.y, p.pass_rect.z, p.pass_rect.w);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  if (masked) {
+  if (p.masked) {
     glEndQuery(GL_SAMPLES_PASSED);
     GLuint64 cast = 0;
     glGetQueryObjectui64v(cast_query, GL_QUERY_RESULT, &cast);
@@ -980,85 +1044,86 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     stats_.pixels_cast = (long long)cast;
   }
   glDisable(GL_STENCIL_TEST);
-  // What the frame colour of these targets now holds (FrameHistory).
-  if (skip) {
-    if (screen_space || sky_under) {
-      history_ = FrameHistory{};
-    } else if (!partial) {
-      history_ = FrameHistory{key, {}, true};
-    } else if (masked) {
-      // Boxes seen whole inside the rectangle are done; the others' pixels outside it are not
-      // (the region holds every pixel the latest change alters, not those of older ones).
-      std::erase_if(history_.pending, [&](const BrickPool::SlotChange& change) {
-        const VoxelBox box = visibleChange(change, options.style);
-        if (box.empty()) return true;  // nothing this image shows
-        glm::ivec4 r;
-        return projectedRect({box}, read_reach, view_proj, w, h, &r) && r.x >= cast_rect.x &&
-               r.y >= cast_rect.y && r.x + r.z <= cast_rect.x + cast_rect.z &&
-               r.y + r.w <= cast_rect.y + cast_rect.w;
-      });
-    } else if (history_.key != key) {
-      history_.valid = false;  // a rectangle of another image over the old frame
-    }  // else: the rectangle is fresh; the pending boxes outside it are still to do
-  }
-  glDisable(GL_BLEND);
+}
 
-  glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);  // the blit, too
-  if (!partial) glDisable(GL_SCISSOR_TEST);
-  if (screen_space) {
-    finishScreenSpace(skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
-                      height, options, partial, bleed_rect, out_rect);
-  } else if (skip) {
+// What the frame colour of these targets now holds (FrameHistory).
+void VolumeRenderer::updateFrameHistory(const FramePlan& p, const RenderOptions& options) {
+  if (p.screen_space || p.sky_under) {
+    history_ = FrameHistory{};
+  } else if (!p.partial) {
+    history_ = FrameHistory{p.key, {}, true};
+  } else if (p.masked) {
+    // Boxes seen whole inside the rectangle are done; the others' pixels outside it are not
+    // (the region holds every pixel the latest change alters, not those of older ones).
+    const glm::ivec4& c = p.cast_rect;
+    std::erase_if(history_.pending, [&](const BrickPool::SlotChange& change) {
+      const VoxelBox box = visibleChange(change, options.style);
+      if (box.empty()) return true;  // nothing this image shows
+      glm::ivec4 r;
+      return projectedRect({box}, p.read_reach, p.view_proj, p.w, p.h, &r) && r.x >= c.x &&
+             r.y >= c.y && r.x + r.z <= c.x + c.z && r.y + r.w <= c.y + c.w;
+    });
+  } else if (history_.key != p.key) {
+    history_.valid = false;  // a rectangle of another image over the old frame
+  }  // else: the rectangle is fresh; the pending boxes outside it are still to do
+}
+
+// The cast image to the target: the style's screen-space pass, or the blit (an upscale at a
+// reduced size).
+void VolumeRenderer::finishFrame(const FramePlan& p, GLuint target_fbo,
+                                 const RenderOptions& options) {
+  const int w = p.w, h = p.h, width = p.width, height = p.height;
+  glScissor(p.out_rect.x, p.out_rect.y, p.out_rect.z, p.out_rect.w);  // the blit, too
+  if (!p.partial) glDisable(GL_SCISSOR_TEST);
+  if (p.screen_space) {
+    finishScreenSpace(p.skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
+                      height, options, p.partial, p.bleed_rect, p.out_rect);
+  } else if (p.skip) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
-    if (reduced && !sky_under && bounds_rect != glm::ivec4(0, 0, w, h)) {
+    if (p.reduced && !p.sky_under && p.bounds_rect != glm::ivec4(0, 0, w, h)) {
       // Outside bounds_rect the image is the background, and so is every target pixel whose
       // bilinear footprint lies there: cleared (a memset per tile for llvmpipe), not filtered.
       // (At full size the blit is a plain copy, cheaper whole than a clear and a smaller copy:
       // 0.9 against 2.2 ms at 1920×1080.)
       // The blit keeps its whole-image mapping and is scissored to the target pixels whose
       // footprint (2 texels per axis) may meet bounds_rect.
-      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(background));
+      glClearBufferfv(GL_COLOR, 0, glm::value_ptr(p.background));
       const glm::vec2 k(float(width) / float(w), float(height) / float(h));
-      const glm::ivec2 lo =
-          glm::ivec2(glm::floor(glm::vec2(bounds_rect.x - 1, bounds_rect.y - 1) * k));
-      const glm::ivec2 hi = glm::ivec2(glm::ceil(
-          glm::vec2(bounds_rect.x + bounds_rect.z + 1, bounds_rect.y + bounds_rect.w + 1) * k));
-      const glm::ivec4 out = partial ? out_rect : glm::ivec4(0, 0, width, height);
+      const glm::ivec4& b = p.bounds_rect;
+      const glm::ivec2 lo = glm::ivec2(glm::floor(glm::vec2(b.x - 1, b.y - 1) * k));
+      const glm::ivec2 hi = glm::ivec2(glm::ceil(glm::vec2(b.x + b.z + 1, b.y + b.w + 1) * k));
+      const glm::ivec4 out = p.partial ? p.out_rect : glm::ivec4(0, 0, width, height);
       const glm::ivec4 blit_rect =
-          clipTo(glm::max(lo, glm::ivec2(out)),
-                 glm::min(hi, glm::ivec2(out) + glm::ivec2(out.z, out.w)), width, height);
+          clipRect(glm::max(lo, glm::ivec2(out)),
+                   glm::min(hi, glm::ivec2(out) + glm::ivec2(out.z, out.w)), width, height);
       glEnable(GL_SCISSOR_TEST);
       glScissor(blit_rect.x, blit_rect.y, blit_rect.z, blit_rect.w);
     }
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                      reduced ? GL_LINEAR : GL_NEAREST);
+                      p.reduced ? GL_LINEAR : GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
-  } else if (reduced) {
+  } else if (p.reduced) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, low_res_.fbo());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
     glBlitFramebuffer(0, 0, w, h, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   }
-  glDisable(GL_SCISSOR_TEST);
-  if (options.collect_stats) {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<uint32_t> raw(3 + kHistogramBins);
-    glGetNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(raw.size() * 4), raw.data());
-    stats_.has_samples = true;
-    stats_.samples_total = raw[0];
-    stats_.samples_max = raw[1];
-    stats_.histogram.assign(raw.begin() + 3, raw.end());
-    // Pixels the stencil kept from ray casting took no samples.
-    const uint64_t pixels = uint64_t(w) * uint64_t(h);
-    if (raw[2] < pixels) stats_.histogram[0] += uint32_t(pixels - raw[2]);
-    stats_.samples_mean = double(raw[0]) / double(pixels);
-  }
-  if (options.finish) {
-    glFinish();
-    stats_.frame_ms = msSince(t0);
-  }
+}
+
+void VolumeRenderer::readSampleStats(int w, int h) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<uint32_t> raw(3 + kHistogramBins);
+  glGetNamedBufferSubData(stats_buffer_, 0, GLsizeiptr(raw.size() * 4), raw.data());
+  stats_.has_samples = true;
+  stats_.samples_total = raw[0];
+  stats_.samples_max = raw[1];
+  stats_.histogram.assign(raw.begin() + 3, raw.end());
+  // Pixels the stencil kept from ray casting took no samples.
+  const uint64_t pixels = uint64_t(w) * uint64_t(h);
+  if (raw[2] < pixels) stats_.histogram[0] += uint32_t(pixels - raw[2]);
+  stats_.samples_mean = double(raw[0]) / double(pixels);
 }
 
 }  // namespace cb

@@ -225,6 +225,20 @@ class VolumeRenderer {
   void drawRayBounds(const Camera& camera, const glm::mat4& view_proj, int w, int h);
   // Attaches a depth texture to the current frame targets (RenderOptions::write_depth).
   void ensureDepthTarget();
+  // render()'s passes, in order, over one frame's plan (defined in volume_renderer.cpp).
+  struct FramePlan;
+  // The cast image's size and where it goes (making the reduced and style images): false with
+  // a message on failure.
+  bool ensureCastImages(int width, int height, GLuint target_fbo, const RenderOptions& options,
+                        FramePlan* plan);
+  void planFrame(const Camera& camera, const RenderOptions& options, FramePlan* plan);
+  void bindCastTargets(const FramePlan& plan, const Camera& camera, const RenderOptions& options);
+  void setCastUniforms(const FramePlan& plan, const Camera& camera, const RenderOptions& options);
+  void setStyleUniforms(const RenderOptions& options, bool sky_under);
+  void castRays(const FramePlan& plan, const RenderOptions& options);
+  void updateFrameHistory(const FramePlan& plan, const RenderOptions& options);
+  void finishFrame(const FramePlan& plan, GLuint target_fbo, const RenderOptions& options);
+  void readSampleStats(int w, int h);
 
   GLuint program_ = 0;                      // the variant in use
   std::map<std::string, GLuint> programs_;  // variants by shading file + defines
