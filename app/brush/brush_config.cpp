@@ -207,6 +207,7 @@ bool brushConfigFrom(const toml::table& root, const std::string& path, BrushConf
     r.integer(*t, "skeleton", "bristle_points", &s.bristle_points, 2, 256);
     r.integer(*t, "skeleton", "max_steps_per_sample", &s.max_steps_per_sample, 1, 100000);
     r.number(*t, "skeleton", "stamp_spacing_px", &s.stamp_spacing_px, 0.0, 64.0);
+    r.integer(*t, "skeleton", "end_settle_steps", &s.end_settle_steps, 0, 10000);
     r.integer(*t, "skeleton", "seed", &s.seed, 0, 0xffffffffll);
   }
   if (c->brush2d.max_diameter_px < c->brush2d.min_diameter_px) {
@@ -279,6 +280,7 @@ std::string formatBrushConfig(const BrushConfig& c) {
   integer("bristle_points", c.skeleton.bristle_points);
   integer("max_steps_per_sample", c.skeleton.max_steps_per_sample);
   num("stamp_spacing_px", c.skeleton.stamp_spacing_px);
+  integer("end_settle_steps", c.skeleton.end_settle_steps);
   integer("seed", c.skeleton.seed);
   return o.str();
 }
