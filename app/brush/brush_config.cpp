@@ -193,6 +193,8 @@ const ConfigField<BrushConfig> kBrushFields[] = {
      [](BrushConfig& c) -> FieldRef { return &c.skeleton.max_steps_per_sample; }, 1, 100000},
     {"skeleton", "stamp_spacing_px",
      [](BrushConfig& c) -> FieldRef { return &c.skeleton.stamp_spacing_px; }, 0.0, 64.0},
+    {"skeleton", "end_settle_steps",
+     [](BrushConfig& c) -> FieldRef { return &c.skeleton.end_settle_steps; }, 0, 10000},
     {"skeleton", "seed", [](BrushConfig& c) -> FieldRef { return &c.skeleton.seed; }, 0,
      0xffffffffu},
 };

@@ -76,10 +76,10 @@ struct Brush3DParams {
 };
 
 struct SkeletonParams {
-  float segment_length_px = 9.0f;   // 3 segments between 4 joints (thesis Fig. 5.4)
-  float time_step_ms = 1.0f;        // fixed internal Verlet step
-  int constraint_iterations = 10;   // thesis §5.2.1
-  float gravity_px_s2 = 200000.0f;  // the predefined acceleration V_acc
+  float segment_length_px = 9.0f;    // 3 segments between 4 joints (thesis Fig. 5.4)
+  float time_step_ms = 1.0f;         // fixed internal Verlet step
+  int constraint_iterations = 10;    // thesis §5.2.1
+  float gravity_px_s2 = 4000000.0f;  // the predefined acceleration V_acc
   float damping = 0.08f;
   float press_depth = 0.85f;       // pressure 1 lowers the rod by this fraction of the spine
   float paper_softness_px = 2.0f;  // bristles may sink this far below the paper
@@ -93,6 +93,9 @@ struct SkeletonParams {
   // steps), so a fast stroke is continuous; 0 stamps once per step, as journals before the key
   // (app/session/recorded_settings.h).
   float stamp_spacing_px = 1.5f;
+  // Simulation steps at the pen's last point after it lifts, stamping, so the trailing
+  // bristles reach the stroke's end; 0 (journals before the key) stops at the lift.
+  int end_settle_steps = 60;
   unsigned seed = 5;
 };
 

@@ -108,29 +108,41 @@ FootprintRect SkeletonBrush::continueStroke(const StrokePoint& point, Footprint*
     sim_t_ns_ += dt_ns_;
     float s =
         span > 0 ? std::clamp(float(sim_t_ns_ - last_input_.t_ns) / float(span), 0.0f, 1.0f) : 1.0f;
-    StrokePoint pen = lerpPoint(last_input_, point, s);
-    step(pen);
-    float moved = 0.0f;
-    for (int k = 0; k < kJoints; ++k)
-      moved = std::max(moved, glm::length(joints_[k] - stamped_joints_[k]));
-    if (moved >= kMovedEpsPx) {
-      // Resampled along the spine's path: a fast pen moves the spine several pixels per step,
-      // and bristles stamped once per step left a dotted row (skeleton.stamp_spacing_px).
-      const float spacing = params_.stamp_spacing_px;
-      const int between = spacing > 0.0f ? int(std::ceil(moved / spacing)) - 1 : 0;
-      const std::array<glm::vec3, 4> to = joints_;
-      for (int j = 1; j <= between; ++j) {
-        const float f = float(j) / float(between + 1);
-        for (int k = 0; k < kJoints; ++k)
-          joints_[k] = stamped_joints_[k] + (to[k] - stamped_joints_[k]) * f;
-        changed = changed.united(stampBristles(pen.pressure, fp));
-      }
-      joints_ = to;
-      stamped_joints_ = joints_;
-      changed = changed.united(stampBristles(pen.pressure, fp));
-    }
+    changed = changed.united(stepAndStamp(lerpPoint(last_input_, point, s), fp));
   }
   last_input_ = point;
+  return changed;
+}
+
+FootprintRect SkeletonBrush::stepAndStamp(const StrokePoint& pen, Footprint* fp) {
+  step(pen);
+  float moved = 0.0f;
+  for (int k = 0; k < kJoints; ++k)
+    moved = std::max(moved, glm::length(joints_[k] - stamped_joints_[k]));
+  if (moved < kMovedEpsPx) return {};
+  // Resampled along the spine's path: a fast pen moves the spine several pixels per step, and
+  // bristles stamped once per step left a dotted row (skeleton.stamp_spacing_px).
+  FootprintRect changed;
+  const float spacing = params_.stamp_spacing_px;
+  const int between = spacing > 0.0f ? int(std::ceil(moved / spacing)) - 1 : 0;
+  const std::array<glm::vec3, 4> to = joints_;
+  for (int j = 1; j <= between; ++j) {
+    const float f = float(j) / float(between + 1);
+    for (int k = 0; k < kJoints; ++k)
+      joints_[k] = stamped_joints_[k] + (to[k] - stamped_joints_[k]) * f;
+    changed = changed.united(stampBristles(pen.pressure, fp));
+  }
+  joints_ = to;
+  stamped_joints_ = joints_;
+  return changed.united(stampBristles(pen.pressure, fp));
+}
+
+FootprintRect SkeletonBrush::endStroke(Footprint* fp) {
+  // The brush comes to rest where the pen lifts (a calligrapher's stroke ends pressed under the
+  // nib; the trailing bristles catch up), so the stroke's ink reaches its end.
+  FootprintRect changed;
+  for (int i = 0; i < params_.end_settle_steps; ++i)
+    changed = changed.united(stepAndStamp(last_input_, fp));
   return changed;
 }
 

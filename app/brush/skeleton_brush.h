@@ -29,6 +29,7 @@ class SkeletonBrush : public Brush {
   FootprintRect beginStroke(uint32_t stroke_index, const StrokePoint& first,
                             Footprint* footprint) override;
   FootprintRect continueStroke(const StrokePoint& point, Footprint* footprint) override;
+  FootprintRect endStroke(Footprint* footprint) override;
   void prepareStroke(uint32_t stroke_index) override;
   float reachPx() const override;
 
@@ -43,6 +44,9 @@ class SkeletonBrush : public Brush {
   glm::vec3 rodPosition(const StrokePoint& p) const;
   glm::vec3 acceleration(const StrokePoint& p) const;
   void step(const StrokePoint& pen);
+  // One step towards `pen`, then the bristles stamped along the spine's path since the last
+  // stamp (when it moved).
+  FootprintRect stepAndStamp(const StrokePoint& pen, Footprint* footprint);
   FootprintRect stampBristles(float pressure, Footprint* footprint);
 
   SkeletonParams params_;

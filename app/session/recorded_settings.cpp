@@ -8,6 +8,7 @@ BrushConfig recordedBrushAbsentValues() {
   c.stroke.size = 1.0f;
   c.stroke.billow = 0.0f;
   c.skeleton.stamp_spacing_px = 0.0f;
+  c.skeleton.end_settle_steps = 0;
   return c;
 }
 
@@ -26,6 +27,7 @@ BrushConfig unrecordedBrush(const BrushConfig& local) {
   c.stroke.size = absent.stroke.size;
   c.stroke.billow = absent.stroke.billow;
   c.skeleton.stamp_spacing_px = absent.skeleton.stamp_spacing_px;
+  c.skeleton.end_settle_steps = absent.skeleton.end_settle_steps;
   return c;
 }
 

@@ -14,6 +14,7 @@
 //   stroke.billow                         0         dabs of one diameter along the stroke (no
 //                                                   billowing edge; also with no brush.toml)
 //   skeleton.stamp_spacing_px             0         bristles stamped once per Verlet step
+//   skeleton.end_settle_steps             0         the skeleton stops at the pen's lift
 //
 // A new key that changes what a journal paints gets its row here, in the same commit.
 #pragma once
@@ -33,7 +34,7 @@ MappingConfig recordedMappingAbsentValues();
 
 // The brush of a journal that recorded none (specification 1.0): the replaying machine's
 // `local` one, with the keys that came after such journals (stroke.size, stroke.billow,
-// skeleton.stamp_spacing_px) at their absent values above.
+// skeleton.stamp_spacing_px, skeleton.end_settle_steps) at their absent values above.
 BrushConfig unrecordedBrush(const BrushConfig& local);
 
 // A recorded brush.toml text; false with "NAME:LINE:COL: what" in *errors if it is malformed

@@ -148,18 +148,20 @@ TEST_F(StrokeGallery, EveryStrokeIsAContinuousBillowingBody) {
 }
 
 // The 2D brush resamples its path as the 3D brush does: a fast flick and a straight line are
-// one body. (The skeleton brush's are not yet: its bristles trail the pen and lift at speed;
-// its figures are printed by CB_GALLERY_SKELETON=1, not checked.)
-TEST_F(StrokeGallery, TheTwoDBrushLeavesContinuousStrokes) {
-  const char* skeleton = std::getenv("CB_GALLERY_SKELETON");
-  const bool with_skeleton = skeleton && std::string(skeleton) == "1";
+// one body. So is the skeleton brush's, whose bristles trail the rod (thesis §5.2: they lean one
+// way and drag behind the pen): its ink may stop short of the pen's end by the trailing
+// bristles' lean, so its widest gap is held to kSkeletonMaxGap of the width, not kMaxGap, and
+// its ends are printed, not checked.
+TEST_F(StrokeGallery, TheTwoDAndSkeletonBrushesLeaveContinuousStrokes) {
+  constexpr double kSkeletonMaxGap = 0.25;
   uint32_t index = 200;
   for (const GalleryStroke& g : strokeGallery(kW, kH)) {
     if (g.name != "horizontal" && g.name != "fast_flick" && g.name != "mouse") continue;
     const Painted p = paint(g, BrushKind::k2D, index++);
     EXPECT_LE(p.path.widest_gap, kMaxGap) << g.name;
     EXPECT_EQ(p.path.ends_inside, 1.0) << g.name;
-    if (with_skeleton) paint(g, BrushKind::kSkeleton, index++);
+    const Painted skeleton = paint(g, BrushKind::kSkeleton, index++);
+    EXPECT_LE(skeleton.path.widest_gap, kSkeletonMaxGap) << g.name << " (skeleton)";
   }
 }
 
