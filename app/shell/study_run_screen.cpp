@@ -12,8 +12,10 @@
 #include "app/study/reference_picture.h"
 #include "app/study/render_export.h"
 #include "app/study/study_marker_text.h"
+#include "app/study/study_sync_markers.h"
 #include "app/study/volume_export.h"
 #include "calibration/profile_store.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
 namespace cb {
@@ -132,12 +134,10 @@ void StudyRunScreen::flushRecords() {
     if (journal_ && !journal_->append(JournalRecordType::kMarker, r.t_ns, r.text))
       problem("journal: " + journal_->error());
     if (r.text.rfind("study.answer", 0) == 0) writeAnswers();
-    // Task boundaries also as sync markers (journal and --sync-udp; drivers/core/JOURNAL.md §10).
-    const bool begins = r.text.rfind("study.stage-begin ", 0) == 0;
-    const bool ends = r.text.rfind("study.stage-end ", 0) == 0;
-    if ((begins || ends) && r.text.find(" task=") != std::string::npos)
-      session_.markSync(begins ? "task_begin" : "task_end", r.text.substr(r.text.find(' ') + 1),
-                        r.t_ns);
+    // Session, stage, task and answer events also as sync markers (journal and --sync-udp;
+    // drivers/core/JOURNAL.md §10), sent as the record is made.
+    if (const std::optional<StudySyncMarker> sync = studySyncMarker(r.text))
+      session_.markSync(sync->kind, sync->label, r.t_ns);
   }
 }
 
@@ -298,7 +298,10 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
       problem(std::string("task ") + task->id + ": " + e.what());
     }
   }
-  state_.closeStage(t_ns, saved);
+  // The next stage begins when the participant sees it: after the saving (its clock starts
+  // then, and its sync marker carries that time).
+  if (options_.paint.clock) now_ns_ = std::max(t_ns, options_.paint.clock->nowNs());
+  state_.closeStage(now_ns_, saved);
 }
 
 TutorialState StudyRunScreen::tutorialState() const {
@@ -625,6 +628,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
     return "";
   }
   state_.tick(now_ns_);
+  flushRecords();  // a task's end goes out now, not after its files are saved
   if (isPaintingStage(state_.stage())) {
     paint_->update(frame);  // its timers (a replay's end does not end a study)
     observeSession();

@@ -51,8 +51,16 @@ const ColumnMeaning kTrialColumns[] = {
 };
 
 const ColumnMeaning kStrokeColumns[] = {
+    {"gesture", "integer", "NA",
+     "the row's number in the session, 0-based in time order (a run of tip-down samples, cut "
+     "where the painter began a stroke)"},
+    {"kind", "category", "NA",
+     "what the painter made of it: stroke (mapped into the cloud), erase (a drag in erase "
+     "mode), menu_tap (the pen on the on-screen UI), camera, canvas, light (a drag in that "
+     "mode), unmapped (a touch in paint mode that made no stroke)"},
     {"stroke", "integer", "NA",
-     "stroke number in the session, 0-based in time order (a run of tip-down samples)"},
+     "the painter's stroke index, as in the journal's StrokeMapped and sync markers (kind "
+     "stroke); NA for other kinds"},
     {"start_s", "number", "s",
      "the stroke's first tip-down sample, seconds after the session's first journal record"},
     {"duration_s", "number", "s", "last minus first tip-down sample"},
@@ -101,8 +109,10 @@ const ColumnMeaning kSampleColumns[] = {
     {"tool_id", "integer", "NA", "the tool's type id as the tablet reports it (0: unknown)"},
     {"tool_serial", "integer", "NA",
      "the tool's serial number as the tablet reports it (0: unknown)"},
+    {"gesture", "integer", "NA",
+     "the gesture (strokes.csv row) the sample belongs to; NA between gestures"},
     {"stroke", "integer", "NA",
-     "the stroke (strokes.csv) the sample belongs to; NA between strokes"},
+     "the painter's stroke index of the sample's gesture (kind stroke); NA otherwise"},
 };
 
 const ColumnMeaning kEventColumns[] = {

@@ -18,6 +18,11 @@ const char* toolName(PenTool tool) {
   return "none";
 }
 
+// A 0-based index, NA when negative.
+std::string indexOrMissing(int64_t index) {
+  return index < 0 ? std::string(kCsvMissing) : std::to_string(index);
+}
+
 }  // namespace
 
 std::string eventKindName(JournalRecordType type) {
@@ -52,16 +57,14 @@ void writeSamplesCsvHeader(std::ostream& out) {
   out << "participant,session,sample,t_ns,t_s,x_raw,y_raw,x_mm,y_mm,pressure_raw,pressure,tilt_x_"
          "raw,"
          "tilt_y_raw,tilt_x_deg,tilt_y_deg,distance_raw,distance,buttons,tip,in_proximity,tool,"
-         "tool_id,tool_serial,stroke,task\n";
+         "tool_id,tool_serial,gesture,stroke,task\n";
 }
 
 void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
     const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
-    // Stroke index of each sample (strokes are runs of tip-down samples).
-    std::vector<int64_t> stroke_of(trace.samples.size(), -1);
-    for (const StrokeMeasures& m : measureStrokes(trace))
-      for (size_t k = 0; k < m.sample_count; ++k) stroke_of[m.first_sample + k] = m.index;
+    // The gesture (strokes.csv row) and the painter's stroke of each sample.
+    const SampleGestures of = sampleGestures(trace, measureStrokes(trace));
     for (size_t i = 0; i < trace.samples.size(); ++i) {
       const PenSample& s = trace.samples[i];
       out << session << ',' << i << ',' << s.t_ns << ','
@@ -72,31 +75,28 @@ void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
           << s.distance_raw << ',' << csvFloat(s.distance) << ',' << s.buttons << ','
           << (s.tipDown() ? 1 : 0) << ',' << (s.in_proximity ? 1 : 0) << ',' << toolName(s.tool)
           << ',' << s.tool_id << ',' << s.tool_serial << ',';
-      if (stroke_of[i] < 0)
-        out << kCsvMissing;
-      else
-        out << stroke_of[i];
-      out << ',' << csvFieldOrMissing(sampleTask(trace, i)) << '\n';
+      out << indexOrMissing(of.gesture[i]) << ',' << indexOrMissing(of.stroke[i]) << ','
+          << csvFieldOrMissing(sampleTask(trace, i)) << '\n';
     }
   }
 }
 
 void writeStrokesCsvHeader(std::ostream& out) {
-  out << "participant,session,stroke,start_s,duration_s,samples,path_length_mm,mean_pressure,max_"
-         "pressure,"
-         "mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms,task\n";
+  out << "participant,session,gesture,kind,stroke,start_s,duration_s,samples,path_length_mm,"
+         "mean_pressure,max_pressure,mean_tilt_deg,speed_mm_s,brush,mode,mapping_ms,task\n";
 }
 
 void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
     const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
     for (const StrokeMeasures& m : measureStrokes(trace)) {
-      out << session << ',' << m.index << ',' << csvDouble(m.start_s) << ','
-          << csvDouble(m.duration_s) << ',' << m.sample_count << ',' << csvDouble(m.path_length_mm)
-          << ',' << csvDouble(m.mean_pressure) << ',' << csvDouble(m.max_pressure) << ','
-          << csvDouble(m.mean_tilt_deg) << ',' << csvOptional(m.speed_mm_s) << ','
-          << csvFieldOrMissing(m.brush) << ',' << csvFieldOrMissing(m.mode) << ','
-          << csvOptional(m.mapping_ms) << ','
+      out << session << ',' << m.index << ',' << m.kind << ','
+          << indexOrMissing(m.stroke ? int64_t(*m.stroke) : -1) << ',' << csvDouble(m.start_s)
+          << ',' << csvDouble(m.duration_s) << ',' << m.sample_count << ','
+          << csvDouble(m.path_length_mm) << ',' << csvDouble(m.mean_pressure) << ','
+          << csvDouble(m.max_pressure) << ',' << csvDouble(m.mean_tilt_deg) << ','
+          << csvOptional(m.speed_mm_s) << ',' << csvFieldOrMissing(m.brush) << ','
+          << csvFieldOrMissing(m.mode) << ',' << csvOptional(m.mapping_ms) << ','
           << csvFieldOrMissing(sampleTask(trace, m.first_sample)) << '\n';
     }
   }
