@@ -107,7 +107,7 @@ const std::vector<std::string> kSymbolKeys = {
     "!",      "?",      "@",      "#",      "&",      "*",      "(",      ")",
     "+",      "=",      ":",      ";",      "\"",     "/",      "%",      "<",
     ">",      "[",      "]",      "_",      "\u20ac", "\u00a3", "\u00a5", "\u00b0",
-    "\u00b7", "\u2026", "\u2013", "\u00ab", "\u00bb", "~",      "\u00e4", "\u00f6",
+    "\u00b7", "\u2026", "$", "\u00ab", "\u00bb", "~",      "\u00e4", "\u00f6",
     "\u00fc", "\u00e9", "\u00e8", "\u00e0", "\u00e7", "\u00df", "\u00f1", "\u00f8"};
 
 std::vector<std::string> keyboardKeys(const StudyKeyboardPage& own, int page, bool digits_only) {
@@ -473,11 +473,12 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
   }
   b.waiting(state.waitingFor(input.now_ns));
   if (!input.storage_warning.empty()) {
-    // The operator's warning over every page: a red band along the bottom edge.
+    // The operator's warning over every page: a red band along the top edge (over the
+    // painter's status line; the participant's hints stay at the bottom).
     const float band = 3.4f * b.small();
-    b.box(0, b.h() - band, b.w(), b.h(), {0.62f, 0.08f, 0.06f, 1.0f});
-    b.text(0.02f * b.w(), b.h() - band + 0.4f * b.small(), input.storage_warning, b.small(),
-           0xffffffffu, 0.96f * b.w());
+    b.box(0, 0, b.w(), band, {0.62f, 0.08f, 0.06f, 1.0f});
+    b.text(0.02f * b.w(), 0.4f * b.small(), input.storage_warning, b.small(), 0xffffffffu,
+           0.96f * b.w());
   }
   return page;
 }
