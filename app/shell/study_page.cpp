@@ -107,7 +107,7 @@ const std::vector<std::string> kSymbolKeys = {
     "!",      "?",      "@",      "#",      "&",      "*",      "(",      ")",
     "+",      "=",      ":",      ";",      "\"",     "/",      "%",      "<",
     ">",      "[",      "]",      "_",      "\u20ac", "\u00a3", "\u00a5", "\u00b0",
-    "\u00b7", "\u2026", "$", "\u00ab", "\u00bb", "~",      "\u00e4", "\u00f6",
+    "\u00b7", "\u2026", "$",      "\u00ab", "\u00bb", "~",      "\u00e4", "\u00f6",
     "\u00fc", "\u00e9", "\u00e8", "\u00e0", "\u00e7", "\u00df", "\u00f1", "\u00f8"};
 
 std::vector<std::string> keyboardKeys(const StudyKeyboardPage& own, int page, bool digits_only) {
