@@ -672,6 +672,8 @@ int runStudySession(Args& args) {
     clock = std::make_unique<TimelineClock>(*origin);
   else
     clock = std::make_unique<MonotonicClock>();
+  // Sync markers' wall times at their events, on the session's clock.
+  session->setSyncClock([clock = clock.get()] { return clock->nowNs(); });
   const int64_t start_ns = resuming ? clock->nowNs() : info.anchor_monotonic_ns;
   std::unique_ptr<PenSource> pen;
   if (backend == "replay") {

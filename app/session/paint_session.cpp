@@ -226,9 +226,20 @@ void PaintSession::markSync(const std::string& kind, const std::string& label, i
   marker.kind = kind;
   marker.mono_ns = t_ns;
   if (!reproducible_record_) {
-    timespec wall{};
+    // The wall clock at the event: now, less the event's age on the session's clock.
+    timespec wall{}, mono{};
     clock_gettime(CLOCK_REALTIME, &wall);
-    marker.wall_ns = int64_t(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec;
+    clock_gettime(CLOCK_MONOTONIC, &mono);
+    int64_t age_ns = 0;
+    if (sync_now_ns_) {
+      age_ns = sync_now_ns_() - t_ns;
+    } else {
+      // Without the session's clock, pen timestamps on CLOCK_MONOTONIC; a time on another time
+      // line (a recording fed as fast as read) counts as now.
+      age_ns = int64_t(mono.tv_sec) * 1'000'000'000 + mono.tv_nsec - t_ns;
+      if (age_ns < 0 || age_ns > 60'000'000'000) age_ns = 0;
+    }
+    marker.wall_ns = int64_t(wall.tv_sec) * 1'000'000'000 + wall.tv_nsec - age_ns;
   }
   marker.label = label;
   const std::string text = formatSyncMarker(marker);
@@ -275,6 +286,8 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
           return strokeReach(stroke, mapper_.config(), std::min({voxel.x, voxel.y, voxel.z}));
         }))
       last_growth_stroke_ = stroke.stroke_index;
+    // The stroke ended at this sample: other recorders hear it before the mapping's time.
+    markSync("stroke_end", std::to_string(stroke.stroke_index), t_ns);
     // §6: the finished footprint becomes voxels, max-merged; the stroke index seeds the noise.
     outcome->mapping = mapper_.map(stroke, volume_, method_);
     outcome->stroke_mapped = true;
@@ -285,7 +298,6 @@ void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
     if (!reproducible_record_)
       journalText(JournalRecordType::kStrokeMapped, t_ns,
                   formatStrokeMapped(stroke.stroke_index, outcome->mapping.timings.total_ms));
-    markSync("stroke_end", std::to_string(stroke.stroke_index), t_ns);
     syncJournal();
   }
 }

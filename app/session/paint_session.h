@@ -119,10 +119,14 @@ class PaintSession {
   const std::string& renderSettings() const { return render_settings_; }  // empty: none recorded
 
   // Sync markers: task and stroke boundaries, journalled as Sync records and, when a
-  // sender is set (not owned; null: none), sent as UDP datagrams. The session marks stroke_begin
-  // and stroke_end (label: the stroke index) itself; the study runner marks its tasks
-  // (task_begin / task_end, label: the task's name).
+  // sender is set (not owned; null: none), sent as UDP datagrams at once. The session marks
+  // stroke_begin and stroke_end (label: the stroke index) itself, stroke_end before the stroke
+  // is mapped; the study runner marks its sessions, stages, tasks and answers. A marker's
+  // monotonic time is its event's (t_ns); its wall time is the wall clock at that event: now
+  // minus the event's age on the session's clock (setSyncClock; without one, CLOCK_MONOTONIC,
+  // which live pen timestamps use).
   void setSyncSender(SyncMarkerSender* sender) { sync_sender_ = sender; }
+  void setSyncClock(std::function<int64_t()> now_ns) { sync_now_ns_ = std::move(now_ns); }
   // Leave out of the journal what is measured at run time (each stroke's mapping time; sync
   // markers' wall clock, written as 0), so the same input writes the same bytes: a generated
   // journal such as the kiosk's bundled attract loop.
@@ -275,7 +279,8 @@ class PaintSession {
   bool resuming_ = false;  // resumeRecordingTo until the first sample
   bool reproducible_record_ = false;
   SyncMarkerSender* sync_sender_ = nullptr;
-  uint64_t sync_seq_ = 0;  // the last sync marker's sequence number
+  std::function<int64_t()> sync_now_ns_;  // the session clock's now; empty: none
+  uint64_t sync_seq_ = 0;                 // the last sync marker's sequence number
 };
 
 }  // namespace cb

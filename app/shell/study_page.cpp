@@ -98,10 +98,33 @@ class PageBuilder {
   float w_, h_;
 };
 
-void keyboard(PageBuilder& b, const StudyPageInput& input, float top, bool digits_only) {
-  // An on-screen keyboard for the pen: digits, letters and a few signs, then Space, delete,
-  // Skip and OK. Keys are ~7% of the width (about 37 mm on a 24" screen).
-  static const char* const kRows[] = {"1234567890", "qwertyuiop", "asdfghjkl-", "zxcvbnm,.'"};
+// The on-screen keyboard's pages (StudyPageInput::keyboard_page): each a 10-key grid of up to
+// four rows; a key types its text. Symbols reach beyond ASCII (the Latin-1 page of the atlas and
+// typographic marks); the protocol's page holds its language's characters and words.
+const char* const kLowerRows[] = {"1234567890", "qwertyuiop", "asdfghjkl-", "zxcvbnm,.'"};
+const char* const kUpperRows[] = {"1234567890", "QWERTYUIOP", "ASDFGHJKL-", "ZXCVBNM,.'"};
+const std::vector<std::string> kSymbolKeys = {
+    "!",      "?",      "@",      "#",      "&",      "*",      "(",      ")",
+    "+",      "=",      ":",      ";",      "\"",     "/",      "%",      "<",
+    ">",      "[",      "]",      "_",      "\u20ac", "\u00a3", "\u00a5", "\u00b0",
+    "\u00b7", "\u2026", "$",      "\u00ab", "\u00bb", "~",      "\u00e4", "\u00f6",
+    "\u00fc", "\u00e9", "\u00e8", "\u00e0", "\u00e7", "\u00df", "\u00f1", "\u00f8"};
+
+std::vector<std::string> keyboardKeys(const StudyKeyboardPage& own, int page, bool digits_only) {
+  std::vector<std::string> keys;
+  if (page == kKeyboardSymbols && !digits_only) return kSymbolKeys;
+  if (page == kKeyboardProtocol && !digits_only && !own.keys.empty()) return own.keys;
+  const char* const* rows = page == kKeyboardUpper ? kUpperRows : kLowerRows;
+  for (int r = 0; r < (digits_only ? 1 : 4); ++r)
+    for (int i = 0; rows[r][i]; ++i) keys.emplace_back(1, rows[r][i]);
+  return keys;
+}
+
+void keyboard(PageBuilder& b, const StudyPageInput& input, const StudyKeyboardPage& own, float top,
+              bool digits_only) {
+  // An on-screen keyboard for the pen: a page of keys, then the page keys (Shift, symbols, the
+  // protocol's language), Space, delete, Skip and OK. Keys are ~7% of the width (about 37 mm on
+  // a 24" screen).
   const float key_w = 0.07f * b.w(), key_h = 0.075f * b.h(), gap = 0.008f * b.w();
   const float row_w = 10 * key_w + 9 * gap;
   const float left = 0.5f * (b.w() - row_w);
@@ -109,28 +132,37 @@ void keyboard(PageBuilder& b, const StudyPageInput& input, float top, bool digit
   b.box(left, top, left + row_w, top + 1.6f * b.body(), {0.95f, 0.95f, 0.95f, 1.0f});
   b.text(left + 0.4f * b.body(), top + 0.25f * b.body(), input.typed + "_", b.body(), 0x101010ffu);
   float y = top + 1.6f * b.body() + 2 * gap;
-  const int rows = digits_only ? 1 : 4;
-  for (int r = 0; r < rows; ++r) {
-    for (int i = 0; kRows[r][i]; ++i) {
-      const float x = left + float(i) * (key_w + gap);
-      StudyTarget& t = b.target(x, y, x + key_w, y + key_h, StudyTargetAction::kKey,
-                                std::string(1, kRows[r][i]));
-      t.text = std::string(1, kRows[r][i]);
-    }
-    y += key_h + gap;
+  const std::vector<std::string> keys = keyboardKeys(own, input.keyboard_page, digits_only);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const float x = left + float(k % 10) * (key_w + gap);
+    StudyTarget& t = b.target(x, y, x + key_w, y + key_h, StudyTargetAction::kKey, keys[k]);
+    t.text = keys[k];
+    if (k % 10 == 9 || k + 1 == keys.size()) y += key_h + gap;
   }
+  // Every page keeps its four rows' height, so the bottom row stays where the pen expects it.
+  y = top + 1.6f * b.body() + 2 * gap + float(digits_only ? 1 : 4) * (key_h + gap);
   float x = left;
+  const auto key = [&](float width_keys, StudyTargetAction action, const std::string& label,
+                       int value, bool selected, glm::vec4 colour) -> StudyTarget& {
+    const float x1 = x + width_keys * key_w + (width_keys - 1) * gap;
+    StudyTarget& t = b.target(x, y, x1, y + key_h, action, label, value, selected, colour);
+    x = x1 + gap;
+    return t;
+  };
   if (!digits_only) {
-    StudyTarget& space =
-        b.target(x, y, x + 4 * key_w + 3 * gap, y + key_h, StudyTargetAction::kKey, "space");
-    space.text = " ";
-    x += 4 * key_w + 4 * gap;
+    const int page = input.keyboard_page;
+    key(1, StudyTargetAction::kKeyboardPage, "Shift", kKeyboardUpper, page == kKeyboardUpper,
+        kTargetColour);
+    key(1, StudyTargetAction::kKeyboardPage, "#+=", kKeyboardSymbols, page == kKeyboardSymbols,
+        kTargetColour);
+    if (!own.keys.empty())
+      key(1, StudyTargetAction::kKeyboardPage, own.label, kKeyboardProtocol,
+          page == kKeyboardProtocol, kTargetColour);
+    key(own.keys.empty() ? 3 : 2, StudyTargetAction::kKey, "space", 0, false, kTargetColour).text =
+        " ";
   }
-  b.target(x, y, x + 2 * key_w + gap, y + key_h, StudyTargetAction::kBackspace, "delete");
-  x += 2 * key_w + 2 * gap;
-  b.target(x, y, x + 2 * key_w + gap, y + key_h, StudyTargetAction::kSkipField, "Skip", 0, false,
-           kQuietColour);
-  x += 2 * key_w + 2 * gap;
+  key(digits_only ? 2 : 1.5f, StudyTargetAction::kBackspace, "delete", 0, false, kTargetColour);
+  key(digits_only ? 2 : 1.5f, StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
   b.target(x, y, left + row_w, y + key_h, StudyTargetAction::kOk, "OK", 0, false,
            {0.18f, 0.55f, 0.3f, 1.0f});
 }
@@ -199,7 +231,7 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
         b.target(margin, y + 1.4f * button_h, margin + button_w, y + 2.4f * button_h,
                  StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
       } else {
-        keyboard(b, input, y, f.kind == DemographicField::Kind::kInteger);
+        keyboard(b, input, p.keyboard, y, f.kind == DemographicField::Kind::kInteger);
       }
       break;
     }
@@ -242,7 +274,7 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
       heading("Comments (" + std::to_string(state.freeTextIndex() + 1) + " of " +
               std::to_string(p.free_text.size()) + ", optional)");
       b.text(margin, y, q.prompt, b.body(), kStudyTextColour, wrap);
-      keyboard(b, input, y + 2.4f * b.body(), false);
+      keyboard(b, input, p.keyboard, y + 2.4f * b.body(), false);
       break;
     }
     case StudyStageKind::kDone:
@@ -394,6 +426,9 @@ std::string studyPageText(const StudyProtocol& p) {
   for (const QuestionnaireItem& item : p.items) text += item.text + item.text_zh;
   for (const std::string& label : p.scale_labels_zh) text += label;
   for (const FreeTextQuestion& q : p.free_text) text += q.prompt;
+  text += p.keyboard.label;
+  for (const std::string& key : p.keyboard.keys) text += key;
+  for (const std::string& key : kSymbolKeys) text += key;
   return text;
 }
 
@@ -437,6 +472,14 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
               "The session goes on when the operator resumes (Ctrl+Alt+P).", b.body());
   }
   b.waiting(state.waitingFor(input.now_ns));
+  if (!input.storage_warning.empty()) {
+    // The operator's warning over every page: a red band along the top edge (over the
+    // painter's status line; the participant's hints stay at the bottom).
+    const float band = 3.4f * b.small();
+    b.box(0, 0, b.w(), band, {0.62f, 0.08f, 0.06f, 1.0f});
+    b.text(0.02f * b.w(), 0.4f * b.small(), input.storage_warning, b.small(), 0xffffffffu,
+           0.96f * b.w());
+  }
   return page;
 }
 

@@ -23,22 +23,23 @@ namespace cb {
 
 // What tapping a target does.
 enum class StudyTargetAction {
-  kAgree,        // consent
-  kDecline,      // consent: "I do not agree" (the session ends)
-  kContinue,     // participant code, introduction
-  kAnswer,       // questionnaire: value 1..n
-  kSkipItem,     // questionnaire: leave NA
-  kBackItem,     // questionnaire: the previous item
-  kKey,          // on-screen keyboard: `text` is typed
-  kBackspace,    // on-screen keyboard
-  kChoice,       // demographics choice: `text` is the answer
-  kOk,           // demographics / free text: take what was typed
-  kSkipField,    // demographics / free text: NA
-  kReason,       // operator chooser: value = reason index
-  kCancel,       // operator chooser
-  kDone,         // task panel: "I'm done" (asks to confirm)
-  kDoneConfirm,  // task panel: "Yes, I'm done" (the task ends, end reason `done`)
-  kDoneCancel,   // task panel: "Keep painting"
+  kAgree,         // consent
+  kDecline,       // consent: "I do not agree" (the session ends)
+  kContinue,      // participant code, introduction
+  kAnswer,        // questionnaire: value 1..n
+  kSkipItem,      // questionnaire: leave NA
+  kBackItem,      // questionnaire: the previous item
+  kKey,           // on-screen keyboard: `text` is typed
+  kBackspace,     // on-screen keyboard
+  kKeyboardPage,  // on-screen keyboard: value = the page (again: back to the letters)
+  kChoice,        // demographics choice: `text` is the answer
+  kOk,            // demographics / free text: take what was typed
+  kSkipField,     // demographics / free text: NA
+  kReason,        // operator chooser: value = reason index
+  kCancel,        // operator chooser
+  kDone,          // task panel: "I'm done" (asks to confirm)
+  kDoneConfirm,   // task panel: "Yes, I'm done" (the task ends, end reason `done`)
+  kDoneCancel,    // task panel: "Keep painting"
 };
 
 struct StudyTarget {
@@ -72,7 +73,16 @@ struct StudyPageInput {
   int64_t now_ns = 0;
   bool painter_menu_open = false;  // the painter's pen menu is open: the panel steps aside
   bool done_asked = false;         // "I'm done" was tapped: the panel asks to confirm
+  int keyboard_page = 0;           // the on-screen keyboard's page (kKeyboard*)
+  // The operator's warning that the session folder cannot be written (study_storage_watch.h),
+  // shown over every page; "" when writing works.
+  std::string storage_warning;
 };
+
+// The on-screen keyboard's pages: letters, capitals (Shift), symbols and accented letters, and
+// the protocol's own characters ([keyboard] in the protocol).
+inline constexpr int kKeyboardLower = 0, kKeyboardUpper = 1, kKeyboardSymbols = 2,
+                     kKeyboardProtocol = 3;
 
 // The page of the current stage (a form, or the panel beside the painter), with the operator's
 // chooser or pause veil over it when one is open.

@@ -1,6 +1,7 @@
 #include "app/shell/study_run_screen.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,8 +13,11 @@
 #include "app/study/reference_picture.h"
 #include "app/study/render_export.h"
 #include "app/study/study_marker_text.h"
+#include "app/study/study_sync_markers.h"
+#include "app/study/utf8_text.h"
 #include "app/study/volume_export.h"
 #include "calibration/profile_store.h"
+#include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
 namespace cb {
@@ -132,12 +136,10 @@ void StudyRunScreen::flushRecords() {
     if (journal_ && !journal_->append(JournalRecordType::kMarker, r.t_ns, r.text))
       problem("journal: " + journal_->error());
     if (r.text.rfind("study.answer", 0) == 0) writeAnswers();
-    // Task boundaries also as sync markers (journal and --sync-udp; drivers/core/JOURNAL.md §10).
-    const bool begins = r.text.rfind("study.stage-begin ", 0) == 0;
-    const bool ends = r.text.rfind("study.stage-end ", 0) == 0;
-    if ((begins || ends) && r.text.find(" task=") != std::string::npos)
-      session_.markSync(begins ? "task_begin" : "task_end", r.text.substr(r.text.find(' ') + 1),
-                        r.t_ns);
+    // Session, stage, task and answer events also as sync markers (journal and --sync-udp;
+    // drivers/core/JOURNAL.md §10), sent as the record is made.
+    if (const std::optional<StudySyncMarker> sync = studySyncMarker(r.text))
+      session_.markSync(sync->kind, sync->label, r.t_ns);
   }
 }
 
@@ -155,9 +157,37 @@ void StudyRunScreen::writeAnswers() {
   }
   if (!writeFileAtomically(options_.folder + "/questionnaire.csv", state_.questionnaireCsv(),
                            &error))
-    problem(error);
+    fileNotWritten(error);
   if (!writeFileAtomically(options_.folder + "/demographics.csv", state_.demographicsCsv(), &error))
-    problem(error);
+    fileNotWritten(error);
+}
+
+void StudyRunScreen::fileNotWritten(const std::string& error) {
+  // Written again each second until it works (watchStorage); one problem per outage.
+  if (!files_pending_ && !storage_.failing()) problem(error);
+  files_pending_ = true;
+  file_error_ = error;
+}
+
+void StudyRunScreen::watchStorage() {
+  if (options_.replay_view) return;
+  if (files_pending_ && now_ns_ >= files_retry_ns_) {
+    files_pending_ = false;
+    files_retry_ns_ = now_ns_ + 1'000'000'000;
+    writeAnswers();
+    writeSessionJson();
+  }
+  const bool journal_failing = journal_ && journal_->failing();
+  const std::string error = journal_failing ? "journal: " + journal_->error() : file_error_;
+  const int64_t unix_now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               std::chrono::system_clock::now().time_since_epoch())
+                               .count();
+  if (!storage_.observe(journal_failing || files_pending_, error, unix_now)) return;
+  if (storage_.failing())
+    problem("storage: " + error + " (kept in memory; written when the disk has room again)");
+  else
+    std::fprintf(stderr, "cloudbrush study: storage: writing again; nothing was lost\n");
+  writeSessionJson();  // the outage in session.json (written again until it works)
 }
 
 void StudyRunScreen::writeSessionJson() {
@@ -174,9 +204,10 @@ void StudyRunScreen::writeSessionJson() {
   }
   info.calibration_toml = formatCalibrationProfile(session_.calibration());
   info.stages_completed = state_.stagesCompleted();
+  info.storage_json = storage_.json();
   std::string error;
   if (!writeFileAtomically(options_.folder + "/session.json", formatStudySessionJson(info), &error))
-    problem(error);
+    fileNotWritten(error);
 }
 
 void StudyRunScreen::selectCalibration() {
@@ -228,6 +259,7 @@ void StudyRunScreen::enterStage(int64_t t_ns) {
   last_step_ = -1;
   typed_.clear();
   message_.clear();
+  keyboard_page_ = kKeyboardLower;
   pressed_.reset();
   done_asked_ = false;
   if (state_.stage() == StudyStageKind::kTask) {
@@ -298,7 +330,10 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
       problem(std::string("task ") + task->id + ": " + e.what());
     }
   }
-  state_.closeStage(t_ns, saved);
+  // The next stage begins when the participant sees it: after the saving (its clock starts
+  // then, and its sync marker carries that time).
+  if (options_.paint.clock) now_ns_ = std::max(t_ns, options_.paint.clock->nowNs());
+  state_.closeStage(now_ns_, saved);
 }
 
 TutorialState StudyRunScreen::tutorialState() const {
@@ -518,10 +553,13 @@ void StudyRunScreen::activate(const StudyTarget& target, int64_t t_ns) {
       state_.previousItem(t_ns);
       break;
     case StudyTargetAction::kKey:
-      if (typed_.size() < 500) typed_ += target.text;
+      appendTyped(&typed_, target.text, kMaxTypedBytes);
       break;
     case StudyTargetAction::kBackspace:
-      if (!typed_.empty()) typed_.pop_back();
+      eraseLastCharacter(&typed_);
+      break;
+    case StudyTargetAction::kKeyboardPage:
+      keyboard_page_ = keyboard_page_ == target.value ? kKeyboardLower : target.value;
       break;
     case StudyTargetAction::kChoice:
       message_ = state_.answerField(target.text, t_ns);
@@ -592,6 +630,42 @@ void StudyRunScreen::onCommand(Command command, int64_t t_ns) {
   afterStateChange(t);
 }
 
+bool StudyRunScreen::atlasHolds(const std::string& text) const {
+  for (size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const size_t n = lead < 0x80 ? 1 : lead < 0xE0 ? 2 : lead < 0xF0 ? 3 : 4;
+    // ASCII and Latin-1 (lead bytes C2, C3) are always in the atlas.
+    if (lead > 0xC3 && atlas_text_.find(text.substr(i, n)) == std::string::npos) return false;
+    i += n;
+  }
+  return true;
+}
+
+bool StudyRunScreen::onKey(const DisplayEvent& event, int64_t t_ns) {
+  (void)t_ns;  // the runner keeps to the frame clock
+  const bool text_form = state_.stage() == StudyStageKind::kFreeText ||
+                         (state_.stage() == StudyStageKind::kDemographics &&
+                          state_.protocol().demographics[size_t(state_.fieldIndex())].kind !=
+                              DemographicField::Kind::kChoice);
+  if (!text_form || state_.paused() || state_.choosing() || options_.replay_view ||
+      (event.modifiers & (DisplayEvent::kCtrl | DisplayEvent::kAlt)))
+    return false;
+  constexpr uint32_t kBackSpace = 0xff08, kReturn = 0xff0d, kKeypadEnter = 0xff8d;  // X keysyms
+  StudyTarget target;
+  if (event.keysym == kBackSpace) {
+    target.action = StudyTargetAction::kBackspace;
+  } else if (event.keysym == kReturn || event.keysym == kKeypadEnter) {
+    target.action = StudyTargetAction::kOk;
+  } else if (isTypedText(event.text)) {
+    target.action = StudyTargetAction::kKey;
+    target.text = event.text;
+  } else {
+    return false;
+  }
+  activate(target, now_ns_);
+  return true;
+}
+
 void StudyRunScreen::onPointer(const DisplayEvent& event) {
   if (isPaintingStage(state_.stage()) && !state_.paused() && !state_.choosing()) {
     // A click on the panel's targets is the panel's; everything else the painter's.
@@ -625,6 +699,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
     return "";
   }
   state_.tick(now_ns_);
+  flushRecords();  // a task's end goes out now, not after its files are saved
   if (isPaintingStage(state_.stage())) {
     paint_->update(frame);  // its timers (a replay's end does not end a study)
     observeSession();
@@ -640,6 +715,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
     }
   }
   afterStateChange(now_ns_);
+  watchStorage();
   if (state_.done() && done_since_ && double(now_ns_ - *done_since_) / 1e9 >= options_.end_seconds)
     return state_.declined()  ? "consent declined"
            : state_.aborted() ? "study aborted"
@@ -650,6 +726,13 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
 StudyPage StudyRunScreen::currentPage(int width, int height) const {
   StudyPageInput input;
   input.typed = typed_;
+  input.keyboard_page = keyboard_page_;
+  if (!options_.replay_view)
+    input.storage_warning =
+        storage_.operatorText(journal_ ? journal_->heldBytes() : 0,
+                              std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                  std::chrono::system_clock::now().time_since_epoch())
+                                  .count());
   input.message = message_;
   input.now_ns = now_ns_;
   input.painter_menu_open = isPaintingStage(state_.stage()) && paint_->menuOpen();
@@ -688,9 +771,16 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
                            GLint(page_.image[2]), GLint(h - page_.image[3]), GL_COLOR_BUFFER_BIT,
                            GL_LINEAR);
   }
+  if (ui_ && !atlasHolds(typed_)) {
+    // Characters typed beyond the atlas (an input method's Chinese): the atlas is made again
+    // with them (once per new character; Latin-1 and the protocol's texts are in it).
+    glyphs_ += typed_;
+    ui_.reset();
+  }
   if (!ui_) {
     ui_ = std::make_unique<UiOverlay>();
-    ui_->addGlyphs(studyPageText(state_.protocol()));
+    atlas_text_ = studyPageText(state_.protocol()) + glyphs_;
+    ui_->addGlyphs(atlas_text_);
     if (!ui_->init(error)) return false;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());

@@ -45,6 +45,7 @@
 #include "app/shell/study_page.h"
 #include "app/study/study_run_state.h"
 #include "app/study/study_session_record.h"
+#include "app/study/study_storage_watch.h"
 #include "app/study/tutorial_condition.h"
 #include "calibration/mapped_sample.h"
 
@@ -85,6 +86,10 @@ class StudyRunScreen : public Screen {
   const char* name() const override { return "study"; }
   void onPenSamples(const std::vector<PenSample>& samples) override;
   void onCommand(Command command, int64_t t_ns) override;
+  // A form that takes text takes typed keys (a physical keyboard, an input method's UTF-8):
+  // text is appended, BackSpace deletes a character, Return is OK. Ctrl/Alt keys (the
+  // operator's) pass on.
+  bool onKey(const DisplayEvent& event, int64_t t_ns) override;
   void onPointer(const DisplayEvent& event) override;
   void onResize(int width, int height) override;
   std::string update(const FrameContext& frame) override;
@@ -139,6 +144,19 @@ class StudyRunScreen : public Screen {
   bool hud_ready_ = false;
   StudyPage page_;
   std::string typed_, message_;
+  int keyboard_page_ = kKeyboardLower;  // the on-screen keyboard's page
+  // Writing to the session folder: outages for the operator and session.json; answer files and
+  // session.json not written yet (written again each second).
+  StudyStorageWatch storage_;
+  bool files_pending_ = false;
+  int64_t files_retry_ns_ = 0;
+  std::string file_error_;
+  void fileNotWritten(const std::string& error);
+  void watchStorage();
+  std::string glyphs_;      // typed text added to the font atlas
+  std::string atlas_text_;  // the text whose characters the atlas holds (beyond Latin-1)
+  bool atlasHolds(const std::string& text) const;
+  static constexpr size_t kMaxTypedBytes = 500;  // a field's length limit (UTF-8 bytes)
   int64_t now_ns_ = 0;
   std::optional<int64_t> done_since_;
 

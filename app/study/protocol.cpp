@@ -225,7 +225,7 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
   r.onlyKeys(root, "",
              {"study", "consent", "participants", "venue", "operator", "introduction", "tutorial",
               "free_drawing", "tasks", "task", "demographic", "questionnaire", "item", "free_text",
-              "construct"});
+              "keyboard", "construct"});
   StudyProtocol protocol;
   protocol.source = source;
 
@@ -421,6 +421,15 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
     if (!answer_ids.insert(question.id).second)
       r.fail(*t->get("id"), path + ".id", "'" + question.id + "' is already an answer column");
     protocol.free_text.push_back(std::move(question));
+  }
+  if (root.get("keyboard")) {
+    const toml::table& keyboard = r.table(root, "keyboard", "");
+    r.onlyKeys(keyboard, "keyboard", {"label", "keys"});
+    protocol.keyboard.label = r.text(keyboard, "label", "keyboard", true);
+    protocol.keyboard.keys = r.strings(keyboard, "keys", "keyboard", true);
+    const toml::node& keys = *keyboard.get("keys");
+    if (protocol.keyboard.keys.empty() || protocol.keyboard.keys.size() > kMaxKeyboardKeys)
+      r.fail(keys, "keyboard.keys", "1 to " + std::to_string(kMaxKeyboardKeys) + " keys");
   }
 
   // Constructs: groups of declared items.

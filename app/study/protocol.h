@@ -24,6 +24,9 @@
 //   [[item]]        id, text, text_zh (optional: in Chinese), section (optional), origin
 //                   (optional)                                               (Appendix C)
 //   [[free_text]]   id, prompt (optional answers)
+//   [keyboard]      label (the on-screen keyboard's key for the page), keys = ["云", "，", ...]
+//                   (optional: at most 40 keys, each typing its text — characters or words of
+//                   the protocol's language a participant's answers need)
 //   [[construct]]   name, items (declared item ids; construct_definitions.h)
 //
 // Unknown tables and fields are errors (a typo must not silently drop a setting). Every error
@@ -90,6 +93,13 @@ struct FreeTextQuestion {
   std::string id, prompt;
 };
 
+// The on-screen keyboard's page of the protocol's own characters (none when keys is empty).
+struct StudyKeyboardPage {
+  std::string label;
+  std::vector<std::string> keys;
+};
+inline constexpr size_t kMaxKeyboardKeys = 40;
+
 struct ProtocolConstruct {
   std::string name;
   std::vector<std::string> items;
@@ -114,6 +124,7 @@ struct StudyProtocol {
   std::vector<std::string> scale_labels_zh;  // the same in Chinese (empty: none given)
   std::vector<QuestionnaireItem> items;
   std::vector<FreeTextQuestion> free_text;
+  StudyKeyboardPage keyboard;
   std::vector<ProtocolConstruct> constructs;
 
   // Participant `number`'s (>= 1) tasks in the order they take them.

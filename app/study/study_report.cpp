@@ -23,11 +23,14 @@ void keepPressure(const SessionTrace& trace, size_t tip_down, SessionFigures* f)
 
 // The strokes' figures: count, tip-down time, speeds and the speed outliers named.
 void measureSessionStrokes(const SessionTrace& trace, SessionFigures* f) {
-  const std::vector<StrokeMeasures> strokes = measureStrokes(trace);
-  f->strokes = strokes.size();
+  const std::vector<StrokeMeasures> gestures = measureStrokes(trace);
   size_t tip_down = 0;
   std::vector<const StrokeMeasures*> with_speed;
-  for (const StrokeMeasures& m : strokes) {
+  for (const StrokeMeasures& m : gestures) {
+    // The painter's strokes only: erase drags, menu and form taps and view drags are the
+    // session's other gestures (strokes.csv's kind).
+    if (m.kind != "stroke") continue;
+    ++f->strokes;
     f->tip_down_s += m.duration_s;
     tip_down += m.sample_count;
     // A tap on the runner's pages or a dab in place has no speed to speak of: only strokes
@@ -42,8 +45,8 @@ void measureSessionStrokes(const SessionTrace& trace, SessionFigures* f) {
   if (f->speed && f->speed->n >= 4)
     for (size_t i : f->speed->outliers) {
       const StrokeMeasures& m = *with_speed[i];
-      f->speed_outliers.push_back(
-          {m.index, m.start_s, *m.speed_mm_s, sampleTask(trace, m.first_sample), i});
+      f->speed_outliers.push_back({m.stroke.value_or(m.index), m.start_s, *m.speed_mm_s,
+                                   sampleTask(trace, m.first_sample), i});
     }
   keepPressure(trace, tip_down, f);
 }

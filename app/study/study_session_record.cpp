@@ -122,6 +122,10 @@ std::string formatStudySessionJson(const StudySessionInfo& info) {
        ", \"wall_clock_utc\": " + jsonString(utcText(info.anchor_unix_ns, "%Y-%m-%dT%H:%M:%S")) +
        ", \"wall_clock_unix_ns\": " + std::to_string(info.anchor_unix_ns) + "},\n";
   j += "  \"task_order\": " + jsonList(info.task_order) + ",\n";
+  j += "  \"storage\": " +
+       (info.storage_json.empty() ? std::string("{\"status\": \"ok\", \"outages\": []}")
+                                  : info.storage_json) +
+       ",\n";
   j += "  \"stages_completed\": " + jsonList(info.stages_completed) + "\n";
   return j + "}\n";
 }

@@ -17,7 +17,9 @@
 // height, refresh_hz (the mode's rate, Display::refreshHz; null when there is none, with
 // refresh_note saying why)}, clock_anchor {monotonic_ns,
 // wall_clock_utc, wall_clock_unix_ns} (the same instant on both clocks: journal times are
-// monotonic), task_order [ids], stages_completed [names].
+// monotonic), task_order [ids], storage (study_storage_watch.h: ok, failing or recovered, and
+// each outage of writing to the folder; a resumed run reports its own), stages_completed
+// [names].
 #pragma once
 
 #include "app/core/atomic_file.h"  // writeFileAtomically, for the session files
@@ -52,6 +54,7 @@ struct StudySessionInfo {
   std::string refresh_note;  // why refresh_hz is null
   int64_t anchor_monotonic_ns = 0, anchor_unix_ns = 0;
   std::vector<std::string> task_order, stages_completed;
+  std::string storage_json;  // StudyStorageWatch::json(); "" writes {"status": "ok", ...}
 };
 
 // This build's version (CMake's project version).

@@ -19,6 +19,11 @@ const char* toolName(PenTool tool) {
   return "none";
 }
 
+// A 0-based index, NA when negative.
+std::string indexOrMissing(int64_t index) {
+  return index < 0 ? std::string(kCsvMissing) : std::to_string(index);
+}
+
 }  // namespace
 
 std::string eventKindName(JournalRecordType type) {
@@ -56,10 +61,8 @@ void writeSamplesCsvHeader(std::ostream& out) {
 void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
     const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
-    // Stroke index of each sample (strokes are runs of tip-down samples).
-    std::vector<int64_t> stroke_of(trace.samples.size(), -1);
-    for (const StrokeMeasures& m : measureStrokes(trace))
-      for (size_t k = 0; k < m.sample_count; ++k) stroke_of[m.first_sample + k] = m.index;
+    // The gesture (strokes.csv row) and the painter's stroke of each sample.
+    const SampleGestures of = sampleGestures(trace, measureStrokes(trace));
     for (size_t i = 0; i < trace.samples.size(); ++i) {
       const PenSample& s = trace.samples[i];
       out << session << ',' << i << ',' << s.t_ns << ','
@@ -70,11 +73,8 @@ void writeSamplesCsvRows(std::ostream& out, const SessionTrace& trace) {
           << s.distance_raw << ',' << csvFloat(s.distance) << ',' << s.buttons << ','
           << (s.tipDown() ? 1 : 0) << ',' << (s.in_proximity ? 1 : 0) << ',' << toolName(s.tool)
           << ',' << s.tool_id << ',' << s.tool_serial << ',';
-      if (stroke_of[i] < 0)
-        out << kCsvMissing;
-      else
-        out << stroke_of[i];
-      out << ',' << csvFieldOrMissing(sampleTask(trace, i)) << '\n';
+      out << indexOrMissing(of.gesture[i]) << ',' << indexOrMissing(of.stroke[i]) << ','
+          << csvFieldOrMissing(sampleTask(trace, i)) << '\n';
     }
   }
 }
@@ -87,12 +87,13 @@ void writeStrokesCsvRows(std::ostream& out, const SessionTrace& trace) {
   {
     const std::string session = csvFieldOrMissing(trace.participant) + ',' + csvField(trace.id);
     for (const StrokeMeasures& m : measureStrokes(trace)) {
-      out << session << ',' << m.index << ',' << csvDouble(m.start_s) << ','
-          << csvDouble(m.duration_s) << ',' << m.sample_count << ',' << csvDouble(m.path_length_mm)
-          << ',' << csvDouble(m.mean_pressure) << ',' << csvDouble(m.max_pressure) << ','
-          << csvDouble(m.mean_tilt_deg) << ',' << csvOptional(m.speed_mm_s) << ','
-          << csvFieldOrMissing(m.brush) << ',' << csvFieldOrMissing(m.mode) << ','
-          << csvOptional(m.mapping_ms) << ','
+      out << session << ',' << m.index << ',' << m.kind << ','
+          << indexOrMissing(m.stroke ? int64_t(*m.stroke) : -1) << ',' << csvDouble(m.start_s)
+          << ',' << csvDouble(m.duration_s) << ',' << m.sample_count << ','
+          << csvDouble(m.path_length_mm) << ',' << csvDouble(m.mean_pressure) << ','
+          << csvDouble(m.max_pressure) << ',' << csvDouble(m.mean_tilt_deg) << ','
+          << csvOptional(m.speed_mm_s) << ',' << csvFieldOrMissing(m.brush) << ','
+          << csvFieldOrMissing(m.mode) << ',' << csvOptional(m.mapping_ms) << ','
           << csvFieldOrMissing(sampleTask(trace, m.first_sample)) << '\n';
     }
   }

@@ -74,4 +74,29 @@ std::string markupEscape(std::string_view raw) {
   return out;
 }
 
+bool isTypedText(std::string_view text) {
+  if (text.empty() || validUtf8(text) != text) return false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto b = static_cast<unsigned char>(text[i]);
+    if (b < 0x20 || b == 0x7f) return false;
+    // C1 controls U+0080..U+009F are C2 80..C2 9F.
+    if (b == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) < 0xA0)
+      return false;
+  }
+  return true;
+}
+
+bool appendTyped(std::string* field, std::string_view text, size_t max_bytes) {
+  if (!isTypedText(text) || field->size() + text.size() > max_bytes) return false;
+  field->append(text);
+  return true;
+}
+
+void eraseLastCharacter(std::string* field) {
+  // Back over continuation bytes (10xxxxxx) to the code point's first byte.
+  size_t n = field->size();
+  while (n > 0 && (static_cast<unsigned char>((*field)[n - 1]) & 0xC0) == 0x80) --n;
+  field->resize(n > 0 ? n - 1 : 0);
+}
+
 }  // namespace cb

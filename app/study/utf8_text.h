@@ -13,4 +13,12 @@ std::string validUtf8(std::string_view text);
 // control characters XML 1.0 forbids replaced by '?'.
 std::string markupEscape(std::string_view text);
 
+// Typing on a form (the on-screen keyboard, a physical keyboard, an input method):
+// text a key typed is taken when it is valid UTF-8 without control characters (C0, DEL, C1);
+// appendTyped adds it unless the field would exceed max_bytes (no character is cut), and
+// eraseLastCharacter removes the last code point (all of its bytes).
+bool isTypedText(std::string_view text);
+bool appendTyped(std::string* field, std::string_view text, size_t max_bytes);
+void eraseLastCharacter(std::string* field);
+
 }  // namespace cb

@@ -58,6 +58,9 @@ struct DisplayEvent {
   float x = 0.0f, y = 0.0f;  // Pointer*: position, y down
   int button = 0;            // PointerDown/Up: 1 left, 2 middle, 3 right; PointerDown 4/5 a wheel
                              // click away from / towards the user (X11 buttons 4, 5)
+  // KeyDown: the text the key typed, UTF-8 (an input method's composed text included: X11's
+  // XIM gives what an IME such as fcitx or ibus composed, e.g. Chinese), or empty.
+  std::string text;
 
   static DisplayEvent key(uint32_t keysym, uint32_t modifiers = 0) {
     DisplayEvent event;

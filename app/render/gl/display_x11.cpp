@@ -10,6 +10,7 @@
 #include <X11/keysym.h>
 
 #include <chrono>
+#include <clocale>
 #include <cstdlib>
 #include <thread>
 
@@ -24,6 +25,8 @@ class X11Display final : public Display {
       if (egl_surface_ != EGL_NO_SURFACE) eglDestroySurface(context_.display, egl_surface_);
     }
     destroyGlContext(&context_);
+    if (ic_) XDestroyIC(ic_);
+    if (im_) XCloseIM(im_);
     if (x_) {
       if (window_) XDestroyWindow(x_, window_);
       if (colormap_) XFreeColormap(x_, colormap_);
@@ -56,6 +59,7 @@ class X11Display final : public Display {
       return false;
     }
     if (!createWindow(screen, error)) return false;
+    openInputMethod();
     egl_surface_ = eglCreatePlatformWindowSurface(display, context_.config, &window_, nullptr);
     if (egl_surface_ == EGL_NO_SURFACE) {
       *error = where_ + ": eglCreatePlatformWindowSurface failed (EGL error " +
@@ -108,6 +112,7 @@ class X11Display final : public Display {
     while (XPending(x_)) {
       XEvent xev;
       XNextEvent(x_, &xev);
+      if (XFilterEvent(&xev, None)) continue;  // the input method's (a key of a composition)
       DisplayEvent event;
       if (xev.type == KeyPress) {
         // The keysym under the server's layout and the shift level (XLookupString), so a key
@@ -120,6 +125,7 @@ class X11Display final : public Display {
         event.modifiers = ((xev.xkey.state & ShiftMask) ? DisplayEvent::kShift : 0u) |
                           ((xev.xkey.state & ControlMask) ? DisplayEvent::kCtrl : 0u) |
                           ((xev.xkey.state & Mod1Mask) ? DisplayEvent::kAlt : 0u);
+        event.text = typedText(&xev.xkey, sym);
         events.push_back(event);
       } else if (xev.type == MotionNotify) {
         event.kind = DisplayEvent::Kind::PointerMove;
@@ -151,6 +157,64 @@ class X11Display final : public Display {
   }
 
  private:
+  // Typed text in any script: the X input method (XIM; an IME such as fcitx or ibus composes
+  // Chinese through it) hands over UTF-8 via Xutf8LookupString. Without one, the keysym's
+  // character. Keys still work when neither opens.
+  void openInputMethod() {
+    std::setlocale(LC_CTYPE, "");  // Xlib's input methods follow the locale's character type
+    XSetLocaleModifiers("");
+    im_ = XOpenIM(x_, nullptr, nullptr, nullptr);
+    if (!im_) {
+      XSetLocaleModifiers("@im=none");  // no IME running: Xlib's own (dead keys, compose)
+      im_ = XOpenIM(x_, nullptr, nullptr, nullptr);
+    }
+    if (!im_) return;
+    ic_ = XCreateIC(im_, XNInputStyle, XIMPreeditNothing | XIMStatusNothing, XNClientWindow,
+                    window_, XNFocusWindow, window_, nullptr);
+    if (ic_) XSetICFocus(ic_);
+  }
+
+  std::string typedText(XKeyEvent* key, KeySym sym) {
+    if (ic_) {
+      char buffer[256];
+      Status status = 0;
+      const int n = Xutf8LookupString(ic_, key, buffer, sizeof buffer, nullptr, &status);
+      if ((status == XLookupChars || status == XLookupBoth) && n > 0)
+        return std::string(buffer, size_t(n));
+      if (status != XBufferOverflow) return "";
+    }
+    return keysymText(sym);
+  }
+
+  // The character of a Latin-1 or Unicode keysym (X11 keysymdef.h: 0x20..0xff are Latin-1,
+  // 0x1000000 + U is code point U), as UTF-8; "" for function keys.
+  static std::string keysymText(KeySym sym) {
+    uint32_t c = 0;
+    if ((sym >= 0x20 && sym <= 0x7e) || (sym >= 0xa0 && sym <= 0xff))
+      c = uint32_t(sym);
+    else if (sym >= 0x1000100 && sym <= 0x110ffff)
+      c = uint32_t(sym - 0x1000000);
+    else
+      return "";
+    std::string out;
+    if (c < 0x80) {
+      out += char(c);
+    } else if (c < 0x800) {
+      out += char(0xc0 | (c >> 6));
+      out += char(0x80 | (c & 0x3f));
+    } else if (c < 0x10000) {
+      out += char(0xe0 | (c >> 12));
+      out += char(0x80 | ((c >> 6) & 0x3f));
+      out += char(0x80 | (c & 0x3f));
+    } else {
+      out += char(0xf0 | (c >> 18));
+      out += char(0x80 | ((c >> 12) & 0x3f));
+      out += char(0x80 | ((c >> 6) & 0x3f));
+      out += char(0x80 | (c & 0x3f));
+    }
+    return out;
+  }
+
   bool createWindow(int screen, std::string* error) {
     EGLint visual_id = 0;
     eglGetConfigAttrib(context_.display, context_.config, EGL_NATIVE_VISUAL_ID, &visual_id);
@@ -168,8 +232,8 @@ class X11Display final : public Display {
     attributes.colormap = colormap_;
     attributes.background_pixel = BlackPixel(x_, screen);
     attributes.border_pixel = 0;
-    attributes.event_mask = KeyPressMask | StructureNotifyMask | ExposureMask | PointerMotionMask |
-                            ButtonPressMask | ButtonReleaseMask;
+    attributes.event_mask = KeyPressMask | KeyReleaseMask | FocusChangeMask | StructureNotifyMask |
+                            ExposureMask | PointerMotionMask | ButtonPressMask | ButtonReleaseMask;
     window_ = XCreateWindow(x_, root, 0, 0, unsigned(width_), unsigned(height_), 0, visual->depth,
                             InputOutput, visual->visual,
                             CWColormap | CWBackPixel | CWBorderPixel | CWEventMask, &attributes);
@@ -224,6 +288,8 @@ class X11Display final : public Display {
   Colormap colormap_ = 0;
   Cursor blank_cursor_ = 0;
   Atom wm_delete_window_ = 0;
+  XIM im_ = nullptr;
+  XIC ic_ = nullptr;
   EGLSurface egl_surface_ = EGL_NO_SURFACE;
   std::string where_;
   int width_ = 0, height_ = 0;

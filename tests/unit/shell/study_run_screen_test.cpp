@@ -29,6 +29,8 @@
 #include "app/shell/paint_screen.h"
 #include "app/shell/study_run_screen.h"
 #include "app/study/likert_answers.h"
+#include "app/study/session_trace.h"
+#include "app/study/trace_csv.h"
 #include "drivers/replay/replay_pen_source.h"
 
 #include "tests/support/test_display.h"
@@ -342,9 +344,39 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
       d.tap(StudyTargetAction::kAnswer, int(i % 5) + 1);
   }
   ASSERT_EQ(state.stage(), StudyStageKind::kFreeText);
+  // Free text beyond lowercase ASCII: Shift, the symbols page, the protocol's Chinese page
+  // (bundled protocol's [keyboard]), then a physical keyboard's text (an input method's UTF-8)
+  // and its BackSpace, which deletes one character (all of its bytes).
   d.tapKey("o");
   d.tapKey("k");
+  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardUpper);
+  d.keep("free_text_shift");
+  d.tapKey("K");
+  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardSymbols);
+  d.keep("free_text_symbols");
+  d.tapKey("\u20ac");  // €
+  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardProtocol);
+  d.keep("free_text_chinese");
+  d.tapKey("\u4e91");                                                      // 云
+  const std::string typed = " \u00dcn\u00efc\u00f6d\u00e9 \u4e91 \u2601";  // " Ünïcödé 云 ☁"
+  for (const std::string& text : {std::string(" \u00dcn\u00efc\u00f6d\u00e9 \u4e91 "),
+                                  std::string("\u96fe"), std::string("\u2601")}) {
+    DisplayEvent key = DisplayEvent::key(0x20);
+    key.text = text;
+    EXPECT_TRUE(rig.screen->onKey(key, d.now()));
+    d.frames(1);
+  }
+  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), d.now()));  // BackSpace: the ☁
+  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), d.now()));  // and the 雾
+  DisplayEvent cloud = DisplayEvent::key(0x1002601);
+  cloud.text = "\u2601";
+  EXPECT_TRUE(rig.screen->onKey(cloud, d.now()));
+  // The operator's Ctrl+Alt keys are not typed.
+  EXPECT_FALSE(
+      rig.screen->onKey(DisplayEvent::key('p', DisplayEvent::kCtrl | DisplayEvent::kAlt), d.now()));
+  const std::string free_text = "okK\u20ac\u4e91" + typed;
   d.keep("free_text");
+  EXPECT_TRUE(d.labelShown(free_text + "_")) << "the field shows what was typed";
   d.tap(StudyTargetAction::kOk);
   ASSERT_TRUE(state.done());
   d.keep("done");
@@ -362,8 +394,9 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
     else
       EXPECT_EQ(answers.answers[0][i], int(i % 5) + 1) << answers.items[i];
   }
-  EXPECT_EQ(readText(rig.folder + "/demographics.csv"),
-            "participant,age,gender,modelling_experience,feedback\nP01,34,f,NA,ok\n");
+  EXPECT_EQ(
+      readText(rig.folder + "/demographics.csv"),
+      "participant,age,gender,modelling_experience,feedback\nP01,34,f,NA," + free_text + "\n");
   const std::string json = readText(rig.folder + "/session.json");
   EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
   EXPECT_NE(json.find("cloudbrush synthetic tablet"), std::string::npos) << json;
@@ -381,6 +414,22 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   EXPECT_TRUE(anyContains(markers, "study.saved stage=task task=cloud1"));
   EXPECT_TRUE(anyContains(markers, "study.answer item=Q28 value=3"));
   EXPECT_TRUE(anyContains(markers, "study.end completed"));
+  // The free text survives the journal byte for byte: a state restored from the journal's
+  // markers (a resumed session) writes the same answer file, and the events export holds it.
+  {
+    std::vector<StudyRunRecord> records;
+    for (const JournalRecord& r : readJournal(rig.folder + "/session.cbj").records)
+      if (r.type == JournalRecordType::kMarker && r.text().substr(0, 6) == "study.")
+        records.push_back({r.t_ns, std::string(r.text())});
+    StudyRunState restored(rig.protocol, 1, rig.t0);
+    std::string error;
+    ASSERT_TRUE(restored.restore(records, &error)) << error;
+    EXPECT_EQ(restored.demographicsCsv(), readText(rig.folder + "/demographics.csv"));
+    std::ostringstream events;
+    writeEventsCsv(events, {loadSessionTrace(rig.folder + "/session.cbj")});
+    EXPECT_NE(events.str().find("value=\"\"" + free_text + "\"\""), std::string::npos)
+        << "events.csv holds the answer's bytes";
+  }
   // The task's boundaries reach other recorders as sync markers (JOURNAL.md §10).
   const std::vector<std::string> sync = rig.syncMarkers();
   EXPECT_TRUE(anyContains(sync, "kind=task_begin"));

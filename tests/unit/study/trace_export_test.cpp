@@ -25,6 +25,7 @@
 #include "app/study/trial_table.h"
 #include "app/study/utf8_text.h"
 #include "drivers/core/journal.h"
+#include "drivers/core/journal_records.h"
 #include "drivers/core/pen_units.h"
 
 namespace cb {
@@ -572,6 +573,101 @@ TEST(TraceExportStudy, TrialsHaveOneRowPerTaskWithStageClockDurationAndEndReason
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[1], "P07," + trace.id +
                           ",cloud3,1,4.999999000,5000000000,1800000004999999000,90,time-up,2,1,1");
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace cb
+
+namespace cb {
+namespace {
+
+// strokes.csv's rows as the painter saw the pen: its strokes (by the journal's stroke_begin
+// sync markers, numbered as the painter numbered them), a tip-down run it cut into two strokes,
+// an erase drag, and a tap on the on-screen UI (pen_capture=on), each a row of its own kind.
+TEST(TraceExportGestures, RowsFollowThePaintersStrokesAndMarkErasesAndMenuTaps) {
+  const std::string path = tempPath("gestures.cbj");
+  int64_t t = 1'000'000'000;
+  size_t samples = 0;
+  {
+    JournalWriter j;
+    ASSERT_TRUE(j.open(path)) << j.error();
+    j.append(JournalRecordType::kSession, t, "format = 2\ngrid = 64\n");
+    j.append(JournalRecordType::kMode, t, "paint");
+    const auto sample = [&](bool tip, float x) {
+      PenSample s;
+      s.t_ns = (t += 5'000'000);
+      s.buttons = tip ? kPenTip : 0u;
+      s.in_proximity = true;
+      s.x_mm = x;
+      s.pressure = tip ? 0.5f : 0.0f;
+      j.appendPenSample(s);
+      ++samples;
+    };
+    const auto sync = [&](const char* kind, int index) {
+      SyncMarker m;
+      m.seq = 1, m.kind = kind, m.mono_ns = t, m.label = std::to_string(index);
+      j.append(JournalRecordType::kSync, t, formatSyncMarker(m));
+    };
+    // Samples 0-3: a run whose first raw sample precedes the painter's contact (stroke 4: the
+    // painter's numbers, not the rows').
+    sample(true, 0), sample(true, 1), sync("stroke_begin", 4), sample(true, 2), sample(false, 3);
+    sync("stroke_end", 4);
+    j.append(JournalRecordType::kStrokeMapped, t, "stroke = 4\nmapping_ms = 7.5\n");
+    // Samples 4-8: one run the painter cut in two (pressure fell below contact and rose again).
+    sample(true, 4), sync("stroke_begin", 5), sample(true, 5), sync("stroke_end", 5);
+    sample(true, 6), sync("stroke_begin", 6), sample(true, 7), sample(false, 8);
+    sync("stroke_end", 6);
+    // Samples 9-11: an erase drag.
+    j.append(JournalRecordType::kUi, t, "mode=erase");
+    j.append(JournalRecordType::kMode, t, "erase");
+    sample(true, 9), sample(true, 10), sample(false, 11);
+    // Samples 12-13: a tap on the menu.
+    j.append(JournalRecordType::kUi, t, "pen_capture=on");
+    sample(true, 12), sample(false, 13);
+    j.append(JournalRecordType::kUi, t, "pen_capture=off");
+  }
+  const SessionTrace trace = loadSessionTrace(path);
+  ASSERT_EQ(trace.samples.size(), samples);
+  const std::vector<StrokeMeasures> rows = measureStrokes(trace);
+  ASSERT_EQ(rows.size(), 5u);
+  const auto expectRow = [&](size_t i, const char* kind, std::optional<uint32_t> stroke,
+                             size_t first, size_t count) {
+    SCOPED_TRACE("row " + std::to_string(i));
+    EXPECT_EQ(rows[i].index, i);
+    EXPECT_EQ(rows[i].kind, kind);
+    EXPECT_EQ(rows[i].stroke, stroke);
+    EXPECT_EQ(rows[i].first_sample, first);
+    EXPECT_EQ(rows[i].sample_count, count);
+  };
+  expectRow(0, "stroke", 4, 0, 3);
+  expectRow(1, "stroke", 5, 4, 2);
+  expectRow(2, "stroke", 6, 6, 2);
+  expectRow(3, "erase", std::nullopt, 9, 2);
+  expectRow(4, "menu_tap", std::nullopt, 12, 1);
+  ASSERT_TRUE(rows[0].mapping_ms.has_value());
+  EXPECT_EQ(*rows[0].mapping_ms, 7.5);
+  EXPECT_FALSE(rows[1].mapping_ms.has_value()) << "stroke 5 has no StrokeMapped record";
+  EXPECT_EQ(rows[3].mode, "erase");
+
+  std::ostringstream csv;
+  writeStrokesCsv(csv, {trace});
+  const std::vector<std::string> lines = split(csv.str(), '\n');
+  ASSERT_EQ(lines.size(), 6u);
+  const auto startsWith = [](const std::string& line, const std::string& prefix) {
+    return line.rfind(prefix, 0) == 0;
+  };
+  EXPECT_TRUE(startsWith(lines[0], "participant,session,gesture,kind,stroke,")) << lines[0];
+  EXPECT_TRUE(startsWith(lines[1], "NA," + trace.id + ",0,stroke,4,")) << lines[1];
+  EXPECT_TRUE(startsWith(lines[4], "NA," + trace.id + ",3,erase,NA,")) << lines[4];
+  EXPECT_TRUE(startsWith(lines[5], "NA," + trace.id + ",4,menu_tap,NA,")) << lines[5];
+  std::ostringstream samples_csv;
+  writeSamplesCsv(samples_csv, {trace});
+  const std::vector<std::string> sample_lines = split(samples_csv.str(), '\n');
+  // Sample 5 is in the second row (gesture 1), the painter's stroke 5; sample 10 is erasing.
+  EXPECT_NE(sample_lines[1 + 5].find(",1,5,NA"), std::string::npos) << sample_lines[6];
+  EXPECT_NE(sample_lines[1 + 10].find(",3,NA,NA"), std::string::npos) << sample_lines[11];
+  EXPECT_NE(sample_lines[1 + 8].find(",NA,NA,NA"), std::string::npos) << sample_lines[9];
   std::filesystem::remove(path);
 }
 
