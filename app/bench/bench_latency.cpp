@@ -27,7 +27,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
-#include "app/shell/paint_loop.h"
+#include "app/shell/painter/paint_loop.h"
 #include "app/study/frame_timing_stats.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"

@@ -45,7 +45,7 @@
 #include "app/scene/paint_camera.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
-#include "app/shell/paint_loop.h"
+#include "app/shell/painter/paint_loop.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"
 #include "drivers/replay/replay_pen_source.h"
@@ -262,7 +262,7 @@ bool measureFreshFrames(VolumeRenderer& renderer, const Volume& cumulus, Size si
   };
   row->fresh_paint_view_ms = atPaintView();
   // The painter's first screen: its session's empty sky (the product's default span) at that
-  // view, as `cloudbrush paint` starts (app/shell/paint_screen.h).
+  // view, as `cloudbrush paint` starts (app/shell/painter/paint_screen.h).
   const PaintSession empty(PaintSessionSettings{size.w, size.h, grid}, BrushConfig{},
                            MappingConfig{});
   renderer.sync(empty.volume(), Light{});

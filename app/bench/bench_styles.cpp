@@ -4,7 +4,7 @@
 // thesis style measured in the same run, frames interleaved style by style so a busy machine
 // slows every style alike. Also the moving frame (reduced scale, `moving` set) and the painting
 // frame: the painter's cached still scene of that style with the live brush footprint and cursor
-// composited over it (FootprintOverlay, as app/shell/paint_screen.cpp draws while the pen is
+// composited over it (FootprintOverlay, as app/shell/painter/paint_screen.cpp draws while the pen is
 // down), a disc footprint moving 6 px per frame. Targets: a full frame costs at most 1.5× the
 // thesis style's; the painting frame stays ≥ 60 fps. --sky KIND puts that sky behind every style.
 // Never fails on a target.

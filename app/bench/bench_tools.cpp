@@ -24,7 +24,7 @@
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
-#include "app/shell/animation_preview.h"
+#include "app/shell/painter/animation_preview.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/cloud_morph.h"
 #include "app/tools/model_cloud.h"

@@ -1,6 +1,6 @@
 // `cloudbrush calibrate`: the pen-driven N-point calibration.
 //
-// Interactive (default): the calibration screens (app/shell/calibrate_flow_screen.h) on the
+// Interactive (default): the calibration screens (app/shell/calibrate/calibrate_flow_screen.h) on the
 // shell's one frame loop: wait for the pen, tap the targets one at a time (corners and centre,
 // or a 3x3 grid), see the residual of every point in pixels; tapping the green box (or Space)
 // accepts and saves the profile for this tablet under the state directory, the orange box
@@ -26,8 +26,8 @@
 #include "app/core/config_paths.h"
 #include "app/render/gl/display.h"
 #include "app/render/image_io.h"
-#include "app/shell/calibrate_flow_screen.h"
-#include "app/shell/calibrate_pen_input.h"
+#include "app/shell/calibrate/calibrate_flow_screen.h"
+#include "app/shell/calibrate/calibrate_pen_input.h"
 #include "app/shell/frame_loop.h"
 #include "calibration/n_point_calibration.h"
 #include "calibration/point_fit.h"

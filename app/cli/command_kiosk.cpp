@@ -17,9 +17,9 @@
 #include "app/core/config_paths.h"
 #include "app/kiosk/data_dir_check.h"
 #include "app/kiosk/operator_pin.h"
-#include "app/shell/attract_journal.h"
+#include "app/shell/kiosk/attract_journal.h"
 #include "app/shell/frame_loop.h"
-#include "app/shell/kiosk_error_screen.h"
+#include "app/shell/kiosk/kiosk_error_screen.h"
 
 namespace cb {
 
@@ -96,7 +96,7 @@ int setOperatorPin(int argc, char** argv) {
 
 int commandKiosk(int argc, char** argv) {
   // `cloudbrush kiosk --make-attract-journal FILE` writes the bundled attract journal
-  // (config/kiosk/attract.cbj; app/shell/attract_journal.h).
+  // (config/kiosk/attract.cbj; app/shell/kiosk/attract_journal.h).
   if (argc == 3 && std::string(argv[1]) == "--make-attract-journal") {
     std::string error;
     if (!writeAttractJournal(argv[2], &error)) {

@@ -6,7 +6,7 @@
 
 #include "app/kiosk/kiosk_service.h"
 #include "app/render/gl/display.h"
-#include "app/shell/paint_loop.h"
+#include "app/shell/painter/paint_loop.h"
 
 namespace cb {
 

@@ -36,11 +36,11 @@
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/session_resume.h"
-#include "app/shell/attract_journal.h"
+#include "app/shell/kiosk/attract_journal.h"
 #include "app/shell/keymap.h"
-#include "app/shell/kiosk_screen.h"
-#include "app/shell/paint_loop.h"
-#include "app/shell/paint_screen.h"
+#include "app/shell/kiosk/kiosk_screen.h"
+#include "app/shell/painter/paint_loop.h"
+#include "app/shell/painter/paint_screen.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/sky_extent.h"
 #include "app/volume/volume_file.h"
@@ -159,7 +159,7 @@ struct PaintArgs {
   bool kiosk = false;
   KioskConfig kiosk_config;
   // Kiosk: the first bad config file or unusable data dir. Shown on the screen (and logged)
-  // instead of exiting into a restart loop (app/shell/kiosk_error_screen.h); every config file
+  // instead of exiting into a restart loop (app/shell/kiosk/kiosk_error_screen.h); every config file
   // alike. The painter exits with the message.
   std::string kiosk_problem;
   std::string backend, resume_path;

@@ -37,7 +37,7 @@
 #include "app/session/sync_marker_sender.h"
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
-#include "app/shell/study_run_screen.h"
+#include "app/shell/study/study_run_screen.h"
 #include "app/study/codebook.h"
 #include "app/study/construct_definitions.h"
 #include "app/study/inkml_writer.h"

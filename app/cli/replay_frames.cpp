@@ -10,8 +10,8 @@
 #include "app/render/gl/display.h"
 #include "app/render/render_config.h"
 #include "app/render/volume_renderer.h"
-#include "app/shell/paint_screen.h"
-#include "app/shell/study_run_screen.h"
+#include "app/shell/painter/paint_screen.h"
+#include "app/shell/study/study_run_screen.h"
 #include "app/study/study_run_state.h"
 
 namespace cb {

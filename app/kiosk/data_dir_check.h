@@ -1,6 +1,6 @@
 // Whether the kiosk can use its data dir: it exists (or can be made), is a folder, and a file can
 // be created, written and removed in it. Checked at start-up so that an unusable data dir shows
-// the kiosk's error screen (app/shell/kiosk_error_screen.h) instead of failing later.
+// the kiosk's error screen (app/shell/kiosk/kiosk_error_screen.h) instead of failing later.
 #pragma once
 
 #include <string>

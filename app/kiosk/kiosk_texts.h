@@ -21,7 +21,7 @@ inline constexpr const char* kKioskTextKeys[] = {
     "gallery_notice",    // {days}: what the gallery keeps and for how long
     "recording_notice",  // {days}: how long pen journals are kept
     "saved_notice",      // {number}: the visitor's cloud went into the gallery
-    // The painter's words for the visitor (app/shell/visitor_words.h): the status line per mode,
+    // The painter's words for the visitor (app/shell/kiosk/visitor_words.h): the status line per mode,
     "status_camera",
     "status_paint",
     "status_erase",

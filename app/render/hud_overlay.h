@@ -1,7 +1,7 @@
 // The painter's heads-up overlay: a small GL pass that draws flat items over a finished frame —
 // solid rectangles (bars, digit cells, panels), rings (the mapping's circles) and line segments
 // (outlines) — all in screen pixels with y down, alpha-blended over what is there. One instanced
-// draw from a storage buffer; what to draw is decided by the caller (app/shell/hud_items.h).
+// draw from a storage buffer; what to draw is decided by the caller (app/shell/painter/hud_items.h).
 //
 //   HudOverlay hud;
 //   hud.init(&error);                                 // current GL 4.5 core context

@@ -40,7 +40,7 @@ enum class Command {
   kGoodView,         // G: the nearest view that is not edge-on to the canvas
   kOpen,             // Ctrl+O: open the last saved cloud (--open FILE opens any)
   kNextStyle,        // T: the next render style (thesis, physical, ink, cartoon, sketch)
-  // The study operator's (app/shell/study_run_screen.h): Ctrl+Alt so a participant's shortcut
+  // The study operator's (app/shell/study/study_run_screen.h): Ctrl+Alt so a participant's shortcut
   // never triggers one by accident (Ctrl+S is the participant's save).
   kOperatorPause,   // Ctrl+Alt+P: pause (again: resume), with a reason
   kOperatorSkip,    // Ctrl+Alt+S: skip the tutorial step or the stage, with a reason

@@ -10,7 +10,7 @@
 #include <imgui_internal.h>
 
 #include "app/shell/keymap.h"
-#include "app/shell/painter_messages.h"
+#include "app/shell/painter/painter_messages.h"
 
 namespace cb {
 namespace {

@@ -18,7 +18,7 @@
 
 #include "app/shell/command.h"
 #include "app/shell/command_table.h"
-#include "app/shell/visitor_words.h"
+#include "app/shell/kiosk/visitor_words.h"
 
 struct ImGuiContext;
 

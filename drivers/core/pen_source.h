@@ -28,7 +28,7 @@ class PenSource {
   virtual void poll(int timeout_ms, std::vector<PenSample>& out) = 0;
   // True when a poll(0, …) now would bring news (samples or a connection change) without
   // reading the device, from any thread: a long frame asks it between its slices and stops early
-  // for a pen that just arrived (app/shell/attract_screen.h). Sources read on the caller's own
+  // for a pen that just arrived (app/shell/kiosk/attract_screen.h). Sources read on the caller's own
   // thread cannot know without reading, and say false.
   virtual bool inputWaiting() const { return false; }
   virtual PenConnection connection() const = 0;

@@ -12,7 +12,7 @@
 // polls once per frame still sees every unplug and replug (searching, then connected) in order,
 // with the proximity-out sample of the unplug in the poll that reports "searching".
 // inputWaiting() says, without the lock, whether anything is queued: a frame drawn in slices asks
-// it between them (app/shell/attract_screen.h).
+// it between them (app/shell/kiosk/attract_screen.h).
 #pragma once
 
 #include <atomic>

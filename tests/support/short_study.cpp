@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "app/session/synthetic_session.h"
-#include "app/shell/study_page.h"
+#include "app/shell/study/study_page.h"
 #include "app/study/study_run_state.h"
 #include "drivers/core/journal.h"
 

@@ -2,7 +2,7 @@
 // (consent, the participant's code, an introduction, a one-step tutorial that holds at once (an
 // empty sky), 1.8 s of free drawing, two tasks of 3.6 s, three Likert items) and one
 // participant's recorded pen, which taps the runner's own targets (laid out by
-// app/shell/study_page.h for a kShortStudyWidth × kShortStudyHeight screen) and paints one
+// app/shell/study/study_page.h for a kShortStudyWidth × kShortStudyHeight screen) and paints one
 // stroke in each task.
 #pragma once
 

@@ -2,7 +2,7 @@
 // (the PTH-660 fixture descriptor) plugged in and out through /dev/uhid, the kernel's own wacom
 // driver binding it each time. Per cycle: UHID_CREATE2 (its CLOCK_MONOTONIC time printed), the
 // pen hovering until the kiosk's log (KIOSK_LOG) says that the first sample after the connection
-// reached its screen (app/shell/kiosk_screen.cpp) — at most 60 s, so a frame loop slowed by
+// reached its screen (app/shell/kiosk/kiosk_screen.cpp) — at most 60 s, so a frame loop slowed by
 // emulation still sees every plug — then a short stroke, proximity out, UHID_DESTROY; then a
 // wait until the kiosk noticed the unplug, and a pause. The host pairs the creation times with
 // the kiosk's log lines.

@@ -250,7 +250,7 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
     // drawing when the pen's first report arrives delays the report's reaching the screen, and
     // a visitor waits for that as much as for the kernel (the guest's mean frame is printed
     // above, for telling the two apart). A slow attract frame is drawn in slices and given up
-    // for the pen (app/shell/attract_screen.h); before that, this missed (max 1.14–1.65 s).
+    // for the pen (app/shell/kiosk/attract_screen.h); before that, this missed (max 1.14–1.65 s).
     std::printf(
         "hotplug during %s: uhid creation -> first pen sample at the screen: median %.3f s, "
         "max %.3f s (20 plugs, %ld on the %s screen); 1 s wanted%s\n",

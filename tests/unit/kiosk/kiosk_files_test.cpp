@@ -24,7 +24,7 @@
 #include "app/kiosk/operator_log.h"
 #include "app/kiosk/operator_pin.h"
 #include "app/kiosk/reserved_file.h"
-#include "app/shell/attract_journal.h"
+#include "app/shell/kiosk/attract_journal.h"
 #include "drivers/core/journal.h"
 #include "small_tmpfs.h"
 

@@ -19,9 +19,9 @@
 
 #include "app/kiosk/kiosk_service.h"
 #include "app/shell/frame_loop.h"
-#include "app/shell/kiosk_screen.h"
-#include "app/shell/paint_loop.h"
-#include "app/shell/paint_screen.h"
+#include "app/shell/kiosk/kiosk_screen.h"
+#include "app/shell/painter/paint_loop.h"
+#include "app/shell/painter/paint_screen.h"
 #include "notify_socket_listener.h"
 #include "tests/support/test_display.h"
 

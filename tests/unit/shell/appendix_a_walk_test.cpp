@@ -20,7 +20,7 @@
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/keymap.h"
-#include "app/shell/paint_screen.h"
+#include "app/shell/painter/paint_screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/core/clock.h"
 #include "drivers/replay/replay_pen_source.h"

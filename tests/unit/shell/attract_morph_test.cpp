@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/render/image_io.h"
-#include "app/shell/attract_screen.h"
+#include "app/shell/kiosk/attract_screen.h"
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
 #include "tests/support/test_display.h"

@@ -1,4 +1,4 @@
-// The attract loop's replay on its worker thread (app/shell/attract_replay.h), with the bundled
+// The attract loop's replay on its worker thread (app/shell/kiosk/attract_replay.h), with the bundled
 // attract journal at the kiosk's grid:
 //   - the worker's final cloud is the one `cloudbrush replay` gives (same checksum as applying
 //     every record in order on this thread), and each keyframe's cloud is what the journal had
@@ -11,7 +11,7 @@
 //   - a long attract journal (strokes all over the screen, generated here) keeps the clouds its
 //     keyframes hold within the budget plus the newest cloud, where a copy per stroke held the
 //     sum of every cloud so far (growing with the square of the journal's length).
-#include "app/shell/attract_replay.h"
+#include "app/shell/kiosk/attract_replay.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@
 
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
-#include "app/shell/attract_screen.h"
+#include "app/shell/kiosk/attract_screen.h"
 #include "tests/support/test_display.h"
 
 namespace cb {

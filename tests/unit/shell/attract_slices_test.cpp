@@ -1,4 +1,4 @@
-// The attract loop's frame drawn in slices (app/shell/attract_screen.h, AttractOptions::slice_ms)
+// The attract loop's frame drawn in slices (app/shell/kiosk/attract_screen.h, AttractOptions::slice_ms)
 // so that a pen plugged in during a long frame reaches the kiosk at once (uhid creation
 // → first sample on the screen ≤ 1 s; under TCG an attract frame took 0.5–1.5 s and the pen
 // waited for it). Real EGL surfaceless llvmpipe rendering, the bundled attract journal:
@@ -21,7 +21,7 @@
 
 #include "app/render/gl/gl.h"
 #include "app/render/image_io.h"
-#include "app/shell/attract_screen.h"
+#include "app/shell/kiosk/attract_screen.h"
 #include "app/shell/frame_loop.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/threaded_pen_source.h"

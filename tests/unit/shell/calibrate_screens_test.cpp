@@ -14,8 +14,8 @@
 #include <map>
 
 #include "app/render/image_io.h"
-#include "app/shell/calibrate_flow_screen.h"
-#include "app/shell/calibrate_result_screen.h"
+#include "app/shell/calibrate/calibrate_flow_screen.h"
+#include "app/shell/calibrate/calibrate_result_screen.h"
 #include "app/shell/frame_loop.h"
 #include "app/shell/keymap.h"
 #include "calibration/area_mapping.h"

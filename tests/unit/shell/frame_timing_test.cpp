@@ -11,7 +11,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
-#include "app/shell/paint_loop.h"
+#include "app/shell/painter/paint_loop.h"
 #include "app/study/frame_timing_stats.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/journal_frame.h"

@@ -13,8 +13,8 @@
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/keymap.h"
-#include "app/shell/paint_loop.h"
-#include "app/shell/paint_screen.h"
+#include "app/shell/painter/paint_loop.h"
+#include "app/shell/painter/paint_screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/replay/replay_pen_source.h"
 

@@ -1,4 +1,4 @@
-// `cloudbrush study run`'s screens (app/shell/study_run_screen.h) driven the way the frame loop
+// `cloudbrush study run`'s screens (app/shell/study/study_run_screen.h) driven the way the frame loop
 // drives them, on EGL surfaceless (llvmpipe) with the product's defaults (the bundled thesis
 // protocol, its consent text, demographics, 28 questionnaire items and its first task's picture;
 // default brush and mapping configs), and a clock the test moves. Pen taps and strokes are raw
@@ -26,8 +26,8 @@
 #include "app/session/session_replay.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/keymap.h"
-#include "app/shell/paint_screen.h"
-#include "app/shell/study_run_screen.h"
+#include "app/shell/painter/paint_screen.h"
+#include "app/shell/study/study_run_screen.h"
 #include "app/study/likert_answers.h"
 #include "app/study/session_trace.h"
 #include "app/study/trace_csv.h"

@@ -16,7 +16,7 @@
 #include "app/render/image_io.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
-#include "app/shell/study_run_screen.h"
+#include "app/shell/study/study_run_screen.h"
 #include "app/study/session_trace.h"
 #include "app/study/trial_table.h"
 #include "drivers/replay/replay_pen_source.h"

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "app/render/image_io.h"
-#include "app/shell/study_page.h"
+#include "app/shell/study/study_page.h"
 #include "app/study/protocol.h"
 #include "app/study/study_run_state.h"
 #include "app/study/reference_picture.h"

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "app/session/synthetic_session.h"
-#include "app/shell/study_page.h"
+#include "app/shell/study/study_page.h"
 #include "app/study/protocol.h"
 #include "drivers/core/journal.h"
 #include "tests/support/command_run.h"

@@ -19,7 +19,7 @@
 #include "app/core/parallel_for.h"
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
-#include "app/shell/animation_preview.h"
+#include "app/shell/painter/animation_preview.h"
 #include "app/tools/cloud_animation.h"
 #include "app/tools/tool_window.h"
 #include "app/volume/scene_generators.h"

@@ -1,0 +1,100 @@
+// What the study runner shows (app/shell/study/study_run_screen.h), laid out on the CPU from the
+// runner's state (app/study/study_run_state.h) so tests know every target: the form pages
+// (consent, participant code, introduction, demographics with the on-screen keyboard, the Likert
+// questionnaire one item at a time, free text, the end), the panel beside the painter in the
+// tutorial, free drawing and tasks (stage, instruction and its check, the countdown, the
+// reference image's place), and the operator's reason chooser and pause veil over any stage.
+// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot. The
+// participant's buttons (consent, "I'm done") are labelled in English over Chinese, like the
+// painter's menu.
+//
+// Drawn by the runner with the HUD overlay (boxes) and ui_overlay's labels (Noto Sans CJK).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/render/hud_overlay.h"
+#include "app/shell/ui_overlay.h"
+#include "app/study/study_run_state.h"
+
+namespace cb {
+
+// What tapping a target does.
+enum class StudyTargetAction {
+  kAgree,         // consent
+  kDecline,       // consent: "I do not agree" (the session ends)
+  kContinue,      // participant code, introduction
+  kAnswer,        // questionnaire: value 1..n
+  kSkipItem,      // questionnaire: leave NA
+  kBackItem,      // questionnaire: the previous item
+  kKey,           // on-screen keyboard: `text` is typed
+  kBackspace,     // on-screen keyboard
+  kKeyboardPage,  // on-screen keyboard: value = the page (again: back to the letters)
+  kChoice,        // demographics choice: `text` is the answer
+  kOk,            // demographics / free text: take what was typed
+  kSkipField,     // demographics / free text: NA
+  kReason,        // operator chooser: value = reason index
+  kCancel,        // operator chooser
+  kDone,          // task panel: "I'm done" (asks to confirm)
+  kDoneConfirm,   // task panel: "Yes, I'm done" (the task ends, end reason `done`)
+  kDoneCancel,    // task panel: "Keep painting"
+};
+
+struct StudyTarget {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  StudyTargetAction action = StudyTargetAction::kContinue;
+  int value = 0;
+  std::string text;  // kKey, kChoice
+  std::string label;
+  bool selected = false;  // shown highlighted (the answer given before)
+  bool contains(float x, float y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+};
+
+struct StudyPage {
+  std::vector<HudItem> boxes;  // backgrounds and panels, under the targets
+  std::vector<StudyTarget> targets;
+  std::vector<UiLabel> labels;  // drawn last
+  // Painting stages: where the reference image goes (x0, y0, x1, y1; zero size: none).
+  float image[4] = {0, 0, 0, 0};
+  // The first target with `action` (and `value` when >= 0), or null.
+  const StudyTarget* find(StudyTargetAction action, int value = -1) const;
+  const StudyTarget* hit(float x, float y) const;
+};
+
+// What the screen knows besides the state: the text typed so far, a message (a refused answer),
+// the tutorial check's live status, and the reference image's aspect (width / height; 0: none).
+struct StudyPageInput {
+  std::string typed;
+  std::string message;
+  std::string check_status;
+  float image_aspect = 0.0f;
+  int64_t now_ns = 0;
+  bool painter_menu_open = false;  // the painter's pen menu is open: the panel steps aside
+  bool done_asked = false;         // "I'm done" was tapped: the panel asks to confirm
+  int keyboard_page = 0;           // the on-screen keyboard's page (kKeyboard*)
+  // The operator's warning that the session folder cannot be written (study_storage_watch.h),
+  // shown over every page; "" when writing works.
+  std::string storage_warning;
+};
+
+// The on-screen keyboard's pages: letters, capitals (Shift), symbols and accented letters, and
+// the protocol's own characters ([keyboard] in the protocol).
+inline constexpr int kKeyboardLower = 0, kKeyboardUpper = 1, kKeyboardSymbols = 2,
+                     kKeyboardProtocol = 3;
+
+// The page of the current stage (a form, or the panel beside the painter), with the operator's
+// chooser or pause veil over it when one is open.
+StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
+                         int height);
+
+// Every text the pages may show beyond Latin: their own Chinese and the protocol's texts (the
+// font atlas holds their characters).
+std::string studyPageText(const StudyProtocol& protocol);
+
+// The colours of the page's boxes and targets (RGBA, straight alpha).
+inline constexpr uint32_t kStudyTextColour = 0xf2f2f2ffu;
+inline constexpr uint32_t kStudyHintColour = 0xffd970ffu;
+
+}  // namespace cb
