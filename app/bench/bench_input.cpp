@@ -181,29 +181,10 @@ void decodeCorpus(const std::string& dir, double copy_ns, BenchReport& report) {
   report.figure("corpus_decode_worst_ns", worst);
 }
 
-}  // namespace
-
-int benchInput(int argc, char** argv) {
-  Args args(argc, argv, {"help"});
-  if (args.has("help")) {
-    std::printf(
-        "usage: cloudbrush bench input [--samples N] [--rate HZ] [--vm-figures FILE]\n"
-        "                              [--fixtures DIR]\n"
-        "Decode cost per report (generic HID, Intuos4, evdev) against copying the bytes, the\n"
-        "evdev kernel-timestamp -> consumer-thread delay through uinput (N samples at HZ,\n"
-        "default 2000 at 1000 Hz), and the emulated figures of the last tablet HIL run\n"
-        "(ctest -L hil writes FILE; default: next to this build's tests). DIR holds the\n"
-        "recorded descriptors (default: the source tree's tests/fixtures/hid, else\n"
-        "/usr/share/cloudbrush/fixtures/hid).\n");
-    return 0;
-  }
-  const long samples = args.getInt("samples", 2000);
-  const double rate = args.getDouble("rate", 1000.0);
-  const std::string vm_figures = args.get("vm-figures", defaultVmFigures());
-  BenchReport report("input");
-
-  // --- decode cost on recorded buffers --------------------------------------------------------
-  const std::string fixture = args.get("fixtures", defaultHidFixtureDir());
+// Decode cost per report on recorded buffers (a 2 s stroke): the generic descriptor-driven
+// decoder, the Intuos4 protocol decoder and the evdev frame state machine against copying the
+// bytes, then the corpus of recorded descriptors. 0, or 1 when the fixtures do not load.
+int benchDecodeCost(const std::string& fixture, BenchReport& report) {
   std::vector<uint8_t> desc = readBytes(fixture + "/wacom-pth660_v145.rdesc");
   if (desc.empty()) {
     std::fprintf(stderr, "bench input: cannot read %s/wacom-pth660_v145.rdesc (see --fixtures)\n",
@@ -288,8 +269,11 @@ int benchInput(int argc, char** argv) {
   report.figure("decode_evdev_frame_ns", evdev_ns);
   report.figure("descriptor_parse_us", parse_us);
   decodeCorpus(fixture, copy_ns, report);
+  return 0;
+}
 
-  // --- host evdev delivery delay ---------------------------------------------------------------
+// The host's evdev delay, kernel timestamp -> consumer thread, through uinput.
+void benchHostEvdevDelay(long samples, double rate, BenchReport& report) {
   EvdevLatencyResult lat = measureEvdevLatency(static_cast<int>(samples), rate);
   if (lat.ran && !lat.delay_us.empty()) {
     const double p50 = percentile(lat.delay_us, 50), p99 = percentile(lat.delay_us, 99);
@@ -308,8 +292,10 @@ int benchInput(int argc, char** argv) {
                 lat.error.c_str());
     report.note("host_evdev_delay", "not measured: " + lat.error);
   }
+}
 
-  // --- the same delay in the qemu guest (emulated) ---------------------------------------------
+// The same delay in the qemu guest (emulated): the figures of the last tablet HIL run.
+void reportEmulatedDelay(const std::string& vm_figures, BenchReport& report) {
   std::ifstream vm(vm_figures);
   if (vm) {
     std::printf("emulated (qemu TCG guest, last tablet HIL run, %s):\n", vm_figures.c_str());
@@ -330,6 +316,33 @@ int benchInput(int argc, char** argv) {
                 vm_figures.c_str());
     report.note("emulated", "no tablet HIL figures at " + vm_figures);
   }
+}
+
+}  // namespace
+
+int benchInput(int argc, char** argv) {
+  Args args(argc, argv, {"help"});
+  if (args.has("help")) {
+    std::printf(
+        "usage: cloudbrush bench input [--samples N] [--rate HZ] [--vm-figures FILE]\n"
+        "                              [--fixtures DIR]\n"
+        "Decode cost per report (generic HID, Intuos4, evdev) against copying the bytes, the\n"
+        "evdev kernel-timestamp -> consumer-thread delay through uinput (N samples at HZ,\n"
+        "default 2000 at 1000 Hz), and the emulated figures of the last tablet HIL run\n"
+        "(ctest -L hil writes FILE; default: next to this build's tests). DIR holds the\n"
+        "recorded descriptors (default: the source tree's tests/fixtures/hid, else\n"
+        "/usr/share/cloudbrush/fixtures/hid).\n");
+    return 0;
+  }
+  const long samples = args.getInt("samples", 2000);
+  const double rate = args.getDouble("rate", 1000.0);
+  const std::string vm_figures = args.get("vm-figures", defaultVmFigures());
+  BenchReport report("input");
+
+  if (const int status = benchDecodeCost(args.get("fixtures", defaultHidFixtureDir()), report))
+    return status;
+  benchHostEvdevDelay(samples, rate, report);
+  reportEmulatedDelay(vm_figures, report);
   report.print();
   return 0;
 }

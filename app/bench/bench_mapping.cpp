@@ -233,6 +233,114 @@ const char* verdict(bool met) {
   return met ? "met" : "MISSED";
 }
 
+// The load average at the start (timings are wall clock), printed and noted.
+void noteLoadAverage(BenchReport* report) {
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    char line[128] = {0};
+    if (std::fgets(line, sizeof line, f)) {
+      std::string load(line);
+      while (!load.empty() && load.back() == '\n') load.pop_back();
+      std::printf("load average at start: %s (timings are wall clock; other load inflates them)\n",
+                  load.c_str());
+      report->note("loadavg", load);
+    }
+    std::fclose(f);
+  }
+}
+
+// Table 6.1's initial-diameter sweep on the single stroke, circle growth only, against the
+// one-thread baseline; the d32 full pipeline's pen-up -> volume and light ready, returned.
+double sweepInitialDiameter(MappingBench& bench, const StrokeResult& thick,
+                            const MappingConfig& config, BenchReport* report) {
+  std::printf("initial-diameter sweep on the single stroke (Table 6.1), circle growth only:\n");
+  std::printf("  %8s %8s %6s %9s %10s %12s %8s | %9s %13s %8s\n", "diameter", "circles", "steps",
+              "attempts", "growth ms", "baseline ms", "ratio", "cpu ms", "baseline cpu", "ratio");
+  double d32_total = 0.0;
+  for (int diameter : {256, 196, 128, 96, 64, 32}) {
+    CircleGrowthConfig c = config.circles;
+    c.initial_diameter_px = diameter;
+    CircleGrowthResult fast, slow;
+    double cpu_fast = 0, cpu_slow = 0;
+    double t_fast = bench.growthOnly(thick, c, false, &fast, &cpu_fast);
+    setWorkerThreads(1);
+    double t_slow = bench.growthOnly(thick, c, true, &slow, &cpu_slow);
+    setWorkerThreads(0);
+    std::printf("  %8d %8zu %6d %9lld %10.2f %12.2f %7.1fx | %9.2f %13.2f %7.1fx\n", diameter,
+                fast.circles.size(), fast.steps, fast.attempts, t_fast, t_slow,
+                t_slow / std::max(1e-9, t_fast), cpu_fast, cpu_slow,
+                cpu_slow / std::max(1e-9, cpu_fast));
+    const std::string k = "sweep_d" + std::to_string(diameter) + "_";
+    report->figure(k + "circles", double(fast.circles.size()));
+    report->figure(k + "steps", fast.steps);
+    report->figure(k + "attempts", double(fast.attempts));
+    report->figure(k + "circle_growth_ms", t_fast);
+    report->figure(k + "circle_growth_cpu_ms", cpu_fast);
+    report->baseline(k + "circle_growth_cpu_ms", cpu_slow);
+    report->baseline(k + "circles", double(slow.circles.size()));
+    report->baseline(k + "attempts", double(slow.attempts));
+    report->baseline(k + "circle_growth_ms", t_slow);
+    if (diameter == 32) {
+      MappingConfig c32 = config;
+      c32.circles.initial_diameter_px = 32;
+      StageFigures f = bench.runFast(thick, c32);
+      d32_total = f.volume_light_ready;
+      printStages("  d32 full pipeline", f);
+      report->figure("sweep_d32_volume_and_light_ready_ms", d32_total);
+    }
+  }
+  return d32_total;
+}
+
+// The reference strokes' figures, each against its baseline.
+struct ReferenceStages {
+  StageFigures thick_fast, thick_base, heart_fast, heart_base, heart_many;
+};
+
+// The speed-ups and the targets, met or MISSED.
+void reportMappingTargets(const ReferenceStages& r, double d32_total, BenchReport* report) {
+  const StageFigures &thick_fast = r.thick_fast, &thick_base = r.thick_base;
+  const StageFigures &heart_fast = r.heart_fast, &heart_base = r.heart_base;
+  const StageFigures& heart_many = r.heart_many;
+  const double speedup = thick_base.volume_light_ready / thick_fast.volume_light_ready;
+  const double heart_speedup = heart_base.volume_light_ready / heart_fast.volume_light_ready;
+  const double growth_speedup = thick_base.growth / std::max(1e-9, thick_fast.growth);
+  const double mapping_speedup = thick_base.mapping / std::max(1e-9, thick_fast.mapping);
+  const double heart_mapping_speedup = heart_base.mapping / std::max(1e-9, heart_fast.mapping);
+  report->figure("single_speedup_vs_baseline", speedup);
+  report->figure("heart_speedup_vs_baseline", heart_speedup);
+  report->figure("single_circle_growth_speedup_vs_baseline", growth_speedup);
+  report->figure("single_mapping_speedup_vs_baseline", mapping_speedup);
+  report->figure("heart_mapping_speedup_vs_baseline", heart_mapping_speedup);
+
+  std::printf("targets:\n");
+  std::printf("  single stroke pen-up -> volume and light ready %.1f ms <= 100 ms: %s\n",
+              thick_fast.volume_light_ready, verdict(thick_fast.volume_light_ready <= 100.0));
+  std::printf(
+      "  heart pen-up -> volume and light ready %.1f ms (%zu circles), %.1f ms (%zu "
+      "circles) <= 250 ms: %s\n",
+      heart_fast.volume_light_ready, heart_fast.circles, heart_many.volume_light_ready,
+      heart_many.circles,
+      verdict(std::max(heart_fast.volume_light_ready, heart_many.volume_light_ready) <= 250.0));
+  if (thick_fast.first_lit_frame >= 0)
+    std::printf("  single stroke pen-up -> first lit frame %.1f ms <= 200 ms: %s\n",
+                thick_fast.first_lit_frame, verdict(thick_fast.first_lit_frame <= 200.0));
+  else
+    std::printf("  pen-up -> first lit frame: not measured (no renderer)\n");
+  std::printf(
+      "  speed-up vs baseline, pen-up -> volume and light ready: %.1fx (single), %.1fx "
+      "(heart) >= 8x: %s\n",
+      speedup, heart_speedup, verdict(speedup >= 8.0 && heart_speedup >= 8.0));
+  std::printf(
+      "  speed-up vs baseline, mapping alone: %.1fx (single), %.1fx (heart); circle "
+      "growth alone %.1fx (single)\n",
+      mapping_speedup, heart_mapping_speedup, growth_speedup);
+  std::printf("  diameter 32 pen-up -> volume and light ready %.1f ms < 1000 ms: %s\n", d32_total,
+              verdict(d32_total < 1000.0));
+  report->note("targets",
+               "ready<=100ms single, <=250ms heart, first lit frame<=200ms, >=8x baseline, "
+               "d32<1s");
+}
+
 }  // namespace
 
 int benchMapping(int argc, char** argv) {
@@ -277,17 +385,7 @@ int benchMapping(int argc, char** argv) {
               gpu.ok ? (", renderer: " + gpu.context.renderer).c_str() : "");
 
   BenchReport report("mapping");
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    char line[128] = {0};
-    if (std::fgets(line, sizeof line, f)) {
-      std::string load(line);
-      while (!load.empty() && load.back() == '\n') load.pop_back();
-      std::printf("load average at start: %s (timings are wall clock; other load inflates them)\n",
-                  load.c_str());
-      report.note("loadavg", load);
-    }
-    std::fclose(f);
-  }
+  noteLoadAverage(&report);
   MappingBench bench(volume_size, repeats, &gpu);
   const StrokeResult thick = makeThickStroke(kFootprintW, kFootprintH, 1);
   const StrokeResult heart = makeHeart(kFootprintW, kFootprintH, 2);
@@ -317,81 +415,9 @@ int benchMapping(int argc, char** argv) {
   addStages(&report, "heart_", heart_fast, false);
   addStages(&report, "heart_", heart_base, true);
 
-  std::printf("initial-diameter sweep on the single stroke (Table 6.1), circle growth only:\n");
-  std::printf("  %8s %8s %6s %9s %10s %12s %8s | %9s %13s %8s\n", "diameter", "circles", "steps",
-              "attempts", "growth ms", "baseline ms", "ratio", "cpu ms", "baseline cpu", "ratio");
-  double d32_total = 0.0;
-  for (int diameter : {256, 196, 128, 96, 64, 32}) {
-    CircleGrowthConfig c = config.circles;
-    c.initial_diameter_px = diameter;
-    CircleGrowthResult fast, slow;
-    double cpu_fast = 0, cpu_slow = 0;
-    double t_fast = bench.growthOnly(thick, c, false, &fast, &cpu_fast);
-    setWorkerThreads(1);
-    double t_slow = bench.growthOnly(thick, c, true, &slow, &cpu_slow);
-    setWorkerThreads(0);
-    std::printf("  %8d %8zu %6d %9lld %10.2f %12.2f %7.1fx | %9.2f %13.2f %7.1fx\n", diameter,
-                fast.circles.size(), fast.steps, fast.attempts, t_fast, t_slow,
-                t_slow / std::max(1e-9, t_fast), cpu_fast, cpu_slow,
-                cpu_slow / std::max(1e-9, cpu_fast));
-    const std::string k = "sweep_d" + std::to_string(diameter) + "_";
-    report.figure(k + "circles", double(fast.circles.size()));
-    report.figure(k + "steps", fast.steps);
-    report.figure(k + "attempts", double(fast.attempts));
-    report.figure(k + "circle_growth_ms", t_fast);
-    report.figure(k + "circle_growth_cpu_ms", cpu_fast);
-    report.baseline(k + "circle_growth_cpu_ms", cpu_slow);
-    report.baseline(k + "circles", double(slow.circles.size()));
-    report.baseline(k + "attempts", double(slow.attempts));
-    report.baseline(k + "circle_growth_ms", t_slow);
-    if (diameter == 32) {
-      MappingConfig c32 = config;
-      c32.circles.initial_diameter_px = 32;
-      StageFigures f = bench.runFast(thick, c32);
-      d32_total = f.volume_light_ready;
-      printStages("  d32 full pipeline", f);
-      report.figure("sweep_d32_volume_and_light_ready_ms", d32_total);
-    }
-  }
-
-  const double speedup = thick_base.volume_light_ready / thick_fast.volume_light_ready;
-  const double heart_speedup = heart_base.volume_light_ready / heart_fast.volume_light_ready;
-  const double growth_speedup = thick_base.growth / std::max(1e-9, thick_fast.growth);
-  const double mapping_speedup = thick_base.mapping / std::max(1e-9, thick_fast.mapping);
-  const double heart_mapping_speedup = heart_base.mapping / std::max(1e-9, heart_fast.mapping);
-  report.figure("single_speedup_vs_baseline", speedup);
-  report.figure("heart_speedup_vs_baseline", heart_speedup);
-  report.figure("single_circle_growth_speedup_vs_baseline", growth_speedup);
-  report.figure("single_mapping_speedup_vs_baseline", mapping_speedup);
-  report.figure("heart_mapping_speedup_vs_baseline", heart_mapping_speedup);
-
-  std::printf("targets:\n");
-  std::printf("  single stroke pen-up -> volume and light ready %.1f ms <= 100 ms: %s\n",
-              thick_fast.volume_light_ready, verdict(thick_fast.volume_light_ready <= 100.0));
-  std::printf(
-      "  heart pen-up -> volume and light ready %.1f ms (%zu circles), %.1f ms (%zu "
-      "circles) <= 250 ms: %s\n",
-      heart_fast.volume_light_ready, heart_fast.circles, heart_many.volume_light_ready,
-      heart_many.circles,
-      verdict(std::max(heart_fast.volume_light_ready, heart_many.volume_light_ready) <= 250.0));
-  if (thick_fast.first_lit_frame >= 0)
-    std::printf("  single stroke pen-up -> first lit frame %.1f ms <= 200 ms: %s\n",
-                thick_fast.first_lit_frame, verdict(thick_fast.first_lit_frame <= 200.0));
-  else
-    std::printf("  pen-up -> first lit frame: not measured (no renderer)\n");
-  std::printf(
-      "  speed-up vs baseline, pen-up -> volume and light ready: %.1fx (single), %.1fx "
-      "(heart) >= 8x: %s\n",
-      speedup, heart_speedup, verdict(speedup >= 8.0 && heart_speedup >= 8.0));
-  std::printf(
-      "  speed-up vs baseline, mapping alone: %.1fx (single), %.1fx (heart); circle "
-      "growth alone %.1fx (single)\n",
-      mapping_speedup, heart_mapping_speedup, growth_speedup);
-  std::printf("  diameter 32 pen-up -> volume and light ready %.1f ms < 1000 ms: %s\n", d32_total,
-              verdict(d32_total < 1000.0));
-  report.note("targets",
-              "ready<=100ms single, <=250ms heart, first lit frame<=200ms, >=8x baseline, "
-              "d32<1s");
+  const double d32_total = sweepInitialDiameter(bench, thick, config, &report);
+  reportMappingTargets({thick_fast, thick_base, heart_fast, heart_base, heart_many}, d32_total,
+                       &report);
   report.print();
   return 0;
 }

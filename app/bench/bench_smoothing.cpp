@@ -225,6 +225,74 @@ int usage(int code) {
   return code;
 }
 
+// --write-strokes DIR: the synthetic strokes regenerated into DIR (with --seed-offset N, other
+// noise seeds: a held-out set).
+int writeBenchStrokes(Args& args, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  const long seed_offset = args.getInt("seed-offset", 0);  // != 0: a held-out set
+  for (StrokeSpec spec : benchStrokeSpecs()) {
+    spec.seed += static_cast<uint64_t>(seed_offset);
+    const std::string path = dir + "/" + spec.name + ".csv";
+    std::ofstream(path) << formatStrokeCsv(makeSyntheticStroke(spec));
+    std::printf("wrote %s\n", path.c_str());
+  }
+  return 0;
+}
+
+// The filter's settings: a calibration profile's (--profile) or the defaults, then the
+// parameters given. -1 when they hold, else the exit status.
+int readSmoothingProfile(Args& args, CalibrationProfile* profile) {
+  if (auto path = args.get("profile")) {
+    ProfileParseResult r = readCalibrationProfile(*path);
+    for (const auto& e : r.errors) std::fprintf(stderr, "%s\n", e.c_str());
+    if (!r.profile) return 2;
+    *profile = *r.profile;
+  }
+  auto& e = profile->smoothing.position;
+  e.min_cutoff_hz = args.getDouble("min-cutoff", e.min_cutoff_hz);
+  e.beta = args.getDouble("beta", e.beta);
+  e.d_cutoff_hz = args.getDouble("d-cutoff", e.d_cutoff_hz);
+  profile->prediction.velocity_cutoff_hz =
+      args.getDouble("velocity-cutoff", profile->prediction.velocity_cutoff_hz);
+  profile->prediction.horizon_ms = args.getDouble("horizon", profile->prediction.horizon_ms);
+  if (!args.error().empty()) {
+    std::fprintf(stderr, "cloudbrush bench smoothing: %s\n", args.error().c_str());
+    return 2;
+  }
+  return -1;
+}
+
+// The preview error at the prediction horizon on the 300 mm/s strokes: raw, filtered without
+// prediction and predicted. The smallest ratio unpredicted / predicted, returned.
+double benchPreviewError(std::map<std::string, FilterOutputs>& runs,
+                         const CalibrationProfile& profile, BenchReport& report) {
+  const double horizon_s = profile.prediction.horizon_ms * 1e-3;
+  double worst_ratio = 1e9;
+  for (const char* name : {"circle_300", "wave_300"}) {
+    const FilterOutputs& r = runs[name];
+    const double unpredicted = previewErrorMm(r.truth_t, r.filtered_t, horizon_s, kSkip);
+    const double predicted = previewErrorMm(r.truth_t, r.preview_t, horizon_s, kSkip);
+    const double raw_unpredicted = previewErrorMm(
+        r.truth_t,
+        [&] {
+          std::vector<TimedPoint> v;
+          for (size_t i = 0; i < r.raw.size(); ++i) v.push_back({r.truth_t[i].t_ns, r.raw[i]});
+          return v;
+        }(),
+        horizon_s, kSkip);
+    std::printf(
+        "preview error at %.0f ms on %s (mm): raw %.3f   filtered, unpredicted %.3f   "
+        "predicted %.3f  (%.1fx smaller)\n",
+        profile.prediction.horizon_ms, name, raw_unpredicted, unpredicted, predicted,
+        unpredicted / predicted);
+    report.baseline(std::string("preview_error_mm_") + name + "_raw", raw_unpredicted);
+    report.baseline(std::string("preview_error_mm_") + name + "_unpredicted", unpredicted);
+    report.figure(std::string("preview_error_mm_") + name + "_predicted", predicted);
+    worst_ratio = std::min(worst_ratio, unpredicted / predicted);
+  }
+  return worst_ratio;
+}
+
 }  // namespace
 
 int benchSmoothing(int argc, char** argv) {
@@ -238,36 +306,11 @@ int benchSmoothing(int argc, char** argv) {
     return usage(2);
   }
 
-  if (auto dir = args.get("write-strokes")) {
-    std::filesystem::create_directories(*dir);
-    const long seed_offset = args.getInt("seed-offset", 0);  // != 0: a held-out set
-    for (StrokeSpec spec : benchStrokeSpecs()) {
-      spec.seed += static_cast<uint64_t>(seed_offset);
-      const std::string path = *dir + "/" + spec.name + ".csv";
-      std::ofstream(path) << formatStrokeCsv(makeSyntheticStroke(spec));
-      std::printf("wrote %s\n", path.c_str());
-    }
-    return 0;
-  }
+  if (auto dir = args.get("write-strokes")) return writeBenchStrokes(args, *dir);
 
   CalibrationProfile profile;
-  if (auto path = args.get("profile")) {
-    ProfileParseResult r = readCalibrationProfile(*path);
-    for (const auto& e : r.errors) std::fprintf(stderr, "%s\n", e.c_str());
-    if (!r.profile) return 2;
-    profile = *r.profile;
-  }
-  auto& e = profile.smoothing.position;
-  e.min_cutoff_hz = args.getDouble("min-cutoff", e.min_cutoff_hz);
-  e.beta = args.getDouble("beta", e.beta);
-  e.d_cutoff_hz = args.getDouble("d-cutoff", e.d_cutoff_hz);
-  profile.prediction.velocity_cutoff_hz =
-      args.getDouble("velocity-cutoff", profile.prediction.velocity_cutoff_hz);
-  profile.prediction.horizon_ms = args.getDouble("horizon", profile.prediction.horizon_ms);
-  if (!args.error().empty()) {
-    std::fprintf(stderr, "cloudbrush bench smoothing: %s\n", args.error().c_str());
-    return 2;
-  }
+  if (const int status = readSmoothingProfile(args, &profile); status >= 0) return status;
+  const auto& e = profile.smoothing.position;
 
   if (auto trace = args.get("trace")) return benchTrace(*trace, profile);
 
@@ -283,7 +326,6 @@ int benchSmoothing(int argc, char** argv) {
     runs[spec.name] = runStroke(stroke, profile);
   }
 
-  const double horizon_s = profile.prediction.horizon_ms * 1e-3;
   const double dt = 0.005;
   BenchReport report("smoothing");
   std::printf(
@@ -320,29 +362,7 @@ int benchSmoothing(int argc, char** argv) {
     if (speed == "300") lag_euro_300 = le, lag_ma_300 = lm;
   }
 
-  double worst_ratio = 1e9;
-  for (const char* name : {"circle_300", "wave_300"}) {
-    const FilterOutputs& r = runs[name];
-    const double unpredicted = previewErrorMm(r.truth_t, r.filtered_t, horizon_s, kSkip);
-    const double predicted = previewErrorMm(r.truth_t, r.preview_t, horizon_s, kSkip);
-    const double raw_unpredicted = previewErrorMm(
-        r.truth_t,
-        [&] {
-          std::vector<TimedPoint> v;
-          for (size_t i = 0; i < r.raw.size(); ++i) v.push_back({r.truth_t[i].t_ns, r.raw[i]});
-          return v;
-        }(),
-        horizon_s, kSkip);
-    std::printf(
-        "preview error at %.0f ms on %s (mm): raw %.3f   filtered, unpredicted %.3f   "
-        "predicted %.3f  (%.1fx smaller)\n",
-        profile.prediction.horizon_ms, name, raw_unpredicted, unpredicted, predicted,
-        unpredicted / predicted);
-    report.baseline(std::string("preview_error_mm_") + name + "_raw", raw_unpredicted);
-    report.baseline(std::string("preview_error_mm_") + name + "_unpredicted", unpredicted);
-    report.figure(std::string("preview_error_mm_") + name + "_predicted", predicted);
-    worst_ratio = std::min(worst_ratio, unpredicted / predicted);
-  }
+  const double worst_ratio = benchPreviewError(runs, profile, report);
 
   int chatter = 0;
   for (auto& [name, r] : runs) chatter += r.contact_changes;

@@ -124,6 +124,132 @@ std::string syntheticAnswers(int participants) {
   return csv;
 }
 
+// The volume's exports (.vdb, .cbvol) against a plain fwrite of its floats.
+void benchVolumeExport(long grid, long repeats, const std::filesystem::path& dir,
+                       BenchReport& report) {
+  const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)));
+  std::printf("volume %ld^3 (%.1f MiB of float32)\n", grid,
+              double(volume.voxelCount()) * 4 / (1 << 20));
+  const std::vector<float> dense = volume.toDense();
+  const double fwrite_ms = medianMs(int(repeats), [&] {
+    std::FILE* f = std::fopen((dir / "plain.raw").c_str(), "wb");
+    if (!f) throw std::runtime_error((dir / "plain.raw").string() + ": cannot create");
+    std::fwrite(dense.data(), sizeof(float), dense.size(), f);
+    std::fclose(f);
+  });
+  double vdb_ms = 0, cbvol_ms = 0;
+  {
+    std::vector<double> vdb, cbvol;
+    for (long i = 0; i < repeats; ++i) {
+      // exportVolume writes the .vdb then the .cbvol; timed as one and the .cbvol alone.
+      const auto t0 = Clock::now();
+      const VolumeExport e = exportVolume(volume, dir.string(), "cloud");
+      const double both = msSince(t0);
+      const auto t1 = Clock::now();
+      saveVolume(volume, (dir / "cloud.cbvol").string());
+      const double raw = msSince(t1);
+      cbvol.push_back(raw);
+      vdb.push_back(volumeExportHasVdb() ? both - raw : 0.0);
+    }
+    vdb_ms = median(vdb);
+    cbvol_ms = median(cbvol);
+  }
+  std::printf("export .vdb %.1f ms (%s), .cbvol %.1f ms; plain fwrite %.1f ms\n", vdb_ms,
+              volumeExportHasVdb() ? "OpenVDB" : "not built", cbvol_ms, fwrite_ms);
+  if (volumeExportHasVdb())
+    report.figure("vdb_export_ms", vdb_ms);
+  else
+    report.note("vdb_export_ms", "built without OpenVDB");
+  report.figure("raw_json_export_ms", cbvol_ms);
+  report.baseline("fwrite_volume_ms", fwrite_ms);
+}
+
+// A 1280x720 frame's EXR + PNG export.
+void benchRenderExport(long repeats, const std::filesystem::path& dir, BenchReport& report) {
+  ImageRgbaF frame;
+  frame.width = 1280;
+  frame.height = 720;
+  frame.pixels.resize(size_t(frame.width) * frame.height * 4);
+  for (size_t i = 0; i < frame.pixels.size(); ++i)
+    frame.pixels[i] = float((i * 2654435761u) % 1000) / 1000.0f;
+  const double render_ms =
+      medianMs(int(repeats), [&] { exportRender(frame, dir.string(), "frame"); });
+  std::printf("render export 1280x720 EXR + PNG %.1f ms\n", render_ms);
+  report.figure("render_exr_png_export_ms", render_ms);
+}
+
+// The journal's cost per sample and at a stroke's end, with fsync against without.
+void benchJournalWrites(const std::filesystem::path& dir, BenchReport& report) {
+  // Baseline first, then with fsync, into files of the same size in the same directory.
+  const JournalWriteTimes plain =
+      timeJournalWrites((dir / "journal-nofsync.cbj").string(), 50, false);
+  const JournalWriteTimes synced =
+      timeJournalWrites((dir / "journal-fsync.cbj").string(), 50, true);
+  const double per_sample = median(synced.sample_ns), per_sample_plain = median(plain.sample_ns);
+  std::printf(
+      "journal: %zu samples, %zu strokes: write %.0f ns/sample (median; p99 %.0f ns); fsync "
+      "at stroke end p50 %.3f ms, p99 %.3f ms; without fsync %.0f ns/sample, stroke end "
+      "p50 %.4f ms, p99 %.4f ms\n",
+      synced.sample_ns.size(), synced.stroke_end_ms.size(), per_sample,
+      percentile(synced.sample_ns, 99), percentile(synced.stroke_end_ms, 50),
+      percentile(synced.stroke_end_ms, 99), per_sample_plain, percentile(plain.stroke_end_ms, 50),
+      percentile(plain.stroke_end_ms, 99));
+  report.figure("journal_write_ns_per_sample", per_sample);
+  report.figure("journal_write_p99_ns", percentile(synced.sample_ns, 99));
+  report.figure("stroke_end_fsync_p50_ms", percentile(synced.stroke_end_ms, 50));
+  report.figure("stroke_end_fsync_p99_ms", percentile(synced.stroke_end_ms, 99));
+  report.baseline("journal_write_ns_per_sample_no_fsync", per_sample_plain);
+  report.baseline("stroke_end_no_fsync_p50_ms", percentile(plain.stroke_end_ms, 50));
+  report.baseline("stroke_end_no_fsync_p99_ms", percentile(plain.stroke_end_ms, 99));
+}
+
+// Reading N synthetic sessions' journals, loading their traces, the InkML + CSV exports and the
+// HTML report.
+void benchTraceExports(long session_count, long repeats, const std::filesystem::path& dir,
+                       BenchReport& report) {
+  std::vector<std::string> journals;
+  for (long s = 0; s < session_count; ++s) {
+    journals.push_back((dir / ("session-" + std::to_string(s) + ".cbj")).string());
+    writeSyntheticJournal(journals.back(), 10, uint32_t(s));
+  }
+  std::vector<SessionTrace> traces;
+  const double read_ms = medianMs(int(repeats), [&] {
+    for (const std::string& path : journals) readJournal(path);
+  });
+  const double load_ms = medianMs(int(repeats), [&] {
+    traces.clear();
+    for (const std::string& path : journals) traces.push_back(loadSessionTrace(path));
+  });
+  size_t samples = 0;
+  for (const SessionTrace& t : traces) samples += t.samples.size();
+  const double trace_ms = medianMs(int(repeats), [&] {
+    std::ofstream ink(dir / "traces.inkml"), csv(dir / "samples.csv"), st(dir / "strokes.csv"),
+        ev(dir / "events.csv");
+    writeInkml(ink, traces);
+    writeSamplesCsv(csv, traces);
+    writeStrokesCsv(st, traces);
+    writeEventsCsv(ev, traces);
+  });
+  std::istringstream answers_text(syntheticAnswers(int(session_count)));
+  const LikertAnswers answers = readLikertAnswers(answers_text, "synthetic answers");
+  StudyReportOptions options;
+  options.constructs = appendixCSections();
+  const double report_ms = medianMs(int(repeats), [&] {
+    const StudyReport r = computeStudyReport(answers, options, traces);
+    std::ofstream(dir / "report.html") << studyReportHtml(r, options, 1, 5);
+  });
+  std::printf(
+      "%ld sessions, %zu samples: read journals %.1f ms, load traces %.1f ms, InkML + "
+      "CSV export %.1f ms, report (answers + sessions, HTML) %.1f ms\n",
+      session_count, samples, read_ms, load_ms, trace_ms, report_ms);
+  report.figure("trace_load_ms", load_ms);
+  report.figure("trace_export_ms", trace_ms);
+  report.figure("report_ms", report_ms);
+  report.figure("sessions", double(session_count));
+  report.figure("samples", double(samples));
+  report.baseline("read_journals_ms", read_ms);
+}
+
 }  // namespace
 
 int benchStudy(int argc, char** argv) {
@@ -151,119 +277,10 @@ int benchStudy(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   BenchReport report("study");
   try {
-    const Volume volume = makeBundledCumulus(glm::ivec3(int(grid)));
-    std::printf("volume %ld^3 (%.1f MiB of float32)\n", grid,
-                double(volume.voxelCount()) * 4 / (1 << 20));
-    const std::vector<float> dense = volume.toDense();
-    const double fwrite_ms = medianMs(int(repeats), [&] {
-      std::FILE* f = std::fopen((dir / "plain.raw").c_str(), "wb");
-      if (!f) throw std::runtime_error((dir / "plain.raw").string() + ": cannot create");
-      std::fwrite(dense.data(), sizeof(float), dense.size(), f);
-      std::fclose(f);
-    });
-    double vdb_ms = 0, cbvol_ms = 0;
-    {
-      std::vector<double> vdb, cbvol;
-      for (long i = 0; i < repeats; ++i) {
-        // exportVolume writes the .vdb then the .cbvol; timed as one and the .cbvol alone.
-        const auto t0 = Clock::now();
-        const VolumeExport e = exportVolume(volume, dir.string(), "cloud");
-        const double both = msSince(t0);
-        const auto t1 = Clock::now();
-        saveVolume(volume, (dir / "cloud.cbvol").string());
-        const double raw = msSince(t1);
-        cbvol.push_back(raw);
-        vdb.push_back(volumeExportHasVdb() ? both - raw : 0.0);
-      }
-      vdb_ms = median(vdb);
-      cbvol_ms = median(cbvol);
-    }
-    std::printf("export .vdb %.1f ms (%s), .cbvol %.1f ms; plain fwrite %.1f ms\n", vdb_ms,
-                volumeExportHasVdb() ? "OpenVDB" : "not built", cbvol_ms, fwrite_ms);
-    if (volumeExportHasVdb())
-      report.figure("vdb_export_ms", vdb_ms);
-    else
-      report.note("vdb_export_ms", "built without OpenVDB");
-    report.figure("raw_json_export_ms", cbvol_ms);
-    report.baseline("fwrite_volume_ms", fwrite_ms);
-
-    ImageRgbaF frame;
-    frame.width = 1280;
-    frame.height = 720;
-    frame.pixels.resize(size_t(frame.width) * frame.height * 4);
-    for (size_t i = 0; i < frame.pixels.size(); ++i)
-      frame.pixels[i] = float((i * 2654435761u) % 1000) / 1000.0f;
-    const double render_ms =
-        medianMs(int(repeats), [&] { exportRender(frame, dir.string(), "frame"); });
-    std::printf("render export 1280x720 EXR + PNG %.1f ms\n", render_ms);
-    report.figure("render_exr_png_export_ms", render_ms);
-
-    {
-      // Baseline first, then with fsync, into files of the same size in the same directory.
-      const JournalWriteTimes plain =
-          timeJournalWrites((dir / "journal-nofsync.cbj").string(), 50, false);
-      const JournalWriteTimes synced =
-          timeJournalWrites((dir / "journal-fsync.cbj").string(), 50, true);
-      const double per_sample = median(synced.sample_ns),
-                   per_sample_plain = median(plain.sample_ns);
-      std::printf(
-          "journal: %zu samples, %zu strokes: write %.0f ns/sample (median; p99 %.0f ns); fsync "
-          "at stroke end p50 %.3f ms, p99 %.3f ms; without fsync %.0f ns/sample, stroke end "
-          "p50 %.4f ms, p99 %.4f ms\n",
-          synced.sample_ns.size(), synced.stroke_end_ms.size(), per_sample,
-          percentile(synced.sample_ns, 99), percentile(synced.stroke_end_ms, 50),
-          percentile(synced.stroke_end_ms, 99), per_sample_plain,
-          percentile(plain.stroke_end_ms, 50), percentile(plain.stroke_end_ms, 99));
-      report.figure("journal_write_ns_per_sample", per_sample);
-      report.figure("journal_write_p99_ns", percentile(synced.sample_ns, 99));
-      report.figure("stroke_end_fsync_p50_ms", percentile(synced.stroke_end_ms, 50));
-      report.figure("stroke_end_fsync_p99_ms", percentile(synced.stroke_end_ms, 99));
-      report.baseline("journal_write_ns_per_sample_no_fsync", per_sample_plain);
-      report.baseline("stroke_end_no_fsync_p50_ms", percentile(plain.stroke_end_ms, 50));
-      report.baseline("stroke_end_no_fsync_p99_ms", percentile(plain.stroke_end_ms, 99));
-    }
-
-    std::vector<std::string> journals;
-    for (long s = 0; s < session_count; ++s) {
-      journals.push_back((dir / ("session-" + std::to_string(s) + ".cbj")).string());
-      writeSyntheticJournal(journals.back(), 10, uint32_t(s));
-    }
-    std::vector<SessionTrace> traces;
-    const double read_ms = medianMs(int(repeats), [&] {
-      for (const std::string& path : journals) readJournal(path);
-    });
-    const double load_ms = medianMs(int(repeats), [&] {
-      traces.clear();
-      for (const std::string& path : journals) traces.push_back(loadSessionTrace(path));
-    });
-    size_t samples = 0;
-    for (const SessionTrace& t : traces) samples += t.samples.size();
-    const double trace_ms = medianMs(int(repeats), [&] {
-      std::ofstream ink(dir / "traces.inkml"), csv(dir / "samples.csv"), st(dir / "strokes.csv"),
-          ev(dir / "events.csv");
-      writeInkml(ink, traces);
-      writeSamplesCsv(csv, traces);
-      writeStrokesCsv(st, traces);
-      writeEventsCsv(ev, traces);
-    });
-    std::istringstream answers_text(syntheticAnswers(int(session_count)));
-    const LikertAnswers answers = readLikertAnswers(answers_text, "synthetic answers");
-    StudyReportOptions options;
-    options.constructs = appendixCSections();
-    const double report_ms = medianMs(int(repeats), [&] {
-      const StudyReport r = computeStudyReport(answers, options, traces);
-      std::ofstream(dir / "report.html") << studyReportHtml(r, options, 1, 5);
-    });
-    std::printf(
-        "%ld sessions, %zu samples: read journals %.1f ms, load traces %.1f ms, InkML + "
-        "CSV export %.1f ms, report (answers + sessions, HTML) %.1f ms\n",
-        session_count, samples, read_ms, load_ms, trace_ms, report_ms);
-    report.figure("trace_load_ms", load_ms);
-    report.figure("trace_export_ms", trace_ms);
-    report.figure("report_ms", report_ms);
-    report.figure("sessions", double(session_count));
-    report.figure("samples", double(samples));
-    report.baseline("read_journals_ms", read_ms);
+    benchVolumeExport(grid, repeats, dir, report);
+    benchRenderExport(repeats, dir, report);
+    benchJournalWrites(dir, report);
+    benchTraceExports(session_count, repeats, dir, report);
   } catch (const std::exception& e) {
     std::filesystem::remove_all(dir);
     std::fprintf(stderr, "cloudbrush bench study: %s\n", e.what());

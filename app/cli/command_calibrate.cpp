@@ -1,7 +1,7 @@
 // `cloudbrush calibrate`: the pen-driven N-point calibration.
 //
-// Interactive (default): the calibration screens (app/shell/calibrate/calibrate_flow_screen.h) on the
-// shell's one frame loop: wait for the pen, tap the targets one at a time (corners and centre,
+// Interactive (default): the calibration screens (app/shell/calibrate/calibrate_flow_screen.h) on
+// the shell's one frame loop: wait for the pen, tap the targets one at a time (corners and centre,
 // or a 3x3 grid), see the residual of every point in pixels; tapping the green box (or Space)
 // accepts and saves the profile for this tablet under the state directory, the orange box
 // redoes, Esc leaves without saving. The whole session is recorded as a journal (device, screen,
@@ -206,6 +206,42 @@ std::string defaultRecordPath(const std::string& state_dir) {
       .string();
 }
 
+// How the calibration ended, said, as the exit status: 0 saved (or the pressure range shown,
+// and written to --session-out), 1 left, timed out, cancelled or failed.
+int calibrationOutcome(const Args& args, const std::optional<CalibrateOutcome>& outcome,
+                       const FrameLoopResult& result, double timeout_s) {
+  if (!outcome) {
+    if (result.quit_reason == "time limit") {
+      std::fprintf(stderr, "calibrate: timed out after %.0f s\n", timeout_s);
+    } else {
+      std::printf("left without saving (%s)\n", result.quit_reason.c_str());
+    }
+    return 1;
+  }
+  switch (outcome->kind) {
+    case CalibrateOutcome::Kind::kSaved:
+      return 0;
+    case CalibrateOutcome::Kind::kPressureRange:
+      std::printf("%s", outcome->message.c_str());
+      if (auto path = args.get("session-out")) {
+        std::string error;
+        if (!writeFileAtomically(*path, outcome->message, &error)) {
+          std::fprintf(stderr, "calibrate: %s: cannot be written: %s\n", path->c_str(),
+                       error.c_str());
+          return 1;
+        }
+      }
+      return 0;
+    case CalibrateOutcome::Kind::kCancelled:
+      std::printf("%s\n", outcome->message.c_str());
+      return 1;
+    case CalibrateOutcome::Kind::kFailed:
+      break;
+  }
+  std::fprintf(stderr, "calibrate: %s\n", outcome->message.c_str());
+  return 1;
+}
+
 // The interactive calibration (taps, or --pressure): the pen and the display opened, the
 // calibration screens run on the frame loop until they are done, Esc, or the timeout.
 int runInteractive(const Args& args, const Settings& s, bool pressure) {
@@ -301,37 +337,7 @@ int runInteractive(const Args& args, const Settings& s, bool pressure) {
     std::fprintf(stderr, "calibrate: %s\n", error.c_str());
     return 2;
   }
-  const std::optional<CalibrateOutcome>& outcome = flow.outcome();
-  if (!outcome) {
-    if (result.quit_reason == "time limit") {
-      std::fprintf(stderr, "calibrate: timed out after %.0f s\n", timeout_s);
-    } else {
-      std::printf("left without saving (%s)\n", result.quit_reason.c_str());
-    }
-    return 1;
-  }
-  switch (outcome->kind) {
-    case CalibrateOutcome::Kind::kSaved:
-      return 0;
-    case CalibrateOutcome::Kind::kPressureRange:
-      std::printf("%s", outcome->message.c_str());
-      if (auto path = args.get("session-out")) {
-        std::string error;
-        if (!writeFileAtomically(*path, outcome->message, &error)) {
-          std::fprintf(stderr, "calibrate: %s: cannot be written: %s\n", path->c_str(),
-                       error.c_str());
-          return 1;
-        }
-      }
-      return 0;
-    case CalibrateOutcome::Kind::kCancelled:
-      std::printf("%s\n", outcome->message.c_str());
-      return 1;
-    case CalibrateOutcome::Kind::kFailed:
-      break;
-  }
-  std::fprintf(stderr, "calibrate: %s\n", outcome->message.c_str());
-  return 1;
+  return calibrationOutcome(args, flow.outcome(), result, timeout_s);
 }
 
 }  // namespace

@@ -81,15 +81,8 @@ bool inGroup(const char* name) {
 // Every backend in turn, and what it saw: pens, devices that are not pens (and why), nodes
 // this user cannot open (and the error). Ends with a summary of what was tried and, when
 // something was closed to this user, how to open it.
-int listDevices() {
-  const std::string device_dir = configFile("devices");
-  const DeviceFileLoad device_files = loadDeviceDirectory(device_dir);
-  std::printf("device files: %zu loaded from %s (%zu entries)\n",
-              device_files.database->files().size(), device_dir.c_str(),
-              device_files.database->entries().size());
-  for (const std::string& e : device_files.errors) std::printf("        error: %s\n", e.c_str());
-
-  std::vector<BackendTally> tally;
+// The evdev nodes: each said (a pen, not a pen, cannot open) and tallied.
+BackendTally surveyEvdevBackend() {
   BackendTally ev;
   ev.name = "evdev";
   ev.how = "the kernel driver's input nodes";
@@ -122,46 +115,61 @@ int listDevices() {
         break;
     }
   }
-  tally.push_back(ev);
-  for (hid::HidapiBackend b : {hid::HidapiBackend::kHidraw, hid::HidapiBackend::kLibusb}) {
-    BackendTally t;
-    t.name = hid::hidapiBackendName(b);
-    t.how = b == hid::HidapiBackend::kHidraw ? "hidapi, raw reports beside the kernel driver"
-                                             : "hidapi over libusb, kernel driver detached";
-    std::string error;
-    auto lib = hid::loadHidapi(b, &error);
-    if (!lib) {
-      std::printf("%-7s unavailable: %s\n", hid::hidapiBackendName(b), error.c_str());
-      t.unavailable = error;
-      tally.push_back(t);
+  return ev;
+}
+
+// One hidapi backend's HID interfaces: each said and tallied.
+BackendTally surveyHidapiBackend(hid::HidapiBackend b, const DeviceDatabase* database) {
+  BackendTally t;
+  t.name = hid::hidapiBackendName(b);
+  t.how = b == hid::HidapiBackend::kHidraw ? "hidapi, raw reports beside the kernel driver"
+                                           : "hidapi over libusb, kernel driver detached";
+  std::string error;
+  auto lib = hid::loadHidapi(b, &error);
+  if (!lib) {
+    std::printf("%-7s unavailable: %s\n", hid::hidapiBackendName(b), error.c_str());
+    t.unavailable = error;
+    return t;
+  }
+  const std::vector<hid::HidPenDevice> devices =
+      hid::findHidPens(*lib, 0, database);  // every vendor
+  std::printf("%-7s %zu HID interface(s)\n", hid::hidapiBackendName(b), devices.size());
+  t.seen = static_cast<int>(devices.size());
+  for (const hid::HidPenDevice& d : devices) {
+    if (d.permission_denied) {
+      ++t.denied;
+      char id[16];
+      std::snprintf(id, sizeof id, "%04x:%04x", d.vendor, d.product);
+      t.denied_ids.push_back(id);
+    }
+    if (d.protocol.empty()) {
+      std::printf("        %-22s %04x:%04x %s (interface %d): %s%s\n", d.path.c_str(), d.vendor,
+                  d.product, d.name.c_str(), d.interface,
+                  d.descriptor.empty() ? "cannot read the report descriptor: " : "not a pen: ",
+                  d.error.c_str());
+      ++(d.descriptor.empty() ? t.cannot_open : t.not_pens);
       continue;
     }
-    const std::vector<hid::HidPenDevice> devices =
-        hid::findHidPens(*lib, 0, device_files.database.get());  // every vendor
-    std::printf("%-7s %zu HID interface(s)\n", hid::hidapiBackendName(b), devices.size());
-    t.seen = static_cast<int>(devices.size());
-    for (const hid::HidPenDevice& d : devices) {
-      if (d.permission_denied) {
-        ++t.denied;
-        char id[16];
-        std::snprintf(id, sizeof id, "%04x:%04x", d.vendor, d.product);
-        t.denied_ids.push_back(id);
-      }
-      if (d.protocol.empty()) {
-        std::printf("        %-22s %04x:%04x %s (interface %d): %s%s\n", d.path.c_str(), d.vendor,
-                    d.product, d.name.c_str(), d.interface,
-                    d.descriptor.empty() ? "cannot read the report descriptor: " : "not a pen: ",
-                    d.error.c_str());
-        ++(d.descriptor.empty() ? t.cannot_open : t.not_pens);
-        continue;
-      }
-      std::string extra = "  [" + d.protocol + " protocol";
-      if (d.has_entry) extra += ", " + d.entry.family + " (" + d.entry.where + ")";
-      printInfo(hid::hidapiBackendName(b), d.path, d.info, extra + "]");
-      ++t.pens;
-    }
-    tally.push_back(t);
+    std::string extra = "  [" + d.protocol + " protocol";
+    if (d.has_entry) extra += ", " + d.entry.family + " (" + d.entry.where + ")";
+    printInfo(hid::hidapiBackendName(b), d.path, d.info, extra + "]");
+    ++t.pens;
   }
+  return t;
+}
+
+int listDevices() {
+  const std::string device_dir = configFile("devices");
+  const DeviceFileLoad device_files = loadDeviceDirectory(device_dir);
+  std::printf("device files: %zu loaded from %s (%zu entries)\n",
+              device_files.database->files().size(), device_dir.c_str(),
+              device_files.database->entries().size());
+  for (const std::string& e : device_files.errors) std::printf("        error: %s\n", e.c_str());
+
+  std::vector<BackendTally> tally;
+  tally.push_back(surveyEvdevBackend());
+  for (hid::HidapiBackend b : {hid::HidapiBackend::kHidraw, hid::HidapiBackend::kLibusb})
+    tally.push_back(surveyHidapiBackend(b, device_files.database.get()));
   for (const usb::UsbDeviceIdentity& u : usb::listUsbDevices(usb::kWacomVendor)) {
     std::printf("usb     bus %03d addr %03d       %04x:%04x  %s %s serial '%s'%s\n", u.bus,
                 u.address, u.vendor, u.product, u.manufacturer.c_str(), u.product_name.c_str(),

@@ -36,8 +36,8 @@
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/session/session_resume.h"
-#include "app/shell/kiosk/attract_journal.h"
 #include "app/shell/keymap.h"
+#include "app/shell/kiosk/attract_journal.h"
 #include "app/shell/kiosk/kiosk_screen.h"
 #include "app/shell/painter/paint_loop.h"
 #include "app/shell/painter/paint_screen.h"
@@ -159,8 +159,8 @@ struct PaintArgs {
   bool kiosk = false;
   KioskConfig kiosk_config;
   // Kiosk: the first bad config file or unusable data dir. Shown on the screen (and logged)
-  // instead of exiting into a restart loop (app/shell/kiosk/kiosk_error_screen.h); every config file
-  // alike. The painter exits with the message.
+  // instead of exiting into a restart loop (app/shell/kiosk/kiosk_error_screen.h); every config
+  // file alike. The painter exits with the message.
   std::string kiosk_problem;
   std::string backend, resume_path;
 };
@@ -356,6 +356,324 @@ void startSessionJournal(PaintSession* session, JournalWriter* journal,
   std::fflush(stdout);
 }
 
+// What the painter opens, in the order it opens them (and so closes them in reverse: the session
+// before the pen, the display last).
+struct PaintRun {
+  PaintArgs parsed;
+  std::unique_ptr<Display> display;
+  bool headless = false;
+  RenderConfig render_config;
+  Light light;
+  std::unique_ptr<PenSource> pen;
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  MappingConfig mapping;
+  PaintSessionSettings settings;
+  BrushConfig brush;
+  bool resuming = false;          // --resume found a session in its file
+  int64_t resumed_after_ns = -1;  // the resumed journal's last pen sample
+  SyncMarkerSender sync_sender;
+  std::string data_dir, session_dir;
+  bool record = true;
+};
+
+// The display (KMS, X11 or surfaceless), said on stderr; nullptr with *error when none opens.
+std::unique_ptr<Display> openPaintDisplay(const Args& args, const PaintArgs& parsed,
+                                          std::string* error) {
+  // Mesa's shader cache goes into the kiosk's data dir with everything else it writes, unless the
+  // environment names one (the unit does): Mesa reads MESA_SHADER_CACHE_DIR when the display's
+  // context is made, and without it writes under the passwd entry's home (~/.cache), not $HOME.
+  // Mesa makes only the last folder: the data dir is made here (checked later, as before).
+  if (parsed.kiosk && !std::getenv("MESA_SHADER_CACHE_DIR")) {
+    const std::string dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    ::setenv("MESA_SHADER_CACHE_DIR", (dir + "/mesa-shader-cache").c_str(), 0);
+  }
+  std::string choice_note;
+  std::unique_ptr<Display> display = openDisplay(parsed.display_options, error, &choice_note);
+  if (!display) return nullptr;
+  std::fprintf(stderr, "cloudbrush: %s display %dx%d, OpenGL %s on %s\n", display->platformName(),
+               display->width(), display->height(), display->context().version.c_str(),
+               display->context().renderer.c_str());
+  if (!choice_note.empty())
+    std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
+                 choice_note.c_str());
+  if (!display->context().device.empty())  // headless: which EGL device rendered
+    std::fprintf(stderr, "cloudbrush: rendered by %s%s%s\n", display->context().describe().c_str(),
+                 display->context().device_note.empty() ? "" : "; passed over: ",
+                 display->context().device_note.c_str());
+  return display;
+}
+
+// render.toml, the pen, and for a painting session mapping.toml, brush.toml and the session's
+// settings: -1 when they hold, else the exit status (said on stderr). In the kiosk a bad config
+// file becomes the kiosk's problem instead.
+int openConfigsAndPen(Args& args, PaintRun* run) {
+  std::string error;
+  const bool kiosk = run->parsed.kiosk;
+  std::string& kiosk_problem = run->parsed.kiosk_problem;
+  PaintLoopOptions& loop_options = run->parsed.loop_options;
+  const std::string& backend = run->parsed.backend;
+  try {
+    if (std::filesystem::exists(configFile("render.toml")))
+      run->render_config = loadRenderConfig(configFile("render.toml"));
+  } catch (const std::exception& e) {
+    if (!kiosk) return fail(e.what());
+    if (kiosk_problem.empty()) kiosk_problem = e.what();
+  }
+  run->light = run->render_config.light;
+  loop_options.render = run->render_config.options;
+  if (!args.has("moving-scale")) loop_options.moving_scale = run->render_config.moving_scale;
+  if (!run->headless && backend != "none") {
+    PenSourceOptions pen_options;
+    pen_options.backend = backend;
+    pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
+    pen_options.device_dir = configFile("devices");
+    run->pen = openPenSource(pen_options, &error);
+    if (!run->pen) return fail("--backend " + backend + ": " + error, 2);
+  }
+  if (!run->pen && !kiosk) return -1;  // a kiosk without a tablet still paints with a mouse
+  try {
+    if (std::filesystem::exists(configFile("mapping.toml")))
+      run->mapping = loadMappingConfig(configFile("mapping.toml"));
+  } catch (const std::exception& e) {
+    if (!kiosk) return fail(e.what());
+    if (kiosk_problem.empty()) kiosk_problem = e.what();
+  }
+  PaintSessionSettings& settings = run->settings;
+  settings.screen_width = run->display->width();
+  settings.screen_height = run->display->height();
+  settings.grid = int(run->parsed.grid);
+  settings.sky_span = int(run->parsed.sky_span);
+  settings.sky_max_span = int(run->parsed.sky_max_span);
+  if (kiosk) {
+    std::vector<std::string> brush_errors;
+    bool brush_ok = loadBrushConfig(configFile("brush.toml"), &run->brush, &brush_errors);
+    if (const std::string local = configOverrideFile("brush.toml"); !local.empty())
+      brush_ok = loadBrushConfig(local, &run->brush, &brush_errors) && brush_ok;
+    if (!brush_ok && kiosk_problem.empty() && !brush_errors.empty())
+      kiosk_problem = brush_errors.front();
+  } else {
+    run->brush = loadDefaultBrushConfig();
+  }
+  settings.auto_end_still_ms = run->brush.stroke.auto_end_still_ms;
+  settings.auto_end_light_ms = run->brush.stroke.auto_end_light_ms;
+  return -1;
+}
+
+// The painter's session (resumed from --resume, else new; the kiosk makes one per visitor), its
+// sync sender and starting point (--open): -1 when they hold, else the exit status.
+int startPaintSession(Args& args, PaintRun* run) {
+  std::string error;
+  const bool kiosk = run->parsed.kiosk;
+  const std::string& resume_path = run->parsed.resume_path;
+  if (kiosk && args.has("open")) return fail("--open is not a kiosk option", 2);
+  if (kiosk && !resume_path.empty()) return fail("--resume is not a kiosk option", 2);
+  if (kiosk && args.has("sync-udp"))
+    return fail(
+        "--sync-udp is not a kiosk option: visitors' sessions are not synchronised with a "
+        "study's recorder (use `cloudbrush paint --sync-udp` or `cloudbrush study`), and the "
+        "kiosk's unit allows no IP sockets",
+        2);
+  if (run->pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
+    if (!resume_path.empty()) {
+      ResumedSession resumed;
+      if (!resumeOrStartSession(resume_path, run->settings, run->brush, run->mapping, &run->journal,
+                                &resumed, &error))
+        return fail("--resume: " + error, 2);
+      reportResumed(resume_path, resumed);
+      run->session = std::move(resumed.session);
+      run->resuming = resumed.resumed;
+      run->resumed_after_ns = resumed.last_sample_ns;
+      if (run->resuming)
+        run->parsed.loop_options.orbit_degrees_per_second = 0.0f;  // the view stays as it was
+    } else {
+      run->session = std::make_unique<PaintSession>(run->settings, run->brush, run->mapping);
+    }
+  }
+  if (args.has("sync-udp")) {
+    if (!run->sync_sender.open(args.get("sync-udp", ""), &error))
+      return fail("--sync-udp: " + error, 2);
+    if (run->session) run->session->setSyncSender(&run->sync_sender);
+  }
+  if (run->session && !run->resuming) {
+    // The render settings in force, journalled with the brush and mapping.
+    run->session->setRenderSettings(formatRenderConfig(run->render_config), 0);
+    run->session->setStartingLight(run->light);
+    run->session->setStartingStyle(renderStyleName(run->render_config.options.style));
+    if (args.has("open")) {
+      // Start from a saved cloud (a task's starting point, an artist's earlier work).
+      const std::string path = args.get("open", "");
+      try {
+        if (!run->session->replaceVolume(loadVolume(path), 0, path, &error)) return fail(error, 2);
+      } catch (const std::exception& e) {
+        return fail(std::string("--open: ") + e.what(), 2);
+      }
+    }
+  }
+  return -1;
+}
+
+// Where the run writes (the kiosk: all under the data dir, checked), and with --resume and
+// --backend replay, the recorded pen carrying on after the last sample the session holds.
+void prepareRecording(const Args& args, PaintRun* run) {
+  const bool kiosk = run->parsed.kiosk;
+  // Kiosk: everything it writes goes under the data dir (the state dir is not even created).
+  run->data_dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
+  // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
+  if (kiosk && run->parsed.kiosk_problem.empty()) {
+    std::string dir_error;
+    if (!checkDataDir(run->data_dir, &dir_error)) run->parsed.kiosk_problem = dir_error;
+  }
+  run->session_dir = args.get("session-dir", (kiosk ? run->data_dir : stateDir()) + "/sessions");
+  run->record = !args.has("no-record");
+  if (run->resuming && run->parsed.backend == "replay" && run->resumed_after_ns >= 0) {
+    // The recorded pen carries on after the last sample the resumed session holds.
+    JournalReadResult input = readJournal(args.get("journal", ""));
+    std::vector<JournalRecord> rest;
+    for (JournalRecord& r : input.records)
+      if (r.type != JournalRecordType::kPenSample || r.t_ns > run->resumed_after_ns)
+        rest.push_back(std::move(r));
+    run->pen = std::make_unique<ReplayPenSource>(std::move(rest), ReplayOptions{});
+  }
+}
+
+// The kiosk's service: READY after the first frame, watchdog pings from the loop itself (a hung
+// loop stops them and systemd restarts the service), health.json for remote checks.
+void startKioskService(PaintRun& run, const MonotonicClock& clock,
+                       std::optional<KioskService>* service,
+                       std::unique_ptr<KioskScreen>* kiosk_screen) {
+  PaintLoopOptions& loop_options = run.parsed.loop_options;
+  std::string watchdog_error;
+  const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
+  if (!watchdog_error.empty())
+    std::fprintf(stderr, "cloudbrush kiosk: %s\n", watchdog_error.c_str());
+  service->emplace(SdNotifier::fromEnvironment(), watchdog, clock, run.data_dir, run.pen.get(),
+                   [](const std::string& problem) {
+                     std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
+                   });
+  loop_options.each_iteration = [service, kiosk_screen](bool presented) {
+    if (*kiosk_screen) (*service)->setCounts((*kiosk_screen)->counts());
+    (*service)->onIteration(presented);
+  };
+  loop_options.orbit_degrees_per_second = 0.0f;  // the attract loop orbits; visitors paint
+  loop_options.clock = &clock;
+  loop_options.before_start_again = [kiosk_screen]() {
+    if (*kiosk_screen) (*kiosk_screen)->keepFinishedCloud("start again");
+  };
+}
+
+// What the kiosk screen is made with: the painter's configs, texts, attract journal, and the
+// service's hooks. A failure to load the texts becomes the kiosk's problem.
+KioskSetup makeKioskSetup(PaintRun& run, KioskService* service) {
+  const KioskConfig& kiosk_config = run.parsed.kiosk_config;
+  KioskSetup setup;
+  std::string error;
+  setup.config = kiosk_config;
+  if (!loadKioskAssets(kiosk_config, &setup, &error) && run.parsed.kiosk_problem.empty())
+    run.parsed.kiosk_problem = error;
+  setup.data_dir = run.data_dir;
+  setup.config_dir = defaultConfigDir();
+  setup.visitor_settings = run.settings;
+  setup.brush = run.brush;
+  setup.mapping = run.mapping;
+  setup.light = run.light;
+  setup.style = renderStyleName(run.render_config.options.style);
+  setup.render = run.render_config.options;
+  setup.render_settings = formatRenderConfig(run.render_config);
+  setup.moving_scale = run.parsed.loop_options.moving_scale;
+  setup.record_journals = run.record;
+  setup.on_status = [service](const std::string& status) { service->onStatus(status); };
+  setup.on_input = [service]() { service->onInput(); };
+  setup.on_problem = [service](const std::string& problem) { service->onProblem(problem); };
+  setup.on_storage = [service](const std::string& problem) { service->onStorage(problem); };
+  return setup;
+}
+
+// On a display: the paint loop (the kiosk's screen and service around it) until Esc, a signal,
+// --frames or --seconds; the exit status.
+int runPainter(PaintRun& run, const Args& args, const Volume& volume, VolumeRenderer& renderer) {
+  std::string error;
+  Display& display = *run.display;
+  PaintLoopOptions& loop_options = run.parsed.loop_options;
+  const bool kiosk = run.parsed.kiosk;
+  std::string& kiosk_problem = run.parsed.kiosk_problem;
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  if (kiosk)
+    std::fprintf(stderr,
+                 "cloudbrush: kiosk: visitor mode (quit keys and operator commands are ignored; "
+                 "stop the service to end); the sky clears after %.0f s without input\n",
+                 run.parsed.kiosk_config.idle_seconds);
+  else
+    std::fprintf(stderr,
+                 "cloudbrush: H shows the keys; Esc or q quits (asks with unsaved work), 1-5 "
+                 "modes, M menu, B brush, N mapping, Ctrl+Z/Y undo/redo%s\n",
+                 run.pen ? "; bring the pen near the tablet to paint" : "");
+  loop_options.config_dir = defaultConfigDir();
+  loop_options.state_dir = kiosk ? run.data_dir : stateDir();
+  // --place FILE: a picture (PNG) or model (OBJ, PLY, glTF) made into a cloud from the starting
+  // view as the session begins, journalled like any edit.
+  const std::string place = args.get("place", "");
+  loop_options.on_first_connection = [&run, &place]() {
+    // The kiosk journals each visitor itself.
+    if (run.record && run.session && !run.resuming)
+      startSessionJournal(run.session.get(), &run.journal, run.parsed.resume_path, run.session_dir);
+    if (place.empty() || !run.session) return;
+    const std::string ext = std::filesystem::path(place).extension().string();
+    const bool model = ext != ".png" && ext != ".PNG";
+    std::string place_error;
+    if (!run.session->apply(ui::PlaceShape{model, place}, 0, &place_error))
+      std::fprintf(stderr, "cloudbrush: --place: %s\n", place_error.c_str());
+  };
+  const MonotonicClock clock;
+  std::optional<KioskService> service;
+  std::unique_ptr<KioskScreen> kiosk_screen;
+  if (kiosk) startKioskService(run, clock, &service, &kiosk_screen);
+  // Durability: the journal syncs at every stroke end (PaintSession) and, from the
+  // frame loop, whenever records older than a second are not yet on the disk.
+  {
+    const std::function<void(bool)> kiosk_iteration = loop_options.each_iteration;
+    JournalWriter& journal = run.journal;
+    loop_options.each_iteration = [&journal, &clock, kiosk_iteration](bool presented) {
+      if (journal.isOpen() && !journal.syncIfDue(clock.nowNs()))
+        std::fprintf(stderr, "cloudbrush: journal: %s\n", journal.error().c_str());
+      if (kiosk_iteration) kiosk_iteration(presented);
+    };
+  }
+  PaintLoop loop(display, renderer, volume, run.light, loop_options);
+  if (run.pen) loop.attachPen(run.pen.get(), run.session.get());
+  if (kiosk) {
+    KioskSetup setup = makeKioskSetup(run, &*service);
+    service->setMetricsDir(run.parsed.kiosk_config.metrics_dir);
+    try {
+      if (kiosk_problem.empty())
+        kiosk_screen = std::make_unique<KioskScreen>(display, renderer, loop.screen(),
+                                                     run.pen.get(), clock, std::move(setup));
+    } catch (const std::exception& e) {
+      kiosk_problem = e.what();
+    }
+    if (!kiosk_problem.empty())
+      return runKioskErrorScreen(display, *service, kiosk_problem, loop_options, &g_stop);
+  }
+  PaintLoopSummary summary;
+  const bool ran = loop.run(&g_stop, &summary, &error, kiosk_screen.get());
+  if (kiosk) {
+    // Stopped by SIGTERM (systemctl stop, shutdown) mid-visit: the visitor's cloud is kept.
+    if (summary.quit_reason == "signal") kiosk_screen->stopping();
+    service->stopping();
+    std::printf("cloudbrush kiosk: %ld visits, %ld idle resets, %zu clouds kept in the gallery\n",
+                kiosk_screen->visits(), kiosk_screen->idleResets(),
+                kiosk_screen->gallerySaved().size());
+  }
+  if (!ran) return fail(error);
+  printPaintSummary(summary, display, run.pen.get(), run.session.get(), run.parsed.grid,
+                    run.resuming);
+  if (summary.quit_reason == "operator shutdown") return kOperatorShutdownExitStatus;
+  return 0;
+}
+
 }  // namespace
 
 int commandPaint(int argc, char** argv) {
@@ -379,177 +697,32 @@ int commandPaint(int argc, char** argv) {
   if (args.has("kiosk") && !setKioskHeapPolicy())
     std::fprintf(stderr, "cloudbrush: kiosk: glibc refused the heap settings (kiosk_heap.h)\n");
 
-  PaintArgs parsed;
-  if (const int status = parsePaintArgs(args, &parsed); status >= 0) return status;
-  const DisplayOptions& display_options = parsed.display_options;
-  const long grid = parsed.grid, sky_span = parsed.sky_span, seed = parsed.seed;
-  const long sky_max_span = parsed.sky_max_span;
-  const SkyExtent sky = parsed.sky;
-  PaintLoopOptions& loop_options = parsed.loop_options;
-  const bool kiosk = parsed.kiosk;
-  KioskConfig& kiosk_config = parsed.kiosk_config;
-  std::string& kiosk_problem = parsed.kiosk_problem;
-  const std::string &backend = parsed.backend, &resume_path = parsed.resume_path;
+  PaintRun run;
+  if (const int status = parsePaintArgs(args, &run.parsed); status >= 0) return status;
+  run.display = openPaintDisplay(args, run.parsed, &error);
+  if (!run.display) return fail(error);
+  run.headless = std::string(run.display->platformName()) == "surfaceless" &&
+                 !args.has("backend") && !run.parsed.kiosk;
+  if (const int status = openConfigsAndPen(args, &run); status >= 0) return status;
+  if (const int status = startPaintSession(args, &run); status >= 0) return status;
+  prepareRecording(args, &run);
 
-  // Mesa's shader cache goes into the kiosk's data dir with everything else it writes, unless the
-  // environment names one (the unit does): Mesa reads MESA_SHADER_CACHE_DIR when the display's
-  // context is made, and without it writes under the passwd entry's home (~/.cache), not $HOME.
-  // Mesa makes only the last folder: the data dir is made here (checked later, as before).
-  if (kiosk && !std::getenv("MESA_SHADER_CACHE_DIR")) {
-    const std::string dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    ::setenv("MESA_SHADER_CACHE_DIR", (dir + "/mesa-shader-cache").c_str(), 0);
-  }
-  std::string choice_note;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
-  if (!display) return fail(error);
-  const bool headless =
-      std::string(display->platformName()) == "surfaceless" && !args.has("backend") && !kiosk;
-  std::fprintf(stderr, "cloudbrush: %s display %dx%d, OpenGL %s on %s\n", display->platformName(),
-               display->width(), display->height(), display->context().version.c_str(),
-               display->context().renderer.c_str());
-  if (!choice_note.empty())
-    std::fprintf(stderr, "cloudbrush: chose %s because %s\n", display->platformName(),
-                 choice_note.c_str());
-  if (!display->context().device.empty())  // headless: which EGL device rendered
-    std::fprintf(stderr, "cloudbrush: rendered by %s%s%s\n", display->context().describe().c_str(),
-                 display->context().device_note.empty() ? "" : "; passed over: ",
-                 display->context().device_note.c_str());
-
-  RenderConfig render_config;
-  try {
-    if (std::filesystem::exists(configFile("render.toml")))
-      render_config = loadRenderConfig(configFile("render.toml"));
-  } catch (const std::exception& e) {
-    if (!kiosk) return fail(e.what());
-    if (kiosk_problem.empty()) kiosk_problem = e.what();
-  }
-  const Light light = render_config.light;
-  loop_options.render = render_config.options;
-  if (!args.has("moving-scale")) loop_options.moving_scale = render_config.moving_scale;
-  std::unique_ptr<PenSource> pen;
-  if (!headless && backend != "none") {
-    PenSourceOptions pen_options;
-    pen_options.backend = backend;
-    pen_options.device = backend == "replay" ? args.get("journal", "") : args.get("pen-device", "");
-    pen_options.device_dir = configFile("devices");
-    pen = openPenSource(pen_options, &error);
-    if (!pen) return fail("--backend " + backend + ": " + error, 2);
-  }
-  std::unique_ptr<PaintSession> session;
-  JournalWriter journal;
-  MappingConfig mapping;
-  PaintSessionSettings settings;
-  BrushConfig brush;
-  bool resuming = false;          // --resume found a session in its file
-  int64_t resumed_after_ns = -1;  // the resumed journal's last pen sample
-  if (pen || kiosk) {             // a kiosk without a tablet still paints with a mouse and resets
-    try {
-      if (std::filesystem::exists(configFile("mapping.toml")))
-        mapping = loadMappingConfig(configFile("mapping.toml"));
-    } catch (const std::exception& e) {
-      if (!kiosk) return fail(e.what());
-      if (kiosk_problem.empty()) kiosk_problem = e.what();
-    }
-    settings.screen_width = display->width();
-    settings.screen_height = display->height();
-    settings.grid = int(grid);
-    settings.sky_span = int(sky_span);
-    settings.sky_max_span = int(sky_max_span);
-    if (kiosk) {
-      std::vector<std::string> brush_errors;
-      bool brush_ok = loadBrushConfig(configFile("brush.toml"), &brush, &brush_errors);
-      if (const std::string local = configOverrideFile("brush.toml"); !local.empty())
-        brush_ok = loadBrushConfig(local, &brush, &brush_errors) && brush_ok;
-      if (!brush_ok && kiosk_problem.empty() && !brush_errors.empty())
-        kiosk_problem = brush_errors.front();
-    } else {
-      brush = loadDefaultBrushConfig();
-    }
-    settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
-    settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
-  }
-  if (kiosk && args.has("open")) return fail("--open is not a kiosk option", 2);
-  if (kiosk && !resume_path.empty()) return fail("--resume is not a kiosk option", 2);
-  if (kiosk && args.has("sync-udp"))
-    return fail(
-        "--sync-udp is not a kiosk option: visitors' sessions are not synchronised with a "
-        "study's recorder (use `cloudbrush paint --sync-udp` or `cloudbrush study`), and the "
-        "kiosk's unit allows no IP sockets",
-        2);
-  if (pen && !kiosk) {  // the kiosk makes a session per visitor (kiosk_screen.h)
-    if (!resume_path.empty()) {
-      ResumedSession resumed;
-      if (!resumeOrStartSession(resume_path, settings, brush, mapping, &journal, &resumed, &error))
-        return fail("--resume: " + error, 2);
-      reportResumed(resume_path, resumed);
-      session = std::move(resumed.session);
-      resuming = resumed.resumed;
-      resumed_after_ns = resumed.last_sample_ns;
-      if (resuming) loop_options.orbit_degrees_per_second = 0.0f;  // the view stays as it was
-    } else {
-      session = std::make_unique<PaintSession>(settings, brush, mapping);
-    }
-  }
-  SyncMarkerSender sync_sender;
-  if (args.has("sync-udp")) {
-    if (!sync_sender.open(args.get("sync-udp", ""), &error)) return fail("--sync-udp: " + error, 2);
-    if (session) session->setSyncSender(&sync_sender);
-  }
-  if (session && !resuming) {
-    // The render settings in force, journalled with the brush and mapping.
-    session->setRenderSettings(formatRenderConfig(render_config), 0);
-    session->setStartingLight(light);
-    session->setStartingStyle(renderStyleName(render_config.options.style));
-    if (args.has("open")) {
-      // Start from a saved cloud (a task's starting point, an artist's earlier work).
-      const std::string path = args.get("open", "");
-      try {
-        if (!session->replaceVolume(loadVolume(path), 0, path, &error)) return fail(error, 2);
-      } catch (const std::exception& e) {
-        return fail(std::string("--open: ") + e.what(), 2);
-      }
-    }
-  }
-  // Kiosk: everything it writes goes under the data dir (the state dir is not even created).
-  const std::string data_dir = args.has("data-dir") ? args.get("data-dir", "") : stateDir();
-  // The journal starts when a pen first connects (a kiosk without a tablet records nothing).
-  if (kiosk && kiosk_problem.empty()) {
-    std::string dir_error;
-    if (!checkDataDir(data_dir, &dir_error)) kiosk_problem = dir_error;
-  }
-  const std::string session_dir =
-      args.get("session-dir", (kiosk ? data_dir : stateDir()) + "/sessions");
-  const bool record = !args.has("no-record");
-  if (resuming && backend == "replay" && resumed_after_ns >= 0) {
-    // The recorded pen carries on after the last sample the resumed session holds.
-    JournalReadResult input = readJournal(args.get("journal", ""));
-    std::vector<JournalRecord> rest;
-    for (JournalRecord& r : input.records)
-      if (r.type != JournalRecordType::kPenSample || r.t_ns > resumed_after_ns)
-        rest.push_back(std::move(r));
-    pen = std::make_unique<ReplayPenSource>(std::move(rest), ReplayOptions{});
-  }
-  const auto start_journal = [&]() {
-    if (!record || !session || resuming) return;  // the kiosk journals each visitor itself
-    startSessionJournal(session.get(), &journal, resume_path, session_dir);
-  };
+  const long grid = run.parsed.grid, seed = run.parsed.seed;
   const auto generate_start = std::chrono::steady_clock::now();
   // Shown until a pen connects; then the session's volume (empty at first) is painted into.
   const Volume demo_volume =
-      placeInSky(makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed)), sky);
+      placeInSky(makeBundledCumulus(glm::ivec3(int(grid)), uint32_t(seed)), run.parsed.sky);
   std::fprintf(
       stderr, "cloudbrush: bundled cloud %ld³ (seed %ld) in %.0f ms\n", grid, seed,
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - generate_start)
           .count());
-  const Volume& volume = demo_volume;
   VolumeRenderer renderer;
   if (!renderer.init(&error)) return fail(error);
 
-  if (headless) {
+  if (run.headless) {
+    const PaintLoopOptions& loop_options = run.parsed.loop_options;
     HeadlessRenderResult result;
-    if (!renderHeadless(*display, renderer, volume, light, loop_options.render,
+    if (!renderHeadless(*run.display, renderer, demo_volume, run.light, loop_options.render,
                         args.get("out-dir", "out"), "cloudbrush-cumulus", loop_options.print_stats,
                         &result, &error))
       return fail(error);
@@ -557,116 +730,7 @@ int commandPaint(int argc, char** argv) {
     for (const std::string& path : result.written) std::printf("%s\n", path.c_str());
     return 0;
   }
-
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
-  if (kiosk)
-    std::fprintf(stderr,
-                 "cloudbrush: kiosk: visitor mode (quit keys and operator commands are ignored; "
-                 "stop the service to end); the sky clears after %.0f s without input\n",
-                 kiosk_config.idle_seconds);
-  else
-    std::fprintf(stderr,
-                 "cloudbrush: H shows the keys; Esc or q quits (asks with unsaved work), 1-5 "
-                 "modes, M menu, B brush, N mapping, Ctrl+Z/Y undo/redo%s\n",
-                 pen ? "; bring the pen near the tablet to paint" : "");
-  loop_options.config_dir = defaultConfigDir();
-  loop_options.state_dir = kiosk ? data_dir : stateDir();
-  // --place FILE: a picture (PNG) or model (OBJ, PLY, glTF) made into a cloud from the starting
-  // view as the session begins, journalled like any edit.
-  const std::string place = args.get("place", "");
-  loop_options.on_first_connection = [&]() {
-    start_journal();
-    if (place.empty() || !session) return;
-    const std::string ext = std::filesystem::path(place).extension().string();
-    const bool model = ext != ".png" && ext != ".PNG";
-    std::string place_error;
-    if (!session->apply(ui::PlaceShape{model, place}, 0, &place_error))
-      std::fprintf(stderr, "cloudbrush: --place: %s\n", place_error.c_str());
-  };
-  // Kiosk service: READY after the first frame, watchdog pings from the loop itself
-  // (a hung loop stops them and systemd restarts the service), health.json for remote checks.
-  const MonotonicClock clock;
-  std::optional<KioskService> service;
-  std::unique_ptr<KioskScreen> kiosk_screen;
-  if (kiosk) {
-    std::string watchdog_error;
-    const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
-    if (!watchdog_error.empty())
-      std::fprintf(stderr, "cloudbrush kiosk: %s\n", watchdog_error.c_str());
-    service.emplace(SdNotifier::fromEnvironment(), watchdog, clock, data_dir, pen.get(),
-                    [](const std::string& problem) {
-                      std::fprintf(stderr, "cloudbrush kiosk: %s\n", problem.c_str());
-                    });
-    loop_options.each_iteration = [&service, &kiosk_screen](bool presented) {
-      if (kiosk_screen) service->setCounts(kiosk_screen->counts());
-      service->onIteration(presented);
-    };
-  }
-  if (kiosk) {
-    loop_options.orbit_degrees_per_second = 0.0f;  // the attract loop orbits; visitors paint
-    loop_options.clock = &clock;
-    loop_options.before_start_again = [&]() {
-      if (kiosk_screen) kiosk_screen->keepFinishedCloud("start again");
-    };
-  }
-  // Durability: the journal syncs at every stroke end (PaintSession) and, from the
-  // frame loop, whenever records older than a second are not yet on the disk.
-  {
-    const std::function<void(bool)> kiosk_iteration = loop_options.each_iteration;
-    loop_options.each_iteration = [&journal, &clock, kiosk_iteration](bool presented) {
-      if (journal.isOpen() && !journal.syncIfDue(clock.nowNs()))
-        std::fprintf(stderr, "cloudbrush: journal: %s\n", journal.error().c_str());
-      if (kiosk_iteration) kiosk_iteration(presented);
-    };
-  }
-  PaintLoop loop(*display, renderer, volume, light, loop_options);
-  if (pen) loop.attachPen(pen.get(), session.get());
-  if (kiosk) {
-    KioskSetup setup;
-    setup.config = kiosk_config;
-    if (!loadKioskAssets(kiosk_config, &setup, &error) && kiosk_problem.empty())
-      kiosk_problem = error;
-    setup.data_dir = data_dir;
-    setup.config_dir = defaultConfigDir();
-    setup.visitor_settings = settings;
-    setup.brush = brush;
-    setup.mapping = mapping;
-    setup.light = light;
-    setup.style = renderStyleName(render_config.options.style);
-    setup.render = render_config.options;
-    setup.render_settings = formatRenderConfig(render_config);
-    setup.moving_scale = loop_options.moving_scale;
-    setup.record_journals = record;
-    setup.on_status = [&service](const std::string& status) { service->onStatus(status); };
-    setup.on_input = [&service]() { service->onInput(); };
-    setup.on_problem = [&service](const std::string& problem) { service->onProblem(problem); };
-    setup.on_storage = [&service](const std::string& problem) { service->onStorage(problem); };
-    service->setMetricsDir(kiosk_config.metrics_dir);
-    try {
-      if (kiosk_problem.empty())
-        kiosk_screen = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), pen.get(),
-                                                     clock, std::move(setup));
-    } catch (const std::exception& e) {
-      kiosk_problem = e.what();
-    }
-    if (!kiosk_problem.empty())
-      return runKioskErrorScreen(*display, *service, kiosk_problem, loop_options, &g_stop);
-  }
-  PaintLoopSummary summary;
-  const bool ran = loop.run(&g_stop, &summary, &error, kiosk_screen.get());
-  if (kiosk) {
-    // Stopped by SIGTERM (systemctl stop, shutdown) mid-visit: the visitor's cloud is kept.
-    if (summary.quit_reason == "signal") kiosk_screen->stopping();
-    service->stopping();
-    std::printf("cloudbrush kiosk: %ld visits, %ld idle resets, %zu clouds kept in the gallery\n",
-                kiosk_screen->visits(), kiosk_screen->idleResets(),
-                kiosk_screen->gallerySaved().size());
-  }
-  if (!ran) return fail(error);
-  printPaintSummary(summary, *display, pen.get(), session.get(), grid, resuming);
-  if (summary.quit_reason == "operator shutdown") return kOperatorShutdownExitStatus;
-  return 0;
+  return runPainter(run, args, demo_volume, renderer);
 }
 
 }  // namespace cb

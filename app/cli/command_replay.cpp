@@ -108,6 +108,65 @@ int renderPng(const PaintSession& session, const std::string& path, int width, i
   return status;
 }
 
+// A study session's task end (`study.saved`): the replayed volume there against the one the
+// runner saved in the session folder (tasks/ID.cbvol beside the journal), when it is there; one
+// line into *task_lines, *task_differs when they differ.
+void checkTaskVolume(const JournalRecord& record, const PaintSession& s,
+                     const std::filesystem::path& folder, std::vector<std::string>* task_lines,
+                     bool* task_differs) {
+  if (record.type != JournalRecordType::kMarker || record.text().rfind("study.saved ", 0) != 0)
+    return;
+  const std::string task = parseStudyMarker(std::string(record.text())).get("task");
+  const uint64_t sum = volumeChecksum(s.volume());
+  char line[320];
+  const std::filesystem::path saved = folder / "tasks" / (task + ".cbvol");
+  std::error_code ec;
+  if (task.empty() || !std::filesystem::exists(saved, ec)) {
+    std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 " (no %s to compare)",
+                  task.c_str(), sum, saved.string().c_str());
+  } else {
+    uint64_t saved_sum = 0;
+    try {
+      saved_sum = volumeChecksum(loadVolume(saved.string()));
+    } catch (const std::exception& e) {
+      task_lines->push_back("task " + task + ": " + e.what());
+      *task_differs = true;
+      return;
+    }
+    *task_differs = *task_differs || saved_sum != sum;
+    std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 ", %s %s", task.c_str(),
+                  sum, saved_sum == sum ? "identical to" : "DIFFERENT from",
+                  saved.string().c_str());
+  }
+  task_lines->push_back(line);
+}
+
+// --frames DIR: the replay's frames as PNGs, width x height at fps, hooked after each record.
+// 0, or the exit status after the error was printed.
+int openReplayFrames(const std::string& frames_dir, int width, int height, double fps,
+                     const JournalReadResult& journal, std::unique_ptr<ReplayFrameWriter>* frames,
+                     ReplayHooks* hooks) {
+  *frames = std::make_unique<ReplayFrameWriter>(frames_dir, width, height, fps);
+  std::string error;
+  if (!(*frames)->open(journal, &error)) return fail("--frames: " + error);
+  if (!(*frames)->note().empty())
+    std::fprintf(stderr, "cloudbrush replay: --frames: %s\n", (*frames)->note().c_str());
+  hooks->after_record = [frames](size_t index, const SampleOutcome* sample) {
+    (*frames)->afterRecord(index, sample);
+  };
+  return 0;
+}
+
+// --stats: the frame timings the journal recorded.
+void printRecordedFrameStats(const JournalReadResult& journal) {
+  std::vector<FrameRecord> frames;
+  for (const JournalRecord& record : journal.records)
+    if (record.type == JournalRecordType::kFrame)
+      if (std::optional<FrameRecord> f = decodeFrameRecord(record.t_ns, record.payload))
+        frames.push_back(*f);
+  std::fputs(formatFrameTimingStats(frameTimingStats(frames), "").c_str(), stdout);
+}
+
 }  // namespace
 
 int commandReplay(int argc, char** argv) {
@@ -168,14 +227,9 @@ int commandReplay(int argc, char** argv) {
       frame_width = recorded.screen_width;
       frame_height = recorded.screen_height;
     }
-    frames = std::make_unique<ReplayFrameWriter>(frames_dir, frame_width, frame_height, fps);
-    std::string error;
-    if (!frames->open(journal, &error)) return fail("--frames: " + error);
-    if (!frames->note().empty())
-      std::fprintf(stderr, "cloudbrush replay: --frames: %s\n", frames->note().c_str());
-    hooks.after_record = [&](size_t index, const SampleOutcome* sample) {
-      frames->afterRecord(index, sample);
-    };
+    if (const int status =
+            openReplayFrames(frames_dir, frame_width, frame_height, fps, journal, &frames, &hooks))
+      return status;
   }
   // A study session's task ends (`study.saved`): the replayed volume there against the one the
   // runner saved in the session folder (tasks/ID.cbvol beside the journal), when it is there.
@@ -185,32 +239,7 @@ int commandReplay(int argc, char** argv) {
   hooks.before_record = [&](size_t index, PaintSession& s) {
     if (frames) frames->beforeRecord(index, s);
     if (index >= journal.records.size()) return;
-    const JournalRecord& record = journal.records[index];
-    if (record.type != JournalRecordType::kMarker || record.text().rfind("study.saved ", 0) != 0)
-      return;
-    const std::string task = parseStudyMarker(std::string(record.text())).get("task");
-    const uint64_t sum = volumeChecksum(s.volume());
-    char line[320];
-    const std::filesystem::path saved = folder / "tasks" / (task + ".cbvol");
-    std::error_code ec;
-    if (task.empty() || !std::filesystem::exists(saved, ec)) {
-      std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 " (no %s to compare)",
-                    task.c_str(), sum, saved.string().c_str());
-    } else {
-      uint64_t saved_sum = 0;
-      try {
-        saved_sum = volumeChecksum(loadVolume(saved.string()));
-      } catch (const std::exception& e) {
-        task_lines.push_back("task " + task + ": " + e.what());
-        task_differs = true;
-        return;
-      }
-      task_differs = task_differs || saved_sum != sum;
-      std::snprintf(line, sizeof line, "task %s: volume checksum %016" PRIx64 ", %s %s",
-                    task.c_str(), sum, saved_sum == sum ? "identical to" : "DIFFERENT from",
-                    saved.string().c_str());
-    }
-    task_lines.push_back(line);
+    checkTaskVolume(journal.records[index], s, folder, &task_lines, &task_differs);
   };
   const auto start = std::chrono::steady_clock::now();
   const SessionReplay replay = replaySession(journal, loadDefaultBrushConfig(), mapping, {}, hooks);
@@ -242,14 +271,7 @@ int commandReplay(int argc, char** argv) {
                                     : "brush and mapping from the local config (none recorded)");
   for (const std::string& line : task_lines) std::printf("%s\n", line.c_str());
   std::printf("volume checksum: %016" PRIx64 "\n", volumeChecksum(session.volume()));
-  if (args.has("stats")) {
-    std::vector<FrameRecord> frames;
-    for (const JournalRecord& record : journal.records)
-      if (record.type == JournalRecordType::kFrame)
-        if (std::optional<FrameRecord> f = decodeFrameRecord(record.t_ns, record.payload))
-          frames.push_back(*f);
-    std::fputs(formatFrameTimingStats(frameTimingStats(frames), "").c_str(), stdout);
-  }
+  if (args.has("stats")) printRecordedFrameStats(journal);
   if (task_differs)
     return fail("a task's replayed volume differs from the one saved in " + folder.string(), 4);
 

@@ -465,55 +465,86 @@ int newSessionFolder(Args& args, const StudyProtocol& protocol, const std::strin
   return 0;
 }
 
-int runStudySession(Args& args) {
-  auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
-                               "drm-device", "size", "grid", "backend", "pen-device", "journal",
-                               "keys", "frames", "seconds", "end-seconds", "sync-udp", "resume"});
-  if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
+// What `study run` opens, in the order it opens them (and so closes them in reverse).
+struct StudyRun {
+  std::string resume_folder;  // --resume FOLDER
+  FolderJournal previous;     // what its journal holds
+  bool resuming = false;      // it holds a session to carry on
+  std::string path;           // the protocol file
+  StudyProtocol protocol;
+  StudySessionInfo info;
+  long participant = 0, grid = 256, frames = 0;
+  double seconds = 0.0, end_seconds = 8.0;
+  FrameLoopOptions loop_options;
+  DisplayOptions display_options;
+  std::string backend;
+  JournalReadResult pen_input;  // --backend replay: the recorded pen
+  std::string folder;
+  std::unique_ptr<Display> display;
+  RenderConfig render_config;
+  MappingConfig mapping;
+  PaintSessionSettings settings;
+  BrushConfig brush;
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  std::string journal_path;
+  ResumedSession resumed;
+  std::optional<int64_t> origin;  // the session clock's start on a recorded time line
+  SyncMarkerSender sync_sender;   // task and stroke boundaries for other recorders (--sync-udp)
+};
+
+// The resumed folder's journal and the protocol, checked completely before anything opens: no
+// session starts on a guess. 0, or the exit status after the error was printed.
+int loadRunProtocol(Args& args, StudyRun* run) {
   // --resume FOLDER: a session folder; when its journal holds a session, it is carried on.
-  const std::string resume_folder = args.get("resume", "");
-  const std::string resume_journal = resume_folder + "/session.cbj";
-  FolderJournal previous;
+  run->resume_folder = args.get("resume", "");
+  const std::string resume_journal = run->resume_folder + "/session.cbj";
+  FolderJournal& previous = run->previous;
   std::error_code ec;
-  if (!resume_folder.empty() && std::filesystem::exists(resume_journal, ec)) {
+  if (!run->resume_folder.empty() && std::filesystem::exists(resume_journal, ec)) {
     previous = readFolderJournal(resume_journal);
     if (!previous.info && (!previous.markers.empty() || previous.last_sample_ns >= 0))
       return fail("run: --resume: " + resume_journal +
                   " holds pen samples or markers but no study.info record (not a study "
                   "session?); not resuming, and not overwriting it");
   }
-  const bool resuming = previous.info.has_value();
-  // The protocol is checked completely before anything opens: no session starts on a guess.
+  run->resuming = previous.info.has_value();
   // A resumed session reads the protocol it was started with, unless one is named.
-  std::string path;
-  StudyProtocol protocol;
-  if (resuming && args.positional().size() < 3) {
-    path = previous.info->protocol_file;
+  if (run->resuming && args.positional().size() < 3) {
+    run->path = previous.info->protocol_file;
     try {
-      protocol = loadStudyProtocol(path);
+      run->protocol = loadStudyProtocol(run->path);
     } catch (const StudyProtocolError& e) {
       return fail(std::string("run: --resume: ") + e.what());
     }
-  } else if (const int code = loadProtocolArgument(args, "run", &path, &protocol)) {
+  } else if (const int code = loadProtocolArgument(args, "run", &run->path, &run->protocol)) {
     return code;
   }
-  const std::vector<std::string> missing = missingProtocolFiles(protocol);
+  const std::vector<std::string> missing = missingProtocolFiles(run->protocol);
   for (const std::string& file : missing)
-    std::fprintf(stderr, "cloudbrush study: run: %s: missing file %s\n", path.c_str(),
+    std::fprintf(stderr, "cloudbrush study: run: %s: missing file %s\n", run->path.c_str(),
                  file.c_str());
   if (!missing.empty()) return 3;
-  StudySessionInfo info;
+  return 0;
+}
+
+// The session's protocol, operator and venue into run->info (a resumed session's own record
+// says who and where), checked against the protocol. 0, or the exit status.
+int readRunInfo(Args& args, StudyRun* run) {
+  const StudyProtocol& protocol = run->protocol;
+  StudySessionInfo& info = run->info;
   info.protocol_name = protocol.name;
   info.protocol_version = protocol.version;
-  info.protocol_file = std::filesystem::absolute(path).string();
+  info.protocol_file = std::filesystem::absolute(run->path).string();
   info.operator_initials = args.get("operator", "");
   info.venue = args.get("venue", protocol.venues.size() == 1 ? protocol.venues[0].id : "");
-  if (resuming) {  // who, where and when come from the session's own record
-    info.operator_initials = previous.info->operator_initials;
-    info.venue = previous.info->venue;
+  if (run->resuming) {  // who, where and when come from the session's own record
+    info.operator_initials = run->previous.info->operator_initials;
+    info.venue = run->previous.info->venue;
   }
   if (protocol.operator_required && info.operator_initials.empty())
-    return fail("run: " + path + ": the protocol requires the operator: --operator INITIALS", 2);
+    return fail("run: " + run->path + ": the protocol requires the operator: --operator INITIALS",
+                2);
   if (!protocol.venues.empty()) {
     std::string ids;
     bool known = false;
@@ -526,24 +557,31 @@ int runStudySession(Args& args) {
                       info.venue + "'",
                   2);
   }
-  const long participant = args.getInt("participant", 0);
-  const long grid = args.getInt("grid", 256);
-  const long frames = args.getInt("frames", 0);
-  const double seconds = args.getDouble("seconds", 0.0);
-  const double end_seconds = args.getDouble("end-seconds", 8.0);
+  return 0;
+}
+
+// The run's options (participant, grid, frames, keys, display, size, pen backend) and with
+// --backend replay the recorded pen, read now so the session's clock can follow its time line.
+// 0, or the exit status.
+int readRunOptions(Args& args, StudyRun* run) {
+  run->participant = args.getInt("participant", 0);
+  run->grid = args.getInt("grid", 256);
+  run->frames = args.getInt("frames", 0);
+  run->seconds = args.getDouble("seconds", 0.0);
+  run->end_seconds = args.getDouble("end-seconds", 8.0);
   if (!args.error().empty()) return fail("run: " + args.error(), 2);
-  if (args.has("participant") && participant < 1)
+  if (args.has("participant") && run->participant < 1)
     return fail("run: --participant " + args.get("participant", "") +
                     ": expected N >= 1 (participant numbers start at 1: " +
-                    protocol.participant_ids.idFor(1) +
+                    run->protocol.participant_ids.idFor(1) +
                     " is 1); leave --participant out to take the next free number",
                 2);
-  if (grid < 8 || grid > 1024) return fail("run: --grid: expected 8..1024", 2);
-  FrameLoopOptions loop_options;
+  if (run->grid < 8 || run->grid > 1024) return fail("run: --grid: expected 8..1024", 2);
   std::string error;
-  if (args.has("keys") && !parseKeyList(args.get("keys", ""), &loop_options.initial_keys, &error))
+  if (args.has("keys") &&
+      !parseKeyList(args.get("keys", ""), &run->loop_options.initial_keys, &error))
     return fail("run: --keys: " + error, 2);
-  DisplayOptions display_options;
+  DisplayOptions& display_options = run->display_options;
   const std::string platform = args.get("display", "auto");
   if (!parseDisplayPlatform(platform, &display_options.platform))
     return fail("run: --display: expected auto, kms, x11 or surfaceless, got '" + platform + "'",
@@ -556,181 +594,227 @@ int runStudySession(Args& args) {
       consumed != int(size.size()) || display_options.width < 320 || display_options.height < 240 ||
       display_options.width > 16384 || display_options.height > 16384)
     return fail("run: --size: expected WxH (320x240 .. 16384x16384), got '" + size + "'", 2);
-  const std::string backend = args.get("backend", "auto");
-  if (backend == "replay" && !args.has("journal"))
+  run->backend = args.get("backend", "auto");
+  if (run->backend == "replay" && !args.has("journal"))
     return fail("run: --backend replay needs --journal FILE", 2);
-  // A recorded pen: read now, so the session's clock can follow its time line (below).
-  JournalReadResult pen_input;
-  if (backend == "replay") {
-    pen_input = readJournal(args.get("journal", ""));
-    if (pen_input.version == 0) return fail("run: --journal: " + pen_input.error, 2);
+  if (run->backend == "replay") {
+    run->pen_input = readJournal(args.get("journal", ""));
+    if (run->pen_input.version == 0) return fail("run: --journal: " + run->pen_input.error, 2);
   }
+  return 0;
+}
 
-  // The session folder, before the display: a folder that cannot be written stops here.
-  std::string folder;
-  if (resuming) {
-    folder = resume_folder;
+// The session folder, before the display: a folder that cannot be written stops here. A resumed
+// session keeps its participant and clock anchor. 0, or the exit status.
+int openRunFolder(Args& args, StudyRun* run) {
+  StudySessionInfo& info = run->info;
+  const FolderJournal& previous = run->previous;
+  if (run->resuming) {
+    run->folder = run->resume_folder;
     info.participant_number = previous.info->participant_number;
-    info.participant_id = protocol.participant_ids.idFor(info.participant_number);
+    info.participant_id = run->protocol.participant_ids.idFor(info.participant_number);
     info.anchor_monotonic_ns = previous.info->anchor_monotonic_ns;
     info.anchor_unix_ns = previous.info->anchor_unix_ns;
     // The pen an earlier run recorded stays in session.json until this run's pen connects.
-    std::ifstream earlier(folder + "/session.json", std::ios::binary);
+    std::ifstream earlier(run->folder + "/session.json", std::ios::binary);
     const std::string earlier_json((std::istreambuf_iterator<char>(earlier)),
                                    std::istreambuf_iterator<char>());
     info.earlier_device_json = deviceJsonIn(earlier_json);
-  } else if (const int code = newSessionFolder(args, protocol, resume_folder, int(participant),
-                                               &info, &folder)) {
+  } else if (const int code = newSessionFolder(args, run->protocol, run->resume_folder,
+                                               int(run->participant), &info, &run->folder)) {
     return code;
   }
   const int number = info.participant_number;
-  for (const StudyTask* task : protocol.tasksForParticipant(number))
+  for (const StudyTask* task : run->protocol.tasksForParticipant(number))
     info.task_order.push_back(task->id);
-  std::printf("session folder: %s\nparticipant: %s (number %d)\n", folder.c_str(),
+  std::printf("session folder: %s\nparticipant: %s (number %d)\n", run->folder.c_str(),
               info.participant_id.c_str(), number);
   std::fflush(stdout);
+  return 0;
+}
 
+// The display, render.toml and mapping.toml, and the painting session (replayed from the
+// folder's journal when resuming). 0, or the exit status.
+int openRunSession(StudyRun* run) {
+  std::string error;
+  StudySessionInfo& info = run->info;
   std::string choice_note;
-  std::unique_ptr<Display> display = openDisplay(display_options, &error, &choice_note);
-  if (!display) return fail("run: " + error);
-  info.display_platform = display->platformName();
-  info.display_width = display->width();
-  info.display_height = display->height();
-  info.refresh_hz = display->refreshHz(&info.refresh_note);
-  RenderConfig render_config;
-  MappingConfig mapping;
+  run->display = openDisplay(run->display_options, &error, &choice_note);
+  if (!run->display) return fail("run: " + error);
+  info.display_platform = run->display->platformName();
+  info.display_width = run->display->width();
+  info.display_height = run->display->height();
+  info.refresh_hz = run->display->refreshHz(&info.refresh_note);
   try {
     if (std::filesystem::exists(configFile("render.toml")))
-      render_config = loadRenderConfig(configFile("render.toml"));
+      run->render_config = loadRenderConfig(configFile("render.toml"));
     if (std::filesystem::exists(configFile("mapping.toml")))
-      mapping = loadMappingConfig(configFile("mapping.toml"));
+      run->mapping = loadMappingConfig(configFile("mapping.toml"));
   } catch (const std::exception& e) {
     return fail(std::string("run: ") + e.what());
   }
-  PaintSessionSettings settings;
-  settings.screen_width = display->width();
-  settings.screen_height = display->height();
-  settings.grid = int(grid);
-  const BrushConfig brush = loadDefaultBrushConfig();
-  settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
-  settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
-  std::unique_ptr<PaintSession> session;
-  JournalWriter journal;
-  const std::string journal_path = folder + "/session.cbj";
-  ResumedSession resumed;
-  if (resuming) {
+  PaintSessionSettings& settings = run->settings;
+  settings.screen_width = run->display->width();
+  settings.screen_height = run->display->height();
+  settings.grid = int(run->grid);
+  run->brush = loadDefaultBrushConfig();
+  settings.auto_end_still_ms = run->brush.stroke.auto_end_still_ms;
+  settings.auto_end_light_ms = run->brush.stroke.auto_end_light_ms;
+  run->journal_path = run->folder + "/session.cbj";
+  if (run->resuming) {
     // The journal replayed into the session (the settings recorded in it), appended to after
     // its last whole record.
-    if (!resumeOrStartSession(journal_path, settings, brush, mapping, &journal, &resumed, &error))
+    if (!resumeOrStartSession(run->journal_path, settings, run->brush, run->mapping, &run->journal,
+                              &run->resumed, &error))
       return fail("run: --resume: " + error, 2);
-    if (!resumed.warning.empty())
-      std::fprintf(stderr, "cloudbrush study: resume: %s\n", resumed.warning.c_str());
-    session = std::move(resumed.session);
+    if (!run->resumed.warning.empty())
+      std::fprintf(stderr, "cloudbrush study: resume: %s\n", run->resumed.warning.c_str());
+    run->session = std::move(run->resumed.session);
   } else {
-    session = std::make_unique<PaintSession>(settings, brush, mapping);
+    run->session = std::make_unique<PaintSession>(settings, run->brush, run->mapping);
   }
+  return 0;
+}
+
+// The session clock's origin, a new session's journal (render settings, study.info) and the
+// sync sender. 0, or the exit status.
+int startRunJournal(Args& args, StudyRun* run) {
+  std::string error;
+  StudySessionInfo& info = run->info;
+  const FolderJournal& previous = run->previous;
   // The session's clock: the monotonic clock, or with a recorded pen the recording's own time
   // line (a TimelineClock from `origin`), so that frames, the runner's timers and its records
   // keep to the pen's time and a resumed run carries on from the last record's time. (Made
   // just before the loop, so starting up does not run the clock on.)
-  std::optional<int64_t> origin;
-  if (backend == "replay") {
+  std::optional<int64_t>& origin = run->origin;
+  if (run->backend == "replay") {
     origin = previous.last_record_ns;
-    if (!resuming)
-      for (const JournalRecord& r : pen_input.records)
+    if (!run->resuming)
+      for (const JournalRecord& r : run->pen_input.records)
         if (r.type == JournalRecordType::kPenSample) {
           origin = r.t_ns;
           break;
         }
-    if (!resuming) info.anchor_monotonic_ns = *origin;
-  } else if (resuming && monotonicNowNs() < previous.last_record_ns) {
+    if (!run->resuming) info.anchor_monotonic_ns = *origin;
+  } else if (run->resuming && monotonicNowNs() < previous.last_record_ns) {
     // The machine restarted since (its monotonic clock began again): carry on from the record.
     origin = previous.last_record_ns;
   }
-  if (!resuming) {
+  PaintSession& session = *run->session;
+  JournalWriter& journal = run->journal;
+  if (!run->resuming) {
     // The render settings in force, journalled with the brush and mapping
     // (drivers/core/JOURNAL.md).
-    session->setRenderSettings(formatRenderConfig(render_config), info.anchor_monotonic_ns);
-    session->setStartingLight(render_config.light);
-    session->setStartingStyle(renderStyleName(render_config.options.style));
-    if (!journal.open(journal_path)) return fail("run: " + journal.error());
-    session->recordTo(&journal, info.anchor_monotonic_ns);
+    session.setRenderSettings(formatRenderConfig(run->render_config), info.anchor_monotonic_ns);
+    session.setStartingLight(run->render_config.light);
+    session.setStartingStyle(renderStyleName(run->render_config.options.style));
+    if (!journal.open(run->journal_path)) return fail("run: " + journal.error());
+    session.recordTo(&journal, info.anchor_monotonic_ns);
     if (!journal.append(JournalRecordType::kMarker, info.anchor_monotonic_ns,
                         formatStudyInfoMarker(info)))
       return fail("run: " + journal.error());
   }
-  SyncMarkerSender sync_sender;  // task and stroke boundaries for other recorders (--sync-udp)
   if (args.has("sync-udp")) {
-    if (!sync_sender.open(args.get("sync-udp", ""), &error))
+    if (!run->sync_sender.open(args.get("sync-udp", ""), &error))
       return fail("run: --sync-udp: " + error, 2);
-    session->setSyncSender(&sync_sender);
+    session.setSyncSender(&run->sync_sender);
   }
-  VolumeRenderer renderer;
-  if (!renderer.init(&error)) return fail("run: " + error);
-  std::unique_ptr<Clock> clock;
-  if (origin)
-    clock = std::make_unique<TimelineClock>(*origin);
-  else
-    clock = std::make_unique<MonotonicClock>();
-  // Sync markers' wall times at their events, on the session's clock.
-  session->setSyncClock([clock = clock.get()] { return clock->nowNs(); });
-  const int64_t start_ns = resuming ? clock->nowNs() : info.anchor_monotonic_ns;
+  return 0;
+}
+
+// The pen: the recorded one on the session's clock (a resumed session's carries on after the
+// last sample its journal holds), a device, or none (--backend none). nullptr with *status set
+// when the device does not open.
+std::unique_ptr<PenSource> openRunPen(Args& args, StudyRun* run, Clock* clock, int* status) {
+  std::string error;
   std::unique_ptr<PenSource> pen;
-  if (backend == "replay") {
-    // A resumed session's pen carries on after the last sample its journal holds.
+  if (run->backend == "replay") {
     std::vector<JournalRecord> rest;
-    for (JournalRecord& r : pen_input.records)
-      if (r.type != JournalRecordType::kPenSample || r.t_ns > previous.last_sample_ns)
+    for (JournalRecord& r : run->pen_input.records)
+      if (r.type != JournalRecordType::kPenSample || r.t_ns > run->previous.last_sample_ns)
         rest.push_back(std::move(r));
     ReplayOptions replay;
     replay.timeline = true;
-    pen = std::make_unique<ReplayPenSource>(std::move(rest), replay, clock.get());
-  } else if (backend != "none") {
+    pen = std::make_unique<ReplayPenSource>(std::move(rest), replay, clock);
+  } else if (run->backend != "none") {
     PenSourceOptions pen_options;
-    pen_options.backend = backend;
+    pen_options.backend = run->backend;
     pen_options.device = args.get("pen-device", "");
     pen = openPenSource(pen_options, &error);
-    if (!pen) return fail("run: --backend " + backend + ": " + error, 2);
+    if (!pen) *status = fail("run: --backend " + run->backend + ": " + error, 2);
   }
+  return pen;
+}
 
+// A resumed session: the runner's state restored from the study records, the stage's setup done
+// again when nothing was painted since it began (the journal may have lost the setup itself).
+// 0, or the exit status.
+int restoreRunState(const StudyRun& run, int64_t start_ns, StudyRunState* state,
+                    StudyRunOptions* options) {
+  std::string error;
+  const FolderJournal& previous = run.previous;
+  if (!state->restore(previous.markers, &error))
+    return fail("run: --resume: " + run.journal_path + ": " + error);
+  state->resumedAfter(previous.last_record_ns, start_ns);
+  const int begin = state->restoredStageBegin();
+  bool painted_since = false;
+  if (begin >= 0)
+    for (size_t i = previous.marker_record[size_t(begin)] + 1; i < previous.read.records.size();
+         ++i)
+      painted_since =
+          painted_since || previous.read.records[i].type == JournalRecordType::kPenSample;
+  options->set_up_stage = !painted_since;
+  options->resumed = true;
+  options->last_mapped = run.resumed.replay.last_mapped;
+  std::printf("resumed %s: %zu records, %zu pen samples, %u strokes, %zu study records; stage %s\n",
+              run.folder.c_str(), run.resumed.replay.records_applied,
+              run.resumed.replay.pen_samples, run.resumed.replay.strokes_mapped,
+              previous.markers.size(), studyStageName(state->stage()));
+  std::fflush(stdout);
+  return 0;
+}
+
+// The session on the display: renderer, clock, pen and the runner's screen in the frame loop
+// until the session ends, a signal, --frames or --seconds; the exit status.
+int runStudyLoop(Args& args, StudyRun& run) {
+  std::string error;
+  const StudySessionInfo& info = run.info;
+  PaintSession& session = *run.session;
+  JournalWriter& journal = run.journal;
+  VolumeRenderer renderer;
+  if (!renderer.init(&error)) return fail("run: " + error);
+  std::unique_ptr<Clock> clock;
+  if (run.origin)
+    clock = std::make_unique<TimelineClock>(*run.origin);
+  else
+    clock = std::make_unique<MonotonicClock>();
+  // Sync markers' wall times at their events, on the session's clock.
+  session.setSyncClock([clock = clock.get()] { return clock->nowNs(); });
+  const int64_t start_ns = run.resuming ? clock->nowNs() : info.anchor_monotonic_ns;
+  int pen_status = 0;
+  std::unique_ptr<PenSource> pen = openRunPen(args, &run, clock.get(), &pen_status);
+  if (pen_status) return pen_status;
+
+  const FolderJournal& previous = run.previous;
   StudyRunState state(
-      protocol, number,
+      run.protocol, info.participant_number,
       previous.markers.empty() ? info.anchor_monotonic_ns : previous.markers.front().t_ns);
   StudyRunOptions options;
-  if (resuming) {
-    if (!state.restore(previous.markers, &error))
-      return fail("run: --resume: " + journal_path + ": " + error);
-    state.resumedAfter(previous.last_record_ns, start_ns);
-    // The stage's setup (a task's empty sky) is done again when nothing was painted since the
-    // stage began (the journal may have lost the setup itself).
-    const int begin = state.restoredStageBegin();
-    bool painted_since = false;
-    if (begin >= 0)
-      for (size_t i = previous.marker_record[size_t(begin)] + 1; i < previous.read.records.size();
-           ++i)
-        painted_since =
-            painted_since || previous.read.records[i].type == JournalRecordType::kPenSample;
-    options.set_up_stage = !painted_since;
-    options.resumed = true;
-    options.last_mapped = resumed.replay.last_mapped;
-    std::printf(
-        "resumed %s: %zu records, %zu pen samples, %u strokes, %zu study records; stage %s\n",
-        folder.c_str(), resumed.replay.records_applied, resumed.replay.pen_samples,
-        resumed.replay.strokes_mapped, previous.markers.size(), studyStageName(state.stage()));
-    std::fflush(stdout);
-  }
-  options.folder = folder;
+  if (run.resuming)
+    if (const int code = restoreRunState(run, start_ns, &state, &options)) return code;
+  options.folder = run.folder;
   options.info = info;
   options.start_ns = start_ns;
-  options.end_seconds = end_seconds;
-  options.paint.render = render_config.options;
-  options.paint.moving_scale = render_config.moving_scale;
+  options.end_seconds = run.end_seconds;
+  options.paint.render = run.render_config.options;
+  options.paint.moving_scale = run.render_config.moving_scale;
   options.paint.config_dir = defaultConfigDir();
   options.paint.state_dir = stateDir();
   options.paint.clock = clock.get();
-  StudyRunScreen screen(*display, renderer, *session, pen.get(), &journal, state, options);
+  StudyRunScreen screen(*run.display, renderer, session, pen.get(), &journal, state, options);
   std::signal(SIGINT, onStudySignal);
   std::signal(SIGTERM, onStudySignal);
+  FrameLoopOptions& loop_options = run.loop_options;
   loop_options.stop = &g_study_stop;
   loop_options.clock = clock.get();
   // Durability: the session syncs the journal at every stroke end; the loop at least once a second.
@@ -739,9 +823,9 @@ int runStudySession(Args& args) {
     if (journal.isOpen() && !journal.syncIfDue(sync_clock.nowNs()))
       std::fprintf(stderr, "cloudbrush study: journal: %s\n", journal.error().c_str());
   };
-  loop_options.max_frames = frames;
-  loop_options.max_seconds = seconds;
-  FrameLoop loop(*display, pen.get());
+  loop_options.max_frames = run.frames;
+  loop_options.max_seconds = run.seconds;
+  FrameLoop loop(*run.display, pen.get());
   FrameLoopResult result;
   const bool ran = loop.run(screen, loop_options, &result, &error);
   journal.sync();
@@ -751,15 +835,30 @@ int runStudySession(Args& args) {
               studyStageName(state.stage()),
               state.aborted() ? (", aborted: " + state.abortReason()).c_str() : "");
   std::printf("cloudbrush study: volume checksum %016llx\n",
-              static_cast<unsigned long long>(volumeChecksum(session->volume())));
+              static_cast<unsigned long long>(volumeChecksum(session.volume())));
   if (state.declined())
     std::printf(
         "cloudbrush study: %s declined consent; the session ended before any task. %s "
         "holds session.json (status \"declined\") and the journal, no task data.\n",
-        state.participantId().c_str(), folder.c_str());
+        state.participantId().c_str(), run.folder.c_str());
   for (const std::string& problem : screen.problems())
     std::fprintf(stderr, "cloudbrush study: problem: %s\n", problem.c_str());
   return screen.problems().empty() ? 0 : 1;
+}
+
+int runStudySession(Args& args) {
+  auto unknown = args.unknown({"help", "data-dir", "participant", "venue", "operator", "display",
+                               "drm-device", "size", "grid", "backend", "pen-device", "journal",
+                               "keys", "frames", "seconds", "end-seconds", "sync-udp", "resume"});
+  if (!unknown.empty()) return fail("run: unknown option " + unknown[0] + " (see --help)", 2);
+  StudyRun run;
+  if (const int code = loadRunProtocol(args, &run)) return code;
+  if (const int code = readRunInfo(args, &run)) return code;
+  if (const int code = readRunOptions(args, &run)) return code;
+  if (const int code = openRunFolder(args, &run)) return code;
+  if (const int code = openRunSession(&run)) return code;
+  if (const int code = startRunJournal(args, &run)) return code;
+  return runStudyLoop(args, run);
 }
 
 }  // namespace

@@ -13,6 +13,41 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// One branch-free pass. NaN fails every comparison, so every stage treats it as empty; +inf
+// is full ink (densities are clamped to 1). Non-finite values fail v·0 == 0.
+struct FootprintCounts {
+  long long not_finite = 0, non_empty = 0;
+};
+
+FootprintCounts countFootprint(const Footprint& f, float empty) {
+  FootprintCounts counts;
+  for (float v : f.values) {
+    counts.not_finite += !(v * 0.0f == 0.0f);
+    counts.non_empty += v > empty;
+  }
+  return counts;
+}
+
+// What the edge mapping reads: the footprint's pixels outside the grown circles, their
+// spheres, the view and the canvas.
+EdgeMappingInput edgeMappingInput(const StrokeResult& stroke, const CircleGrowthResult& growth,
+                                  const std::vector<MappedSphere>& spheres,
+                                  const PaintViewGeometry& view, glm::vec3 fallback_point,
+                                  float max_distance, float empty_threshold) {
+  EdgeMappingInput in;
+  in.footprint = &stroke.footprint;
+  in.covered = &growth.covered;
+  in.circles = &growth.circles;
+  in.spheres = &spheres;
+  in.view = &view;
+  in.canvas = stroke.canvas;
+  in.fallback_point = fallback_point;
+  in.max_distance = max_distance;
+  in.stroke_index = stroke.stroke_index;
+  in.empty_threshold = empty_threshold;
+  return in;
+}
+
 }  // namespace
 
 StrokeMapper::StrokeMapper(const MappingConfig& config) : config_(config) {
@@ -45,15 +80,9 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
              " with " + std::to_string(f.values.size()) + " values); nothing mapped");
     return report;
   }
-  // One branch-free pass. NaN fails every comparison, so every stage treats it as empty; +inf
-  // is full ink (densities are clamped to 1). Non-finite values fail v·0 == 0.
-  long long not_finite = 0, non_empty = 0;
-  const float empty = config_.circles.empty_threshold;
-  for (float v : f.values) {
-    not_finite += !(v * 0.0f == 0.0f);
-    non_empty += v > empty;
-  }
-  report.non_empty_pixels = non_empty;
+  const FootprintCounts counts = countFootprint(f, config_.circles.empty_threshold);
+  const long long not_finite = counts.not_finite;
+  report.non_empty_pixels = counts.non_empty;
   if (not_finite)
     warn(&report, id,
          std::to_string(not_finite) +
@@ -127,17 +156,9 @@ MappingReport StrokeMapper::map(const StrokeResult& stroke, Volume& volume, Mapp
                "fallback plane");
 
     t0 = std::chrono::steady_clock::now();
-    EdgeMappingInput in;
-    in.footprint = &f;
-    in.covered = &growth.covered;
-    in.circles = &growth.circles;
-    in.spheres = &report.spheres;
-    in.view = &view;
-    in.canvas = stroke.canvas;
-    in.fallback_point = fallback_point;
-    in.max_distance = max_distance;
-    in.stroke_index = id;
-    in.empty_threshold = config_.circles.empty_threshold;
+    const EdgeMappingInput in =
+        edgeMappingInput(stroke, growth, report.spheres, view, fallback_point, max_distance,
+                         config_.circles.empty_threshold);
     dirty = dirty.unite(mapEdges(in, config_.edges, volume, &report.edges));
     report.timings.edge_mapping_ms = msSince(t0);
     if (report.edges.off_canvas_pixels)

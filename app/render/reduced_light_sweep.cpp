@@ -10,21 +10,15 @@
 
 namespace cb {
 
-VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const Light& light,
-                                  int divisor) {
-  if (divisor <= 1) {
-    lv = LightVolume{};
-    return sweepLightVolume(lv, volume, light, volume.bounds());
-  }
-  const glm::ivec3 dims = volume.dims();
-  const glm::ivec3 cdims = (dims + divisor - 1) / divisor;
-  coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());  // empty
+namespace {
 
-  // Block averages of the density (a block at the far edge may be partly outside), each block
-  // summed in z, y, x order from the fine rows; only the coarse bricks holding a block that
-  // meets an allocated fine brick (the others average to 0 and stay unallocated).
-  std::vector<uint8_t> wanted(coarse_.brickCount(), 0);
-  const glm::ivec3 cbd = coarse_.brickDims();
+// Block averages of the density (a block at the far edge may be partly outside), each block
+// summed in z, y, x order from the fine rows; only the coarse bricks holding a block that
+// meets an allocated fine brick (the others average to 0 and stay unallocated).
+void averageBlocks(const Volume& volume, int divisor, Volume* coarse) {
+  const glm::ivec3 dims = volume.dims();
+  std::vector<uint8_t> wanted(coarse->brickCount(), 0);
+  const glm::ivec3 cbd = coarse->brickDims();
   for (const glm::ivec3 b : volume.allocatedBrickList()) {
     const VoxelBox box = volume.brickBox(b);
     const glm::ivec3 lo = (box.lo / divisor) >> Volume::kBrickShift,
@@ -44,7 +38,7 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
     std::vector<float> row(size_t(Volume::kBrickSize * divisor));
     std::vector<float> sums(static_cast<size_t>(Volume::kBrickSize));
     for (size_t k = k0; k < k1; ++k) {
-      const VoxelBox cbox = coarse_.brickBox(coarse_bricks[k]);
+      const VoxelBox cbox = coarse->brickBox(coarse_bricks[k]);
       const int x0 = cbox.lo.x * divisor, x1 = std::min(cbox.hi.x * divisor, dims.x);
       for (int cz = cbox.lo.z; cz < cbox.hi.z; ++cz)
         for (int cy = cbox.lo.y; cy < cbox.hi.y; ++cy) {
@@ -62,12 +56,27 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
             const int nx = std::min((cx + 1) * divisor, dims.x) - cx * divisor;
             const float average =
                 sums[size_t(cx - cbox.lo.x)] / float(nx * (hi.y - lo.y) * (hi.z - lo.z));
-            if (std::bit_cast<uint32_t>(average) != 0) coarse_.voxelForWrite(cx, cy, cz) = average;
+            if (std::bit_cast<uint32_t>(average) != 0) coarse->voxelForWrite(cx, cy, cz) = average;
           }
         }
     }
   });
-  coarse_.markDirty(coarse_.bounds());
+  coarse->markDirty(coarse->bounds());
+}
+
+}  // namespace
+
+VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const Light& light,
+                                  int divisor) {
+  if (divisor <= 1) {
+    lv = LightVolume{};
+    return sweepLightVolume(lv, volume, light, volume.bounds());
+  }
+  const glm::ivec3 dims = volume.dims();
+  const glm::ivec3 cdims = (dims + divisor - 1) / divisor;
+  coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());  // empty
+
+  averageBlocks(volume, divisor, &coarse_);
 
   Light coarse_light = light;
   coarse_light.extinction =

@@ -483,187 +483,196 @@ SampleOutcome PaintSession::feed(const PenSample& sample) {
   return outcome;
 }
 
+// apply's handler of each typed change: true when it applied, else false with *error said.
+struct PaintSession::Applier {
+  PaintSession& s;
+  std::string* error;
+  const SceneState& before;
+  int64_t t_ns;
+  bool operator()(const ui::SetMode& c);
+  bool operator()(const ui::SetCamera& c) {
+    s.scene_.camera = c.camera;
+    s.applyView();
+    s.recordStep(before, "camera");
+    return true;
+  }
+  bool operator()(const ui::SetBrush& c) {
+    s.engine_.selectBrush(c.brush);
+    return true;
+  }
+  bool operator()(const ui::SetBrushSize& c) {
+    s.engine_.setBrushSize(c.size);
+    return true;
+  }
+  bool operator()(const ui::SetMapping& c) {
+    s.method_ = c.method;
+    return true;
+  }
+  bool operator()(const ui::SetCanvas& c) {
+    s.scene_.canvas.altitude = c.altitude;
+    s.scene_.canvas.thickness = c.thickness;
+    s.applyView();
+    s.recordStep(before, "canvas");
+    return true;
+  }
+  bool operator()(const ui::SetLight& c) {
+    s.scene_.light.direction = glm::normalize(c.direction);
+    s.scene_.light.colour = c.colour;
+    s.recordStep(before, "light");
+    return true;
+  }
+  bool operator()(const ui::SetEraseTool& c) {
+    s.erase_tool_ = c.tool;
+    return true;
+  }
+  bool operator()(const ui::SetEraseDiameter& c) {
+    (c.tool == EraseTool::kVacuum ? s.vacuum_diameter_ : s.rubout_diameter_) = c.diameter;
+    return true;
+  }
+  bool operator()(const ui::VacuumCut& c) {
+    vacuumSphere(s.volume_, c.centre, c.radius);
+    s.recordStep(before, "vacuum");
+    return true;
+  }
+  bool operator()(const ui::PlaceShape& c);
+  bool operator()(const ui::ApplyMorph& c);
+  bool operator()(const ui::ApplyWind& c);
+  bool operator()(const ui::SetStyle& c) {
+    s.style_ = c.name;
+    return true;
+  }
+  bool operator()(const ui::SetPressureRange& c) {
+    s.pressure_range_ = PressureRange{c.lo, c.hi};
+    if (s.calibrator_) s.calibrator_->setPressureRange(s.pressure_range_);
+    return true;
+  }
+  bool operator()(const ui::PenCapture& c) {
+    if (c.captured && (s.engine_.inStroke() || s.rubbing_))
+      return *error = "pen capture: the pen is drawing", false;
+    s.pen_captured_ = c.captured;
+    return true;
+  }
+  bool operator()(const ui::ShowMenu& c) {
+    s.menu_open_ = c.open;
+    return true;
+  }
+  bool operator()(const ui::Undo&) {
+    if (s.engine_.inStroke()) return *error = "undo: a stroke is being painted", false;
+    SceneState restored;
+    if (!s.history_.undo(&s.volume_, &restored)) return *error = "undo: nothing to undo", false;
+    s.scene_ = restored;
+    s.applyView();
+    return true;
+  }
+  bool operator()(const ui::Redo&) {
+    if (s.engine_.inStroke()) return *error = "redo: a stroke is being painted", false;
+    SceneState restored;
+    if (!s.history_.redo(&s.volume_, &restored)) return *error = "redo: nothing to redo", false;
+    s.scene_ = restored;
+    s.applyView();
+    return true;
+  }
+  bool operator()(const ui::DeleteAll&) {
+    if (s.engine_.inStroke()) return *error = "delete: a stroke is being painted", false;
+    s.volume_.fill(0.0f);
+    s.recordStep(before, "delete all");
+    return true;
+  }
+};
+
+bool PaintSession::Applier::operator()(const ui::SetMode& c) {
+  if (s.engine_.inStroke() && c.mode != Mode::kPaint) {
+    // The stroke in progress ends where it is, as if the pen lifted.
+    SampleOutcome outcome;
+    s.engine_.finishStroke();
+    s.mapFinishedStroke(&outcome, t_ns);
+  }
+  if (s.rubbing_) {
+    s.rubbing_ = false;
+    s.recordStep(s.scene_, "rub-out");
+  }
+  s.mode_ = c.mode;
+  return true;
+}
+
+bool PaintSession::Applier::operator()(const ui::PlaceShape& c) {
+  if (s.engine_.inStroke()) return *error = "place: a stroke is being painted", false;
+  // Seen from the paint view at the canvas altitude; seeded by the step count, so a replay
+  // places the same cloud.
+  ToolView view{s.scene_.camera, s.settings_.screen_width, s.settings_.screen_height,
+                s.scene_.canvas};
+  // The file is read and checked first; then, when placements grow the sky (the Session
+  // record's placements_grow_sky), the sky grows to hold where the cloud can write, as for a
+  // stroke; then the cloud is written.
+  const bool grow = s.settings_.placementsGrowSky();
+  try {
+    if (c.model) {
+      const TriangleMesh mesh = loadClosedMesh(c.path);
+      if (grow)
+        s.growSkyToHold(
+            [&](const Volume& sky) { return placementReach(modelReach(mesh, view, sky), sky); });
+      ModelCloudParams params;
+      params.seed = uint32_t(s.history_.steps() + 1);
+      meshToCloud(mesh, view, params, &s.volume_);
+    } else {
+      const ShapeMask mask = loadShapeMask(c.path);
+      PictureCloudParams params;
+      params.seed = uint32_t(s.history_.steps() + 1);
+      if (grow)
+        s.growSkyToHold([&](const Volume& sky) {
+          return placementReach(pictureReach(mask, view, params, sky), sky);
+        });
+      maskToCloud(mask, view, params, &s.volume_);
+    }
+  } catch (const std::exception& e) {
+    return *error = std::string(c.model ? "model" : "picture") + ": " + e.what() +
+                    "; the cloud is unchanged",
+           false;
+  }
+  s.recordStep(before, c.model ? "model" : "picture");
+  return true;
+}
+
+bool PaintSession::Applier::operator()(const ui::ApplyMorph& c) {
+  if (s.engine_.inStroke()) return *error = "morph: a stroke is being painted", false;
+  try {
+    const Volume target = loadMorphTarget(c.target, s.volume_);
+    const uint64_t checksum = volumeChecksum(target);
+    if (checksum != c.target_checksum) {
+      char text[96];
+      std::snprintf(text, sizeof text, " (checksum %016llx, recorded %016llx)",
+                    (unsigned long long)checksum, (unsigned long long)c.target_checksum);
+      return *error = "morph: the target " + c.target + " is not the cloud morphed into" + text +
+                      "; the cloud is unchanged",
+             false;
+    }
+    // A `morph=` record (specification 1.1) is recomputed the way it was made.
+    s.takeFrame(c.cell_blocks ? WindowFrame{morphCellBlocks(s.volume_, target, c.t)}
+                              : morphFrame(s.volume_, target, c.t));
+  } catch (const std::exception& e) {
+    return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
+  }
+  s.recordStep(before, "morph");
+  return true;
+}
+
+bool PaintSession::Applier::operator()(const ui::ApplyWind& c) {
+  if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
+  if (c.step_by_step) {
+    Volume blown = s.volume_;
+    blowWindStepByStep(c.run, &blown);
+    s.takeFrame(WindowFrame{std::move(blown)});
+  } else {
+    s.takeFrame(windFrame(c.run, s.volume_));
+  }
+  s.recordStep(before, "wind");
+  return true;
+}
+
 bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* error) {
   std::string ignored;
   if (!error) error = &ignored;
   const SceneState before = scene_;
-  struct Applier {
-    PaintSession& s;
-    std::string* error;
-    const SceneState& before;
-    int64_t t_ns;
-    bool operator()(const ui::SetMode& c) {
-      if (s.engine_.inStroke() && c.mode != Mode::kPaint) {
-        // The stroke in progress ends where it is, as if the pen lifted.
-        SampleOutcome outcome;
-        s.engine_.finishStroke();
-        s.mapFinishedStroke(&outcome, t_ns);
-      }
-      if (s.rubbing_) {
-        s.rubbing_ = false;
-        s.recordStep(s.scene_, "rub-out");
-      }
-      s.mode_ = c.mode;
-      return true;
-    }
-    bool operator()(const ui::SetCamera& c) {
-      s.scene_.camera = c.camera;
-      s.applyView();
-      s.recordStep(before, "camera");
-      return true;
-    }
-    bool operator()(const ui::SetBrush& c) {
-      s.engine_.selectBrush(c.brush);
-      return true;
-    }
-    bool operator()(const ui::SetBrushSize& c) {
-      s.engine_.setBrushSize(c.size);
-      return true;
-    }
-    bool operator()(const ui::SetMapping& c) {
-      s.method_ = c.method;
-      return true;
-    }
-    bool operator()(const ui::SetCanvas& c) {
-      s.scene_.canvas.altitude = c.altitude;
-      s.scene_.canvas.thickness = c.thickness;
-      s.applyView();
-      s.recordStep(before, "canvas");
-      return true;
-    }
-    bool operator()(const ui::SetLight& c) {
-      s.scene_.light.direction = glm::normalize(c.direction);
-      s.scene_.light.colour = c.colour;
-      s.recordStep(before, "light");
-      return true;
-    }
-    bool operator()(const ui::SetEraseTool& c) {
-      s.erase_tool_ = c.tool;
-      return true;
-    }
-    bool operator()(const ui::SetEraseDiameter& c) {
-      (c.tool == EraseTool::kVacuum ? s.vacuum_diameter_ : s.rubout_diameter_) = c.diameter;
-      return true;
-    }
-    bool operator()(const ui::VacuumCut& c) {
-      vacuumSphere(s.volume_, c.centre, c.radius);
-      s.recordStep(before, "vacuum");
-      return true;
-    }
-    bool operator()(const ui::PlaceShape& c) {
-      if (s.engine_.inStroke()) return *error = "place: a stroke is being painted", false;
-      // Seen from the paint view at the canvas altitude; seeded by the step count, so a replay
-      // places the same cloud.
-      ToolView view{s.scene_.camera, s.settings_.screen_width, s.settings_.screen_height,
-                    s.scene_.canvas};
-      // The file is read and checked first; then, when placements grow the sky (the Session
-      // record's placements_grow_sky), the sky grows to hold where the cloud can write, as for a
-      // stroke; then the cloud is written.
-      const bool grow = s.settings_.placementsGrowSky();
-      try {
-        if (c.model) {
-          const TriangleMesh mesh = loadClosedMesh(c.path);
-          if (grow)
-            s.growSkyToHold([&](const Volume& sky) {
-              return placementReach(modelReach(mesh, view, sky), sky);
-            });
-          ModelCloudParams params;
-          params.seed = uint32_t(s.history_.steps() + 1);
-          meshToCloud(mesh, view, params, &s.volume_);
-        } else {
-          const ShapeMask mask = loadShapeMask(c.path);
-          PictureCloudParams params;
-          params.seed = uint32_t(s.history_.steps() + 1);
-          if (grow)
-            s.growSkyToHold([&](const Volume& sky) {
-              return placementReach(pictureReach(mask, view, params, sky), sky);
-            });
-          maskToCloud(mask, view, params, &s.volume_);
-        }
-      } catch (const std::exception& e) {
-        return *error = std::string(c.model ? "model" : "picture") + ": " + e.what() +
-                        "; the cloud is unchanged",
-               false;
-      }
-      s.recordStep(before, c.model ? "model" : "picture");
-      return true;
-    }
-    bool operator()(const ui::ApplyMorph& c) {
-      if (s.engine_.inStroke()) return *error = "morph: a stroke is being painted", false;
-      try {
-        const Volume target = loadMorphTarget(c.target, s.volume_);
-        const uint64_t checksum = volumeChecksum(target);
-        if (checksum != c.target_checksum) {
-          char text[96];
-          std::snprintf(text, sizeof text, " (checksum %016llx, recorded %016llx)",
-                        (unsigned long long)checksum, (unsigned long long)c.target_checksum);
-          return *error = "morph: the target " + c.target + " is not the cloud morphed into" +
-                          text + "; the cloud is unchanged",
-                 false;
-        }
-        // A `morph=` record (specification 1.1) is recomputed the way it was made.
-        s.takeFrame(c.cell_blocks ? WindowFrame{morphCellBlocks(s.volume_, target, c.t)}
-                                  : morphFrame(s.volume_, target, c.t));
-      } catch (const std::exception& e) {
-        return *error = std::string("morph: ") + e.what() + "; the cloud is unchanged", false;
-      }
-      s.recordStep(before, "morph");
-      return true;
-    }
-    bool operator()(const ui::ApplyWind& c) {
-      if (s.engine_.inStroke()) return *error = "wind: a stroke is being painted", false;
-      if (c.step_by_step) {
-        Volume blown = s.volume_;
-        blowWindStepByStep(c.run, &blown);
-        s.takeFrame(WindowFrame{std::move(blown)});
-      } else {
-        s.takeFrame(windFrame(c.run, s.volume_));
-      }
-      s.recordStep(before, "wind");
-      return true;
-    }
-    bool operator()(const ui::SetStyle& c) {
-      s.style_ = c.name;
-      return true;
-    }
-    bool operator()(const ui::SetPressureRange& c) {
-      s.pressure_range_ = PressureRange{c.lo, c.hi};
-      if (s.calibrator_) s.calibrator_->setPressureRange(s.pressure_range_);
-      return true;
-    }
-    bool operator()(const ui::PenCapture& c) {
-      if (c.captured && (s.engine_.inStroke() || s.rubbing_))
-        return *error = "pen capture: the pen is drawing", false;
-      s.pen_captured_ = c.captured;
-      return true;
-    }
-    bool operator()(const ui::ShowMenu& c) {
-      s.menu_open_ = c.open;
-      return true;
-    }
-    bool operator()(const ui::Undo&) {
-      if (s.engine_.inStroke()) return *error = "undo: a stroke is being painted", false;
-      SceneState restored;
-      if (!s.history_.undo(&s.volume_, &restored)) return *error = "undo: nothing to undo", false;
-      s.scene_ = restored;
-      s.applyView();
-      return true;
-    }
-    bool operator()(const ui::Redo&) {
-      if (s.engine_.inStroke()) return *error = "redo: a stroke is being painted", false;
-      SceneState restored;
-      if (!s.history_.redo(&s.volume_, &restored)) return *error = "redo: nothing to redo", false;
-      s.scene_ = restored;
-      s.applyView();
-      return true;
-    }
-    bool operator()(const ui::DeleteAll&) {
-      if (s.engine_.inStroke()) return *error = "delete: a stroke is being painted", false;
-      s.volume_.fill(0.0f);
-      s.recordStep(before, "delete all");
-      return true;
-    }
-  };
   if (!std::visit(Applier{*this, error, before, t_ns}, change)) return false;
   const UiRecordText record = formatUiChange(change);
   journalText(record.type, t_ns, record.text);

@@ -231,6 +231,7 @@ class PaintSession {
   MappingMethod mappingMethod() const { return method_; }
 
  private:
+  struct Applier;  // apply's handler of each typed change (paint_session.cpp)
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);

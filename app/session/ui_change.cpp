@@ -151,6 +151,102 @@ UiRecordText formatUiChange(const UiChange& change) {
   return std::visit(Formatter{}, change);
 }
 
+namespace {
+
+// A UI change whose value does not parse: the message names the key, what was expected and
+// what came.
+struct BadValue {
+  const std::string& key;
+  const std::string& value;
+  std::string* error;
+  bool operator()(const char* expected) const {
+    *error = "UI change " + key + ": expected " + expected + ", got '" + value + "'";
+    return false;
+  }
+};
+
+// camera=EX,EY,EZ,TX,TY,TZ,FOV[,MOVE]
+bool parseCameraChange(const std::string& value, const BadValue& bad, UiChange* out) {
+  float v[7];
+  std::string numbers = value;
+  CameraMove move = CameraMove::kSet;
+  const size_t last = value.rfind(',');
+  if (last != std::string::npos && last + 1 < value.size() && std::isalpha(value[last + 1])) {
+    const std::string name = value.substr(last + 1);
+    bool known = false;
+    for (int m = 0; m <= int(CameraMove::kView); ++m)
+      if (name == cameraMoveName(CameraMove(m))) move = CameraMove(m), known = true;
+    if (!known) return bad("a camera move orbit, pan, zoom or view after the numbers");
+    numbers = value.substr(0, last);
+  }
+  if (!parseFloats(numbers, 7, v) || v[6] <= 0.0f || v[6] >= 180.0f)
+    return bad("EX,EY,EZ,TX,TY,TZ,FOV[,MOVE] (fov in (0, 180) degrees)");
+  Camera camera = Camera::reference();
+  camera.eye = {v[0], v[1], v[2]};
+  camera.target = {v[3], v[4], v[5]};
+  camera.fov_y_deg = v[6];
+  if (glm::length(camera.eye - camera.target) <= 0.0f) return bad("an eye apart from the target");
+  *out = ui::SetCamera{camera, move};
+  return true;
+}
+
+// morph= / morph2=T,CHECKSUM,TARGET (morph: the cell-block morph; morph2: the whole-frame one).
+bool parseMorphChange(const std::string& key, const std::string& value, const BadValue& bad,
+                      UiChange* out) {
+  // T,CHECKSUM,TARGET (the target last: a path may hold commas).
+  const size_t c1 = value.find(','), c2 = c1 == std::string::npos ? c1 : value.find(',', c1 + 1);
+  ui::ApplyMorph morph;
+  char* end = nullptr;
+  const std::string hex = c2 == std::string::npos ? "" : value.substr(c1 + 1, c2 - c1 - 1);
+  if (c2 == std::string::npos || !parseFloats(value.substr(0, c1), 1, &morph.t) || morph.t < 0.0f ||
+      morph.t > 1.0f || hex.size() != 16)
+    return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
+  morph.target_checksum = std::strtoull(hex.c_str(), &end, 16);
+  morph.target = value.substr(c2 + 1);
+  morph.cell_blocks = key == "morph";
+  if (*end != '\0' || morph.target.empty() || morph.target.find('\n') != std::string::npos)
+    return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
+  *out = morph;
+  return true;
+}
+
+// wind= / wind2=SPEED,GUST;DX,DZ,STEPS;... (wind: blown step by step).
+bool parseWindChange(const std::string& key, const std::string& value, const BadValue& bad,
+                     UiChange* out) {
+  float v[2];
+  ui::ApplyWind wind;
+  wind.step_by_step = key == "wind";
+  size_t start = 0;
+  for (int part = 0; start <= value.size(); ++part) {
+    const size_t semi = value.find(';', start);
+    const std::string field =
+        value.substr(start, semi == std::string::npos ? std::string::npos : semi - start);
+    if (part == 0) {
+      if (!parseFloats(field, 2, v) || v[0] < 0.0f || v[0] > 100.0f || std::abs(v[1]) > 1000.0f)
+        return bad("SPEED,GUST;DX,DZ,STEPS;... (speed in [0, 100])");
+      wind.run.speed = v[0];
+      wind.run.gust = v[1];
+    } else {
+      const size_t last = field.rfind(',');
+      char* end = nullptr;
+      const long steps =
+          last == std::string::npos ? -1 : std::strtol(field.c_str() + last + 1, &end, 10);
+      if (last == std::string::npos || !parseFloats(field.substr(0, last), 2, v) || *end != '\0' ||
+          steps < 0 || steps > 100000)
+        return bad("SPEED,GUST;DX,DZ,STEPS;... (0..100000 steps per segment)");
+      wind.run.segments.push_back({v[0], v[1], int(steps)});
+    }
+    if (semi == std::string::npos) break;
+    start = semi + 1;
+  }
+  if (wind.run.segments.empty() || wind.run.steps() > 100000)
+    return bad("SPEED,GUST;DX,DZ,STEPS;... (at least one segment, at most 100000 steps)");
+  *out = wind;
+  return true;
+}
+
+}  // namespace
+
 bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
                    std::string* error) {
   if (type == JournalRecordType::kMode) {
@@ -177,31 +273,10 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
   }
   const std::string key(text.substr(0, eq));
   const std::string value(text.substr(eq + 1));
-  const auto bad = [&](const char* expected) {
-    *error = "UI change " + key + ": expected " + expected + ", got '" + value + "'";
-    return false;
-  };
+  const BadValue bad{key, value, error};
   float v[7];
   if (key == "camera") {
-    std::string numbers = value;
-    CameraMove move = CameraMove::kSet;
-    const size_t last = value.rfind(',');
-    if (last != std::string::npos && last + 1 < value.size() && std::isalpha(value[last + 1])) {
-      const std::string name = value.substr(last + 1);
-      bool known = false;
-      for (int m = 0; m <= int(CameraMove::kView); ++m)
-        if (name == cameraMoveName(CameraMove(m))) move = CameraMove(m), known = true;
-      if (!known) return bad("a camera move orbit, pan, zoom or view after the numbers");
-      numbers = value.substr(0, last);
-    }
-    if (!parseFloats(numbers, 7, v) || v[6] <= 0.0f || v[6] >= 180.0f)
-      return bad("EX,EY,EZ,TX,TY,TZ,FOV[,MOVE] (fov in (0, 180) degrees)");
-    Camera camera = Camera::reference();
-    camera.eye = {v[0], v[1], v[2]};
-    camera.target = {v[3], v[4], v[5]};
-    camera.fov_y_deg = v[6];
-    if (glm::length(camera.eye - camera.target) <= 0.0f) return bad("an eye apart from the target");
-    *out = ui::SetCamera{camera, move};
+    return parseCameraChange(value, bad, out);
   } else if (key == "camera_orbit") {
     if (!parseFloats(value, 1, v)) return bad("degrees");
     *out = ui::SetCamera{Camera::reference().orbited(v[0])};
@@ -240,50 +315,9 @@ bool parseUiChange(JournalRecordType type, std::string_view text, UiChange* out,
     if (value.empty() || value.find('\n') != std::string::npos) return bad("a file path");
     *out = ui::PlaceShape{key == "place_model", value};
   } else if (key == "morph" || key == "morph2") {
-    // T,CHECKSUM,TARGET (the target last: a path may hold commas).
-    const size_t c1 = value.find(','), c2 = c1 == std::string::npos ? c1 : value.find(',', c1 + 1);
-    ui::ApplyMorph morph;
-    char* end = nullptr;
-    const std::string hex = c2 == std::string::npos ? "" : value.substr(c1 + 1, c2 - c1 - 1);
-    if (c2 == std::string::npos || !parseFloats(value.substr(0, c1), 1, &morph.t) ||
-        morph.t < 0.0f || morph.t > 1.0f || hex.size() != 16)
-      return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
-    morph.target_checksum = std::strtoull(hex.c_str(), &end, 16);
-    morph.target = value.substr(c2 + 1);
-    morph.cell_blocks = key == "morph";
-    if (*end != '\0' || morph.target.empty() || morph.target.find('\n') != std::string::npos)
-      return bad("T,CHECKSUM,TARGET (t in [0, 1], a 16-digit hex checksum, a path)");
-    *out = morph;
+    return parseMorphChange(key, value, bad, out);
   } else if (key == "wind" || key == "wind2") {
-    // SPEED,GUST;DX,DZ,STEPS;...
-    ui::ApplyWind wind;
-    wind.step_by_step = key == "wind";
-    size_t start = 0;
-    for (int part = 0; start <= value.size(); ++part) {
-      const size_t semi = value.find(';', start);
-      const std::string field =
-          value.substr(start, semi == std::string::npos ? std::string::npos : semi - start);
-      if (part == 0) {
-        if (!parseFloats(field, 2, v) || v[0] < 0.0f || v[0] > 100.0f || std::abs(v[1]) > 1000.0f)
-          return bad("SPEED,GUST;DX,DZ,STEPS;... (speed in [0, 100])");
-        wind.run.speed = v[0];
-        wind.run.gust = v[1];
-      } else {
-        const size_t last = field.rfind(',');
-        char* end = nullptr;
-        const long steps =
-            last == std::string::npos ? -1 : std::strtol(field.c_str() + last + 1, &end, 10);
-        if (last == std::string::npos || !parseFloats(field.substr(0, last), 2, v) ||
-            *end != '\0' || steps < 0 || steps > 100000)
-          return bad("SPEED,GUST;DX,DZ,STEPS;... (0..100000 steps per segment)");
-        wind.run.segments.push_back({v[0], v[1], int(steps)});
-      }
-      if (semi == std::string::npos) break;
-      start = semi + 1;
-    }
-    if (wind.run.segments.empty() || wind.run.steps() > 100000)
-      return bad("SPEED,GUST;DX,DZ,STEPS;... (at least one segment, at most 100000 steps)");
-    *out = wind;
+    return parseWindChange(key, value, bad, out);
   } else if (key == "style") {
     bool plain = !value.empty() && value.size() <= 32;
     for (char c : value) plain = plain && c >= 'a' && c <= 'z';

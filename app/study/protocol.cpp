@@ -213,35 +213,26 @@ std::vector<const StudyTask*> StudyProtocol::tasksForParticipant(int number) con
   return ordered;
 }
 
-StudyProtocol parseStudyProtocol(std::string_view text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    throw StudyProtocolError(source + ":" + std::to_string(e.source().begin.line) +
-                             ": TOML syntax: " + std::string(e.description()));
-  }
-  const ProtocolReader r(source);
-  r.onlyKeys(root, "",
-             {"study", "consent", "participants", "venue", "operator", "introduction", "tutorial",
-              "free_drawing", "tasks", "task", "demographic", "questionnaire", "item", "free_text",
-              "keyboard", "construct"});
-  StudyProtocol protocol;
-  protocol.source = source;
+namespace {
 
+// [study] and [consent].
+void readStudySection(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol) {
   const toml::table& study = r.table(root, "study", "");
   r.onlyKeys(study, "study", {"name", "version"});
-  protocol.name = r.text(study, "name", "study", true);
-  protocol.version = r.text(study, "version", "study", false);
+  protocol->name = r.text(study, "name", "study", true);
+  protocol->version = r.text(study, "version", "study", false);
 
   const toml::table& consent = r.table(root, "consent", "");
   r.onlyKeys(consent, "consent", {"text"});
-  protocol.consent = r.text(consent, "text", "consent", true);
+  protocol->consent = r.text(consent, "text", "consent", true);
+}
 
+// [participants]: how participant ids are made.
+void readParticipantIds(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol) {
   // Participant ids: never from names (participant_ids.h).
   const toml::table& ids = r.table(root, "participants", "");
   r.onlyKeys(ids, "participants", {"id_scheme", "prefix", "digits", "seed", "length", "key_file"});
-  ParticipantIdScheme& scheme = protocol.participant_ids;
+  ParticipantIdScheme& scheme = protocol->participant_ids;
   const std::string kind = r.text(ids, "id_scheme", "participants", true);
   if (kind == "counter") {
     scheme.kind = ParticipantIdScheme::Kind::kCounter;
@@ -269,7 +260,10 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
   if (!scheme.key_file.empty() && !std::filesystem::path(scheme.key_file).is_absolute())
     r.fail(*ids.get("key_file"), "participants.key_file",
            "must be an absolute path, kept apart from the study data");
+}
 
+// [[venue]] and [operator].
+void readVenues(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol) {
   // Venues (§7.4) and the operator.
   std::set<std::string> venue_ids;
   const auto venues = r.tables(root, "venue", "", true);
@@ -279,19 +273,23 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
     StudyVenue venue{r.identifier(*venues[i], "id", path), r.text(*venues[i], "name", path, true)};
     if (!venue_ids.insert(venue.id).second)
       r.fail(*venues[i]->get("id"), path + ".id", "'" + venue.id + "' is declared twice");
-    protocol.venues.push_back(std::move(venue));
+    protocol->venues.push_back(std::move(venue));
   }
   if (const toml::node* node = root.get("operator")) {
     if (!node->is_table()) r.fail(*node, "operator", "expected a table");
     r.onlyKeys(*node->as_table(), "operator", {"required"});
-    protocol.operator_required = r.flag(*node->as_table(), "required", "operator", true);
+    protocol->operator_required = r.flag(*node->as_table(), "required", "operator", true);
   }
+}
 
+// [introduction], [tutorial] with its [[tutorial.step]]s, and [free_drawing].
+void readStages(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol,
+                const std::string& source) {
   // Stages (§7.5).
-  protocol.introduction = readStage(r, root, "introduction", source, true);
+  protocol->introduction = readStage(r, root, "introduction", source, true);
   const toml::table& tutorial = r.table(root, "tutorial", "");
   r.onlyKeys(tutorial, "tutorial", {"minutes", "step"});
-  protocol.tutorial_minutes = r.minutes(tutorial, "minutes", "tutorial", 10);
+  protocol->tutorial_minutes = r.minutes(tutorial, "minutes", "tutorial", 10);
   const auto steps = r.tables(tutorial, "step", "tutorial", true);
   for (size_t i = 0; i < steps.size(); ++i) {
     const std::string path = ProtocolReader::indexed("tutorial.step", i);
@@ -308,10 +306,14 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
         r.fail(expect_nodes[k], ProtocolReader::indexed(path + ".expect", k), e.what());
       }
     }
-    protocol.tutorial.push_back(std::move(step));
+    protocol->tutorial.push_back(std::move(step));
   }
-  protocol.free_drawing = readStage(r, root, "free_drawing", source, true);
+  protocol->free_drawing = readStage(r, root, "free_drawing", source, true);
+}
 
+// [tasks] and the [[task]]s.
+void readTasks(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol,
+               const std::string& source) {
   // Tasks (Appendix B) and their order.
   const toml::table& tasks = r.table(root, "tasks", "");
   r.onlyKeys(tasks, "tasks", {"order", "minutes", "questions_allowed"});
@@ -320,9 +322,9 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
   if (!scheme_kind)
     r.fail(*tasks.get("order"), "tasks.order",
            "'" + order + "': expected \"fixed\", \"rotation\" or \"williams\"");
-  protocol.task_order = *scheme_kind;
+  protocol->task_order = *scheme_kind;
   const double default_minutes = r.minutes(tasks, "minutes", "tasks", 10);
-  protocol.task_questions_allowed = r.flag(tasks, "questions_allowed", "tasks", false);
+  protocol->task_questions_allowed = r.flag(tasks, "questions_allowed", "tasks", false);
   std::set<std::string> task_ids;
   const auto task_tables = r.tables(root, "task", "", true);
   for (size_t i = 0; i < task_tables.size(); ++i) {
@@ -352,17 +354,20 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
                "'" + save[k] +
                    "': expected journal, volume_vdb, volume_raw, render_exr or render_png");
     }
-    protocol.tasks.push_back(std::move(task));
+    protocol->tasks.push_back(std::move(task));
   }
+}
 
+// [[demographic]] fields; their ids join *answer_ids (one answer column each).
+void readDemographics(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol,
+                      std::set<std::string>* answer_ids) {
   // Demographics (Appendix C's head).
-  std::set<std::string> answer_ids = {"participant"};
   for (const toml::table* t : r.tables(root, "demographic", "", false)) {
-    const std::string path = ProtocolReader::indexed("demographic", protocol.demographics.size());
+    const std::string path = ProtocolReader::indexed("demographic", protocol->demographics.size());
     r.onlyKeys(*t, path, {"id", "label", "kind", "min", "max", "choices"});
     DemographicField field;
     field.id = r.identifier(*t, "id", path);
-    if (!answer_ids.insert(field.id).second)
+    if (!answer_ids->insert(field.id).second)
       r.fail(*t->get("id"), path + ".id", "'" + field.id + "' is already an answer column");
     field.label = r.text(*t, "label", path, true);
     const std::string field_kind = r.text(*t, "kind", path, true);
@@ -384,21 +389,25 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
       r.fail(*t, path, "min and max belong to kind = \"integer\"");
     if (field.kind != DemographicField::Kind::kChoice && t->get("choices"))
       r.fail(*t->get("choices"), path + ".choices", "belongs to kind = \"choice\"");
-    protocol.demographics.push_back(std::move(field));
+    protocol->demographics.push_back(std::move(field));
   }
+}
 
+// [questionnaire], its [[item]]s and [[free_text]] questions; their ids join *answer_ids.
+void readQuestionnaire(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol,
+                       std::set<std::string>* answer_ids) {
   // Questionnaire (Appendix C).
   const toml::table& questionnaire = r.table(root, "questionnaire", "");
   r.onlyKeys(questionnaire, "questionnaire", {"scale", "scale_zh"});
-  protocol.scale_labels = r.strings(questionnaire, "scale", "questionnaire", true);
-  if (protocol.scale_labels.size() < 2 || protocol.scale_labels.size() > 11)
+  protocol->scale_labels = r.strings(questionnaire, "scale", "questionnaire", true);
+  if (protocol->scale_labels.size() < 2 || protocol->scale_labels.size() > 11)
     r.fail(*questionnaire.get("scale"), "questionnaire.scale", "2 to 11 labels, lowest first");
-  protocol.scale_labels_zh = r.strings(questionnaire, "scale_zh", "questionnaire", false);
-  if (!protocol.scale_labels_zh.empty() &&
-      protocol.scale_labels_zh.size() != protocol.scale_labels.size())
+  protocol->scale_labels_zh = r.strings(questionnaire, "scale_zh", "questionnaire", false);
+  if (!protocol->scale_labels_zh.empty() &&
+      protocol->scale_labels_zh.size() != protocol->scale_labels.size())
     r.fail(*questionnaire.get("scale_zh"), "questionnaire.scale_zh",
            "as many labels as questionnaire.scale (" +
-               std::to_string(protocol.scale_labels.size()) + ")");
+               std::to_string(protocol->scale_labels.size()) + ")");
   const auto item_tables = r.tables(root, "item", "", true);
   for (size_t i = 0; i < item_tables.size(); ++i) {
     const toml::table& t = *item_tables[i];
@@ -406,35 +415,41 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
     r.onlyKeys(t, path, {"id", "text", "text_zh", "section", "origin"});
     QuestionnaireItem item;
     item.id = r.identifier(t, "id", path);
-    if (!answer_ids.insert(item.id).second)
+    if (!answer_ids->insert(item.id).second)
       r.fail(*t.get("id"), path + ".id", "'" + item.id + "' is already an answer column");
     item.text = r.text(t, "text", path, true);
     item.text_zh = r.text(t, "text_zh", path, false);
     item.section = r.text(t, "section", path, false);
     item.origin = r.text(t, "origin", path, false);
-    protocol.items.push_back(std::move(item));
+    protocol->items.push_back(std::move(item));
   }
   for (const toml::table* t : r.tables(root, "free_text", "", false)) {
-    const std::string path = ProtocolReader::indexed("free_text", protocol.free_text.size());
+    const std::string path = ProtocolReader::indexed("free_text", protocol->free_text.size());
     r.onlyKeys(*t, path, {"id", "prompt"});
     FreeTextQuestion question{r.identifier(*t, "id", path), r.text(*t, "prompt", path, true)};
-    if (!answer_ids.insert(question.id).second)
+    if (!answer_ids->insert(question.id).second)
       r.fail(*t->get("id"), path + ".id", "'" + question.id + "' is already an answer column");
-    protocol.free_text.push_back(std::move(question));
+    protocol->free_text.push_back(std::move(question));
   }
+}
+
+// [keyboard]: the optional answer keyboard.
+void readKeyboard(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol) {
   if (root.get("keyboard")) {
     const toml::table& keyboard = r.table(root, "keyboard", "");
     r.onlyKeys(keyboard, "keyboard", {"label", "keys"});
-    protocol.keyboard.label = r.text(keyboard, "label", "keyboard", true);
-    protocol.keyboard.keys = r.strings(keyboard, "keys", "keyboard", true);
+    protocol->keyboard.label = r.text(keyboard, "label", "keyboard", true);
+    protocol->keyboard.keys = r.strings(keyboard, "keys", "keyboard", true);
     const toml::node& keys = *keyboard.get("keys");
-    if (protocol.keyboard.keys.empty() || protocol.keyboard.keys.size() > kMaxKeyboardKeys)
+    if (protocol->keyboard.keys.empty() || protocol->keyboard.keys.size() > kMaxKeyboardKeys)
       r.fail(keys, "keyboard.keys", "1 to " + std::to_string(kMaxKeyboardKeys) + " keys");
   }
+}
 
-  // Constructs: groups of declared items.
+// [[construct]]s: groups of declared items.
+void readConstructs(const ProtocolReader& r, const toml::table& root, StudyProtocol* protocol) {
   std::set<std::string> item_ids;
-  for (const QuestionnaireItem& item : protocol.items) item_ids.insert(item.id);
+  for (const QuestionnaireItem& item : protocol->items) item_ids.insert(item.id);
   std::set<std::string> construct_names;
   const auto constructs = r.tables(root, "construct", "", false);
   for (size_t i = 0; i < constructs.size(); ++i) {
@@ -448,8 +463,38 @@ StudyProtocol parseStudyProtocol(std::string_view text, const std::string& sourc
       if (!item_ids.count(construct.items[k]))
         r.fail((*t.get("items")->as_array())[k], ProtocolReader::indexed(path + ".items", k),
                "'" + construct.items[k] + "' is not a declared [[item]] id");
-    protocol.constructs.push_back(std::move(construct));
+    protocol->constructs.push_back(std::move(construct));
   }
+}
+
+}  // namespace
+
+StudyProtocol parseStudyProtocol(std::string_view text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw StudyProtocolError(source + ":" + std::to_string(e.source().begin.line) +
+                             ": TOML syntax: " + std::string(e.description()));
+  }
+  const ProtocolReader r(source);
+  r.onlyKeys(root, "",
+             {"study", "consent", "participants", "venue", "operator", "introduction", "tutorial",
+              "free_drawing", "tasks", "task", "demographic", "questionnaire", "item", "free_text",
+              "keyboard", "construct"});
+  StudyProtocol protocol;
+  protocol.source = source;
+
+  readStudySection(r, root, &protocol);
+  readParticipantIds(r, root, &protocol);
+  readVenues(r, root, &protocol);
+  readStages(r, root, &protocol, source);
+  readTasks(r, root, &protocol, source);
+  std::set<std::string> answer_ids = {"participant"};
+  readDemographics(r, root, &protocol, &answer_ids);
+  readQuestionnaire(r, root, &protocol, &answer_ids);
+  readKeyboard(r, root, &protocol);
+  readConstructs(r, root, &protocol);
   return protocol;
 }
 

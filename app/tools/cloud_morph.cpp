@@ -93,6 +93,35 @@ void splat(glm::vec3 p, float mass, Volume* out) {
   }
 }
 
+// The cells' mean displacements (times 1 for a non-empty cell, 0 for an empty one) on a grid
+// padded by one empty cell on every side, so interpolation needs no bounds checks; and each
+// cell's number of paths (1 for an empty cell).
+struct CellDisplacements {
+  glm::ivec3 padded;
+  std::vector<glm::vec4> u, v;
+  std::vector<uint32_t> paths;
+
+  CellDisplacements(glm::ivec3 cells, const MorphPlan::Side& side) : padded(cells + 2) {
+    const size_t padded_count = size_t(padded.x) * padded.y * padded.z;
+    u.assign(padded_count, glm::vec4(0));
+    v.assign(padded_count, glm::vec4(0));
+    paths.assign(size_t(cells.x) * cells.y * cells.z, 1);
+    for (int z = 0; z < cells.z; ++z)
+      for (int y = 0; y < cells.y; ++y)
+        for (int x = 0; x < cells.x; ++x) {
+          const size_t c = (size_t(z) * cells.y + y) * cells.x + x;
+          const int particle = side.cell_particle[c];
+          if (particle < 0) continue;
+          u[index(x, y, z)] = glm::vec4(side.mean_u[size_t(particle)], 1.0f);
+          v[index(x, y, z)] = glm::vec4(side.mean_v[size_t(particle)], 1.0f);
+          paths[c] = uint32_t(side.particle_paths[size_t(particle)].size());
+        }
+  }
+  size_t index(int x, int y, int z) const {
+    return (size_t(z + 1) * padded.y + size_t(y + 1)) * padded.x + size_t(x + 1);
+  }
+};
+
 }  // namespace
 
 MorphPlan::MorphPlan(const Volume& source, const Volume& target, const MorphParams& params)
@@ -182,25 +211,11 @@ void CloudMorph::carry(const Volume& cloud, bool from_source) {
   const glm::vec3 to_carried = glm::vec3(d) / glm::vec3(plan.dims());
   const float cv = float(plan.params().cell_voxels);
   const float threshold = plan.params().density_threshold;
-  // The cells' mean displacements (times 1 for a non-empty cell, 0 for an empty one) on a grid
-  // padded by one empty cell on every side, so interpolation needs no bounds checks.
-  const glm::ivec3 padded = cells + 2;
-  auto paddedIndex = [&](int x, int y, int z) {
-    return (size_t(z + 1) * padded.y + size_t(y + 1)) * padded.x + size_t(x + 1);
-  };
-  const size_t padded_count = size_t(padded.x) * padded.y * padded.z;
-  std::vector<glm::vec4> cell_u(padded_count, glm::vec4(0)), cell_v(padded_count, glm::vec4(0));
-  std::vector<uint32_t> cell_paths(size_t(cells.x) * cells.y * cells.z, 1);
-  for (int z = 0; z < cells.z; ++z)
-    for (int y = 0; y < cells.y; ++y)
-      for (int x = 0; x < cells.x; ++x) {
-        const size_t c = (size_t(z) * cells.y + y) * cells.x + x;
-        const int particle = side.cell_particle[c];
-        if (particle < 0) continue;
-        cell_u[paddedIndex(x, y, z)] = glm::vec4(side.mean_u[size_t(particle)], 1.0f);
-        cell_v[paddedIndex(x, y, z)] = glm::vec4(side.mean_v[size_t(particle)], 1.0f);
-        cell_paths[c] = uint32_t(side.particle_paths[size_t(particle)].size());
-      }
+  const CellDisplacements cell(cells, side);
+  const glm::ivec3 padded = cell.padded;
+  const std::vector<glm::vec4>&cell_u = cell.u, &cell_v = cell.v;
+  const std::vector<uint32_t>& cell_paths = cell.paths;
+  auto paddedIndex = [&](int x, int y, int z) { return cell.index(x, y, z); };
   auto ownCell = [&](float p, int n) { return std::clamp(int(std::floor(p / cv)), 0, n - 1); };
   // Per z plane: how many splats, then where each plane's splats start.
   std::vector<size_t> plane_items(size_t(d.z) + 1, 0);

@@ -98,6 +98,23 @@ void requireShape(const ShapeMask& mask) {
     throw ToolError(ToolErrorKind::kEmptyImage, "the picture has no shape pixel");
 }
 
+// §3.1.1.1: the nearest medial-axis pixel q of every pixel (-1: none) and d_max, the largest
+// distance d_pq of a shape pixel to its q.
+struct MedialAxisPull {
+  std::vector<int> nearest;
+  float d_max = 0;
+};
+
+MedialAxisPull medialAxisPull(const ShapeMask& mask) {
+  MedialAxisPull pull;
+  const std::vector<uint8_t> axis = medialAxis(mask);
+  std::vector<float> axis_d2;
+  squaredDistance2d(mask.width, mask.height, axis, &axis_d2, &pull.nearest);
+  for (size_t i = 0; i < axis_d2.size(); ++i)
+    if (mask.inside[i]) pull.d_max = std::max(pull.d_max, std::sqrt(axis_d2[i]));
+  return pull;
+}
+
 }  // namespace
 
 VoxelBox pictureReach(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
@@ -120,17 +137,9 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
   const PicturePlacement placement(view, *volume, w, h);
   const float texel = placement.pictureTexelWorldSize();
 
-  // §3.1.1.1: nearest medial-axis pixel q of every pixel, d_pq, d_max.
-  std::vector<uint8_t> axis =
-      params.naive_uniform_depth ? std::vector<uint8_t>() : medialAxis(mask);
-  std::vector<float> axis_d2;
-  std::vector<int> axis_nearest;
-  float d_max = 0;
-  if (!params.naive_uniform_depth) {
-    squaredDistance2d(w, h, axis, &axis_d2, &axis_nearest);
-    for (size_t i = 0; i < axis_d2.size(); ++i)
-      if (mask.inside[i]) d_max = std::max(d_max, std::sqrt(axis_d2[i]));
-  }
+  const MedialAxisPull pull = params.naive_uniform_depth ? MedialAxisPull{} : medialAxisPull(mask);
+  const std::vector<int>& axis_nearest = pull.nearest;
+  const float d_max = pull.d_max;
 
   const ShapeSpread spread(mask);
   const double cx = spread.cx, cy = spread.cy;

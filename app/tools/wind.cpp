@@ -74,6 +74,60 @@ VoxelBox nonZeroBox(const Volume& volume) {
   return box;
 }
 
+// Which blocks (kBlock voxels on a side) of a volume hold density, as a summed-volume table for
+// box queries.
+class OccupiedBlocks {
+ public:
+  OccupiedBlocks(const Volume& start, int block) : blocks_((start.dims() + block - 1) / block) {
+    const glm::ivec3 d = start.dims();
+    const glm::ivec3 blocks = blocks_;
+    auto block_index = [&](glm::ivec3 b) {
+      return (size_t(b.z) * blocks.y + b.y) * blocks.x + b.x;
+    };
+    std::vector<uint8_t> occupied(size_t(blocks.x) * blocks.y * blocks.z, 0);
+    parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+      std::vector<float> row(size_t(d.x));
+      for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
+        for (int z = bz * block; z < std::min(d.z, (bz + 1) * block); ++z)
+          for (int y = 0; y < d.y; ++y) {
+            start.readLine({0, y, z}, 0, d.x, row.data());
+            for (int x = 0; x < d.x; ++x)
+              if (row[x] != 0.0f) occupied[block_index({x / block, y / block, bz})] = 1;
+          }
+    });
+    const glm::ivec3 t = blocks + 1;
+    table_.assign(size_t(t.x) * t.y * t.z, 0);
+    for (int z = 1; z < t.z; ++z)
+      for (int y = 1; y < t.y; ++y)
+        for (int x = 1; x < t.x; ++x)
+          at(x, y, z) = occupied[block_index({x - 1, y - 1, z - 1})] + at(x - 1, y, z) +
+                        at(x, y - 1, z) + at(x, y, z - 1) - at(x - 1, y - 1, z) -
+                        at(x - 1, y, z - 1) - at(x, y - 1, z - 1) + at(x - 1, y - 1, z - 1);
+  }
+
+  // Whether any of the blocks [lo, hi) holds density.
+  bool any(glm::ivec3 lo, glm::ivec3 hi) const {
+    lo = glm::max(lo, glm::ivec3(0));
+    hi = glm::min(hi, blocks_);
+    if (glm::any(glm::lessThanEqual(hi, lo))) return false;
+    const int64_t sum = int64_t(at(hi.x, hi.y, hi.z)) - at(lo.x, hi.y, hi.z) -
+                        at(hi.x, lo.y, hi.z) - at(hi.x, hi.y, lo.z) + at(lo.x, lo.y, hi.z) +
+                        at(lo.x, hi.y, lo.z) + at(hi.x, lo.y, lo.z) - at(lo.x, lo.y, lo.z);
+    return sum > 0;
+  }
+
+ private:
+  uint32_t& at(int x, int y, int z) { return table_[index(x, y, z)]; }
+  uint32_t at(int x, int y, int z) const { return table_[index(x, y, z)]; }
+  size_t index(int x, int y, int z) const {
+    const glm::ivec3 t = blocks_ + 1;
+    return (size_t(z) * t.y + y) * t.x + x;
+  }
+
+  glm::ivec3 blocks_;
+  std::vector<uint32_t> table_;
+};
+
 }  // namespace
 
 WindSolver::WindSolver(glm::vec3 world_min, glm::vec3 world_max, const WindParams& params)
@@ -242,38 +296,9 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
   const glm::ivec3 blocks = (d + kBlock - 1) / kBlock;
   auto block_index = [&](glm::ivec3 b) { return (size_t(b.z) * blocks.y + b.y) * blocks.x + b.x; };
   const size_t block_count = size_t(blocks.x) * blocks.y * blocks.z;
-  // Which blocks of the start hold density, as a summed-volume table for box queries.
-  std::vector<uint8_t> occupied(block_count, 0);
-  parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
-    std::vector<float> row(size_t(d.x));
-    for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
-      for (int z = bz * kBlock; z < std::min(d.z, (bz + 1) * kBlock); ++z)
-        for (int y = 0; y < d.y; ++y) {
-          start.readLine({0, y, z}, 0, d.x, row.data());
-          for (int x = 0; x < d.x; ++x)
-            if (row[x] != 0.0f) occupied[block_index({x / kBlock, y / kBlock, bz})] = 1;
-        }
-  });
-  const glm::ivec3 t = blocks + 1;
-  std::vector<uint32_t> table(size_t(t.x) * t.y * t.z, 0);
-  auto at = [&](int x, int y, int z) -> uint32_t& {
-    return table[(size_t(z) * t.y + y) * t.x + x];
-  };
-  for (int z = 1; z < t.z; ++z)
-    for (int y = 1; y < t.y; ++y)
-      for (int x = 1; x < t.x; ++x)
-        at(x, y, z) = occupied[block_index({x - 1, y - 1, z - 1})] + at(x - 1, y, z) +
-                      at(x, y - 1, z) + at(x, y, z - 1) - at(x - 1, y - 1, z) -
-                      at(x - 1, y, z - 1) - at(x, y - 1, z - 1) + at(x - 1, y - 1, z - 1);
-  auto anyOccupied = [&](glm::ivec3 lo, glm::ivec3 hi) {  // blocks [lo, hi)
-    lo = glm::max(lo, glm::ivec3(0));
-    hi = glm::min(hi, blocks);
-    if (glm::any(glm::lessThanEqual(hi, lo))) return false;
-    const int64_t sum = int64_t(at(hi.x, hi.y, hi.z)) - at(lo.x, hi.y, hi.z) -
-                        at(hi.x, lo.y, hi.z) - at(hi.x, hi.y, lo.z) + at(lo.x, lo.y, hi.z) +
-                        at(lo.x, hi.y, lo.z) + at(hi.x, lo.y, lo.z) - at(lo.x, lo.y, lo.z);
-    return sum > 0;
-  };
+  // Which blocks of the start hold density.
+  const OccupiedBlocks occupied(start, kBlock);
+  auto anyOccupied = [&](glm::ivec3 lo, glm::ivec3 hi) { return occupied.any(lo, hi); };
   const glm::vec3 vs = start.voxelSize();
   const glm::vec3 voxel_to_cells = vs / cell_;
   const glm::vec3 offset_cells = 0.5f * voxel_to_cells - 0.5f;

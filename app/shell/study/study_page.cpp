@@ -167,6 +167,80 @@ void keyboard(PageBuilder& b, const StudyPageInput& input, const StudyKeyboardPa
            {0.18f, 0.55f, 0.3f, 1.0f});
 }
 
+// The form pages' frame: margins, text width and the button row.
+struct FormLayout {
+  float margin, wrap, button_w, button_h, button_y;
+};
+
+// A form page's heading at y; returns the y below it.
+float formHeading(PageBuilder& b, const FormLayout& l, float y, const std::string& text) {
+  b.text(l.margin, y, text, b.title());
+  return y + 1.6f * b.title();
+}
+
+// A demographic field: its label, then its choices in a row or the keyboard.
+void demographicsForm(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input,
+                      const FormLayout& l, float y) {
+  const StudyProtocol& p = state.protocol();
+  const DemographicField& f = p.demographics[size_t(state.fieldIndex())];
+  y = formHeading(b, l, y,
+                  "About you (" + std::to_string(state.fieldIndex() + 1) + " of " +
+                      std::to_string(p.demographics.size()) + ")");
+  b.text(l.margin, y, f.label, b.body(), kStudyTextColour, l.wrap);
+  y += 2.2f * b.body();
+  if (!input.message.empty())
+    b.text(l.margin, y - 0.9f * b.body(), input.message, b.small(), kStudyHintColour, l.wrap);
+  if (f.kind == DemographicField::Kind::kChoice) {
+    const float cw = std::min(0.25f * b.w(), l.wrap / float(std::max<size_t>(1, f.choices.size())));
+    for (size_t i = 0; i < f.choices.size(); ++i) {
+      const float x = l.margin + float(i) * cw;
+      StudyTarget& t =
+          b.target(x + 4, y, x + cw - 4, y + l.button_h, StudyTargetAction::kChoice, f.choices[i]);
+      t.text = f.choices[i];
+    }
+    b.target(l.margin, y + 1.4f * l.button_h, l.margin + l.button_w, y + 2.4f * l.button_h,
+             StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
+  } else {
+    keyboard(b, input, p.keyboard, y, f.kind == DemographicField::Kind::kInteger);
+  }
+}
+
+// A questionnaire item: its text, the scale as big boxes with their words, Back and Skip.
+void questionnaireForm(PageBuilder& b, const StudyRunState& state, const FormLayout& l, float y) {
+  const StudyProtocol& p = state.protocol();
+  const int i = state.itemIndex();
+  const QuestionnaireItem& item = p.items[size_t(i)];
+  y = formHeading(b, l, y,
+                  "Questionnaire: item " + std::to_string(i + 1) + " of " +
+                      std::to_string(p.items.size()) +
+                      (item.section.empty() ? std::string() : " (" + item.section + ")"));
+  // The thesis's *emphasis* marks are the protocol's transcription, not for the participant.
+  std::string text = item.text + (item.text_zh.empty() ? "" : "\n" + item.text_zh);
+  text.erase(std::remove(text.begin(), text.end(), '*'), text.end());
+  b.text(l.margin, y, text, 1.15f * b.body(), kStudyTextColour, l.wrap);
+  // Five (n) big boxes in a row, the scale's words under each number.
+  const int n = int(p.scale_labels.size());
+  const float gap = 0.012f * b.w();
+  const float bw = (l.wrap - float(n - 1) * gap) / float(n), bh = 0.16f * b.h();
+  const float by = 0.45f * b.h();
+  const std::optional<int> given = state.itemAnswers()[size_t(i)];
+  for (int k = 1; k <= n; ++k) {
+    const float x = l.margin + float(k - 1) * (bw + gap);
+    b.target(x, by, x + bw, by + bh, StudyTargetAction::kAnswer, std::to_string(k), k,
+             given && *given == k);
+    b.centred(x + 0.5f * bw, by + bh + 0.3f * b.small(), p.scale_labels[size_t(k - 1)], b.small());
+    if (size_t(k) <= p.scale_labels_zh.size())
+      b.centred(x + 0.5f * bw, by + bh + 1.55f * b.small(), p.scale_labels_zh[size_t(k - 1)],
+                b.small());
+  }
+  const float ry = by + bh + (p.scale_labels_zh.empty() ? 2.2f : 3.4f) * b.small();
+  if (i > 0)
+    b.target(l.margin, ry, l.margin + l.button_w, ry + 0.7f * l.button_h,
+             StudyTargetAction::kBackItem, "Back", 0, false, kQuietColour);
+  b.target(b.w() - l.margin - l.button_w, ry, b.w() - l.margin, ry + 0.7f * l.button_h,
+           StudyTargetAction::kSkipItem, "Skip", 0, false, kQuietColour);
+}
+
 void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input) {
   const StudyProtocol& p = state.protocol();
   const float margin = 0.06f * b.w();
@@ -211,64 +285,12 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
                button_y + button_h, StudyTargetAction::kContinue, "Continue");
       break;
     }
-    case StudyStageKind::kDemographics: {
-      const DemographicField& f = p.demographics[size_t(state.fieldIndex())];
-      heading("About you (" + std::to_string(state.fieldIndex() + 1) + " of " +
-              std::to_string(p.demographics.size()) + ")");
-      b.text(margin, y, f.label, b.body(), kStudyTextColour, wrap);
-      y += 2.2f * b.body();
-      if (!input.message.empty())
-        b.text(margin, y - 0.9f * b.body(), input.message, b.small(), kStudyHintColour, wrap);
-      if (f.kind == DemographicField::Kind::kChoice) {
-        const float cw =
-            std::min(0.25f * b.w(), wrap / float(std::max<size_t>(1, f.choices.size())));
-        for (size_t i = 0; i < f.choices.size(); ++i) {
-          const float x = margin + float(i) * cw;
-          StudyTarget& t = b.target(x + 4, y, x + cw - 4, y + button_h, StudyTargetAction::kChoice,
-                                    f.choices[i]);
-          t.text = f.choices[i];
-        }
-        b.target(margin, y + 1.4f * button_h, margin + button_w, y + 2.4f * button_h,
-                 StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
-      } else {
-        keyboard(b, input, p.keyboard, y, f.kind == DemographicField::Kind::kInteger);
-      }
+    case StudyStageKind::kDemographics:
+      demographicsForm(b, state, input, {margin, wrap, button_w, button_h, button_y}, y);
       break;
-    }
-    case StudyStageKind::kQuestionnaire: {
-      const int i = state.itemIndex();
-      const QuestionnaireItem& item = p.items[size_t(i)];
-      heading("Questionnaire: item " + std::to_string(i + 1) + " of " +
-              std::to_string(p.items.size()) +
-              (item.section.empty() ? std::string() : " (" + item.section + ")"));
-      // The thesis's *emphasis* marks are the protocol's transcription, not for the participant.
-      std::string text = item.text + (item.text_zh.empty() ? "" : "\n" + item.text_zh);
-      text.erase(std::remove(text.begin(), text.end(), '*'), text.end());
-      b.text(margin, y, text, 1.15f * b.body(), kStudyTextColour, wrap);
-      // Five (n) big boxes in a row, the scale's words under each number.
-      const int n = int(p.scale_labels.size());
-      const float gap = 0.012f * b.w();
-      const float bw = (wrap - float(n - 1) * gap) / float(n), bh = 0.16f * b.h();
-      const float by = 0.45f * b.h();
-      const std::optional<int> given = state.itemAnswers()[size_t(i)];
-      for (int k = 1; k <= n; ++k) {
-        const float x = margin + float(k - 1) * (bw + gap);
-        b.target(x, by, x + bw, by + bh, StudyTargetAction::kAnswer, std::to_string(k), k,
-                 given && *given == k);
-        b.centred(x + 0.5f * bw, by + bh + 0.3f * b.small(), p.scale_labels[size_t(k - 1)],
-                  b.small());
-        if (size_t(k) <= p.scale_labels_zh.size())
-          b.centred(x + 0.5f * bw, by + bh + 1.55f * b.small(), p.scale_labels_zh[size_t(k - 1)],
-                    b.small());
-      }
-      const float ry = by + bh + (p.scale_labels_zh.empty() ? 2.2f : 3.4f) * b.small();
-      if (i > 0)
-        b.target(margin, ry, margin + button_w, ry + 0.7f * button_h, StudyTargetAction::kBackItem,
-                 "Back", 0, false, kQuietColour);
-      b.target(b.w() - margin - button_w, ry, b.w() - margin, ry + 0.7f * button_h,
-               StudyTargetAction::kSkipItem, "Skip", 0, false, kQuietColour);
+    case StudyStageKind::kQuestionnaire:
+      questionnaireForm(b, state, {margin, wrap, button_w, button_h, button_y}, y);
       break;
-    }
     case StudyStageKind::kFreeText: {
       const FreeTextQuestion& q = p.free_text[size_t(state.freeTextIndex())];
       heading("Comments (" + std::to_string(state.freeTextIndex() + 1) + " of " +
