@@ -15,16 +15,12 @@
 #include <gtest/gtest.h>
 
 #include "drivers/devices/device_file.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cb::test::readText;
 
 // What a rule line's `KEY=="VALUE"` patterns would match, the way udev compares them (fnmatch
 // globs; a hidraw node's KERNELS is its HID device's name, BUS:VENDOR:PRODUCT.N in hex capitals).

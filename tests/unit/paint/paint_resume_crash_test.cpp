@@ -28,6 +28,7 @@
 #include "tests/support/command_run.h"
 #include "tests/support/reference_journal.h"
 #include "tests/support/test_seed.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -76,12 +77,7 @@ bool exited(pid_t pid) {
   return ::waitid(P_PID, id_t(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
 }
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 TEST(PaintResumeCrash, KilledTwentyTimesTheSessionResumesAndEndsWithTheSameVolume) {
   const std::string dir =

@@ -34,6 +34,7 @@
 #include "drivers/replay/replay_pen_source.h"
 
 #include "tests/support/test_display.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -41,12 +42,7 @@ namespace {
 constexpr int kW = 640, kH = 360;
 constexpr int64_t kSecond = 1'000'000'000;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cb::test::readText;
 
 // One raw sample of the synthetic tablet at screen pixel (x, y).
 PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, float pressure,

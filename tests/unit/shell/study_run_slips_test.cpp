@@ -23,6 +23,7 @@
 
 #include "tests/support/short_study.h"
 #include "tests/support/test_display.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -30,12 +31,7 @@ namespace {
 constexpr int kW = 1920, kH = 1080;
 constexpr int64_t kSecond = 1'000'000'000;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cb::test::readText;
 
 // The bundled protocol without tutorial and free drawing, one task of two minutes.
 StudyProtocol slipsProtocol() {

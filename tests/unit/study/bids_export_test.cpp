@@ -19,6 +19,7 @@
 #include "app/study/protocol.h"
 #include "tests/support/command_run.h"
 #include "tests/support/short_study.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -26,12 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using Table = std::vector<std::vector<std::string>>;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> out(1);

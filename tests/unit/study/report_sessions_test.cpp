@@ -29,6 +29,7 @@
 #include "app/study/study_session_record.h"
 #include "drivers/core/journal.h"
 #include "tests/support/command_run.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -188,12 +189,7 @@ void writeJournal(const StudyProtocol& p, int number, const Recording& r, const 
   }
 }
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 struct Study {
   std::string dir, answers;

@@ -38,6 +38,7 @@
 #include "drivers/core/journal_records.h"
 #include "tests/support/command_run.h"
 #include "tests/support/short_study.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -45,12 +46,7 @@ namespace {
 namespace fs = std::filesystem;
 using Table = std::vector<std::vector<std::string>>;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 // Rows of a CSV whose fields hold no quoted commas (the columns read here have none).
 Table readCsv(const std::string& path) {

@@ -28,18 +28,14 @@
 #include "drivers/core/journal.h"
 #include "tests/support/command_run.h"
 #include "tests/support/short_study.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 size_t countRecords(const JournalReadResult& journal, JournalRecordType type) {
   size_t n = 0;

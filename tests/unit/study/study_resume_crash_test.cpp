@@ -36,18 +36,14 @@
 #include "tests/support/command_run.h"
 #include "tests/support/short_study.h"
 #include "tests/support/test_seed.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
 
 constexpr int kW = test::kShortStudyWidth, kH = test::kShortStudyHeight;
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using cb::test::readText;
 
 std::string capture(const std::string& text, const std::string& pattern) {
   std::smatch match;

@@ -15,16 +15,12 @@
 #include "app/study/protocol.h"
 #include "drivers/core/journal.h"
 #include "tests/support/command_run.h"
+#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cb::test::readText;
 
 std::string tempDir(const std::string& name) {
   const std::string dir =
