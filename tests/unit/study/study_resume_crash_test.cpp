@@ -34,9 +34,9 @@
 #include "drivers/core/journal.h"
 
 #include "tests/support/command_run.h"
+#include "tests/support/file_text.h"
 #include "tests/support/short_study.h"
 #include "tests/support/test_seed.h"
-#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -181,6 +181,12 @@ TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOn
     else
       ++finished;
     if (out.find("resumed ") != std::string::npos) ++resumes;
+    // A restart whose loop ran (the test waited for its first record) carried the session on.
+    // (One killed while it starts may not have said so yet: how many are is the seed's draw.)
+    if (i > 0 && !in_startup && !before.sample_times.empty()) {
+      EXPECT_NE(out.find("resumed "), std::string::npos) << "kill " << i << " did not resume\n"
+                                                         << out;
+    }
     const JournalCounts now =
         std::filesystem::exists(journal) ? countJournal(journal) : JournalCounts{};
     std::printf("kill %2d %4d ms after %s: %s; %zu samples, %d strokes, %zu answers, stage %s\n", i,
@@ -204,7 +210,6 @@ TEST(StudyResumeCrash, KilledAtRandomTheSessionResumesAndEndsAsAnUninterruptedOn
     before = now;
   }
   EXPECT_GE(killed, kills / 2) << "most runs should have been killed, not finished";
-  EXPECT_GE(resumes, kills / 4) << "restarts resumed the session";
 
   const test::CommandRun last = test::runCommand(command(folder));
   ASSERT_EQ(last.status, 0) << last.out;
