@@ -379,6 +379,56 @@ void VolumeRenderer::followGrowth(const Volume& volume) {
   synced_generation_ = g.generation;
 }
 
+// The light volume brought up to date with the volume and the light: a coarse sweep while the
+// light is dragged (recomputed in full at release), else the sweep of what changed. Returns the
+// box whose light changed.
+VoxelBox VolumeRenderer::syncLight(const Volume& volume, const Light& light, bool fresh,
+                                   const VoxelBox& dirty, LightByteChanges* light_bytes) {
+  if (fresh) light_volume_ = LightVolume{};
+  const bool light_unchanged = synced_light_.direction == light.direction &&
+                               synced_light_.extinction == light.extinction && !fresh;
+  const bool stale = light_is_preview_ ? !light_unchanged || !dirty.empty()
+                                       : !light_volume_.matches(volume, light);
+  light_bytes->all = true;
+  if (light_preview_divisor_ > 1 && stale) {
+    light_is_preview_ = true;
+    return reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
+  }
+  if (light_preview_divisor_ > 1 && light_is_preview_) return {};  // the same preview light
+  light_is_preview_ = false;
+  return sweepLightVolume(light_volume_, volume, light, dirty, light_bytes);
+}
+
+void VolumeRenderer::dropFrameTargets() {
+  // The frame targets hold frames of the volume before: given back, so that what the renderer
+  // holds follows the sizes this volume is drawn at, not every size drawn before (a kiosk
+  // resets to the attract loop after each visit; soak in tests/unit/kiosk/kiosk_soak.cpp).
+  FrameTargets current{
+      bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, depth_texture_, 0, 0};
+  deleteTargets(&current);
+  deleteTargets(&spare_targets_);
+  bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = depth_texture_ = 0;
+  bounds_w_ = bounds_h_ = 0;
+}
+
+// The ray-bounds faces of the occupied cells, uploaded.
+void VolumeRenderer::uploadRayBounds() {
+  // One boundary, drawn once without culling: its front faces are where rays enter occupied
+  // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
+  // llvmpipe's bounds pass is bound by triangle count, so the faces are merged into
+  // rectangles (occupiedBoundaryFaces).
+  // The rectangles' corners are kept to bound the boundary's projection (boundsRect).
+  const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
+  const std::vector<BoundaryRect> rects = occupiedBoundaryRects(occupancy_, level);
+  const float cell = float(occupancy_.cellSize(level));
+  const std::vector<glm::vec3> faces = boundaryTriangles(rects, cell);
+  bounds_corners_ = boundaryCorners(rects, cell);
+  bounds_vertices_ = GLsizei(faces.size());
+  bounds_vbo_bytes_ = std::max<size_t>(1, faces.size()) * sizeof(glm::vec3);
+  glNamedBufferData(bounds_vbo_, GLsizeiptr(bounds_vbo_bytes_),
+                    faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
+}
+
 SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   SyncStats st;
   // A volume grown around the synced one (Volume::Growth): what the renderer holds is shifted by
@@ -412,23 +462,8 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.occupancy_ms = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
-  if (fresh) light_volume_ = LightVolume{};
-  const bool light_unchanged = synced_light_.direction == light.direction &&
-                               synced_light_.extinction == light.extinction && !fresh;
-  const bool stale = light_is_preview_ ? !light_unchanged || !st.dirty.empty()
-                                       : !light_volume_.matches(volume, light);
   LightByteChanges light_bytes;  // which bricks' 8-bit light changed (else: the light box)
-  light_bytes.all = true;
-  if (light_preview_divisor_ > 1 && stale) {
-    // The light moves while it is dragged: a coarse sweep, recomputed in full at release.
-    st.light_box = reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
-    light_is_preview_ = true;
-  } else if (light_preview_divisor_ > 1 && light_is_preview_) {
-    st.light_box = {};  // the same preview light: nothing to redo
-  } else {
-    st.light_box = sweepLightVolume(light_volume_, volume, light, st.dirty, &light_bytes);
-    light_is_preview_ = false;
-  }
+  st.light_box = syncLight(volume, light, fresh, st.dirty, &light_bytes);
   st.light_ms = msSince(t0);
 
   st.uploaded = st.dirty.unite(st.light_box);
@@ -455,17 +490,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     if (history->pending.size() > kMaxMaskBoxes) coalescePerSlot(&history->pending);
     if (history->pending.size() > kMaxMaskBoxes) *history = FrameHistory{};
   }
-  if (fresh) {
-    // The frame targets hold frames of the volume before: given back, so that what the renderer
-    // holds follows the sizes this volume is drawn at, not every size drawn before (a kiosk
-    // resets to the attract loop after each visit; soak in tests/unit/kiosk/kiosk_soak.cpp).
-    FrameTargets current{
-        bounds_fbo_, bounds_texture_, frame_texture_, stencil_buffer_, depth_texture_, 0, 0};
-    deleteTargets(&current);
-    deleteTargets(&spare_targets_);
-    bounds_fbo_ = bounds_texture_ = frame_texture_ = stencil_buffer_ = depth_texture_ = 0;
-    bounds_w_ = bounds_h_ = 0;
-  }
+  if (fresh) dropFrameTargets();
   st.slots_uploaded = pool.slots_uploaded;
   st.slots_unchanged = pool.slots_unchanged;
   st.pool_grew = pool.grew;
@@ -475,22 +500,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // The occupancy texture is read only by brick stepping (off by default): it is brought up to
   // date when a frame steps (ensureOccupancyTexture), not here.
   occupancy_texture_stale_ = occupancy_texture_stale_.unite(occupancy_cells);
-  if (!occupancy_cells.empty()) {
-    // One boundary, drawn once without culling: its front faces are where rays enter occupied
-    // cells and its back faces where they leave (ray_bounds.frag.glsl tells them apart).
-    // llvmpipe's bounds pass is bound by triangle count, so the faces are merged into
-    // rectangles (occupiedBoundaryFaces).
-    // The rectangles' corners are kept to bound the boundary's projection (boundsRect).
-    const int level = std::min(kRayBoundsLevel, occupancy_.levelCount() - 1);
-    const std::vector<BoundaryRect> rects = occupiedBoundaryRects(occupancy_, level);
-    const float cell = float(occupancy_.cellSize(level));
-    const std::vector<glm::vec3> faces = boundaryTriangles(rects, cell);
-    bounds_corners_ = boundaryCorners(rects, cell);
-    bounds_vertices_ = GLsizei(faces.size());
-    bounds_vbo_bytes_ = std::max<size_t>(1, faces.size()) * sizeof(glm::vec3);
-    glNamedBufferData(bounds_vbo_, GLsizeiptr(bounds_vbo_bytes_),
-                      faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
-  }
+  if (!occupancy_cells.empty()) uploadRayBounds();
   for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
                    GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES})
     glPixelStorei(p, 0);

@@ -215,6 +215,12 @@ class VolumeRenderer {
   // Whether `volume` was grown around exactly what was last synced (see sync), and following it.
   bool followsGrowth(const Volume& volume) const;
   void followGrowth(const Volume& volume);
+  // Parts of sync(): the light volume (returns the box whose light changed), the frame targets
+  // given back for a new volume, the ray-bounds faces uploaded.
+  VoxelBox syncLight(const Volume& volume, const Light& light, bool fresh, const VoxelBox& dirty,
+                     LightByteChanges* light_bytes);
+  void dropFrameTargets();
+  void uploadRayBounds();
   // Makes the occupancy texture current (allocated at the pyramid's size, its stale cells
   // uploaded): only frames that step over it (RenderOptions::brick_stepping) read it.
   void ensureOccupancyTexture();

@@ -679,6 +679,64 @@ bool PaintSession::apply(const UiChange& change, int64_t t_ns, std::string* erro
   return true;
 }
 
+// A Session record: the recording's settings must be this session's.
+bool PaintSession::applySessionRecord(const JournalRecord& record, std::string* error) {
+  PaintSessionSettings recorded;
+  if (!parseSessionSettings(record.text(), &recorded, error)) return false;
+  if (recorded.screen_width != settings_.screen_width ||
+      recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
+      recorded.sky_span != settings_.sky_span || recorded.sky_max_span != settings_.sky_max_span ||
+      recorded.placementsGrowSky() != settings_.placementsGrowSky() ||
+      recorded.format != settings_.format ||
+      recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
+      recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
+    *error = "session record (" + formatSessionSettings(recorded) +
+             ") differs from this session's settings";
+    return false;
+  }
+  journalText(JournalRecordType::kSession, record.t_ns, std::string(record.text()));
+  return true;
+}
+
+// A Settings record: render.toml is applied; brush.toml and mapping.toml must be the settings
+// this session was made with.
+bool PaintSession::applySettingsRecord(const JournalRecord& record, std::string* error) {
+  std::string name, body;
+  if (!parseSettingsRecord(record.text(), &name, &body, error)) return false;
+  if (name == "render.toml") {
+    setRenderSettings(body, record.t_ns);
+    return true;
+  }
+  // Compared as read back (recorded_settings.h): an older text lacks keys added since, or
+  // carries retired ones, yet stands for the same settings.
+  std::string in_force, recorded;
+  if (name == "brush.toml") {
+    BrushConfig parsed;
+    std::vector<std::string> errors;
+    if (!parseRecordedBrush(body, name, &parsed, &errors))
+      return *error = errors.empty() ? name : errors.front(), false;
+    in_force = formatBrushConfig(brush_config_);
+    recorded = formatBrushConfig(parsed);
+  } else if (name == "mapping.toml") {
+    try {
+      recorded = formatMappingConfig(parseRecordedMapping(body, name));
+    } catch (const std::exception& e) {
+      return *error = e.what(), false;
+    }
+    in_force = formatMappingConfig(mapping_config_);
+  } else {
+    return true;  // a config this version does not record: skipped
+  }
+  if (recorded != in_force) {
+    *error = "settings record " + name +
+             " differs from the settings this session was made with (replaySession makes "
+             "the session from the recorded ones)";
+    return false;
+  }
+  journalText(record.type, record.t_ns, std::string(record.text()));
+  return true;
+}
+
 bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outcome,
                                std::string* error) {
   switch (record.type) {
@@ -712,24 +770,8 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       setCalibration(*parsed.profile, record.t_ns);
       return true;
     }
-    case JournalRecordType::kSession: {
-      PaintSessionSettings recorded;
-      if (!parseSessionSettings(record.text(), &recorded, error)) return false;
-      if (recorded.screen_width != settings_.screen_width ||
-          recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
-          recorded.sky_span != settings_.sky_span ||
-          recorded.sky_max_span != settings_.sky_max_span ||
-          recorded.placementsGrowSky() != settings_.placementsGrowSky() ||
-          recorded.format != settings_.format ||
-          recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
-          recorded.auto_end_light_ms != settings_.auto_end_light_ms) {
-        *error = "session record (" + formatSessionSettings(recorded) +
-                 ") differs from this session's settings";
-        return false;
-      }
-      journalText(JournalRecordType::kSession, record.t_ns, std::string(record.text()));
-      return true;
-    }
+    case JournalRecordType::kSession:
+      return applySessionRecord(record, error);
     case JournalRecordType::kUi:
     case JournalRecordType::kMode: {
       if (record.type == JournalRecordType::kMode && settings_.format < 2) {
@@ -740,42 +782,8 @@ bool PaintSession::applyRecord(const JournalRecord& record, SampleOutcome* outco
       if (!parseUiChange(record.type, record.text(), &change, error)) return false;
       return apply(change, record.t_ns, error);
     }
-    case JournalRecordType::kSettings: {
-      std::string name, body;
-      if (!parseSettingsRecord(record.text(), &name, &body, error)) return false;
-      if (name == "render.toml") {
-        setRenderSettings(body, record.t_ns);
-        return true;
-      }
-      // Compared as read back (recorded_settings.h): an older text lacks keys added since, or
-      // carries retired ones, yet stands for the same settings.
-      std::string in_force, recorded;
-      if (name == "brush.toml") {
-        BrushConfig parsed;
-        std::vector<std::string> errors;
-        if (!parseRecordedBrush(body, name, &parsed, &errors))
-          return *error = errors.empty() ? name : errors.front(), false;
-        in_force = formatBrushConfig(brush_config_);
-        recorded = formatBrushConfig(parsed);
-      } else if (name == "mapping.toml") {
-        try {
-          recorded = formatMappingConfig(parseRecordedMapping(body, name));
-        } catch (const std::exception& e) {
-          return *error = e.what(), false;
-        }
-        in_force = formatMappingConfig(mapping_config_);
-      } else {
-        return true;  // a config this version does not record: skipped
-      }
-      if (recorded != in_force) {
-        *error = "settings record " + name +
-                 " differs from the settings this session was made with (replaySession makes "
-                 "the session from the recorded ones)";
-        return false;
-      }
-      journalText(record.type, record.t_ns, std::string(record.text()));
-      return true;
-    }
+    case JournalRecordType::kSettings:
+      return applySettingsRecord(record, error);
     case JournalRecordType::kSync:
       // An output of the session, made again as it runs; the numbering carries on after it.
       if (const std::optional<SyncMarker> marker = parseSyncMarker(record.text()))

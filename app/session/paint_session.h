@@ -232,6 +232,9 @@ class PaintSession {
 
  private:
   struct Applier;  // apply's handler of each typed change (paint_session.cpp)
+  // Parts of applyRecord: a Session record and a Settings record checked against this session.
+  bool applySessionRecord(const JournalRecord& record, std::string* error);
+  bool applySettingsRecord(const JournalRecord& record, std::string* error);
   void journalText(JournalRecordType type, int64_t t_ns, const std::string& text);
   void applyView();
   void mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns);
