@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -23,110 +24,35 @@
 #include "tests/hil/tablet/gadgetfs_device.h"
 #include "tests/hil/tablet/hil_devices.h"
 #include "tests/hil/tablet/pen_script.h"
+#include "tests/hil/tablet/uclogic_models.h"
 
 namespace cb::hil {
 namespace {
 
-// The identity: Huion's vendor id and the product id hid-uclogic lists as
-// USB_DEVICE_ID_HUION_TABLET (drivers/hid/hid-ids.h), shared by the H610 Pro, Gaomon S56K and
-// others. uclogic_params_init sends this id to uclogic_params_huion_init.
-constexpr uint16_t kVendor = 0x256C, kProduct = 0x006E;
-const char* const kManufacturer = "HUION";
-// The HID name becomes "HUION PenTablet", the name the H610 Pro's descriptor dump carries.
-const char* const kProductName = "PenTablet";
-const char* const kSerial = "CBHIL0003";
-// String 201: the firmware name uclogic_params_huion_init reads with usb_string(); only
-// "HUION_T153_160607" (a transition firmware) keeps it from probing the v2 parameters. This
-// one says what it is.
-const char* const kFirmware = "CBHIL_EMULATED_V2";
-
-// The v2 parameters (string 200, read by uclogic_params_pen_init_v2 with wLength 32 and
-// langid 0x0409; at least 18 bytes, not all UTF-16 text): X and Y logical maxima (24 bit at
-// bytes 2 and 5), pressure maximum (16 bit at 8), resolution in lines per inch (16 bit at 10).
-// Both maxima above 65535, so every far position needs the high bytes the driver moves
-// (fragmented_hires); 5080 lpi, as in the HS610 block hid-uclogic quotes
-// (uclogic_params_huion_init, touch_ring_model_params_buf). The bytes after 12 (unknown to the
-// driver) are zero.
-constexpr int32_t kXMax = 120000, kYMax = 75000, kPressureMax = 8191, kLpi = 5080;
-constexpr uint8_t kV2PenReportId = 8;  // UCLOGIC_RDESC_V2_PEN_ID (hid-uclogic-rdesc.h)
-
-std::vector<uint8_t> parameterBlock() {
-  std::vector<uint8_t> b(19, 0);
-  b[0] = 19;
-  b[1] = USB_DT_STRING;
-  auto le = [&](size_t at, int32_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) b[at + i] = (v >> (8 * i)) & 0xFF;
-  };
-  le(2, kXMax, 3);
-  le(5, kYMax, 3);
-  le(8, kPressureMax, 2);
-  le(10, kLpi, 2);
-  return b;
-}
-
-std::vector<uint8_t> stringDescriptor(const std::string& ascii) {
-  std::vector<uint8_t> b = {static_cast<uint8_t>(2 + 2 * ascii.size()), USB_DT_STRING};
-  for (char c : ascii) b.insert(b.end(), {static_cast<uint8_t>(c), 0});
-  return b;
-}
-
-// The raw vendor pen report a v2 tablet sends on interface 0, in the byte order
-// uclogic_raw_event_pen (hid-uclogic-core.c) undoes: ID 8; state bits (tip, barrel, upper
-// button; bit 7 set as the tablet's firmware does, bit 6 "in range" left clear because the v2
-// parameters make the driver set it itself: UCLOGIC_PARAMS_PEN_INRANGE_NONE); X and Y low 16
-// bits; pressure; X and Y high bytes (fragmented_hires); tilt X; tilt Y the other way round
-// (tilt_y_flipped: the driver negates it).
-std::vector<uint8_t> rawV2Report(const PenStep& s) {
-  std::vector<uint8_t> r(12, 0);
-  r[0] = kV2PenReportId;
-  r[1] = 0x80 | (s.tip ? 0x01 : 0) | (s.barrel ? 0x02 : 0) | (s.barrel2 ? 0x04 : 0);
-  r[2] = s.x & 0xFF;
-  r[3] = (s.x >> 8) & 0xFF;
-  r[4] = s.y & 0xFF;
-  r[5] = (s.y >> 8) & 0xFF;
-  r[6] = s.pressure & 0xFF;
-  r[7] = (s.pressure >> 8) & 0xFF;
-  r[8] = (s.x >> 16) & 0xFF;
-  r[9] = (s.y >> 16) & 0xFF;
-  r[10] = static_cast<uint8_t>(static_cast<int8_t>(s.tilt_x));
-  r[11] = static_cast<uint8_t>(static_cast<int8_t>(-s.tilt_y));
-  return r;
-}
-
 // The pen part of the common script (the v2 pen has no eraser end and no distance), tilts
 // within the template's -60..60, no serial or tool id (the pen reports none), and a stroke to
 // the far corner where both axes need their high byte. Ends with the proximity-out step.
-std::vector<PenStep> uclogicScript() {
-  std::vector<PenStep> all = penScript(kXMax, kYMax, kPressureMax, 0), steps;
+std::vector<PenStep> uclogicScript(const UclogicModel& m) {
+  std::vector<PenStep> all = penScript(m.x_max, m.y_max, m.pressure_max, 0), steps;
   for (PenStep s : all) {
     s.serial = 0;
     s.tool_type = 0;
-    s.tilt_x = std::clamp(s.tilt_x, -60, 60);
-    s.tilt_y = std::clamp(s.tilt_y, -60, 60);
+    s.tilt_x = m.tilt ? std::clamp(s.tilt_x, -60, 60) : 0;
+    s.tilt_y = m.tilt ? std::clamp(s.tilt_y, -60, 60) : 0;
     steps.push_back(s);
     if (!s.sense) break;
   }
   // Before the lift (the last two steps: hover, out): draw to the far corner.
   PenStep corner = steps[steps.size() - 3];
   corner.barrel = corner.barrel2 = false;
-  corner.x = kXMax - 7;
-  corner.y = kYMax - 5;
+  corner.x = m.x_max - 7;
+  corner.y = m.y_max - 5;
   steps.insert(steps.end() - 2, corner);
-  corner.x = kXMax;
-  corner.y = kYMax;
+  corner.x = m.x_max;
+  corner.y = m.y_max;
   steps.insert(steps.end() - 2, corner);
   return steps;
 }
-
-struct Checker {
-  int failures = 0;
-  bool operator()(bool ok, const std::string& what) {
-    std::printf("CB-HIL CHECK %s %s\n", ok ? "ok" : "FAIL", what.c_str());
-    std::fflush(stdout);
-    if (!ok) ++failures;
-    return ok;
-  }
-};
 
 int64_t nowNs() {
   return MonotonicClock().nowNs();
@@ -167,15 +93,26 @@ bool sameInfo(const PenDeviceInfo& a, const PenDeviceInfo& b) {
          a.tilt_res == b.tilt_res;
 }
 
-// The HID device the kernel made for our gadget: its sysfs directory, or "".
-std::string hidSysfsDir() {
+// The HID device the kernel made for the model's pen interface: its sysfs directory, or "".
+// Its interfaces share the vendor and product ids; the pen's is the one bound to a driver whose
+// descriptor is not the device's.
+std::string hidSysfsDir(const UclogicModel& m) {
   char prefix[32];
-  std::snprintf(prefix, sizeof prefix, "0003:%04X:%04X.", kVendor, kProduct);
+  std::snprintf(prefix, sizeof prefix, "0003:%04X:%04X.", m.vendor, m.product);
   std::string found;
   if (DIR* d = opendir("/sys/bus/hid/devices")) {
-    while (dirent* e = readdir(d))
-      if (std::string(e->d_name).rfind(prefix, 0) == 0)
-        found = std::string("/sys/bus/hid/devices/") + e->d_name;
+    while (dirent* e = readdir(d)) {
+      const std::string dir = std::string("/sys/bus/hid/devices/") + e->d_name;
+      if (std::string(e->d_name).rfind(prefix, 0) != 0) continue;
+      std::ifstream uevent(dir + "/uevent");
+      std::string line, phys;
+      while (std::getline(uevent, line))
+        if (line.rfind("HID_PHYS=", 0) == 0) phys = line;
+      // usbhid's phys ends in "/input<interface number>" (usbhid_probe).
+      if (phys.size() > 6 &&
+          phys.compare(phys.size() - 7, 7, "/input" + std::to_string(m.pen_interface)) == 0)
+        found = dir;
+    }
     closedir(d);
   }
   return found;
@@ -186,102 +123,104 @@ std::vector<uint8_t> readBytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Control requests: strings 0 (language), 1-3, 200 (v2 parameters), 201 (firmware name) and the
-// interface's Report descriptor; everything else (string 100 included: the v1 parameters a v2
-// tablet is not asked for) stalls.
-GadgetFsDevice::Answer huionAnswers(const std::vector<uint8_t>& report_descriptor) {
-  return [report_descriptor](uint8_t type, uint8_t request, uint16_t value, uint16_t index,
-                             uint16_t) -> std::optional<std::vector<uint8_t>> {
+// Control requests: strings 0 (language) to 3, the model's vendor strings and each interface's
+// Report descriptor; everything else stalls.
+GadgetFsDevice::Answer answers(const UclogicModel& m) {
+  return [m](uint8_t type, uint8_t request, uint16_t value, uint16_t index,
+             uint16_t) -> std::optional<std::vector<uint8_t>> {
     if (request != USB_REQ_GET_DESCRIPTOR) return std::nullopt;
-    if (type == (USB_DIR_IN | USB_RECIP_INTERFACE) && value == 0x2200 && index == 0)
-      return report_descriptor;
+    if (type == (USB_DIR_IN | USB_RECIP_INTERFACE) && value == 0x2200)
+      return index < m.descriptors.size() ? std::optional(m.descriptors[index]) : std::nullopt;
     if (type != USB_DIR_IN || (value >> 8) != USB_DT_STRING) return std::nullopt;
+    auto text = [](const std::string& ascii) {
+      std::vector<uint8_t> b = {static_cast<uint8_t>(2 + 2 * ascii.size()), USB_DT_STRING};
+      for (char c : ascii) b.insert(b.end(), {static_cast<uint8_t>(c), 0});
+      return b;
+    };
     switch (value & 0xFF) {
       case 0:
         return std::vector<uint8_t>{4, USB_DT_STRING, 0x09, 0x04};
       case 1:
-        return stringDescriptor(kManufacturer);
+        return text(m.manufacturer);
       case 2:
-        return stringDescriptor(kProductName);
+        return text(m.product_name);
       case 3:
-        return stringDescriptor(kSerial);
-      case 200:
-        return parameterBlock();
-      case 201:
-        return stringDescriptor(kFirmware);
+        return text(m.serial);
       default:
-        return std::nullopt;
+        return m.vendor_string(value & 0xFF);
     }
   };
 }
 
 // What the driver asked of the device, in order, and the checks on it.
-void checkControlRequests(GadgetFsDevice& gadget, size_t descriptor_size, Checker& check) {
+void checkControlRequests(const UclogicModel& m, GadgetFsDevice& gadget, Checker& check) {
   const std::vector<ControlRecord> log = gadget.controlLog();
-  std::printf("  uclogic: control requests the host sent the device (%zu):\n", log.size());
+  const std::vector<OutTransfer> out = gadget.outLog();
+  std::printf("  %s: control requests the host sent the device (%zu):\n", m.name.c_str(),
+              log.size());
   for (const ControlRecord& r : log) std::printf("    %s\n", describe(r).c_str());
-  auto find = [&](uint8_t type, uint16_t value) -> const ControlRecord* {
+  for (const OutTransfer& t : out) {
+    std::printf("    interrupt OUT %02x: %zu bytes", t.endpoint, t.data.size());
+    for (uint8_t b : t.data) std::printf(" %02x", b);
+    std::printf("\n");
+  }
+  size_t read = 0;
+  for (size_t i = 0; i < m.descriptors.size(); ++i)
     for (const ControlRecord& r : log)
-      if (r.request_type == type && r.request == USB_REQ_GET_DESCRIPTOR && r.value == value)
-        return &r;
-    return nullptr;
-  };
-  const ControlRecord* v2 = find(USB_DIR_IN, 0x0300 | 200);
-  const ControlRecord* fw = find(USB_DIR_IN, 0x0300 | 201);
-  const ControlRecord* v1 = find(USB_DIR_IN, 0x0300 | 100);
-  const ControlRecord* rdesc = find(USB_DIR_IN | USB_RECIP_INTERFACE, 0x2200);
-  check(rdesc && rdesc->outcome == ControlRecord::Outcome::kAnswered &&
-            rdesc->data.size() == descriptor_size,
-        "uclogic: usbhid read the interface's report descriptor (" +
-            std::to_string(descriptor_size) + " bytes answered)");
-  check(fw && fw->outcome == ControlRecord::Outcome::kAnswered,
-        "uclogic: hid-uclogic read the firmware name (string 201)");
-  check(v2 && v2->index == 0x0409 && v2->length == 32 &&
-            v2->outcome == ControlRecord::Outcome::kAnswered && v2->data.size() == 19 &&
-            (!fw || fw < v2),
-        "uclogic: hid-uclogic then read the v2 pen parameters (string 200, langid 0x0409, "
-        "wLength 32; 19 bytes answered)");
-  check(!v1, "uclogic: with v2 parameters found it did not ask for the v1 ones (string 100)");
+      if (r.request_type == (USB_DIR_IN | USB_RECIP_INTERFACE) && r.value == 0x2200 &&
+          r.index == i && r.outcome == ControlRecord::Outcome::kAnswered &&
+          r.data.size() == m.descriptors[i].size()) {
+        ++read;
+        break;
+      }
+  check(read == m.descriptors.size(),
+        m.name + ": usbhid read every interface's report descriptor (" + std::to_string(read) +
+            " of " + std::to_string(m.descriptors.size()) + ")");
+  m.check_requests(log, out, check);
 }
 
-// The descriptor hidraw shows is the driver's v2 template filled with our parameters, not the
+// The descriptor hidraw shows is the driver's template filled with our parameters, not the
 // device's own.
-void checkRewrittenDescriptor(const std::vector<uint8_t>& original, Checker& check) {
-  const std::string dir = hidSysfsDir();
+void checkRewrittenDescriptor(const UclogicModel& m, Checker& check) {
+  const std::vector<uint8_t>& original = m.descriptors[m.pen_interface];
+  const std::string dir = hidSysfsDir(m);
   const std::vector<uint8_t> shown = readBytes(dir + "/report_descriptor");
   char driver[256] = {};
   const ssize_t n = readlink((dir + "/driver").c_str(), driver, sizeof driver - 1);
   const std::string bound =
       n > 0 ? std::string(driver).substr(std::string(driver).rfind('/') + 1) : "(none)";
-  check(bound == "uclogic",
-        "uclogic: the kernel bound its hid-uclogic driver to " + dir + " (driver: " + bound + ")");
+  check(bound == "uclogic", m.name + ": the kernel bound its hid-uclogic driver to interface " +
+                                std::to_string(m.pen_interface) + " " + dir + " (driver: " + bound +
+                                ")");
   auto parsed = hid::parseReportDescriptor(shown.data(), shown.size());
   std::optional<hid::PenLayout> pen;
   if (parsed.descriptor) pen = hid::findPenLayout(*parsed.descriptor).layout;
-  const bool ok = shown != original && pen && pen->report_id == kV2PenReportId &&
-                  pen->x.logical_max == kXMax && pen->y.logical_max == kYMax &&
-                  pen->x.bit_size == 24 && pen->pressure.logical_max == kPressureMax &&
-                  pen->tablet_pick.present && pen->report_bytes == 12;
-  check(ok, "uclogic: hidraw shows the driver's descriptor (" + std::to_string(shown.size()) +
-                " bytes, not the device's " + std::to_string(original.size()) +
-                "): pen report 8 of 12 bytes, 24-bit X 0.." + std::to_string(kXMax) + ", Y 0.." +
-                std::to_string(kYMax) + ", pressure 0.." + std::to_string(kPressureMax) +
-                ", the upper button as Tablet Pick");
+  const bool ok = shown != original && pen && pen->report_id == m.pen_report_id &&
+                  pen->x.logical_max == m.x_max && pen->y.logical_max == m.y_max &&
+                  pen->x.bit_size == m.x_bits && pen->pressure.logical_max == m.pressure_max &&
+                  pen->tablet_pick.present && pen->report_bytes == m.report_bytes;
+  check(ok, m.name + ": hidraw shows the driver's descriptor (" + std::to_string(shown.size()) +
+                " bytes, not the device's " + std::to_string(original.size()) + "): pen report " +
+                std::to_string(m.pen_report_id) + " of " + std::to_string(m.report_bytes) +
+                " bytes, " + std::to_string(m.x_bits) + "-bit X 0.." + std::to_string(m.x_max) +
+                ", Y 0.." + std::to_string(m.y_max) + ", pressure 0.." +
+                std::to_string(m.pressure_max) + ", the upper button as Tablet Pick");
 }
 
-// One step: inject (or, for proximity out, send nothing: the driver's 100 ms timer ends it),
-// then every source must give exactly one sample, equal to the script's.
-int runSteps(GadgetFsDevice& gadget, const PenDeviceInfo& info, std::vector<PenSource*> sources,
-             Checker& check) {
-  const std::vector<PenStep> steps = uclogicScript();
+// One step: inject the model's raw report (or nothing, where the driver's timer ends
+// proximity), then every source must give exactly one sample, equal to the script's.
+int runSteps(const UclogicModel& m, GadgetFsDevice& gadget, const PenDeviceInfo& info,
+             std::vector<PenSource*> sources, Checker& check) {
+  const std::vector<PenStep> steps = uclogicScript(m);
   PenSample previous{};
   int mismatches = 0, samples = 0;
   for (size_t i = 0; i < steps.size(); ++i) {
     PenSample expected;
     const bool expect = expectedSample(steps[i], info, false, previous, expected);
     std::string error;
-    if (steps[i].sense && !gadget.send(rawV2Report(steps[i]), 1000, &error)) {
-      check(false, "uclogic: sending step " + std::to_string(i) + ": " + error);
+    const auto report = m.raw_report(steps[i]);
+    if (report && !gadget.send(m.pen_interface, *report, 1000, &error)) {
+      check(false, m.name + ": sending step " + std::to_string(i) + ": " + error);
       return mismatches + 1;
     }
     for (PenSource* src : sources) {
@@ -291,18 +230,20 @@ int runSteps(GadgetFsDevice& gadget, const PenDeviceInfo& info, std::vector<PenS
       src->poll(5, got);
       const bool ok = expect && got.size() == 1 && samePenState(got[0], expected);
       if (!ok && mismatches < 8) {
-        std::printf("  uclogic step %zu via %s: expected %s\n", i, src->backendName(),
+        std::printf("  %s step %zu via %s: expected %s\n", m.name.c_str(), i, src->backendName(),
                     describe(expected).c_str());
         for (const PenSample& g : got)
-          std::printf("  uclogic step %zu via %s:      got %s\n", i, src->backendName(),
+          std::printf("  %s step %zu via %s:      got %s\n", m.name.c_str(), i, src->backendName(),
                       describe(g).c_str());
       }
       mismatches += !ok;
       samples += static_cast<int>(got.size());
     }
   }
-  check(mismatches == 0, "uclogic: " + std::to_string(steps.size()) +
-                             " script steps (hover, touch, pressure ramp, tilt sweep, both "
+  check(mismatches == 0, m.name + ": " + std::to_string(steps.size()) +
+                             " script steps (hover, touch, pressure ramp, " +
+                             (m.tilt ? "tilt sweep" : "no tilt axes") +
+                             ", both "
                              "buttons, far corner, lift, out) equal on evdev and hidraw, field "
                              "by field (" +
                              std::to_string(samples) + " samples, " + std::to_string(mismatches) +
@@ -310,71 +251,126 @@ int runSteps(GadgetFsDevice& gadget, const PenDeviceInfo& info, std::vector<PenS
   return mismatches;
 }
 
-void checkLibusbIdentity(Checker& check) {
+void checkLibusbIdentity(const UclogicModel& m, Checker& check) {
   bool seen = false;
-  for (const auto& d : usb::listUsbDevices(kVendor)) {
+  for (const auto& d : usb::listUsbDevices(m.vendor)) {
     std::printf("  libusb: %04x:%04x bus %d addr %d '%s' '%s' serial '%s' %s\n", d.vendor,
                 d.product, d.bus, d.address, d.manufacturer.c_str(), d.product_name.c_str(),
                 d.serial.c_str(), d.open_error.c_str());
-    seen |= d.product == kProduct && d.manufacturer == kManufacturer &&
-            d.product_name == kProductName && d.serial == kSerial;
+    seen |= d.product == m.product && d.manufacturer == m.manufacturer &&
+            d.product_name == m.product_name && d.serial == m.serial;
   }
-  check(seen, "uclogic: libusb reads the identity 256c:006e, 'HUION' 'PenTablet', serial");
+  char id[16];
+  std::snprintf(id, sizeof id, "%04x:%04x", m.vendor, m.product);
+  check(seen, m.name + ": libusb reads the identity " + id + ", '" + m.manufacturer + "' '" +
+                  m.product_name + "', serial");
 }
 
-}  // namespace
-
-int runUclogicPhase(const std::string& fixtures) {
-  Checker check;
-  const std::vector<uint8_t> original = readBytes(fixtures + "/huion-h610-pro_256c_006e.rdesc");
-  if (!check(original.size() == 179, "uclogic: the H610 Pro's interface-0 descriptor (179 bytes)"))
-    return check.failures;
-  GadgetFsDevice gadget;
+GadgetFsConfig gadgetConfig(const UclogicModel& m) {
   GadgetFsConfig config;
-  config.vendor = kVendor;
-  config.product = kProduct;
-  config.report_descriptor_length = static_cast<uint16_t>(original.size());
-  std::string error;
-  const int64_t t0 = nowNs();
-  if (!check(gadget.start(config, huionAnswers(original), &error),
-             "uclogic: GadgetFS device 256c:006e on the dummy UDC " + error))
-    return check.failures;
-  EvdevPenSource evdev({});
-  const bool evdev_ok = waitConnected(evdev, 20000);
-  std::printf("CB-HIL FIGURE uclogic_plug_to_evdev_ms %.3f\n", (nowNs() - t0) / 1e6);
-  check(gadget.waitConfigured(1000), "uclogic: the host configured the device");
-  checkControlRequests(gadget, original.size(), check);
-  if (!check(evdev_ok,
-             "uclogic: evdev finds the pen node hid-uclogic made: " + evdev.statusMessage()))
-    return check.failures;
-  checkRewrittenDescriptor(original, check);
-  hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, kVendor));
+  config.vendor = m.vendor;
+  config.product = m.product;
+  for (size_t i = 0; i < m.descriptors.size(); ++i) {
+    GadgetFsInterface f;
+    f.report_descriptor_length = static_cast<uint16_t>(m.descriptors[i].size());
+    f.interrupt_out = m.magic_out && i == m.pen_interface;
+    config.interfaces.push_back(f);
+  }
+  return config;
+}
+
+// The evdev and hidraw checks on the pen the driver made, then the script through both.
+void checkPen(const UclogicModel& m, GadgetFsDevice& gadget, EvdevPenSource& evdev,
+              Checker& check) {
+  checkRewrittenDescriptor(m, check);
+  hid::HidapiPenSource hidraw(hidOptions(hid::HidapiBackend::kHidraw, m.vendor));
   if (!check(waitConnected(hidraw, 5000),
-             "uclogic: hidapi-hidraw decodes the pen: " + hidraw.statusMessage()))
-    return check.failures;
+             m.name + ": hidapi-hidraw decodes the pen: " + hidraw.statusMessage()))
+    return;
   const PenDeviceInfo info = evdev.deviceInfo();
   std::printf("  evdev : %s\n  hidraw: %s\n", describeInfo(info).c_str(),
               describeInfo(hidraw.deviceInfo()).c_str());
-  check(std::string(info.name) == "HUION PenTablet Pen",
-        std::string("uclogic: the pen node is named by hid-uclogic ('") + info.name + "')");
-  check(info.x_max == kXMax && info.y_max == kYMax && info.pressure_max == kPressureMax &&
-            info.tilt_min == -60 && info.tilt_max == 60,
-        "uclogic: evdev's ranges are the parameters we served (x 0.." + std::to_string(kXMax) +
-            ", y 0.." + std::to_string(kYMax) + ", pressure 0.." + std::to_string(kPressureMax) +
-            ", tilt -60..60)");
+  check(std::string(info.name) == m.pen_node, m.name + ": the pen node is named by hid-uclogic ('" +
+                                                  info.name + "', expected '" + m.pen_node + "')");
+  check(info.x_max == m.x_max && info.y_max == m.y_max && info.pressure_max == m.pressure_max &&
+            info.tilt_min == m.tilt_min && info.tilt_max == m.tilt_max,
+        m.name + ": evdev's ranges are the parameters we served (x 0.." + std::to_string(m.x_max) +
+            ", y 0.." + std::to_string(m.y_max) + ", pressure 0.." +
+            std::to_string(m.pressure_max) + ", tilt " + std::to_string(m.tilt_min) + ".." +
+            std::to_string(m.tilt_max) + ")");
   check(sameInfo(info, hidraw.deviceInfo()),
-        "uclogic: ranges and resolutions on hidraw equal the kernel's absinfo");
-  checkLibusbIdentity(check);
-  runSteps(gadget, info, {&evdev, &hidraw}, check);
+        m.name + ": ranges and resolutions on hidraw equal the kernel's absinfo");
+  checkLibusbIdentity(m, check);
+  runSteps(m, gadget, info, {&evdev, &hidraw}, check);
+}
+
+void runModel(const UclogicModel& m, Checker& check) {
+  std::string figure = m.name;
+  std::replace(figure.begin(), figure.end(), '-', '_');
+  const size_t pen_descriptor = m.descriptors.at(m.pen_interface).size();
+  if (!check(pen_descriptor > 0, m.name + ": the pen interface's own report descriptor (" +
+                                     std::to_string(pen_descriptor) + " bytes)"))
+    return;
+  GadgetFsDevice gadget;
+  std::string error;
+  const int64_t t0 = nowNs();
+  char id[16];
+  std::snprintf(id, sizeof id, "%04x:%04x", m.vendor, m.product);
+  if (!check(gadget.start(gadgetConfig(m), answers(m), &error),
+             m.name + ": GadgetFS device " + id + " on the dummy UDC " + error))
+    return;
+  EvdevPenSource evdev({});
+  const bool evdev_ok = waitConnected(evdev, 20000);
+  std::printf("CB-HIL FIGURE %s_plug_to_evdev_ms %.3f\n", figure.c_str(), (nowNs() - t0) / 1e6);
+  check(gadget.waitConfigured(1000), m.name + ": the host configured the device");
+  checkControlRequests(m, gadget, check);
+  if (check(evdev_ok,
+            m.name + ": evdev finds the pen node hid-uclogic made: " + evdev.statusMessage()))
+    checkPen(m, gadget, evdev, check);
   gadget.stop();
   std::vector<PenSample> drain;
   const int64_t unplug = nowNs();
   while (evdev.connection() == PenConnection::kConnected && nowNs() - unplug < 3'000'000'000)
     evdev.poll(20, drain);
   check(evdev.connection() != PenConnection::kConnected,
-        "uclogic: closing the GadgetFS device unplugs it (evdev: " + evdev.statusMessage() + ")");
-  hidraw.poll(50, drain);
-  std::printf("CB-HIL FIGURE uclogic_phase_s %.3f\n", (nowNs() - t0) / 1e9);
+        m.name + ": closing the GadgetFS device unplugs it (evdev: " + evdev.statusMessage() + ")");
+  std::printf("CB-HIL FIGURE %s_phase_s %.3f\n", figure.c_str(), (nowNs() - t0) / 1e9);
+}
+
+// The same XP-Pen without its interrupt OUT endpoint: the magic bytes cannot be sent, so
+// hid-uclogic leaves the pen interface "invalid" and unbound (uclogic_probe_interface fails,
+// uclogic_params_init_invalid) and no pen node appears. Shows the endpoint is what the driver
+// needs, not decoration.
+void runWithoutMagicEndpoint(UclogicModel m, Checker& check) {
+  m.magic_out = false;
+  GadgetFsDevice gadget;
+  std::string error;
+  if (!check(gadget.start(gadgetConfig(m), answers(m), &error),
+             m.name + " without OUT endpoint: GadgetFS device " + error))
+    return;
+  gadget.waitConfigured(5000);
+  EvdevPenSource evdev({});
+  const bool pen = waitConnected(evdev, 3000);
+  const std::string dir = hidSysfsDir(m);
+  char driver[256] = {};
+  const bool bound =
+      !dir.empty() && readlink((dir + "/driver").c_str(), driver, sizeof driver - 1) > 0;
+  const bool asked = !gadget.controlLog().empty();
+  check(asked && !pen && !bound && !dir.empty(),
+        m.name + " without its OUT endpoint: the host enumerated it, but interface " +
+            std::to_string(m.pen_interface) + " stays unbound and no pen node appears (pen: " +
+            (pen ? "yes" : "no") + ", driver: " + (bound ? driver : "none") + ")");
+  gadget.stop();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+}
+
+}  // namespace
+
+int runUclogicPhase(const std::string& fixtures) {
+  Checker check;
+  for (const UclogicModel& m : {huionV2Model(fixtures), ugeeV2Model(), ugeeV1Model()})
+    runModel(m, check);
+  runWithoutMagicEndpoint(ugeeV2Model(), check);
   return check.failures;
 }
 
