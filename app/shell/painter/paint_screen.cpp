@@ -9,9 +9,9 @@
 
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
+#include "app/shell/keymap.h"
 #include "app/shell/painter/animation_preview.h"
 #include "app/shell/painter/hud_items.h"
-#include "app/shell/keymap.h"
 #include "app/shell/painter/mouse_pen.h"
 #include "app/shell/painter/painter_messages.h"
 #include "app/shell/ui_overlay.h"
@@ -335,12 +335,15 @@ void PaintScreen::afterSample(const SampleOutcome& outcome,
     texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
   if (outcome.auto_ended && !replay_view_) tell(msg::kStrokeEnded.oneLine());
   if (outcome.stroke_mapped) {
-    // Ink in the veil (where the canvas is out of reach) is not dropped: the mapping places it
-    // on its fallback plane, off the canvas (app/mapping/stroke_mapper.cpp). Said so, once per
-    // stroke, with the way back.
+    // Ink in the veil (where the canvas is out of reach) is left out (app/mapping/veil_ink.h);
+    // a session recorded before that places it on the mapping's fallback plane. Said so, once
+    // per stroke.
     long off_canvas = 0;
     for (const MappedSphere& sphere : outcome.mapping.spheres) off_canvas += !sphere.on_canvas;
-    if (off_canvas > 0 && !replay_view_) tell(msg::kInkLost.oneLine());
+    if (outcome.veil_pixels > 0 && !replay_view_)
+      tell(msg::kInkLeftOut.oneLine());
+    else if (off_canvas > 0 && !replay_view_)
+      tell(msg::kInkOnFallback.oneLine());
     ++strokes_seen_;
     lift_time_ = received;
     lift_mapping_ms_ = outcome.mapping.timings.total_ms;
@@ -1006,9 +1009,9 @@ std::string PaintScreen::detailLine() const {
                     now.z, reach.x, reach.z, s.settings().placementsGrowSky() ? "" : " strokes");
     else
       std::snprintf(
-          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil lands off the canvas", now.x,
-          now.z,
-          s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed");
+          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil %s", now.x, now.z,
+          s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed",
+          s.settings().veil_ink_left_out ? "is left out" : "lands off the canvas");
     line += text;
   }
   if (s.mode() == Mode::kCamera && pan_drag_) line += " | drag pans (P: orbit)";
