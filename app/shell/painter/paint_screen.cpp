@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -278,7 +279,26 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
   for (PenSample sample : samples) {  // a pen without pressure paints at the chosen level
     applyTipOnlyPressure(sample, pen_->deviceInfo(), tip_only_pressure_);
     feedSample(sample);
+    last_pen_sample_ = sample;
   }
+}
+
+// A pen resting still on the tablet sends nothing (evdev reports changes only, and many
+// tablets stop reporting), so the session could not time the rest after which an open stroke
+// ends by itself (thesis §7.7.5, problem 3; PaintSession auto_end_still_ms). While the tip is
+// down and no sample came for 50 ms, the last one is fed again with the time now, as the mouse
+// held still is. A recording has its own samples; a sample whose time is not within a minute
+// before now is on another time line than the loop's clock, and is not repeated.
+void PaintScreen::repeatRestingPen() {
+  if (!pen_ || !session_ || !session_->engine().inStroke()) return;
+  if (pen_->connection() != PenConnection::kConnected || !last_pen_sample_.in_proximity ||
+      !(last_pen_sample_.buttons & kPenTip) || std::strcmp(pen_->backendName(), "replay") == 0)
+    return;
+  const int64_t now = clockNs();
+  if (now - last_pen_sample_.t_ns < 50'000'000 || now - last_pen_sample_.t_ns > 60'000'000'000)
+    return;
+  last_pen_sample_.t_ns = now;
+  feedSample(last_pen_sample_);
 }
 
 bool PaintScreen::tipOnlyPen() const {
@@ -502,6 +522,7 @@ std::string PaintScreen::update(const FrameContext& frame) {
     pointer_moved_ = true;
   }
   repeatHeldMouse();
+  repeatRestingPen();
   if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
@@ -971,7 +992,7 @@ std::string PaintScreen::statusLine() const {
     line += " · pen without pressure: strokes at " +
             std::to_string(tip_only_pressure_).substr(0, 4) + " (-/+), erase: 4 or Menu";
   else if (tablet)
-    line += " · pen";
+    line += std::strcmp(pen_->backendName(), "replay") == 0 ? " · recorded pen (replay)" : " · pen";
   else if (pen_ || mouse_)
     line += " · mouse, pressure " + std::to_string(mouse_ ? mouse_->pressure() : 0.6f).substr(0, 4);
   return line + " · H help";
