@@ -132,7 +132,7 @@ constexpr const char* kUsage =
     "  4 erase     V vacuum/rub-out, -/+ size, Space cuts (vacuum)\n"
     "  5 light     -/+ warmer/cooler\n"
     "B, N and T apply from the next stroke and are journalled. While the pen is in range the\n"
-    "screen outside where a stroke can land is veiled.\n";
+    "screen outside where a stroke can land is veiled; ink there is left out, and the screen says so.\n";
 
 std::atomic<bool> g_stop{false};
 void onSignal(int) {

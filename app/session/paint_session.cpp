@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/mapping/stroke_reach.h"
+#include "app/mapping/veil_ink.h"
 #include "app/scene/paint_camera.h"
 #include "app/session/recorded_settings.h"
 #include "app/session/session_replay.h"
@@ -51,6 +52,7 @@ std::string formatSessionSettings(const PaintSessionSettings& settings) {
               ? "\nsky_max_span = " + std::to_string(settings.sky_max_span)
               : std::string()) +
          (settings.placementsGrowSky() ? "\nplacements_grow_sky = true" : std::string()) +
+         (settings.veil_ink_left_out ? "\nveil_ink_left_out = true" : std::string()) +
          "\nformat = " + std::to_string(settings.format) +
          (settings.format >= 2
               ? "\nauto_end_still_ms = " + std::to_string(settings.auto_end_still_ms) +
@@ -76,6 +78,7 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
   parsed.sky_span = kLegacySkySpan;                         // nor a sky wider than one box
   parsed.sky_max_span = 0;             // nor one that grew: sky_span, set below
   parsed.placements_grow_sky = false;  // nor placements that grew it (before specification 1.5)
+  parsed.veil_ink_left_out = false;    // nor veiled ink left out (before specification 1.9)
   std::istringstream lines{std::string(text)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -110,6 +113,9 @@ bool parseSessionSettings(std::string_view text, PaintSessionSettings* settings,
     } else if (key == "placements_grow_sky") {
       if (value != "true" && value != "false") return bad("true or false");
       parsed.placements_grow_sky = value == "true";
+    } else if (key == "veil_ink_left_out") {
+      if (value != "true" && value != "false") return bad("true or false");
+      parsed.veil_ink_left_out = value == "true";
     } else if (key == "auto_end_still_ms" || key == "auto_end_light_ms") {
       if (!parseInt(value, 0, 600000, &v)) return bad("0..600000 ms");
       (key == "auto_end_still_ms" ? parsed.auto_end_still_ms : parsed.auto_end_light_ms) = int(v);
@@ -281,6 +287,11 @@ void PaintSession::recordStep(const SceneState& before, const std::string& label
 void PaintSession::mapFinishedStroke(SampleOutcome* outcome, int64_t t_ns) {
   StrokeResult stroke;
   while (engine_.takeFinishedStroke(&stroke)) {
+    if (settings_.veil_ink_left_out) {
+      const SkyExtent widest = reachableSky();
+      outcome->veil_pixels += leaveOutVeiledInk(&stroke, widest.worldMin(), widest.worldMax(),
+                                                mapper_.config().circles.empty_threshold);
+    }
     if (growSkyToHold([&](const Volume& sky) {
           const glm::vec3 voxel = sky.voxelSize();
           return strokeReach(stroke, mapper_.config(), std::min({voxel.x, voxel.y, voxel.z}));
@@ -687,6 +698,7 @@ bool PaintSession::applySessionRecord(const JournalRecord& record, std::string* 
       recorded.screen_height != settings_.screen_height || recorded.grid != settings_.grid ||
       recorded.sky_span != settings_.sky_span || recorded.sky_max_span != settings_.sky_max_span ||
       recorded.placementsGrowSky() != settings_.placementsGrowSky() ||
+      recorded.veil_ink_left_out != settings_.veil_ink_left_out ||
       recorded.format != settings_.format ||
       recorded.auto_end_still_ms != settings_.auto_end_still_ms ||
       recorded.auto_end_light_ms != settings_.auto_end_light_ms) {

@@ -56,6 +56,13 @@ struct PaintSessionSettings {
   // `placements_grow_sky` is from before they did (journal specification 1.4 and older), so its
   // placements replay clipped to the sky as they were then.
   bool placements_grow_sky = true;
+  // Ink in the veil is left out (README: "veiled so ink that cannot land shows at once"): before
+  // a finished stroke is mapped, its footprint pixels whose rays cannot meet the canvas inside
+  // the sky as wide as it may grow (app/scene/drawable_region.h, in the stroke's own view) are
+  // cleared, so only what lands is mapped and only that grows the sky. A Session record without
+  // `veil_ink_left_out` is from before (journal specification 1.8 and older): its veiled ink
+  // replays onto the mapping's fallback plane, growing the sky to its widest, as it was recorded.
+  bool veil_ink_left_out = true;
   // Whether a placement grows this session's sky: only a sky that may grow at all.
   bool placementsGrowSky() const { return placements_grow_sky && sky_max_span > sky_span; }
   // The sky the session starts with.
@@ -90,6 +97,7 @@ struct SampleOutcome {
   bool stroke_mapped = false;  // this sample ended a stroke and it was mapped into the volume
   bool erased = false;         // this sample rubbed out some cloud (erase mode, rub-out)
   bool auto_ended = false;     // the open stroke ended by itself (held still or touched lightly)
+  long long veil_pixels = 0;   // inked footprint pixels in the veil, left out of the mapped stroke
   MappingReport mapping;       // valid when stroke_mapped
   uint32_t stroke_index = 0;   // of the mapped stroke
 };

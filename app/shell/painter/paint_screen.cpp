@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "app/scene/drawable_region.h"
 #include "app/scene/paint_camera.h"
+#include "app/shell/keymap.h"
 #include "app/shell/painter/animation_preview.h"
 #include "app/shell/painter/hud_items.h"
-#include "app/shell/keymap.h"
 #include "app/shell/painter/mouse_pen.h"
 #include "app/shell/painter/painter_messages.h"
 #include "app/shell/ui_overlay.h"
@@ -278,7 +279,26 @@ void PaintScreen::onPenSamples(const std::vector<PenSample>& samples) {
   for (PenSample sample : samples) {  // a pen without pressure paints at the chosen level
     applyTipOnlyPressure(sample, pen_->deviceInfo(), tip_only_pressure_);
     feedSample(sample);
+    last_pen_sample_ = sample;
   }
+}
+
+// A pen resting still on the tablet sends nothing (evdev reports changes only, and many
+// tablets stop reporting), so the session could not time the rest after which an open stroke
+// ends by itself (thesis §7.7.5, problem 3; PaintSession auto_end_still_ms). While the tip is
+// down and no sample came for 50 ms, the last one is fed again with the time now, as the mouse
+// held still is. A recording has its own samples; a sample whose time is not within a minute
+// before now is on another time line than the loop's clock, and is not repeated.
+void PaintScreen::repeatRestingPen() {
+  if (!pen_ || !session_ || !session_->engine().inStroke()) return;
+  if (pen_->connection() != PenConnection::kConnected || !last_pen_sample_.in_proximity ||
+      !(last_pen_sample_.buttons & kPenTip) || std::strcmp(pen_->backendName(), "replay") == 0)
+    return;
+  const int64_t now = clockNs();
+  if (now - last_pen_sample_.t_ns < 50'000'000 || now - last_pen_sample_.t_ns > 60'000'000'000)
+    return;
+  last_pen_sample_.t_ns = now;
+  feedSample(last_pen_sample_);
 }
 
 bool PaintScreen::tipOnlyPen() const {
@@ -335,12 +355,15 @@ void PaintScreen::afterSample(const SampleOutcome& outcome,
     texels_this_frame_ += overlay_.upload(session_->engine().footprint(), outcome.changed);
   if (outcome.auto_ended && !replay_view_) tell(msg::kStrokeEnded.oneLine());
   if (outcome.stroke_mapped) {
-    // Ink in the veil (where the canvas is out of reach) is not dropped: the mapping places it
-    // on its fallback plane, off the canvas (app/mapping/stroke_mapper.cpp). Said so, once per
-    // stroke, with the way back.
+    // Ink in the veil (where the canvas is out of reach) is left out (app/mapping/veil_ink.h);
+    // a session recorded before that places it on the mapping's fallback plane. Said so, once
+    // per stroke.
     long off_canvas = 0;
     for (const MappedSphere& sphere : outcome.mapping.spheres) off_canvas += !sphere.on_canvas;
-    if (off_canvas > 0 && !replay_view_) tell(msg::kInkLost.oneLine());
+    if (outcome.veil_pixels > 0 && !replay_view_)
+      tell(msg::kInkLeftOut.oneLine());
+    else if (off_canvas > 0 && !replay_view_)
+      tell(msg::kInkOnFallback.oneLine());
     ++strokes_seen_;
     lift_time_ = received;
     lift_mapping_ms_ = outcome.mapping.timings.total_ms;
@@ -499,6 +522,7 @@ std::string PaintScreen::update(const FrameContext& frame) {
     pointer_moved_ = true;
   }
   repeatHeldMouse();
+  repeatRestingPen();
   if (!options_.visitor_mode && pen_ && last_connection_ == int(PenConnection::kFinished) &&
       !lit_pending_ && !refine_pending_ && !session_->engine().inStroke())
     return "replay finished";
@@ -968,7 +992,7 @@ std::string PaintScreen::statusLine() const {
     line += " · pen without pressure: strokes at " +
             std::to_string(tip_only_pressure_).substr(0, 4) + " (-/+), erase: 4 or Menu";
   else if (tablet)
-    line += " · pen";
+    line += std::strcmp(pen_->backendName(), "replay") == 0 ? " · recorded pen (replay)" : " · pen";
   else if (pen_ || mouse_)
     line += " · mouse, pressure " + std::to_string(mouse_ ? mouse_->pressure() : 0.6f).substr(0, 4);
   return line + " · H help";
@@ -1006,9 +1030,9 @@ std::string PaintScreen::detailLine() const {
                     now.z, reach.x, reach.z, s.settings().placementsGrowSky() ? "" : " strokes");
     else
       std::snprintf(
-          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil lands off the canvas", now.x,
-          now.z,
-          s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed");
+          text, sizeof text, " | sky %dx%d voxels, %s: ink in the veil %s", now.x, now.z,
+          s.settings().sky_max_span > s.settings().sky_span ? "as wide as it can grow" : "fixed",
+          s.settings().veil_ink_left_out ? "is left out" : "lands off the canvas");
     line += text;
   }
   if (s.mode() == Mode::kCamera && pan_drag_) line += " | drag pans (P: orbit)";

@@ -45,10 +45,10 @@
 #include "app/render/temporal_reprojection.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
+#include "app/shell/kiosk/visitor_words.h"
 #include "app/shell/painter/paint_loop.h"
 #include "app/shell/pen_events.h"
 #include "app/shell/screen.h"
-#include "app/shell/kiosk/visitor_words.h"
 
 namespace cb {
 
@@ -149,6 +149,7 @@ class PaintScreen : public Screen {
   void stepBrushSize(int steps, int64_t t_ns);
   // One raw sample (tablet or mouse) through the session, the overlay and the pen events.
   void feedSample(const PenSample& sample);
+  void repeatRestingPen();
   void apply(const UiChange& change, int64_t t_ns);
   // Shows or hides the pen menu; the session journals it (ui::ShowMenu).
   void setMenu(bool open, int64_t t_ns);
@@ -301,6 +302,7 @@ class PaintScreen : public Screen {
   uint64_t saved_volume_ = 0, saved_generation_ = 0;
   std::string last_saved_;
   int64_t last_mouse_sample_ns_ = 0;
+  PenSample last_pen_sample_{};  // the tablet's newest, repeated while it rests (repeatRestingPen)
 
   // Summary figures
   long pen_samples_ = 0, strokes_seen_ = 0;

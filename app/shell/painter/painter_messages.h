@@ -38,9 +38,14 @@ inline constexpr Bilingual kVacuumPlace{"Vacuum: point at the cloud, then Space 
 inline constexpr Bilingual kVacuumCut{"Cut - Ctrl+Z brings it back", "已切除 - 按 Ctrl+Z 可以恢复"};
 inline constexpr Bilingual kNothingToUndo{"Nothing to undo", "没有可撤销的操作"};
 inline constexpr Bilingual kNothingToRedo{"Nothing to redo", "没有可重做的操作"};
-inline constexpr Bilingual kInkLost{
-    "Ink in the veil landed off the canvas, far off - Ctrl+Z takes it back",
-    "遮罩中的墨迹落在画布外的远处 - 按 Ctrl+Z 撤回"};
+// Ink in the veil does not land (PaintSessionSettings::veil_ink_left_out); a session recorded
+// before that places it on the mapping's fallback plane through the sky's centre.
+inline constexpr Bilingual kInkLeftOut{
+    "Ink in the dark veil cannot land and was left out - paint over the grid",
+    "暗色遮罩中的墨迹无法落下，已略去 - 请在网格上绘画"};
+inline constexpr Bilingual kInkOnFallback{
+    "Ink in the veil landed off the canvas, on an upright plane - Ctrl+Z takes it back",
+    "遮罩中的墨迹落在画布外的竖直平面上 - 按 Ctrl+Z 撤回"};
 inline constexpr Bilingual kStrokeEnded{"Stroke ended (held still 2 s) - lift to go on",
                                         "笔画已结束（静止 2 秒）- 抬起后继续"};
 // The statistics panel's rows (hud_items.h appendStatsPanel).

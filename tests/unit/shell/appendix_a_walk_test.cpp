@@ -110,6 +110,14 @@ class Walk {
     }
   }
   const ImageRgba8& lastFrame() const { return last_; }
+  // CB_KEEP_FRAMES=DIR keeps the step's last frame as DIR/step_NN_<what>.png (to look at).
+  void keep(const char* what) {
+    if (const char* dir = std::getenv("CB_KEEP_FRAMES")) {
+      char name[96];
+      std::snprintf(name, sizeof name, "/step_%02d_%s.png", ++kept_, what);
+      writePng(std::string(dir) + name, last_);
+    }
+  }
 
  private:
   Display& display_;
@@ -118,6 +126,7 @@ class Walk {
   ManualClock& clock_;
   int64_t now_ = 1'000'000'000;
   long frame_ = 0;
+  int kept_ = 0;
   ImageRgba8 last_;
 };
 
@@ -198,6 +207,7 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   const float voxel = session.volume().voxelSize().y;
 
   walk.keys("delete");  // 1
+  walk.keep("delete_all");
   EXPECT_EQ(density(session.volume()), 0.0);
   walk.keys("1,r");  // 2
   EXPECT_EQ(session.mode(), Mode::kCamera);
@@ -209,9 +219,11 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   // 4: altitude 96 of 256 voxels: 32 steps down from the middle.
   for (int i = 0; i < 32; ++i) walk.keys("pagedown");
   EXPECT_NEAR(session.canvas().altitude, -1.0f + 96.0f * voxel, 1e-5f);
+  walk.keep("canvas_altitude_96");
   walk.keys("1");   // 5
   walk.keys("up");  // 6: top-down
   EXPECT_GT(viewElevationDeg(session.camera()), 80.0f);
+  walk.keep("top_view");
   walk.keys("3");  // 7
   EXPECT_EQ(session.mode(), Mode::kPaint);
   shoot("mode_paint");
@@ -219,14 +231,17 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   walk.keys("b");  // 8
   EXPECT_NE(session.selectedBrush(), before);
   walk.pen(counts[0]);  // 9
+  walk.keep("stroke_left");
   EXPECT_EQ(session.strokesMapped(), 1u);
   const std::vector<float> after_left = session.volume().toDense();
   EXPECT_GT(density(session.volume()), 0.0);
   walk.keys("c");       // 10
   walk.keys("c");       // 11
   walk.pen(counts[1]);  // 12
+  walk.keep("stroke_right");
   EXPECT_EQ(session.strokesMapped(), 2u);
   walk.keys("ctrl+z");  // 13
+  walk.keep("undo");
   EXPECT_TRUE(after_left == session.volume().toDense()) << "undo removed exactly the right stroke";
   walk.keys("4");  // 14
   EXPECT_EQ(session.mode(), Mode::kErase);
@@ -234,6 +249,7 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   const double left = density(session.volume());
   walk.keys("plus,plus,plus,plus");
   walk.pen(counts[2]);  // 15: rub the left stroke out
+  walk.keep("rub_out");
   EXPECT_LT(density(session.volume()), 0.3 * left);
   walk.keys("1,r");  // 16, 17
   EXPECT_EQ(session.camera().eye, initialPaintCamera(settings).eye);
@@ -243,6 +259,7 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   walk.keys("1,up,3");                                      // 20–22
   walk.keys("b");                                           // 23
   for (int i = 3; i < 6; ++i) walk.pen(counts[size_t(i)]);  // 24: calligraphy
+  walk.keep("calligraphy");
   EXPECT_EQ(session.strokesMapped(), 5u);
   walk.keys("5");
   shoot("mode_light");
@@ -253,6 +270,7 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   float rect[4];
   ASSERT_TRUE(screen.ui() && screen.ui()->targetRect(Command::kSave, rect));
   walk.keys("ctrl+s");  // the same command the Save target gives (the tap is tested elsewhere)
+  walk.keep("saved");
   bool saved = false;
   for (const auto& entry : std::filesystem::directory_iterator(dir + "/state"))
     saved |= entry.path().extension() == ".vol";

@@ -303,6 +303,25 @@ TEST(ScreensWalk, AFirstTimePainterIsToldWhatToDoAndLosesNothing) {
   EXPECT_TRUE(ball.x > 0 && ball.x < kW && ball.y > 0 && ball.y < kH) << ball.x << "," << ball.y;
   walk.keep("09_light");
 
+  // 8b. Ink in the veil: the front view (Camera mode's Down) shows sky above the horizon, where
+  // the canvas does not reach; a stroke there is left out, said in both languages, and neither
+  // grows the sky nor changes the cloud.
+  walk.keys("1,down,3");
+  const SkyExtent sky_before = session.sky();
+  const double cloud_before = density(session.volume());
+  const uint32_t strokes_before = session.strokesMapped();
+  walk.mouseStroke({0.3f * kW, 0.12f * kH}, {0.6f * kW, 0.15f * kH}, /*release=*/false);
+  walk.keep("09b_veil_stroke");
+  walk.pointer(DisplayEvent::Kind::PointerUp, {0.6f * kW, 0.15f * kH});
+  walk.frames(3);
+  walk.keep("09c_veil_left_out");
+  EXPECT_EQ(session.strokesMapped(), strokes_before + 1);
+  EXPECT_TRUE(contains(screen.toast(), msg::kInkLeftOut.en)) << screen.toast();
+  EXPECT_TRUE(contains(screen.toast(), msg::kInkLeftOut.zh)) << screen.toast();
+  EXPECT_EQ(session.sky().span, sky_before.span) << "ink that cannot land does not grow the sky";
+  EXPECT_EQ(density(session.volume()), cloud_before);
+  walk.keys("1,r");
+
   // 9. The menu: every target labelled in both languages; the font draws every character.
   walk.keys("m");
   walk.frames(2);
