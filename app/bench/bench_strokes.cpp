@@ -38,11 +38,15 @@ namespace {
 
 const char kHelp[] =
     "usage: cloudbrush bench strokes [--size WxH] [--sheet FILE.png] [--cell WxH] [--crop F]\n"
+    "                                [--frames DIR] [--only NAME]\n"
     "  --size WxH      the painter's screen (default 1920x1080)\n"
     "  --sheet FILE    write the contact sheet (strokes x styles) as a PNG\n"
     "  --cell WxH      one cell of the sheet (default 192x108)\n"
     "  --crop F        each cell shows the middle F of the screen's width and height (default "
-    "0.7)\n";
+    "0.7)\n"
+    "  --frames DIR    also write every full-size render as DIR/STROKE-STYLE.png\n"
+    "  --only NAME     only the gallery stroke NAME (its row of the sheet; the others stay "
+    "blank)\n";
 
 long long cloudVoxels(const GalleryCloud& cloud) {
   long long n = 0;
@@ -73,6 +77,24 @@ void blitCell(const ImageRgba8& image, float crop, int cx, int cy, int cw, int c
     }
 }
 
+// One stroke's cloud in every style at full size, each into its cell of row `row` of `sheet`
+// and, with `frames_dir`, as frames_dir/STROKE-STYLE.png.
+void renderRow(const GalleryCloud& cloud, const std::string& name, const RenderConfig& render,
+               int w, int h, float crop, int row, int cw, int ch, const std::string& frames_dir,
+               VolumeRenderer* renderer, RenderTarget* target, ImageRgba8* sheet) {
+  renderer->sync(cloud.volume, render.light);
+  for (size_t s = 0; s < kAllRenderStyles.size(); ++s) {
+    RenderOptions o = render.options;
+    o.style = kAllRenderStyles[s];
+    o.finish = true;
+    renderer->render(cloud.camera, w, h, target->fbo(), o);
+    const ImageRgba8 frame = target->readRgba8();
+    if (!frames_dir.empty())
+      writePng(frames_dir + "/" + name + "-" + renderStyleName(o.style) + ".png", frame);
+    blitCell(frame, crop, int(s), row, cw, ch, sheet);
+  }
+}
+
 bool parseSize(const Args& args, const char* key, int* w, int* h) {
   const auto s = args.get(key);
   return !s || (std::sscanf(s->c_str(), "%dx%d", w, h) == 2 && *w > 0 && *h > 0);
@@ -86,6 +108,8 @@ int benchStrokes(int argc, char** argv) {
   int w = 1920, h = 1080, cw = 192, ch = 108;
   const float crop = float(args.getDouble("crop", 0.7));
   const std::string sheet_path = args.get("sheet", "");
+  const std::string frames_dir = args.get("frames", "");
+  const std::string only = args.get("only", "");
   if (!parseSize(args, "size", &w, &h) || !parseSize(args, "cell", &cw, &ch) ||
       !(crop > 0.05f && crop <= 1.0f) || !args.error().empty()) {
     std::fprintf(stderr, "cloudbrush bench strokes: bad arguments %s\n%s", args.error().c_str(),
@@ -109,7 +133,7 @@ int benchStrokes(int argc, char** argv) {
   const RenderConfig render = loadRenderConfig(configFile("render.toml"));
   EglContext ctx;
   std::string error;
-  const bool sheet = !sheet_path.empty();
+  const bool sheet = !sheet_path.empty() || !frames_dir.empty();
   if (sheet && !createSurfacelessContext(&ctx, &error)) {
     std::fprintf(stderr, "cloudbrush bench strokes: %s\n", error.c_str());
     return 1;
@@ -127,6 +151,7 @@ int benchStrokes(int argc, char** argv) {
   }
   for (size_t i = 0; i < gallery.size(); ++i) {
     const GalleryStroke& g = gallery[i];
+    if (!only.empty() && g.name != only) continue;
     const uint32_t index = 100 + uint32_t(i);
     const GalleryCloud now = paintGalleryStroke(g, brush.default_brush, brush, mapper, w, h, index);
     const GalleryCloud before =
@@ -139,16 +164,10 @@ int benchStrokes(int argc, char** argv) {
     report.baseline(g.name + "_mapping_ms", before.mapping_ms);
     report.baseline(g.name + "_voxels", double(old_voxels));
     if (!sheet) continue;
-    renderer.sync(now.volume, render.light);
-    for (size_t s = 0; s < kAllRenderStyles.size(); ++s) {
-      RenderOptions o = render.options;
-      o.style = kAllRenderStyles[s];
-      o.finish = true;
-      renderer.render(now.camera, w, h, target.fbo(), o);
-      blitCell(target.readRgba8(), crop, int(s), int(i), cw, ch, &contact);
-    }
+    renderRow(now, g.name, render, w, h, crop, int(i), cw, ch, frames_dir, &renderer, &target,
+              &contact);
   }
-  if (sheet) {
+  if (!sheet_path.empty()) {
     // Encoded next to the target, then put in place atomically (app/core/atomic_file.h).
     const std::string encoded = sheet_path + ".png-encoding." + std::to_string(getpid());
     writePng(encoded, contact);
