@@ -7,13 +7,10 @@
 // (gallery order), one column per render style (render_style.h order), each cell the middle of
 // the screen (--crop) of a full-size render, box-filtered down to --cell. Never fails on a
 // figure.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -22,7 +19,6 @@
 #include "app/brush/brush_config.h"
 #include "app/brush/stroke_gallery.h"
 #include "app/cli/args.h"
-#include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/stroke_mapper.h"
 #include "app/render/gl/egl_context.h"
@@ -41,9 +37,9 @@ const char kHelp[] =
     "                                [--frames DIR] [--only NAME]\n"
     "  --size WxH      the painter's screen (default 1920x1080)\n"
     "  --sheet FILE    write the contact sheet (strokes x styles) as a PNG\n"
-    "  --cell WxH      one cell of the sheet (default 192x108)\n"
+    "  --cell WxH      one cell of the sheet (default 160x90)\n"
     "  --crop F        each cell shows the middle F of the screen's width and height (default "
-    "0.7)\n"
+    "0.6)\n"
     "  --frames DIR    also write every full-size render as DIR/STROKE-STYLE.png\n"
     "  --only NAME     only the gallery stroke NAME (its row of the sheet; the others stay "
     "blank)\n";
@@ -105,8 +101,8 @@ bool parseSize(const Args& args, const char* key, int* w, int* h) {
 int benchStrokes(int argc, char** argv) {
   Args args(argc, argv, {"help"});
   if (args.has("help")) return std::printf("%s", kHelp), 0;
-  int w = 1920, h = 1080, cw = 192, ch = 108;
-  const float crop = float(args.getDouble("crop", 0.7));
+  int w = 1920, h = 1080, cw = 160, ch = 90;
+  const float crop = float(args.getDouble("crop", 0.6));
   const std::string sheet_path = args.get("sheet", "");
   const std::string frames_dir = args.get("frames", "");
   const std::string only = args.get("only", "");
@@ -168,14 +164,11 @@ int benchStrokes(int argc, char** argv) {
               &contact);
   }
   if (!sheet_path.empty()) {
-    // Encoded next to the target, then put in place atomically (app/core/atomic_file.h).
-    const std::string encoded = sheet_path + ".png-encoding." + std::to_string(getpid());
-    writePng(encoded, contact);
-    std::ifstream in(encoded, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::remove(encoded.c_str());
-    if (!writeFileAtomically(sheet_path, bytes, &error)) {
-      std::fprintf(stderr, "cloudbrush bench strokes: %s\n", error.c_str());
+    // A palette PNG (at most 256 colours, app/render/image_io.h), small enough for docs/images.
+    try {
+      writePngPalette(sheet_path, contact);
+    } catch (const ImageIoError& e) {
+      std::fprintf(stderr, "cloudbrush bench strokes: %s\n", e.what());
       return 1;
     }
     std::printf("wrote %s (%dx%d: rows %zu strokes, columns %zu styles)\n", sheet_path.c_str(),
