@@ -11,7 +11,9 @@
 //    its silhouette over the outer surface: rays whose largest density in u_inner_depth voxels
 //    behind the hit comes within ±0.06 of u_inner_iso graze it, and at most two pixels wide
 //    (that density's change to the next pixel, fwidth): a painted cloud's noisy interior stays
-//    near u_inner_iso over wide areas, which drew solid dark patches instead of lines.
+//    near u_inner_iso over wide areas, which drew solid dark patches instead of lines. The ray
+//    caster reads that density smoothed over about 3 voxels (raycast.frag.glsl), so single
+//    voxels of a painted cloud's scattered edge samples draw no dots or broken dashes.
 uniform vec3 u_light_dir;  // towards the sun, unit
 uniform vec3 u_light_colour;
 

@@ -6,7 +6,8 @@ struct SurfaceSample {
   vec3 view;                  // unit vector from the surface towards the eye
   float light_transmittance;  // light volume at the hit (§4.5, Alg. 5), 1 without a hit
   float max_density;          // largest density sampled before the hit (the whole ray on a miss)
-  float inner_max_density;    // largest density within u_inner_depth voxels behind the hit
+  float inner_max_density;    // largest density (smoothed over ~3 voxels) within u_inner_depth
+                              // voxels behind the hit
 };
 
 uniform float u_iso;              // density of the outer iso-surface

@@ -7,13 +7,10 @@
 // (gallery order), one column per render style (render_style.h order), each cell the middle of
 // the screen (--crop) of a full-size render, box-filtered down to --cell. Never fails on a
 // figure.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -22,7 +19,6 @@
 #include "app/brush/brush_config.h"
 #include "app/brush/stroke_gallery.h"
 #include "app/cli/args.h"
-#include "app/core/atomic_file.h"
 #include "app/core/config_paths.h"
 #include "app/mapping/stroke_mapper.h"
 #include "app/render/gl/egl_context.h"
@@ -38,11 +34,15 @@ namespace {
 
 const char kHelp[] =
     "usage: cloudbrush bench strokes [--size WxH] [--sheet FILE.png] [--cell WxH] [--crop F]\n"
+    "                                [--frames DIR] [--only NAME]\n"
     "  --size WxH      the painter's screen (default 1920x1080)\n"
     "  --sheet FILE    write the contact sheet (strokes x styles) as a PNG\n"
-    "  --cell WxH      one cell of the sheet (default 192x108)\n"
+    "  --cell WxH      one cell of the sheet (default 160x90)\n"
     "  --crop F        each cell shows the middle F of the screen's width and height (default "
-    "0.7)\n";
+    "0.6)\n"
+    "  --frames DIR    also write every full-size render as DIR/STROKE-STYLE.png\n"
+    "  --only NAME     only the gallery stroke NAME (its row of the sheet; the others stay "
+    "blank)\n";
 
 long long cloudVoxels(const GalleryCloud& cloud) {
   long long n = 0;
@@ -73,6 +73,24 @@ void blitCell(const ImageRgba8& image, float crop, int cx, int cy, int cw, int c
     }
 }
 
+// One stroke's cloud in every style at full size, each into its cell of row `row` of `sheet`
+// and, with `frames_dir`, as frames_dir/STROKE-STYLE.png.
+void renderRow(const GalleryCloud& cloud, const std::string& name, const RenderConfig& render,
+               int w, int h, float crop, int row, int cw, int ch, const std::string& frames_dir,
+               VolumeRenderer* renderer, RenderTarget* target, ImageRgba8* sheet) {
+  renderer->sync(cloud.volume, render.light);
+  for (size_t s = 0; s < kAllRenderStyles.size(); ++s) {
+    RenderOptions o = render.options;
+    o.style = kAllRenderStyles[s];
+    o.finish = true;
+    renderer->render(cloud.camera, w, h, target->fbo(), o);
+    const ImageRgba8 frame = target->readRgba8();
+    if (!frames_dir.empty())
+      writePng(frames_dir + "/" + name + "-" + renderStyleName(o.style) + ".png", frame);
+    blitCell(frame, crop, int(s), row, cw, ch, sheet);
+  }
+}
+
 bool parseSize(const Args& args, const char* key, int* w, int* h) {
   const auto s = args.get(key);
   return !s || (std::sscanf(s->c_str(), "%dx%d", w, h) == 2 && *w > 0 && *h > 0);
@@ -83,9 +101,11 @@ bool parseSize(const Args& args, const char* key, int* w, int* h) {
 int benchStrokes(int argc, char** argv) {
   Args args(argc, argv, {"help"});
   if (args.has("help")) return std::printf("%s", kHelp), 0;
-  int w = 1920, h = 1080, cw = 192, ch = 108;
-  const float crop = float(args.getDouble("crop", 0.7));
+  int w = 1920, h = 1080, cw = 160, ch = 90;
+  const float crop = float(args.getDouble("crop", 0.6));
   const std::string sheet_path = args.get("sheet", "");
+  const std::string frames_dir = args.get("frames", "");
+  const std::string only = args.get("only", "");
   if (!parseSize(args, "size", &w, &h) || !parseSize(args, "cell", &cw, &ch) ||
       !(crop > 0.05f && crop <= 1.0f) || !args.error().empty()) {
     std::fprintf(stderr, "cloudbrush bench strokes: bad arguments %s\n%s", args.error().c_str(),
@@ -109,7 +129,7 @@ int benchStrokes(int argc, char** argv) {
   const RenderConfig render = loadRenderConfig(configFile("render.toml"));
   EglContext ctx;
   std::string error;
-  const bool sheet = !sheet_path.empty();
+  const bool sheet = !sheet_path.empty() || !frames_dir.empty();
   if (sheet && !createSurfacelessContext(&ctx, &error)) {
     std::fprintf(stderr, "cloudbrush bench strokes: %s\n", error.c_str());
     return 1;
@@ -127,6 +147,7 @@ int benchStrokes(int argc, char** argv) {
   }
   for (size_t i = 0; i < gallery.size(); ++i) {
     const GalleryStroke& g = gallery[i];
+    if (!only.empty() && g.name != only) continue;
     const uint32_t index = 100 + uint32_t(i);
     const GalleryCloud now = paintGalleryStroke(g, brush.default_brush, brush, mapper, w, h, index);
     const GalleryCloud before =
@@ -139,24 +160,15 @@ int benchStrokes(int argc, char** argv) {
     report.baseline(g.name + "_mapping_ms", before.mapping_ms);
     report.baseline(g.name + "_voxels", double(old_voxels));
     if (!sheet) continue;
-    renderer.sync(now.volume, render.light);
-    for (size_t s = 0; s < kAllRenderStyles.size(); ++s) {
-      RenderOptions o = render.options;
-      o.style = kAllRenderStyles[s];
-      o.finish = true;
-      renderer.render(now.camera, w, h, target.fbo(), o);
-      blitCell(target.readRgba8(), crop, int(s), int(i), cw, ch, &contact);
-    }
+    renderRow(now, g.name, render, w, h, crop, int(i), cw, ch, frames_dir, &renderer, &target,
+              &contact);
   }
-  if (sheet) {
-    // Encoded next to the target, then put in place atomically (app/core/atomic_file.h).
-    const std::string encoded = sheet_path + ".png-encoding." + std::to_string(getpid());
-    writePng(encoded, contact);
-    std::ifstream in(encoded, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::remove(encoded.c_str());
-    if (!writeFileAtomically(sheet_path, bytes, &error)) {
-      std::fprintf(stderr, "cloudbrush bench strokes: %s\n", error.c_str());
+  if (!sheet_path.empty()) {
+    // A palette PNG (at most 256 colours, app/render/image_io.h), small enough for docs/images.
+    try {
+      writePngPalette(sheet_path, contact);
+    } catch (const ImageIoError& e) {
+      std::fprintf(stderr, "cloudbrush bench strokes: %s\n", e.what());
       return 1;
     }
     std::printf("wrote %s (%dx%d: rows %zu strokes, columns %zu styles)\n", sheet_path.c_str(),

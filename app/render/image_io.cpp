@@ -72,7 +72,87 @@ void writePngFile(const std::string& path, const ImageRgba8& image) {
     fail(path, std::string("write failed: ") + std::strerror(errno));
 }
 
+// The 256 most frequent 5-bit-per-channel bins (ties: the lower bin), each as its pixels' mean.
+std::vector<png_color> popularPalette(const ImageRgba8& image) {
+  std::vector<uint32_t> count(1 << 15), sum(3 << 15);
+  auto bin = [](const uint8_t* p) { return (p[0] >> 3) << 10 | (p[1] >> 3) << 5 | (p[2] >> 3); };
+  for (size_t i = 0; i < image.pixels.size(); i += 4) {
+    const int b = bin(&image.pixels[i]);
+    ++count[size_t(b)];
+    for (int c = 0; c < 3; ++c) sum[size_t(b) * 3 + size_t(c)] += image.pixels[i + size_t(c)];
+  }
+  std::vector<int> bins;
+  for (int b = 0; b < (1 << 15); ++b)
+    if (count[size_t(b)]) bins.push_back(b);
+  std::stable_sort(bins.begin(), bins.end(),
+                   [&](int a, int b) { return count[size_t(a)] > count[size_t(b)]; });
+  bins.resize(std::min<size_t>(bins.size(), 256));
+  std::vector<png_color> palette;
+  for (int b : bins) {
+    const uint32_t n = count[size_t(b)], *m = &sum[size_t(b) * 3];
+    palette.push_back(
+        {png_byte((m[0] + n / 2) / n), png_byte((m[1] + n / 2) / n), png_byte((m[2] + n / 2) / n)});
+  }
+  return palette;
+}
+
+// Each pixel as the index of its nearest palette colour (squared RGB distance; first on ties).
+std::vector<png_byte> paletteIndices(const ImageRgba8& image,
+                                     const std::vector<png_color>& palette) {
+  std::vector<png_byte> out(size_t(image.width) * size_t(image.height));
+  for (size_t i = 0; i < out.size(); ++i) {
+    const uint8_t* p = &image.pixels[i * 4];
+    int best = 0, best_d = 1 << 30;
+    for (size_t k = 0; k < palette.size(); ++k) {
+      const int dr = p[0] - palette[k].red, dg = p[1] - palette[k].green,
+                db = p[2] - palette[k].blue, d = dr * dr + dg * dg + db * db;
+      if (d < best_d) best_d = d, best = int(k);
+    }
+    out[i] = png_byte(best);
+  }
+  return out;
+}
+
+void writePngPaletteFile(const std::string& path, const ImageRgba8& image) {
+  const std::vector<png_color> palette = popularPalette(image);
+  const std::vector<png_byte> indices = paletteIndices(image, palette);
+  FilePtr f(std::fopen(path.c_str(), "wb"));
+  if (!f) fail(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    fail(path, "libpng could not start");
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    fail(path, "libpng failed while writing");
+  }
+  png_init_io(png, f.get());
+  png_set_compression_level(png, 9);
+  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8,
+               PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_set_PLTE(png, info, palette.data(), int(palette.size()));
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y)
+    png_write_row(png, &indices[size_t(y) * size_t(image.width)]);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  if (std::fflush(f.get()) != 0 || std::ferror(f.get()))
+    fail(path, std::string("write failed: ") + std::strerror(errno));
+  if (std::fclose(f.release()) != 0)
+    fail(path, std::string("write failed: ") + std::strerror(errno));
+}
+
 }  // namespace
+
+void writePngPalette(const std::string& path, const ImageRgba8& image) {
+  checkImage(path, image.width, image.height, image.pixels.size());
+  AtomicFileReplacement out(path);
+  writePngPaletteFile(out.tempPath(), image);
+  commitImage(out);
+}
 
 void writePng(const std::string& path, const ImageRgba8& image) {
   checkImage(path, image.width, image.height, image.pixels.size());

@@ -33,6 +33,10 @@ struct ImageRgbaF {
 // the header's size against kMaxPngSide before it allocates the pixels.
 inline constexpr uint32_t kMaxPngSide = 16384;
 void writePng(const std::string& path, const ImageRgba8& image);
+// An 8-bit palette PNG of at most 256 colours, for pictures kept in the repository (contact
+// sheets): the 256 most frequent colours at 5 bits per channel (their pixels' means) and each
+// pixel as its nearest; alpha is dropped (opaque). Deterministic: the same image, the same bytes.
+void writePngPalette(const std::string& path, const ImageRgba8& image);
 // readPng refuses (before decoding) an image of more than max_pixels pixels when max_pixels > 0.
 ImageRgba8 readPng(const std::string& path, int64_t max_pixels = 0);
 // Write a float RGBA OpenEXR file (32-bit float channels, ZIP compression).

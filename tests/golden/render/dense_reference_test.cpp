@@ -14,7 +14,10 @@
 // the commit that they no longer come from the dense path. The iso-surface styles' images
 // (cumulus128_ink_reference, _cartoon_side, _sketch_reference, puffs128_cartoon_reference) were
 // so rewritten by the pool when the surface normal narrowed to 1 voxel and cartoon's inner line
-// to two pixels (render_style.h isoSurfaceReach); the others are still the dense path's.
+// to two pixels (render_style.h isoSurfaceReach), and the cartoon and sketch images
+// (brick_borders_cartoon, cumulus128_cartoon_side, cumulus128_sketch_reference,
+// puffs128_cartoon_reference) again when the inner surface came to be read from the density
+// smoothed over ~3 voxels (raycast.frag.glsl); the others are still the dense path's.
 #include <cstdlib>
 #include <filesystem>
 #include <string>
