@@ -9,6 +9,7 @@
 #include "app/shell/keymap.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
+#include "drivers/keyboard/evdev_keyboards.h"
 
 namespace cb {
 namespace {
@@ -19,7 +20,25 @@ int64_t monotonicNs() {
       .count();
 }
 
+static_assert(uint32_t(kKeyShift) == DisplayEvent::kShift &&
+                  uint32_t(kKeyCtrl) == DisplayEvent::kCtrl &&
+                  uint32_t(kKeyAlt) == DisplayEvent::kAlt,
+              "the keyboard's modifier bits are the display's");
+
 }  // namespace
+
+FrameLoop::FrameLoop(Display& display, PenSource* pen) : display_(display), pen_(pen) {
+  if (display_.needsEvdevKeyboard()) keyboards_ = std::make_unique<EvdevKeyboards>();
+}
+
+FrameLoop::~FrameLoop() = default;
+
+void FrameLoop::pollInput(std::vector<DisplayEvent>* pending) {
+  for (const DisplayEvent& event : display_.pollEvents()) pending->push_back(event);
+  if (keyboards_)
+    for (const KeyPress& key : keyboards_->poll())
+      pending->push_back(DisplayEvent::key(key.keysym, key.modifiers));
+}
 
 bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopResult* result,
                     std::string* error) {
@@ -38,7 +57,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     mark_start = monotonicNs();
     stamper.begin(mark_start);
     std::string quit;
-    for (const DisplayEvent& event : display_.pollEvents()) pending.push_back(event);
+    pollInput(&pending);
     for (const DisplayEvent& event : pending) {
       if (!quit.empty()) break;
       switch (event.kind) {

@@ -1,23 +1,34 @@
-// Keyboard on the KMS platform, where no window system delivers keys: every /dev/input/event*
+// Keyboards read without a window system (the KMS platform, where none delivers keys): every
+// /dev/input/event*
 // that has an Esc key is read non-blocking through the kernel's evdev interface, and key codes
 // become keysyms through an XKB keymap (libxkbcommon, the layout from the XKB_DEFAULT_* variables
 // or the system default), so Ctrl+Z is Ctrl+Z on any layout. Where no keymap compiles (no
 // xkb-data, as in a minimal initramfs) a built-in US table is used and said so on stderr. The
-// pen has its own drivers in drivers/evdev. Events the kernel drops when its buffer overflows
-// (keys typed during a long frame) are recovered by reading the key state again
-// (evdev_key_tracker.h).
+// pen has its own backends in drivers/evdev; the shell's frame loop polls this where the display
+// asks for it (Display::needsEvdevKeyboard) and turns presses into DisplayEvents. Events the kernel
+// drops when its buffer overflows (keys typed during a long frame) are recovered by reading the key
+// state again (evdev_key_tracker.h).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
-#include "app/render/gl/display.h"
-#include "app/render/gl/evdev_key_tracker.h"
+#include "drivers/keyboard/evdev_key_tracker.h"
 
 struct xkb_context;
 struct xkb_keymap;
 struct xkb_state;
 
 namespace cb {
+
+// One key press: `keysym` an XKB keysym (<xkbcommon/xkbcommon-keysyms.h>), `modifiers` the
+// KeyModifier bits held (the same bits as DisplayEvent::Modifier).
+enum KeyModifier : uint32_t { kKeyShift = 1, kKeyCtrl = 2, kKeyAlt = 4 };
+struct KeyPress {
+  uint32_t keysym = 0;
+  uint32_t modifiers = 0;
+};
 
 class EvdevKeyboards {
  public:
@@ -28,7 +39,7 @@ class EvdevKeyboards {
 
   size_t count() const { return fds_.size(); }
   // Key presses since the last call (never blocks).
-  std::vector<DisplayEvent> poll();
+  std::vector<KeyPress> poll();
 
   // The keysym and modifiers of a Linux key code (KEY_*) press given the modifier keys held
   // (exposed for tests of the built-in table).
