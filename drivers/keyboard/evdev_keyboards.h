@@ -1,13 +1,12 @@
 // Keyboards read without a window system (the KMS platform, where none delivers keys): every
-// /dev/input/event*
-// that has an Esc key is read non-blocking through the kernel's evdev interface, and key codes
-// become keysyms through an XKB keymap (libxkbcommon, the layout from the XKB_DEFAULT_* variables
-// or the system default), so Ctrl+Z is Ctrl+Z on any layout. Where no keymap compiles (no
-// xkb-data, as in a minimal initramfs) a built-in US table is used and said so on stderr. The
-// pen has its own backends in drivers/evdev; the shell's frame loop polls this where the display
-// asks for it (Display::needsEvdevKeyboard) and turns presses into DisplayEvents. Events the kernel
-// drops when its buffer overflows (keys typed during a long frame) are recovered by reading the key
-// state again (evdev_key_tracker.h).
+// /dev/input/event* that has an Esc key is read non-blocking through the kernel's evdev
+// interface, and key codes become keysyms through an XKB keymap (libxkbcommon, the layout from
+// the XKB_DEFAULT_* variables or the system default), so Ctrl+Z is Ctrl+Z on any layout. Where no
+// keymap compiles (no xkb-data, as in a minimal initramfs) a built-in US table is used and said
+// so on stderr. Events the kernel drops when its buffer overflows (keys typed during a long
+// frame) are recovered by reading the key state again (evdev_key_tracker.h). The pen has its own
+// backends in drivers/evdev; the shell's frame loop polls this where the display asks for it
+// (Display::needsEvdevKeyboard) and turns presses into DisplayEvents.
 #pragma once
 
 #include <cstddef>
