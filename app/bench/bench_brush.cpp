@@ -129,6 +129,46 @@ void printCosts(const char* name, const SampleCosts& c) {
               percentile(c.cpu_ms, 100));
 }
 
+// The timings of the painting-mode frame bench (milliseconds per frame or render).
+struct OverlayFrameTimes {
+  std::vector<double> scene_ms;     // the cached scene render
+  std::vector<double> full_ms;      // the full composite after a camera move
+  std::vector<double> frame_ms;     // brush + upload + overlay + finish
+  std::vector<double> overlay_ms;   // the overlay draw alone
+  std::vector<double> uncached_ms;  // baseline: ray cast + overlay every frame
+  size_t texels = 0;                // uploaded in all
+};
+
+// Prints the painting-mode frame's figures and puts them in the report.
+void reportOverlayFrames(const OverlayFrameTimes& t, int footprint_texels, int frames,
+                         const std::string& renderer, BenchReport* report) {
+  const double med = median(t.frame_ms), p95 = percentile(t.frame_ms, 95);
+  std::printf("  scene render (cached once per camera move): median %.2f ms\n", median(t.scene_ms));
+  std::printf(
+      "  painting frame, brush + upload + overlay + finish: median %.2f ms (%.0f fps), "
+      "p95 %.2f ms (%.0f fps); overlay draw alone median %.2f ms\n",
+      med, 1000.0 / med, p95, 1000.0 / p95, median(t.overlay_ms));
+  std::printf("  first frame after a camera move (full composite): median %.2f ms\n",
+              median(t.full_ms));
+  std::printf("  uploaded %.1f texels per frame on average (a full footprint is %d)\n",
+              double(t.texels) / frames, footprint_texels);
+  std::printf("  baseline, re-render volume + overlay every frame: median %.2f ms (%.0f fps)\n",
+              median(t.uncached_ms), 1000.0 / median(t.uncached_ms));
+  std::printf("  target >= 60 fps while painting: %s (p95 %s)\n",
+              1000.0 / med >= 60.0 ? "met" : "MISSED", 1000.0 / p95 >= 60.0 ? "met" : "missed");
+  report->figure("frame_painting_median_ms", med);
+  report->figure("frame_painting_p95_ms", p95);
+  report->figure("frame_painting_fps", 1000.0 / med);
+  report->figure("frame_overlay_draw_median_ms", median(t.overlay_ms));
+  report->figure("frame_scene_render_ms", median(t.scene_ms));
+  report->figure("frame_full_composite_ms", median(t.full_ms));
+  report->figure("frame_uploaded_texels_per_frame", double(t.texels) / frames);
+  report->baseline("frame_uncached_median_ms", median(t.uncached_ms));
+  report->baseline("frame_uncached_fps", 1000.0 / median(t.uncached_ms));
+  report->note("frame_target", "painting frame >= 60 fps at 1280x720");
+  report->note("gl_renderer", renderer);
+}
+
 // The painting-mode frame at w×h: returns false (with a note) when no GL context is available.
 bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int volume_size,
                         BenchReport* report) {
@@ -221,32 +261,8 @@ bool benchOverlayFrames(const BrushConfig& base, int w, int h, int frames, int v
         glFinish();
         uncached_ms.push_back(msSince(t0));
       }
-      double med = median(frame_ms), p95 = percentile(frame_ms, 95);
-      std::printf("  scene render (cached once per camera move): median %.2f ms\n",
-                  median(scene_ms));
-      std::printf(
-          "  painting frame, brush + upload + overlay + finish: median %.2f ms (%.0f fps), "
-          "p95 %.2f ms (%.0f fps); overlay draw alone median %.2f ms\n",
-          med, 1000.0 / med, p95, 1000.0 / p95, median(overlay_ms));
-      std::printf("  first frame after a camera move (full composite): median %.2f ms\n",
-                  median(full_ms));
-      std::printf("  uploaded %.1f texels per frame on average (a full footprint is %d)\n",
-                  double(texels) / frames, w * h);
-      std::printf("  baseline, re-render volume + overlay every frame: median %.2f ms (%.0f fps)\n",
-                  median(uncached_ms), 1000.0 / median(uncached_ms));
-      std::printf("  target >= 60 fps while painting: %s (p95 %s)\n",
-                  1000.0 / med >= 60.0 ? "met" : "MISSED", 1000.0 / p95 >= 60.0 ? "met" : "missed");
-      report->figure("frame_painting_median_ms", med);
-      report->figure("frame_painting_p95_ms", p95);
-      report->figure("frame_painting_fps", 1000.0 / med);
-      report->figure("frame_overlay_draw_median_ms", median(overlay_ms));
-      report->figure("frame_scene_render_ms", median(scene_ms));
-      report->figure("frame_full_composite_ms", median(full_ms));
-      report->figure("frame_uploaded_texels_per_frame", double(texels) / frames);
-      report->baseline("frame_uncached_median_ms", median(uncached_ms));
-      report->baseline("frame_uncached_fps", 1000.0 / median(uncached_ms));
-      report->note("frame_target", "painting frame >= 60 fps at 1280x720");
-      report->note("gl_renderer", ctx.renderer);
+      reportOverlayFrames({scene_ms, full_ms, frame_ms, overlay_ms, uncached_ms, texels}, w * h,
+                          frames, ctx.renderer, report);
     }
   }
   destroyGlContext(&ctx);

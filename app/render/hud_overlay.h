@@ -1,7 +1,8 @@
 // The painter's heads-up overlay: a small GL pass that draws flat items over a finished frame —
 // solid rectangles (bars, digit cells, panels), rings (the mapping's circles) and line segments
 // (outlines) — all in screen pixels with y down, alpha-blended over what is there. One instanced
-// draw from a storage buffer; what to draw is decided by the caller (app/shell/painter/hud_items.h).
+// draw from a storage buffer; what to draw is decided by the caller (the painter builds its items
+// in the shell, which includes this header — never the other way).
 //
 //   HudOverlay hud;
 //   hud.init(&error);                                 // current GL 4.5 core context

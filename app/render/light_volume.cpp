@@ -290,6 +290,110 @@ struct TileSweep {
     return size_t(s & m) * sa + size_t(b & m) * sb + size_t(c & m) * sc;
   }
 
+  // Marks in changed_bytes[bi] the slots (LightByteChanges::Brick::readers) that read a voxel of
+  // rectangle r's `rows` rows where `values` (row stride `stride`) rounds to another 8-bit value
+  // than `dst` holds: the slots reading voxel v are brick − δ for each δ whose axes all have
+  // v_i < kLowVoxels.
+  void markChangedReaders(size_t bi, int s, Rect r, const float* dst, const float* values, int rows,
+                          size_t stride) const {
+    static constexpr std::array<uint8_t, 8> kReaders = [] {
+      std::array<uint8_t, 8> t{};
+      for (int low = 0; low < 8; ++low)
+        for (int d = 0; d < 8; ++d)
+          if ((d & ~low) == 0) t[size_t(low)] |= uint8_t(1 << d);
+      return t;
+    }();
+    constexpr int m = kTile - 1, kLow = LightByteChanges::kLowVoxels;
+    uint8_t& readers = changed_bytes[bi];
+    for (int rr = 0; rr < rows; ++rr) {
+      const float* d = dst + offset(s, r.lo.x, r.lo.y + rr);
+      const float* v = values + rr * stride;
+      const int row_low =
+          ((s & m) < kLow ? 1 << f.axis : 0) | (((r.lo.y + rr) & m) < kLow ? 1 << f.c : 0);
+      for (int i = 0; i < r.hi.x - r.lo.x; ++i)
+        if (unorm8(d[size_t(i) * sb]) != unorm8(v[i])) {
+          readers |= kReaders[size_t(row_low | (((r.lo.x + i) & m) < kLow ? 1 << f.b : 0))];
+          if (readers == 0xFF) return;
+        }
+    }
+  }
+
+  // The upstream footprint of rectangle r of slice s: [fb0, fb1) × [fc0, fc1) in slice s − dir,
+  // the part of it inside the grid [gb0, gb1) × [gc0, gc1), and the (up to 2×2) upstream bricks
+  // it covers from brick (ub0, uc0) (null where absent: all 1).
+  struct Footprint {
+    int su = 0, fb0 = 0, fc0 = 0, gb0 = 0, gb1 = 0, gc0 = 0, gc1 = 0, ub0 = 0, uc0 = 0;
+    bool inside = false;   // an upstream slice exists and the footprint meets the grid
+    bool all_ones = true;  // no upstream brick is allocated
+    const float* bricks[2][2] = {{nullptr, nullptr}, {nullptr, nullptr}};
+  };
+  Footprint upstreamFootprint(int s, Rect r) const {
+    Footprint u;
+    u.su = s - f.dir;
+    const bool has_upstream = u.su >= 0 && u.su < na;
+    u.fb0 = r.lo.x + ob;
+    u.fc0 = r.lo.y + oc;
+    u.gb0 = std::max(u.fb0, 0);
+    u.gb1 = std::min(r.hi.x + ob + 1, nb);
+    u.gc0 = std::max(u.fc0, 0);
+    u.gc1 = std::min(r.hi.y + oc + 1, nc);
+    u.inside = has_upstream && u.gb1 > u.gb0 && u.gc1 > u.gc0;
+    u.ub0 = u.gb0 >> Volume::kBrickShift;
+    u.uc0 = u.gc0 >> Volume::kBrickShift;
+    if (u.inside)
+      for (int j = 0; j <= ((u.gc1 - 1) >> Volume::kBrickShift) - u.uc0; ++j)
+        for (int i = 0; i <= ((u.gb1 - 1) >> Volume::kBrickShift) - u.ub0; ++i) {
+          u.bricks[j][i] =
+              lv.through.get(lv.through.brickIndex(brickCoord(u.su, u.ub0 + i, u.uc0 + j)));
+          if (u.bricks[j][i]) u.all_ones = false;
+        }
+    return u;
+  }
+
+  // The upstream values over the footprint, pw × ph, row by row (1 outside the grid and in
+  // absent bricks).
+  void fillPatch(const Footprint& u, int pw, int ph, std::vector<float>* patch) const {
+    patch->assign(size_t(pw * ph), 1.0f);
+    if (!u.inside) return;
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const float* p = u.bricks[j][i];
+        if (!p) continue;
+        const int b0 = std::max(u.gb0, (u.ub0 + i) * kTile),
+                  b1 = std::min(u.gb1, (u.ub0 + i + 1) * kTile);
+        const int c0 = std::max(u.gc0, (u.uc0 + j) * kTile),
+                  c1 = std::min(u.gc1, (u.uc0 + j + 1) * kTile);
+        for (int c = c0; c < c1; ++c) {
+          float* row = patch->data() + size_t((c - u.fc0) * pw) + (b0 - u.fb0);
+          const float* src = p + offset(u.su, b0, c);
+          for (int b = 0; b < b1 - b0; ++b) row[b] = src[size_t(b) * sb];
+        }
+      }
+  }
+
+  // Stores the passed-on values (row stride kTile) into rectangle r of `through`; with `track`,
+  // unites the voxels whose value changed into *changed.
+  void storeThrough(float* through, int s, Rect r, int rows, const float* passed, bool track,
+                    Rect* changed) const {
+    const int n = r.hi.x - r.lo.x;
+    for (int rr = 0; rr < rows; ++rr) {
+      float* dst = through + offset(s, r.lo.x, r.lo.y + rr);
+      const float* values = passed + rr * kTile;
+      if (track) {
+        int changed_lo = n, changed_hi = 0;
+        for (int i = 0; i < n; ++i)
+          if (std::abs(values[i] - dst[size_t(i) * sb]) > kChangeEpsilon) {
+            changed_lo = std::min(changed_lo, i);
+            changed_hi = i + 1;
+          }
+        if (changed_hi > changed_lo)
+          *changed = changed->unite(
+              Rect{{r.lo.x + changed_lo, r.lo.y + rr}, {r.lo.x + changed_hi, r.lo.y + rr + 1}});
+      }
+      for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = values[i];
+    }
+  }
+
   // Sweeps rectangle r (inside tile (tb, tc) and the grid) of slice s. With `track`, unites the
   // voxels whose passed-on value changed into *changed. Returns whether a passed-on value is not 1.
   bool processTile(int s, int tb, int tc, Rect r, bool track, Rect* changed) const {
@@ -299,72 +403,18 @@ struct TileSweep {
     // `at` reads lit where the volume holds the brick, else through. Whether a rewrite changes
     // what it reads in 8 bits (once a brick is marked its other rewrites are not compared).
     const bool compare = changed_bytes && changed_bytes[bi] != 0xFF;
-    auto compareRows = [&](const float* dst, const float* values, int rows, size_t stride) {
-      // The slots reading voxel v: brick − δ for each δ whose axes all have v_i < kLowVoxels.
-      static constexpr std::array<uint8_t, 8> kReaders = [] {
-        std::array<uint8_t, 8> t{};
-        for (int low = 0; low < 8; ++low)
-          for (int d = 0; d < 8; ++d)
-            if ((d & ~low) == 0) t[size_t(low)] |= uint8_t(1 << d);
-        return t;
-      }();
-      constexpr int m = kTile - 1, kLow = LightByteChanges::kLowVoxels;
-      uint8_t& readers = changed_bytes[bi];
-      for (int rr = 0; rr < rows; ++rr) {
-        const float* d = dst + offset(s, r.lo.x, r.lo.y + rr);
-        const float* v = values + rr * stride;
-        const int row_low =
-            ((s & m) < kLow ? 1 << f.axis : 0) | (((r.lo.y + rr) & m) < kLow ? 1 << f.c : 0);
-        for (int i = 0; i < r.hi.x - r.lo.x; ++i)
-          if (unorm8(d[size_t(i) * sb]) != unorm8(v[i])) {
-            readers |= kReaders[size_t(row_low | (((r.lo.x + i) & m) < kLow ? 1 << f.b : 0))];
-            if (readers == 0xFF) return;
-          }
-      }
-    };
     if (!density_brick && lv.lit.get(bi)) {
       lv.lit.release(bi);  // freed: T is the passed-on value
       if (changed_bytes) changed_bytes[bi] = 0xFF;
     }
     float* through = lv.through.getForWrite(bi);
-    const int su = s - f.dir;
-    const bool has_upstream = su >= 0 && su < na;
-    // The upstream footprint [fb0, fb1) × [fc0, fc1) and the part of it inside the grid.
-    const int fb0 = r.lo.x + ob, fb1 = r.hi.x + ob + 1, fc0 = r.lo.y + oc, fc1 = r.hi.y + oc + 1;
-    const int gb0 = std::max(fb0, 0), gb1 = std::min(fb1, nb), gc0 = std::max(fc0, 0),
-              gc1 = std::min(fc1, nc);
-    const bool inside = has_upstream && gb1 > gb0 && gc1 > gc0;
-    const float* upstream[2][2] = {{nullptr, nullptr}, {nullptr, nullptr}};
-    const int ub0 = gb0 >> Volume::kBrickShift, uc0 = gc0 >> Volume::kBrickShift;
-    bool upstream_lit = true;
-    if (inside)
-      for (int j = 0; j <= ((gc1 - 1) >> Volume::kBrickShift) - uc0; ++j)
-        for (int i = 0; i <= ((gb1 - 1) >> Volume::kBrickShift) - ub0; ++i) {
-          upstream[j][i] = lv.through.get(lv.through.brickIndex(brickCoord(su, ub0 + i, uc0 + j)));
-          if (upstream[j][i]) upstream_lit = false;
-        }
+    const Footprint u = upstreamFootprint(s, r);
     // No density, an upstream all 1 and a tile all 1 before: it stays all 1.
-    if (!density_brick && upstream_lit && !through) return false;
+    if (!density_brick && u.all_ones && !through) return false;
 
-    // The upstream values over the footprint (1 outside the grid and in absent bricks).
     const int pw = r.hi.x - r.lo.x + 1, ph = r.hi.y - r.lo.y + 1;
     thread_local std::vector<float> patch;
-    patch.assign(size_t(pw * ph), 1.0f);
-    if (inside)
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-          const float* p = upstream[j][i];
-          if (!p) continue;
-          const int b0 = std::max(gb0, (ub0 + i) * kTile),
-                    b1 = std::min(gb1, (ub0 + i + 1) * kTile);
-          const int c0 = std::max(gc0, (uc0 + j) * kTile),
-                    c1 = std::min(gc1, (uc0 + j + 1) * kTile);
-          for (int c = c0; c < c1; ++c) {
-            float* row = patch.data() + size_t((c - fc0) * pw) + (b0 - fb0);
-            const float* src = p + offset(su, b0, c);
-            for (int b = 0; b < b1 - b0; ++b) row[b] = src[size_t(b) * sb];
-          }
-        }
+    fillPatch(u, pw, ph, &patch);
 
     const int n = r.hi.x - r.lo.x, rows = ph - 1;
     float density[kTile], passed[kTile * kTile], own[kTile * kTile];
@@ -382,24 +432,9 @@ struct TileSweep {
       for (int i = 0; i < n; ++i) not_one |= out[i] != 1.0f;
     }
     if (!through && not_one) through = lv.through.create(bi);  // all 1, as `at` read it
-    if (through && compare && !density_brick) compareRows(through, passed, rows, kTile);
-    if (through)
-      for (int rr = 0; rr < rows; ++rr) {
-        float* dst = through + offset(s, r.lo.x, r.lo.y + rr);
-        const float* values = passed + rr * kTile;
-        if (track) {
-          int changed_lo = n, changed_hi = 0;
-          for (int i = 0; i < n; ++i)
-            if (std::abs(values[i] - dst[size_t(i) * sb]) > kChangeEpsilon) {
-              changed_lo = std::min(changed_lo, i);
-              changed_hi = i + 1;
-            }
-          if (changed_hi > changed_lo)
-            *changed = changed->unite(
-                Rect{{r.lo.x + changed_lo, r.lo.y + rr}, {r.lo.x + changed_hi, r.lo.y + rr + 1}});
-        }
-        for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = values[i];
-      }
+    if (through && compare && !density_brick)
+      markChangedReaders(bi, s, r, through, passed, rows, kTile);
+    if (through) storeThrough(through, s, r, rows, passed, track, changed);
     if (density_brick) {
       // A brick new to the lit set: its voxels outside this sweep hold no density (they were
       // not in an allocated brick and did not change), so their T is the passed-on value.
@@ -408,7 +443,7 @@ struct TileSweep {
         lit = lv.lit.create(bi, through);
         if (changed_bytes) changed_bytes[bi] = 0xFF;  // `at` switches from through to lit
       }
-      if (compare) compareRows(lit, own, rows, kTile);
+      if (compare) markChangedReaders(bi, s, r, lit, own, rows, kTile);
       for (int rr = 0; rr < rows; ++rr) {
         float* dst = lit + offset(s, r.lo.x, r.lo.y + rr);
         for (int i = 0; i < n; ++i) dst[size_t(i) * sb] = own[rr * kTile + i];

@@ -9,6 +9,7 @@
 #include "app/shell/keymap.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
+#include "drivers/keyboard/evdev_keyboards.h"
 
 namespace cb {
 namespace {
@@ -19,14 +20,83 @@ int64_t monotonicNs() {
       .count();
 }
 
+int64_t loopNowNs(const Clock* clock) {
+  return clock ? clock->nowNs() : monotonicNs();
+}
+
+// The display's events to the screen: a key goes to the screen first (onKey), else through the
+// keymap to a command. Returns why the loop quits ("window closed", "q", "Esc") or "".
+std::string routeEvents(const std::vector<DisplayEvent>& events, Screen& screen, const Clock* clock,
+                        FrameLoopResult* result) {
+  std::string quit;
+  for (const DisplayEvent& event : events) {
+    if (!quit.empty()) break;
+    switch (event.kind) {
+      case DisplayEvent::Kind::Quit:
+        quit = "window closed";
+        break;
+      case DisplayEvent::Kind::KeyDown: {
+        if (screen.onKey(event, loopNowNs(clock))) break;
+        const std::optional<Command> command = commandForKey(event.keysym, event.modifiers);
+        if (!command) break;
+        result->commands.push_back(commandName(*command));
+        if (*command == Command::kQuit && screen.allowsQuit())
+          quit = event.keysym == 'q' || event.keysym == 'Q' ? "q" : "Esc";
+        else
+          screen.onCommand(*command, loopNowNs(clock));
+        break;
+      }
+      case DisplayEvent::Kind::Resize:
+        screen.onResize(event.width, event.height);
+        break;
+      default:
+        screen.onPointer(event);
+        break;
+    }
+  }
+  return quit;
+}
+
+// Monotonic marks of one drawn iteration: start, pen taken, updated, drawn, presented.
+struct IterationMarks {
+  int64_t start, pen, update, draw, presented;
+};
+
+void logSlowIteration(long frame, const IterationMarks& m) {
+  std::fprintf(stderr,
+               "cloudbrush: slow loop iteration (frame %ld): %.2f s = input+pen %.2f, update "
+               "%.2f, draw %.2f, present %.2f (ended at %.6f s monotonic)\n",
+               frame, double(m.presented - m.start) / 1e9, double(m.pen - m.start) / 1e9,
+               double(m.update - m.pen) / 1e9, double(m.draw - m.update) / 1e9,
+               double(m.presented - m.draw) / 1e9, double(m.presented) / 1e9);
+}
+
+static_assert(uint32_t(kKeyShift) == DisplayEvent::kShift &&
+                  uint32_t(kKeyCtrl) == DisplayEvent::kCtrl &&
+                  uint32_t(kKeyAlt) == DisplayEvent::kAlt,
+              "the keyboard's modifier bits are the display's");
+
 }  // namespace
+
+FrameLoop::FrameLoop(Display& display, PenSource* pen) : display_(display), pen_(pen) {
+  if (display_.needsEvdevKeyboard()) keyboards_ = std::make_unique<EvdevKeyboards>();
+}
+
+FrameLoop::~FrameLoop() = default;
+
+void FrameLoop::pollInput(std::vector<DisplayEvent>* pending) {
+  for (const DisplayEvent& event : display_.pollEvents()) pending->push_back(event);
+  if (keyboards_)
+    for (const KeyPress& key : keyboards_->poll())
+      pending->push_back(DisplayEvent::key(key.keysym, key.modifiers));
+}
 
 bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopResult* result,
                     std::string* error) {
   *result = FrameLoopResult{};
   const int64_t start = monotonicNs();
   int64_t last_present = start;
-  const auto now_ns = [&]() { return options.clock ? options.clock->nowNs() : monotonicNs(); };
+  const auto now_ns = [&]() { return loopNowNs(options.clock); };
   int64_t last_frame_ns = now_ns();
   std::vector<DisplayEvent> pending = options.initial_keys;
   std::vector<PenSample> samples;
@@ -37,33 +107,8 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
   while (true) {
     mark_start = monotonicNs();
     stamper.begin(mark_start);
-    std::string quit;
-    for (const DisplayEvent& event : display_.pollEvents()) pending.push_back(event);
-    for (const DisplayEvent& event : pending) {
-      if (!quit.empty()) break;
-      switch (event.kind) {
-        case DisplayEvent::Kind::Quit:
-          quit = "window closed";
-          break;
-        case DisplayEvent::Kind::KeyDown: {
-          if (screen.onKey(event, now_ns())) break;
-          const std::optional<Command> command = commandForKey(event.keysym, event.modifiers);
-          if (!command) break;
-          result->commands.push_back(commandName(*command));
-          if (*command == Command::kQuit && screen.allowsQuit())
-            quit = event.keysym == 'q' || event.keysym == 'Q' ? "q" : "Esc";
-          else
-            screen.onCommand(*command, now_ns());
-          break;
-        }
-        case DisplayEvent::Kind::Resize:
-          screen.onResize(event.width, event.height);
-          break;
-        default:
-          screen.onPointer(event);
-          break;
-      }
-    }
+    pollInput(&pending);
+    std::string quit = routeEvents(pending, screen, options.clock, result);
     pending.clear();
     if (quit.empty() && options.stop && options.stop->load()) quit = "signal";
     if (quit.empty() && options.max_frames > 0 && result->frames >= options.max_frames)
@@ -127,13 +172,7 @@ bool FrameLoop::run(Screen& screen, const FrameLoopOptions& options, FrameLoopRe
     frame.record = &record;
     if (options.slow_iteration_s > 0.0 &&
         double(presented - mark_start) / 1e9 >= options.slow_iteration_s)
-      std::fprintf(stderr,
-                   "cloudbrush: slow loop iteration (frame %ld): %.2f s = input+pen %.2f, update "
-                   "%.2f, draw %.2f, present %.2f (ended at %.6f s monotonic)\n",
-                   result->frames, double(presented - mark_start) / 1e9,
-                   double(mark_pen - mark_start) / 1e9, double(mark_update - mark_pen) / 1e9,
-                   double(mark_draw - mark_update) / 1e9, double(presented - mark_draw) / 1e9,
-                   double(presented) / 1e9);
+      logSlowIteration(result->frames, {mark_start, mark_pen, mark_update, mark_draw, presented});
     screen.presented(frame, double(presented - last_present) / 1e6);
     last_present = presented;
     last_frame_ns = now;

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 namespace cb {
 
 class Clock;
+class EvdevKeyboards;
 class PenSource;
 
 struct FrameLoopOptions {
@@ -44,14 +46,21 @@ struct FrameLoopResult {
 
 class FrameLoop {
  public:
-  FrameLoop(Display& display, PenSource* pen) : display_(display), pen_(pen) {}
+  // Where the display has no keys of its own (KMS), the keyboards are opened here through evdev
+  // (drivers/keyboard) and read with the display's events.
+  FrameLoop(Display& display, PenSource* pen);
+  ~FrameLoop();
   // Runs `screen` until a quit; false with *error when drawing or presenting fails.
   bool run(Screen& screen, const FrameLoopOptions& options, FrameLoopResult* result,
            std::string* error);
 
  private:
+  // The display's events and, on KMS, the evdev keyboards' presses, appended to `pending`.
+  void pollInput(std::vector<DisplayEvent>* pending);
+
   Display& display_;
   PenSource* pen_;
+  std::unique_ptr<EvdevKeyboards> keyboards_;  // KMS only: Esc and the mode keys on the console
 };
 
 }  // namespace cb

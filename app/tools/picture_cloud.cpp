@@ -130,6 +130,50 @@ VoxelBox pictureToCloud(const std::string& png_path, const ToolView& view,
   return maskToCloud(mask, view, params, volume);
 }
 
+namespace {
+
+// Picture rows per parallelFor chunk in the particle walks.
+constexpr size_t kPictureRowsPerChunk = 8;
+
+// The particles wanted over the shape by Eq. (5) (D × column volume / voxel volume, a column of
+// range R holding an effective depth of about R), and the factor that scales them down to at
+// most params.max_particles (1 when they fit).
+template <class RangeOf>
+double particleBudgetFactor(const ShapeMask& mask, const RangeOf& rangeOf, float texel,
+                            float voxel_volume, const PictureCloudParams& params) {
+  double wanted = 0;
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (mask.at(x, y))
+        wanted += double(texel) * texel * (rangeOf(x, y) * texel * params.depth_scale) /
+                  voxel_volume * params.particles_per_voxel;
+  return wanted > double(params.max_particles) ? double(params.max_particles) / wanted : 1.0;
+}
+
+// The voxel box the particles of rows 0..h-1 occupy (forEachParticleOfRow(y, sink) calls sink
+// with each particle's world position), walked in row chunks in parallel and united in chunk
+// order.
+template <class ForEachParticleOfRow>
+VoxelBox occupiedBox(int h, const Volume& volume,
+                     const ForEachParticleOfRow& forEachParticleOfRow) {
+  std::vector<VoxelBox> chunk_box(chunkCount(size_t(h), kPictureRowsPerChunk));
+  parallelFor(size_t(h), kPictureRowsPerChunk, [&](size_t k, size_t y_begin, size_t y_end) {
+    glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+    for (size_t y = y_begin; y < y_end; ++y)
+      forEachParticleOfRow(int(y), [&](glm::vec3 world) {
+        const glm::ivec3 v = glm::ivec3(glm::floor(volume.worldToVoxel(world)));
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v + 1);
+      });
+    if (lo.x <= hi.x) chunk_box[k] = VoxelBox{lo, hi};
+  });
+  VoxelBox occupied;
+  for (const VoxelBox& box : chunk_box) occupied = occupied.unite(box);
+  return occupied;
+}
+
+}  // namespace
+
 VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureCloudParams& params,
                      Volume* volume) {
   requireShape(mask);
@@ -156,14 +200,7 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
     const float d = std::sqrt(dx * dx + dy * dy);
     return std::max(0.5f, extent[binOf(dx, dy)] - d);  // Eq. (2.1), in picture pixels
   };
-  double wanted = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (mask.at(x, y))
-        wanted += double(texel) * texel * (rangeOf(x, y) * texel * params.depth_scale) /
-                  voxel_volume * params.particles_per_voxel;
-  const double density_factor =
-      wanted > double(params.max_particles) ? double(params.max_particles) / wanted : 1.0;
+  const double density_factor = particleBudgetFactor(mask, rangeOf, texel, voxel_volume, params);
 
   const VoxelBox reach =
       reachBox(placement, w, h, r_max, params, *volume).intersect(volume->bounds());
@@ -225,26 +262,13 @@ VoxelBox maskToCloud(const ShapeMask& mask, const ToolView& view, const PictureC
   // that box grown by the smoothing radius (+1) rather than the whole reachable box — less
   // memory to fault in and to smooth, and the same bytes: the tent pass only ever adds zeros
   // from the cells this drops.
-  constexpr size_t kRowsPerChunk = 8;
-  std::vector<VoxelBox> chunk_box(chunkCount(size_t(h), kRowsPerChunk));
-  parallelFor(size_t(h), kRowsPerChunk, [&](size_t k, size_t y_begin, size_t y_end) {
-    glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
-    for (size_t y = y_begin; y < y_end; ++y)
-      forEachParticleOfRow(int(y), [&](glm::vec3 world) {
-        const glm::ivec3 v = glm::ivec3(glm::floor(volume->worldToVoxel(world)));
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v + 1);
-      });
-    if (lo.x <= hi.x) chunk_box[k] = VoxelBox{lo, hi};
-  });
-  VoxelBox occupied;
-  for (const VoxelBox& box : chunk_box) occupied = occupied.unite(box);
+  const VoxelBox occupied = occupiedBox(h, *volume, forEachParticleOfRow);
   const VoxelBox grid = occupied.grow(params.smoothing.radius_voxels + 1).intersect(reach);
   if (grid.empty()) return {};
 
   // Second walk: count.
   ParticleCounts counts(grid);
-  parallelFor(size_t(h), kRowsPerChunk, [&](size_t, size_t y_begin, size_t y_end) {
+  parallelFor(size_t(h), kPictureRowsPerChunk, [&](size_t, size_t y_begin, size_t y_end) {
     for (size_t y = y_begin; y < y_end; ++y)
       forEachParticleOfRow(int(y), [&](glm::vec3 world) { counts.add(*volume, world); });
   });

@@ -92,12 +92,15 @@ class Display {
   virtual bool present(std::string* error) = 0;
   // Input and window events since the last call (never blocks).
   virtual std::vector<DisplayEvent> pollEvents() = 0;
+  // True where no window system delivers keys (KMS): the caller reads the keyboards itself,
+  // through evdev (drivers/keyboard; the shell's FrameLoop does), and pollEvents() has none.
+  virtual bool needsEvdevKeyboard() const { return false; }
   // The refresh rate the display's mode runs at (KMS: the mode's pixel clock over its total
   // size), or nullopt with *why_unknown saying why there is none to report (an offscreen
   // buffer has no refresh; the X11 window does not query the server's mode).
   virtual std::optional<double> refreshHz(std::string* why_unknown) const = 0;
   // Tests and scripted runs: queues `event` for the next pollEvents() of the surfaceless display
-  // (the platform without a keyboard; KMS and X11 read their real input and ignore the queue).
+  // (the platform without a keyboard; KMS and X11 ignore the queue).
   void injectEvent(const DisplayEvent& event) { injected_.push_back(event); }
   // Reads the frame drawn so far (call before present()) as RGBA8, row 0 at the top.
   bool readPixels(std::vector<uint8_t>* rgba) const;

@@ -10,7 +10,6 @@
 
 #include <cstdio>
 
-#include "app/render/gl/display_kms_keyboard.h"
 #include "app/render/gl/display_kms_output.h"
 #include "app/render/gl/display_kms_vt.h"
 #include "app/render/gl/display_platforms.h"
@@ -84,7 +83,6 @@ class KmsDisplay final : public Display {
       return false;
     }
     glViewport(0, 0, width_, height_);
-    keyboards_ = std::make_unique<EvdevKeyboards>();
     if (options.lock_vt) {
       std::string why;
       vt_ = VtLock::lock(STDIN_FILENO, &why);
@@ -153,7 +151,9 @@ class KmsDisplay final : public Display {
     return true;
   }
 
-  std::vector<DisplayEvent> pollEvents() override { return keyboards_->poll(); }
+  // Keys come from the keyboards through evdev, read by the caller (drivers/keyboard).
+  std::vector<DisplayEvent> pollEvents() override { return {}; }
+  bool needsEvdevKeyboard() const override { return true; }
   std::optional<double> refreshHz(std::string* why_unknown) const override {
     std::string why;
     const std::optional<double> hz = kmsModeRefreshHz(output_.mode, &why);
@@ -180,8 +180,7 @@ class KmsDisplay final : public Display {
   gbm_device* gbm_ = nullptr;
   gbm_surface* surface_ = nullptr;
   EGLSurface egl_surface_ = EGL_NO_SURFACE;
-  gbm_bo* shown_bo_ = nullptr;                 // the buffer being scanned out
-  std::unique_ptr<EvdevKeyboards> keyboards_;  // Esc on the console
+  gbm_bo* shown_bo_ = nullptr;  // the buffer being scanned out
   int width_ = 0, height_ = 0;
 };
 

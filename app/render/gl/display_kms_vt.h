@@ -2,8 +2,8 @@
 // keyboard). While locked, the VT on the given descriptor (the process's stdin: the unit's
 // TTYPath=/dev/tty7) is brought to the foreground and
 //   - handles no keys itself (KDSKBMODE K_OFF): Ctrl+Alt+Fn, Alt+arrows and the console's own
-//     Ctrl+Alt+Del go nowhere; the display still reads the keyboard through evdev
-//     (display_kms_keyboard.h);
+//     Ctrl+Alt+Del go nowhere; the shell still reads the keyboard through evdev
+//     (drivers/keyboard/evdev_keyboards.h);
 //   - refuses every switch away (VT_SETMODE VT_PROCESS; a release request is answered with
 //     VT_RELDISP 0), so `chvt` from another terminal cannot switch either;
 //   - draws no console text over the frames (KDSETMODE KD_GRAPHICS).

@@ -1,5 +1,6 @@
 #include "tests/hil/tablet/corpus_phase.h"
 
+#include "tests/hil/tablet/hil_checks.h"
 #include "tests/hil/tablet/hil_devices.h"
 
 #include <fcntl.h>
@@ -23,20 +24,6 @@
 namespace cb::hil {
 namespace {
 
-int64_t nowNs() {
-  return MonotonicClock().nowNs();
-}
-
-struct Checker {
-  int failures = 0;
-  bool operator()(bool ok, const std::string& what) {
-    std::printf("CB-HIL CHECK %s %s\n", ok ? "ok" : "FAIL", what.c_str());
-    std::fflush(stdout);
-    if (!ok) ++failures;
-    return ok;
-  }
-};
-
 std::string describe(const PenSample& s) {
   char b[200];
   std::snprintf(b, sizeof b, "prox=%d tool=%d x=%d y=%d p=%d tilt=%d,%d buttons=%#x serial=%#llx",
@@ -44,16 +31,6 @@ std::string describe(const PenSample& s) {
                 s.tilt_x_raw, s.tilt_y_raw, s.buttons,
                 static_cast<unsigned long long>(s.tool_serial));
   return b;
-}
-
-bool waitConnected(PenSource& src, int timeout_ms) {
-  const int64_t start = nowNs();
-  std::vector<PenSample> ignored;
-  while (src.connection() != PenConnection::kConnected) {
-    if (nowNs() - start > int64_t{timeout_ms} * 1000000) return false;
-    src.poll(20, ignored);
-  }
-  return true;
 }
 
 // Polls until the source's state satisfies the step (or `timeout_ms`), then drains briefly;

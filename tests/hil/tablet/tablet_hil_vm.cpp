@@ -33,6 +33,7 @@
 #include "drivers/hid/intuos4_decoder.h"
 #include "drivers/usb/usb_devices.h"
 #include "tests/hil/tablet/corpus_phase.h"
+#include "tests/hil/tablet/hil_checks.h"
 #include "tests/hil/tablet/hil_devices.h"
 #include "tests/hil/tablet/intuos4_handbuilt.h"
 #include "tests/hil/tablet/pen_script.h"
@@ -56,10 +57,6 @@ void figure(const std::string& name, double value) {
   std::printf("CB-HIL FIGURE %s %.3f\n", name.c_str(), value);
 }
 
-int64_t nowNs() {
-  return MonotonicClock().nowNs();
-}
-
 std::string describe(const PenSample& s) {
   char b[320];
   std::snprintf(b, sizeof b,
@@ -75,17 +72,6 @@ std::string describe(const PenSample& s) {
 std::vector<uint8_t> readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-bool waitConnected(PenSource& src, int timeout_ms, int64_t* took_ns = nullptr) {
-  const int64_t start = nowNs();
-  std::vector<PenSample> ignored;
-  while (src.connection() != PenConnection::kConnected) {
-    if (nowNs() - start > int64_t{timeout_ms} * 1000000) return false;
-    src.poll(20, ignored);
-  }
-  if (took_ns) *took_ns = nowNs() - start;
-  return true;
 }
 
 // Polls until at least one sample arrived (or the timeout), then drains briefly.

@@ -14,19 +14,10 @@
 #include <vector>
 
 #include "tests/hil/tablet/gadgetfs_device.h"
+#include "tests/hil/tablet/hil_checks.h"
 #include "tests/hil/tablet/pen_script.h"
 
 namespace cb::hil {
-
-struct Checker {
-  int failures = 0;
-  bool operator()(bool ok, const std::string& what) {
-    std::printf("CB-HIL CHECK %s %s\n", ok ? "ok" : "FAIL", what.c_str());
-    std::fflush(stdout);
-    if (!ok) ++failures;
-    return ok;
-  }
-};
 
 struct UclogicModel {
   std::string name;  // prefixes every check line

@@ -22,6 +22,7 @@
 #include "drivers/hid/hidapi_pen_source.h"
 #include "drivers/usb/usb_devices.h"
 #include "tests/hil/tablet/gadgetfs_device.h"
+#include "tests/hil/tablet/hil_checks.h"
 #include "tests/hil/tablet/hil_devices.h"
 #include "tests/hil/tablet/pen_script.h"
 #include "tests/hil/tablet/uclogic_models.h"
@@ -52,20 +53,6 @@ std::vector<PenStep> uclogicScript(const UclogicModel& m) {
   corner.y = m.y_max;
   steps.insert(steps.end() - 2, corner);
   return steps;
-}
-
-int64_t nowNs() {
-  return MonotonicClock().nowNs();
-}
-
-bool waitConnected(PenSource& src, int timeout_ms) {
-  const int64_t start = nowNs();
-  std::vector<PenSample> ignored;
-  while (src.connection() != PenConnection::kConnected) {
-    if (nowNs() - start > int64_t{timeout_ms} * 1000000) return false;
-    src.poll(20, ignored);
-  }
-  return true;
 }
 
 std::string describe(const PenSample& s) {

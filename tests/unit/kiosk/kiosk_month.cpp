@@ -62,6 +62,7 @@
 #include "drivers/core/journal.h"
 #include "drivers/core/pen_source.h"
 #include "small_tmpfs.h"
+#include "tests/support/command_line.h"
 
 namespace cb {
 namespace {
@@ -91,48 +92,35 @@ struct MonthOptions {
   uint32_t seed = 1;
 };
 
-bool parseArgs(int argc, char** argv, MonthOptions* o, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) {
-      *error = a + " needs a value";
-      return false;
-    }
-    const std::string v = argv[++i];
-    if (a == "--days")
-      o->days = std::stoi(v);
-    else if (a == "--visitors-per-day")
-      o->visitors_per_day = std::stoi(v);
-    else if (a == "--strokes-per-visit")
-      o->strokes_per_visit = std::stoi(v);
-    else if (a == "--grid")
-      o->grid = std::stoi(v);
-    else if (a == "--disk-mb")
-      o->disk_bytes = std::stoull(v) << 20;
-    else if (a == "--floor-mb")
-      o->floor_bytes = std::stoull(v) << 20;
-    else if (a == "--fill-day")
-      o->fill_day = std::stoi(v);
-    else if (a == "--free-day")
-      o->free_day = std::stoi(v);
-    else if (a == "--freed-mb")
-      o->freed_bytes = std::stoull(v) << 20;
-    else if (a == "--rss-band-percent")
-      o->rss_band_percent = std::stod(v);
-    else if (a == "--size") {
-      if (std::sscanf(v.c_str(), "%dx%d", &o->width, &o->height) != 2) {
-        *error = "--size: expected WxH, got '" + v + "'";
-        return false;
-      }
-    } else {
-      *error = "unknown option " + a;
-      return false;
-    }
-  }
+// The options, or false after saying what is wrong on stderr.
+bool parseArgs(int argc, char** argv, MonthOptions* o) {
+  const auto integer = [](int* field) {
+    return [field](const std::string& v) { *field = std::stoi(v); };
+  };
+  const auto megabytes = [](uint64_t* field) {
+    return [field](const std::string& v) { *field = std::stoull(v) << 20; };
+  };
+  const std::vector<test::CommandOption> options = {
+      {"--days", integer(&o->days)},
+      {"--visitors-per-day", integer(&o->visitors_per_day)},
+      {"--strokes-per-visit", integer(&o->strokes_per_visit)},
+      {"--grid", integer(&o->grid)},
+      {"--disk-mb", megabytes(&o->disk_bytes)},
+      {"--floor-mb", megabytes(&o->floor_bytes)},
+      {"--fill-day", integer(&o->fill_day)},
+      {"--free-day", integer(&o->free_day)},
+      {"--freed-mb", megabytes(&o->freed_bytes)},
+      {"--rss-band-percent", [o](const std::string& v) { o->rss_band_percent = std::stod(v); }},
+      {"--size",
+       [o](const std::string& v) { test::parseSizeOption("--size", v, &o->width, &o->height); }},
+  };
+  if (!test::parseCommandLine("kiosk_month", argc, argv, options)) return false;
   if (const char* seed = std::getenv("CB_TEST_SEED")) o->seed = uint32_t(std::stoul(seed));
   if (o->days < 3 || o->visitors_per_day < 1 || o->strokes_per_visit < 1 || o->fill_day < 2 ||
       o->free_day <= o->fill_day || o->free_day > o->days) {
-    *error = "bad values (days >= 3, 2 <= fill day < free day <= days, visitors >= 1)";
+    std::fprintf(stderr,
+                 "kiosk_month: bad values (days >= 3, 2 <= fill day < free day <= days, "
+                 "visitors >= 1)\n");
     return false;
   }
   return true;
@@ -644,11 +632,7 @@ int MonthRun::finish(bool ran, const std::string& error) {
 
 int main(int argc, char** argv) {
   cb::MonthOptions options;
-  std::string error;
-  if (!cb::parseArgs(argc, argv, &options, &error)) {
-    std::fprintf(stderr, "kiosk_month: %s\n", error.c_str());
-    return 2;
-  }
+  if (!cb::parseArgs(argc, argv, &options)) return 2;
   if (::geteuid() != 0) {
     std::printf("kiosk_month: SKIPPED: needs root to mount a tmpfs as the data dir's disk\n");
     return 77;
@@ -659,13 +643,10 @@ int main(int argc, char** argv) {
       (std::filesystem::temp_directory_path() / ("cb_kiosk_month_" + std::to_string(::getpid())))
           .string();
   std::filesystem::create_directories(root);
-  int status = 1;
-  try {
+  const int status = cb::test::runReportingErrors("kiosk_month", [&] {
     cb::MonthRun run(options, root);
-    status = run.run();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "kiosk_month: %s\n", e.what());
-  }
+    return run.run();
+  });
   std::error_code ec;
   std::filesystem::remove_all(root, ec);
   return status;

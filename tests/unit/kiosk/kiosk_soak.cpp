@@ -71,6 +71,7 @@
 #include "drivers/core/clock.h"
 #include "drivers/core/journal.h"
 #include "drivers/core/pen_source.h"
+#include "tests/support/command_line.h"
 #include "tests/support/process_memory.h"
 #include "tests/support/strace_file_writes.h"
 #include "tests/unit/kiosk/notify_socket_listener.h"
@@ -102,59 +103,44 @@ struct SoakOptions {
   bool child = false;
 };
 
-bool parseArgs(int argc, char** argv, SoakOptions* o, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-      return argv[++i];
-    };
-    try {
-      if (a == "--hours")
-        o->hours = std::stod(value());
-      else if (a == "--warmup-minutes")
-        o->warmup_minutes = std::stod(value());
-      else if (a == "--reference-minutes")
-        o->reference_minutes = std::stod(value());
-      else if (a == "--rss-band-percent")
-        o->rss_band_percent = std::stod(value());
-      else if (a == "--size") {
-        const std::string v = value();
-        if (std::sscanf(v.c_str(), "%dx%d", &o->width, &o->height) != 2)
-          throw std::runtime_error("--size: expected WxH, got '" + v + "'");
-      } else if (a == "--grid")
-        o->grid = std::stoi(value());
-      else if (a == "--strokes-per-visit")
-        o->strokes_per_visit = std::stoi(value());
-      else if (a == "--attract-seconds") {
-        const std::string v = value();
-        if (std::sscanf(v.c_str(), "%lf-%lf", &o->attract_min_s, &o->attract_max_s) != 2)
-          throw std::runtime_error("--attract-seconds: expected MIN-MAX, got '" + v + "'");
-      } else if (a == "--idle-step")
-        o->idle_step_s = std::stod(value());
-      else if (a == "--stroke-step")
-        o->stroke_step_s = std::stod(value());
-      else if (a == "--seed")
-        o->seed = uint32_t(std::stoul(value()));
-      else if (a == "--data-dir")
-        o->data_dir = value();
-      else if (a == "--strace")
-        o->strace = true;
-      else if (a == "--memory-detail")
-        o->memory_detail = true;
-      else if (a == "--child")
-        o->child = true;
-      else
-        throw std::runtime_error("unknown option " + a);
-    } catch (const std::exception& e) {
-      *error = e.what();
-      return false;
-    }
-  }
+// The options, or false after saying what is wrong on stderr.
+bool parseArgs(int argc, char** argv, SoakOptions* o) {
+  const auto real = [](double* field) {
+    return [field](const std::string& v) { *field = std::stod(v); };
+  };
+  const auto integer = [](int* field) {
+    return [field](const std::string& v) { *field = std::stoi(v); };
+  };
+  const auto setTrue = [](bool* field) { return [field](const std::string&) { *field = true; }; };
+  const std::vector<test::CommandOption> options = {
+      {"--hours", real(&o->hours)},
+      {"--warmup-minutes", real(&o->warmup_minutes)},
+      {"--reference-minutes", real(&o->reference_minutes)},
+      {"--rss-band-percent", real(&o->rss_band_percent)},
+      {"--size",
+       [o](const std::string& v) { test::parseSizeOption("--size", v, &o->width, &o->height); }},
+      {"--grid", integer(&o->grid)},
+      {"--strokes-per-visit", integer(&o->strokes_per_visit)},
+      {"--attract-seconds",
+       [o](const std::string& v) {
+         if (std::sscanf(v.c_str(), "%lf-%lf", &o->attract_min_s, &o->attract_max_s) != 2)
+           throw std::runtime_error("--attract-seconds: expected MIN-MAX, got '" + v + "'");
+       }},
+      {"--idle-step", real(&o->idle_step_s)},
+      {"--stroke-step", real(&o->stroke_step_s)},
+      {"--seed", [o](const std::string& v) { o->seed = uint32_t(std::stoul(v)); }},
+      {"--data-dir", [o](const std::string& v) { o->data_dir = v; }},
+      {"--strace", setTrue(&o->strace), true},
+      {"--memory-detail", setTrue(&o->memory_detail), true},
+      {"--child", setTrue(&o->child), true},
+  };
+  if (!test::parseCommandLine("kiosk_soak", argc, argv, options)) return false;
   if (!(o->hours > 0.0) || o->grid < 8 || o->strokes_per_visit < 1 || o->width < 64 ||
       o->height < 64 || o->attract_max_s < o->attract_min_s || o->attract_min_s < 0.0 ||
       !(o->idle_step_s > 0.0) || !(o->stroke_step_s > 0.0)) {
-    *error = "bad values (hours > 0, grid >= 8, strokes per visit >= 1, size >= 64x64)";
+    std::fprintf(stderr,
+                 "kiosk_soak: bad values (hours > 0, grid >= 8, strokes per visit >= 1, size >= "
+                 "64x64)\n");
     return false;
   }
   return true;
@@ -746,19 +732,12 @@ int runParent(int argc, char** argv, SoakOptions o) {
 
 int main(int argc, char** argv) {
   cb::SoakOptions options;
-  std::string error;
-  if (!cb::parseArgs(argc, argv, &options, &error)) {
-    std::fprintf(stderr, "kiosk_soak: %s\n", error.c_str());
-    return 2;
-  }
-  try {
+  if (!cb::parseArgs(argc, argv, &options)) return 2;
+  return cb::test::runReportingErrors("kiosk_soak", [&] {
     if (options.child) {
       std::signal(SIGTERM, [](int) { cb::g_stop.store(true); });
       return cb::runKiosk(options);
     }
     return cb::runParent(argc, argv, options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "kiosk_soak: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -6,8 +6,8 @@
 #include <linux/input-event-codes.h>
 #include <xkbcommon/xkbcommon.h>
 
-#include "app/render/gl/display_kms_keyboard.h"
 #include "app/shell/keymap.h"
+#include "drivers/keyboard/evdev_keyboards.h"
 
 namespace cb {
 namespace {

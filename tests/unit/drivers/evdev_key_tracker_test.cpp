@@ -1,10 +1,10 @@
-// The KMS keyboard across SYN_DROPPED (app/render/gl/evdev_key_tracker.h), on event streams as
+// The KMS keyboard across SYN_DROPPED (drivers/keyboard/evdev_key_tracker.h), on event streams as
 // the kernel's evdev writes them when a client's buffer overflows (drivers/input/evdev.c
 // evdev_queue_syn_dropped: the buffer is emptied, SYN_DROPPED queued, then the live events): a
 // Ctrl whose release was dropped is released by the resync, a key pressed and still held in
 // the dropped part is pressed, and nothing is delivered twice. The real kernel's overflow is not
 // exercised here (the host has no /dev/uinput).
-#include "app/render/gl/evdev_key_tracker.h"
+#include "drivers/keyboard/evdev_key_tracker.h"
 
 #include <gtest/gtest.h>
 

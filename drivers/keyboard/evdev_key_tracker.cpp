@@ -1,4 +1,4 @@
-#include "app/render/gl/evdev_key_tracker.h"
+#include "drivers/keyboard/evdev_key_tracker.h"
 
 namespace cb {
 

@@ -1,4 +1,4 @@
-#include "app/render/gl/display_kms_keyboard.h"
+#include "drivers/keyboard/evdev_keyboards.h"
 
 #include <cstdio>
 #include <string>
@@ -111,8 +111,8 @@ EvdevKeyboards::~EvdevKeyboards() {
   if (context_) xkb_context_unref(context_);
 }
 
-std::vector<DisplayEvent> EvdevKeyboards::poll() {
-  std::vector<DisplayEvent> events;
+std::vector<KeyPress> EvdevKeyboards::poll() {
+  std::vector<KeyPress> events;
   std::vector<KeyTransition> keys;
   for (size_t k = 0; k < fds_.size(); ++k) {
     EvdevKeyTracker& tracker = trackers_[k];
@@ -141,19 +141,18 @@ std::vector<DisplayEvent> EvdevKeyboards::poll() {
         const auto active = [&](const char* name) {
           return xkb_state_mod_name_is_active(state_, name, XKB_STATE_MODS_EFFECTIVE) > 0;
         };
-        modifiers = (active(XKB_MOD_NAME_SHIFT) ? DisplayEvent::kShift : 0u) |
-                    (active(XKB_MOD_NAME_CTRL) ? DisplayEvent::kCtrl : 0u) |
-                    (active(XKB_MOD_NAME_ALT) ? DisplayEvent::kAlt : 0u);
+        modifiers = (active(XKB_MOD_NAME_SHIFT) ? kKeyShift : 0u) |
+                    (active(XKB_MOD_NAME_CTRL) ? kKeyCtrl : 0u) |
+                    (active(XKB_MOD_NAME_ALT) ? kKeyAlt : 0u);
       } else {
         if (code == KEY_LEFTSHIFT || code == KEY_RIGHTSHIFT) shift_ = down;
         if (code == KEY_LEFTCTRL || code == KEY_RIGHTCTRL) ctrl_ = down;
         if (code == KEY_LEFTALT || code == KEY_RIGHTALT) alt_ = down;
         if (down) keysym = fallbackKeysym(code, shift_);
-        modifiers = (shift_ ? DisplayEvent::kShift : 0u) | (ctrl_ ? DisplayEvent::kCtrl : 0u) |
-                    (alt_ ? DisplayEvent::kAlt : 0u);
+        modifiers = (shift_ ? kKeyShift : 0u) | (ctrl_ ? kKeyCtrl : 0u) | (alt_ ? kKeyAlt : 0u);
       }
       if (!down || keysym == XKB_KEY_NoSymbol) continue;
-      events.push_back(DisplayEvent::key(keysym, modifiers));
+      events.push_back({keysym, modifiers});
     }
   }
   return events;
