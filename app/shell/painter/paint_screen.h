@@ -45,10 +45,10 @@
 #include "app/render/temporal_reprojection.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
+#include "app/shell/kiosk/visitor_words.h"
 #include "app/shell/painter/paint_loop.h"
 #include "app/shell/pen_events.h"
 #include "app/shell/screen.h"
-#include "app/shell/kiosk/visitor_words.h"
 
 namespace cb {
 
@@ -165,6 +165,8 @@ class PaintScreen : public Screen {
   void onCloudCommand(Command command, int64_t t_ns);
   void openLastSaved(int64_t t_ns);
   void saveCloud();
+  // Where Save writes and Open and the morph look (PaintLoopOptions::save_dir).
+  const std::string& saveDir() const;
   void updateVacuumCentre(const MappedSample& mapped);
   // The mouse held still sends no events; a tablet streams samples. While the button is held in
   // a stroke the last position is fed again, so a stroke held still ends as with a pen.
