@@ -18,8 +18,8 @@
 #include "app/kiosk/unsaved_visit.h"
 #include "app/render/gl/gl.h"
 #include "app/session/session_replay.h"
-#include "app/shell/kiosk/gallery_capture.h"
 #include "app/shell/keymap.h"
+#include "app/shell/kiosk/gallery_capture.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
@@ -809,6 +809,9 @@ std::string KioskScreen::update(const FrameContext& frame) {
       values.storage_ok = storage_problem_.empty();
       values.storage = values.storage_ok ? "ok, " + storageSummary()
                                          : storage_problem_ + " (" + storageSummary() + ")";
+      const KioskCounts kiosk_counts = counts();  // what health.json and the metrics carry
+      values.gallery_saved = kiosk_counts.gallery_saved;
+      values.saves_failed = kiosk_counts.saves_failed;
       if (pressure_range_) {
         char range[64];
         std::snprintf(range, sizeof range, "%.3f..%.3f", double(pressure_range_->lo),

@@ -278,8 +278,17 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     if (!values_.storage.empty())
       for (const std::string& part : wrapWords("Disk: " + values_.storage, max_chars))
         add(part, line, values_.storage_ok ? 0xb8c4d0ffu : 0xff8080ffu);
+    // What was lost, not only that saving is off: the same count as health.json's saves_failed.
+    for (const std::string& part :
+         wrapWords("Not saved since the start: " + std::to_string(values_.saves_failed) +
+                       " (visitors' clouds and journals that could not be written; " +
+                       std::to_string(values_.gallery_saved) +
+                       (values_.gallery_saved == 1 ? " cloud saved)" : " clouds saved)"),
+                   max_chars))
+      add(part, line, values_.saves_failed == 0 ? 0xb8c4d0ffu : 0xff8080ffu);
     if (!values_.message.empty()) add(values_.message, line, 0x9be39bffu);
   }
+  labels_ = labels;
   ui_->drawLabels(frame.width, frame.height, labels);
   return true;
 }

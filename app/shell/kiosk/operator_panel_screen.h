@@ -57,6 +57,9 @@ struct OperatorPanelValues {
   // in red when `storage_ok` is false.
   std::string storage;
   bool storage_ok = true;
+  // Since the kiosk started (the counts health.json and the metrics carry, KioskCounts):
+  // visitors' clouds kept in the gallery, and gallery entries and journals not written.
+  long gallery_saved = 0, saves_failed = 0;
 };
 
 class OperatorPanelScreen : public Screen {
@@ -79,6 +82,8 @@ class OperatorPanelScreen : public Screen {
   void setValues(const OperatorPanelValues& values) { values_ = values; }
   // What the panel shows (the kiosk sets it every frame while the panel is open).
   const OperatorPanelValues& values() const { return values_; }
+  // The text drawn last, line by line (tests and logs).
+  const std::vector<UiLabel>& labels() const { return labels_; }
   // Actions since the last call, in order.
   std::vector<OperatorAction> takeActions();
   static const char* actionName(OperatorActionKind kind);
@@ -96,6 +101,7 @@ class OperatorPanelScreen : public Screen {
   std::string typed_;
   int64_t last_key_ns_ = 0;
   OperatorPanelValues values_;
+  std::vector<UiLabel> labels_;
   std::vector<OperatorAction> actions_;
 };
 

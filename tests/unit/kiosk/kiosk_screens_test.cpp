@@ -949,6 +949,14 @@ TEST(KioskScreens, AFullDiskKeepsThePaintingSaysSoAndRecovers) {
   rig.run(1);
   ASSERT_EQ(kiosk.state(), State::kOperator);
   keep("kiosk_panel_disk_full.png", rig.lastFrame());
+  // ...and how many were lost: health.json's count (visitor 2's journal so far), in red.
+  ASSERT_EQ(kiosk.counts().saves_failed, 1);
+  EXPECT_EQ(kiosk.operatorPanel().values().saves_failed, kiosk.counts().saves_failed);
+  bool count_shown = false;
+  for (const UiLabel& label : kiosk.operatorPanel().labels())
+    if (label.text.rfind("Not saved since the start: 1 ", 0) == 0)
+      count_shown = label.rgba == 0xff8080ffu;
+  EXPECT_TRUE(count_shown) << "the panel shows the count of what was not saved, in red";
   rig.key(0xff1b);  // Esc
   rig.run(1);
   ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 80, 0.25));
