@@ -67,10 +67,14 @@ void OperatorPanelScreen::onPinKey(uint32_t k) {
   if (k == kBackSpace && !typed_.empty()) typed_.pop_back();
   const bool enter = k == kReturn || k == kKpEnter;
   if (state_ != State::kPin && enter) return onNewPinEntered();
-  if (k < '0' || k > '9' || typed_.size() >= 12) return;  // other keys: ignored, still taken
   if (state_ == State::kPin && pin_->lockedForSeconds() > 0.0) return;
-  typed_ += char(k);
-  if (state_ != State::kPin || int(typed_.size()) < pin_->digits()) return;
+  if (!enter) {
+    // Digits only, at most 12 (other keys: ignored, still taken). Entry ends with Enter, not
+    // at a stored length, so the prompt says nothing of the PIN's length.
+    if (k >= '0' && k <= '9' && typed_.size() < 12) typed_ += char(k);
+    return;
+  }
+  if (typed_.empty()) return;  // Enter alone is no try
   switch (pin_->check(typed_)) {
     case OperatorPinGuard::Result::kRight:
       state_ = State::kPanel;
@@ -241,12 +245,8 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
                     int(locked_s + 0.999));
       add(text, line, 0xff8080ffu);
     } else {
-      const size_t digits = size_t(pin_->digits());
-      add("Type the PIN on the number row (" + std::to_string(digits) + " digits; Esc cancels):",
-          line, 0xffffffffu);
-      add(std::string(typed_.size(), '*') +
-              std::string(digits - std::min(digits, typed_.size()), '_'),
-          big, 0xffffffffu);
+      add("Type the PIN on the number row, then Enter (Esc cancels):", line, 0xffffffffu);
+      add(std::string(typed_.size(), '*') + "_", big, 0xffffffffu);
     }
     add("Waiting for the PIN. Visitors: please ask the staff.", line, 0xb8c4d0ffu);
   } else {

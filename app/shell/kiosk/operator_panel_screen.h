@@ -1,9 +1,8 @@
 // The kiosk's operator panel. It opens only with the key combination set in
-// config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits, typed on
-// the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks for a
-// new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice as
-// long, kept across restarts). Open, it lists what the operator may do,
-// each on one key:
+// config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits and Enter,
+// typed on the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks
+// for a new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice
+// as long, kept across restarts). Open, it lists what the operator may do, each on one key:
 //   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
 //   G      gallery on/off           E      export the current cloud
 //   C      calibrate the pen (the kiosk runs the calibration screens, then shows the panel again)
