@@ -1010,6 +1010,40 @@ TEST(KioskScreens, AFullDiskKeepsThePaintingSaysSoAndRecovers) {
   EXPECT_EQ(filesNamed(data + "/sessions", "-visit3").size(), 1u);
 }
 
+// Retention on the kiosk's clock: with journals and gallery entries kept one day, a visit two
+// days later (on the injected clock, seconds of real time) deletes the first visit's journal
+// and gallery entry and keeps its own.
+TEST(KioskScreens, RetentionAgesFilesOnTheKiosksClock) {
+  KioskRig rig("cb_kiosk_retention", [](KioskConfig& c) {
+    c.gallery_enabled = true;
+    c.gallery_keep_days = 1.0;
+    c.journal_keep_days = 1.0;
+    c.idle_seconds = 3.0;
+    c.warning_seconds = 1.0;
+  });
+  KioskScreen& kiosk = rig.kiosk();
+  const std::string data = rig.dataDir();
+  paintAVisit(rig);
+  ASSERT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+  ASSERT_EQ(filesNamed(data + "/sessions", "-visit1").size(), 1u);
+  const std::string journal1 = filesNamed(data + "/sessions", "-visit1")[0];
+  // Half a day on: nothing is old enough yet.
+  rig.clock().advance(int64_t(0.5 * 86400e9));
+  paintAVisit(rig);
+  EXPECT_TRUE(fs::exists(journal1));
+  EXPECT_TRUE(fs::exists(data + "/gallery/000001"));
+  // Two days on: the next visit's end deletes what is older than a day.
+  rig.clock().advance(int64_t(2.0 * 86400e9));
+  paintAVisit(rig);
+  EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1, 2, 3}));
+  EXPECT_FALSE(fs::exists(journal1)) << "the first visit's journal, 2.5 days old";
+  EXPECT_FALSE(fs::exists(data + "/gallery/000001"));
+  EXPECT_FALSE(fs::exists(data + "/gallery/000002"));
+  EXPECT_TRUE(fs::exists(data + "/gallery/000003/thumbnail.png")) << "the newest stays";
+  EXPECT_EQ(filesNamed(data + "/sessions", "-visit3").size(), 1u);
+  EXPECT_TRUE(filesNamed(data + "/sessions", "-visit2").empty());
+}
+
 TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {
   KioskRig rig("cb_kiosk_reconnect", [](KioskConfig& c) { c.idle_seconds = 30.0; });
   KioskScreen& kiosk = rig.kiosk();
