@@ -306,5 +306,41 @@ TEST(StudyRunSlips, ASaveInATaskStaysInTheSessionAndIsWithdrawnWithIt) {
     ADD_FAILURE() << "left after the withdrawal: " << f;
 }
 
+// A task whose own files cannot be written when it ends (tasks/ is a file: a real error from
+// the file system): the operator's band names the files waiting, the participant goes on, and
+// once the obstacle is gone the files appear within the second's retry and the band goes.
+TEST(StudyRunSlips, TaskFilesThatCannotBeWrittenAreNamedAndWrittenLater) {
+  Rig rig;
+  if (!rig.open("cb_study_task_retry_")) return;
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
+  rig.tap(StudyTargetAction::kContinue);
+  if (rig.state->stage() == StudyStageKind::kIntroduction) rig.tap(StudyTargetAction::kContinue);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kTask) << rig.state->waitingFor(rig.now);
+  rig.frames(2);
+  const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+  rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
+  ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  std::ofstream(rig.folder + "/tasks") << "in the way";
+  rig.tap(StudyTargetAction::kDone);
+  rig.tap(StudyTargetAction::kDoneConfirm);
+  rig.frames(3);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kDemographics) << rig.state->waitingFor(rig.now);
+  rig.keep("task_files_waiting");
+  EXPECT_TRUE(rig.shown("OPERATOR: the session folder cannot be written"));
+  EXPECT_TRUE(rig.shown("waiting to be written: tasks/cloud1.{"));
+  EXPECT_FALSE(std::filesystem::is_directory(rig.folder + "/tasks"));
+  std::filesystem::remove(rig.folder + "/tasks");
+  rig.frames(3, 400'000'000);  // past the next retry
+  EXPECT_FALSE(rig.shown("OPERATOR:")) << "the band goes once all is written";
+  EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol"));
+  const std::vector<std::string> markers = rig.markers();
+  bool written = false;
+  for (const std::string& m : markers)
+    written = written || (m.rfind("study.files-written files=", 0) == 0 &&
+                          m.find("tasks/cloud1.cbvol") != std::string::npos);
+  EXPECT_TRUE(written) << "the late write is journalled";
+}
+
 }  // namespace
 }  // namespace cb
