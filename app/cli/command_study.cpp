@@ -41,6 +41,7 @@
 #include "app/study/codebook.h"
 #include "app/study/construct_definitions.h"
 #include "app/study/inkml_writer.h"
+#include "app/study/journal_answers.h"
 #include "app/study/likert_answers.h"
 #include "app/study/participant_withdrawal.h"
 #include "app/study/protocol.h"
@@ -68,7 +69,7 @@ const char kStudyHelp[] =
     "                               [--protocol FILE.toml]\n"
     "       cloudbrush study export --manifest FILE --out DIR [--shard I/N | --merge] ...\n"
     "       cloudbrush study volume VOLUME.cbvol --out DIR [--render] [--size WxH]\n"
-    "       cloudbrush study report ANSWERS.csv [SESSION.cbj...] --out REPORT.html\n"
+    "       cloudbrush study report [ANSWERS.csv] [SESSION.cbj...] --out REPORT.html\n"
     "                               [--constructs FILE.toml | --protocol FILE.toml]\n"
     "                               [--pair Q3,Q6] [--title TEXT]\n"
     "       cloudbrush study check [PROTOCOL.toml] [--vocabulary]\n"
@@ -118,7 +119,10 @@ const char kStudyHelp[] =
     "         session its status, duration on the session's clock, pressure and stroke speed\n"
     "         (median, IQR, outliers named). Participants whose sessions were aborted,\n"
     "         declined or unfinished, and those who answered nothing, are set apart, not\n"
-    "         counted. ANSWERS.csv: participant,Q1,...,Qn with answers 1..5 or NA.\n"
+    "         counted. The answers come from the journals' study.answer records when\n"
+    "         sessions are given (ANSWERS.csv, an export, is then only compared with them,\n"
+    "         each difference said), else from ANSWERS.csv: participant,Q1,...,Qn with\n"
+    "         answers 1..5 or NA.\n"
     "check    reads a study protocol (default: the bundled config/study/thesis_2014.toml;\n"
     "         format: app/study/protocol.h) and prints a summary: stages, tutorial steps and\n"
     "         their checks, tasks, the task order of each participant over one cycle, the\n"
@@ -142,7 +146,8 @@ const char kStudyHelp[] =
     "         pictures exit 3, before any screen opens. The session folder\n"
     "         DIR/ID-YYYYmmddTHHMMSSZ (DIR: --data-dir, default <state dir>/study) holds\n"
     "         session.json, session.cbj (the journal, stages as markers), questionnaire.csv,\n"
-    "         demographics.csv and tasks/TASK.{vdb,cbvol,exr,png}; its path is printed first.\n"
+    "         demographics.csv, tasks/TASK.{vdb,cbvol,exr,png} and saved/ (the painter's\n"
+    "         Save during the session: withdrawn with it); its path is printed first.\n"
     "         --participant N (N >= 1; 1 is the first id, P01) picks participant N (id and\n"
     "         task order); a participant with a session folder in DIR already is refused,\n"
     "         naming the folder (carry it on with --resume FOLDER; --resume with a new\n"
@@ -259,6 +264,12 @@ int runVolume(Args& args) {
 
 // The report's constructs: a --constructs file, else every construct of the study protocol
 // (--protocol, else the one the first session names, else the bundled one). Throws on bad input.
+std::string reportProtocolPath(Args& args, const std::vector<SessionTrace>& sessions) {
+  std::string path = args.get("protocol", "");
+  if (path.empty() && !sessions.empty()) path = protocolFileOf(sessions.front());
+  return path.empty() ? defaultStudyProtocolPath() : path;
+}
+
 void chooseReportConstructs(Args& args, const std::vector<SessionTrace>& sessions,
                             StudyReportOptions* options) {
   if (args.has("constructs")) {
@@ -266,25 +277,67 @@ void chooseReportConstructs(Args& args, const std::vector<SessionTrace>& session
     options->constructs_source = "Constructs declared in " + *args.get("constructs");
     return;
   }
-  std::string path = args.get("protocol", "");
-  if (path.empty() && !sessions.empty()) path = protocolFileOf(sessions.front());
-  if (path.empty()) path = defaultStudyProtocolPath();
+  const std::string path = reportProtocolPath(args, sessions);
   const StudyProtocol protocol = loadStudyProtocol(path);
   for (const ProtocolConstruct& c : protocol.constructs)
     options->constructs.push_back({c.name, c.items});
   options->constructs_source = "Constructs of the study protocol " + path;
 }
 
+// The report's answers: the journals' `study.answer` markers over the protocol's items when
+// sessions are given (a CSV given too is compared with them, each difference said), else the
+// CSV. Throws on bad input.
+LikertAnswers reportAnswers(Args& args, const std::vector<SessionTrace>& sessions,
+                            const std::string& csv_path) {
+  if (sessions.empty()) return loadLikertAnswers(csv_path);
+  std::vector<std::string> items;
+  for (const QuestionnaireItem& item : loadStudyProtocol(reportProtocolPath(args, sessions)).items)
+    items.push_back(item.id);
+  LikertAnswers answers = likertAnswersFromSessions(sessions, items);
+  if (csv_path.empty()) return answers;
+  const LikertAnswers csv = loadLikertAnswers(csv_path);
+  for (size_t p = 0; p < csv.participants.size(); ++p) {
+    const auto row =
+        std::find(answers.participants.begin(), answers.participants.end(), csv.participants[p]);
+    for (size_t i = 0; i < csv.items.size(); ++i) {
+      const int j = answers.itemIndex(csv.items[i]);
+      const std::optional<int> journal =
+          row == answers.participants.end() || j < 0
+              ? std::nullopt
+              : answers.answers[size_t(row - answers.participants.begin())][size_t(j)];
+      if (row != answers.participants.end() && csv.answers[p][i] == journal) continue;
+      std::fprintf(stderr,
+                   "cloudbrush study: report: %s: %s %s differs from the journals (which the "
+                   "report uses)\n",
+                   csv_path.c_str(), csv.participants[p].c_str(), csv.items[i].c_str());
+    }
+  }
+  return answers;
+}
+
 int runReport(Args& args) {
   auto unknown = args.unknown({"help", "out", "constructs", "pair", "title", "protocol"});
   if (!unknown.empty()) return fail("report: unknown option " + unknown[0] + " (see --help)", 2);
-  const std::vector<std::string>& positional = args.positional();
-  if (positional.size() < 3)
-    return fail("report: expected the answers: study report ANSWERS.csv --out REPORT.html", 2);
+  // The answers: from the journals when sessions are given (ANSWERS.csv, an export, is then
+  // only compared with them), else from ANSWERS.csv.
+  std::string csv_path;
+  std::vector<std::string> journals;
+  for (size_t i = 2; i < args.positional().size(); ++i) {
+    const std::string& p = args.positional()[i];
+    if (i == 2 && std::filesystem::path(p).extension() == ".csv")
+      csv_path = p;
+    else
+      journals.push_back(p);
+  }
+  if (csv_path.empty() && journals.empty())
+    return fail(
+        "report: expected the answers: study report [ANSWERS.csv] [SESSION.cbj...] --out "
+        "REPORT.html",
+        2);
   const std::string out = args.get("out", "");
   if (out.empty()) return fail("report: --out REPORT.html is required", 2);
   StudyReportOptions options;
-  options.answers_name = positional[2];
+  options.answers_name = csv_path.empty() ? "the sessions' journals" : csv_path;
   options.title = args.get("title", options.title);
   if (auto pair = args.get("pair")) {
     const size_t comma = pair->find(',');
@@ -294,10 +347,9 @@ int runReport(Args& args) {
     options.paired_second = pair->substr(comma + 1);
   }
   try {
-    const LikertAnswers answers = loadLikertAnswers(positional[2]);
     std::vector<SessionTrace> sessions;
-    for (size_t i = 3; i < positional.size(); ++i)
-      sessions.push_back(loadSessionTrace(positional[i]));
+    for (const std::string& journal : journals) sessions.push_back(loadSessionTrace(journal));
+    const LikertAnswers answers = reportAnswers(args, sessions, csv_path);
     chooseReportConstructs(args, sessions, &options);
     const StudyReport report = computeStudyReport(answers, options, sessions);
     std::string error;
@@ -311,7 +363,7 @@ int runReport(Args& args) {
     for (const ConstructSummary& c : report.constructs)
       for (const std::string& id : c.missing_items)
         std::fprintf(stderr, "cloudbrush study: report: construct '%s': no item %s in %s\n",
-                     c.definition.name.c_str(), id.c_str(), positional[2].c_str());
+                     c.definition.name.c_str(), id.c_str(), options.answers_name.c_str());
     if (!report.paired_problem.empty())
       std::fprintf(stderr, "cloudbrush study: %s\n", report.paired_problem.c_str());
   } catch (const std::exception& e) {

@@ -61,13 +61,17 @@ OperatorPinGuard::OperatorPinGuard(std::string data_dir, std::function<double()>
 
 void OperatorPinGuard::load() {
   bool exists = false;
-  // operator-pin: "<digits> <hash>\n".
+  // operator-pin: "<hash>\n"; written before: "<digits> <hash>\n" (the length is ignored).
   std::istringstream pin(slurp(data_dir_ + "/" + kPinFile, &exists));
-  if (exists && !(pin >> digits_ >> hash_ && digits_ >= 4 && digits_ <= 12 && hash_[0] == '$')) {
+  std::string first, second;
+  pin >> first >> second;
+  hash_ = !first.empty() && first[0] == '$' && second.empty() ? first
+          : !second.empty() && second[0] == '$' && !first.empty() &&
+                  first.find_first_not_of("0123456789") == std::string::npos
+              ? second
+              : "";
+  if (exists && hash_.empty())
     problem_ = data_dir_ + "/" + kPinFile + ": not a PIN record (set the PIN again)";
-    hash_.clear();
-    digits_ = 0;
-  }
   // operator-lockout: "<failures in a row> <locked until, Unix s> <last lock, s>\n".
   std::istringstream lock(slurp(data_dir_ + "/" + kLockoutFile, &exists));
   if (exists && !(lock >> failures_ >> locked_until_s_ >> last_lock_s_)) {
@@ -90,12 +94,10 @@ bool OperatorPinGuard::setPin(const std::string& pin, std::string* error) {
     return false;
   }
   const mode_t old = ::umask(077);  // the temporary and so the file: 0600
-  const bool ok = writeFileAtomically(data_dir_ + "/" + kPinFile,
-                                      std::to_string(pin.size()) + " " + hash + "\n", error);
+  const bool ok = writeFileAtomically(data_dir_ + "/" + kPinFile, hash + "\n", error);
   ::umask(old);
   if (!ok) return false;
   hash_ = hash;
-  digits_ = int(pin.size());
   failures_ = 0;
   locked_until_s_ = 0.0;
   last_lock_s_ = 0.0;

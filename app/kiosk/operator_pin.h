@@ -1,5 +1,7 @@
-// The operator panel's PIN, kept out of every config file: <data dir>/operator-pin holds its
-// number of digits and a crypt(3) hash (yescrypt, libcrypt's strongest default, salted), mode
+// The operator panel's PIN, kept out of every config file: <data dir>/operator-pin holds a
+// crypt(3) hash (yescrypt, libcrypt's strongest default, salted) and nothing else (not the PIN's
+// length: entry ends with Enter, so a guesser learns nothing from the file; files written before,
+// "<digits> <hash>", are read and their length ignored), mode
 // 0600 and owned by the service's user (under the unit, /var/lib/cloudbrush is 0750
 // cloudbrush:cloudbrush: only root and the service read it). There is no default PIN: until one
 // is set (at the kiosk the first time the operator combination is typed, or beforehand with
@@ -35,7 +37,6 @@ class OperatorPinGuard {
   explicit OperatorPinGuard(std::string data_dir, std::function<double()> wall_s = nullptr);
 
   bool hasPin() const { return !hash_.empty(); }
-  int digits() const { return digits_; }
   // Sets a new PIN (4..12 digits): hashed, written atomically with mode 0600; clears the lock.
   bool setPin(const std::string& pin, std::string* error);
 
@@ -53,7 +54,6 @@ class OperatorPinGuard {
   std::string data_dir_;
   std::function<double()> wall_s_;
   std::string hash_;
-  int digits_ = 0;
   int failures_ = 0;  // wrong in a row
   double locked_until_s_ = 0.0;
   double last_lock_s_ = 0.0;

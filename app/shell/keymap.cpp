@@ -65,6 +65,7 @@ struct NamedKey {
 constexpr NamedKey kNamedKeys[] = {
     {"space", XKB_KEY_space},
     {"esc", XKB_KEY_Escape},
+    {"enter", XKB_KEY_Return},
     {"delete", XKB_KEY_Delete},
     {"up", XKB_KEY_Up},
     {"down", XKB_KEY_Down},

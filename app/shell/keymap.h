@@ -19,7 +19,7 @@ std::optional<Command> commandForKey(uint32_t keysym, uint32_t modifiers);
 std::optional<Command> commandFor(const DisplayEvent& event);
 
 // Key names of scripted runs (`--keys`) and tests: a comma-separated list of keys such as
-// "3,b,ctrl+z,space,delete,up" (names: a–z, 0–9, space, esc, delete, up, down, left, right,
+// "3,b,ctrl+z,space,delete,up" (names: a–z, 0–9, space, esc, enter, delete, up, down, left, right,
 // minus, plus, pageup, pagedown, f1–f12; prefixes ctrl+, shift+, alt+). A list without commas whose
 // characters are all letters or digits, and which is not one key's name, is read one key per
 // character ("bm" = b, m; "delete" = Delete).

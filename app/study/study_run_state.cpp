@@ -337,14 +337,18 @@ void StudyRunState::endPaintingStage(int64_t t_ns, const std::string& why) {
                    " seconds=" + csvDouble(stageSeconds(t_ns)));
 }
 
-void StudyRunState::closeStage(int64_t t_ns, const std::vector<std::string>& saved) {
+void StudyRunState::closeStage(int64_t t_ns, const std::vector<std::string>& saved,
+                               const std::vector<std::string>& pending) {
   if (!closing_) return;
   const std::string why = *closing_;
-  if (!saved.empty()) {
+  const auto joined = [](const std::vector<std::string>& files) {
     std::string list;
-    for (const std::string& s : saved) list += (list.empty() ? "" : ",") + s;
-    record(t_ns, "study.saved " + stageLabel() + " files=" + quoted(list));
-  }
+    for (const std::string& s : files) list += (list.empty() ? "" : ",") + s;
+    return list;
+  };
+  if (!saved.empty() || !pending.empty())
+    record(t_ns, "study.saved " + stageLabel() + " files=" + quoted(joined(saved)) +
+                     (pending.empty() ? "" : " pending=" + quoted(joined(pending))));
   if (aborted_) {
     record(t_ns, "study.stage-end " + stageLabel() + " how=aborted");
     enterStage(stages_.size() - 1, t_ns);
@@ -543,14 +547,16 @@ bool StudyRunState::applyInput(const StudyRunRecord& r, std::string* error) {
   } else if (m.event == "study.stage-closing") {
     if (isPaintingStage(stage()) && !closing()) endPaintingStage(t, m.get("why"));
   } else if (m.event == "study.saved") {
-    std::vector<std::string> files;
-    std::string list = m.get("files");
-    for (size_t at = 0; at <= list.size();) {
-      const size_t comma = std::min(list.find(',', at), list.size());
-      if (comma > at) files.push_back(list.substr(at, comma - at));
-      at = comma + 1;
-    }
-    closeStage(t, files);
+    const auto split = [](const std::string& list) {
+      std::vector<std::string> files;
+      for (size_t at = 0; at <= list.size();) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        if (comma > at) files.push_back(list.substr(at, comma - at));
+        at = comma + 1;
+      }
+      return files;
+    };
+    closeStage(t, split(m.get("files")), split(m.get("pending")));
   } else if (m.event == "study.resume") {
     const int64_t down = std::atoll(m.get("down_ns").c_str());
     resumedAfter(t - down, t);
@@ -569,6 +575,7 @@ bool StudyRunState::restore(const std::vector<StudyRunRecord>& records, std::str
       restored_step_progress_ = r.text;  // the screen's counters, not a state change
       continue;
     }
+    if (r.text.rfind("study.files-written ", 0) == 0) continue;  // the screen's, after an outage
     const std::string where =
         "study record " + std::to_string(i + 1) + " (" + studyStageName(stage()) + ")";
     if (!expected.empty()) {

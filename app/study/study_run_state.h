@@ -125,7 +125,10 @@ class StudyRunState {
   // A painting stage ended and waits for the runner to save and close it.
   bool closing() const { return closing_.has_value(); }
   const std::string& closingWhy() const { return closing_ ? *closing_ : empty_; }
-  void closeStage(int64_t t_ns, const std::vector<std::string>& saved = {});
+  // `saved`: the task's files written; `pending`: those that could not be written yet (a full
+  // disk; the runner writes them later). Both go into the `study.saved` record.
+  void closeStage(int64_t t_ns, const std::vector<std::string>& saved = {},
+                  const std::vector<std::string>& pending = {});
 
   // --- operator
   void requestOperator(OperatorAction action, int64_t t_ns);

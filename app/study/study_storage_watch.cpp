@@ -43,14 +43,16 @@ bool StudyStorageWatch::observe(bool now_failing, const std::string& error, int6
   return true;
 }
 
-std::string StudyStorageWatch::operatorText(size_t held_bytes, int64_t unix_now_ns) const {
+std::string StudyStorageWatch::operatorText(size_t held_bytes, int64_t unix_now_ns,
+                                            const std::string& pending_files) const {
   if (!failing()) return "";
   const StorageOutage& o = outages_.back();
   const long seconds = long((unix_now_ns - o.since_unix_ns) / 1'000'000'000);
   return "OPERATOR: the session folder cannot be written for " + std::to_string(seconds) +
          " s: " + o.error + ". Nothing recorded is lost yet (" +
-         std::to_string((held_bytes + 1023) / 1024) +
-         " KiB held in memory); free space on the disk and the session carries on writing.";
+         std::to_string((held_bytes + 1023) / 1024) + " KiB held in memory" +
+         (pending_files.empty() ? "" : "; waiting to be written: " + pending_files) +
+         "); free space on the disk and the session carries on writing.";
 }
 
 std::string StudyStorageWatch::json() const {

@@ -24,8 +24,10 @@ class StudyStorageWatch {
   bool observe(bool failing, const std::string& error, int64_t unix_now_ns);
   bool failing() const { return !outages_.empty() && outages_.back().recovered_unix_ns == 0; }
   const std::vector<StorageOutage>& outages() const { return outages_; }
-  // The operator's banner while failing ("" otherwise): what failed, since when, what is kept.
-  std::string operatorText(size_t held_bytes, int64_t unix_now_ns) const;
+  // The operator's banner while failing ("" otherwise): what failed, since when, what is kept
+  // in memory, and which files are waiting to be written (`pending_files`, "" for none).
+  std::string operatorText(size_t held_bytes, int64_t unix_now_ns,
+                           const std::string& pending_files = "") const;
   // session.json's "storage" object: {"status": "ok" | "failing" | "recovered", "outages":
   // [{"error", "since_utc", "recovered_utc" (null while failing)}]}.
   std::string json() const;

@@ -63,7 +63,8 @@ bool exportCloudFiles(VolumeRenderer& renderer, const Volume& volume, const Came
 
 bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& volume,
                    const Camera& camera, const Light& light, const RenderOptions& render, int width,
-                   int height, GallerySave* save, std::string* error) {
+                   int height, std::filesystem::file_time_type now, GallerySave* save,
+                   std::string* error) {
   // Room first: the oldest entries go until the floor of free space plus one entry (as large as
   // the newest) is there; without it nothing is written (the floor is the journals' and logs').
   // The entry's size is taken before the room is made (makeRoom may delete the entries it is
@@ -89,11 +90,14 @@ bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& 
   if (!store.commit(write, error)) return false;
   save->number = write.number;
   save->dir = write.final_dir;
-  for (const std::string& path : written)
+  std::error_code ec;
+  for (const std::string& path : written) {
     save->written.push_back(write.final_dir + path.substr(write.temp_dir.size()));
+    std::filesystem::last_write_time(save->written.back(), now, ec);  // the kiosk clock's time
+  }
+  std::filesystem::last_write_time(write.final_dir, now, ec);
   std::string cleanup_error;
-  const GalleryCleanup cleanup =
-      store.enforce(save->number, std::filesystem::file_time_type::clock::now(), &cleanup_error);
+  const GalleryCleanup cleanup = store.enforce(save->number, now, &cleanup_error);
   save->cleanup.removed_for_age = cleanup.removed_for_age;
   save->cleanup.removed_for_quota = cleanup.removed_for_quota;
   save->cleanup.removed_for_space.insert(save->cleanup.removed_for_space.end(),

@@ -9,6 +9,7 @@
 // context (the caller binds its framebuffer again).
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -28,10 +29,14 @@ struct GallerySave {
   GalleryCleanup cleanup;
 };
 
-// Render size: width × height (the display's). False with *error naming the file or stage.
+// Render size: width × height (the display's). `now`: the time on the kiosk's clock
+// (KioskScreen::fileTimeNow): the entry's files carry it as their modification time, and the
+// store's retention (keep_days) is judged at it, so a simulated clock ages entries as it runs.
+// False with *error naming the file or stage.
 bool saveToGallery(GalleryStore& store, VolumeRenderer& renderer, const Volume& volume,
                    const Camera& camera, const Light& light, const RenderOptions& render, int width,
-                   int height, GallerySave* save, std::string* error);
+                   int height, std::filesystem::file_time_type now, GallerySave* save,
+                   std::string* error);
 
 // The same files without a gallery entry (the operator's "export the current cloud").
 bool exportCloudFiles(VolumeRenderer& renderer, const Volume& volume, const Camera& camera,

@@ -18,8 +18,8 @@
 #include "app/kiosk/unsaved_visit.h"
 #include "app/render/gl/gl.h"
 #include "app/session/session_replay.h"
-#include "app/shell/kiosk/gallery_capture.h"
 #include "app/shell/keymap.h"
+#include "app/shell/kiosk/gallery_capture.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
 
@@ -98,7 +98,9 @@ KioskScreen::KioskScreen(Display& display, VolumeRenderer& renderer, PaintScreen
       panel_(clock, &pin_guard_, &ui_),
       gallery_(setup_.data_dir + "/gallery", setup_.config.gallery_quota_bytes,
                setup_.config.gallery_keep_days, setup_.config.min_free_bytes),
-      operator_log_(setup_.data_dir + "/operator.log") {
+      operator_log_(setup_.data_dir + "/operator.log"),
+      clock_start_ns_(clock.nowNs()),
+      file_time_start_(std::filesystem::file_time_type::clock::now()) {
   std::vector<DisplayEvent> keys;
   std::string error;
   if (!parseKeyList(setup_.config.operator_keys, &keys, &error) || keys.size() != 1) {
@@ -218,9 +220,15 @@ void KioskScreen::input(int64_t now) {
   if (setup_.on_input) setup_.on_input();
 }
 
+std::filesystem::file_time_type KioskScreen::fileTimeNow() const {
+  return file_time_start_ + std::chrono::duration_cast<std::filesystem::file_time_type::duration>(
+                                std::chrono::nanoseconds(clock_.nowNs() - clock_start_ns_));
+}
+
 void KioskScreen::cleanUpOldData() {
+  // Ages on the kiosk's clock: files carry its time (closeJournal, saveToGallery).
   std::string error;
-  const auto now = std::filesystem::file_time_type::clock::now();
+  const auto now = fileTimeNow();
   for (const std::string& path :
        deleteFilesOlderThan(session_dir_, ".cbj", setup_.config.journal_keep_days, now, &error))
     std::fprintf(stderr, "cloudbrush kiosk: deleted %s (older than %.0f days)\n", path.c_str(),
@@ -310,6 +318,9 @@ void KioskScreen::closeJournal() {
   const std::string path = journal_->path();
   journal_->close();
   journal_.reset();
+  std::error_code stamp_ec;
+  if (!path.empty())
+    std::filesystem::last_write_time(path, fileTimeNow(), stamp_ec);  // the kiosk clock's time
   std::string error;
   if (!clearUnsavedVisit(setup_.data_dir, &error))
     std::fprintf(stderr, "cloudbrush kiosk: %s\n", error.c_str());
@@ -350,7 +361,7 @@ void KioskScreen::recoverUnsavedVisit() {
   GallerySave save;
   const bool ok = saveToGallery(gallery_, renderer_, replay.session->volume(),
                                 replay.session->camera(), replay.session->light(), setup_.render,
-                                display_.width(), display_.height(), &save, &error);
+                                display_.width(), display_.height(), fileTimeNow(), &save, &error);
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, display_.width(), display_.height());
   if (!ok) {
@@ -427,7 +438,7 @@ void KioskScreen::keepFinishedCloud(const std::string& why) {
   const auto started = std::chrono::steady_clock::now();
   const bool ok = saveToGallery(gallery_, renderer_, visitor_->volume(), paint_.shownCamera(),
                                 visitor_->light(), setup_.render, display_.width(),
-                                display_.height(), &save, &error);
+                                display_.height(), fileTimeNow(), &save, &error);
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, display_.width(), display_.height());
   for (long n : save.cleanup.removed_for_space)
@@ -809,6 +820,9 @@ std::string KioskScreen::update(const FrameContext& frame) {
       values.storage_ok = storage_problem_.empty();
       values.storage = values.storage_ok ? "ok, " + storageSummary()
                                          : storage_problem_ + " (" + storageSummary() + ")";
+      const KioskCounts kiosk_counts = counts();  // what health.json and the metrics carry
+      values.gallery_saved = kiosk_counts.gallery_saved;
+      values.saves_failed = kiosk_counts.saves_failed;
       if (pressure_range_) {
         char range[64];
         std::snprintf(range, sizeof range, "%.3f..%.3f", double(pressure_range_->lo),

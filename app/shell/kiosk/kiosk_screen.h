@@ -26,6 +26,7 @@
 // injected Clock.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -37,11 +38,11 @@
 #include "app/kiosk/kiosk_config.h"
 #include "app/kiosk/kiosk_texts.h"
 #include "app/kiosk/operator_log.h"
-#include "app/shell/kiosk/attract_screen.h"
 #include "app/shell/calibrate/calibrate_flow_screen.h"
+#include "app/shell/kiosk/attract_screen.h"
 #include "app/shell/kiosk/operator_panel_screen.h"
-#include "app/shell/painter/paint_screen.h"
 #include "app/shell/kiosk/reconnect_screen.h"
+#include "app/shell/painter/paint_screen.h"
 #include "app/shell/ui_overlay.h"
 
 namespace cb {
@@ -141,6 +142,11 @@ class KioskScreen : public Screen {
   void endVisit(int64_t now, const std::string& why);
   void input(int64_t now);
   void cleanUpOldData();
+  // The kiosk clock's time as a file time: the wall time at start plus the clock's time since.
+  // Journals and gallery entries carry it and retention (keep_days) is judged at it, so the
+  // injected clock (a simulated month) ages files as it runs; on the real clock it is the wall
+  // clock's time.
+  std::filesystem::file_time_type fileTimeNow() const;
   // Storage (the floor of free space, gallery.min_free_mb): the oldest gallery entries go until
   // `need_bytes` more than the floor are free; false with *why when even then they are not.
   bool roomToWrite(uint64_t need_bytes, std::string* why);
@@ -176,6 +182,8 @@ class KioskScreen : public Screen {
   DisplayEvent operator_keys_;
   GalleryStore gallery_;
   OperatorLog operator_log_;
+  int64_t clock_start_ns_;
+  std::filesystem::file_time_type file_time_start_;
   State state_ = State::kAttract, before_operator_ = State::kAttract;
   std::unique_ptr<JournalWriter> journal_;
   std::unique_ptr<PaintSession> visitor_;

@@ -67,10 +67,14 @@ void OperatorPanelScreen::onPinKey(uint32_t k) {
   if (k == kBackSpace && !typed_.empty()) typed_.pop_back();
   const bool enter = k == kReturn || k == kKpEnter;
   if (state_ != State::kPin && enter) return onNewPinEntered();
-  if (k < '0' || k > '9' || typed_.size() >= 12) return;  // other keys: ignored, still taken
   if (state_ == State::kPin && pin_->lockedForSeconds() > 0.0) return;
-  typed_ += char(k);
-  if (state_ != State::kPin || int(typed_.size()) < pin_->digits()) return;
+  if (!enter) {
+    // Digits only, at most 12 (other keys: ignored, still taken). Entry ends with Enter, not
+    // at a stored length, so the prompt says nothing of the PIN's length.
+    if (k >= '0' && k <= '9' && typed_.size() < 12) typed_ += char(k);
+    return;
+  }
+  if (typed_.empty()) return;  // Enter alone is no try
   switch (pin_->check(typed_)) {
     case OperatorPinGuard::Result::kRight:
       state_ = State::kPanel;
@@ -241,12 +245,8 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
                     int(locked_s + 0.999));
       add(text, line, 0xff8080ffu);
     } else {
-      const size_t digits = size_t(pin_->digits());
-      add("Type the PIN on the number row (" + std::to_string(digits) + " digits; Esc cancels):",
-          line, 0xffffffffu);
-      add(std::string(typed_.size(), '*') +
-              std::string(digits - std::min(digits, typed_.size()), '_'),
-          big, 0xffffffffu);
+      add("Type the PIN on the number row, then Enter (Esc cancels):", line, 0xffffffffu);
+      add(std::string(typed_.size(), '*') + "_", big, 0xffffffffu);
     }
     add("Waiting for the PIN. Visitors: please ask the staff.", line, 0xb8c4d0ffu);
   } else {
@@ -278,8 +278,17 @@ bool OperatorPanelScreen::draw(FrameContext& frame, std::string* error) {
     if (!values_.storage.empty())
       for (const std::string& part : wrapWords("Disk: " + values_.storage, max_chars))
         add(part, line, values_.storage_ok ? 0xb8c4d0ffu : 0xff8080ffu);
+    // What was lost, not only that saving is off: the same count as health.json's saves_failed.
+    for (const std::string& part :
+         wrapWords("Not saved since the start: " + std::to_string(values_.saves_failed) +
+                       " (visitors' clouds and journals that could not be written; " +
+                       std::to_string(values_.gallery_saved) +
+                       (values_.gallery_saved == 1 ? " cloud saved)" : " clouds saved)"),
+                   max_chars))
+      add(part, line, values_.saves_failed == 0 ? 0xb8c4d0ffu : 0xff8080ffu);
     if (!values_.message.empty()) add(values_.message, line, 0x9be39bffu);
   }
+  labels_ = labels;
   ui_->drawLabels(frame.width, frame.height, labels);
   return true;
 }

@@ -1,9 +1,8 @@
 // The kiosk's operator panel. It opens only with the key combination set in
-// config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits, typed on
-// the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks for a
-// new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice as
-// long, kept across restarts). Open, it lists what the operator may do,
-// each on one key:
+// config/kiosk.toml ([operator] keys, e.g. Ctrl+Alt+O) followed by the PIN's digits and Enter,
+// typed on the keyboard (operator_pin.h: stored hashed, no default — the first time, the panel asks
+// for a new PIN twice; the third wrong PIN in a row locks it for a minute, each further one twice
+// as long, kept across restarts). Open, it lists what the operator may do, each on one key:
 //   1 / 2  idle time −/+ 15 s       3 / 4  warning time −/+ 5 s
 //   G      gallery on/off           E      export the current cloud
 //   C      calibrate the pen (the kiosk runs the calibration screens, then shows the panel again)
@@ -57,6 +56,9 @@ struct OperatorPanelValues {
   // in red when `storage_ok` is false.
   std::string storage;
   bool storage_ok = true;
+  // Since the kiosk started (the counts health.json and the metrics carry, KioskCounts):
+  // visitors' clouds kept in the gallery, and gallery entries and journals not written.
+  long gallery_saved = 0, saves_failed = 0;
 };
 
 class OperatorPanelScreen : public Screen {
@@ -79,6 +81,8 @@ class OperatorPanelScreen : public Screen {
   void setValues(const OperatorPanelValues& values) { values_ = values; }
   // What the panel shows (the kiosk sets it every frame while the panel is open).
   const OperatorPanelValues& values() const { return values_; }
+  // The text drawn last, line by line (tests and logs).
+  const std::vector<UiLabel>& labels() const { return labels_; }
   // Actions since the last call, in order.
   std::vector<OperatorAction> takeActions();
   static const char* actionName(OperatorActionKind kind);
@@ -96,6 +100,7 @@ class OperatorPanelScreen : public Screen {
   std::string typed_;
   int64_t last_key_ns_ = 0;
   OperatorPanelValues values_;
+  std::vector<UiLabel> labels_;
   std::vector<OperatorAction> actions_;
 };
 

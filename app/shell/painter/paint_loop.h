@@ -103,9 +103,14 @@ struct PaintLoopOptions {
   std::vector<DisplayEvent> initial_keys;
   // Painting: where calibration profiles are looked up (calibration/profile_store.h).
   std::string config_dir, state_dir;
+  // Where Save (Ctrl+S, the menu's Save) writes clouds and Open and the morph look for them;
+  // empty: state_dir. A study session sets its session folder's saved/, so a participant's
+  // clouds stay with their session (withdrawn and exported with it) and no participant opens
+  // another's.
+  std::string save_dir;
   // Morph (F): the saved cloud to morph into (`--morph-to`); empty: the newest saved cloud of
-  // state_dir, else the bundled cumulus ("bundled:1", the cloud that orbits at the start).
-  // Played over morph_seconds, then held until applied (A) or left (X).
+  // the save folder (save_dir, else state_dir), else the bundled cumulus ("bundled:1", the cloud
+  // that orbits at the start). Played over morph_seconds, then held until applied (A) or left (X).
   std::string morph_target;
   double morph_seconds = 5.0;
   std::function<void(const PaintFrameInfo&)> on_frame;  // tests: after drawing, before present

@@ -166,6 +166,8 @@ class PaintScreen : public Screen {
   void onCloudCommand(Command command, int64_t t_ns);
   void openLastSaved(int64_t t_ns);
   void saveCloud();
+  // Where Save writes and Open and the morph look (PaintLoopOptions::save_dir).
+  const std::string& saveDir() const;
   void updateVacuumCentre(const MappedSample& mapped);
   // The mouse held still sends no events; a tablet streams samples. While the button is held in
   // a stroke the last position is fed again, so a stroke held still ends as with a pen.

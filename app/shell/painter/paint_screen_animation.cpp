@@ -11,10 +11,10 @@ namespace cb {
 namespace {
 
 // The morph target when none was named: the newest saved cloud, else the bundled cumulus.
-std::string defaultMorphTarget(const std::string& state_dir) {
+std::string defaultMorphTarget(const std::string& save_dir) {
   std::filesystem::path newest;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(state_dir, ec))
+  for (const auto& entry : std::filesystem::directory_iterator(save_dir, ec))
     if (entry.path().extension() == ".vol" &&
         (newest.empty() || entry.last_write_time() > std::filesystem::last_write_time(newest, ec)))
       newest = entry.path();
@@ -33,9 +33,8 @@ void PaintScreen::onAnimationCommand(Command command, int64_t t_ns) {
   std::string error;
   switch (command) {
     case Command::kMorph: {
-      const std::string target = options_.morph_target.empty()
-                                     ? defaultMorphTarget(options_.state_dir)
-                                     : options_.morph_target;
+      const std::string target =
+          options_.morph_target.empty() ? defaultMorphTarget(saveDir()) : options_.morph_target;
       if (!animation_->startMorph(*session_, target, options_.morph_seconds, &error))
         return say(error);
       say("morphing into " + target + " over " + std::to_string(int(options_.morph_seconds)) +

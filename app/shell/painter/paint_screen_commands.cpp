@@ -380,14 +380,14 @@ void PaintScreen::onCloudCommand(Command command, int64_t t_ns) {
 }
 
 void PaintScreen::openLastSaved(int64_t t_ns) {
-  // The most recently saved cloud of this state dir (--open FILE opens any file).
+  // The most recently saved cloud of the save folder (--open FILE opens any file).
   std::filesystem::path newest;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(options_.state_dir, ec))
+  for (const auto& entry : std::filesystem::directory_iterator(saveDir(), ec))
     if (entry.path().extension() == ".vol" &&
         (newest.empty() || entry.last_write_time() > std::filesystem::last_write_time(newest, ec)))
       newest = entry.path();
-  if (newest.empty()) return tell("No saved cloud yet in " + options_.state_dir);
+  if (newest.empty()) return tell("No saved cloud yet in " + saveDir());
   try {
     std::string error;
     if (session_->replaceVolume(loadVolume(newest.string()), t_ns, newest.string(), &error))
@@ -399,10 +399,14 @@ void PaintScreen::openLastSaved(int64_t t_ns) {
   }
 }
 
+const std::string& PaintScreen::saveDir() const {
+  return options_.save_dir.empty() ? options_.state_dir : options_.save_dir;
+}
+
 void PaintScreen::saveCloud() {
   try {
-    std::filesystem::create_directories(options_.state_dir);
-    const std::filesystem::path path = readableSavePath(options_.state_dir);
+    std::filesystem::create_directories(saveDir());
+    const std::filesystem::path path = readableSavePath(saveDir());
     saveVolumeAtomically(session_->volume(), path);
     saved_volume_ = session_->volume().instanceId();
     saved_generation_ = session_->volume().generation();

@@ -11,11 +11,9 @@
 #include "app/shell/painter/paint_screen.h"
 #include "app/shell/ui_overlay.h"
 #include "app/study/reference_picture.h"
-#include "app/study/render_export.h"
 #include "app/study/study_marker_text.h"
 #include "app/study/study_sync_markers.h"
 #include "app/study/utf8_text.h"
-#include "app/study/volume_export.h"
 #include "calibration/profile_store.h"
 #include "drivers/core/clock.h"
 #include "drivers/core/pen_source.h"
@@ -23,8 +21,11 @@
 namespace cb {
 namespace {
 
-PaintLoopOptions paintOptionsFor(PaintLoopOptions options) {
+PaintLoopOptions paintOptionsFor(PaintLoopOptions options, const std::string& folder) {
   options.orbit_degrees_per_second = 0.0f;  // a study paints from the start: no attract orbit
+  // The painter's Save writes into the session folder (withdrawn and exported with it), never
+  // into the state dir, where no withdrawal of this participant would find it.
+  options.save_dir = folder + "/saved";
   options.visitor_mode = false;
   options.max_frames = 0;
   options.max_seconds = 0.0;
@@ -76,8 +77,9 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
       journal_(journal),
       state_(state),
       options_(options),
+      task_files_(options.folder),
       paint_(std::make_unique<PaintScreen>(display, renderer, session.volume(), session.light(),
-                                           paintOptionsFor(options.paint))) {
+                                           paintOptionsFor(options.paint, options.folder))) {
   if (options.replay_view) {
     std::string error;
     if (!paint_->showReplay(&session, &error)) problem("replay: " + error);
@@ -175,6 +177,7 @@ void StudyRunScreen::watchStorage() {
     files_pending_ = false;
     files_retry_ns_ = now_ns_ + 1'000'000'000;
     writeAnswers();
+    retryTaskFiles();
     writeSessionJson();
   }
   const bool journal_failing = journal_ && journal_->failing();
@@ -188,6 +191,22 @@ void StudyRunScreen::watchStorage() {
   else
     std::fprintf(stderr, "cloudbrush study: storage: writing again; nothing was lost\n");
   writeSessionJson();  // the outage in session.json (written again until it works)
+}
+
+void StudyRunScreen::retryTaskFiles() {
+  if (!task_files_.pending()) return;
+  std::string error;
+  const std::vector<std::string> written = task_files_.retry(&error);
+  if (!written.empty()) {
+    // Journalled (the screen's record, as step-progress is): when each late file reached disk.
+    std::string list;
+    for (const std::string& file : written) list += (list.empty() ? "" : ",") + file;
+    const std::string text = "study.files-written files=" + studyMarkerValue(list);
+    std::fprintf(stderr, "cloudbrush study: %s\n", text.c_str());
+    if (journal_ && !journal_->append(JournalRecordType::kMarker, now_ns_, text))
+      problem("journal: " + journal_->error());
+  }
+  if (task_files_.pending()) fileNotWritten(error);
 }
 
 void StudyRunScreen::writeSessionJson() {
@@ -290,7 +309,6 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
   const StudyTask* task = state_.task();
   std::vector<std::string> saved;
   if (task) {
-    const std::string dir = options_.folder + "/tasks";
     const auto has = [&](TaskSaveKind kind) {
       return std::find(task->save.begin(), task->save.end(), kind) != task->save.end();
     };
@@ -300,40 +318,47 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
       else
         problem("journal: " + journal_->error());
     }
-    try {
-      if (has(TaskSaveKind::kVolumeVdb) || has(TaskSaveKind::kVolumeRaw)) {
-        const VolumeExport e = exportVolume(session_.volume(), dir, task->id);
-        for (const std::string& path : e.written)
-          saved.push_back("tasks/" + std::filesystem::path(path).filename().string());
-        if (!e.note.empty()) problem(e.note);
-      }
-      if (has(TaskSaveKind::kRenderExr) || has(TaskSaveKind::kRenderPng)) {
-        // The task-end view, rendered at full resolution into a float target (the values the
-        // display shows; render_export.h makes the linear EXR and the PNG).
-        const int w = display_.width(), h = display_.height();
-        RenderTarget target;
-        std::string error;
-        if (!target.create(w, h, RenderTarget::Format::kRgba32F, &error))
-          throw std::runtime_error(error);
-        renderer_.sync(session_.volume(), session_.light());
-        RenderOptions options = options_.paint.render;
-        options.style = parseRenderStyle(session_.styleName()).value_or(options.style);
-        options.scale = 1.0f;
-        options.moving = false;
-        options.collect_stats = false;
-        options.finish = true;
-        renderer_.render(session_.camera(), w, h, target.fbo(), options);
-        for (const std::string& path : exportRender(target.readRgbaF(), dir, task->id))
-          saved.push_back("tasks/" + std::filesystem::path(path).filename().string());
-      }
-    } catch (const std::exception& e) {
-      problem(std::string("task ") + task->id + ": " + e.what());
+    // Files that cannot be written now are kept and written again each second (watchStorage).
+    std::string note, error;
+    if (has(TaskSaveKind::kVolumeVdb) || has(TaskSaveKind::kVolumeRaw)) {
+      if (!task_files_.writeVolume(task->id, session_.volume(), &saved, &note, &error))
+        fileNotWritten("task " + task->id + ": " + error);
+      if (!note.empty()) problem(note);
+    }
+    if (has(TaskSaveKind::kRenderExr) || has(TaskSaveKind::kRenderPng)) {
+      ImageRgbaF frame;
+      if (!renderTaskFrame(&frame, &error))
+        problem("task " + task->id + ": " + error);
+      else if (!task_files_.writeFrame(task->id, frame, &saved, &error))
+        fileNotWritten("task " + task->id + ": " + error);
     }
   }
   // The next stage begins when the participant sees it: after the saving (its clock starts
   // then, and its sync marker carries that time).
   if (options_.paint.clock) now_ns_ = std::max(t_ns, options_.paint.clock->nowNs());
-  state_.closeStage(now_ns_, saved);
+  std::vector<std::string> pending;
+  if (task)
+    for (const std::string& file : task_files_.pendingFiles())
+      if (file.rfind("tasks/" + task->id + ".", 0) == 0) pending.push_back(file);
+  state_.closeStage(now_ns_, saved, pending);
+}
+
+bool StudyRunScreen::renderTaskFrame(ImageRgbaF* frame, std::string* error) {
+  // The task-end view, rendered at full resolution into a float target (the values the
+  // display shows; render_export.h makes the linear EXR and the PNG).
+  const int w = display_.width(), h = display_.height();
+  RenderTarget target;
+  if (!target.create(w, h, RenderTarget::Format::kRgba32F, error)) return false;
+  renderer_.sync(session_.volume(), session_.light());
+  RenderOptions options = options_.paint.render;
+  options.style = parseRenderStyle(session_.styleName()).value_or(options.style);
+  options.scale = 1.0f;
+  options.moving = false;
+  options.collect_stats = false;
+  options.finish = true;
+  renderer_.render(session_.camera(), w, h, target.fbo(), options);
+  *frame = target.readRgbaF();
+  return true;
 }
 
 TutorialState StudyRunScreen::tutorialState() const {
@@ -729,10 +754,11 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
   input.keyboard_page = keyboard_page_;
   if (!options_.replay_view)
     input.storage_warning =
-        storage_.operatorText(journal_ ? journal_->heldBytes() : 0,
+        storage_.operatorText((journal_ ? journal_->heldBytes() : 0) + task_files_.heldBytes(),
                               std::chrono::duration_cast<std::chrono::nanoseconds>(
                                   std::chrono::system_clock::now().time_since_epoch())
-                                  .count());
+                                  .count(),
+                              task_files_.pendingText());
   input.message = message_;
   input.now_ns = now_ns_;
   input.painter_menu_open = isPaintingStage(state_.stage()) && paint_->menuOpen();

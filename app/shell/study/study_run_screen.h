@@ -1,8 +1,8 @@
 // `cloudbrush study run`: a study protocol (app/study/protocol.h) run as the shell's screens
 // (thesis §7.5). One Screen for the frame loop that shows the runner's current stage:
 // the form pages (consent, participant code, introduction, demographics, questionnaire, free
-// text; app/shell/study/study_page.h) answered with pen taps (or a mouse), and in the tutorial, free
-// drawing and tasks the painter's own screen (PaintScreen, composed, not changed) with the
+// text; app/shell/study/study_page.h) answered with pen taps (or a mouse), and in the tutorial,
+// free drawing and tasks the painter's own screen (PaintScreen, composed, not changed) with the
 // runner's panel beside it: the tutorial step and its live check, the task's reference image,
 // the countdown.
 //
@@ -46,6 +46,7 @@
 #include "app/study/study_run_state.h"
 #include "app/study/study_session_record.h"
 #include "app/study/study_storage_watch.h"
+#include "app/study/task_file_retry.h"
 #include "app/study/tutorial_condition.h"
 #include "calibration/mapped_sample.h"
 
@@ -120,6 +121,8 @@ class StudyRunScreen : public Screen {
   void enterStage(int64_t t_ns);
   void setUpTask(int64_t t_ns);
   void saveTask(int64_t t_ns);
+  bool renderTaskFrame(ImageRgbaF* frame, std::string* error);
+  void retryTaskFiles();
   void writeAnswers();
   void writeSessionJson();
   void observeSession();
@@ -138,6 +141,7 @@ class StudyRunScreen : public Screen {
   JournalWriter* journal_;
   StudyRunState& state_;
   StudyRunOptions options_;
+  TaskFileRetry task_files_;  // a task's files not written yet (kept, written again each second)
   std::unique_ptr<PaintScreen> paint_;
   std::unique_ptr<UiOverlay> ui_;
   HudOverlay hud_;

@@ -127,8 +127,8 @@ TEST(KioskCommand, OperatorShutdownExitsWithTheStatusTheUnitDoesNotRestart) {
   const std::string command = "LIBGL_ALWAYS_SOFTWARE=1 '" + std::string(CB_CLOUDBRUSH_BIN) +
                               "' kiosk --display surfaceless --size 160x90 --grid 16 --backend "
                               "none --no-record --data-dir '" +
-                              data + "' --seconds 60 --keys ctrl+alt+o,2,4,6,8,x,y >'" + data +
-                              ".out' 2>&1";
+                              data + "' --seconds 60 --keys ctrl+alt+o,2,4,6,8,enter,x,y >'" +
+                              data + ".out' 2>&1";
   const int status = std::system(command.c_str());
   const std::string out = slurp(data + ".out");
   ASSERT_TRUE(WIFEXITED(status)) << out;
@@ -253,7 +253,8 @@ TEST(KioskCommand, AScriptedVisitWritesOnlyIntoTheDataDir) {
       CB_CLOUDBRUSH_BIN +
       "' kiosk --display surfaceless --size 320x180 --grid 64 --backend replay --journal '" + root +
       "/pen/pen.cbj' --data-dir '" + data + "' --gallery on --idle-seconds 3 " +
-      "--warning-seconds 1 --seconds 12 --keys ctrl+alt+o,2,4,6,8,e,esc >'" + root + "/out' 2>&1";
+      "--warning-seconds 1 --seconds 12 --keys ctrl+alt+o,2,4,6,8,enter,e,esc >'" + root +
+      "/out' 2>&1";
   const int status = std::system(command.c_str());
   const std::string out = slurp(root + "/out");
   ASSERT_EQ(status, 0) << out;

@@ -343,11 +343,10 @@ TEST(OperatorPin, NoDefaultStoredHashedOnlyForTheServiceLockoutGrowsAndPersists)
   std::ifstream in(file);
   const std::string stored{std::istreambuf_iterator<char>(in), {}};
   EXPECT_EQ(stored.find("864213"), std::string::npos) << "hashed: " << stored;
-  EXPECT_EQ(stored.rfind("6 $", 0), 0u) << stored;
+  EXPECT_EQ(stored.rfind("$y$", 0), 0u) << "the hash alone, not the PIN's length: " << stored;
   // A restart reads it; two wrong PINs are free, the third locks for 60 s, the next 120 s.
   OperatorPinGuard guard(dir.str(), wall);
   ASSERT_TRUE(guard.hasPin());
-  EXPECT_EQ(guard.digits(), 6);
   EXPECT_EQ(guard.check("111111"), OperatorPinGuard::Result::kWrong);
   EXPECT_EQ(guard.check("222222"), OperatorPinGuard::Result::kWrong);
   EXPECT_EQ(guard.check("333333"), OperatorPinGuard::Result::kLockedNow);
@@ -370,6 +369,30 @@ TEST(OperatorPin, NoDefaultStoredHashedOnlyForTheServiceLockoutGrowsAndPersists)
   OperatorPinGuard damaged(dir.str(), wall);
   EXPECT_NEAR(damaged.lockedForSeconds(), OperatorPinGuard::kLongestLockS, 1e-3);
   EXPECT_NE(damaged.problem().find("unreadable"), std::string::npos);
+}
+
+// A PIN file written before the PIN's length was left out ("<digits> <hash>") still works, and
+// its stored length is ignored: a wrong length there neither refuses the right PIN nor makes a
+// shorter one right.
+TEST(OperatorPin, OldFilesWithTheLengthStillWorkAndTheLengthIsIgnored) {
+  TempDir dir("cb_kiosk_pin_old");
+  const std::string hash = hashOperatorPin("864213");
+  ASSERT_EQ(hash.rfind("$", 0), 0u) << hash;
+  for (const char* length : {"6", "4", "12"}) {
+    writeText(dir.str() + "/" + OperatorPinGuard::kPinFile,
+              std::string(length) + " " + hash + "\n");
+    OperatorPinGuard guard(dir.str());
+    ASSERT_TRUE(guard.hasPin()) << length << ": " << guard.problem();
+    EXPECT_EQ(guard.problem(), "");
+    EXPECT_EQ(guard.check("8642"), OperatorPinGuard::Result::kWrong) << length;
+    EXPECT_EQ(guard.check("864213"), OperatorPinGuard::Result::kRight) << length;
+  }
+  for (const char* bad : {"", "6\n", "x $y$abc\n", "6 notahash\n"}) {
+    writeText(dir.str() + "/" + OperatorPinGuard::kPinFile, bad);
+    OperatorPinGuard guard(dir.str());
+    EXPECT_FALSE(guard.hasPin()) << bad;
+    EXPECT_NE(guard.problem().find("not a PIN record"), std::string::npos) << bad;
+  }
 }
 
 // health.json and the metrics on a REAL disk filled to the last byte (a 1 MB tmpfs, needs

@@ -516,6 +516,7 @@ void MonthRun::afterReset(int64_t now) {
   }
   kiosk_->onKey(DisplayEvent::key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt), now);
   for (char c : kPin) kiosk_->onKey(DisplayEvent::key(uint32_t(c)), now);
+  kiosk_->onKey(DisplayEvent::key(0xff0d), now);  // Enter
   phase_ = Phase::kPanel;
 }
 

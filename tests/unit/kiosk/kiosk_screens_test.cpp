@@ -159,8 +159,9 @@ class KioskRig {
   bool key(uint32_t keysym, uint32_t modifiers = 0) {
     return kiosk_->onKey(DisplayEvent::key(keysym, modifiers), clock_.nowNs());
   }
+  // '\r' is Enter.
   void type(const std::string& keys) {
-    for (char c : keys) key(uint32_t(c));
+    for (char c : keys) key(c == '\r' ? 0xff0du : uint32_t(c));
   }
   // Keys (keymap.h names) the frame loop delivers at the start of the next run, as from the
   // display: the ones the kiosk does not take become commands.
@@ -332,14 +333,14 @@ TEST(KioskScreens, OperatorPanelOnlyAfterCombinationAndPinEveryActionLogged) {
   rig.run(1, 0.0);
   keep("kiosk_operator_pin.png", rig.lastFrame());
   rig.type(
-      "1111"
-      "1357"
-      "0000");
+      "1111\r"
+      "1357\r"
+      "0000\r");
   EXPECT_FALSE(kiosk.operatorPanel().unlocked());
-  rig.type("2468");
+  rig.type("2468\r");
   EXPECT_FALSE(kiosk.operatorPanel().unlocked()) << "locked after three wrong PINs";
   rig.clock().advance(61'000'000'000);
-  rig.type("2468");
+  rig.type("2468\r");
   ASSERT_TRUE(kiosk.operatorPanel().unlocked());
   rig.type("2");  // idle +15 s
   rig.type("3");  // countdown -5 s
@@ -687,7 +688,31 @@ TEST(KioskScreens, FirstStartAsksTheOperatorToSetThePin) {
   EXPECT_EQ(slurp(rig.dataDir() + "/operator-pin").find("975310"), std::string::npos);
   // From now on the PIN is asked for.
   ASSERT_TRUE(rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt));
-  rig.type("975310");
+  rig.type("975310\r");
+  EXPECT_TRUE(kiosk.operatorPanel().unlocked());
+}
+
+// PIN entry ends with Enter, not at a stored length: the right digits alone do not open the
+// panel, nor does the prompt say how many digits there are; the right PIN and Enter open it,
+// extra digits make it wrong.
+TEST(KioskScreens, PinEntryEndsWithEnterAndShowsNoLength) {
+  KioskRig rig("cb_kiosk_pin_enter");
+  KioskScreen& kiosk = rig.kiosk();
+  ASSERT_TRUE(rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt));
+  rig.type("2468");
+  rig.run(1, 0.0);
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked()) << "not before Enter";
+  for (const UiLabel& label : kiosk.operatorPanel().labels()) {
+    EXPECT_EQ(label.text.find("digits"), std::string::npos) << label.text;
+    EXPECT_EQ(label.text.find("____"), std::string::npos) << label.text;
+  }
+  keep("kiosk_pin_prompt.png", rig.lastFrame());
+  rig.type("0\r");  // 24680: one digit too many
+  EXPECT_FALSE(kiosk.operatorPanel().unlocked());
+  EXPECT_EQ(kiosk.operatorPin().failures(), 1);
+  rig.type("\r");  // Enter alone is no try
+  EXPECT_EQ(kiosk.operatorPin().failures(), 1);
+  rig.type("2468\r");
   EXPECT_TRUE(kiosk.operatorPanel().unlocked());
 }
 
@@ -700,7 +725,7 @@ TEST(KioskScreens, OperatorCombinationWithAFunctionKey) {
   EXPECT_NE(kiosk.state(), State::kOperator);
   EXPECT_TRUE(rig.key(XKB_KEY_F12, DisplayEvent::kCtrl | DisplayEvent::kAlt));
   EXPECT_EQ(kiosk.state(), State::kOperator);
-  rig.type("2468");
+  rig.type("2468\r");
   EXPECT_TRUE(kiosk.operatorPanel().unlocked());
   EXPECT_NE(slurp(rig.dataDir() + "/operator.log").find("Z panel-opened"), std::string::npos);
 }
@@ -713,7 +738,7 @@ void openPanelAndCalibrate(KioskRig& rig) {
   rig.run(3);
   ASSERT_EQ(rig.kiosk().state(), State::kVisitor);
   rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
-  rig.type("2468");
+  rig.type("2468\r");
   ASSERT_TRUE(rig.kiosk().operatorPanel().unlocked());
   rig.run(1, 0.0);
   keep("kiosk_operator_panel_before_calibration.png", rig.lastFrame());
@@ -785,7 +810,7 @@ TEST(KioskScreens, OperatorCalibratesThePressureFromThePanel) {
   ASSERT_EQ(kiosk.state(), State::kVisitor);
   EXPECT_EQ(kiosk.visitorSession()->pressureRange().hi, 1.0f);
   rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
-  rig.type("2468");
+  rig.type("2468\r");
   ASSERT_TRUE(kiosk.operatorPanel().unlocked());
   rig.type("p");
   ASSERT_EQ(kiosk.state(), State::kCalibrate);
@@ -945,10 +970,18 @@ TEST(KioskScreens, AFullDiskKeepsThePaintingSaysSoAndRecovers) {
   EXPECT_NE(kiosk.storageProblem().find("disk full"), std::string::npos) << kiosk.storageProblem();
   // The operator opens the panel: the disk line says what is not saved.
   rig.key('o', DisplayEvent::kCtrl | DisplayEvent::kAlt);
-  rig.type("2468");
+  rig.type("2468\r");
   rig.run(1);
   ASSERT_EQ(kiosk.state(), State::kOperator);
   keep("kiosk_panel_disk_full.png", rig.lastFrame());
+  // ...and how many were lost: health.json's count (visitor 2's journal so far), in red.
+  ASSERT_EQ(kiosk.counts().saves_failed, 1);
+  EXPECT_EQ(kiosk.operatorPanel().values().saves_failed, kiosk.counts().saves_failed);
+  bool count_shown = false;
+  for (const UiLabel& label : kiosk.operatorPanel().labels())
+    if (label.text.rfind("Not saved since the start: 1 ", 0) == 0)
+      count_shown = label.rgba == 0xff8080ffu;
+  EXPECT_TRUE(count_shown) << "the panel shows the count of what was not saved, in red";
   rig.key(0xff1b);  // Esc
   rig.run(1);
   ASSERT_TRUE(rig.runUntil([&] { return kiosk.state() == State::kAttract; }, 80, 0.25));
@@ -975,6 +1008,40 @@ TEST(KioskScreens, AFullDiskKeepsThePaintingSaysSoAndRecovers) {
   EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1, 2})) << "numbers are not reused";
   EXPECT_TRUE(fs::exists(data + "/gallery/000002/thumbnail.png"));
   EXPECT_EQ(filesNamed(data + "/sessions", "-visit3").size(), 1u);
+}
+
+// Retention on the kiosk's clock: with journals and gallery entries kept one day, a visit two
+// days later (on the injected clock, seconds of real time) deletes the first visit's journal
+// and gallery entry and keeps its own.
+TEST(KioskScreens, RetentionAgesFilesOnTheKiosksClock) {
+  KioskRig rig("cb_kiosk_retention", [](KioskConfig& c) {
+    c.gallery_enabled = true;
+    c.gallery_keep_days = 1.0;
+    c.journal_keep_days = 1.0;
+    c.idle_seconds = 3.0;
+    c.warning_seconds = 1.0;
+  });
+  KioskScreen& kiosk = rig.kiosk();
+  const std::string data = rig.dataDir();
+  paintAVisit(rig);
+  ASSERT_EQ(kiosk.gallerySaved(), (std::vector<long>{1}));
+  ASSERT_EQ(filesNamed(data + "/sessions", "-visit1").size(), 1u);
+  const std::string journal1 = filesNamed(data + "/sessions", "-visit1")[0];
+  // Half a day on: nothing is old enough yet.
+  rig.clock().advance(int64_t(0.5 * 86400e9));
+  paintAVisit(rig);
+  EXPECT_TRUE(fs::exists(journal1));
+  EXPECT_TRUE(fs::exists(data + "/gallery/000001"));
+  // Two days on: the next visit's end deletes what is older than a day.
+  rig.clock().advance(int64_t(2.0 * 86400e9));
+  paintAVisit(rig);
+  EXPECT_EQ(kiosk.gallerySaved(), (std::vector<long>{1, 2, 3}));
+  EXPECT_FALSE(fs::exists(journal1)) << "the first visit's journal, 2.5 days old";
+  EXPECT_FALSE(fs::exists(data + "/gallery/000001"));
+  EXPECT_FALSE(fs::exists(data + "/gallery/000002"));
+  EXPECT_TRUE(fs::exists(data + "/gallery/000003/thumbnail.png")) << "the newest stays";
+  EXPECT_EQ(filesNamed(data + "/sessions", "-visit3").size(), 1u);
+  EXPECT_TRUE(filesNamed(data + "/sessions", "-visit2").empty());
 }
 
 TEST(KioskScreens, ReconnectThePenMidVisitThenPaintOn) {

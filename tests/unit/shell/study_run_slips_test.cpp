@@ -3,7 +3,9 @@
 // tap ends the session on a page that says so in English and Chinese, with session.json
 // "declined", nothing after consent in the journal, and the loop ending by itself; a task ended
 // by "I'm done" (a click asks, "Keep painting" goes back, a pen tap confirms) closes with the end
-// reason `done` in trials.csv, and the taps on the panel never paint.
+// reason `done` in trials.csv, and the taps on the panel never paint; the painter's Save
+// (Ctrl+S) in a task writes into the session folder, so withdrawing the participant leaves no
+// file of theirs anywhere, the state dir included.
 //
 // CB_KEEP_FRAMES=DIR writes each screen as slips_*.png for looking.
 #include <gtest/gtest.h>
@@ -16,14 +18,16 @@
 #include "app/render/image_io.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
+#include "app/shell/painter/paint_screen.h"
 #include "app/shell/study/study_run_screen.h"
+#include "app/study/participant_withdrawal.h"
 #include "app/study/session_trace.h"
 #include "app/study/trial_table.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/file_text.h"
 #include "tests/support/short_study.h"
 #include "tests/support/test_display.h"
-#include "tests/support/file_text.h"
 
 namespace cb {
 namespace {
@@ -258,6 +262,84 @@ TEST(StudyRunSlips, ImDoneEndsTheTaskWithEndReasonDone) {
   rig.keep("questionnaire");
   EXPECT_TRUE(rig.shown("使用钢笔风格绘制笔触容易使用。")) << "Q1 in Chinese, without the marks";
   EXPECT_TRUE(rig.shown("非常同意"));
+}
+
+// Regular files under `dir`, at any depth.
+std::vector<std::string> filesUnder(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       it != std::filesystem::recursive_directory_iterator(); ++it)
+    if (it->is_regular_file()) files.push_back(it->path().string());
+  return files;
+}
+
+TEST(StudyRunSlips, ASaveInATaskStaysInTheSessionAndIsWithdrawnWithIt) {
+  Rig rig;
+  if (!rig.open("cb_study_save_")) return;
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
+  rig.tap(StudyTargetAction::kContinue);
+  if (rig.state->stage() == StudyStageKind::kIntroduction) rig.tap(StudyTargetAction::kContinue);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kTask) << rig.state->waitingFor(rig.now);
+  rig.frames(2);
+  const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+  rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
+  ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  rig.screen->onCommand(Command::kSave, rig.now);  // Ctrl+S
+  rig.frames(2);
+
+  const std::vector<std::string> saved = filesUnder(rig.folder + "/saved");
+  ASSERT_EQ(saved.size(), 1u) << "the cloud saved into the session folder";
+  EXPECT_EQ(std::filesystem::path(saved[0]).extension(), ".vol");
+  EXPECT_EQ(rig.screen->paintScreen().lastSaved(), saved[0]);
+  for (const std::string& f : filesUnder(rig.dir + "/state"))
+    ADD_FAILURE() << "the study wrote into the state dir: " << f;
+
+  // Withdrawn: the participant's session folder goes, saved cloud and all; what the runner
+  // wrote is all the participant's, so nothing is left under the data or the state dir.
+  const WithdrawalResult withdrawn =
+      withdrawParticipant(rig.dir + "/data", rig.state->participantId(), {}, false);
+  EXPECT_EQ(withdrawn.removed_paths.size(), 1u);
+  EXPECT_TRUE(withdrawn.still_mentioning.empty());
+  for (const std::string& f : filesUnder(rig.dir))
+    ADD_FAILURE() << "left after the withdrawal: " << f;
+}
+
+// A task whose own files cannot be written when it ends (tasks/ is a file: a real error from
+// the file system): the operator's band names the files waiting, the participant goes on, and
+// once the obstacle is gone the files appear within the second's retry and the band goes.
+TEST(StudyRunSlips, TaskFilesThatCannotBeWrittenAreNamedAndWrittenLater) {
+  Rig rig;
+  if (!rig.open("cb_study_task_retry_")) return;
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
+  rig.tap(StudyTargetAction::kContinue);
+  if (rig.state->stage() == StudyStageKind::kIntroduction) rig.tap(StudyTargetAction::kContinue);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kTask) << rig.state->waitingFor(rig.now);
+  rig.frames(2);
+  const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
+  rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
+  ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  std::ofstream(rig.folder + "/tasks") << "in the way";
+  rig.tap(StudyTargetAction::kDone);
+  rig.tap(StudyTargetAction::kDoneConfirm);
+  rig.frames(3);
+  ASSERT_EQ(rig.state->stage(), StudyStageKind::kDemographics) << rig.state->waitingFor(rig.now);
+  rig.keep("task_files_waiting");
+  EXPECT_TRUE(rig.shown("OPERATOR: the session folder cannot be written"));
+  EXPECT_TRUE(rig.shown("waiting to be written: tasks/cloud1.{"));
+  EXPECT_FALSE(std::filesystem::is_directory(rig.folder + "/tasks"));
+  std::filesystem::remove(rig.folder + "/tasks");
+  rig.frames(3, 400'000'000);  // past the next retry
+  EXPECT_FALSE(rig.shown("OPERATOR:")) << "the band goes once all is written";
+  EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol"));
+  const std::vector<std::string> markers = rig.markers();
+  bool written = false;
+  for (const std::string& m : markers)
+    written = written || (m.rfind("study.files-written files=", 0) == 0 &&
+                          m.find("tasks/cloud1.cbvol") != std::string::npos);
+  EXPECT_TRUE(written) << "the late write is journalled";
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "app/study/construct_definitions.h"
+#include "app/study/journal_answers.h"
 #include "app/study/likert_answers.h"
 #include "app/study/protocol.h"
 #include "app/study/study_report.h"
@@ -336,6 +337,40 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
       std::string::npos);
   EXPECT_NE(page.find("Constructs of the study protocol " + p.source), std::string::npos);
   EXPECT_EQ(page.find("0.00</td><td>–"), std::string::npos) << "no mean of 0.00 anywhere";
+
+  // The answers from the journals (the source of truth) are the CSV's, and so is the report;
+  // without the CSV the real binary reports the same page from the journals alone.
+  std::vector<std::string> items;
+  for (const QuestionnaireItem& item : p.items) items.push_back(item.id);
+  const LikertAnswers from_journals = likertAnswersFromSessions(traces, items);
+  EXPECT_EQ(from_journals.items, answers.items);
+  EXPECT_EQ(from_journals.participants, answers.participants);
+  EXPECT_EQ(from_journals.answers, answers.answers);
+  EXPECT_EQ(studyReportHtml(computeStudyReport(from_journals, options, traces), options, 1, 5),
+            studyReportHtml(report, options, 1, 5));
+  fs::remove(study.answers);  // the export is gone: the journals still report
+  std::string journals_only = std::string(CB_CLOUDBRUSH_BIN) + " study report";
+  for (const std::string& j : study.journals) journals_only += " " + j;
+  journals_only += " --out " + study.dir + "/report_journals.html";
+  const test::CommandRun from_journals_run = test::runCommand(journals_only);
+  ASSERT_EQ(from_journals_run.status, 0) << from_journals_run.out;
+  const std::string journals_page = readText(study.dir + "/report_journals.html");
+  const auto without_source = [](std::string html, const std::string& source) {
+    for (size_t at = html.find(source); at != std::string::npos; at = html.find(source))
+      html.erase(at, source.size());
+    return html;
+  };
+  EXPECT_EQ(without_source(journals_page, "the sessions&#39; journals"),
+            without_source(without_source(page, study.answers), "the sessions&#39; journals"))
+      << "the same page but for where the answers were read";
+  // A CSV that disagrees with the journals is said, and the journals' answers are reported.
+  std::ofstream(study.answers) << "participant,Q1\nP01,1\n";
+  const test::CommandRun disagreeing = test::runCommand(command);
+  EXPECT_EQ(disagreeing.status, 0) << disagreeing.out;
+  EXPECT_NE(disagreeing.out.find("P01 Q1 differs from the journals"), std::string::npos)
+      << disagreeing.out;
+  EXPECT_EQ(without_source(readText(study.dir + "/report.html"), study.answers),
+            without_source(page, study.answers));
   if (!std::getenv("CB_KEEP_REPORT")) fs::remove_all(study.dir);
 }
 

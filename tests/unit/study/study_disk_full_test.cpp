@@ -1,11 +1,14 @@
 // The real study runner on a disk that fills up mid-session and frees again: a short session
 // (tests/support/short_study.h, `study run --backend replay`) writes its folder onto a 16 MiB
 // tmpfs; as the first task begins, the test fills the tmpfs (every write then fails with
-// ENOSPC, a real I/O error, not a simulated one) and frees it 2 s later, while the participant
-// paints. The runner must say so (its problems and the operator's banner), record the outage in
-// session.json, and lose nothing: the journal is whole (no gap), holds every pen sample the
-// participant gave and both strokes, replays to the volume the runner ended with, and the
-// session completes with its answers.
+// ENOSPC, a real I/O error, not a simulated one) and frees it 5 s later, while the participant
+// paints: the first task (3.6 s) ends and its files fail while the disk is full. The runner must
+// say so (its problems and the operator's banner), record the outage in session.json, and lose
+// nothing: the journal is whole (no gap), holds every pen sample the participant gave and both
+// strokes, replays to the volume the runner ended with, and the session completes with its
+// answers; the first task's own files (.vdb, .cbvol), kept in memory, are written once space
+// returns (journalled `study.files-written`), and replaying the journal gives each task's saved
+// .cbvol checksum.
 //
 // Mounting needs CAP_SYS_ADMIN (root, as in CI's container); without it the test is skipped
 // and says so.
@@ -27,8 +30,8 @@
 #include "app/study/protocol.h"
 #include "drivers/core/journal.h"
 #include "tests/support/command_run.h"
-#include "tests/support/short_study.h"
 #include "tests/support/file_text.h"
+#include "tests/support/short_study.h"
 
 namespace cb {
 namespace {
@@ -101,7 +104,9 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
   size_t filled = 0;
   if (in_task) {
     filled = fillDisk(filler);
-    std::this_thread::sleep_for(std::chrono::seconds(2));  // the task's stroke falls in here
+    // The first task's stroke and its end (3.6 s after it began) fall in here; the second task
+    // ends about 7.2 s after the first began, with room again.
+    std::this_thread::sleep_for(std::chrono::seconds(5));
     fs::remove(filler);
   }
   runner.join();
@@ -142,6 +147,42 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
   const test::CommandRun replay =
       test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal_path);
   EXPECT_NE(replay.out.find(checksum), std::string::npos) << checksum << "\n" << replay.out;
+
+  // The first task's files could not be written at its end: listed as pending, then written
+  // when space returned; every task's .cbvol is the journal's volume at that task's end.
+  size_t saved_first = std::string::npos, written_first = std::string::npos;
+  for (size_t i = 0; i < journal.records.size(); ++i) {
+    const JournalRecord& r = journal.records[i];
+    if (r.type != JournalRecordType::kMarker) continue;
+    const std::string marker(r.text());
+    if (marker.rfind("study.saved stage=task task=first", 0) == 0) {
+      saved_first = i;
+      const size_t pending = marker.find(" pending=");
+      EXPECT_NE(pending, std::string::npos) << marker;
+      if (pending != std::string::npos) {
+        EXPECT_NE(marker.find("tasks/first.cbvol", pending), std::string::npos) << marker;
+      }
+    }
+    if (marker.rfind("study.files-written ", 0) == 0 &&
+        marker.find("tasks/first.cbvol") != std::string::npos)
+      written_first = i;
+  }
+  ASSERT_NE(saved_first, std::string::npos) << "no study.saved for the first task";
+  ASSERT_NE(written_first, std::string::npos) << "the first task's files were never written";
+  EXPECT_GT(written_first, saved_first);
+  for (const char* task : {"first", "second"}) {
+    EXPECT_TRUE(fs::exists(folder + "/tasks/" + task + ".cbvol")) << task;
+    EXPECT_TRUE(fs::exists(folder + "/tasks/" + task + ".vdb")) << task;
+    EXPECT_NE(replay.out.find(std::string("task ") + task + ": volume checksum "),
+              std::string::npos)
+        << replay.out;
+  }
+  EXPECT_EQ(replay.out.find("DIFFERENT"), std::string::npos) << replay.out;
+  EXPECT_EQ(replay.out.find("no " + folder), std::string::npos) << replay.out;
+  EXPECT_EQ(replay.status, 0) << replay.out;
+  for (const auto& e : fs::recursive_directory_iterator(folder))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos)
+        << "a temporary file: " << e.path();
 
   ::umount((dir + "/data").c_str());
   fs::remove_all(dir);
