@@ -172,10 +172,10 @@ TEST(SessionReplay, TornJournalReplaysItsIntactPrefixAndSaysWhere) {
 // edges.tangent_at_sphere_depth and stroke.auto_end_light_by_hysteresis; their brush texts still
 // carry stroke.down_pressure/up_pressure) replay to the volume that version made: keys their
 // recorded texts lack take the values of app/session/recorded_settings.h, not today's defaults.
-// Where the files come from: tests/unit/paint/README.md.
+// Where the files come from: tests/unit/session/README.md.
 TEST(SessionReplay, JournalsFrom9e22266ReplayToTheirOldChecksums) {
   setWorkerThreads(2);
-  const std::string dir = std::string(CB_SOURCE_DIR) + "/tests/unit/paint/";
+  const std::string dir = std::string(CB_SOURCE_DIR) + "/tests/unit/session/";
   const struct {
     const char* file;
     uint64_t checksum;  // printed by `cloudbrush replay FILE` built at 9e22266

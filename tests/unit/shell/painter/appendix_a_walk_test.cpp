@@ -33,7 +33,7 @@ namespace {
 constexpr int kW = 640, kH = 360;
 
 std::string goldenPath(const std::string& name) {
-  return std::string(CB_SOURCE_DIR) + "/tests/unit/shell/golden/" + name + ".png";
+  return std::string(CB_SOURCE_DIR) + "/tests/unit/shell/painter/golden/" + name + ".png";
 }
 
 void expectMatchesGolden(const std::string& name, const ImageRgba8& image) {
