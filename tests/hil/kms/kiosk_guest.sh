@@ -42,7 +42,7 @@ while [ ! -e /tmp/data/health.json ] && kill -0 $kiosk 2>/dev/null; do sleep 0.2
 echo "KIOSK-HIL kiosk-up"
 # The host's keys end with Esc and the other quit combinations (10 s).
 i=0
-while ! grep -q "quit is for the operator" /tmp/kiosk.log && [ $i -lt 3000 ]; do
+while ! grep -qF "That key is for the operator / 该按键仅供操作员使用 (Esc)" /tmp/kiosk.log && [ $i -lt 3000 ]; do
   sleep 0.2; i=$((i+1))
 done
 echo "KIOSK-HIL keys-seen"

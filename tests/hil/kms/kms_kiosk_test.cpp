@@ -144,13 +144,13 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   // One key at a time, each after the kiosk said the last one: under TCG a frame takes seconds,
   // and keys sent faster overflow the kernel's evdev buffer (all queued events are dropped).
   // 3 first: a visitor starts in Camera mode, where 1 changes nothing (and says nothing).
-  for (const auto& [key, said] :
-       std::vector<std::pair<std::string, std::string>>{{"3", "KIOSK-LOG cloudbrush: paint"},
-                                                        {"1", "KIOSK-LOG cloudbrush: camera"},
-                                                        {"4", "KIOSK-LOG cloudbrush: erase"},
-                                                        {"2", "mode-canvas is for the operator"},
-                                                        {"5", "mode-light is for the operator"},
-                                                        {"esc", "quit is for the operator"}}) {
+  for (const auto& [key, said] : std::vector<std::pair<std::string, std::string>>{
+           {"3", "KIOSK-LOG cloudbrush: paint"},
+           {"1", "KIOSK-LOG cloudbrush: camera"},
+           {"4", "KIOSK-LOG cloudbrush: erase"},
+           {"2", "That key is for the operator / 该按键仅供操作员使用 (2)"},
+           {"5", "That key is for the operator / 该按键仅供操作员使用 (5)"},
+           {"esc", "That key is for the operator / 该按键仅供操作员使用 (Esc)"}}) {
     ASSERT_TRUE(vm.monitor("sendkey " + key, &reply, &error)) << error;
     EXPECT_FALSE(vm.waitForLine(said, "", 120).empty()) << key << ": " << console();
   }
@@ -173,7 +173,9 @@ TEST(KmsKiosk, AttractByPageFlipVtLockedModeKeysAndTabletHotplug) {
   EXPECT_GE(active_lines, 3) << console();
   EXPECT_EQ(switched, 0) << "Ctrl+Alt+F2 switched the VT away from the kiosk";
   const std::string text = console();
-  EXPECT_NE(text.find("quit is for the operator"), std::string::npos) << text;
+  EXPECT_NE(text.find("That key is for the operator / 该按键仅供操作员使用 (Esc)"),
+            std::string::npos)
+      << text;
 
   // 4. The tablet: 20 plugs during the attract loop, 20 mid-visit, then SIGTERM.
   const std::string exit_line = vm.waitForLine("KIOSK-HIL kiosk-exit", "Kernel panic", 1500);
