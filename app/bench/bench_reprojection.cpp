@@ -58,7 +58,7 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
   half.finish = true;
   RenderOptions cast;
   cast.finish = true;
-  std::vector<double> ms, cpu, base_ms, base_cpu;
+  std::vector<double> ms, cpu, base_ms, base_cpu, cast_ms, pass_ms, copy_ms;
   int frame = 0;
   // Alternating blocks: the baseline's frames, then as many reprojected ones (a frame costs the
   // same with or without history: every pixel runs the whole reprojection pass).
@@ -78,13 +78,20 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
                           target.fbo(), cast, factor);
       if (b == 0 && i == 0) continue;  // the first frame compiles the programs
       cpu.push_back(processCpuMs() - c0);
-      ms.push_back(reprojection.lastStats().frame_ms);
+      const ReprojectionStats stats = reprojection.lastStats();
+      ms.push_back(stats.frame_ms);
+      cast_ms.push_back(stats.cast_ms);
+      pass_ms.push_back(stats.reproject_ms);
+      copy_ms.push_back(stats.copy_ms);
     }
   }
   fig.ms = median(ms);
   fig.cpu_ms = median(cpu);
   fig.base_ms = median(base_ms);
   fig.base_cpu_ms = median(base_cpu);
+  fig.cast_ms = median(cast_ms);
+  fig.reproject_ms = median(pass_ms);
+  fig.copy_ms = median(copy_ms);
 
   // Error: reprojected frames of a continued orbit against full casts of their cameras.
   reprojection.invalidate();

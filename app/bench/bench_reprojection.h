@@ -15,6 +15,9 @@ struct ReprojectedOrbitFigures {
   // Per frame, median over the blocks: wall time to glFinish, and process CPU (all threads).
   double ms = -1, cpu_ms = -1;
   double base_ms = -1, base_cpu_ms = -1;  // the half-resolution orbit (scale 0.5, step 2)
+  // The reprojected frame's parts, wall time to a glFinish each (median): the 1/f cast, the
+  // reprojection pass, the copy into the target (ReprojectionStats).
+  double cast_ms = -1, reproject_ms = -1, copy_ms = -1;
   // Per-pixel difference from a full cast of the same camera (largest channel, of 255): mean
   // and 99th percentile over the measured frames.
   double error_mean = -1, error_p99 = -1;

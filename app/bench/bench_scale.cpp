@@ -35,6 +35,7 @@
 
 #include "app/bench/bench_report.h"
 #include "app/bench/bench_reprojection.h"
+#include "app/bench/bench_scale_actions.h"
 #include "app/bench/benches.h"
 #include "app/cli/args.h"
 #include "app/core/parallel_for.h"
@@ -61,6 +62,7 @@ const char kHelp[] =
     "  --grid N        home box N^3 (default 256, the painter's)\n"
     "  --sky-spans L   sky spans of the sky-size table at 1920x1080 (default 1,2,4: 1x, 4x, 16x\n"
     "                  the home box's area; 0 skips the table)\n"
+    "  --parts LIST    all (default), or some of orbit,pen,actions (the fresh frames always run)\n"
     "  (--child runs one thread count in this process; the parent starts it)\n"
     "Targets at 1920x1080 with 2 threads: fresh frame <= 100 ms, orbit >= 30 fps at\n"
     "full resolution (reprojected; the half-resolution orbit is the baseline), painting >= 60 fps, "
@@ -102,6 +104,7 @@ struct Row {
   double lit_base_ms = -1, full_base_ms = -1;                           // whole-frame baseline
   double lit_received_ms = -1;  // pen-up -> lit from the painter receiving the lift
   double mapping_ms = -1, sync_ms = -1, lit_render_ms = -1, full_render_ms = -1;
+  PainterActionFigures actions, actions_base;  // at 1920x1080 only (bench_scale_actions.h)
 };
 
 // The painter with the replayed reference strokes over the bundled cumulus.
@@ -320,6 +323,9 @@ void measureOrbits(Display& display, VolumeRenderer& renderer, const Volume& cum
       size.name().c_str(), r.factor * r.factor, r.ms, 1000.0 / r.ms, r.cpu_ms, r.error_mean,
       r.error_p99, r.base_ms, 1000.0 / r.base_ms, r.base_cpu_ms, r.base_error_mean,
       r.base_error_p99);
+  std::printf(
+      "  %s: reprojected frame's parts: cast %.1f ms, reprojection pass %.1f ms, copy %.1f ms\n",
+      size.name().c_str(), r.cast_ms, r.reproject_ms, r.copy_ms);
   std::fflush(stdout);
 }
 
@@ -393,8 +399,49 @@ void measureGrowth(Display& display, VolumeRenderer& renderer, const std::string
   report.baseline(k + "growth_sync_ms", wide.first_sync_ms);
 }
 
+// What a person does at the painter (bench_scale_actions.h): the painter's choices, then its
+// earlier ones as the baseline, in this process.
+void measureActions(Display& display, VolumeRenderer& renderer, const Volume& cumulus, Size size,
+                    const SkyExtent& sky, const std::string& dir, Row* row) {
+  for (bool baseline : {false, true}) {
+    PainterActionFigures& a = baseline ? row->actions_base : row->actions;
+    a = measurePainterActions(display, renderer, cumulus, size.w, size.h, sky, dir, baseline);
+    std::printf(
+        "  %s: the painter%s: light drag %.1f fps (%d frames; CPU %.1f ms a frame), release -> "
+        "lit %.1f ms (CPU %.1f ms); picture placed -> lit %.1f ms, model %.1f ms; wind %.1f fps "
+        "(%d frames; CPU %.1f ms a frame)\n",
+        size.name().c_str(),
+        baseline ? " as before (baseline: light swept in full while dragged, whole-frame "
+                   "re-render, wind reprojected at full resolution)"
+                 : "",
+        a.light_drag_fps, a.drag_frames, a.light_drag_cpu_ms, a.light_release_ms,
+        a.light_release_cpu_ms, a.place_picture_ms, a.place_model_ms, a.wind_fps, a.wind_frames,
+        a.wind_cpu_ms);
+    std::fflush(stdout);
+  }
+}
+
+void reportActions(BenchReport& report, const std::string& k, const Row& row) {
+  for (bool baseline : {false, true}) {
+    const PainterActionFigures& a = baseline ? row.actions_base : row.actions;
+    if (a.drag_frames == 0 && a.place_picture_ms < 0) continue;
+    const auto put = [&](const std::string& key, double v) {
+      baseline ? report.baseline(k + key, v) : report.figure(k + key, v);
+    };
+    put("light_drag_fps", a.light_drag_fps);
+    put("light_release_lit_ms", a.light_release_ms);
+    put("place_picture_lit_ms", a.place_picture_ms);
+    put("place_model_lit_ms", a.place_model_ms);
+    put("wind_fps", a.wind_fps);
+    put("light_drag_cpu_ms", a.light_drag_cpu_ms);
+    put("light_release_cpu_ms", a.light_release_cpu_ms);
+    put("wind_cpu_ms", a.wind_cpu_ms);
+  }
+}
+
 // One size's row into the report, each key prefixed with `k` ("1920x1080_").
 void reportRow(BenchReport& report, const std::string& k, const Row& row) {
+  reportActions(report, k, row);
   report.figure(k + "fresh_ms", row.fresh_ms);
   report.figure(k + "fresh_first_ms", row.fresh_first_ms);
   report.figure(k + "fresh_cpu_ms", row.fresh_cpu_ms);
@@ -412,6 +459,9 @@ void reportRow(BenchReport& report, const std::string& k, const Row& row) {
   report.figure(k + "reprojected_orbit_factor", rep.factor);
   report.figure(k + "reprojected_error_mean", rep.error_mean);
   report.figure(k + "reprojected_error_p99", rep.error_p99);
+  report.figure(k + "reprojected_cast_ms", rep.cast_ms);
+  report.figure(k + "reprojected_pass_ms", rep.reproject_ms);
+  report.figure(k + "reprojected_copy_ms", rep.copy_ms);
   report.baseline(k + "reprojected_orbit_fps", rep.base_ms > 0 ? 1000.0 / rep.base_ms : -1);
   report.baseline(k + "reprojected_orbit_cpu_ms", rep.base_cpu_ms);
   report.baseline(k + "reprojected_error_mean", rep.base_error_mean);
@@ -436,7 +486,12 @@ void reportRow(BenchReport& report, const std::string& k, const Row& row) {
 
 // One thread count (this process's): every size, in a sky of `sky`. `quick`: the fresh frames
 // and the painter with the region re-render only (the sky-size table).
-int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, bool quick) {
+// `parts`: "all", or a comma-separated list of orbit, pen, actions (the fresh frames always run).
+int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, bool quick,
+             const std::string& parts) {
+  const auto want = [&](const std::string& part) {
+    return parts == "all" || ("," + parts + ",").find("," + part + ",") != std::string::npos;
+  };
   BenchReport report("scale");
   const int grid = sky.grid;
   const auto t_gen = Clock::now();
@@ -474,15 +529,17 @@ int runChild(const std::vector<Size>& sizes, int frames, const SkyExtent& sky, b
         continue;
       }
       if (!measureFreshFrames(renderer, cumulus, size, frames, grid, &row)) continue;
-      if (!quick) measureOrbits(*display, renderer, cumulus, size, grid, &row);
+      if (!quick && want("orbit")) measureOrbits(*display, renderer, cumulus, size, grid, &row);
       const int strokes = size.huge() ? 1 : 2;
       const std::string journal = writeStrokeJournal(dir, size, strokes);
-      if (!journal.empty())
+      if (!journal.empty() && want("pen"))
         measurePen(*display, renderer, cumulus, journal, size, sky, quick, &row);
       // Once, at 1920x1080 in the default sky.
-      if (!quick && !journal.empty() && size.w == 1920 && size.h == 1080 &&
-          sky.span == kDefaultSkySpan)
-        measureGrowth(*display, renderer, journal, size, sky, k, report);
+      if (!quick && size.w == 1920 && size.h == 1080 && sky.span == kDefaultSkySpan) {
+        if (!journal.empty() && want("pen"))
+          measureGrowth(*display, renderer, journal, size, sky, k, report);
+        if (want("actions")) measureActions(*display, renderer, cumulus, size, sky, dir, &row);
+      }
     }
     display.reset();
     reportRow(report, k, row);
@@ -534,16 +591,17 @@ using Figures = std::map<std::string, double>;
 struct ChildRunner {
   std::string self;  // this binary
   int frames = 5, grid = 256;
+  std::string parts = "all";
 
   // One child process: `t` threads, the figures of its JSON line into *figures / *baselines
   // (its other output passed through).
   void run(int t, const std::string& sizes_arg, int span, bool quick, Figures* figures_out,
            Figures* baselines_out) const {
-    const std::string command = "CLOUDBRUSH_THREADS=" + std::to_string(t) +
-                                " LP_NUM_THREADS=" + std::to_string(t) + " '" + self +
-                                "' bench scale --child --sizes " + sizes_arg + " --frames " +
-                                std::to_string(frames) + " --grid " + std::to_string(grid) +
-                                " --sky-span " + std::to_string(span) + (quick ? " --quick" : "");
+    const std::string command =
+        "CLOUDBRUSH_THREADS=" + std::to_string(t) + " LP_NUM_THREADS=" + std::to_string(t) + " '" +
+        self + "' bench scale --child --sizes " + sizes_arg + " --frames " +
+        std::to_string(frames) + " --grid " + std::to_string(grid) + " --sky-span " +
+        std::to_string(span) + (quick ? " --quick" : "") + " --parts " + parts;
     FILE* p = popen((command + " 2>/dev/null").c_str(), "r");
     if (!p) {
       std::printf("  could not start the child process\n");
@@ -641,6 +699,66 @@ void printTargets(const ThreadFigures& f) {
               verdict(full >= 0 && full <= 150));
 }
 
+// One row of what a person does: the figure, its baseline from the same child, the target.
+struct PersonRow {
+  const char* act;   // what the person does
+  const char* key;   // the figure's key at its size
+  Size size;         // the size the figure is measured at
+  const char* base;  // what the baseline is
+  const char* base_key;
+  Size base_size;
+  bool base_is_baseline;  // the baseline's key is in the child's "baseline" (else "figures")
+  double target;
+  bool at_least;  // the target is a floor (fps), else a ceiling (ms)
+  const char* unit;
+};
+
+// Every row of the table of what a person does, measured in the children at 1920x1080 (and
+// 3840x2160 for the large screen), with its baseline from the same process; into the report as
+// t<threads>_person_<key>.
+void printPersonTable(BenchReport& report, const std::vector<int>& threads,
+                      const ThreadFigures& f) {
+  const Size hd{1920, 1080}, uhd{3840, 2160};
+  const PersonRow rows[] = {
+      {"open the painter: its starting view, fresh frame", "fresh_start_view_ms", hd,
+       "the cumulus at that view", "fresh_paint_view_ms", hd, false, 100, false, "ms"},
+      {"pen-up -> full resolution", "pen_up_to_full_ms", hd, "whole-frame re-render",
+       "pen_up_to_full_ms", hd, true, 150, false, "ms"},
+      {"drag the light", "light_drag_fps", hd, "light swept in full", "light_drag_fps", hd, true,
+       15, true, "fps"},
+      {"light change (release) -> lit frame", "light_release_lit_ms", hd, "light swept in full",
+       "light_release_lit_ms", hd, true, 100, false, "ms"},
+      {"orbit, full resolution (reprojected)", "orbit_fps", hd, "half resolution", "orbit_fps", hd,
+       true, 30, true, "fps"},
+      {"place a picture -> lit frame", "place_picture_lit_ms", hd, "whole-frame re-render",
+       "place_picture_lit_ms", hd, true, 300, false, "ms"},
+      {"place a model -> lit frame", "place_model_lit_ms", hd, "whole-frame re-render",
+       "place_model_lit_ms", hd, true, 300, false, "ms"},
+      {"wind on the 256^3 cumulus", "wind_fps", hd, "reprojected, full res", "wind_fps", hd, true,
+       15, true, "fps"},
+      {"3840x2160 fresh frame", "fresh_ms", uhd, "1920x1080 fresh frame", "fresh_ms", hd, false,
+       200, false, "ms"},
+  };
+  for (int t : threads) {
+    std::printf("\nwhat a person does, %d thread%s:\n%-48s | %9s | %-22s %9s | %-9s\n", t,
+                t == 1 ? "" : "s", "act", "measured", "baseline (same run)", "", "target");
+    for (const PersonRow& r : rows) {
+      const double v = f.get(t, r.size, r.key);
+      const double b = f.get(t, r.base_size, r.base_key, r.base_is_baseline);
+      const bool met = v >= 0 && (r.at_least ? v >= r.target : v <= r.target);
+      char target[32];
+      std::snprintf(target, sizeof target, "%s %.0f %s", r.at_least ? ">=" : "<=", r.target,
+                    r.unit);
+      std::printf("%-48s | %6s %-3s | %-22s %6s %-3s | %-9s %s\n", r.act, cell(v, "%.1f").c_str(),
+                  r.unit, r.base, cell(b, "%.1f").c_str(), r.unit, target,
+                  v < 0 ? "not measured" : verdict(met));
+      const std::string k = "t" + std::to_string(t) + "_person_" + r.size.name() + "_" + r.key;
+      report.figure(k, v);
+      report.baseline(k, b);
+    }
+  }
+}
+
 // The sky-size table: the painter at 1920x1080 in skies of 1x, 4x, 16x the home box's area;
 // span 1 (the thesis's one box) is the baseline.
 void benchSkySizes(BenchReport& report, const ChildRunner& runner, const std::vector<int>& threads,
@@ -693,7 +811,7 @@ int benchScale(int argc, char** argv) {
     return 0;
   }
   if (auto bad = args.unknown({"help", "child", "quick", "sizes", "threads", "frames", "grid",
-                               "sky-span", "sky-spans"});
+                               "sky-span", "sky-spans", "parts"});
       !bad.empty()) {
     std::fprintf(stderr, "cloudbrush bench scale: unknown option %s (see --help)\n",
                  bad.front().c_str());
@@ -716,7 +834,12 @@ int benchScale(int argc, char** argv) {
     std::fprintf(stderr, "cloudbrush bench scale: --sky-span: %s\n", problem.c_str());
     return 2;
   }
-  if (args.has("child")) return runChild(sizes, frames, sky, args.has("quick"));
+  const std::string parts = args.get("parts", "all");
+  if (parts.find_first_of("'\" ;") != std::string::npos) {
+    std::fprintf(stderr, "cloudbrush bench scale: --parts: all, or orbit,pen,actions\n");
+    return 2;
+  }
+  if (args.has("child")) return runChild(sizes, frames, sky, args.has("quick"), parts);
 
   std::vector<int> threads, spans;
   if (!parseIntList(args.get("threads", "1,2"), 1, 64, &threads)) {
@@ -730,7 +853,7 @@ int benchScale(int argc, char** argv) {
   spans.erase(std::remove(spans.begin(), spans.end(), 0), spans.end());
   std::error_code ec;
   const ChildRunner runner{std::filesystem::read_symlink("/proc/self/exe", ec).string(), frames,
-                           grid};
+                           grid, parts};
   if (ec) {
     std::fprintf(stderr, "cloudbrush bench scale: cannot find this binary (%s)\n",
                  ec.message().c_str());
@@ -756,6 +879,7 @@ int benchScale(int argc, char** argv) {
       std::any_of(sizes.begin(), sizes.end(),
                   [](const Size& s) { return s.name() == "1920x1080"; }))
     printTargets(f);
+  printPersonTable(report, threads, f);
   if (!spans.empty()) benchSkySizes(report, runner, threads, spans);
   report.print();
   return 0;

@@ -75,6 +75,7 @@ std::vector<VoxelBox> visibleChanges(const std::vector<BrickPool::SlotChange>& c
 
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
                                  const SyncStats& sync, RenderStyle style) {
+  if (sync.light_moved) return ScreenRegion::wholeFrame(width, height);
   return projectVoxelBoxes(camera, width, height, volume, visibleChanges(sync.changes, style),
                            readReachVoxels(style, volume.voxelSize()));
 }

@@ -63,6 +63,7 @@ ScreenRegion projectVoxelBoxes(const Camera& camera, int width, int height, cons
 // The pixels a sync changed in `style`: those whose rays pass near the texels it changed
 // (visibleChanges of sync.changes: density and 8-bit transmittance as the pool holds them, so
 // erased density counts where none is left, and a shadow's change only where 8 bits see it).
+// After the light moved (SyncStats::light_moved): the whole frame.
 ScreenRegion changedScreenRegion(const Camera& camera, int width, int height, const Volume& volume,
                                  const SyncStats& sync, RenderStyle style);
 

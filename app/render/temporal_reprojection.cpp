@@ -124,6 +124,16 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   cast.finish = false;
   renderer.render(camera, width / factor, height / factor, cast_.fbo(), cast);
   stats_.pixels_cast = renderer.lastStats().pixels_cast;
+  using Ms = std::chrono::duration<double, std::milli>;
+  const auto stage = [&](double* ms, std::chrono::steady_clock::time_point* from) {
+    if (!options.finish) return;
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    *ms = Ms(now - *from).count();
+    *from = now;
+  };
+  auto stage_start = t0;
+  stage(&stats_.cast_ms, &stage_start);
 
   const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
   const bool still = history_valid_ && view_proj == prev_view_proj_ && camera.eye == prev_eye_;
@@ -173,6 +183,7 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   stats_.history_used = history_valid_;
+  stage(&stats_.reproject_ms, &stage_start);
 
   glBindFramebuffer(GL_READ_FRAMEBUFFER, frames_[current_].fbo);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -185,9 +196,8 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   history_valid_ = true;
   reject_ = glm::ivec4(0);
   if (options.finish) {
-    glFinish();
-    stats_.frame_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    stage(&stats_.copy_ms, &stage_start);
+    stats_.frame_ms = Ms(std::chrono::steady_clock::now() - t0).count();
   }
 }
 

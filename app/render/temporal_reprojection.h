@@ -34,6 +34,9 @@ struct ReprojectionStats {
   glm::ivec2 phase{0};        // which pixel of each f×f block was cast
   bool history_used = false;  // the previous frame was reprojected
   double frame_ms = 0.0;      // with RenderOptions::finish: wall time including glFinish
+  // With RenderOptions::finish, the parts of frame_ms, each to a glFinish: the 1/f cast, the
+  // reprojection pass over the full frame, the copy into the target.
+  double cast_ms = 0.0, reproject_ms = 0.0, copy_ms = 0.0;
   long long pixels_cast = 0;  // of the cast image (its stencil's pixels)
 };
 

@@ -462,9 +462,13 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.occupancy_ms = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
+  const bool was_preview = light_is_preview_;
   LightByteChanges light_bytes;  // which bricks' 8-bit light changed (else: the light box)
   st.light_box = syncLight(volume, light, fresh, st.dirty, &light_bytes);
   st.light_ms = msSince(t0);
+  st.light_moved =
+      !fresh && (synced_light_.direction != light.direction ||
+                 synced_light_.extinction != light.extinction || was_preview != light_is_preview_);
 
   st.uploaded = st.dirty.unite(st.light_box);
   if (fresh) {
@@ -480,10 +484,13 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
     changed_bricks.insert(changed_bricks.end(), growth_edge_bricks_.begin(),
                           growth_edge_bricks_.end());
   growth_edge_bricks_.clear();
-  const BrickPool::UpdateStats pool = pool_.update(volume, light_volume_, fresh, changed_bricks,
-                                                   st.light_box, &light_bytes, &st.changes);
+  // Texel by texel changes are listed only when the light stayed: after it moved no frame held
+  // is reused (its image key names the light), so they are dropped, not compared.
+  const BrickPool::UpdateStats pool =
+      pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &light_bytes,
+                   st.light_moved ? nullptr : &st.changes);
   for (FrameHistory* history : {&history_, &spare_history_}) {
-    if (fresh) *history = FrameHistory{};
+    if (fresh || st.light_moved) *history = FrameHistory{};
     if (!history->valid) continue;
     history->pending.insert(history->pending.end(), st.changes.begin(), st.changes.end());
     // Too many boxes: one per slot (its blocks' bounding boxes) before giving the mask up.

@@ -111,6 +111,11 @@ struct SyncStats {
   // (BrickPool::SlotChange; visibleChanges in changed_region.h picks a style's): a ray that
   // samples none of them renders as before the sync. Empty when nothing changed.
   std::vector<BrickPool::SlotChange> changes;
+  // The light volume was swept anew everywhere: the light's direction or extinction changed,
+  // or a drag's coarse preview began or was recomputed in full at its release. Every lit voxel
+  // may differ, so `changes` lists only slots added or released (comparing every slot's texels
+  // costs more than the frame) and no frame held is reused: the whole frame is cast anew.
+  bool light_moved = false;
   bool pool_grew = false;  // the brick pool was reallocated to hold more slots
   // The volume had grown around the one synced before (Volume::Growth): what the renderer held
   // was shifted by the growth's offset instead of being rebuilt (growth_ms), then updated.

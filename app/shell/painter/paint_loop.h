@@ -82,6 +82,10 @@ struct PaintLoopOptions {
   // full-resolution pass gathers ~7 texels a pixel; docs/reprojection.md), and it replaces the
   // reduced scale only where it is.
   bool reproject_moving = false;
+  // While the light ball is dragged the light volume is swept at 1/light_drag_divisor per axis
+  // (2: the thesis's 128³ for 256³), in full at release; 1 sweeps it in full every drag frame
+  // (the bench's baseline).
+  int light_drag_divisor = 2;
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;

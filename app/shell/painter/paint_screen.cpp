@@ -638,9 +638,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
   const SceneKey key = currentKey();
-  // While the light ball is dragged the light volume is swept at half resolution per axis (the
-  // thesis's 128³ for 256³); at release the first frame recomputes it in full.
-  renderer_.setLightPreviewDivisor(drag_light_ ? 2 : 1);
+  // While the light ball is dragged the light volume is swept at reduced resolution per axis
+  // (PaintLoopOptions::light_drag_divisor); at release the first frame recomputes it in full.
+  renderer_.setLightPreviewDivisor(drag_light_ ? std::max(1, options_.light_drag_divisor) : 1);
   const bool stale = sceneStale();
   // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
   // do: each cast pays the ray bounds and clears of the whole sky, 100+ ms on a loaded llvmpipe).

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "app/render/changed_region.h"
 #include "app/volume/scene_generators.h"
 #include "tests/unit/render/gl_test_context.h"
 
@@ -441,6 +442,58 @@ TEST_F(VolumeRendererTest, ALightDragIsSweptCoarseAndTheReleaseInFull) {
   ASSERT_TRUE(plain.init(&err)) << err;
   plain.sync(v, light);
   EXPECT_EQ(maxChannelDifference(released, renderImage(plain, cam, RenderOptions{})), 0);
+}
+
+// A moved light changes every lit voxel: the sync lists no texel changes (it says the light
+// moved, and the changed region is the whole frame), and a frame cast after it — with an edit in
+// the same sync, and after the light returns to where it was — equals a fresh renderer's.
+// An edit under a light that stayed still lists its texel changes.
+TEST_F(VolumeRendererTest, AMovedLightListsNoTexelChangesAndItsFramesAreCastWhole) {
+  Volume v = makeBundledCumulus(glm::ivec3(64), 1);
+  const Light first;
+  renderer.sync(v, first);
+  const Camera cam = Camera::reference();
+  RenderOptions opt;
+  renderImage(renderer, cam, opt);  // a frame held, whose history a partial re-render could use
+  const auto edit = [&](int at, float density) {
+    const VoxelBox block{glm::ivec3(at), glm::ivec3(at + 6)};
+    for (int z = at; z < at + 6; ++z)
+      for (int y = at; y < at + 6; ++y)
+        for (int x = at; x < at + 6; ++x) v.voxelForWrite(x, y, z) = density;
+    v.markDirty(block);
+  };
+  const auto matchesFreshRenderer = [&](const Light& light) {
+    VolumeRenderer plain;
+    std::string err;
+    if (!plain.init(&err)) return -1;
+    plain.sync(v, light);
+    return maxChannelDifference(renderImage(renderer, cam, opt), renderImage(plain, cam, opt));
+  };
+  Light moved = first;
+  moved.direction = Light::directionTowards(glm::vec3(-3.0f, 2.0f, 1.0f));
+  edit(20, 1.0f);
+  const SyncStats s = renderer.sync(v, moved);
+  EXPECT_TRUE(s.light_moved);
+  EXPECT_TRUE(changedScreenRegion(cam, kW, kH, v, s, opt.style).whole_frame);
+  EXPECT_EQ(matchesFreshRenderer(moved), 0);
+  const SyncStats back = renderer.sync(v, first);
+  EXPECT_TRUE(back.light_moved);
+  EXPECT_EQ(matchesFreshRenderer(first), 0);
+  // A drag's coarse preview, then its release at the same light, recomputed in full.
+  renderer.setLightPreviewDivisor(2);
+  EXPECT_TRUE(renderer.sync(v, moved).light_moved);
+  ASSERT_TRUE(renderer.lightIsPreview());
+  renderImage(renderer, cam, opt);  // a frame of the preview light held
+  renderer.setLightPreviewDivisor(1);
+  EXPECT_TRUE(renderer.sync(v, moved).light_moved) << "the release recomputed it in full";
+  EXPECT_EQ(matchesFreshRenderer(moved), 0);
+  renderer.sync(v, first);
+  edit(29, 0.0f);  // a hole in the cumulus's core
+  const SyncStats still = renderer.sync(v, first);
+  EXPECT_FALSE(still.light_moved);
+  EXPECT_FALSE(still.changes.empty()) << "an edit under a still light lists its texels";
+  EXPECT_FALSE(changedScreenRegion(cam, kW, kH, v, still, opt.style).whole_frame);
+  EXPECT_EQ(matchesFreshRenderer(first), 0);
 }
 
 }  // namespace
