@@ -295,8 +295,9 @@ TEST_F(SessionData, SyncMarkersCarryTheirEventsTimesAndArriveAtThem) {
   // read at the next frame) and sends the marker at once. While painting, the journal's Frame
   // records say when the next frame began (llvmpipe frames take tens to hundreds of ms on a
   // busy 2-core machine): the marker arrives by then, plus 50 ms for scheduling and delivery.
-  // The forms' frames are not journalled: there the bound is 400 ms (their frames took 45–340
-  // ms here under load). Before markers were sent at their events, task boundaries arrived
+  // The forms' frames are not journalled: there the bound is 1 s (their frames took 45–340 ms
+  // here under load, and 534 ms once beside the clang build of the sanitized fuzzers; the
+  // markers of form events were not sent at all before, so any bound tells the two apart). Before markers were sent at their events, task boundaries arrived
   // 0.7–2.3 s late (after the task's files were saved), stroke ends 11–96 ms (after mapping).
   std::vector<int64_t> frame_begins;
   for (const JournalRecord& r : journal.records)
@@ -305,7 +306,7 @@ TEST_F(SessionData, SyncMarkersCarryTheirEventsTimesAndArriveAtThem) {
         frame_begins.push_back(f->begin_ns);
   ASSERT_GT(frame_begins.size(), 10u) << "the journal has its frames' timing";
   std::sort(frame_begins.begin(), frame_begins.end());
-  const int64_t kSlackNs = 50'000'000, kFormFrameNs = 400'000'000;
+  const int64_t kSlackNs = 50'000'000, kFormFrameNs = 1'000'000'000;
   const auto toleranceNs = [&](int64_t event_ns) {
     const auto next = std::upper_bound(frame_begins.begin(), frame_begins.end(), event_ns);
     const bool painting = next != frame_begins.end() && next != frame_begins.begin() &&
