@@ -3,6 +3,7 @@
 #include <linux/usb/ch9.h>
 
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 
 namespace cb::hil {
@@ -15,6 +16,21 @@ std::vector<uint8_t> readBytes(const std::string& path) {
 
 void putLe(std::vector<uint8_t>& b, size_t at, int32_t v, int bytes) {
   for (int i = 0; i < bytes; ++i) b[at + i] = (v >> (8 * i)) & 0xFF;
+}
+
+// A vendor string descriptor that carries binary parameters: bLength, STRING, then each field
+// (byte offset, value, little-endian width in bytes); every other byte zero.
+struct Field {
+  size_t at;
+  int32_t value;
+  int bytes;
+};
+std::vector<uint8_t> parameterString(size_t length, std::initializer_list<Field> fields) {
+  std::vector<uint8_t> b(length, 0);
+  b[0] = static_cast<uint8_t>(length);
+  b[1] = USB_DT_STRING;
+  for (const Field& f : fields) putLe(b, f.at, f.value, f.bytes);
+  return b;
 }
 
 std::vector<uint8_t> stringDescriptor(const std::string& ascii) {
@@ -48,14 +64,8 @@ const char* const kHuionFirmware = "CBHIL_EMULATED_V2";
 constexpr int32_t kHuionX = 120000, kHuionY = 75000, kHuionPressure = 8191, kLpi = 5080;
 
 std::vector<uint8_t> huionParameters() {
-  std::vector<uint8_t> b(19, 0);
-  b[0] = 19;
-  b[1] = USB_DT_STRING;
-  putLe(b, 2, kHuionX, 3);
-  putLe(b, 5, kHuionY, 3);
-  putLe(b, 8, kHuionPressure, 2);
-  putLe(b, 10, kLpi, 2);
-  return b;
+  return parameterString(19,
+                         {{2, kHuionX, 3}, {5, kHuionY, 3}, {8, kHuionPressure, 2}, {10, kLpi, 2}});
 }
 
 // The raw vendor pen report a v2 tablet sends, in the byte order uclogic_raw_event_pen
@@ -108,16 +118,12 @@ constexpr uint8_t kUgeeButtons = 8;
 const std::vector<uint8_t> kUgeeMagic = {0x02, 0xb0, 0x04, 0, 0, 0, 0, 0, 0, 0};
 
 std::vector<uint8_t> ugeeParameters() {
-  std::vector<uint8_t> b(12, 0);
-  b[0] = 12;
-  b[1] = USB_DT_STRING;
-  putLe(b, 2, kUgeeX, 2);
-  putLe(b, 4, kUgeeY, 2);
-  b[6] = kUgeeButtons;
-  b[7] = 0;
-  putLe(b, 8, kUgeePressure, 2);
-  putLe(b, 10, kLpi, 2);
-  return b;
+  return parameterString(12, {{2, kUgeeX, 2},
+                              {4, kUgeeY, 2},
+                              {6, kUgeeButtons, 1},
+                              {7, 0, 1},
+                              {8, kUgeePressure, 2},
+                              {10, kLpi, 2}});
 }
 
 // A vendor-defined interface descriptor (usage page 0xFF0A, one 11-byte input report with ID
@@ -174,14 +180,8 @@ void checkUgeeRequests(const std::vector<ControlRecord>& log, const std::vector<
 constexpr int32_t kUgeeV1X = 45720, kUgeeV1Y = 30480, kUgeeV1Pressure = 2047;
 
 std::vector<uint8_t> ugeeV1Parameters() {
-  std::vector<uint8_t> b(12, 0);
-  b[0] = 12;
-  b[1] = USB_DT_STRING;
-  putLe(b, 2, kUgeeV1X, 2);
-  putLe(b, 4, kUgeeV1Y, 2);
-  putLe(b, 8, kUgeeV1Pressure, 2);
-  putLe(b, 10, kLpi, 2);
-  return b;
+  return parameterString(
+      12, {{2, kUgeeV1X, 2}, {4, kUgeeV1Y, 2}, {8, kUgeeV1Pressure, 2}, {10, kLpi, 2}});
 }
 
 // The v1 template's pen report (uclogic_rdesc_v1_pen_template_arr, ID 7): tip, barrel, upper
