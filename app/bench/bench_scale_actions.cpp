@@ -196,7 +196,7 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   options.config_dir = dir + "/config";
   options.state_dir = dir + "/state";
   if (baseline) {
-    options.light_drag_divisor = 1;
+    options.light_drag_divisor = 2;  // the thesis's preview while dragging
     options.region_rerender = false;
     options.reproject_moving = true;
   }

@@ -638,8 +638,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
   const SceneKey key = currentKey();
-  // While the light ball is dragged the light volume is swept at reduced resolution per axis
-  // (PaintLoopOptions::light_drag_divisor); at release the first frame recomputes it in full.
+  // While the light ball is dragged the light volume may be swept at reduced resolution per
+  // axis (PaintLoopOptions::light_drag_divisor, 1 by default: in full); after a reduced sweep
+  // the first frame at release recomputes it in full.
   renderer_.setLightPreviewDivisor(drag_light_ ? std::max(1, options_.light_drag_divisor) : 1);
   const bool stale = sceneStale();
   // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
