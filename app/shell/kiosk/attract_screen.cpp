@@ -194,6 +194,7 @@ bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   (void)error;
   const int slices = this->slices();
   slices_finished_ = 0;
+  slice_started_ns_ = MonotonicClock().nowNs();
   renderer_.sync(shownVolume(), shown_.light);
   RenderOptions render = options_.render;
   // Quantised to 1/20 so the renderer's reduced-size target is not reallocated every frame.
@@ -211,6 +212,7 @@ bool AttractScreen::draw(FrameContext& frame, std::string* error) {
     for (int k = 0; k < slices; ++k) {
       const int y0 = frame.height * k / slices, y1 = frame.height * (k + 1) / slices;
       render.region = glm::ivec4(0, y0, frame.width, y1 - y0);
+      slice_started_ns_ = MonotonicClock().nowNs();
       renderer_.render(camera_, frame.width, frame.height, frame.display.framebuffer(), render);
       if (!drawnUnlessInputWaits(frame)) return giveUp(frame, slices);
       ++slices_finished_;
@@ -230,6 +232,7 @@ bool AttractScreen::draw(FrameContext& frame, std::string* error) {
   }
   glBindFramebuffer(GL_FRAMEBUFFER, frame.display.framebuffer());
   glViewport(0, 0, frame.width, frame.height);
+  slice_started_ns_ = MonotonicClock().nowNs();
   ui_->drawLabels(frame.width, frame.height, labels);
   if (slices > 1 && !drawnUnlessInputWaits(frame)) return giveUp(frame, slices);
   return true;

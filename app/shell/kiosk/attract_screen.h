@@ -21,8 +21,8 @@
 #include "app/render/volume_renderer.h"
 #include "app/scene/light.h"
 #include "app/session/paint_session.h"
-#include "app/shell/painter/animation_preview.h"
 #include "app/shell/kiosk/attract_replay.h"
+#include "app/shell/painter/animation_preview.h"
 #include "app/shell/screen.h"
 #include "app/shell/ui_overlay.h"
 #include "drivers/core/clock.h"
@@ -75,6 +75,9 @@ class AttractScreen : public Screen {
   // were finished (all of them unless it was given up).
   int slices() const;
   int slicesFinished() const { return slices_finished_; }
+  // When the slice in flight (or the last one drawn) began, in monotonic nanoseconds: the
+  // frame's start for the sync before the first band.
+  int64_t sliceStartedNs() const { return slice_started_ns_; }
   long framesGivenUp() const { return frames_given_up_; }
 
   // Starts the replay from the beginning at the clock's time (an empty sky), at the resolution
@@ -128,6 +131,7 @@ class AttractScreen : public Screen {
   bool giveUp(FrameContext& frame, int slices);
   double last_frame_ms_ = 0.0;  // present to present, of the last frame shown
   int slices_finished_ = 0;
+  int64_t slice_started_ns_ = 0;
   int given_up_in_a_row_ = 0;
   long frames_given_up_ = 0;
   // Morphs into gallery clouds after the replay.
