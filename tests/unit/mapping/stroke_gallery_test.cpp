@@ -112,9 +112,10 @@ class StrokeGallery : public ::testing::Test {
     p.body = test::bodyRatio(volume, cloud.camera, cloud.canvas, kW, kH, path, g.point_like);
     std::printf(
         "%-12s %-8s width %5.1f px = %5.2f %% of height | cv %.3f | widest gap %.3f "
-        "width, ends %s | body %.2f | mapping %.0f ms\n",
+        "width, ends %s (short by %.3f width) | body %.2f | mapping %.0f ms\n",
         g.name.c_str(), brushKindName(kind), p.path.width_px, 100.0 * p.path.width_px / kH,
-        p.path.cv, p.path.widest_gap, p.path.ends_inside > 0 ? "in" : "OUT", p.body, p.mapping_ms);
+        p.path.cv, p.path.widest_gap, p.path.ends_inside > 0 ? "in" : "OUT", p.path.end_shortfall,
+        p.body, p.mapping_ms);
     std::fflush(stdout);
     return p;
   }
@@ -150,10 +151,14 @@ TEST_F(StrokeGallery, EveryStrokeIsAContinuousBillowingBody) {
 // The 2D brush resamples its path as the 3D brush does: a fast flick and a straight line are
 // one body. So is the skeleton brush's, whose bristles trail the rod (thesis §5.2: they lean one
 // way and drag behind the pen): its ink may stop short of the pen's end by the trailing
-// bristles' lean, so its widest gap is held to kSkeletonMaxGap of the width, not kMaxGap, and
-// its ends are printed, not checked.
+// bristles' lean, so its widest gap is held to kSkeletonMaxGap of the width, not kMaxGap. Its
+// ends may fall outside the cloud by that lean too: the spine rests 12° off plumb and trails
+// away from the pen's tilt (skeleton_brush.cpp), so the ink sits up to a third of a width
+// behind the pen (horizontal: 0.33, flick 0.06, mouse 0.02 measured); an end that the brush
+// never reached (a stroke cut short, a lost last stamp) is a width or more away.
 TEST_F(StrokeGallery, TheTwoDAndSkeletonBrushesLeaveContinuousStrokes) {
   constexpr double kSkeletonMaxGap = 0.25;
+  constexpr double kSkeletonMaxEndShortfall = 0.5;
   uint32_t index = 200;
   for (const GalleryStroke& g : strokeGallery(kW, kH)) {
     if (g.name != "horizontal" && g.name != "fast_flick" && g.name != "mouse") continue;
@@ -162,6 +167,8 @@ TEST_F(StrokeGallery, TheTwoDAndSkeletonBrushesLeaveContinuousStrokes) {
     EXPECT_EQ(p.path.ends_inside, 1.0) << g.name;
     const Painted skeleton = paint(g, BrushKind::kSkeleton, index++);
     EXPECT_LE(skeleton.path.widest_gap, kSkeletonMaxGap) << g.name << " (skeleton)";
+    EXPECT_LE(skeleton.path.end_shortfall, kSkeletonMaxEndShortfall)
+        << g.name << " (skeleton): the ink stops short of the pen's end";
   }
 }
 

@@ -182,6 +182,18 @@ PathMeasures measureAlongPath(const Silhouette& s, const std::vector<glm::vec2>&
     widest = std::max(widest, run);
   }
   m.widest_gap = m.width_px > 0.0 ? double(widest) * step / m.width_px : 1.0;
+  const auto shortfall = [&](glm::vec2 end) {
+    if (s.at(end) >= kInside) return 0.0;
+    for (float r = 1.0f; r <= float(m.width_px); r += 1.0f)
+      for (int k = 0; k < 64; ++k) {
+        const float a = 6.2831853f * float(k) / 64.0f;
+        if (s.at(end + r * glm::vec2(std::cos(a), std::sin(a))) >= kInside)
+          return double(r) / m.width_px;
+      }
+    return 1.0;
+  };
+  m.end_shortfall =
+      m.width_px > 0.0 ? std::max(shortfall(path.front()), shortfall(path.back())) : 1.0;
   return m;
 }
 

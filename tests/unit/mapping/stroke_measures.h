@@ -39,6 +39,10 @@ struct PathMeasures {
   double cv = 0;           // coefficient of variation of the half-width (radius)
   double widest_gap = 0;   // longest run of the path with no cloud within width_px / 4, ÷ width_px
   double ends_inside = 0;  // 1 when both path ends are inside the silhouette
+  // How far the cloud stops short of the path's farther-out end: the distance from that end to
+  // the nearest silhouette pixel, ÷ width_px (0 when both ends are inside; 1 when nothing lies
+  // within a width of it).
+  double end_shortfall = 0;
   std::vector<float> half_widths;
 };
 
