@@ -12,10 +12,12 @@
 #include <filesystem>
 #include <map>
 
+#include "app/render/hud_overlay.h"
 #include "app/render/image_io.h"
 #include "app/session/paint_session.h"
 #include "app/session/synthetic_session.h"
 #include "app/shell/painter/paint_loop.h"
+#include "app/shell/ui_overlay.h"
 #include "drivers/core/pen_source.h"
 #include "tests/support/test_display.h"
 
@@ -132,6 +134,61 @@ TEST(LateInk, TheLateLatchedFrameIsTheWholePathsFramePixelForPixel) {
   EXPECT_GT(differingPixels(*first, *last), 100u) << "the compared frames show the ink growing";
   ASSERT_EQ(late.settled.pixels.size(), size_t(kW) * kH * 4);
   EXPECT_EQ(differingPixels(late.settled, whole.settled), 0u) << "the lit cloud after the stroke";
+}
+
+// The frame under the overlays: a colour per pixel, so a box drawn again over the wrong pixels
+// shows.
+void drawGround(GLuint fbo, const glm::ivec4* box) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, kW, kH);
+  if (box) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(box->x, kH - box->w, box->z - box->x, box->w - box->y);
+  }
+  glClearColor(0.2f, 0.4f, 0.6f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+}
+
+// The HUD and the UI drawn again only in a box, over the ground put back there, leave the frame
+// as the whole draw made it — inside the box (nothing missed) and outside (nothing blended
+// twice) — for boxes on text, on the status bar's edge and on half-transparent items.
+TEST(LateInk, TheHudAndUiDrawnAgainInABoxLeaveTheWholeDrawsPixels) {
+  std::string error;
+  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
+  ASSERT_TRUE(display) << error;
+  const GLuint fbo = display->framebuffer();
+  HudOverlay hud;
+  ASSERT_TRUE(hud.init(&error)) << error;
+  const std::vector<HudItem> items = {
+      makeHudRect(0.0f, 0.0f, 200.5f, 360.0f, {0.0f, 0.0f, 0.0f, 0.45f}),  // a veil
+      makeHudSegment({10.3f, 20.7f}, {600.2f, 300.9f}, 2.0f, {1.0f, 1.0f, 1.0f, 0.5f}),
+      makeHudRing({320.0f, 180.0f}, 40.0f, 3.0f, {1.0f, 0.55f, 0.2f, 0.9f})};
+  UiOverlay ui;
+  ASSERT_TRUE(ui.init(&error)) << error;
+  UiOverlayState state;
+  state.status = "Paint 画 · brush 3 · size 24 · pen";
+  state.toast = "Saved 已保存";
+  state.hint = {"Press the pen to paint", "用笔按下来画"};
+  drawGround(fbo, nullptr);
+  hud.draw(fbo, kW, kH, items);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  ui.draw(kW, kH, 1.0 / 60.0, state);
+  const ImageRgba8 whole = readFramebufferRgba8(fbo, kW, kH);
+  const glm::ivec4 boxes[] = {{37, 3, 301, 61}, {150, 40, 420, 330}, {0, 0, kW, kH}, {5, 5, 6, 6}};
+  for (const glm::ivec4& box : boxes) {
+    drawGround(fbo, &box);
+    hud.draw(fbo, kW, kH, items, &box);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, kW, kH);
+    ASSERT_TRUE(ui.redraw(box));
+    EXPECT_EQ(differingPixels(readFramebufferRgba8(fbo, kW, kH), whole), 0u)
+        << "box " << box.x << "," << box.y << " - " << box.z << "," << box.w;
+  }
+  // It can fail: the ground put back without the overlays differs from the whole frame.
+  const glm::ivec4 box = boxes[0];
+  drawGround(fbo, &box);
+  EXPECT_GT(differingPixels(readFramebufferRgba8(fbo, kW, kH), whole), 1000u);
 }
 
 }  // namespace
