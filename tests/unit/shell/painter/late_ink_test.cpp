@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 
@@ -132,6 +133,14 @@ TEST(LateInk, TheLateLatchedFrameIsTheWholePathsFramePixelForPixel) {
   EXPECT_GE(compared, 5u) << "frames with late ink that the whole path also drew";
   ASSERT_TRUE(first && last);
   EXPECT_GT(differingPixels(*first, *last), 100u) << "the compared frames show the ink growing";
+  // CB_LATE_INK_SHOTS=DIR keeps the last compared pair and the settled frame as PNGs (to look at).
+  if (const char* shots = std::getenv("CB_LATE_INK_SHOTS")) {
+    writePng(std::string(shots) + "/late_ink_mid_stroke.png", *last);
+    for (const auto& [samples, image] : late.by_samples)
+      if (&image == last)
+        writePng(std::string(shots) + "/whole_path_mid_stroke.png", whole.by_samples.at(samples));
+    writePng(std::string(shots) + "/late_ink_settled.png", late.settled);
+  }
   ASSERT_EQ(late.settled.pixels.size(), size_t(kW) * kH * 4);
   EXPECT_EQ(differingPixels(late.settled, whole.settled), 0u) << "the lit cloud after the stroke";
 }
