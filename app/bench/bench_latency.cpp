@@ -7,11 +7,13 @@
 // to full resolution. Every figure comes from the session's own Frame records
 // (drivers/core/journal_frame.h), as `replay --stats` reads them.
 //
-// The baseline, measured in the same process and run just before, is the loop before late
-// latching (PaintLoopOptions::ink_first = false: samples read once per frame before the
-// scene's work; a refinement cast whole). Offscreen, "present" is the glFinish after the frame,
-// so sample → present is sample → ready plus the finish; there is no refresh to wait for.
-// Never fails on a missed target.
+// The baseline, measured in the same process and run first, is the loop before late latching
+// (PaintLoopOptions::ink_first = false: samples read once per frame before the scene's work; a
+// refinement cast whole). Between it and the product runs the ink first with its samples
+// latched once, before the composite (late_ink = false), reported as `early_*` figures; the
+// product then draws the ink last, from samples latched after the frame was made. Offscreen,
+// "present" is the glFinish after the frame, so sample → present is sample → ready plus the finish;
+// there is no refresh to wait for. Never fails on a missed target.
 #include <unistd.h>
 
 #include <cstdio>
@@ -39,6 +41,8 @@ namespace {
 
 const char kHelp[] =
     "usage: cloudbrush bench latency [--size WxH] [--strokes N] [--gap-ms MS] [--grid N]\n"
+    "  Runs the baseline (the loop before late latching), the ink first latched once before the\n"
+    "  composite, and the product (the ink last), in that order, in one process.\n"
     "  --size WxH     screen (default 1920x1080)\n"
     "  --strokes N    strokes of a 200 Hz pen (default 6)\n"
     "  --gap-ms MS    pen up between strokes (default 250: the next stroke is drawn while the\n"
@@ -110,9 +114,21 @@ struct LatencyRun {
   bool ok = false;
 };
 
+// The loops compared, in the order run.
+struct LoopVariant {
+  const char* name;  // as printed
+  const char* file;  // the session journal's name
+  bool ink_first, late_ink;
+};
+constexpr LoopVariant kVariants[] = {
+    {"baseline (the loop before late latching)", "baseline.cbj", false, false},
+    {"ink first, latched once before the composite", "early.cbj", true, false},
+    {"ink last (late ink: latched after the frame was made; the product)", "late.cbj", true, true},
+};
+
 LatencyRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& cumulus,
                       const std::string& pen_journal, const std::string& session_journal, int w,
-                      int h, const SkyExtent& sky, bool ink_first) {
+                      int h, const SkyExtent& sky, const LoopVariant& variant) {
   LatencyRun run;
   PaintSessionSettings settings{w, h, sky.grid};
   settings.sky_span = sky.span;
@@ -137,7 +153,8 @@ LatencyRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& 
   HeldPen pen(replayed);
   PaintLoopOptions options;
   options.max_seconds = 120.0;
-  options.ink_first = ink_first;
+  options.ink_first = variant.ink_first;
+  options.late_ink = variant.late_ink;
   long presented = 0;
   options.each_iteration = [&](bool shown) {
     if (shown && ++presented == 2) pen.release();
@@ -168,9 +185,11 @@ LatencyRun runPainter(Display& display, VolumeRenderer& renderer, const Volume& 
   return run;
 }
 
-void report(BenchReport* out, bool baseline, const LatencyRun& run) {
+// `prefix` names a figure of a run between the baseline and the product ("early_").
+void report(BenchReport* out, bool baseline, const LatencyRun& run,
+            const std::string& prefix = "") {
   const auto put = [&](const std::string& key, double v) {
-    baseline ? out->baseline(key, v) : out->figure(key, v);
+    baseline ? out->baseline(key, v) : out->figure(prefix + key, v);
   };
   const FrameTimingStats& s = run.stats;
   put("ready_p50_ms", s.sample_to_ready.p50);
@@ -239,22 +258,18 @@ int benchLatency(int argc, char** argv) {
       "baseline runs in the same process just before)\n",
       w, h, strokes, gap_ms, grid, sky.span, sky.span, workerThreads());
   BenchReport out("latency");
-  LatencyRun runs[2];
+  LatencyRun runs[3];
   {
     VolumeRenderer renderer;
     if (!renderer.init(&error)) {
       std::fprintf(stderr, "cloudbrush bench latency: renderer: %s\n", error.c_str());
       return 1;
     }
-    for (int i = 0; i < 2; ++i) {
-      const bool ink_first = i == 1;
-      runs[i] =
-          runPainter(*display, renderer, cumulus, pen_journal,
-                     dir + (ink_first ? "/ink_first.cbj" : "/baseline.cbj"), w, h, sky, ink_first);
-      std::printf("%s:\n%s",
-                  ink_first ? "ink first (late latching, refinement held while a stroke is drawn)"
-                            : "baseline (today's loop)",
-                  formatFrameTimingStats(runs[i].stats, "  ").c_str());
+    for (int i = 0; i < 3; ++i) {
+      const LoopVariant& variant = kVariants[i];
+      runs[i] = runPainter(*display, renderer, cumulus, pen_journal, dir + "/" + variant.file, w, h,
+                           sky, variant);
+      std::printf("%s:\n%s", variant.name, formatFrameTimingStats(runs[i].stats, "  ").c_str());
       std::printf(
           "  pen-up from the lift sample (with the stroke-end sync): lit %.1f ms, full "
           "resolution %.1f ms (medians)\n",
@@ -263,11 +278,12 @@ int benchLatency(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
-  const FrameTimingStats& s = runs[1].stats;
+  const FrameTimingStats& s = runs[2].stats;
   std::printf("target sample -> frame ready p95 <= 8 ms: %s (%.1f); p99 <= 16.7 ms: %s (%.1f)\n",
               s.sample_to_ready.p95 <= 8.0 ? "met" : "MISSED", s.sample_to_ready.p95,
               s.sample_to_ready.p99 <= 16.7 ? "met" : "MISSED", s.sample_to_ready.p99);
-  report(&out, false, runs[1]);
+  report(&out, false, runs[2]);
+  report(&out, false, runs[1], "early_");
   report(&out, true, runs[0]);
   out.note("present", s.source);
   std::filesystem::remove_all(dir);

@@ -66,21 +66,26 @@ FootprintOverlay::ScreenRect FootprintOverlay::cursorRect(const OverlayCursor& c
           int(std::ceil(c.screen_px.x + reach)) + 1, int(std::ceil(c.screen_px.y + reach)) + 1};
 }
 
-void FootprintOverlay::composite(const ScreenRect& rect, int width, int height) {
+FootprintOverlay::ScreenRect FootprintOverlay::composite(const ScreenRect& rect, int width,
+                                                         int height) {
   ScreenRect r{std::max(rect.x0, 0), std::max(rect.y0, 0), std::min(rect.x1, width),
                std::min(rect.y1, height)};
-  if (r.x1 <= r.x0 || r.y1 <= r.y0) return;
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) return {0, 0, 0, 0};
   // GL's scissor box has y up.
   glScissor(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   last_composited_ += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+  return r;
 }
 
-void FootprintOverlay::draw(GLuint scene_texture, GLuint target_fbo, int width, int height,
-                            const OverlayCursor& cursor, const OverlayStyle& style) {
+FootprintOverlay::ScreenRect FootprintOverlay::compositeChanges(GLuint scene_texture, int width,
+                                                                int height,
+                                                                const OverlayCursor& cursor,
+                                                                const OverlayStyle& style) {
   if (composite_.width() != width || composite_.height() != height) {
     std::string error;
-    if (!composite_.create(width, height, RenderTarget::Format::kRgba8, &error)) return;
+    if (!composite_.create(width, height, RenderTarget::Format::kRgba8, &error))
+      return {0, 0, 0, 0};
     full_redraw_ = true;
   }
   auto same = [](const OverlayStyle& a, const OverlayStyle& b) {
@@ -111,31 +116,57 @@ void FootprintOverlay::draw(GLuint scene_texture, GLuint target_fbo, int width, 
   glBindVertexArray(vao_);
 
   last_composited_ = 0;
-  ScreenRect new_cursor = cursorRect(cursor, style);
+  const ScreenRect new_cursor = cursorRect(cursor, style);
+  ScreenRect box{0, 0, 0, 0};
+  const auto grow = [&box](const ScreenRect& r) {
+    if (r.x1 <= r.x0 || r.y1 <= r.y0) return;
+    box = box.x1 <= box.x0 ? r
+                           : ScreenRect{std::min(box.x0, r.x0), std::min(box.y0, r.y0),
+                                        std::max(box.x1, r.x1), std::max(box.y1, r.y1)};
+  };
   if (full_redraw_) {
-    composite({0, 0, width, height}, width, height);
+    grow(composite({0, 0, width, height}, width, height));
   } else {
     // The uploaded footprint texels, in screen pixels (+2 for the bilinear footprint lookup).
     if (!pending_.empty() && width_ > 0 && height_ > 0) {
       float sx = float(width) / float(width_), sy = float(height) / float(height_);
-      composite({int(std::floor(pending_.x0 * sx)) - 2, int(std::floor(pending_.y0 * sy)) - 2,
-                 int(std::ceil(pending_.x1 * sx)) + 2, int(std::ceil(pending_.y1 * sy)) + 2},
-                width, height);
+      grow(composite({int(std::floor(pending_.x0 * sx)) - 2, int(std::floor(pending_.y0 * sy)) - 2,
+                      int(std::ceil(pending_.x1 * sx)) + 2, int(std::ceil(pending_.y1 * sy)) + 2},
+                     width, height));
     }
-    composite(last_cursor_, width, height);  // erase the old one
-    composite(new_cursor, width, height);
+    grow(composite(last_cursor_, width, height));  // erase the old one
+    grow(composite(new_cursor, width, height));
   }
   glDisable(GL_SCISSOR_TEST);
   glBindVertexArray(0);
   glUseProgram(0);
-  glBlitNamedFramebuffer(composite_.fbo(), target_fbo, 0, 0, width, height, 0, 0, width, height,
-                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   full_redraw_ = false;
   last_scene_ = scene_texture;
   last_style_ = style;
   last_cursor_ = new_cursor;
   pending_ = {};
+  return box;
+}
+
+void FootprintOverlay::draw(GLuint scene_texture, GLuint target_fbo, int width, int height,
+                            const OverlayCursor& cursor, const OverlayStyle& style) {
+  compositeChanges(scene_texture, width, height, cursor, style);
+  if (composite_.width() != width || composite_.height() != height) return;
+  glBlitNamedFramebuffer(composite_.fbo(), target_fbo, 0, 0, width, height, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+}
+
+glm::ivec4 FootprintOverlay::drawChanges(GLuint scene_texture, GLuint target_fbo, int width,
+                                         int height, const OverlayCursor& cursor,
+                                         const OverlayStyle& style) {
+  const ScreenRect r = compositeChanges(scene_texture, width, height, cursor, style);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) return glm::ivec4(0);
+  // Blit coordinates have y up.
+  glBlitNamedFramebuffer(composite_.fbo(), target_fbo, r.x0, height - r.y1, r.x1, height - r.y0,
+                         r.x0, height - r.y1, r.x1, height - r.y0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return {r.x0, r.y0, r.x1, r.y1};
 }
 
 }  // namespace cb

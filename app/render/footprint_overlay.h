@@ -57,6 +57,12 @@ class FootprintOverlay {
   // again; a different scene texture, size or style composites everything.
   void draw(GLuint scene_texture, GLuint target_fbo, int width, int height,
             const OverlayCursor& cursor, const OverlayStyle& style = {});
+  // Late ink: composites what changed since the last draw (footprint texels uploaded since, the
+  // old and new cursor) and blits only the box around it to `target_fbo`; the rest of the
+  // target keeps the last draw's pixels. Returns that box (x0, y0, x1, y1; pixels, y down,
+  // half-open; all 0 when nothing changed), the whole frame when everything was composited.
+  glm::ivec4 drawChanges(GLuint scene_texture, GLuint target_fbo, int width, int height,
+                         const OverlayCursor& cursor, const OverlayStyle& style = {});
   // Forces the next draw to composite the whole frame (call after re-rendering the scene into
   // the same texture).
   void invalidate() { full_redraw_ = true; }
@@ -69,8 +75,12 @@ class FootprintOverlay {
   struct ScreenRect {
     int x0, y0, x1, y1;  // y down, half-open
   };
-  // One scissored draw of the composite shader over `r` (clipped to the target).
-  void composite(const ScreenRect& r, int width, int height);
+  // One scissored draw of the composite shader over `r`; returns `r` clipped to the target.
+  ScreenRect composite(const ScreenRect& r, int width, int height);
+  // Composites what changed into composite_ (everything after invalidate() or a new scene or
+  // style); returns the box around what was composited.
+  ScreenRect compositeChanges(GLuint scene_texture, int width, int height,
+                              const OverlayCursor& cursor, const OverlayStyle& style);
   ScreenRect cursorRect(const OverlayCursor& cursor, const OverlayStyle& style) const;
 
   GLuint program_ = 0, vao_ = 0, footprint_texture_ = 0;

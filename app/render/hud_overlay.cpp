@@ -51,8 +51,10 @@ bool HudOverlay::init(std::string* error) {
   return true;
 }
 
-void HudOverlay::draw(GLuint target_fbo, int width, int height, const std::vector<HudItem>& items) {
+void HudOverlay::draw(GLuint target_fbo, int width, int height, const std::vector<HudItem>& items,
+                      const glm::ivec4* box) {
   if (items.empty() || !program_) return;
+  if (box && (box->z <= box->x || box->w <= box->y)) return;
   if (items.size() > capacity_) {
     if (buffer_) glDeleteBuffers(1, &buffer_);
     capacity_ = std::max<size_t>(items.size(), 256);
@@ -64,7 +66,12 @@ void HudOverlay::draw(GLuint target_fbo, int width, int height, const std::vecto
   glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
-  glDisable(GL_SCISSOR_TEST);
+  if (box) {  // GL's scissor box has y up
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(box->x, height - box->w, box->z - box->x, box->w - box->y);
+  } else {
+    glDisable(GL_SCISSOR_TEST);
+  }
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_);
@@ -74,6 +81,7 @@ void HudOverlay::draw(GLuint target_fbo, int width, int height, const std::vecto
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(items.size()));
   glBindVertexArray(0);
   glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace cb

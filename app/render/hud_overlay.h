@@ -41,8 +41,11 @@ class HudOverlay {
   HudOverlay& operator=(const HudOverlay&) = delete;
 
   bool init(std::string* error);
-  // Blends `items` (in order, later on top) over `target_fbo` of width × height pixels.
-  void draw(GLuint target_fbo, int width, int height, const std::vector<HudItem>& items);
+  // Blends `items` (in order, later on top) over `target_fbo` of width × height pixels; with
+  // `box` (x0, y0, x1, y1; pixels, y down, half-open) only over those pixels, each as the whole
+  // draw blends it (the painter's late ink redraws the HUD over the ink it re-blitted).
+  void draw(GLuint target_fbo, int width, int height, const std::vector<HudItem>& items,
+            const glm::ivec4* box = nullptr);
 
  private:
   GLuint program_ = 0, vao_ = 0, buffer_ = 0;

@@ -240,7 +240,42 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
   }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  last_draw_ = true;
   return tapped;
+}
+
+bool UiOverlay::redraw(const glm::ivec4& box) {
+  if (!ready_ || !last_draw_) return false;
+  ImGui::SetCurrentContext(context_);
+  ImDrawData* data = ImGui::GetDrawData();
+  if (!data || !data->Valid) return false;
+  if (data->FramebufferScale.x != 1.0f || data->FramebufferScale.y != 1.0f) return false;
+  if (box.z <= box.x || box.w <= box.y) return true;
+  const int fb_h = int(data->DisplaySize.y);
+  const ImVec2 off = data->DisplayPos;
+  // Each command's clip rectangle becomes the pixels the OpenGL backend scissored it to (its
+  // own float-to-int rounding, imgui_impl_opengl3.cpp) within `box`, in whole pixels, so every
+  // pixel is drawn as the first draw drew it, and none outside the box.
+  std::vector<ImVec4> kept;
+  for (int n = 0; n < data->CmdListsCount; ++n)
+    for (ImDrawCmd& cmd : data->CmdLists[n]->CmdBuffer) {
+      kept.push_back(cmd.ClipRect);
+      const float x0 = cmd.ClipRect.x - off.x, y0 = cmd.ClipRect.y - off.y;
+      const float x1 = cmd.ClipRect.z - off.x, y1 = cmd.ClipRect.w - off.y;
+      const int sx = int(x0), sw = int(x1 - x0);
+      const int gl_y = int(float(fb_h) - y1), sh = int(y1 - y0);
+      const int top = fb_h - gl_y - sh, bottom = fb_h - gl_y;  // rows, y down
+      const int cx0 = std::max(sx, box.x), cx1 = std::min(sx + sw, box.z);
+      const int cy0 = std::max(top, box.y), cy1 = std::min(bottom, box.w);
+      cmd.ClipRect = cx1 > cx0 && cy1 > cy0 ? ImVec4(float(cx0) + off.x, float(cy0) + off.y,
+                                                     float(cx1) + off.x, float(cy1) + off.y)
+                                            : ImVec4(0.0f, 0.0f, 0.0f, 0.0f);
+    }
+  ImGui_ImplOpenGL3_RenderDrawData(data);
+  size_t i = 0;
+  for (int n = 0; n < data->CmdListsCount; ++n)
+    for (ImDrawCmd& cmd : data->CmdLists[n]->CmdBuffer) cmd.ClipRect = kept[i++];
+  return true;
 }
 
 int UiOverlay::missingGlyphs(const std::string& utf8_text) const {
@@ -406,6 +441,7 @@ namespace cb {
 
 void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& labels) {
   if (!ready_) return;
+  last_draw_ = false;
   ImGui::SetCurrentContext(context_);
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(float(width), float(height));

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "app/shell/command.h"
 #include "app/shell/command_table.h"
 #include "app/shell/kiosk/visitor_words.h"
@@ -77,6 +79,11 @@ class UiOverlay {
   // Draws the UI over the bound framebuffer of width × height and returns the commands of the
   // targets tapped since the last frame (a tap = press and release on the same target).
   std::vector<Command> draw(int width, int height, double dt_s, const UiOverlayState& state);
+  // Draws the last draw()'s UI again over the bound framebuffer, only within `box` (x0, y0, x1,
+  // y1; pixels, y down, half-open), each pixel as draw() drew it: the painter's late ink
+  // re-blits the ink under the UI and draws the UI over it again. False when there is no such
+  // draw to repeat (then nothing is drawn).
+  bool redraw(const glm::ivec4& box);
   // Draws only `labels` over the bound framebuffer (the one font of every screen).
   void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
@@ -113,6 +120,7 @@ class UiOverlay {
   PointerState pointer_{-1.0f, -1.0f, false};
   bool over_ui_ = false;
   bool status_fits_ = true;
+  bool last_draw_ = false;  // ImGui's draw data is draw()'s (redraw repeats it)
   float menu_button_[4] = {0, 0, 0, 0};
   struct Target {
     Command command;

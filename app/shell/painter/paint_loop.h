@@ -44,9 +44,13 @@ class Screen;
 // framebuffer bound and readable).
 struct PaintFrameInfo {
   long frame = 0;
-  bool painting_view = false;         // the cached still scene with the footprint overlay
-  bool in_stroke = false;             // a stroke is being painted
-  size_t texels_uploaded = 0;         // footprint texels uploaded for this frame
+  bool painting_view = false;  // the cached still scene with the footprint overlay
+  bool in_stroke = false;      // a stroke is being painted
+  size_t texels_uploaded = 0;  // footprint texels uploaded for this frame
+  // The ink was drawn again at the frame's end from samples latched then (late_ink): the box
+  // re-blitted, in pixels (x0, y0, x1, y1, y down; 0 when nothing new came).
+  bool late_ink = false;
+  int late_box[4] = {0, 0, 0, 0};
   bool first_lit_after_lift = false;  // first frame showing the volume after a stroke was mapped
   double pen_up_to_lit_ms = 0.0;      // for that frame: lift sample received -> this frame drawn
   // The same from the lift sample's own timestamp (the kernel's; a replayed pen's restamped
@@ -101,6 +105,13 @@ struct PaintLoopOptions {
   // resolution waits while a stroke is drawn (it is cast after the lift). False: the loop
   // before (the bench's baseline).
   bool ink_first = true;
+  // With ink_first: the ink drawn last. The frame (scene, ink, heads-up items, UI) is made
+  // first; then the samples that came meanwhile are latched and only the pixels their ink and
+  // the cursor changed are composited again, with the heads-up items and the UI drawn over them
+  // again there, so a sample waits for its own ink, not for a whole frame. The frame is the one
+  // the whole path would draw from the same samples. False: the ink latched once, before the
+  // composite.
+  bool late_ink = true;
   long max_frames = 0;                // stop after this many presented frames (0: until quit)
   double max_seconds = 0.0;           // stop after this long (0: until quit)
   bool print_stats = false;           // ray-sample statistics of the last full-resolution frame

@@ -723,6 +723,14 @@ glm::vec2 PaintScreen::lightBallOnScreen() const {
 }
 
 bool PaintScreen::drawOverlays(std::string* error) {
+  hud_items_ = hudItems();
+  if (hud_items_.empty()) return true;
+  if (!hud_.init(error)) return false;
+  hud_.draw(display_.framebuffer(), display_.width(), display_.height(), hud_items_);
+  return true;
+}
+
+std::vector<HudItem> PaintScreen::hudItems() const {
   const int w = display_.width(), h = display_.height();
   const bool in_range = (pen_ || replay_view_) && !orbiting_ && cursor_.visible && session_;
   const bool circles = show_circles_ && session_ && !session_->lastCircles().empty();
@@ -786,40 +794,24 @@ bool PaintScreen::drawOverlays(std::string* error) {
     appendCircleRings(session_->lastCircles(), session_->footprintWidth(),
                       session_->footprintHeight(), w, h, &items);
   if (show_stats_) appendStatsPanel(renderer_.lastStats(), w, h, &items);
-  if (items.empty()) return true;
-  if (!hud_.init(error)) return false;
-  hud_.draw(display_.framebuffer(), w, h, items);
-  return true;
+  return items;
 }
 
 bool PaintScreen::draw(FrameContext& frame, std::string* error) {
   PaintFrameInfo info;
   info.frame = frame.frame;
+  if (!drawPass(frame, &info, error)) return false;
+  if (lateInkApplies(frame, info) && !drawLateInk(frame, &info, error)) return false;
+  noteFrame(info);
+  last_info_ = info;
+  if (options_.on_frame) options_.on_frame(info);
+  return true;
+}
+
+bool PaintScreen::drawPass(FrameContext& frame, PaintFrameInfo* info, std::string* error) {
   if ((pen_ || replay_view_) && !orbiting_) {
     if (!paintingSetUp(error)) return false;
-    drawStill(frame, &info);
-    if (info.first_lit_after_lift && info.lift_sample_to_lit_ms > 0.0)
-      lift_sample_to_lit_ms_.push_back(info.lift_sample_to_lit_ms);
-    if (info.refined_after_lift && info.lift_sample_to_refined_ms > 0.0)
-      lift_sample_to_refined_ms_.push_back(info.lift_sample_to_refined_ms);
-    if (info.first_lit_after_lift) {
-      pen_up_to_lit_ms_.push_back(info.pen_up_to_lit_ms);
-      mapping_ms_.push_back(info.mapping_ms);
-      sync_ms_.push_back(info.sync_ms);
-      render_ms_.push_back(info.render_ms);
-      if (options_.print_stats)
-        std::printf(
-            "stroke %ld: pen-up -> lit frame %.1f ms (mapping %.1f, sync %.1f, render "
-            "%.1f, composite %.1f)\n",
-            strokes_seen_ - 1, info.pen_up_to_lit_ms, info.mapping_ms, info.sync_ms, info.render_ms,
-            info.composite_ms);
-    }
-    if (info.refined_after_lift) {
-      refined_ms_.push_back(info.pen_up_to_refined_ms);
-      if (options_.print_stats)
-        std::printf("stroke %ld: pen-up -> full-resolution lit frame %.1f ms\n", strokes_seen_ - 1,
-                    info.pen_up_to_refined_ms);
-    }
+    drawStill(frame, info);
   } else {
     const SyncStats sync = renderer_.sync(shownVolume(), shownLight());
     RenderOptions render_options = options_.render;
@@ -844,9 +836,33 @@ bool PaintScreen::draw(FrameContext& frame, std::string* error) {
   }
   if (!drawOverlays(error)) return false;
   drawUi(frame);
-  last_info_ = info;
-  if (options_.on_frame) options_.on_frame(info);
   return true;
+}
+
+void PaintScreen::noteFrame(const PaintFrameInfo& info) {
+  if (!info.painting_view) return;
+  if (info.first_lit_after_lift && info.lift_sample_to_lit_ms > 0.0)
+    lift_sample_to_lit_ms_.push_back(info.lift_sample_to_lit_ms);
+  if (info.refined_after_lift && info.lift_sample_to_refined_ms > 0.0)
+    lift_sample_to_refined_ms_.push_back(info.lift_sample_to_refined_ms);
+  if (info.first_lit_after_lift) {
+    pen_up_to_lit_ms_.push_back(info.pen_up_to_lit_ms);
+    mapping_ms_.push_back(info.mapping_ms);
+    sync_ms_.push_back(info.sync_ms);
+    render_ms_.push_back(info.render_ms);
+    if (options_.print_stats)
+      std::printf(
+          "stroke %ld: pen-up -> lit frame %.1f ms (mapping %.1f, sync %.1f, render "
+          "%.1f, composite %.1f)\n",
+          strokes_seen_ - 1, info.pen_up_to_lit_ms, info.mapping_ms, info.sync_ms, info.render_ms,
+          info.composite_ms);
+  }
+  if (info.refined_after_lift) {
+    refined_ms_.push_back(info.pen_up_to_refined_ms);
+    if (options_.print_stats)
+      std::printf("stroke %ld: pen-up -> full-resolution lit frame %.1f ms\n", strokes_seen_ - 1,
+                  info.pen_up_to_refined_ms);
+  }
 }
 
 void PaintScreen::presented(const FrameContext& frame, double frame_ms) {

@@ -191,6 +191,17 @@ class PaintScreen : public Screen {
   // A stroke is being drawn (ink_first): a refinement waits for its lift.
   bool inkLive() const;
   bool drawOverlays(std::string* error);
+  std::vector<HudItem> hudItems() const;
+  // One whole frame: the scene (cached or cast), the ink, the heads-up items, the UI.
+  bool drawPass(FrameContext& frame, PaintFrameInfo* info, std::string* error);
+  // Late ink (PaintLoopOptions::late_ink): after the frame is made, the samples that came
+  // meanwhile are latched and only the pixels they changed are drawn again (or, when they
+  // changed more than the ink — a lift, the view — the whole frame is drawn again).
+  bool lateInkApplies(const FrameContext& frame, const PaintFrameInfo& info) const;
+  bool drawLateInk(FrameContext& frame, PaintFrameInfo* info, std::string* error);
+  // The summary's per-frame figures and the print_stats lines of a drawn frame.
+  void noteFrame(const PaintFrameInfo& info);
+  std::vector<HudItem> hud_items_;  // the heads-up items the last drawOverlays drew
   // After a lift: whether re-rendering `region` at full resolution, at the cost per pixel the
   // last full-resolution frames took, still shows it within options_.lift_budget_ms of the lift.
   bool liftFitsFullResolution(const ScreenRegion& region) const;
