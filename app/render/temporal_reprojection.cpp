@@ -35,13 +35,20 @@ glm::ivec2 reprojectionPhase(int factor, long frame) {
 
 TemporalReprojection::~TemporalReprojection() {
   releaseTargets();
-  if (program_) glDeleteProgram(program_);
+  for (GLuint program : programs_)
+    if (program) glDeleteProgram(program);
+  if (motion_program_) glDeleteProgram(motion_program_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
 }
 
 bool TemporalReprojection::init(std::string* error) {
-  program_ = linkProgram({"fullscreen.vert.glsl"}, {"reproject.frag.glsl"}, error);
-  if (!program_) return false;
+  for (int mode = 0; mode < kModes; ++mode) {
+    programs_[mode] = linkProgram({"fullscreen.vert.glsl"}, {"reproject.frag.glsl"}, error,
+                                  "#define CB_REPROJECT_MODE " + std::to_string(mode) + "\n");
+    if (!programs_[mode]) return false;
+  }
+  motion_program_ = linkProgram({"fullscreen.vert.glsl"}, {"reproject_motion.frag.glsl"}, error);
+  if (!motion_program_) return false;
   glCreateVertexArrays(1, &vao_);
   return true;
 }
@@ -55,10 +62,11 @@ void TemporalReprojection::releaseTargets() {
   for (Frame& f : frames_) {
     if (f.fbo) glDeleteFramebuffers(1, &f.fbo);
     if (f.colour) glDeleteTextures(1, &f.colour);
-    if (f.depth) glDeleteTextures(1, &f.depth);
+    if (f.history) glDeleteTextures(1, &f.history);
     f = Frame{};
   }
   cast_.release();
+  motion_.release();
   width_ = height_ = factor_ = 0;
   history_valid_ = false;
 }
@@ -67,24 +75,28 @@ void TemporalReprojection::ensureTargets(int width, int height, int factor) {
   if (width == width_ && height == height_ && factor == factor_) return;
   releaseTargets();
   for (Frame& f : frames_) {
+    // The shown colour (blitted into the target) and the history: colour and depth packed in
+    // one RG32UI texel (shaders/reproject.frag.glsl), read texel for texel.
     glCreateTextures(GL_TEXTURE_2D, 1, &f.colour);
     glTextureStorage2D(f.colour, 1, GL_RGBA8, width, height);
-    glCreateTextures(GL_TEXTURE_2D, 1, &f.depth);
-    glTextureStorage2D(f.depth, 1, GL_R32F, width, height);
-    for (GLuint t : {f.colour, f.depth}) {
-      glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, t == f.colour ? GL_LINEAR : GL_NEAREST);
-      glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, t == f.colour ? GL_LINEAR : GL_NEAREST);
+    glCreateTextures(GL_TEXTURE_2D, 1, &f.history);
+    glTextureStorage2D(f.history, 1, GL_RG32UI, width, height);
+    for (GLuint t : {f.colour, f.history}) {
+      glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
       glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
     glCreateFramebuffers(1, &f.fbo);
     glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT0, f.colour, 0);
-    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.depth, 0);
+    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.history, 0);
     const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(f.fbo, 2, both);
   }
   std::string error;
   if (!cast_.create(width / factor, height / factor, RenderTarget::Format::kRgba8, &error))
+    std::fprintf(stderr, "cloudbrush: reprojection: %s\n", error.c_str());
+  if (!motion_.create(width / factor, height / factor, RenderTarget::Format::kRgba32F, &error))
     std::fprintf(stderr, "cloudbrush: reprojection: %s\n", error.c_str());
   width_ = width;
   height_ = height;
@@ -104,6 +116,36 @@ void TemporalReprojection::noteChanges(glm::ivec4 rect) {
   reject_ = glm::ivec4(lo, hi - lo);
 }
 
+void TemporalReprojection::renderMotion(const Camera& camera, const glm::mat4& view_proj,
+                                        GLuint cast_depth, glm::ivec2 phase) {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, motion_.fbo());
+  glViewport(0, 0, width_ / factor_, height_ / factor_);
+  glUseProgram(motion_program_);
+  auto loc = [&](const char* name) { return glGetUniformLocation(motion_program_, name); };
+  glUniform1i(loc("u_cast_depth"), 0);
+  glUniform1i(loc("u_factor"), factor_);
+  glUniform2i(loc("u_phase"), phase.x, phase.y);
+  glUniform2i(loc("u_cast_last"), width_ / factor_ - 1, height_ / factor_ - 1);
+  glUniform2f(loc("u_size"), float(width_), float(height_));
+  // Directions through the screen's corners on the far plane, minus the eye: linear in the
+  // screen position, so the shader interpolates them.
+  const glm::mat4 inv = glm::inverse(view_proj);
+  const auto corner = [&](float x, float y) {
+    const glm::vec4 h = inv * glm::vec4(x, y, 1.0f, 1.0f);
+    return glm::vec3(h) / h.w - camera.eye;
+  };
+  const glm::vec3 c00 = corner(-1, -1), c10 = corner(1, -1), c01 = corner(-1, 1);
+  glUniform3fv(loc("u_ray_origin"), 1, glm::value_ptr(c00));
+  glUniform3fv(loc("u_ray_dx"), 1, glm::value_ptr(c10 - c00));
+  glUniform3fv(loc("u_ray_dy"), 1, glm::value_ptr(c01 - c00));
+  glUniformMatrix4fv(loc("u_prev_view_proj"), 1, GL_FALSE, glm::value_ptr(prev_view_proj_));
+  glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
+  glUniform3fv(loc("u_prev_eye"), 1, glm::value_ptr(prev_eye_));
+  glUniform1f(loc("u_no_depth"), kNoDepth);
+  glBindTextureUnit(0, cast_depth);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera, int width,
                                   int height, GLuint target_fbo, const RenderOptions& options,
                                   int factor) {
@@ -115,7 +157,20 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   stats_.phase = phase;
   // The cast: pixel i of the 1/f image is full pixel f·i + phase, whose centre lies
   // (phase + ½)/f − ½ of a cast pixel from the cast pixel's centre.
+  const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
+  const bool camera_moved = view_proj != prev_view_proj_ || camera.eye != prev_eye_;
+  const bool still = history_valid_ && !camera_moved;
   RenderOptions cast = options;
+  // While the camera moves, the ray steps as the half-resolution moving frame's does
+  // (rayStepVoxels at scale ½: twice the step, at most kMaxMovingStepVoxels; opacity per step
+  // follows the step, so the cloud keeps its density): half the samples. At rest the cast is
+  // the full frame's own step, so the frames converge to the full cast.
+  if (camera_moved) {
+    RenderOptions moving = options;
+    moving.scale = 0.5f;
+    moving.moving = true;
+    cast.step_voxels = rayStepVoxels(moving);
+  }
   cast.scale = 1.0f;
   cast.region = glm::ivec4(0);
   cast.jitter = (glm::vec2(phase) + 0.5f) / float(factor) - 0.5f;
@@ -135,52 +190,38 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   auto stage_start = t0;
   stage(&stats_.cast_ms, &stage_start);
 
-  const glm::mat4 view_proj = camera.projection(float(width) / float(height)) * camera.view();
-  const bool still = history_valid_ && view_proj == prev_view_proj_ && camera.eye == prev_eye_;
-  const int previous = current_;
-  current_ = 1 - current_;
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frames_[current_].fbo);
-  glViewport(0, 0, width, height);
+  const GLuint cast_depth = renderer.frameDepthTexture();
+  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the gathers at edges
+  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glDisable(GL_BLEND);
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_DEPTH_TEST);
-  glUseProgram(program_);
-  auto loc = [&](const char* name) { return glGetUniformLocation(program_, name); };
+  glBindVertexArray(vao_);
+  const int mode = !history_valid_ ? kFresh : still ? kAtRest : kMoving;
+  if (mode == kMoving) renderMotion(camera, view_proj, cast_depth, phase);
+  const int previous = current_;
+  current_ = 1 - current_;
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frames_[current_].fbo);
+  glViewport(0, 0, width, height);
+  const GLuint program = programs_[mode];
+  glUseProgram(program);
+  auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
   glUniform1i(loc("u_cast"), 0);
   glUniform1i(loc("u_cast_depth"), 1);
   glUniform1i(loc("u_history"), 2);
-  glUniform1i(loc("u_history_depth"), 3);
+  glUniform1i(loc("u_motion"), 3);
   glUniform1i(loc("u_factor"), factor);
   glUniform2i(loc("u_phase"), phase.x, phase.y);
+  glUniform2i(loc("u_cast_last"), width / factor - 1, height / factor - 1);
   glUniform2f(loc("u_size"), float(width), float(height));
-  // Directions through the screen's corners on the far plane, minus the eye: linear in the
-  // screen position, so the shader interpolates them.
-  const glm::mat4 inv = glm::inverse(view_proj);
-  const auto corner = [&](float x, float y) {
-    const glm::vec4 h = inv * glm::vec4(x, y, 1.0f, 1.0f);
-    return glm::vec3(h) / h.w - camera.eye;
-  };
-  const glm::vec3 c00 = corner(-1, -1), c10 = corner(1, -1), c01 = corner(-1, 1);
-  glUniform3fv(loc("u_ray_origin"), 1, glm::value_ptr(c00));
-  glUniform3fv(loc("u_ray_dx"), 1, glm::value_ptr(c10 - c00));
-  glUniform3fv(loc("u_ray_dy"), 1, glm::value_ptr(c01 - c00));
-  glUniformMatrix4fv(loc("u_prev_view_proj"), 1, GL_FALSE, glm::value_ptr(prev_view_proj_));
-  glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
-  glUniform3fv(loc("u_prev_eye"), 1, glm::value_ptr(prev_eye_));
-  glUniform1i(loc("u_history_valid"), history_valid_ ? 1 : 0);
-  glUniform1i(loc("u_static"), still ? 1 : 0);
   glUniform4i(loc("u_reject"), reject_.x, reject_.y, reject_.z, reject_.w);
   glUniform1f(loc("u_depth_tolerance"), kDepthTolerance);
   glUniform1f(loc("u_no_depth"), kNoDepth);
   glBindTextureUnit(0, cast_.texture());
-  const GLuint cast_depth = renderer.frameDepthTexture();
-  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the gather at edges
-  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTextureUnit(1, cast_depth);
-  glBindTextureUnit(2, frames_[previous].colour);
-  glBindTextureUnit(3, frames_[previous].depth);
-  glBindVertexArray(vao_);
+  glBindTextureUnit(2, frames_[previous].history);
+  glBindTextureUnit(3, motion_.texture());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   stats_.history_used = history_valid_;
   stage(&stats_.reproject_ms, &stage_start);

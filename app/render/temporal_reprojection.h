@@ -6,7 +6,8 @@
 // (RenderOptions::jitter), with each ray's transmittance-weighted depth (write_depth), and
 // reprojects the rest from the previous full frame through the camera's motion
 // (shaders/reproject.frag.glsl: history rejected on disocclusion, off-screen, in a changed
-// region, clamped to the fresh pixels' range while moving).
+// region and at a cloud's soft edge against the sky, clamped to the fresh pixels' range while
+// moving). While the camera moves the cast steps as the half-resolution moving frame does.
 //
 //   TemporalReprojection tr;
 //   tr.init(&error);
@@ -14,8 +15,9 @@
 //   tr.noteChanges(region) / tr.invalidate();   // volume region changed / light or style changed
 //   tr.render(renderer, camera, w, h, fbo, options);  // every frame while moving
 //
-// At rest the same camera's frames converge: after f² of them every pixel is its own cast
-// (equal to a full cast up to the float rounding of a jittered ray; temporal_reprojection_test).
+// At rest the same camera's frames converge: f² of them after the frame that moved onto it,
+// every pixel is its own cast at the full frame's step, equal to a full cast bit for bit
+// (temporal_reprojection_test).
 #pragma once
 
 #include <string>
@@ -72,20 +74,30 @@ class TemporalReprojection {
   // Forgets the history (the light, the style or the volume changed everywhere).
   void invalidate() { history_valid_ = false; }
   ReprojectionStats lastStats() const { return stats_; }
-  // The frame just rendered (RGBA8, width×height) and its depths.
+  // The frame just rendered (RGBA8, width×height).
   GLuint frameTexture() const { return frames_[current_].colour; }
 
  private:
   struct Frame {
-    GLuint fbo = 0, colour = 0, depth = 0;
+    GLuint fbo = 0, colour = 0, history = 0;
   };
   void ensureTargets(int width, int height, int factor);
   void releaseTargets();
 
-  GLuint program_ = 0, vao_ = 0;
+  // The moving case's motion of each cast quad (shaders/reproject_motion.frag.glsl) into
+  // motion_, from the previous frame's camera.
+  void renderMotion(const Camera& camera, const glm::mat4& view_proj, GLuint cast_depth,
+                    glm::ivec2 phase);
+
+  // shaders/reproject.frag.glsl once per case (CB_REPROJECT_MODE): no history, at rest, moving.
+  enum Mode { kFresh = 0, kAtRest = 1, kMoving = 2, kModes = 3 };
+  GLuint programs_[kModes] = {0, 0, 0};
+  GLuint motion_program_ = 0;
+  GLuint vao_ = 0;
   Frame frames_[2];  // the previous full frame and the one being made (ping-pong)
   int current_ = 0;
-  RenderTarget cast_;  // the 1/f-size cast image
+  RenderTarget cast_;    // the 1/f-size cast image
+  RenderTarget motion_;  // its quads' motion (RGBA32F, the cast's size)
   int width_ = 0, height_ = 0, factor_ = 0;
   long frame_ = 0;
   bool history_valid_ = false;

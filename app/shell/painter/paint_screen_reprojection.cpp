@@ -71,8 +71,10 @@ void PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
     else
       reprojection_->noteChanges(changed.rect);
   }
-  // The cast pixels are the frame at rest's own (the same step and program): once the view
-  // stops, the painter's full cast shows no jump.
+  // At full resolution and the frame at rest's program (the reprojection casts at the moving
+  // step while the camera moves, at this step while it rests): once the view stops, the
+  // painter's full cast differs from the last moving frame only by that step, as the
+  // half-resolution moving frame does.
   options.scale = 1.0f;
   options.moving = false;
   reprojection_->render(renderer_, camera, width, height, display_.framebuffer(), options, factor);
