@@ -111,6 +111,8 @@ bool UiOverlay::init(std::string* error) {
     *error = std::string("UI font ") + kFontPath + " could not be loaded";
     return false;
   }
+  // Built now (not at the first frame) so labelRect measures before anything is drawn.
+  io.Fonts->Build();
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 10.0f;
@@ -403,6 +405,18 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
 }  // namespace cb
 
 namespace cb {
+
+void UiOverlay::labelRect(const UiLabel& label, float rect[4]) const {
+  rect[0] = rect[2] = label.x, rect[1] = rect[3] = label.y;
+  if (!ready_) return;
+  ImGui::SetCurrentContext(context_);
+  const float wrap = label.centred ? 0.0f : label.wrap_width;
+  const ImVec2 size =
+      ImGui::GetIO().Fonts->Fonts[0]->CalcTextSizeA(label.size_px, 1e9f, wrap, label.text.c_str());
+  rect[0] = label.centred ? label.x - 0.5f * size.x : label.x;
+  rect[2] = rect[0] + size.x;
+  rect[3] = label.y + size.y;
+}
 
 void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& labels) {
   if (!ready_) return;

@@ -79,6 +79,9 @@ class UiOverlay {
   std::vector<Command> draw(int width, int height, double dt_s, const UiOverlayState& state);
   // Draws only `labels` over the bound framebuffer (the one font of every screen).
   void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
+  // The box drawLabels gives `label` (x0, y0, x1, y1 in framebuffer pixels: centred, wrapped,
+  // one line height per line), after init(); layouts measure their texts with it.
+  void labelRect(const UiLabel& label, float rect[4]) const;
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
   bool pointerOverUi() const { return over_ui_; }
   // Whether the last frame's status line fitted before the menu button (not clipped).
