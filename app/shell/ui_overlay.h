@@ -47,6 +47,7 @@ struct UiOverlayState {
   bool animation = false;  // a morph or wind is shown (apply and leave are enabled)
   std::string toast;       // a transient answer under the status line (a save, a refused key)
   std::vector<std::string> hint;  // the first screen's lines, low in the middle, or none
+  float message_width = 0.0f;     // toast and hint centred in [0, message_width] (0: the width)
   std::vector<HelpSection> help;  // the help overlay (H or ?), or none
   std::vector<UiLabel> labels;    // words over the heads-up items (the statistics panel's)
   // A kiosk visitor's screen in the kiosk's words (visitor_words.h): the menu button's (closed,
@@ -90,6 +91,8 @@ class UiOverlay {
   int missingGlyphs(const std::string& utf8_text) const;
   // The screen rectangle of the menu button, for tests (x0, y0, x1, y1).
   const float* menuButtonRect() const { return menu_button_; }
+  // The last frame's toast box (x0, y0, x1, y1; zero size: none), for tests.
+  const float* toastRect() const { return toast_rect_; }
   // The rectangle of a command's target in the open menu, for tests; false when not shown.
   bool targetRect(Command command, float rect[4]) const;
   // Told every text any overlay draws (status, notice, answer, hint, targets, help, labels), as
@@ -117,6 +120,7 @@ class UiOverlay {
   bool over_ui_ = false;
   bool status_fits_ = true;
   float menu_button_[4] = {0, 0, 0, 0};
+  float toast_rect_[4] = {0, 0, 0, 0};
   struct Target {
     Command command;
     float rect[4];

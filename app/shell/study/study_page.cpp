@@ -31,6 +31,12 @@ const Bilingual kDoneText{"I'm done", "我画完了"};
 const Bilingual kDoneAskText{"Finish this task now?", "现在结束这个任务吗？"};
 const Bilingual kDoneYesText{"Yes, I'm done", "是的，画完了"};
 const Bilingual kKeepPaintingText{"Keep painting", "继续画"};
+// A painting stage that ended (time up, "I'm done", the operator) and waits for the stroke under
+// the pen to end before it saves: in place of "I'm done".
+const Bilingual kTimeUpText{"Time is up. Lift the pen: your cloud is being saved.",
+                            "时间到了。请抬起笔：您的云正在保存。"};
+const Bilingual kFinishingText{"This task is ending. Lift the pen: your cloud is being saved.",
+                               "这个任务即将结束。请抬起笔：您的云正在保存。"};
 
 class PageBuilder {
  public:
@@ -426,7 +432,7 @@ struct PanelLayout {
 
 PanelLayout panelLayout(const PageBuilder& b) {
   PanelLayout l;
-  l.x0 = 0.72f * b.w(), l.pad = 0.012f * b.w();
+  l.x0 = kStudyPanelLeft * b.w(), l.pad = 0.012f * b.w();
   l.wrap = b.w() - l.x0 - 2 * l.pad;
   // Big, but within the column at any width ("0:00" digits are as wide as any).
   l.countdown_size = b.fit("Time left 00:00", 1.5f * b.title(), 0.0f, 1.5f * b.title(), l.wrap);
@@ -464,7 +470,18 @@ float doneTargets(PageBuilder& b, const PanelLayout& l, bool asked) {
 void taskPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input,
                const PanelLayout& l, float y) {
   const StudyTask* task = state.task();
-  const float x = l.x0 + l.pad, bottom = doneTargets(b, l, input.done_asked) - l.pad;
+  const float x = l.x0 + l.pad;
+  float bottom;
+  if (state.closing()) {
+    // No "I'm done" once the task has ended: what happens now, where it stood.
+    const std::string ended =
+        (state.closingWhy() == "time up" ? kTimeUpText : kFinishingText).twoLines();
+    const float top = l.countdown_top - 0.02f * b.h() - 0.085f * b.h() - 2.7f * b.small();
+    b.block(x, top, ended, b.body(), l.wrap, l.countdown_top - 0.02f * b.h(), kStudyHintColour);
+    bottom = top - l.pad;
+  } else {
+    bottom = doneTargets(b, l, input.done_asked) - l.pad;
+  }
   y = b.block(x, y,
               "Task " + std::to_string(state.position().order + 1) + " of " +
                   std::to_string(state.taskCount()) + ": " + task->title,
@@ -534,8 +551,9 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
   }
   if (left >= 0) {
     char text[64];
-    std::snprintf(text, sizeof text, "Time left %d:%02d", int(left) / 60, int(left) % 60);
-    b.text(x, l.countdown_top, text, l.countdown_size, left < 60 ? 0xff8060ffu : kStudyTextColour);
+    std::snprintf(text, sizeof text, "Time left %s", countdownText(left).c_str());
+    b.text(x, l.countdown_top, text, l.countdown_size,
+           left <= 59.0 ? 0xff8060ffu : kStudyTextColour);  // red from 0:59
   }
 }
 
@@ -623,8 +641,9 @@ void studyTextEstimate(const UiLabel& label, float rect[4]) {
 
 std::string studyPageText(const StudyProtocol& p) {
   std::string text;
-  for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
-                             kDoneAskText, kDoneYesText, kKeepPaintingText})
+  for (const Bilingual& b :
+       {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText, kDoneAskText,
+        kDoneYesText, kKeepPaintingText, kTimeUpText, kFinishingText})
     text += b.zh;
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;

@@ -109,6 +109,9 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
 // font atlas holds their characters).
 std::string studyPageText(const StudyProtocol& protocol);
 
+// Where the panel beside the painter begins (a fraction of the width; the canvas is left of it).
+inline constexpr float kStudyPanelLeft = 0.72f;
+
 // The colours of the page's boxes and targets (RGBA, straight alpha).
 inline constexpr uint32_t kStudyTextColour = 0xf2f2f2ffu;
 inline constexpr uint32_t kStudyHintColour = 0xffd970ffu;

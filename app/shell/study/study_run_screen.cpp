@@ -26,6 +26,8 @@ PaintLoopOptions paintOptionsFor(PaintLoopOptions options, const std::string& fo
   // The painter's Save writes into the session folder (withdrawn and exported with it), never
   // into the state dir, where no withdrawal of this participant would find it.
   options.save_dir = folder + "/saved";
+  // A save's answer and the first screen's hint in the canvas, clear of the runner's panel.
+  options.message_area = kStudyPanelLeft;
   options.visitor_mode = false;
   options.max_frames = 0;
   options.max_seconds = 0.0;

@@ -2,9 +2,9 @@
 // 1024x768, with and without the operator's red band, measured with the real font (Noto Sans CJK
 // through the runner's own UiOverlay): consent, participant code, introduction, each tutorial
 // step, free drawing, a task (with a wide and a tall picture, "I'm done" and its question, the
-// last minute), each demographic field (a refused answer shown), each questionnaire item, each
-// free-text question, the end (thanks, declined, stopped), the operator's chooser and the pause
-// veil. On each page:
+// last minute, time up), each demographic field (a refused answer shown), each questionnaire item,
+// each free-text question, the end (thanks, declined, stopped), the operator's chooser and the
+// pause veil. On each page:
 // - every word and target lies on the screen;
 // - no two words overlap, no two targets overlap, a target's words lie inside it and no other
 //   words touch a target;
@@ -228,8 +228,10 @@ TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
     input.done_asked = false;
     at(kSecond * int64_t(state.stageLimitSeconds() - 30));
     check(state, input, "task_" + n + "_last_minute");
+    state.tick(at(31 * kSecond));  // time up: the page waits for the pen to lift
+    EXPECT_TRUE(state.closing());
+    check(state, input, "task_" + n + "_time_up");
     input.image_aspect = 0;
-    state.finishTask(at(kSecond));
     if (state.closing()) state.closeStage(at(kSecond));
   }
 
