@@ -90,8 +90,8 @@ UiOverlay::~UiOverlay() {
   ImGui::DestroyContext(context_);
 }
 
-bool UiOverlay::init(std::string* error) {
-  if (ready_) return true;
+bool UiOverlay::initFont(std::string* error) {
+  if (context_) return true;
   context_ = ImGui::CreateContext();
   ImGui::SetCurrentContext(context_);
   ImGuiIO& io = ImGui::GetIO();
@@ -117,6 +117,13 @@ bool UiOverlay::init(std::string* error) {
   }
   // Built now (not at the first frame) so labelRect measures before anything is drawn.
   io.Fonts->Build();
+  return true;
+}
+
+bool UiOverlay::init(std::string* error) {
+  if (ready_) return true;
+  if (!initFont(error)) return false;
+  ImGui::SetCurrentContext(context_);
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 10.0f;
@@ -414,7 +421,7 @@ namespace cb {
 
 void UiOverlay::labelRect(const UiLabel& label, float rect[4]) const {
   rect[0] = rect[2] = label.x, rect[1] = rect[3] = label.y;
-  if (!ready_) return;
+  if (!context_) return;
   ImGui::SetCurrentContext(context_);
   const float wrap = label.centred ? 0.0f : label.wrap_width;
   const ImVec2 size =

@@ -73,6 +73,8 @@ class UiOverlay {
   void addGlyphs(const std::string& utf8_text) { extra_glyphs_ += utf8_text; }
   // Creates the ImGui context, font atlas and GL objects (the GL context must be current).
   bool init(std::string* error);
+  // Only the context and the font atlas (no GL): enough for labelRect, without a display.
+  bool initFont(std::string* error);
   // The pointer (pen tip or mouse) in framebuffer pixels, y down.
   void pointer(float x, float y, bool down);
   // Draws the UI over the bound framebuffer of width × height and returns the commands of the
@@ -81,7 +83,7 @@ class UiOverlay {
   // Draws only `labels` over the bound framebuffer (the one font of every screen).
   void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
   // The box drawLabels gives `label` (x0, y0, x1, y1 in framebuffer pixels: centred, wrapped,
-  // one line height per line), after init(); layouts measure their texts with it.
+  // one line height per line), after init() or initFont(); layouts measure their texts with it.
   void labelRect(const UiLabel& label, float rect[4]) const;
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
   bool pointerOverUi() const { return over_ui_; }

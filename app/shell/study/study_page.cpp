@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <memory>
 
 #include "app/shell/command_table.h"
 
@@ -598,6 +599,13 @@ void pausedVeil(PageBuilder& b, const StudyRunState& state) {
 }
 
 }  // namespace
+
+StudyTextMeasure studyPageFont(const StudyProtocol& protocol, std::string* error) {
+  auto font = std::make_shared<UiOverlay>();
+  font->addGlyphs(studyPageText(protocol));
+  if (!font->initFont(error)) return nullptr;
+  return [font](const UiLabel& label, float rect[4]) { font->labelRect(label, rect); };
+}
 
 void studyTextEstimate(const UiLabel& label, float rect[4]) {
   // Greedy word wrap over code points: Latin ~0.56 em, CJK 1 em (a line breaks after any CJK

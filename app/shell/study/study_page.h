@@ -73,6 +73,10 @@ struct StudyPage {
 // The box a label takes when drawn (x0, y0, x1, y1): the runner measures with its font
 // (UiOverlay::labelRect); without one, studyTextEstimate.
 using StudyTextMeasure = std::function<void(const UiLabel&, float rect[4])>;
+// The runner's own measure (its font and glyphs for `protocol`) without a display, for laying
+// out pages as the runner shows them (a recorded pen's taps); null with *error when the font is
+// missing.
+StudyTextMeasure studyPageFont(const StudyProtocol& protocol, std::string* error);
 // A generous estimate of a label's box without a font (Latin ~0.56 em, CJK 1 em, lines of 1 em).
 void studyTextEstimate(const UiLabel& label, float rect[4]);
 
