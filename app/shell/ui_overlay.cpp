@@ -56,9 +56,10 @@ std::string shippedText() {
   return commandTableText() + painterMessagesText() + "重新开始关闭";
 }
 
-// A box of lines centred at (x, y_top), drawn on the foreground (no window, no input).
+// A box of lines centred at (x, y_top), drawn on the foreground (no window, no input); its
+// rectangle goes to *rect when given.
 void drawTextBox(ImDrawList* draw, float x, float y, const std::vector<std::string>& lines,
-                 float size_px, ImU32 colour, ImU32 background) {
+                 float size_px, ImU32 colour, ImU32 background, float* rect = nullptr) {
   ImFont* font = ImGui::GetFont();
   float w = 0.0f;
   for (const std::string& l : lines)
@@ -67,6 +68,9 @@ void drawTextBox(ImDrawList* draw, float x, float y, const std::vector<std::stri
   const float h = line_h * float(lines.size());
   draw->AddRectFilled(ImVec2(x - 0.5f * w - pad, y - pad), ImVec2(x + 0.5f * w + pad, y + h + pad),
                       background, 0.4f * size_px);
+  if (rect)
+    rect[0] = x - 0.5f * w - pad, rect[1] = y - pad, rect[2] = x + 0.5f * w + pad,
+    rect[3] = y + h + pad;
   for (size_t i = 0; i < lines.size(); ++i) {
     observe(lines[i]);
     const float lw = font->CalcTextSizeA(size_px, 1e9f, 0.0f, lines[i].c_str()).x;
@@ -86,8 +90,8 @@ UiOverlay::~UiOverlay() {
   ImGui::DestroyContext(context_);
 }
 
-bool UiOverlay::init(std::string* error) {
-  if (ready_) return true;
+bool UiOverlay::initFont(std::string* error) {
+  if (context_) return true;
   context_ = ImGui::CreateContext();
   ImGui::SetCurrentContext(context_);
   ImGuiIO& io = ImGui::GetIO();
@@ -111,6 +115,15 @@ bool UiOverlay::init(std::string* error) {
     *error = std::string("UI font ") + kFontPath + " could not be loaded";
     return false;
   }
+  // Built now (not at the first frame) so labelRect measures before anything is drawn.
+  io.Fonts->Build();
+  return true;
+}
+
+bool UiOverlay::init(std::string* error) {
+  if (ready_) return true;
+  if (!initFont(error)) return false;
+  ImGui::SetCurrentContext(context_);
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 10.0f;
@@ -388,12 +401,14 @@ void UiOverlay::drawMessages(int width, int height, float bar_h, const UiOverlay
   // open menu, which fills the middle, so neither hides the other.
   const float toast_y = state.menu_open ? float(height) - 2.2f * size
                                         : bar_h + (state.notice.empty() ? 1.0f : 3.2f) * size;
+  const float centre = 0.5f * (state.message_width > 0.0f ? state.message_width : float(width));
+  std::fill(toast_rect_, toast_rect_ + 4, 0.0f);
   if (!state.toast.empty())
-    drawTextBox(draw, 0.5f * float(width), toast_y, {state.toast}, size,
-                IM_COL32(255, 255, 255, 255), IM_COL32(20, 40, 70, 215));
+    drawTextBox(draw, centre, toast_y, {state.toast}, size, IM_COL32(255, 255, 255, 255),
+                IM_COL32(20, 40, 70, 215), toast_rect_);
   // The first screen's hint: low in the middle, where the eye goes after the cloud.
   if (!state.hint.empty() && !state.menu_open)
-    drawTextBox(draw, 0.5f * float(width),
+    drawTextBox(draw, centre,
                 float(height) - (1.25f * float(state.hint.size()) + 2.5f) * size * 1.2f, state.hint,
                 1.2f * size, IM_COL32(255, 255, 255, 255), IM_COL32(0, 0, 0, 170));
 }
@@ -438,6 +453,18 @@ void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& 
 }  // namespace cb
 
 namespace cb {
+
+void UiOverlay::labelRect(const UiLabel& label, float rect[4]) const {
+  rect[0] = rect[2] = label.x, rect[1] = rect[3] = label.y;
+  if (!context_) return;
+  ImGui::SetCurrentContext(context_);
+  const float wrap = label.centred ? 0.0f : label.wrap_width;
+  const ImVec2 size =
+      ImGui::GetIO().Fonts->Fonts[0]->CalcTextSizeA(label.size_px, 1e9f, wrap, label.text.c_str());
+  rect[0] = label.centred ? label.x - 0.5f * size.x : label.x;
+  rect[2] = rect[0] + size.x;
+  rect[3] = label.y + size.y;
+}
 
 void UiOverlay::drawLabels(int width, int height, const std::vector<UiLabel>& labels) {
   if (!ready_) return;

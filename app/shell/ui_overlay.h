@@ -49,6 +49,7 @@ struct UiOverlayState {
   bool animation = false;  // a morph or wind is shown (apply and leave are enabled)
   std::string toast;       // a transient answer under the status line (a save, a refused key)
   std::vector<std::string> hint;  // the first screen's lines, low in the middle, or none
+  float message_width = 0.0f;     // toast and hint centred in [0, message_width] (0: the width)
   std::vector<HelpSection> help;  // the help overlay (H or ?), or none
   std::vector<UiLabel> labels;    // words over the heads-up items (the statistics panel's)
   // A kiosk visitor's screen in the kiosk's words (visitor_words.h): the menu button's (closed,
@@ -74,6 +75,8 @@ class UiOverlay {
   void addGlyphs(const std::string& utf8_text) { extra_glyphs_ += utf8_text; }
   // Creates the ImGui context, font atlas and GL objects (the GL context must be current).
   bool init(std::string* error);
+  // Only the context and the font atlas (no GL): enough for labelRect, without a display.
+  bool initFont(std::string* error);
   // The pointer (pen tip or mouse) in framebuffer pixels, y down.
   void pointer(float x, float y, bool down);
   // Draws the UI over the bound framebuffer of width × height and returns the commands of the
@@ -86,6 +89,9 @@ class UiOverlay {
   bool redraw(const glm::ivec4& box);
   // Draws only `labels` over the bound framebuffer (the one font of every screen).
   void drawLabels(int width, int height, const std::vector<UiLabel>& labels);
+  // The box drawLabels gives `label` (x0, y0, x1, y1 in framebuffer pixels: centred, wrapped,
+  // one line height per line), after init() or initFont(); layouts measure their texts with it.
+  void labelRect(const UiLabel& label, float rect[4]) const;
   // Whether the pointer is over a UI target (the painter then keeps the pen off the canvas).
   bool pointerOverUi() const { return over_ui_; }
   // Whether the last frame's status line fitted before the menu button (not clipped).
@@ -94,6 +100,8 @@ class UiOverlay {
   int missingGlyphs(const std::string& utf8_text) const;
   // The screen rectangle of the menu button, for tests (x0, y0, x1, y1).
   const float* menuButtonRect() const { return menu_button_; }
+  // The last frame's toast box (x0, y0, x1, y1; zero size: none), for tests.
+  const float* toastRect() const { return toast_rect_; }
   // The rectangle of a command's target in the open menu, for tests; false when not shown.
   bool targetRect(Command command, float rect[4]) const;
   // Told every text any overlay draws (status, notice, answer, hint, targets, help, labels), as
@@ -122,6 +130,7 @@ class UiOverlay {
   bool status_fits_ = true;
   bool last_draw_ = false;  // ImGui's draw data is draw()'s (redraw repeats it)
   float menu_button_[4] = {0, 0, 0, 0};
+  float toast_rect_[4] = {0, 0, 0, 0};
   struct Target {
     Command command;
     float rect[4];

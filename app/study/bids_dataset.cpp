@@ -1,8 +1,11 @@
 #include "app/study/bids_dataset.h"
 
+#include <algorithm>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <system_error>
 
 #include "app/core/atomic_file.h"
@@ -127,6 +130,29 @@ bool BidsDatasetWriter::write(const std::string& relative, const std::string& co
   return true;
 }
 
+bool BidsDatasetWriter::copySaved(const SessionTrace& trace, const std::string& to,
+                                  std::string* error) {
+  // The clouds the participant saved with the painter's Save, in the session folder's saved/
+  // beside the journal; byte for byte, in name order.
+  const std::filesystem::path saved = std::filesystem::path(trace.path).parent_path() / "saved";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(saved, ec)) return true;
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(saved, ec))
+    if (entry.is_regular_file() && entry.path().filename().string().rfind(".", 0) != 0)
+      files.push_back(entry.path());
+  if (ec) return *error = saved.string() + ": cannot list the folder: " + ec.message(), false;
+  std::sort(files.begin(), files.end());
+  for (const std::filesystem::path& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in) return *error = file.string() + ": cannot be read", false;
+    if (!write(to + file.filename().string(), bytes.str(), error)) return false;
+  }
+  return true;
+}
+
 bool BidsDatasetWriter::addSession(const SessionTrace& trace, std::string* error) {
   const SessionFacts facts = sessionFacts(trace);
   const std::string subject = bidsLabel(trace.participant.empty() ? trace.id : trace.participant);
@@ -157,7 +183,8 @@ bool BidsDatasetWriter::addSession(const SessionTrace& trace, std::string* error
   if (!write(folder + "beh/" + base + "_beh.tsv", bidsBehTsv(trace), error) ||
       !write(folder + "beh/" + base + "_beh.json", bidsBehJson(), error) ||
       !write(folder + "beh/" + base + "_events.tsv", events, error) ||
-      !write(folder + "beh/" + base + "_events.json", events_json, error))
+      !write(folder + "beh/" + base + "_events.json", events_json, error) ||
+      !copySaved(trace, "sourcedata/" + folder + "saved/", error))
     return false;
   if (trace.samples.size() < 2) return true;  // no pen trace to speak of
   const std::string motion = folder + "motion/" + base;

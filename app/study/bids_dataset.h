@@ -13,6 +13,9 @@
 //   sub-S/ses-T/motion/...task-cloudpainting_tracksys-tablet_motion.tsv, _channels.tsv,
 //                                 _motion.json (bids_motion.h), and the events again (events
 //                                 belong with the recording they time, in its own folder)
+//   sourcedata/sub-S/ses-T/saved/  the clouds the participant saved in the session (the session
+//                                 folder's saved/, byte for byte; sourcedata/ is BIDS's place for
+//                                 files in their own formats)
 //
 // S is the participant's code with everything but ASCII letters and digits removed (P01 → P01;
 // a journal without one: its session id), T the participant's session number, 1, 2, ... in the
@@ -57,6 +60,8 @@ class BidsDatasetWriter {
   bool write(const std::string& relative, const std::string& content, std::string* error);
   bool writeParticipants(std::string* error);
   bool writeSessions(const std::string& subject, const Subject& s, std::string* error);
+  // The session folder's saved/ (the painter's Save in a study) into `to` (relative).
+  bool copySaved(const SessionTrace& trace, const std::string& to, std::string* error);
 
   std::string dir_;
   const StudyProtocol* protocol_ = nullptr;

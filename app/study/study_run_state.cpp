@@ -433,6 +433,13 @@ void StudyRunState::chooseReason(int index, int64_t t_ns) {
   }
 }
 
+std::string countdownText(double seconds_left) {
+  const int s = int(std::ceil(std::max(0.0, seconds_left) - 1e-9));  // 1 ns of float slack
+  char text[32];
+  std::snprintf(text, sizeof text, "%d:%02d", s / 60, s % 60);
+  return text;
+}
+
 std::string StudyRunState::waitingFor(int64_t t_ns) const {
   if (choosing_)
     return std::string("Operator: choose why to ") + operatorActionName(*choosing_) +
@@ -461,8 +468,8 @@ std::string StudyRunState::waitingFor(int64_t t_ns) const {
       char text[160];
       const char* done = stage() == StudyStageKind::kTask ? " Tap \"I'm done\" when finished." : "";
       if (left >= 0)
-        std::snprintf(text, sizeof text, "Paint with the pen. Time left %d:%02d.%s", int(left) / 60,
-                      int(left) % 60, done);
+        std::snprintf(text, sizeof text, "Paint with the pen. Time left %s.%s",
+                      countdownText(left).c_str(), done);
       else
         std::snprintf(text, sizeof text, "Paint with the pen.%s", done);
       return text;

@@ -49,7 +49,10 @@ enum class StudyStageKind {
   kFreeText,
   kDone
 };
-const char* studyStageName(StudyStageKind kind);  // "consent", "participant", ...
+const char* studyStageName(StudyStageKind kind);
+// A countdown's "M:SS" for `seconds_left`, whole seconds rounded up: a ten-minute task starts
+// at 10:00 and shows 0:00 only when its time is up.
+std::string countdownText(double seconds_left);  // "consent", "participant", ...
 // Stages where the participant paints (the painter's screen is shown).
 bool isPaintingStage(StudyStageKind kind);
 

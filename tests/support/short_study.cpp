@@ -110,7 +110,12 @@ void recordShortStudyPen(const StudyProtocol& protocol, const std::string& path)
   const PenDeviceInfo tablet = syntheticTablet(kW, kH);
   PenScript pen(tablet);
   StudyRunState layout(protocol, 1, 0);
-  const auto page = [&] { return buildStudyPage(layout, StudyPageInput{}, kW, kH); };
+  // Laid out as the runner lays them out: texts measured with its font and glyphs.
+  StudyPageInput input;
+  std::string error;
+  input.measure = studyPageFont(protocol, &error);
+  ASSERT_TRUE(input.measure) << error;
+  const auto page = [&] { return buildStudyPage(layout, input, kW, kH); };
   const auto at = [](double seconds) { return kT0 + int64_t(seconds * 1e9); };
   pen.tap(page().find(StudyTargetAction::kAgree), at(1.0));
   layout.agree(0);

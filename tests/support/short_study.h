@@ -1,8 +1,8 @@
 // A short study session for the tests of `cloudbrush study run` and of its replay: a protocol
 // (consent, the participant's code, an introduction, a one-step tutorial that holds at once (an
 // empty sky), 1.8 s of free drawing, two tasks of 3.6 s, three Likert items) and one
-// participant's recorded pen, which taps the runner's own targets (laid out by
-// app/shell/study/study_page.h for a kShortStudyWidth × kShortStudyHeight screen) and paints one
+// participant's recorded pen, which taps the runner's own targets (measured with its font, laid out
+// by app/shell/study/study_page.h for a kShortStudyWidth × kShortStudyHeight screen) and paints one
 // stroke in each task.
 #pragma once
 

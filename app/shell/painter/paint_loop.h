@@ -126,6 +126,9 @@ struct PaintLoopOptions {
   // clouds stay with their session (withdrawn and exported with it) and no participant opens
   // another's.
   std::string save_dir;
+  // The left part of the width (a fraction) in which the answer to an action (a save's toast)
+  // and the first screen's hint are centred: a study's panel covers the rest.
+  float message_area = 1.0f;
   // Morph (F): the saved cloud to morph into (`--morph-to`); empty: the newest saved cloud of
   // the save folder (save_dir, else state_dir), else the bundled cumulus ("bundled:1", the cloud
   // that orbits at the start). Played over morph_seconds, then held until applied (A) or left (X).

@@ -901,6 +901,7 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   state.notice = notice_;
   state.toast = toast();
   state.hint = hint();
+  state.message_width = options_.message_area * float(frame.width);
   if (help_open_) state.help = helpSections(options_.visitor_mode);
   if (show_stats_) appendStatsLabels(frame.width, frame.height, &state.labels);
   // A morph or wind shown says what it is and how to apply or leave it.

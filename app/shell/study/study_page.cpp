@@ -1,7 +1,9 @@
 #include "app/shell/study/study_page.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <memory>
 
 #include "app/shell/command_table.h"
 
@@ -30,16 +32,66 @@ const Bilingual kDoneText{"I'm done", "我画完了"};
 const Bilingual kDoneAskText{"Finish this task now?", "现在结束这个任务吗？"};
 const Bilingual kDoneYesText{"Yes, I'm done", "是的，画完了"};
 const Bilingual kKeepPaintingText{"Keep painting", "继续画"};
+// A painting stage that ended (time up, "I'm done", the operator) and waits for the stroke under
+// the pen to end before it saves: in place of "I'm done".
+const Bilingual kTimeUpText{"Time is up. Lift the pen: your cloud is being saved.",
+                            "时间到了。请抬起笔：您的云正在保存。"};
+const Bilingual kFinishingText{"This task is ending. Lift the pen: your cloud is being saved.",
+                               "这个任务即将结束。请抬起笔：您的云正在保存。"};
 
 class PageBuilder {
  public:
-  PageBuilder(StudyPage* page, int w, int h) : page_(*page), w_(float(w)), h_(float(h)) {}
+  PageBuilder(StudyPage* page, const StudyPageInput& input, int w, int h)
+      : page_(*page), w_(float(w)), h_(float(h)), measure_(input.measure) {
+    if (!measure_) measure_ = studyTextEstimate;
+  }
 
   float w() const { return w_; }
   float h() const { return h_; }
   float title() const { return std::max(18.0f, 0.052f * h_); }
   float body() const { return std::max(14.0f, 0.036f * h_); }
   float small() const { return std::max(12.0f, 0.029f * h_); }
+  // The page's own room: below the operator's band, above the foot line.
+  float top() const { return top_; }
+  float foot() const { return foot_; }
+
+  // The band's text (may be "") and the foot line's: their heights set top() and foot().
+  void frame(const std::string& band_text, const std::string& foot_text) {
+    band_text_ = band_text, foot_text_ = foot_text;
+    top_ = band_text.empty() ? 0.0f : size(band_text, small(), 0.96f * w_)[1] + 0.8f * small();
+    foot_ = h_ - size(foot_text, small(), 0.94f * w_)[1] - 0.7f * small();
+  }
+  // Draws the foot line and the band (last, over the page).
+  void drawFrame() {
+    box(0, foot_, w_, h_, {0.0f, 0.0f, 0.0f, 0.6f});
+    text(0.03f * w_, foot_ + 0.35f * small(), foot_text_, small(), kStudyHintColour, 0.94f * w_);
+    page_.foot[0] = 0, page_.foot[1] = foot_, page_.foot[2] = w_, page_.foot[3] = h_;
+    if (band_text_.empty()) return;
+    // The operator's warning over every page: a red band along the top edge (over the
+    // painter's status line; the participant's hints stay at the foot).
+    box(0, 0, w_, top_, {0.62f, 0.08f, 0.06f, 1.0f});
+    text(0.02f * w_, 0.4f * small(), band_text_, small(), 0xffffffffu, 0.96f * w_);
+    page_.band[2] = w_, page_.band[3] = top_;
+  }
+
+  // Width and height of `text` at `size_px`, wrapped at `wrap` (0: not wrapped).
+  std::array<float, 2> size(const std::string& text, float size_px, float wrap) const {
+    UiLabel label;
+    label.text = text, label.size_px = size_px, label.wrap_width = wrap;
+    float r[4];
+    measure_(label, r);
+    return {r[2] - r[0], r[3] - r[1]};
+  }
+  // The largest size <= `size_px` (down to 60% of it, never under 11 px) at which `text`,
+  // wrapped at `wrap`, is at most `max_h` tall and, unwrapped, `max_w` wide (0: any).
+  float fit(const std::string& text, float size_px, float wrap, float max_h,
+            float max_w = 0) const {
+    const float floor = std::max(11.0f, 0.6f * size_px);
+    for (float s = size_px;; s *= 0.94f) {
+      const std::array<float, 2> d = size(text, s, wrap);
+      if ((d[1] <= max_h && (max_w <= 0 || d[0] <= max_w)) || s * 0.94f < floor) return s;
+    }
+  }
 
   void fill(glm::vec4 colour) { page_.boxes.push_back(makeHudRect(0, 0, w_, h_, colour)); }
   void box(float x0, float y0, float x1, float y1, glm::vec4 colour) {
@@ -51,6 +103,13 @@ class PageBuilder {
     label.x = x, label.y = y, label.text = text, label.size_px = size, label.rgba = rgba;
     label.wrap_width = wrap;
     page_.labels.push_back(label);
+  }
+  // A wrapped block at (x, y) that ends above `bottom` (smaller when long); returns its foot.
+  float block(float x, float y, const std::string& words, float size, float wrap, float bottom,
+              uint32_t rgba = kStudyTextColour) {
+    const float s = fit(words, size, wrap, bottom - y);
+    text(x, y, words, s, rgba, wrap);
+    return y + size_of(words, s, wrap);
   }
   void centred(float x, float y, const std::string& text, float size,
                uint32_t rgba = kStudyTextColour) {
@@ -67,7 +126,8 @@ class PageBuilder {
     t.x0 = x0, t.y0 = y0, t.x1 = x1, t.y1 = y1;
     t.action = action, t.value = value, t.label = label, t.selected = selected;
     page_.targets.push_back(t);
-    // One centred line per line of the label (English over Chinese), the block centred.
+    // One centred line per line of the label (English over Chinese), the block centred and
+    // narrower than the target.
     std::vector<std::string> lines;
     for (size_t at = 0; at <= label.size();) {
       const size_t end = std::min(label.find('\n', at), label.size());
@@ -76,8 +136,9 @@ class PageBuilder {
     }
     const float n = float(lines.size());
     const float fill = n > 1.0f ? 0.8f / (1.25f * (n - 1.0f) + 1.2f) : 0.42f;
-    const float size = std::min(body(), fill * (y1 - y0));
-    float y = 0.5f * (y0 + y1) - 0.5f * (1.25f * (n - 1.0f) + 1.2f) * size;
+    float size = std::min(body(), fill * (y1 - y0));
+    for (const std::string& line : lines) size = fit(line, size, 0.0f, y1 - y0, 0.9f * (x1 - x0));
+    float y = 0.5f * (y0 + y1) - 0.5f * (1.25f * (n - 1.0f) + 1.0f) * size;
     for (const std::string& line : lines) {
       centred(0.5f * (x0 + x1), y, line, size);
       y += 1.25f * size;
@@ -87,15 +148,16 @@ class PageBuilder {
   void setImage(float x0, float y0, float x1, float y1) {
     page_.image[0] = x0, page_.image[1] = y0, page_.image[2] = x1, page_.image[3] = y1;
   }
-  // The line at the foot that says what the page waits for.
-  void waiting(const std::string& what) {
-    box(0, h_ - 1.9f * small(), w_, h_, {0.0f, 0.0f, 0.0f, 0.6f});
-    text(0.03f * w_, h_ - 1.55f * small(), what, small(), kStudyHintColour);
-  }
 
  private:
+  float size_of(const std::string& words, float s, float wrap) const {
+    return size(words, s, wrap)[1];
+  }
   StudyPage& page_;
   float w_, h_;
+  StudyTextMeasure measure_;
+  std::string band_text_, foot_text_;
+  float top_ = 0.0f, foot_ = 0.0f;
 };
 
 // The on-screen keyboard's pages (StudyPageInput::keyboard_page): each a 10-key grid of up to
@@ -125,8 +187,12 @@ void keyboard(PageBuilder& b, const StudyPageInput& input, const StudyKeyboardPa
   // An on-screen keyboard for the pen: a page of keys, then the page keys (Shift, symbols, the
   // protocol's language), Space, delete, Skip and OK. Keys are ~7% of the width (about 37 mm on
   // a 24" screen).
-  const float key_w = 0.07f * b.w(), key_h = 0.075f * b.h(), gap = 0.008f * b.w();
+  const float key_w = 0.07f * b.w(), gap = 0.008f * b.w();
   const float row_w = 10 * key_w + 9 * gap;
+  // Keys ~7.5% of the height, lower when the page's text left less room above the foot line.
+  const int rows = (digits_only ? 1 : 4) + 1;
+  const float room = b.foot() - 0.015f * b.h() - top - 1.6f * b.body() - 2 * gap;
+  const float key_h = std::min(0.075f * b.h(), room / float(rows) - gap);
   const float left = 0.5f * (b.w() - row_w);
   // The text typed so far, in a field above the keys.
   b.box(left, top, left + row_w, top + 1.6f * b.body(), {0.95f, 0.95f, 0.95f, 1.0f});
@@ -174,11 +240,13 @@ struct FormLayout {
 
 // A form page's heading at y; returns the y below it.
 float formHeading(PageBuilder& b, const FormLayout& l, float y, const std::string& text) {
-  b.text(l.margin, y, text, b.title());
-  return y + 1.6f * b.title();
+  const float size = b.fit(text, b.title(), 0.0f, 2.0f * b.title(), l.wrap);
+  b.text(l.margin, y, text, size);
+  return y + 1.5f * size;
 }
 
-// A demographic field: its label, then its choices in a row or the keyboard.
+// A demographic field: its label, a refused answer's message, then its choices in a row or the
+// keyboard.
 void demographicsForm(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input,
                       const FormLayout& l, float y) {
   const StudyProtocol& p = state.protocol();
@@ -186,19 +254,21 @@ void demographicsForm(PageBuilder& b, const StudyRunState& state, const StudyPag
   y = formHeading(b, l, y,
                   "About you (" + std::to_string(state.fieldIndex() + 1) + " of " +
                       std::to_string(p.demographics.size()) + ")");
-  b.text(l.margin, y, f.label, b.body(), kStudyTextColour, l.wrap);
-  y += 2.2f * b.body();
+  y = b.block(l.margin, y, f.label, b.body(), l.wrap, y + 3.0f * b.body()) + 0.4f * b.body();
   if (!input.message.empty())
-    b.text(l.margin, y - 0.9f * b.body(), input.message, b.small(), kStudyHintColour, l.wrap);
+    y = b.block(l.margin, y, input.message, b.small(), l.wrap, y + 2.2f * b.small(),
+                kStudyHintColour);
+  y += 0.6f * b.body();
   if (f.kind == DemographicField::Kind::kChoice) {
     const float cw = std::min(0.25f * b.w(), l.wrap / float(std::max<size_t>(1, f.choices.size())));
+    const float bh = std::min(l.button_h, (b.foot() - 0.02f * b.h() - y) / 2.4f);
     for (size_t i = 0; i < f.choices.size(); ++i) {
       const float x = l.margin + float(i) * cw;
       StudyTarget& t =
-          b.target(x + 4, y, x + cw - 4, y + l.button_h, StudyTargetAction::kChoice, f.choices[i]);
+          b.target(x + 4, y, x + cw - 4, y + bh, StudyTargetAction::kChoice, f.choices[i]);
       t.text = f.choices[i];
     }
-    b.target(l.margin, y + 1.4f * l.button_h, l.margin + l.button_w, y + 2.4f * l.button_h,
+    b.target(l.margin, y + 1.4f * bh, l.margin + l.button_w, y + 2.4f * bh,
              StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
   } else {
     keyboard(b, input, p.keyboard, y, f.kind == DemographicField::Kind::kInteger);
@@ -214,49 +284,97 @@ void questionnaireForm(PageBuilder& b, const StudyRunState& state, const FormLay
                   "Questionnaire: item " + std::to_string(i + 1) + " of " +
                       std::to_string(p.items.size()) +
                       (item.section.empty() ? std::string() : " (" + item.section + ")"));
+  // Under the item: the boxes (16% of the height, less when the room is short), the scale's
+  // words under them, then Back and Skip; the item's text takes what is left above.
+  const int n = int(p.scale_labels.size());
+  const float words_h = (p.scale_labels_zh.empty() ? 1.5f : 2.8f) * b.small();
+  const float row_h = 0.7f * l.button_h, gap = 0.02f * b.h();
+  const float bh = std::clamp(b.foot() - gap - row_h - words_h - 2 * gap - (y + 2.5f * b.body()),
+                              0.07f * b.h(), 0.16f * b.h());
+  const float below = bh + gap + words_h + gap + row_h + gap;
   // The thesis's *emphasis* marks are the protocol's transcription, not for the participant.
   std::string text = item.text + (item.text_zh.empty() ? "" : "\n" + item.text_zh);
   text.erase(std::remove(text.begin(), text.end(), '*'), text.end());
-  b.text(l.margin, y, text, 1.15f * b.body(), kStudyTextColour, l.wrap);
+  const float text_end = b.block(l.margin, y, text, 1.15f * b.body(), l.wrap, b.foot() - below);
   // Five (n) big boxes in a row, the scale's words under each number.
-  const int n = int(p.scale_labels.size());
-  const float gap = 0.012f * b.w();
-  const float bw = (l.wrap - float(n - 1) * gap) / float(n), bh = 0.16f * b.h();
-  const float by = 0.45f * b.h();
+  const float box_gap = 0.012f * b.w();
+  const float bw = (l.wrap - float(n - 1) * box_gap) / float(n);
+  const float by = std::min(std::max(0.45f * b.h(), text_end + gap), b.foot() - below + gap);
   const std::optional<int> given = state.itemAnswers()[size_t(i)];
   for (int k = 1; k <= n; ++k) {
-    const float x = l.margin + float(k - 1) * (bw + gap);
+    const float x = l.margin + float(k - 1) * (bw + box_gap);
     b.target(x, by, x + bw, by + bh, StudyTargetAction::kAnswer, std::to_string(k), k,
              given && *given == k);
-    b.centred(x + 0.5f * bw, by + bh + 0.3f * b.small(), p.scale_labels[size_t(k - 1)], b.small());
-    if (size_t(k) <= p.scale_labels_zh.size())
-      b.centred(x + 0.5f * bw, by + bh + 1.55f * b.small(), p.scale_labels_zh[size_t(k - 1)],
-                b.small());
+    const std::string& en = p.scale_labels[size_t(k - 1)];
+    b.centred(x + 0.5f * bw, by + bh + 0.3f * b.small(), en,
+              b.fit(en, b.small(), 0.0f, b.small(), 0.96f * bw));
+    if (size_t(k) <= p.scale_labels_zh.size()) {
+      const std::string& zh = p.scale_labels_zh[size_t(k - 1)];
+      b.centred(x + 0.5f * bw, by + bh + 1.55f * b.small(), zh,
+                b.fit(zh, b.small(), 0.0f, b.small(), 0.96f * bw));
+    }
   }
-  const float ry = by + bh + (p.scale_labels_zh.empty() ? 2.2f : 3.4f) * b.small();
+  const float ry = by + bh + gap + words_h + gap;
   if (i > 0)
-    b.target(l.margin, ry, l.margin + l.button_w, ry + 0.7f * l.button_h,
-             StudyTargetAction::kBackItem, "Back", 0, false, kQuietColour);
-  b.target(b.w() - l.margin - l.button_w, ry, b.w() - l.margin, ry + 0.7f * l.button_h,
+    b.target(l.margin, ry, l.margin + l.button_w, ry + row_h, StudyTargetAction::kBackItem, "Back",
+             0, false, kQuietColour);
+  b.target(b.w() - l.margin - l.button_w, ry, b.w() - l.margin, ry + row_h,
            StudyTargetAction::kSkipItem, "Skip", 0, false, kQuietColour);
+}
+
+// The closing page: thanks, declined or stopped.
+void donePage(PageBuilder& b, const StudyRunState& state, const FormLayout& l, float y) {
+  const float bottom = b.foot() - 0.03f * b.h();
+  if (state.declined()) {
+    y = formHeading(b, l, y, kDeclinedTitle.oneLine());
+    b.block(l.margin, y, std::string(kDeclinedBody.en) + "\n\n" + kDeclinedBody.zh, b.body(),
+            l.wrap, bottom);
+    return;
+  }
+  y = formHeading(b, l, y, state.aborted() ? "Session stopped" : "Thank you");
+  b.block(l.margin, y,
+          state.aborted() ? "The operator stopped the session (" + state.abortReason() +
+                                "). What was recorded so far is kept."
+                          : "Your answers and clouds are saved under " + state.participantId() +
+                                ". Please tell the operator you have finished.",
+          b.body(), l.wrap, bottom);
+}
+
+// A protocol's text as a paragraph flows: the TOML's line breaks inside a paragraph are the
+// file's, not the author's; blank lines part paragraphs.
+std::string flowed(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n') {
+      out += text[i];
+    } else if (i + 1 < text.size() && text[i + 1] == '\n') {
+      out += "\n\n";
+      while (i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    } else if (i + 1 < text.size() && !out.empty()) {
+      out += ' ';
+    }
+  }
+  return out;
 }
 
 void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input) {
   const StudyProtocol& p = state.protocol();
   const float margin = 0.06f * b.w();
   const float wrap = b.w() - 2 * margin;
-  const float button_w = 0.22f * b.w(), button_h = 0.1f * b.h();
-  const float button_y = b.h() - 2.2f * b.small() - button_h - 0.03f * b.h();
+  const float button_w = 0.22f * b.w(), button_h = std::min(0.1f * b.h(), 0.2f * b.foot());
+  const float button_y = b.foot() - 0.03f * b.h() - button_h;
+  const FormLayout l{margin, wrap, button_w, button_h, button_y};
+  const float text_bottom = button_y - 0.03f * b.h();
   b.fill(kBackground);
-  float y = 0.05f * b.h();
-  const auto heading = [&](const std::string& text) {
-    b.text(margin, y, text, b.title());
-    y += 1.6f * b.title();
+  float y = b.top() + 0.05f * b.h();
+  const auto continueButton = [&] {
+    b.target(0.5f * b.w() - button_w * 0.5f, button_y, 0.5f * b.w() + button_w * 0.5f,
+             button_y + button_h, StudyTargetAction::kContinue, "Continue");
   };
   switch (state.stage()) {
     case StudyStageKind::kConsent: {
-      heading("Consent");
-      b.text(margin, y, p.consent, b.body(), kStudyTextColour, wrap);
+      y = formHeading(b, l, y, "Consent");
+      b.block(margin, y, flowed(p.consent), b.body(), wrap, text_bottom);
       // Agree and decline side by side, the same size: declining is as easy as agreeing.
       const float gap = 0.04f * b.w();
       b.target(0.5f * (b.w() - gap) - button_w, button_y, 0.5f * (b.w() - gap), button_y + button_h,
@@ -265,144 +383,178 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
                StudyTargetAction::kDecline, kDeclineText.twoLines(), 0, false, kQuietColour);
       break;
     }
-    case StudyStageKind::kParticipant:
-      heading("Your participant code");
-      b.centred(0.5f * b.w(), 0.3f * b.h(), state.participantId(), 2.4f * b.title(),
-                kStudyHintColour);
-      b.text(margin, 0.55f * b.h(),
-             "Everything recorded today is filed under this code, never under your name.", b.body(),
-             kStudyTextColour, wrap);
-      b.target(0.5f * b.w() - button_w * 0.5f, button_y, 0.5f * b.w() + button_w * 0.5f,
-               button_y + button_h, StudyTargetAction::kContinue, "Continue");
+    case StudyStageKind::kParticipant: {
+      y = formHeading(b, l, y, "Your participant code");
+      const float code = std::min(2.4f * b.title(), 0.3f * (text_bottom - y));
+      b.centred(0.5f * b.w(), y + 0.3f * code, state.participantId(), code, kStudyHintColour);
+      b.block(margin, y + 1.8f * code,
+              "Everything recorded today is filed under this code, never under your name.",
+              b.body(), wrap, text_bottom);
+      continueButton();
       break;
+    }
     case StudyStageKind::kIntroduction: {
-      heading("Introduction");
-      std::string text = p.introduction.text;
+      y = formHeading(b, l, y, "Introduction");
+      std::string text = flowed(p.introduction.text);
       if (!p.introduction.video.empty())
         text += "\n(The operator plays the video " + p.introduction.video + ".)";
-      b.text(margin, y, text, b.body(), kStudyTextColour, wrap);
-      b.target(0.5f * b.w() - button_w * 0.5f, button_y, 0.5f * b.w() + button_w * 0.5f,
-               button_y + button_h, StudyTargetAction::kContinue, "Continue");
+      b.block(margin, y, text, b.body(), wrap, text_bottom);
+      continueButton();
       break;
     }
     case StudyStageKind::kDemographics:
-      demographicsForm(b, state, input, {margin, wrap, button_w, button_h, button_y}, y);
+      demographicsForm(b, state, input, l, y);
       break;
     case StudyStageKind::kQuestionnaire:
-      questionnaireForm(b, state, {margin, wrap, button_w, button_h, button_y}, y);
+      questionnaireForm(b, state, l, y);
       break;
     case StudyStageKind::kFreeText: {
       const FreeTextQuestion& q = p.free_text[size_t(state.freeTextIndex())];
-      heading("Comments (" + std::to_string(state.freeTextIndex() + 1) + " of " +
-              std::to_string(p.free_text.size()) + ", optional)");
-      b.text(margin, y, q.prompt, b.body(), kStudyTextColour, wrap);
-      keyboard(b, input, p.keyboard, y + 2.4f * b.body(), false);
+      y = formHeading(b, l, y,
+                      "Comments (" + std::to_string(state.freeTextIndex() + 1) + " of " +
+                          std::to_string(p.free_text.size()) + ", optional)");
+      y = b.block(margin, y, q.prompt, b.body(), wrap, y + 3.2f * b.body());
+      keyboard(b, input, p.keyboard, y + 0.6f * b.body(), false);
       break;
     }
     case StudyStageKind::kDone:
-      if (state.declined()) {
-        heading(kDeclinedTitle.oneLine());
-        b.text(margin, y, std::string(kDeclinedBody.en) + "\n\n" + kDeclinedBody.zh, b.body(),
-               kStudyTextColour, wrap);
-        break;
-      }
-      heading(state.aborted() ? "Session stopped" : "Thank you");
-      b.text(margin, y,
-             state.aborted() ? "The operator stopped the session (" + state.abortReason() +
-                                   "). What was recorded so far is kept."
-                             : "Your answers and clouds are saved under " + state.participantId() +
-                                   ". Please tell the operator you have finished.",
-             b.body(), kStudyTextColour, wrap);
+      donePage(b, state, l, y);
       break;
     default:
       break;
   }
 }
 
-float countdownSize(const PageBuilder& b) {
-  return 1.5f * b.title();
-}
-float countdownTop(const PageBuilder& b) {
-  return b.h() - 2.2f * b.small() - 1.4f * countdownSize(b);
+// The panel's column: x0 and its text width; the countdown's place above the foot line.
+struct PanelLayout {
+  float x0, pad, wrap;
+  float countdown_size, countdown_top;
+};
+
+PanelLayout panelLayout(const PageBuilder& b) {
+  PanelLayout l;
+  l.x0 = kStudyPanelLeft * b.w(), l.pad = 0.012f * b.w();
+  l.wrap = b.w() - l.x0 - 2 * l.pad;
+  // Big, but within the column at any width ("0:00" digits are as wide as any).
+  l.countdown_size = b.fit("Time left 00:00", 1.5f * b.title(), 0.0f, 1.5f * b.title(), l.wrap);
+  l.countdown_top = b.foot() - 0.012f * b.h() - l.countdown_size;
+  return l;
 }
 
 // The task's "I'm done": one target; tapped, a question with "Yes, I'm done" and "Keep
-// painting" in its place (a stray tap near the canvas's edge does not end a task).
-void doneTargets(PageBuilder& b, float x0, float x1, bool asked) {
+// painting" in its place (a stray tap near the canvas's edge does not end a task). Returns the
+// top of what it placed.
+float doneTargets(PageBuilder& b, const PanelLayout& l, bool asked) {
+  const float x0 = l.x0 + l.pad, x1 = b.w() - l.pad;
   const float h = 0.085f * b.h(), gap = 0.01f * b.w();
   // Just above the countdown, where the task's time is read.
-  float y = countdownTop(b) - 0.02f * b.h() - h - (asked ? 2.7f * b.small() : 0.0f);
+  const float ask_h = 2.7f * b.small();
+  float y = l.countdown_top - 0.02f * b.h() - h - (asked ? ask_h : 0.0f);
+  const float top = y;
   if (!asked) {
     b.target(x0, y, x1, y + h, StudyTargetAction::kDone, kDoneText.twoLines(), 0, false,
              kDoneColour);
-    return;
+    return top;
   }
-  b.text(x0, y, kDoneAskText.twoLines(), b.small(), kStudyHintColour);
-  y += 2.7f * b.small();
+  b.block(x0, y, kDoneAskText.twoLines(), b.small(), l.wrap, y + ask_h - 0.2f * b.small(),
+          kStudyHintColour);
+  y += ask_h;
   const float mid = 0.5f * (x0 + x1);
   b.target(x0, y, mid - 0.5f * gap, y + h, StudyTargetAction::kDoneConfirm, kDoneYesText.twoLines(),
            0, false, kDoneColour);
   b.target(mid + 0.5f * gap, y, x1, y + h, StudyTargetAction::kDoneCancel,
            kKeepPaintingText.twoLines(), 0, false, kQuietColour);
+  return top;
+}
+
+// The task's words, picture and "I'm done", from y down.
+void taskPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input,
+               const PanelLayout& l, float y) {
+  const StudyTask* task = state.task();
+  const float x = l.x0 + l.pad;
+  float bottom;
+  if (state.closing()) {
+    // No "I'm done" once the task has ended: what happens now, where it stood.
+    const std::string ended =
+        (state.closingWhy() == "time up" ? kTimeUpText : kFinishingText).twoLines();
+    const float top = l.countdown_top - 0.02f * b.h() - 0.085f * b.h() - 2.7f * b.small();
+    b.block(x, top, ended, b.body(), l.wrap, l.countdown_top - 0.02f * b.h(), kStudyHintColour);
+    bottom = top - l.pad;
+  } else {
+    bottom = doneTargets(b, l, input.done_asked) - l.pad;
+  }
+  y = b.block(x, y,
+              "Task " + std::to_string(state.position().order + 1) + " of " +
+                  std::to_string(state.taskCount()) + ": " + task->title,
+              b.body(), l.wrap, y + 2.6f * b.body()) +
+      0.6f * b.body();
+  // What to do and how it ends, under the picture; the picture takes the room left.
+  const std::string how =
+      "Paint a cloud like the picture. It is saved for you when you tap \"I'm done\" or when "
+      "the time is up.";
+  const float how_size = b.fit(how, b.small(), l.wrap, 4.0f * b.small());
+  const float how_h = b.size(how, how_size, l.wrap)[1];
+  if (input.image_aspect > 0.0f) {
+    const float room = bottom - y - how_h - l.pad;
+    const float ih = std::max(0.0f, std::min({l.wrap / input.image_aspect, 0.4f * b.h(), room}));
+    const float w = ih * input.image_aspect;
+    b.setImage(x, y, x + w, y + ih);
+    y += ih + l.pad;
+  }
+  b.text(x, y, how, how_size, kStudyTextColour, l.wrap);
 }
 
 void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput& input) {
   // A column at the right: what this stage is, the reference image, the instruction and its
-  // live check, the countdown. The painter's status line stays visible along the top.
+  // live check, the countdown. The painter's status line stays visible along the top (under
+  // the operator's band when that is shown).
   const StudyProtocol& p = state.protocol();
-  const float x0 = 0.72f * b.w(), top = 0.075f * b.h(), pad = 0.012f * b.w();
-  const float wrap = b.w() - x0 - 2 * pad;
-  b.box(x0, top, b.w(), b.h(), kPanel);
-  float y = top + pad;
-  const auto line = [&](const std::string& text, float size, uint32_t colour, float advance) {
-    b.text(x0 + pad, y, text, size, colour, wrap);
-    y += advance * size;
-  };
+  const PanelLayout l = panelLayout(b);
+  const float top = std::max(0.075f * b.h(), b.top());
+  b.box(l.x0, top, b.w(), b.foot(), kPanel);
+  float y = top + l.pad;
+  const float x = l.x0 + l.pad;
   const double left = state.secondsLeft(input.now_ns);
+  const float bottom = left >= 0 ? l.countdown_top - l.pad : b.foot() - l.pad;
   switch (state.stage()) {
     case StudyStageKind::kTutorial: {
       const TutorialStep& step = p.tutorial[size_t(state.tutorialStep())];
-      line("Tutorial: step " + std::to_string(state.tutorialStep() + 1) + " of " +
-               std::to_string(p.tutorial.size()),
-           b.body(), kStudyTextColour, 1.6f);
-      line(step.instruction, 1.1f * b.body(), kStudyTextColour, 4.2f);
-      line("Done when: " + input.check_status, b.small(), kStudyHintColour, 3.2f);
+      y = b.block(x, y,
+                  "Tutorial: step " + std::to_string(state.tutorialStep() + 1) + " of " +
+                      std::to_string(p.tutorial.size()),
+                  b.body(), l.wrap, y + 1.2f * b.body()) +
+          0.6f * b.body();
+      // The step's words take the room the check and the clock leave.
+      const float rest = 4.4f * b.small() + 1.5f * b.small();
+      y = b.block(x, y, step.instruction, 1.1f * b.body(), l.wrap, bottom - rest) +
+          0.8f * b.small();
+      y = b.block(x, y, "Done when: " + input.check_status, b.small(), l.wrap,
+                  bottom - 1.5f * b.small()) +
+          0.6f * b.small();
       // The tutorial has a planned length (§7.5: ten minutes), not a limit: it ends when its
       // steps are done (or skipped by the operator).
       const int elapsed = int(state.stageSeconds(input.now_ns));
       char text[96];
       std::snprintf(text, sizeof text, "Tutorial time %d:%02d (planned %.0f min)", elapsed / 60,
                     elapsed % 60, p.tutorial_minutes);
-      line(text, b.small(), kStudyTextColour, 1.5f);
+      b.block(x, y, text, b.small(), l.wrap, bottom);
       break;
     }
     case StudyStageKind::kFreeDrawing:
-      line("Free drawing", b.body(), kStudyTextColour, 1.6f);
-      line(p.free_drawing.text, b.small(), kStudyTextColour, 6.0f);
+      y = b.block(x, y, "Free drawing", b.body(), l.wrap, y + 1.2f * b.body()) + 0.6f * b.body();
+      b.block(x, y, flowed(p.free_drawing.text), b.small(), l.wrap, bottom);
       break;
-    case StudyStageKind::kTask: {
-      const StudyTask* task = state.task();
-      line("Task " + std::to_string(state.position().order + 1) + " of " +
-               std::to_string(state.taskCount()) + ": " + task->title,
-           b.body(), kStudyTextColour, 2.4f);
-      if (input.image_aspect > 0.0f) {
-        const float iw = wrap, ih = std::min(iw / input.image_aspect, 0.4f * b.h());
-        const float w = ih * input.image_aspect;
-        b.setImage(x0 + pad, y, x0 + pad + w, y + ih);
-        y += ih + pad;
-      }
-      line("Paint a cloud like the picture.", b.small(), kStudyTextColour, 1.5f);
-      doneTargets(b, x0 + pad, b.w() - pad, input.done_asked);
+    case StudyStageKind::kTask:
+      taskPanel(b, state, input, l, y);
       break;
-    }
     default:
       break;
   }
   if (left >= 0) {
     char text[64];
-    std::snprintf(text, sizeof text, "Time left %d:%02d", int(left) / 60, int(left) % 60);
-    b.text(x0 + pad, countdownTop(b), text, countdownSize(b),
-           left < 60 ? 0xff8060ffu : kStudyTextColour);
+    std::snprintf(text, sizeof text, "Time left %s", countdownText(left).c_str());
+    b.text(x, l.countdown_top, text, l.countdown_size,
+           left <= 59.0 ? 0xff8060ffu : kStudyTextColour);  // red from 0:59
   }
 }
 
@@ -411,7 +563,7 @@ void operatorChooser(PageBuilder& b, const StudyRunState& state) {
   const OperatorAction action = state.choosingFor();
   const std::vector<std::string>& reasons = operatorReasons(action);
   const float x0 = 0.25f * b.w(), x1 = 0.75f * b.w();
-  float y = 0.12f * b.h();
+  float y = b.top() + 0.06f * b.h();
   b.centred(0.5f * b.w(), y,
             std::string("Operator: why ") +
                 (action == OperatorAction::kPause ? "pause?"
@@ -421,7 +573,10 @@ void operatorChooser(PageBuilder& b, const StudyRunState& state) {
                      : "abort the session?"),
             b.title());
   y += 1.8f * b.title();
-  const float bh = 0.085f * b.h(), gap = 0.012f * b.h();
+  // Each reason a row, Cancel under them: rows shrink when the room above the foot is short.
+  const float gap = 0.012f * b.h();
+  const float rows = float(reasons.size()) + 1.0f;
+  const float bh = std::min(0.085f * b.h(), (b.foot() - y - 2 * gap) / rows - gap);
   for (size_t i = 0; i < reasons.size(); ++i) {
     b.target(x0, y, x1, y + bh, StudyTargetAction::kReason,
              std::to_string(i + 1) + "  " + reasons[i], int(i));
@@ -431,12 +586,72 @@ void operatorChooser(PageBuilder& b, const StudyRunState& state) {
            "Cancel (Esc)", 0, false, kQuietColour);
 }
 
+void pausedVeil(PageBuilder& b, const StudyRunState& state) {
+  b.box(0, 0, b.w(), b.h(), kVeil);
+  const float y = b.top() + 0.3f * (b.foot() - b.top());
+  b.centred(0.5f * b.w(), y, "Paused", 2.0f * b.title());
+  const std::string by = "by the operator: " + state.pauseReason();
+  const std::string how = "The session goes on when the operator resumes (Ctrl+Alt+P).";
+  b.centred(0.5f * b.w(), y + 3.0f * b.title(), by,
+            b.fit(by, b.body(), 0, b.body(), 0.94f * b.w()));
+  b.centred(0.5f * b.w(), y + 3.0f * b.title() + 1.8f * b.body(), how,
+            b.fit(how, b.body(), 0, b.body(), 0.94f * b.w()));
+}
+
 }  // namespace
+
+StudyTextMeasure studyPageFont(const StudyProtocol& protocol, std::string* error) {
+  auto font = std::make_shared<UiOverlay>();
+  font->addGlyphs(studyPageText(protocol));
+  if (!font->initFont(error)) return nullptr;
+  return [font](const UiLabel& label, float rect[4]) { font->labelRect(label, rect); };
+}
+
+void studyTextEstimate(const UiLabel& label, float rect[4]) {
+  // Greedy word wrap over code points: Latin ~0.56 em, CJK 1 em (a line breaks after any CJK
+  // character), one em per line, as ImGui sets Noto Sans CJK.
+  const float em = label.size_px, wrap = label.centred ? 0.0f : label.wrap_width;
+  float widest = 0.0f, line = 0.0f, word = 0.0f;
+  int lines = 1;
+  const auto flush_word = [&] {
+    if (wrap > 0.0f && line > 0.0f && line + word > wrap) {
+      widest = std::max(widest, line);
+      line = 0.0f;
+      ++lines;
+    }
+    line += word;
+    word = 0.0f;
+  };
+  for (size_t i = 0; i < label.text.size();) {
+    const unsigned char c = static_cast<unsigned char>(label.text[i]);
+    const size_t n = c < 0x80 ? 1 : c < 0xe0 ? 2 : c < 0xf0 ? 3 : 4;
+    i += n;
+    if (c == '\n') {
+      flush_word();
+      widest = std::max(widest, line);
+      line = 0.0f;
+      ++lines;
+    } else if (c == ' ') {
+      flush_word();
+      line += 0.3f * em;
+    } else {
+      word += n >= 3 ? em : 0.56f * em;
+      if (n >= 3) flush_word();
+    }
+  }
+  flush_word();
+  widest = std::max(widest, line);
+  rect[0] = label.centred ? label.x - 0.5f * widest : label.x;
+  rect[1] = label.y;
+  rect[2] = rect[0] + widest;
+  rect[3] = label.y + em * float(lines);
+}
 
 std::string studyPageText(const StudyProtocol& p) {
   std::string text;
-  for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
-                             kDoneAskText, kDoneYesText, kKeepPaintingText})
+  for (const Bilingual& b :
+       {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText, kDoneAskText,
+        kDoneYesText, kKeepPaintingText, kTimeUpText, kFinishingText})
     text += b.zh;
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;
@@ -470,7 +685,8 @@ const StudyTarget* StudyPage::hit(float x, float y) const {
 StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
                          int height) {
   StudyPage page;
-  PageBuilder b(&page, width, height);
+  PageBuilder b(&page, input, width, height);
+  b.frame(input.storage_warning, state.waitingFor(input.now_ns));
   if (isPaintingStage(state.stage())) {
     if (!input.painter_menu_open) paintingPanel(b, state, input);
   } else {
@@ -483,25 +699,11 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
     page.labels.clear();
     std::fill(page.image, page.image + 4, 0.0f);
   }
-  if (state.choosing()) {
+  if (state.choosing())
     operatorChooser(b, state);
-  } else if (state.paused()) {
-    b.box(0, 0, b.w(), b.h(), kVeil);
-    b.centred(0.5f * b.w(), 0.33f * b.h(), "Paused", 2.0f * b.title());
-    b.centred(0.5f * b.w(), 0.33f * b.h() + 3.0f * b.title(),
-              "by the operator: " + state.pauseReason(), b.body());
-    b.centred(0.5f * b.w(), 0.33f * b.h() + 3.0f * b.title() + 1.8f * b.body(),
-              "The session goes on when the operator resumes (Ctrl+Alt+P).", b.body());
-  }
-  b.waiting(state.waitingFor(input.now_ns));
-  if (!input.storage_warning.empty()) {
-    // The operator's warning over every page: a red band along the top edge (over the
-    // painter's status line; the participant's hints stay at the bottom).
-    const float band = 3.4f * b.small();
-    b.box(0, 0, b.w(), band, {0.62f, 0.08f, 0.06f, 1.0f});
-    b.text(0.02f * b.w(), 0.4f * b.small(), input.storage_warning, b.small(), 0xffffffffu,
-           0.96f * b.w());
-  }
+  else if (state.paused())
+    pausedVeil(b, state);
+  b.drawFrame();
   return page;
 }
 

@@ -4,7 +4,9 @@
 // questionnaire one item at a time, free text, the end), the panel beside the painter in the
 // tutorial, free drawing and tasks (stage, instruction and its check, the countdown, the
 // reference image's place), and the operator's reason chooser and pause veil over any stage.
-// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot. The
+// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot. Pages are
+// laid out from measured texts between the operator's band (when shown) and the foot line, so
+// nothing overlaps at any screen size: long texts take a smaller size, boxes shrink to fit. The
 // participant's buttons (consent, "I'm done") are labelled in English over Chinese, like the
 // painter's menu.
 //
@@ -12,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,10 +61,24 @@ struct StudyPage {
   std::vector<UiLabel> labels;  // drawn last
   // Painting stages: where the reference image goes (x0, y0, x1, y1; zero size: none).
   float image[4] = {0, 0, 0, 0};
+  // The operator's band along the top (zero size: none) and the line at the foot that says what
+  // the page waits for: the page's words and targets keep clear of both.
+  float band[4] = {0, 0, 0, 0};
+  float foot[4] = {0, 0, 0, 0};
   // The first target with `action` (and `value` when >= 0), or null.
   const StudyTarget* find(StudyTargetAction action, int value = -1) const;
   const StudyTarget* hit(float x, float y) const;
 };
+
+// The box a label takes when drawn (x0, y0, x1, y1): the runner measures with its font
+// (UiOverlay::labelRect); without one, studyTextEstimate.
+using StudyTextMeasure = std::function<void(const UiLabel&, float rect[4])>;
+// The runner's own measure (its font and glyphs for `protocol`) without a display, for laying
+// out pages as the runner shows them (a recorded pen's taps); null with *error when the font is
+// missing.
+StudyTextMeasure studyPageFont(const StudyProtocol& protocol, std::string* error);
+// A generous estimate of a label's box without a font (Latin ~0.56 em, CJK 1 em, lines of 1 em).
+void studyTextEstimate(const UiLabel& label, float rect[4]);
 
 // What the screen knows besides the state: the text typed so far, a message (a refused answer),
 // the tutorial check's live status, and the reference image's aspect (width / height; 0: none).
@@ -77,6 +94,9 @@ struct StudyPageInput {
   // The operator's warning that the session folder cannot be written (study_storage_watch.h),
   // shown over every page; "" when writing works.
   std::string storage_warning;
+  // How texts are measured, so the page fits its words between the band and the foot line;
+  // null: studyTextEstimate.
+  StudyTextMeasure measure;
 };
 
 // The on-screen keyboard's pages: letters, capitals (Shift), symbols and accented letters, and
@@ -92,6 +112,9 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
 // Every text the pages may show beyond Latin: their own Chinese and the protocol's texts (the
 // font atlas holds their characters).
 std::string studyPageText(const StudyProtocol& protocol);
+
+// Where the panel beside the painter begins (a fraction of the width; the canvas is left of it).
+inline constexpr float kStudyPanelLeft = 0.72f;
 
 // The colours of the page's boxes and targets (RGBA, straight alpha).
 inline constexpr uint32_t kStudyTextColour = 0xf2f2f2ffu;

@@ -26,6 +26,8 @@ PaintLoopOptions paintOptionsFor(PaintLoopOptions options, const std::string& fo
   // The painter's Save writes into the session folder (withdrawn and exported with it), never
   // into the state dir, where no withdrawal of this participant would find it.
   options.save_dir = folder + "/saved";
+  // A save's answer and the first screen's hint in the canvas, clear of the runner's panel.
+  options.message_area = kStudyPanelLeft;
   options.visitor_mode = false;
   options.max_frames = 0;
   options.max_seconds = 0.0;
@@ -761,6 +763,8 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
                               task_files_.pendingText());
   input.message = message_;
   input.now_ns = now_ns_;
+  // Texts measured with the font they are drawn in (an estimate before the first frame).
+  if (ui_) input.measure = [ui = ui_.get()](const UiLabel& l, float r[4]) { ui->labelRect(l, r); };
   input.painter_menu_open = isPaintingStage(state_.stage()) && paint_->menuOpen();
   input.done_asked = done_asked_;
   input.image_aspect = state_.stage() == StudyStageKind::kTask ? image_aspect_ : 0.0f;
@@ -784,6 +788,19 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
     const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     glClearNamedFramebufferfv(display_.framebuffer(), GL_COLOR, 0, black);
   }
+  // The font first: the page is laid out from its texts' measured sizes.
+  if (ui_ && !atlasHolds(typed_)) {
+    // Characters typed beyond the atlas (an input method's Chinese): the atlas is made again
+    // with them (once per new character; Latin-1 and the protocol's texts are in it).
+    glyphs_ += typed_;
+    ui_.reset();
+  }
+  if (!ui_) {
+    ui_ = std::make_unique<UiOverlay>();
+    atlas_text_ = studyPageText(state_.protocol()) + glyphs_;
+    ui_->addGlyphs(atlas_text_);
+    if (!ui_->init(error)) return false;
+  }
   page_ = currentPage(w, h);
   if (!hud_ready_) {
     if (!hud_.init(error)) return false;
@@ -796,18 +813,6 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
                            image_.height(), GLint(page_.image[0]), GLint(h - page_.image[1]),
                            GLint(page_.image[2]), GLint(h - page_.image[3]), GL_COLOR_BUFFER_BIT,
                            GL_LINEAR);
-  }
-  if (ui_ && !atlasHolds(typed_)) {
-    // Characters typed beyond the atlas (an input method's Chinese): the atlas is made again
-    // with them (once per new character; Latin-1 and the protocol's texts are in it).
-    glyphs_ += typed_;
-    ui_.reset();
-  }
-  if (!ui_) {
-    ui_ = std::make_unique<UiOverlay>();
-    atlas_text_ = studyPageText(state_.protocol()) + glyphs_;
-    ui_->addGlyphs(atlas_text_);
-    if (!ui_->init(error)) return false;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
   glViewport(0, 0, w, h);

@@ -18,8 +18,8 @@
 
 #include "app/study/protocol.h"
 #include "tests/support/command_run.h"
-#include "tests/support/short_study.h"
 #include "tests/support/file_text.h"
+#include "tests/support/short_study.h"
 
 namespace cb {
 namespace {
@@ -104,12 +104,23 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
     journals.push_back(folder + "/session.cbj");
     ids.push_back(fs::path(folder).filename().string());
   }
+  // A cloud participant 1 saved with the painter's Save (the session folder's saved/).
+  const std::string saved_name = "cloud-2026-11-29_10-00-00.vol";
+  const std::string saved_bytes = std::string("CBVOL\0\x01 a saved cloud's bytes\xff", 30);
+  fs::create_directories(fs::path(journals[0]).parent_path() / "saved");
+  std::ofstream((fs::path(journals[0]).parent_path() / "saved" / saved_name).string(),
+                std::ios::binary)
+      << saved_bytes;
   const std::string bids = dir + "/bids", csv = dir + "/csv";
   const test::CommandRun exported =
       test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " study export " + journals[0] + " " +
                        journals[1] + " --out " + csv + " --bids " + bids);
   ASSERT_EQ(exported.status, 0) << exported.out;
 
+  // The saved cloud, byte for byte, in sourcedata/ (BIDS's place for files in their own
+  // formats); participant 2 saved none.
+  EXPECT_EQ(readText(bids + "/sourcedata/sub-C01/ses-1/saved/" + saved_name), saved_bytes);
+  EXPECT_FALSE(fs::exists(bids + "/sourcedata/sub-C02"));
   for (const char* file : {"dataset_description.json", "README", "participants.json"})
     EXPECT_TRUE(fs::exists(bids + "/" + file)) << file;
   const Table participants = readTable(bids + "/participants.tsv", '\t');

@@ -21,8 +21,8 @@
 #include "app/render/image_io.h"
 #include "app/shell/study/study_page.h"
 #include "app/study/protocol.h"
-#include "app/study/study_run_state.h"
 #include "app/study/reference_picture.h"
+#include "app/study/study_run_state.h"
 #include "drivers/core/journal.h"
 
 #include "tests/support/command_run.h"
@@ -147,7 +147,11 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
 
   // The pages as the runner lays them out at each stage.
   StudyRunState layout(protocol, 1, 0);
-  const StudyPage consent = buildStudyPage(layout, StudyPageInput{}, kW, kH);
+  StudyPageInput form_input;  // measured with the runner's font
+  std::string font_error;
+  form_input.measure = studyPageFont(protocol, &font_error);
+  ASSERT_TRUE(form_input.measure) << font_error;
+  const StudyPage consent = buildStudyPage(layout, form_input, kW, kH);
   layout.agree(0);
   layout.proceed(0);
   layout.proceed(0);
@@ -158,7 +162,7 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
   ASSERT_EQ(layout.stage(), StudyStageKind::kTask);
   // As the participant sees it: composited over the paper background (reference_picture.h).
   const ImageRgba8 picture = referencePictureForDisplay(readPng(dir + "/images/cloud1_duck.png"));
-  StudyPageInput task_input;
+  StudyPageInput task_input = form_input;
   task_input.image_aspect = float(picture.width) / float(picture.height);
   const StudyPage task = buildStudyPage(layout, task_input, kW, kH);
   for (int i = 2; i < 4; ++i) {
@@ -166,7 +170,7 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
     layout.closeStage(7 * kSecond * i);
   }
   ASSERT_EQ(layout.stage(), StudyStageKind::kQuestionnaire);
-  const StudyPage questionnaire = buildStudyPage(layout, StudyPageInput{}, kW, kH);
+  const StudyPage questionnaire = buildStudyPage(layout, form_input, kW, kH);
 
   // Consent, before the first tap (1.0 s): a form on black, its "I agree" box drawn.
   const ImageRgba8 at_consent = frameAt(0.7);

@@ -160,7 +160,11 @@ TEST(StudyRunCli, DecliningConsentEndsTheRunWithExitZeroAndNoTaskData) {
   const int w = 1920, h = 1080;
   const StudyProtocol protocol = loadStudyProtocol(defaultStudyProtocolPath());
   const StudyRunState consent(protocol, 1, 0);
-  const StudyPage page = buildStudyPage(consent, StudyPageInput{}, w, h);
+  StudyPageInput input;  // measured with the runner's font
+  std::string font_error;
+  input.measure = studyPageFont(protocol, &font_error);
+  ASSERT_TRUE(input.measure) << font_error;
+  const StudyPage page = buildStudyPage(consent, input, w, h);
   const std::string pen = dir + "/pen.cbj";
   ASSERT_NO_FATAL_FAILURE(
       recordTap(page.find(StudyTargetAction::kDecline), w, h, 5'000'000'000, pen));

@@ -1,0 +1,310 @@
+// One timed task of Appendix B ("Cloud painting ... Save the data in the end") walked at
+// 1920x1080 as a participant meets it with no operator beside them: the real study runner
+// (EGL surfaceless, llvmpipe) with the bundled protocol (its tutorial and free drawing left to
+// their own walks; the four tasks of ten minutes, Williams order), the product's brush and
+// mapping. Taps land at the centre of the runner's own targets; the strokes come from a recorded
+// pen journal played by the replay backend (drivers/replay). At each step the test reads what
+// the screen says and the runner's state:
+// - consent, code and introduction each say what they wait for;
+// - the task's panel: its title, its picture, what to do and that the cloud is saved for the
+//   participant, "I'm done", the countdown (10:00, then red in the last minute), the foot line;
+// - three strokes paint (the status line names the recorded pen);
+// - the save as Appendix B asks, with the pen through the painter's menu: the toast names the
+//   file, which lies in the session folder's saved/, in a box clear of the task's panel;
+// - time up while the pen is down: the panel says time is up and to lift the pen (no "I'm
+//   done" any more), the countdown shows 0:00 in red; lifted, the stroke is not lost, the stage
+//   closes by itself, the task's files are written, trials.csv says `time-up`, and the next task's
+//   page follows at 10:00.
+//
+// CB_KEEP_FRAMES=DIR writes each step as appendix_b_NN_<step>.png for looking.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "app/brush/synthetic_strokes.h"
+#include "app/core/config_paths.h"
+#include "app/render/image_io.h"
+#include "app/session/paint_session.h"
+#include "app/session/synthetic_session.h"
+#include "app/shell/painter/paint_screen.h"
+#include "app/shell/study/study_run_screen.h"
+#include "app/study/session_trace.h"
+#include "app/study/trial_table.h"
+#include "drivers/replay/replay_pen_source.h"
+
+#include "tests/support/short_study.h"
+#include "tests/support/test_display.h"
+
+namespace cb {
+namespace {
+
+constexpr int kW = 1920, kH = 1080;
+constexpr int64_t kSecond = 1'000'000'000;
+constexpr int64_t kFrame = 16'666'667;
+
+StudyProtocol walkProtocol() {
+  StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
+  p.tutorial.clear();
+  p.free_drawing = StudyStage{};
+  return p;
+}
+
+SyntheticStroke strokeAcross(glm::vec2 a, glm::vec2 b) {
+  SyntheticStroke s;
+  s.control_points = {a, glm::mix(a, b, 0.33f) + glm::vec2(0, -40),
+                      glm::mix(a, b, 0.66f) + glm::vec2(0, 40), b};
+  return s;
+}
+
+// The participant's strokes on the canvas (left of the panel): a duck's body, head and beak.
+const std::vector<SyntheticStroke> kStrokes = {
+    strokeAcross({0.15f * kW, 0.6f * kH}, {0.55f * kW, 0.62f * kH}),
+    strokeAcross({0.45f * kW, 0.35f * kH}, {0.55f * kW, 0.42f * kH}),
+    strokeAcross({0.55f * kW, 0.4f * kH}, {0.65f * kW, 0.41f * kH})};
+
+class Walk {
+ public:
+  std::string dir, folder;
+  std::unique_ptr<Display> display;
+  VolumeRenderer renderer;
+  std::unique_ptr<PaintSession> session;
+  JournalWriter journal;
+  PenDeviceInfo tablet = syntheticTablet(kW, kH);
+  std::unique_ptr<ReplayPenSource> pen;
+  StudyProtocol protocol = walkProtocol();
+  std::unique_ptr<StudyRunState> state;
+  std::unique_ptr<StudyRunScreen> screen;
+  int64_t now = 50 * kSecond;
+  long frame_count = 0;
+  int kept = 0;
+  std::vector<size_t> stroke_samples;
+
+  ~Walk() {
+    if (!dir.empty()) std::filesystem::remove_all(dir);
+  }
+
+  // The recorded pen: a Device record and kStrokes, 200 samples a second.
+  void recordPen(const std::string& path) {
+    JournalWriter writer;
+    ASSERT_TRUE(writer.open(path));
+    PaintSession recorder({kW, kH}, loadDefaultBrushConfig(),
+                          loadMappingConfig(configFile("mapping.toml")));
+    recorder.recordTo(&writer, 0);
+    recorder.setDevice(tablet, 0);
+    int64_t t = kSecond;
+    for (const SyntheticStroke& s : kStrokes) {
+      const std::vector<PenSample> samples = syntheticPenSamples(s, tablet, kW, kH, 200.0, t);
+      for (const PenSample& sample : samples) writer.appendPenSample(sample);
+      stroke_samples.push_back(samples.size());
+      t = samples.back().t_ns + 200'000'000;
+    }
+  }
+
+  void open() {
+    dir = (std::filesystem::temp_directory_path() / ("cb_appendix_b_" + std::to_string(::getpid())))
+              .string();
+    std::filesystem::remove_all(dir);
+    folder = dir + "/data/P01-walk";
+    std::filesystem::create_directories(folder);
+    ASSERT_NO_FATAL_FAILURE(recordPen(dir + "/pen.cbj"));
+    std::string error;
+    display = test::openTestDisplay(kW, kH, &error);
+    ASSERT_TRUE(display) << error;
+    ASSERT_TRUE(renderer.init(&error)) << error;
+    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
+                                             loadMappingConfig(configFile("mapping.toml")));
+    session->setQuietMapping(true);
+    ASSERT_TRUE(journal.open(folder + "/session.cbj"));
+    session->recordTo(&journal, now);
+    ReplayOptions replay;
+    replay.realtime = false;
+    replay.batch = 1;
+    pen = std::make_unique<ReplayPenSource>(dir + "/pen.cbj", replay);
+    state = std::make_unique<StudyRunState>(protocol, 1, now);
+    StudyRunOptions options;
+    options.folder = folder;
+    options.info.protocol_name = protocol.name;
+    options.info.participant_id = state->participantId();
+    options.info.participant_number = 1;
+    options.info.anchor_monotonic_ns = now;
+    options.paint.config_dir = dir + "/config";
+    options.paint.state_dir = dir + "/state";
+    screen = std::make_unique<StudyRunScreen>(*display, renderer, *session, pen.get(), &journal,
+                                              *state, options);
+  }
+
+  // Frames as FrameLoop steps them; `samples` pen samples are handed in, 3 a frame, first.
+  void frames(int n, int64_t step_ns = kFrame, std::vector<PenSample> samples = {}) {
+    for (int i = 0; i < n || !samples.empty(); ++i) {
+      now += step_ns;
+      const size_t take = std::min<size_t>(3, samples.size());
+      screen->onPenSamples(std::vector<PenSample>(samples.begin(), samples.begin() + long(take)));
+      samples.erase(samples.begin(), samples.begin() + long(take));
+      FrameContext frame{*display, kW, kH, frame_count, now, double(step_ns) / 1e9};
+      ASSERT_EQ(screen->update(frame), "");
+      std::string error;
+      ASSERT_TRUE(screen->draw(frame, &error)) << error;
+      last = readFramebufferRgba8(display->framebuffer(), kW, kH);
+      ASSERT_TRUE(display->present(&error)) << error;
+      ++frame_count;
+    }
+  }
+  // The recorded pen's next `count` samples (one stroke), played with their own pace.
+  void stroke(size_t count) {
+    std::vector<PenSample> samples;
+    for (size_t i = 0; i < count; ++i) pen->poll(0, samples);
+    frames(0, kFrame, samples);
+  }
+  void tapAt(float x, float y) {
+    frames(2, kFrame, test::penTapSamples(tablet, x, y, kW, kH, now));
+  }
+  void tap(StudyTargetAction action) {
+    const StudyTarget* t = screen->page().find(action);
+    ASSERT_TRUE(t) << "no target " << int(action)
+                   << "; the page waits for: " << state->waitingFor(now);
+    tapAt(0.5f * (t->x0 + t->x1), 0.5f * (t->y0 + t->y1));
+  }
+  // A label of the runner's page containing `part`, or null.
+  const UiLabel* label(const std::string& part) const {
+    for (const UiLabel& l : screen->page().labels)
+      if (l.text.find(part) != std::string::npos) return &l;
+    return nullptr;
+  }
+  bool shown(const std::string& part) const { return label(part) != nullptr; }
+  std::string words() const {
+    std::string all;
+    for (const UiLabel& l : screen->page().labels) all += "[" + l.text + "] ";
+    return all;
+  }
+  void keep(const std::string& what) {
+    if (const char* out = std::getenv("CB_KEEP_FRAMES")) {
+      char name[128];
+      std::snprintf(name, sizeof name, "/appendix_b_%02d_%s.png", ++kept, what.c_str());
+      writePng(std::string(out) + name, last);
+    }
+  }
+  ImageRgba8 last;
+};
+
+TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
+  Walk w;
+  ASSERT_NO_FATAL_FAILURE(w.open());
+  w.frames(2);
+
+  // Consent, the code, the introduction: each page says what it waits for.
+  w.keep("consent");
+  EXPECT_TRUE(w.shown("Waiting for your consent")) << w.words();
+  EXPECT_TRUE(w.shown("You are invited to take part")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.tap(StudyTargetAction::kAgree));
+  w.keep("participant_code");
+  EXPECT_TRUE(w.shown("P01")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.tap(StudyTargetAction::kContinue));
+  w.keep("introduction");
+  EXPECT_TRUE(w.shown("Read the introduction")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.tap(StudyTargetAction::kContinue));
+  ASSERT_EQ(w.state->stage(), StudyStageKind::kTask) << w.state->waitingFor(w.now);
+  w.frames(3);
+
+  // The task's page before the first stroke.
+  const StudyTask* task = w.state->task();
+  ASSERT_TRUE(task);
+  w.keep("task_start");
+  EXPECT_TRUE(w.shown("Task 1 of 4: " + task->title)) << w.words();
+  EXPECT_TRUE(w.shown("Paint a cloud like the picture.")) << w.words();
+  EXPECT_TRUE(w.shown("saved for you when you tap \"I'm done\" or when the time is up"))
+      << w.words();
+  EXPECT_TRUE(w.shown("Time left 10:00")) << w.words();
+  EXPECT_TRUE(w.shown("Paint with the pen. Time left 10:00. Tap \"I'm done\" when finished."))
+      << w.words();
+  EXPECT_TRUE(w.screen->page().find(StudyTargetAction::kDone));
+  EXPECT_GT(w.screen->page().image[2] - w.screen->page().image[0], 0.2f * kW)
+      << "the picture is shown in the panel";
+  EXPECT_TRUE(w.screen->paintScreen().ui()->statusFits()) << "the status line is not cut";
+
+  // Three strokes with the recorded pen, a minute apart on the task's clock.
+  for (size_t s = 0; s < kStrokes.size(); ++s) {
+    ASSERT_NO_FATAL_FAILURE(w.stroke(w.stroke_samples[s]));
+    w.frames(3);
+    w.frames(1, 60 * kSecond);
+    EXPECT_EQ(w.session->strokesMapped(), s + 1);
+  }
+  w.frames(2);
+  w.keep("three_strokes");
+  const double left = w.state->secondsLeft(w.now);
+  EXPECT_LT(left, 7 * 60) << "three minutes and the strokes' seconds gone";
+  EXPECT_TRUE(w.shown("Time left " + countdownText(left))) << w.words();
+
+  // "Save the data in the end" (Appendix B), with the pen: the menu button, then Save.
+  const float* menu = w.screen->paintScreen().ui()->menuButtonRect();
+  ASSERT_GT(menu[2], menu[0]);
+  w.tapAt(0.5f * (menu[0] + menu[2]), 0.5f * (menu[1] + menu[3]));
+  w.frames(2);  // ImGui shows a new window on its second frame
+  ASSERT_TRUE(w.screen->paintScreen().menuOpen());
+  w.keep("menu_open");
+  float save[4];
+  ASSERT_TRUE(w.screen->paintScreen().ui()->targetRect(Command::kSave, save));
+  w.tapAt(0.5f * (save[0] + save[2]), 0.5f * (save[1] + save[3]));
+  w.frames(2);
+  w.keep("saved");
+  const std::string saved = w.screen->paintScreen().lastSaved();
+  ASSERT_NE(saved, "");
+  EXPECT_EQ(std::filesystem::path(saved).parent_path(), std::filesystem::path(w.folder + "/saved"));
+  EXPECT_NE(w.screen->paintScreen().toast().find(std::filesystem::path(saved).filename().string()),
+            std::string::npos)
+      << w.screen->paintScreen().toast();
+  const float* toast = w.screen->paintScreen().ui()->toastRect();
+  EXPECT_GE(toast[0], 0.0f) << "the save's answer on the screen";
+  EXPECT_LE(toast[2], kStudyPanelLeft * kW) << "the save's answer clear of the task's panel";
+  EXPECT_EQ(w.session->strokesMapped(), kStrokes.size()) << "the menu's taps never paint";
+  if (w.screen->paintScreen().menuOpen()) {
+    w.tapAt(0.5f * (menu[0] + menu[2]), 0.5f * (menu[1] + menu[3]));  // closed again
+    w.frames(2);
+  }
+
+  // The last minute: the countdown turns red.
+  w.frames(1, int64_t(w.state->secondsLeft(w.now) - 45) * kSecond);
+  w.frames(2);
+  w.keep("last_minute");
+  const UiLabel* countdown = w.label("Time left 0:4");
+  ASSERT_TRUE(countdown) << w.words();
+  EXPECT_EQ(countdown->rgba, 0xff8060ffu) << "red in the last minute";
+
+  // Time up with the pen down in a stroke: the page asks to lift the pen; lifted, the stage
+  // closes by itself and the stroke is kept.
+  const SyntheticStroke last_stroke = strokeAcross({0.2f * kW, 0.3f * kH}, {0.3f * kW, 0.32f * kH});
+  std::vector<PenSample> down, up;
+  bool was_down = false;  // hover in and the tip's samples, then the lift and what follows
+  for (const PenSample& s : syntheticPenSamples(last_stroke, w.tablet, kW, kH, 200.0, w.now)) {
+    (up.empty() && (s.tipDown() || !was_down) ? down : up).push_back(s);
+    was_down = was_down || s.tipDown();
+  }
+  w.frames(0, kFrame, down);
+  w.frames(1, int64_t(w.state->secondsLeft(w.now) + 1) * kSecond);
+  w.frames(2);
+  w.keep("time_up_pen_down");
+  EXPECT_TRUE(w.state->closing());
+  const std::string closing = w.state->waitingFor(w.now);
+  EXPECT_TRUE(w.shown("lift the pen")) << w.words();
+  EXPECT_TRUE(w.shown("Time is up. Lift the pen: your cloud is being saved.")) << w.words();
+  EXPECT_TRUE(w.shown("时间到了")) << w.words();
+  EXPECT_FALSE(w.screen->page().find(StudyTargetAction::kDone)) << "no \"I'm done\" after time up";
+  EXPECT_TRUE(w.shown("Time left 0:00")) << w.words();
+  for (PenSample& s : up) s.t_ns = w.now;
+  w.frames(0, kFrame, up);
+  w.frames(30);
+  w.keep("next_task");
+  const std::vector<TrialRow> trials = trialsOfSession(loadSessionTrace(w.folder + "/session.cbj"));
+  ASSERT_GE(trials.size(), 1u);
+  EXPECT_EQ(trials[0].end_reason, "time-up") << closing;
+  EXPECT_EQ(trials[0].strokes, int(kStrokes.size()) + 1) << "the stroke open at time up is kept";
+  for (const char* ext : {".vdb", ".cbvol", ".exr", ".png"})
+    EXPECT_TRUE(std::filesystem::exists(w.folder + "/tasks/" + task->id + ext)) << ext;
+  ASSERT_EQ(w.state->stage(), StudyStageKind::kTask) << w.state->waitingFor(w.now);
+  EXPECT_TRUE(w.shown("Task 2 of 4: " + w.state->task()->title)) << w.words();
+  EXPECT_TRUE(w.shown("Time left 10:00") || w.shown("Time left 9:5")) << w.words();
+  std::printf("closing page said: %s\n", closing.c_str());
+}
+
+}  // namespace
+}  // namespace cb
