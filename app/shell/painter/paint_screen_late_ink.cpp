@@ -3,8 +3,7 @@
 // samples that came meanwhile are latched and only the pixels their ink and the cursor changed
 // are drawn again, in the whole path's order (scene and ink, heads-up items, UI), so each pixel
 // is what the whole path would draw from the same samples. A sample then waits for its own ink
-// rather than for a whole frame (the way pen systems handle input mid-frame: Ng, Annett et al.,
-// CHI 2014).
+// rather than for a whole frame.
 #include <cstring>
 
 #include "app/shell/painter/paint_screen.h"
