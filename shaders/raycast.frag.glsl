@@ -290,24 +290,30 @@ void main() {
     surface.light_transmittance = sampleVolume(p).g;
     // Inner surface (seed 003 §5): the largest density within u_inner_depth voxels behind the
     // hit; it equals u_inner_iso where the ray grazes the inner surface (its silhouette). Read
-    // smoothed over about 3 voxels (the mean of 8 trilinear reads ±1 voxel apart): the seed's inner
-    // surface is shrunken particles, a body, while a painted cloud's edges hold single voxels
-    // of the scattered edge samples (thesis §6.6.2) whose unfiltered contours at u_inner_iso
-    // drew broken rectangles and dots across the cloud at 1920×1080.
+    // smoothed over about 3 voxels (the pool's companion, volume_pool.glsl: the mean of the 8
+    // voxels ±1 on each axis): the seed's inner surface is shrunken particles, a body, while a
+    // painted cloud's edges hold single voxels of the scattered edge samples (thesis §6.6.2)
+    // whose unfiltered contours at u_inner_iso drew broken rectangles and dots across the cloud
+    // at 1920×1080.
+    // Read in chunks of CB_CHUNK steps, one slot lookup each, as the march reads.
     int inner_end = min(n, hit_k + 1 + int(u_inner_depth / u_step));
     float inner = 0.0;
+    vec3 fixed_base = base * (u_dims * kFixed), fixed_delta = delta * (u_dims * kFixed);
     int j = hit_k;
     do {  // a do-while, as the march (llvmpipe's extra masked body)
-      vec3 c = base + float(j) * delta;
-      float box = 0.0;
-      for (int corner = 0; corner < 8; ++corner) {
-        vec3 side = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0,
-                         (corner & 4) != 0 ? 1.0 : -1.0);
-        box += sampleVolume(c + side * inv_dims).r;
+      int chunk_end = min(inner_end, j + CB_CHUNK);
+      PoolBrick pb = poolBrickAt(min(roundEven(fixed_base + float(j) * fixed_delta),
+                                     roundEven(fixed_base + float(chunk_end - 1) * fixed_delta)));
+      for (int i = 0; i < CB_CHUNK; ++i) {
+        // Straight-line code: a step past the chunk's end is read (clamped to the slot) and
+        // weighs nothing.
+        float d = poolFetchSmooth(
+            clamp(roundEven(fixed_base + float(j + i) * fixed_delta) + pb.to_pool, pb.lo, pb.hi));
+        inner = max(inner, j + i < chunk_end ? d : 0.0);
       }
-      inner = max(inner, 0.125 * box);
-    } while (++j < inner_end);
-    samples += uint(8 * max(inner_end - hit_k, 1)) + 7u;
+      j = chunk_end;
+    } while (j < inner_end);
+    samples += uint(max(inner_end - hit_k, 1)) + 7u;
     surface.inner_max_density = inner;
   }
   vec4 shaded = shadeSurface(surface);

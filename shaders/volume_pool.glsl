@@ -28,7 +28,14 @@
 // y, so the pool reproduces the dense texture's images bit for bit on llvmpipe
 // (tests/golden/render/dense_reference_test); a texture unit that rounds otherwise differs by at
 // most one step of 8 bits per sample.
+//
+// u_pool_smooth, the pool's companion (same size and slots, RG16), holds each texel's density
+// smoothed over about 3 voxels (the mean of the 8 voxels ±1 on each axis) and the next layer's:
+// read in the same slot (sampleSmoothDensity: the bilinear fetch, then a lerp in z, here in
+// float: 16 bits need no 8-bit steps) it gives the mean of 8 trilinear reads ±1 voxel apart in
+// one fetch.
 uniform sampler2DArray u_pool;
+uniform sampler2DArray u_pool_smooth;
 uniform sampler3D u_bricks;
 uniform vec3 u_dims;              // voxels
 uniform ivec3 u_brick_max;        // bricks per axis − 1
@@ -83,6 +90,15 @@ vec2 poolFetch(vec3 p) {
   return (lower + rise) * (1.0 / 255.0);
 }
 
+// The smoothed density at fixed-point pool position p: u_pool_smooth's r (this layer) and g
+// (the next) fetched bilinearly in layer ⌊p.z − ½⌋, as poolFetch, and lerped in z.
+float poolFetchSmooth(vec3 p) {
+  float z = p.z - 0.5 * kFixed;
+  float layer = floor(z * (1.0 / kFixed));
+  vec2 c = textureLod(u_pool_smooth, vec3(p.xy * u_inv_pool_fixed.xy, layer), 0.0).rg;
+  return mix(c.r, c.g, (z - layer * kFixed) * (1.0 / kFixed));
+}
+
 // Density and transmittance at fixed-point voxel position q, anywhere in pb's slot (clamped to
 // it: beyond the volume's faces that is the dense texture's CLAMP_TO_EDGE).
 vec2 samplePool(vec3 q, PoolBrick pb) {
@@ -101,4 +117,11 @@ vec2 sampleChunk(vec3 q, PoolBrick pb) {
 vec2 sampleVolume(vec3 coord) {
   vec3 q = fixedVoxel(coord);
   return samplePool(q, poolBrickAt(q));
+}
+
+// The smoothed density (u_pool_smooth) at dense texture coordinate `coord`.
+float sampleSmoothDensity(vec3 coord) {
+  vec3 q = fixedVoxel(coord);
+  PoolBrick pb = poolBrickAt(q);
+  return poolFetchSmooth(clamp(q + pb.to_pool, pb.lo, pb.hi));
 }

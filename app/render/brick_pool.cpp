@@ -44,6 +44,23 @@ const std::vector<uint8_t>& emptySlotBytes() {
   return empty;
 }
 
+// The smoothed companion of the empty slot: density 0.
+const std::vector<uint16_t>& emptySmoothSlot() {
+  static const std::vector<uint16_t> empty(BrickPool::kSmoothSlotBytes / 2, 0);
+  return empty;
+}
+
+// 64-bit words of `bytes` (a multiple of 8) mixed by multiply–xorshift, from `h`.
+uint64_t mixWords(const uint8_t* bytes, size_t n, uint64_t h) {
+  for (size_t i = 0; i < n; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, bytes + i, 8);
+    h = (h ^ w) * 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 31;
+  }
+  return h;
+}
+
 // The voxels a slot holds (voxels 16b … 16b + 19, clamped to the volume).
 VoxelBox slotVoxels(glm::ivec3 b, const Volume& volume) {
   const glm::ivec3 lo = b * Volume::kBrickSize;
@@ -98,21 +115,64 @@ void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 br
   }
 }
 
+void packSmoothSlot(const Volume& volume, glm::ivec3 brick, uint16_t* out) {
+  constexpr int S = BrickPool::kSlotTexels;
+  constexpr int R = S + 2;  // voxels 16b − 1 … 16b + 20 on each axis
+  const glm::ivec3 dims = volume.dims();
+  const glm::ivec3 lo = brick * Volume::kBrickSize - 1;
+  // The 8-bit densities of those voxels (indices clamped to the volume), x fastest.
+  static thread_local uint16_t d[R * R * R], sx[R * R * R], sy[R * R * R];
+  const int x0 = std::max(lo.x, 0), x1 = std::min(lo.x + R, dims.x);  // the row inside
+  float line[R];
+  for (int k = 0; k < R; ++k)
+    for (int j = 0; j < R; ++j) {
+      const int y = std::clamp(lo.y + j, 0, dims.y - 1), z = std::clamp(lo.z + k, 0, dims.z - 1);
+      volume.readLine({x0, y, z}, 0, x1 - x0, line);
+      uint16_t* row = d + (k * R + j) * R;
+      for (int i = 0; i < R; ++i) row[i] = unorm8(line[std::clamp(lo.x + i, x0, x1 - 1) - x0]);
+    }
+  // The 8 diagonal neighbours' sum, one axis at a time: v[i − 1] + v[i + 1] (at most 2040).
+  for (int k = 0; k < R; ++k)
+    for (int j = 0; j < R; ++j)
+      for (int i = 1; i < R - 1; ++i) {
+        const int at = (k * R + j) * R + i;
+        sx[at] = d[at - 1] + d[at + 1];
+      }
+  for (int k = 0; k < R; ++k)
+    for (int j = 1; j < R - 1; ++j)
+      for (int i = 1; i < R - 1; ++i) {
+        const int at = (k * R + j) * R + i;
+        sy[at] = sx[at - R] + sx[at + R];
+      }
+  constexpr size_t T = 2;  // values a texel
+  // Texels past the volume's edge repeat its last voxel's value (clamp to edge).
+  const glm::ivec3 last = dims - 1 - (lo + 1);
+  for (int k = 0; k < S; ++k)
+    for (int j = 0; j < S; ++j)
+      for (int i = 0; i < S; ++i) {
+        const int at =
+            ((std::min(k, last.z) + 1) * R + std::min(j, last.y) + 1) * R + std::min(i, last.x) + 1;
+        out[T * size_t((k * S + j) * S + i)] = smoothUnorm16(sy[at - R * R] + sy[at + R * R]);
+      }
+  // Value 1: the next layer's value 0 (the last layer repeats its own).
+  const size_t layer = size_t(S) * S;
+  for (int k = 0; k < S; ++k) {
+    uint16_t* o = out + T * layer * size_t(k);
+    const uint16_t* up = out + T * layer * size_t(std::min(k + 1, S - 1));
+    for (size_t i = 0; i < layer; ++i) o[T * i + 1] = up[T * i];
+  }
+}
+
 uint64_t slotHash(const uint8_t* slot) {
   // 64-bit words mixed by multiply–xorshift (kSlotBytes = 16000 is a multiple of 8).
-  static_assert(BrickPool::kSlotBytes % 8 == 0);
-  uint64_t h = 0x9E3779B97F4A7C15ull;
-  for (size_t i = 0; i < BrickPool::kSlotBytes; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, slot + i, 8);
-    h = (h ^ w) * 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 31;
-  }
+  static_assert(BrickPool::kSlotBytes % 8 == 0 && BrickPool::kSmoothSlotBytes % 8 == 0);
+  const uint64_t h = mixWords(slot, BrickPool::kSlotBytes, 0x9E3779B97F4A7C15ull);
   return h ? h : 1;
 }
 
 void slotDifference(const uint8_t* before, const uint8_t* now,
-                    std::vector<BrickPool::SlotChange>* out) {
+                    std::vector<BrickPool::SlotChange>* out, const uint16_t* smooth_before,
+                    const uint16_t* smooth_now) {
   constexpr int S = BrickPool::kSlotTexels;
   constexpr size_t N = size_t(S) * S * S;
   // near[i]: a texel of non-zero density among texel i's 3³ neighbours in the slot (a separable
@@ -146,7 +206,8 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
         // A texel's own bytes (0 and 1); bytes 2 and 3 repeat the next layer's.
         const bool density = before[T * i] != now[T * i];
         const bool light = before[T * i + 1] != now[T * i + 1];
-        if (!density && !light) continue;
+        const bool smooth = smooth_before && smooth_before[2 * i] != smooth_now[2 * i];
+        if (!density && !light && !smooth) continue;
         const glm::ivec3 t(x, y, z);
         const int k = (z / B * blocks + y / B) * blocks + x / B;
         lo[k] = glm::min(lo[k], t);
@@ -164,6 +225,7 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
 
 BrickPool::~BrickPool() {
   if (pool_texture_) glDeleteTextures(1, &pool_texture_);
+  if (smooth_texture_) glDeleteTextures(1, &smooth_texture_);
   if (indirection_texture_) glDeleteTextures(1, &indirection_texture_);
 }
 
@@ -234,11 +296,27 @@ bool BrickPool::fitFresh(size_t slots, UpdateStats* stats) {
   const glm::ivec3 fitted = slotsFor(kInitialSlots, withHeadroom(slots + 1), &full);
   if (!pool_texture_ || slotCount(fitted) >= slotCapacity()) return false;
   glDeleteTextures(1, &pool_texture_);
-  pool_texture_ = 0;
+  glDeleteTextures(1, &smooth_texture_);
+  pool_texture_ = smooth_texture_ = 0;
   capacity_ = glm::ivec3(0);
   reserve(slots, stats);
   freeEverySlot();
   return true;
+}
+
+GLuint BrickPool::makeSlotTexture(GLenum format, glm::ivec3 texels) {
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+  glTextureStorage3D(texture, 1, format, texels.x, texels.y, texels.z);
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteTextures(1, &texture);
+    return 0;
+  }
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+    glTextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
+  return texture;
 }
 
 bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
@@ -256,26 +334,24 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   }
   if (pool_texture_ && cap == capacity_) return false;
   const glm::ivec3 texels = cap * kSlotTexels;
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
-  glTextureStorage3D(texture, 1, GL_RGBA8, texels.x, texels.y, texels.z);
-  if (glGetError() == GL_OUT_OF_MEMORY) {
-    glDeleteTextures(1, &texture);
+  const GLuint texture = makeSlotTexture(GL_RGBA8, texels);
+  const GLuint smooth = texture ? makeSlotTexture(GL_RG16, texels) : 0;
+  if (!smooth) {
+    if (texture) glDeleteTextures(1, &texture);
     std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
-                 slotCount(cap) * kSlotBytes);
+                 slotCount(cap) * (kSlotBytes + kSmoothSlotBytes));
     return false;
   }
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
-    glTextureParameteri(texture, wrap, GL_CLAMP_TO_EDGE);
   if (pool_texture_) {
-    // Slots keep their coordinates: copy the old pool into the corner of the new one (on the
-    // GPU, nothing re-packed) and free the slots that are new.
+    // Slots keep their coordinates: copy the old pool and its companion into the corner of the
+    // new ones (on the GPU, nothing re-packed) and free the slots that are new.
     const glm::ivec3 old = pool_texels_;
     glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY,
                        0, 0, 0, 0, old.x, old.y, old.z);
+    glCopyImageSubData(smooth_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, smooth,
+                       GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, old.x, old.y, old.z);
     glDeleteTextures(1, &pool_texture_);
+    glDeleteTextures(1, &smooth_texture_);
     std::vector<glm::u8vec4> added;
     for (int z = cap.z - 1; z >= 0; --z)
       for (int y = cap.y - 1; y >= 0; --y)
@@ -288,8 +364,11 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     resetUnpackState();
     glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RGBA,
                         GL_UNSIGNED_BYTE, emptySlotBytes().data());
+    glTextureSubImage3D(smooth, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+                        GL_UNSIGNED_SHORT, emptySmoothSlot().data());
   }
   pool_texture_ = texture;
+  smooth_texture_ = smooth;
   pool_texels_ = texels;
   capacity_ = cap;
   return slotCount(cap) >= needed;
@@ -337,10 +416,11 @@ std::vector<glm::ivec3> BrickPool::slotCandidates(const Volume& volume, bool fre
   // Candidates: bricks whose slot may have to change (be added, released or refreshed).
   std::vector<glm::ivec3> candidates;
   auto addCandidatesAround = [&](glm::ivec3 c) {
-    // Slot b reads bricks b + {0,1}³, so brick c is read by the slots of c − {0,1}³.
-    for (int dz = -1; dz <= 0; ++dz)
-      for (int dy = -1; dy <= 0; ++dy)
-        for (int dx = -1; dx <= 0; ++dx) {
+    // Slot b reads bricks b + {0,1}³ and its smoothed companion b + {−1,0,1}³, so brick c is
+    // read by the slots of c + {−1,0,1}³.
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
           const glm::ivec3 b = c + glm::ivec3(dx, dy, dz);
           if (!valid(b, bd)) continue;
           uint8_t& m = mark_[brickIndex(b)];
@@ -461,16 +541,20 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
   UpdateStats& st = *stats;
   auto t0 = std::chrono::steady_clock::now();
   resetUnpackState();
-  std::vector<uint8_t> staging;  // packed slots of one batch
-  std::vector<uint8_t> before;   // a slot's bytes before the update (for `changes`)
+  constexpr size_t kSmoothValues = kSmoothSlotBytes / 2;
+  std::vector<uint8_t> staging, before;         // packed slots of one batch; one's bytes before
+  std::vector<uint16_t> smooth, smooth_before;  // their companions; one's before
   for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
     const size_t n = std::min(kUploadBatch, to_upload.size() - first);
     t0 = std::chrono::steady_clock::now();
     staging.resize(n * kSlotBytes);
+    smooth.resize(n * kSmoothValues);
     // Small batches on the calling thread: waking workers costs more than a few slots.
     parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
-      for (size_t s = s0; s < s1; ++s)
+      for (size_t s = s0; s < s1; ++s) {
         packBrickSlot(volume, light, to_upload[first + s], staging.data() + s * kSlotBytes);
+        packSmoothSlot(volume, to_upload[first + s], smooth.data() + s * kSmoothValues);
+      }
     });
     // Slots whose bytes are what they held stay as they are (the slot of an added brick held
     // nothing: hash 0).
@@ -479,7 +563,10 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
     parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
       for (size_t s = s0; s < s1; ++s) {
         uint64_t& held = slot_hash_[brickIndex(to_upload[first + s])];
-        const uint64_t h = slotHash(staging.data() + s * kSlotBytes);
+        const uint64_t h =
+            mixWords(reinterpret_cast<const uint8_t*>(smooth.data() + s * kSmoothValues),
+                     kSmoothSlotBytes, slotHash(staging.data() + s * kSlotBytes)) |
+            1;
         state[s] = h == held ? kSame : held == 0 ? kAdded : kChanged;
         held = h;
       }
@@ -501,17 +588,24 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       } else if (changes) {
         // What rays read there before: the empty slot for an added brick, else the slot's bytes.
         const uint8_t* old = emptySlotBytes().data();
+        const uint16_t* old_smooth = emptySmoothSlot().data();
         if (state[s] == kChanged) {
-          // Rows of 80 bytes: tight under any pack alignment (the project sets no other
-          // pack state).
+          // Rows of 80 bytes: tight under any pack alignment (the project sets no other pack
+          // state).
           before.resize(kSlotBytes);
           glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
                                kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
                                before.data());
+          smooth_before.resize(kSmoothValues);
+          glGetTextureSubImage(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                               kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, GLsizei(kSmoothSlotBytes),
+                               smooth_before.data());
           old = before.data();
+          old_smooth = smooth_before.data();
         }
         const size_t first_change = changes->size();
-        slotDifference(old, staging.data() + s * kSlotBytes, changes);
+        slotDifference(old, staging.data() + s * kSlotBytes, changes, old_smooth,
+                       smooth.data() + s * kSmoothValues);
         // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its
         // last voxel, which then changed too).
         const glm::ivec3 lo = b * Volume::kBrickSize;
@@ -525,6 +619,8 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       }
       glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
                           GL_RGBA, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
+      glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                          kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smooth.data() + s * kSmoothValues);
     }
     st.upload_ms += msSince(t0);
   }

@@ -11,6 +11,17 @@
 //    trilinear sample needs — 4 texels where a 3D RG8 texture's trilinear fetch gathered 8,
 //    which llvmpipe's per-lane gathers are paid by — and the shader lerps in z. Twice the bytes
 //    of an RG8 3D pool.
+//  - Smoothed density: a companion RG16 2D array texture of the same size and slot layout
+//    holding, per texel, the density smoothed over about 3 voxels (the mean of the 8-bit
+//    densities of the 8 voxels diagonally next to it, ±1 on each axis) of its voxel and of the
+//    voxel above it in z. A trilinear read of it is the mean of 8 trilinear density reads ±1
+//    voxel apart (the filter commutes with trilinear interpolation): one read per step for the
+//    iso-surface styles' inner surface (shaders/raycast.frag.glsl) instead of 8. 16 bits, because
+//    that surface's line is drawn where the field's screen derivative says it crosses a level:
+//    8-bit steps (and llvmpipe's 8-bit filtering) made flat terraces that broke the line into
+//    dashes (cartoon islands on the gallery's s_curve 14 → 20 per 10,000 cloud pixels). A
+//    slot's smoothed texels read voxels 16b − 1 … 16b + 20, so an edited brick c refreshes the
+//    slots of c + {−1,0,1}³.
 //  - Indirection: one RGBA8 texel per brick (Volume::brickDims), read with nearest filtering,
 //    holding the slot's coordinates in slots and a = 1; (0,0,0,0) is the empty slot (all density
 //    0), shared by every brick without one. (RGBA8 rather than an integer texture: llvmpipe's
@@ -28,12 +39,12 @@
 // transparent, and an iso-surface is never hit there).
 //
 // Updates follow the bricks that changed: a changed density brick c refreshes the slots of
-// c − {0,1}³ (allocating or releasing them as the rule above now says) and a light box the slots
-// whose voxels meet it. Released slots are reused; the pool grows (a slot column, row or layer
-// at a time to a quarter more slots than needed, copied on the GPU with glCopyImageSubData) only
-// when it runs out, so slots keep their coordinates and nothing is re-packed. A fresh volume
-// (another one, or new dims) gets a pool of the size it needs: one that held a bigger cloud before
-// is made anew, smaller.
+// c + {−1,0,1}³ (c − {0,1}³ read its density, and c + {0,1}³ its smoothed density; allocating or
+// releasing them as the rule above now says) and a light box the slots whose voxels meet it.
+// Released slots are reused; the pool grows (a slot column, row or layer at a time to a quarter
+// more slots than needed, copied on the GPU with glCopyImageSubData) only when it runs out, so
+// slots keep their coordinates and nothing is re-packed. A fresh volume (another one, or new dims)
+// gets a pool of the size it needs: one that held a bigger cloud before is made anew, smaller.
 #pragma once
 
 #include <cstddef>
@@ -60,6 +71,10 @@ class BrickPool {
   static constexpr size_t kSlotBytes =
       size_t(kSlotTexels) * kSlotTexels * kSlotTexels * kTexelBytes;
   static_assert(kSlotTexels - Volume::kBrickSize == LightByteChanges::kLowVoxels);
+  // The smoothed-density companion's RG16 texels: the texel's voxel and the one above it in z.
+  static constexpr size_t kSmoothTexelBytes = 4;
+  static constexpr size_t kSmoothSlotBytes =
+      size_t(kSlotTexels) * kSlotTexels * kSlotTexels * kSmoothTexelBytes;
 
   struct UpdateStats {
     int slots_uploaded = 0;   // slots re-packed and uploaded
@@ -126,6 +141,8 @@ class BrickPool {
   void followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset);
 
   GLuint poolTexture() const { return pool_texture_; }
+  // The smoothed-density companion (RG16, the pool's size and slots).
+  GLuint smoothTexture() const { return smooth_texture_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
   // The pool texture's size in texels (whole slots: 20 × its size in slots).
   glm::ivec3 poolTexels() const { return pool_texels_; }
@@ -136,9 +153,10 @@ class BrickPool {
   size_t slotCapacity() const { return slotCount(capacity_); }
   // The slot coordinates of brick b ((0,0,0): the empty slot).
   glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
-  // GL texture bytes: the pool and the indirection table.
+  // GL texture bytes: the pool with its smoothed-density companion, and the indirection table.
   size_t poolBytes() const {
-    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) * kTexelBytes;
+    return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) *
+           (kTexelBytes + kSmoothTexelBytes);
   }
   size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
   // CPU bytes of the tables (indirection copy, free list, marks).
@@ -169,6 +187,8 @@ class BrickPool {
   // Makes room for at least `slots` slots in use (plus the empty slot); false if the GL limit
   // on 3D texture size is reached.
   bool reserve(size_t slots, UpdateStats* stats);
+  // A 2D array texture of `texels` for slots (linear filtering, clamped); 0 when out of memory.
+  static GLuint makeSlotTexture(GLenum format, glm::ivec3 texels);
   void uploadIndirection(const VoxelBox& bricks);
   // update()'s steps. The bricks whose slot may change (added, released or refreshed): those
   // whose slot reads an allocated (fresh) or changed brick, in a fixed z, y, x order.
@@ -196,7 +216,7 @@ class BrickPool {
   std::vector<uint8_t> mark_;               // per brick, scratch for de-duplicating candidates
   std::vector<uint64_t> slot_hash_;         // per brick, hash of its slot's bytes (slotHash)
   size_t slots_in_use_ = 0;
-  GLuint pool_texture_ = 0, indirection_texture_ = 0;
+  GLuint pool_texture_ = 0, smooth_texture_ = 0, indirection_texture_ = 0;
   bool full_reported_ = false;
 };
 
@@ -211,6 +231,17 @@ std::vector<glm::ivec3> growthEdgeBricks(const Volume& grown);
 // 3; the last layer's are its own). Reads transmittance only through LightVolume::at.
 void packBrickSlot(const Volume& volume, const LightVolume& light, glm::ivec3 brick, uint8_t* out);
 
+// Packs the smoothed-density companion of `brick`'s slot (20³ RG16 texels, x fastest, texel j on
+// an axis at voxel 16·b + j): value 0 is smoothUnorm16 of the sum of the 8-bit densities of the 8
+// voxels (±1, ±1, ±1) from the texel's voxel (indices clamped to the volume), value 1 that of
+// the texel above it in z (the last layer repeats its own).
+void packSmoothSlot(const Volume& volume, glm::ivec3 brick, uint16_t* out);
+
+// The mean of 8 density bytes summing to `sum` (0 … 8·255) as a 16-bit unorm, rounded.
+inline uint16_t smoothUnorm16(int sum) {
+  return uint16_t((sum * 65535 + 1020) / 2040);
+}
+
 // A 64-bit hash of one packed slot (kSlotBytes), never 0 (0 marks "no slot").
 uint64_t slotHash(const uint8_t* slot);
 
@@ -218,8 +249,11 @@ uint64_t slotHash(const uint8_t* slot);
 // block of BrickPool::kChangeBlockTexels³ texels holding a changed one, its boxes in texel
 // coordinates of the slot (lo inclusive, hi exclusive; `weighted` judged by `now`'s densities)
 // and `brick` left 0. Nothing when the slots are equal. A texel counts by its own bytes (0 and 1):
-// bytes 2 and 3 repeat the next layer's, which counts for itself.
+// bytes 2 and 3 repeat the next layer's, which counts for itself. With `smooth_before` and
+// `smooth_now` (the companions, packSmoothSlot), a texel whose smoothed density (value 0) changed
+// counts in `bytes` too (only the iso-surface styles read it).
 void slotDifference(const uint8_t* before, const uint8_t* now,
-                    std::vector<BrickPool::SlotChange>* out);
+                    std::vector<BrickPool::SlotChange>* out,
+                    const uint16_t* smooth_before = nullptr, const uint16_t* smooth_now = nullptr);
 
 }  // namespace cb

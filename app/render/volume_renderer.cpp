@@ -976,6 +976,7 @@ void VolumeRenderer::setCastUniforms(const FramePlan& p, const Camera& camera,
   glUniform3fv(loc("u_voxel_size"), 1, glm::value_ptr(voxel));
   glUniform3f(loc("u_dims"), float(dims_.x), float(dims_.y), float(dims_.z));
   glUniform1i(loc("u_pool"), 0);
+  glUniform1i(loc("u_pool_smooth"), 6);
   glUniform1i(loc("u_bricks"), 5);
   const glm::ivec3 brick_max = pool_.brickDims() - 1;
   glUniform3fv(loc("u_inv_brick_dims"), 1, glm::value_ptr(1.0f / glm::vec3(pool_.brickDims())));
@@ -1041,6 +1042,7 @@ void VolumeRenderer::setStyleUniforms(const RenderOptions& options, bool sky_und
 
 void VolumeRenderer::castRays(const FramePlan& p, const RenderOptions& options) {
   glBindTextureUnit(0, pool_.poolTexture());
+  glBindTextureUnit(6, pool_.smoothTexture());
   glBindTextureUnit(5, pool_.indirectionTexture());
   if (options.skip_empty_space && options.brick_stepping) ensureOccupancyTexture();
   glBindTextureUnit(1, occupancy_texture_);

@@ -17,7 +17,10 @@
 // to two pixels (render_style.h isoSurfaceReach), and the cartoon and sketch images
 // (brick_borders_cartoon, cumulus128_cartoon_side, cumulus128_sketch_reference,
 // puffs128_cartoon_reference) again when the inner surface came to be read from the density
-// smoothed over ~3 voxels (raycast.frag.glsl); the others are still the dense path's.
+// smoothed over ~3 voxels (raycast.frag.glsl), and once more (cumulus128_cartoon_side,
+// cumulus128_sketch_reference, puffs128_cartoon_reference: a few line pixels) when that density
+// came from the pool's 16-bit smoothed companion instead of 8 reads of 8-bit filtered density;
+// the others are still the dense path's.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

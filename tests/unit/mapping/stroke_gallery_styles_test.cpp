@@ -46,7 +46,8 @@ constexpr float kInkDark = 0.5f, kCartoonDark = 0.45f;
 // With the inner surface read from the unfiltered density these four strokes measured 20–26
 // islands per 10,000 cloud pixels (all twelve: 14–26), its lines broken into rectangles and dots
 // by single voxels of the scattered edge samples; read smoothed over about 3 voxels
-// (raycast.frag.glsl) 11–14 (all twelve: 6.5–14). The bound lies between.
+// (raycast.frag.glsl) 11–14 (all twelve: 6.5–14); read from the brick pool's 16-bit smoothed
+// companion (one read a step, app/render/brick_pool.h) 10.9–13.3. The bound lies between.
 constexpr double kMaxCartoonIslands = 16.0;
 
 ImageRgba8 render(VolumeRenderer& renderer, RenderTarget& target, const Volume& volume,

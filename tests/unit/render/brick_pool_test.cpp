@@ -94,6 +94,55 @@ TEST(BrickPoolSlot, HoldsTheBrickAndItsHighApronClampedToTheVolume) {
   }
 }
 
+TEST(BrickPoolSlot, HoldsTheSmoothedDensityOfItsVoxels) {
+  // Partial bricks and density up to the far corner, as above.
+  Volume v = makeSparsePuffs(glm::ivec3(40, 24, 33), 3);
+  paintBall(v, {38, 22, 31}, 5);
+  v.set(16, 16, 16, 1.0f);  // a single voxel on a brick corner: its diagonal neighbours read 1/8
+  std::vector<uint16_t> slot(BrickPool::kSmoothSlotBytes / 2);
+  constexpr int S = BrickPool::kSlotTexels;
+  auto byte = [&](glm::ivec3 p) { return int(unorm8(v.at(p.x, p.y, p.z))); };
+  for (glm::ivec3 b :
+       {glm::ivec3(0, 0, 0), glm::ivec3(1, 0, 1), glm::ivec3(0, 1, 0), glm::ivec3(2, 1, 2)}) {
+    packSmoothSlot(v, b, slot.data());
+    int non_zero = 0;
+    for (int k = 0; k < S; ++k)
+      for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+          // The mean of the 8 diagonal neighbours (clamped to the volume) of the texel's voxel,
+          // then of the voxel above it (the slot's last layer repeats its own), in 16 bits.
+          auto mean = [&](glm::ivec3 t) {
+            const glm::ivec3 voxel = b * 16 + t;
+            int sum = 0;
+            for (int n = 0; n < 8; ++n) {
+              const glm::ivec3 o((n & 1) ? 1 : -1, (n & 2) ? 1 : -1, (n & 4) ? 1 : -1);
+              sum += byte(glm::clamp(voxel + o, glm::ivec3(0), v.dims() - 1));
+            }
+            return int(smoothUnorm16(sum));
+          };
+          const glm::ivec3 t(i, j, k);
+          const uint16_t* o = &slot[2 * size_t((k * S + j) * S + i)];
+          ASSERT_EQ(int(o[0]), mean(glm::min(b * 16 + t, v.dims() - 1) - b * 16))
+              << i << "," << j << "," << k;
+          ASSERT_EQ(int(o[1]),
+                    mean(glm::min(b * 16 + glm::ivec3(i, j, std::min(k + 1, S - 1)), v.dims() - 1) -
+                         b * 16))
+              << i << "," << j << "," << k;
+          non_zero += o[0] != 0;
+        }
+    EXPECT_GT(non_zero, 0) << "brick " << b.x << "," << b.y << "," << b.z;
+  }
+  // The single voxel at (16,16,16): the slot of brick (0,0,0) holds it at texel 16 and its
+  // diagonal neighbours (15,15,15) and (17,17,15) as 1/8; (16,16,16) itself reads only its
+  // neighbours.
+  packSmoothSlot(v, glm::ivec3(0), slot.data());
+  auto at = [&](int i, int j, int k) { return int(slot[2 * size_t((k * S + j) * S + i)]); };
+  ASSERT_EQ(v.at(15, 15, 15) + v.at(17, 17, 17) + v.at(15, 17, 15), 0.0f) << "puffs nearby";
+  EXPECT_EQ(at(15, 15, 15), smoothUnorm16(255));
+  EXPECT_EQ(at(17, 17, 15), smoothUnorm16(255));
+  EXPECT_EQ(at(16, 16, 16), 0);
+}
+
 // slotDifference: the changed texels per 10³ block of the slot; a transmittance change counts
 // as weighted only with a non-zero density among its 3³ neighbours (diagonals included).
 TEST(BrickPoolSlot, DifferenceBoxesTheChangedTexelsAndWeighsLightByNearbyDensity) {
@@ -138,6 +187,7 @@ void expectChangesAreTheChangedTexels(const VolumeRenderer& renderer, const Volu
                                       const Volume& v, const SyncStats& st) {
   constexpr int S = BrickPool::kSlotTexels;
   std::vector<uint8_t> a(BrickPool::kSlotBytes), b(BrickPool::kSlotBytes);
+  std::vector<uint16_t> sa(BrickPool::kSmoothSlotBytes / 2), sb(BrickPool::kSmoothSlotBytes / 2);
   const glm::ivec3 d = v.brickDims();
   int changed_slots = 0;
   long changed_texels = 0;
@@ -149,9 +199,18 @@ void expectChangesAreTheChangedTexels(const VolumeRenderer& renderer, const Volu
         // What rays read there before: the slot's bytes, or the empty slot (density 0,
         // transmittance 1) for a brick that had none.
         packBrickSlot(old_volume, old_light, brick, a.data());
-        if (!had_slot.count({x, y, z}))
+        packSmoothSlot(old_volume, brick, sa.data());
+        if (!had_slot.count({x, y, z})) {
           for (size_t i = 0; i < a.size(); i += 2) a[i] = 0, a[i + 1] = 255;  // (d, T) twice
+          std::fill(sa.begin(), sa.end(), 0);
+        }
         packBrickSlot(v, renderer.lightVolume(), brick, b.data());
+        packSmoothSlot(v, brick, sb.data());
+        // A texel reads differently when its density, light or smoothed density changed.
+        auto differs = [&](size_t texel) {
+          const size_t o = BrickPool::kTexelBytes * texel;
+          return a[o] != b[o] || a[o + 1] != b[o + 1] || sa[2 * texel] != sb[2 * texel];
+        };
         std::vector<VoxelBox> boxes;
         for (const BrickPool::SlotChange& c : st.changes)
           if (c.brick == brick) boxes.push_back(c.bytes);
@@ -159,8 +218,7 @@ void expectChangesAreTheChangedTexels(const VolumeRenderer& renderer, const Volu
         for (int k = 0; k < S; ++k)
           for (int j = 0; j < S; ++j)
             for (int i = 0; i < S; ++i) {
-              const size_t o = BrickPool::kTexelBytes * size_t((k * S + j) * S + i);
-              if (a[o] == b[o] && a[o + 1] == b[o + 1]) continue;
+              if (!differs(size_t((k * S + j) * S + i))) continue;
               any = true;
               ++changed_texels;
               const glm::ivec3 voxel = glm::min(brick * 16 + glm::ivec3(i, j, k), v.dims() - 1);
@@ -181,9 +239,8 @@ void expectChangesAreTheChangedTexels(const VolumeRenderer& renderer, const Volu
                 for (int j = box.lo.y; j < box.hi.y && !found; ++j)
                   for (int i = box.lo.x; i < box.hi.x && !found; ++i) {
                     const glm::ivec3 t = glm::ivec3(i, j, k) - brick * 16;
-                    const size_t o = BrickPool::kTexelBytes * size_t((t.z * S + t.y) * S + t.x);
-                    found =
-                        glm::ivec3(i, j, k)[axis] == face && (a[o] != b[o] || a[o + 1] != b[o + 1]);
+                    found = glm::ivec3(i, j, k)[axis] == face &&
+                            differs(size_t((t.z * S + t.y) * S + t.x));
                   }
               EXPECT_TRUE(found) << "a loose box in slot " << x << "," << y << "," << z;
             }
@@ -265,16 +322,18 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
   ASSERT_EQ(changed.size(), 1u);
   SyncStats st = renderer.sync(v, light);
   // Expected: the slots reading the brick whose density changed (slot b reads bricks
-  // b + {0,1}³), and the slots holding a voxel whose light changed in 8 bits (slot b holds voxels
-  // 16b … 16b + 19), found here by comparing every voxel's light.
+  // b + {0,1}³, its smoothed companion b + {−1,0,1}³), and the slots holding a voxel whose light
+  // changed in 8 bits (slot b holds voxels 16b … 16b + 19), found here by comparing every voxel's
+  // light.
   const BrickPool& pool = renderer.brickPool();
   const LightVolume& new_light = renderer.lightVolume();
-  BrickSet expected;
-  auto expect = [&](glm::ivec3 b) {
+  BrickSet expected, expected_light;
+  auto expect = [&](glm::ivec3 b, BrickSet* set) {
     if (glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && pool.slotOf(b).w)
-      expected.insert({b.x, b.y, b.z});
+      set->insert({b.x, b.y, b.z});
   };
-  for (int n = 0; n < 8; ++n) expect(changed[0] - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2));
+  for (int n = 0; n < 27; ++n)
+    expect(changed[0] + glm::ivec3(n % 3, n / 3 % 3, n / 9) - 1, &expected);
   const glm::ivec3 d = v.brickDims();
   long light_changed = 0;
   for (int z = 0; z < v.dims().z; ++z)
@@ -286,7 +345,7 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
         const glm::ivec3 hi = p >> 4, lo = glm::max((p - BrickPool::kSlotTexels + 1 + 15) >> 4, 0);
         for (int k = lo.z; k <= hi.z; ++k)
           for (int j = lo.y; j <= hi.y; ++j)
-            for (int i = lo.x; i <= hi.x; ++i) expect({i, j, k});
+            for (int i = lo.x; i <= hi.x; ++i) expect({i, j, k}, &expected_light);
       }
   EXPECT_GT(light_changed, 0) << "the edit should change its shadow in 8 bits";
   // Fewer than the slots meeting the light box (what was re-packed before the sweep reported
@@ -302,7 +361,8 @@ TEST_F(BrickPoolTest, AnEditUploadsOnlyTheSlotsAroundItsBricksAndItsShadow) {
       }
   std::printf("re-packed %d slots; %zu meet the light box\n",
               st.slots_uploaded + st.slots_unchanged, in_light_box);
-  EXPECT_LT(expected.size(), in_light_box);
+  EXPECT_LT(expected_light.size(), in_light_box);
+  expected.insert(expected_light.begin(), expected_light.end());
   // Re-packed: exactly those; uploaded: those whose bytes changed (a slot reading a changed
   // brick where its own texels did not change is re-packed, not uploaded).
   EXPECT_EQ(size_t(st.slots_uploaded + st.slots_unchanged), expected.size());
@@ -523,7 +583,8 @@ TEST_F(BrickPoolTest, AnEmptySkyCostsLittleOnTheGpu) {
       "bounds %zu (volume total %zu)\n",
       dims.x, dims.y, dims.z, m.pool, m.indirection, m.occupancy, m.ray_bounds, m.volume());
   EXPECT_EQ(renderer.brickPool().slotsInUse(), 0u);
-  EXPECT_LE(m.pool, size_t(512) << 10);  // the first pool: 3 × 3 × 1 slots of 20³ RGBA8 texels
+  // The first pool: 3 × 3 × 1 slots of 20³ texels, RGBA8 and the RG16 smoothed companion.
+  EXPECT_LE(m.pool, size_t(9 * 8000 * 8));
   EXPECT_EQ(m.indirection, size_t(32 * 8 * 32 * 4));
   EXPECT_LT(m.volume(), size_t(2) << 20);  // against 64 MiB for a dense RG8 texture
 

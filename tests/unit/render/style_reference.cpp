@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "app/render/brick_pool.h"
 #include "app/render/sky_function.h"
 #include "app/render/sky_pass.h"
 
@@ -33,6 +34,34 @@ float fetch(const ReferenceScene& s, glm::vec3 tc, int c) {
     float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
     size_t idx = (size_t(v.z) * s.dims.y + v.y) * s.dims.x + v.x;
     sum += w * float(s.voxels[idx * 2 + c]) / 255.0f;
+  }
+  return sum;
+}
+
+// The smoothed density of voxel v (app/render/brick_pool.h, packSmoothSlot): the mean of the 8
+// density bytes (±1, ±1, ±1) from it, indices clamped to the grid, as a 16-bit unorm.
+float smoothedVoxel(const ReferenceScene& s, glm::ivec3 v) {
+  int sum = 0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::ivec3 o((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
+    const glm::ivec3 n = glm::clamp(v + o, glm::ivec3(0), s.dims - 1);
+    sum += s.voxels[((size_t(n.z) * s.dims.y + n.y) * s.dims.x + n.x) * 2];
+  }
+  return float(smoothUnorm16(sum)) / 65535.0f;
+}
+
+// Trilinear fetch of the smoothed density at texture coordinate tc: the mean of 8 density
+// fetches ±1 voxel apart.
+float fetchSmoothed(const ReferenceScene& s, glm::vec3 tc) {
+  glm::vec3 u = tc * glm::vec3(s.dims) - 0.5f;
+  glm::vec3 i0 = glm::floor(u);
+  glm::vec3 f = u - i0;
+  float sum = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    glm::ivec3 v = glm::clamp(glm::ivec3(i0) + o, glm::ivec3(0), s.dims - 1);
+    float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
+    sum += w * smoothedVoxel(s, v);
   }
   return sum;
 }
@@ -201,20 +230,11 @@ Surface findSurface(const ReferenceScene& s, const Ray& r) {
   out.light_t = fetch(s, p, 1);
   const int depth = int(kReferenceInnerDepthFraction *
                         float(std::max({s.dims.x, s.dims.y, s.dims.z})) / s.options.step_voxels);
-  // The inner surface reads the density smoothed over about 3 voxels: the mean of 8 reads
-  // ±1 voxel apart on each axis (raycast.frag.glsl).
-  const glm::vec3 voxel = 1.0f / glm::vec3(s.dims);
+  // The inner surface reads the density smoothed over about 3 voxels (the brick pool's
+  // companion, raycast.frag.glsl).
   out.inner_max = 0.0f;
-  for (int j = hit_k; j < std::max(hit_k + 1, std::min(r.n, hit_k + 1 + depth)); ++j) {
-    const glm::vec3 c = r.base + float(j) * r.delta;
-    float box = 0.0f;
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 side((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f,
-                           (corner & 4) ? 1.0f : -1.0f);
-      box += fetch(s, c + side * voxel, 0);
-    }
-    out.inner_max = std::max(out.inner_max, 0.125f * box);
-  }
+  for (int j = hit_k; j < std::max(hit_k + 1, std::min(r.n, hit_k + 1 + depth)); ++j)
+    out.inner_max = std::max(out.inner_max, fetchSmoothed(s, r.base + float(j) * r.delta));
   return out;
 }
 
