@@ -232,7 +232,7 @@ BrickPool::~BrickPool() {
 size_t BrickPool::tableBytes() const {
   return slot_of_brick_.capacity() * sizeof(glm::u8vec4) +
          free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity() +
-         slot_hash_.capacity() * sizeof(uint64_t);
+         (slot_hash_.capacity() + smooth_hash_.capacity()) * sizeof(uint64_t);
 }
 
 void BrickPool::makeIndirectionTexture(glm::ivec3 brick_dims) {
@@ -250,6 +250,7 @@ void BrickPool::resetTables(glm::ivec3 brick_dims) {
   slot_of_brick_.assign(bricks, glm::u8vec4(0));
   mark_.assign(bricks, 0);
   slot_hash_.assign(bricks, 0);
+  smooth_hash_.assign(bricks, 0);
   slots_in_use_ = 0;
   if (!pool_texture_) {
     capacity_ = glm::ivec3(0);
@@ -377,6 +378,7 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
 void BrickPool::followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
   slot_of_brick_ = shiftedBrickTable(slot_of_brick_, brick_dims_, brick_dims, brick_offset);
   slot_hash_ = shiftedBrickTable(slot_hash_, brick_dims_, brick_dims, brick_offset);
+  smooth_hash_ = shiftedBrickTable(smooth_hash_, brick_dims_, brick_dims, brick_offset);
   mark_.assign(slot_of_brick_.size(), 0);
   makeIndirectionTexture(brick_dims);
   uploadIndirection({glm::ivec3(0), brick_dims});
@@ -410,23 +412,38 @@ void BrickPool::uploadIndirection(const VoxelBox& bricks) {
   resetUnpackState();
 }
 
-std::vector<glm::ivec3> BrickPool::slotCandidates(const Volume& volume, bool fresh,
-                                                  const std::vector<glm::ivec3>& changed_bricks) {
+std::vector<BrickPool::Repack> BrickPool::slotCandidates(
+    const Volume& volume, bool fresh, const std::vector<glm::ivec3>& changed_bricks,
+    const VoxelBox* density_box) {
   const glm::ivec3 bd = brick_dims_;
-  // Candidates: bricks whose slot may have to change (be added, released or refreshed).
-  std::vector<glm::ivec3> candidates;
+  // Candidates: bricks whose slot may have to change (be added, released or refreshed); mark_
+  // holds kCandidate and the parts to re-pack.
+  constexpr uint8_t kCandidate = 4;
+  std::vector<glm::ivec3> bricks;
   auto addCandidatesAround = [&](glm::ivec3 c) {
+    // The voxels of c whose density changed (all of them without a box).
+    const glm::ivec3 c0 = c * Volume::kBrickSize;
+    VoxelBox changed{c0, c0 + Volume::kBrickSize};
+    if (density_box && !fresh) changed = changed.intersect(*density_box);
     // Slot b reads bricks b + {0,1}³ and its smoothed companion b + {−1,0,1}³, so brick c is
-    // read by the slots of c + {−1,0,1}³.
+    // read by the slots of c + {−1,0,1}³: their main texels when voxels 16b … 16b + 19 meet
+    // the changed ones, their companion when 16b − 1 … 16b + 20 do (indices clamped to the
+    // volume stay within those, the changed voxels being inside it).
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const glm::ivec3 b = c + glm::ivec3(dx, dy, dz);
           if (!valid(b, bd)) continue;
+          const glm::ivec3 lo = b * Volume::kBrickSize;
+          const VoxelBox main{lo, lo + kSlotTexels};
+          uint8_t parts = 0;
+          if (!main.intersect(changed).empty())
+            parts = kBothParts;
+          else if (!main.grow(1).intersect(changed).empty())
+            parts = kSmoothPart;
           uint8_t& m = mark_[brickIndex(b)];
-          if (m) continue;
-          m = 1;
-          candidates.push_back(b);
+          if (!m) bricks.push_back(b);
+          m |= kCandidate | parts;
         }
   };
   if (fresh)
@@ -434,19 +451,25 @@ std::vector<glm::ivec3> BrickPool::slotCandidates(const Volume& volume, bool fre
   else
     for (glm::ivec3 c : changed_bricks) addCandidatesAround(c);
   // A fixed order (z, y, x) so slots are handed out the same way for the same changes.
-  std::sort(candidates.begin(), candidates.end(), [](glm::ivec3 a, glm::ivec3 b) {
+  std::sort(bricks.begin(), bricks.end(), [](glm::ivec3 a, glm::ivec3 b) {
     return a.z != b.z ? a.z < b.z : a.y != b.y ? a.y < b.y : a.x < b.x;
   });
+  std::vector<Repack> candidates;
+  candidates.reserve(bricks.size());
+  for (glm::ivec3 b : bricks) {
+    uint8_t& m = mark_[brickIndex(b)];
+    candidates.push_back({b, uint8_t(m & kBothParts)});
+    m = 0;
+  }
   return candidates;
 }
 
-void BrickPool::assignSlots(const Volume& volume, bool fresh,
-                            const std::vector<glm::ivec3>& candidates,
-                            std::vector<glm::ivec3>* upload, VoxelBox* indirection_changed,
+void BrickPool::assignSlots(const Volume& volume, bool fresh, const std::vector<Repack>& candidates,
+                            std::vector<Repack>* upload, VoxelBox* indirection_changed,
                             std::vector<SlotChange>* changes, UpdateStats* stats) {
   const glm::ivec3 bd = brick_dims_;
   UpdateStats& st = *stats;
-  std::vector<glm::ivec3>& to_upload = *upload;
+  std::vector<Repack>& to_upload = *upload;
   auto needsSlot = [&](glm::ivec3 b) {
     for (int dz = 0; dz <= 1; ++dz)
       for (int dy = 0; dy <= 1; ++dy)
@@ -457,9 +480,8 @@ void BrickPool::assignSlots(const Volume& volume, bool fresh,
     return false;
   };
   std::vector<glm::ivec3> to_add;
-  for (glm::ivec3 b : candidates) {
+  for (const auto [b, parts] : candidates) {
     const size_t i = brickIndex(b);
-    mark_[i] = 0;
     const bool has = slot_of_brick_[i].w != 0;
     const bool needs = needsSlot(b);
     if (needs && !has) {
@@ -467,7 +489,7 @@ void BrickPool::assignSlots(const Volume& volume, bool fresh,
     } else if (!needs && has) {
       free_slots_.push_back(slot_of_brick_[i]);
       slot_of_brick_[i] = glm::u8vec4(0);
-      slot_hash_[i] = 0;
+      slot_hash_[i] = smooth_hash_[i] = 0;
       if (changes) {
         const VoxelBox whole = slotVoxels(b, volume);
         changes->push_back({b, whole, whole});
@@ -475,8 +497,8 @@ void BrickPool::assignSlots(const Volume& volume, bool fresh,
       --slots_in_use_;
       ++st.slots_released;
       *indirection_changed = indirection_changed->unite({b, b + 1});
-    } else if (needs) {
-      to_upload.push_back(b);
+    } else if (needs && parts) {
+      to_upload.push_back({b, parts});
     }
   }
   // A fresh volume gets a pool sized for it: the texture shrinks when this volume needs fewer
@@ -493,134 +515,166 @@ void BrickPool::assignSlots(const Volume& volume, bool fresh,
     ++slots_in_use_;
     ++st.slots_added;
     *indirection_changed = indirection_changed->unite({b, b + 1});
-    to_upload.push_back(b);
+    to_upload.push_back({b, kBothParts});
   }
 }
 
 void BrickPool::addLightReaders(const Volume& volume, const VoxelBox& light_box,
-                                const LightByteChanges* light_bytes,
-                                std::vector<glm::ivec3>* upload) {
+                                const LightByteChanges* light_bytes, std::vector<Repack>* upload) {
   const glm::ivec3 bd = brick_dims_;
-  std::vector<glm::ivec3>& to_upload = *upload;
+  std::vector<Repack>& to_upload = *upload;
   // The light: the slots reading a voxel whose 8-bit light changed (of c − {0,1}³ for each such
   // brick c, those its `readers` name); without that list, those whose voxels 16b … 16b +
-  // kSlotTexels − 1 meet the light box.
+  // kSlotTexels − 1 meet the light box. Their main texels are re-packed; mark_: 1 queued with
+  // them, 2 queued for the companion alone, 3 the same now needing them too.
   const VoxelBox lb = light_box.intersect(volume.bounds());
-  if (light_bytes && !light_bytes->all && slots_in_use_ > 0) {
-    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
+  const bool by_bytes = light_bytes && !light_bytes->all;
+  if (slots_in_use_ == 0 || (!by_bytes && lb.empty())) return;
+  for (const Repack& r : to_upload) mark_[brickIndex(r.brick)] = r.parts & kMainPart ? 1 : 2;
+  const size_t queued = to_upload.size();
+  auto add = [&](glm::ivec3 b) {
+    const size_t i = brickIndex(b);
+    if (!slot_of_brick_[i].w) return;
+    if (mark_[i] == 0) {
+      mark_[i] = 1;
+      to_upload.push_back({b, kMainPart});
+    } else if (mark_[i] == 2) {
+      mark_[i] = 3;
+    }
+  };
+  if (by_bytes) {
     for (const LightByteChanges::Brick& c : light_bytes->bricks)
       for (int n = 0; n < 8; ++n) {
-        if (!(c.readers >> n & 1)) continue;
         const glm::ivec3 b = c.brick - glm::ivec3(n & 1, (n >> 1) & 1, n >> 2);
-        if (!valid(b, bd)) continue;
-        const size_t i = brickIndex(b);
-        if (slot_of_brick_[i].w && !mark_[i]) {
-          mark_[i] = 1;
-          to_upload.push_back(b);
-        }
+        if (c.readers >> n & 1 && valid(b, bd)) add(b);
       }
-    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
-  } else if (!lb.empty() && slots_in_use_ > 0) {
-    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 1;
+  } else {
     const glm::ivec3 blo = glm::max(
         (lb.lo - (kSlotTexels - Volume::kBrickSize)) >> Volume::kBrickShift, glm::ivec3(0));
     const glm::ivec3 bhi = (lb.hi - 1) >> Volume::kBrickShift;
     for (int z = blo.z; z <= bhi.z; ++z)
       for (int y = blo.y; y <= bhi.y; ++y)
-        for (int x = blo.x; x <= bhi.x; ++x) {
-          const size_t i = brickIndex({x, y, z});
-          if (slot_of_brick_[i].w && !mark_[i]) to_upload.push_back({x, y, z});
-        }
-    for (glm::ivec3 b : to_upload) mark_[brickIndex(b)] = 0;
+        for (int x = blo.x; x <= bhi.x; ++x) add({x, y, z});
+  }
+  for (size_t k = 0; k < to_upload.size(); ++k) {
+    uint8_t& m = mark_[brickIndex(to_upload[k].brick)];
+    if (k < queued && m == 3) to_upload[k].parts |= kMainPart;
+    m = 0;
+  }
+}
+
+void BrickPool::reportSlotChange(const Volume& volume, glm::ivec3 b, glm::ivec3 at, uint8_t parts,
+                                 bool added, bool main_changed, bool smooth_changed,
+                                 const uint8_t* main, const uint16_t* smooth,
+                                 std::vector<SlotChange>* changes) {
+  constexpr size_t kSmoothValues = kSmoothSlotBytes / 2;
+  // What rays read there before: the empty slot for an added brick, else the slot's bytes, read
+  // back from the pool for a part whose hash changed. A part not re-packed reads as before (the
+  // main texels are read back when the companion changed: slotDifference weighs by density).
+  thread_local std::vector<uint8_t> main_before, main_held;
+  thread_local std::vector<uint16_t> smooth_before;
+  const uint8_t* old = emptySlotBytes().data();
+  const uint16_t* old_smooth = emptySmoothSlot().data();
+  auto readMain = [&](std::vector<uint8_t>* into) {
+    // Rows of 80 bytes: tight under any pack alignment (the project sets no other pack state).
+    into->resize(kSlotBytes);
+    glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
+                         GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes), into->data());
+    return into->data();
+  };
+  if (!(parts & kMainPart)) main = readMain(&main_held);
+  if (!(parts & kSmoothPart)) smooth = nullptr;  // unchanged: not compared
+  if (!added) {
+    old = main_changed ? readMain(&main_before) : main;
+    old_smooth = smooth;
+    if (smooth && smooth_changed) {
+      smooth_before.resize(kSmoothValues);
+      glGetTextureSubImage(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                           kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, GLsizei(kSmoothSlotBytes),
+                           smooth_before.data());
+      old_smooth = smooth_before.data();
+    }
+  }
+  const size_t first_change = changes->size();
+  slotDifference(old, main, changes, smooth ? old_smooth : nullptr, smooth);
+  // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its last
+  // voxel, which then changed too).
+  const glm::ivec3 lo = b * Volume::kBrickSize;
+  auto toVoxels = [&](const VoxelBox& t) {
+    return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
+  };
+  for (size_t c = first_change; c < changes->size(); ++c) {
+    SlotChange& change = (*changes)[c];
+    change = {b, toVoxels(change.bytes), toVoxels(change.weighted)};
   }
 }
 
 void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
-                            const std::vector<glm::ivec3>& to_upload,
-                            std::vector<SlotChange>* changes, UpdateStats* stats) {
+                            const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
+                            UpdateStats* stats) {
   UpdateStats& st = *stats;
   auto t0 = std::chrono::steady_clock::now();
   resetUnpackState();
   constexpr size_t kSmoothValues = kSmoothSlotBytes / 2;
-  std::vector<uint8_t> staging, before;         // packed slots of one batch; one's bytes before
-  std::vector<uint16_t> smooth, smooth_before;  // their companions; one's before
+  std::vector<uint8_t> staging;  // packed main texels of one batch
+  std::vector<uint16_t> smooth;  // their companions
   for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
     const size_t n = std::min(kUploadBatch, to_upload.size() - first);
     t0 = std::chrono::steady_clock::now();
     staging.resize(n * kSlotBytes);
     smooth.resize(n * kSmoothValues);
+    // Per slot: which re-packed parts hold other bytes than the slot did (by their hashes; the
+    // slot of an added brick held nothing: hash 0).
+    enum : uint8_t { kMainChanged = 1, kSmoothChanged = 2, kAdded = 4 };
+    std::vector<uint8_t> state(n, 0);
     // Small batches on the calling thread: waking workers costs more than a few slots.
     parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
       for (size_t s = s0; s < s1; ++s) {
-        packBrickSlot(volume, light, to_upload[first + s], staging.data() + s * kSlotBytes);
-        packSmoothSlot(volume, to_upload[first + s], smooth.data() + s * kSmoothValues);
-      }
-    });
-    // Slots whose bytes are what they held stay as they are (the slot of an added brick held
-    // nothing: hash 0).
-    enum : uint8_t { kChanged, kSame, kAdded };
-    std::vector<uint8_t> state(n, kChanged);
-    parallelFor(n, n < 16 ? n : 4, [&](size_t, size_t s0, size_t s1) {
-      for (size_t s = s0; s < s1; ++s) {
-        uint64_t& held = slot_hash_[brickIndex(to_upload[first + s])];
-        const uint64_t h =
-            mixWords(reinterpret_cast<const uint8_t*>(smooth.data() + s * kSmoothValues),
-                     kSmoothSlotBytes, slotHash(staging.data() + s * kSlotBytes)) |
-            1;
-        state[s] = h == held ? kSame : held == 0 ? kAdded : kChanged;
-        held = h;
+        const auto [b, parts] = to_upload[first + s];
+        const size_t i = brickIndex(b);
+        uint8_t* main = staging.data() + s * kSlotBytes;
+        uint16_t* smoothed = smooth.data() + s * kSmoothValues;
+        if (slot_hash_[i] == 0) state[s] |= kAdded;
+        if (parts & kMainPart) {
+          packBrickSlot(volume, light, b, main);
+          const uint64_t h = slotHash(main);
+          if (h != slot_hash_[i]) state[s] |= kMainChanged;
+          slot_hash_[i] = h;
+        }
+        if (parts & kSmoothPart) {
+          packSmoothSlot(volume, b, smoothed);
+          const uint64_t h =
+              mixWords(reinterpret_cast<const uint8_t*>(smoothed), kSmoothSlotBytes, 0) | 1;
+          if (h != smooth_hash_[i]) state[s] |= kSmoothChanged;
+          smooth_hash_[i] = h;
+        }
       }
     });
     st.pack_ms += msSince(t0);
     t0 = std::chrono::steady_clock::now();
     for (size_t s = 0; s < n; ++s) {
-      if (state[s] == kSame) {
+      if (state[s] == 0) {
         ++st.slots_unchanged;
         continue;
       }
-      const glm::ivec3 b = to_upload[first + s];
-      const glm::ivec3 slot(slot_of_brick_[brickIndex(b)]);
-      const glm::ivec3 at = slot * kSlotTexels;
+      const auto [b, parts] = to_upload[first + s];
+      const glm::ivec3 at = glm::ivec3(slot_of_brick_[brickIndex(b)]) * kSlotTexels;
+      const uint8_t* main = staging.data() + s * kSlotBytes;
+      const uint16_t* smoothed = smooth.data() + s * kSmoothValues;
       if (changes && fresh) {
         // Everything is new (the renderer starts its frames over): the whole slot, no compare.
         const VoxelBox whole = slotVoxels(b, volume);
         changes->push_back({b, whole, whole});
       } else if (changes) {
-        // What rays read there before: the empty slot for an added brick, else the slot's bytes.
-        const uint8_t* old = emptySlotBytes().data();
-        const uint16_t* old_smooth = emptySmoothSlot().data();
-        if (state[s] == kChanged) {
-          // Rows of 80 bytes: tight under any pack alignment (the project sets no other pack
-          // state).
-          before.resize(kSlotBytes);
-          glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                               kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes),
-                               before.data());
-          smooth_before.resize(kSmoothValues);
-          glGetTextureSubImage(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                               kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, GLsizei(kSmoothSlotBytes),
-                               smooth_before.data());
-          old = before.data();
-          old_smooth = smooth_before.data();
-        }
-        const size_t first_change = changes->size();
-        slotDifference(old, staging.data() + s * kSlotBytes, changes, old_smooth,
-                       smooth.data() + s * kSmoothValues);
-        // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its
-        // last voxel, which then changed too).
-        const glm::ivec3 lo = b * Volume::kBrickSize;
-        auto toVoxels = [&](const VoxelBox& t) {
-          return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
-        };
-        for (size_t c = first_change; c < changes->size(); ++c) {
-          SlotChange& change = (*changes)[c];
-          change = {b, toVoxels(change.bytes), toVoxels(change.weighted)};
-        }
+        reportSlotChange(volume, b, at, parts, state[s] & kAdded, state[s] & kMainChanged,
+                         state[s] & kSmoothChanged, main, smoothed, changes);
       }
-      glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
-                          GL_RGBA, GL_UNSIGNED_BYTE, staging.data() + s * kSlotBytes);
-      glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                          kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smooth.data() + s * kSmoothValues);
+      if (state[s] & (kMainChanged | kAdded))
+        glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                            kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, main);
+      if (state[s] & (kSmoothChanged | kAdded))
+        glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                            kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smoothed);
     }
     st.upload_ms += msSince(t0);
   }
@@ -630,7 +684,8 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
                                          const std::vector<glm::ivec3>& changed_bricks,
                                          const VoxelBox& light_box,
                                          const LightByteChanges* light_bytes,
-                                         std::vector<SlotChange>* changes) {
+                                         std::vector<SlotChange>* changes,
+                                         const VoxelBox* density_box) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
   const glm::ivec3 bd = volume.brickDims();
@@ -638,13 +693,14 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
     fresh = true;
     resetTables(bd);
   }
-  const std::vector<glm::ivec3> candidates = slotCandidates(volume, fresh, changed_bricks);
+  const std::vector<Repack> candidates = slotCandidates(volume, fresh, changed_bricks, density_box);
   VoxelBox indirection_changed;
-  std::vector<glm::ivec3> to_upload;
+  std::vector<Repack> to_upload;
   assignSlots(volume, fresh, candidates, &to_upload, &indirection_changed, changes, &st);
   addLightReaders(volume, light_box, light_bytes, &to_upload);
   // Added slots not given (a full pool) are not uploaded.
-  std::erase_if(to_upload, [&](glm::ivec3 b) { return slot_of_brick_[brickIndex(b)].w == 0; });
+  std::erase_if(to_upload,
+                [&](const Repack& r) { return slot_of_brick_[brickIndex(r.brick)].w == 0; });
   st.pack_ms += msSince(t0);
   uploadSlots(volume, light, fresh, to_upload, changes, &st);
   st.slots_uploaded = int(to_upload.size()) - st.slots_unchanged;

@@ -20,7 +20,7 @@
 //    that surface's line is drawn where the field's screen derivative says it crosses a level:
 //    8-bit steps (and llvmpipe's 8-bit filtering) made flat terraces that broke the line into
 //    dashes (cartoon islands on the gallery's s_curve 14 → 20 per 10,000 cloud pixels). A
-//    slot's smoothed texels read voxels 16b − 1 … 16b + 20, so an edited brick c refreshes the
+//    slot's smoothed texels read voxels 16b − 1 … 16b + 20, so an edited brick c may reach the
 //    slots of c + {−1,0,1}³.
 //  - Indirection: one RGBA8 texel per brick (Volume::brickDims), read with nearest filtering,
 //    holding the slot's coordinates in slots and a = 1; (0,0,0,0) is the empty slot (all density
@@ -41,6 +41,10 @@
 // Updates follow the bricks that changed: a changed density brick c refreshes the slots of
 // c + {−1,0,1}³ (c − {0,1}³ read its density, and c + {0,1}³ its smoothed density; allocating or
 // releasing them as the rule above now says) and a light box the slots whose voxels meet it.
+// Given the box of voxels whose density changed, a slot is re-packed only where it reads them:
+// its main texels when they hold one (voxels 16b … 16b + 19), else its smoothed companion alone
+// when that reads one (16b − 1 … 16b + 20); a slot re-packed for its light alone re-packs its
+// main texels (the companion holds density only).
 // Released slots are reused; the pool grows (a slot column, row or layer at a time to a quarter
 // more slots than needed, copied on the GPU with glCopyImageSubData) only when it runs out, so
 // slots keep their coordinates and nothing is re-packed. A fresh volume (another one, or new dims)
@@ -126,10 +130,14 @@ class BrickPool {
   // box re-packs many slots whose 8-bit transmittance did not change, and those are neither
   // uploaded nor reported), with the texels that changed: a re-packed slot's old bytes are read
   // back from the pool texture (only for slots whose hash changed) and compared texel by texel.
+  // `density_box`, if given, bounds the voxels of `changed_bricks` whose density changed
+  // (Volume::dirtySince): only the slots reading one of them are re-packed (see above); without
+  // it every slot around a changed brick is.
   UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
                      const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box,
                      const LightByteChanges* light_bytes = nullptr,
-                     std::vector<SlotChange>* changes = nullptr);
+                     std::vector<SlotChange>* changes = nullptr,
+                     const VoxelBox* density_box = nullptr);
 
   // Follows a growth of the volume (Volume::movedInto): brick b's slot becomes brick
   // b + brick_offset's, in a table of `brick_dims` bricks. The slots stay where they are in the
@@ -190,23 +198,38 @@ class BrickPool {
   // A 2D array texture of `texels` for slots (linear filtering, clamped); 0 when out of memory.
   static GLuint makeSlotTexture(GLenum format, glm::ivec3 texels);
   void uploadIndirection(const VoxelBox& bricks);
+  // The parts of a slot to re-pack: its main texels (density and light) and its smoothed
+  // companion.
+  enum Part : uint8_t { kMainPart = 1, kSmoothPart = 2, kBothParts = 3 };
+  struct Repack {
+    glm::ivec3 brick;
+    uint8_t parts;
+  };
   // update()'s steps. The bricks whose slot may change (added, released or refreshed): those
-  // whose slot reads an allocated (fresh) or changed brick, in a fixed z, y, x order.
-  std::vector<glm::ivec3> slotCandidates(const Volume& volume, bool fresh,
-                                         const std::vector<glm::ivec3>& changed_bricks);
+  // whose slot reads an allocated (fresh) or changed brick, in a fixed z, y, x order, with the
+  // parts of their slot that read a changed voxel (of `density_box`, when given).
+  std::vector<Repack> slotCandidates(const Volume& volume, bool fresh,
+                                     const std::vector<glm::ivec3>& changed_bricks,
+                                     const VoxelBox* density_box);
   // Releases the slots no brick needs, gives slots to the bricks that now need one (growing
   // the pool), and lists the slots to re-pack.
-  void assignSlots(const Volume& volume, bool fresh, const std::vector<glm::ivec3>& candidates,
-                   std::vector<glm::ivec3>* upload, VoxelBox* indirection_changed,
+  void assignSlots(const Volume& volume, bool fresh, const std::vector<Repack>& candidates,
+                   std::vector<Repack>* upload, VoxelBox* indirection_changed,
                    std::vector<SlotChange>* changes, UpdateStats* stats);
-  // Adds the slots that read light bytes which changed.
+  // Adds the slots that read light bytes which changed (their main texels).
   void addLightReaders(const Volume& volume, const VoxelBox& light_box,
-                       const LightByteChanges* light_bytes, std::vector<glm::ivec3>* upload);
-  // Packs and uploads the slots in batches, skipping those whose bytes did not change, and
-  // reports what rays read differently (`changes`).
+                       const LightByteChanges* light_bytes, std::vector<Repack>* upload);
+  // Packs and uploads the slots' parts in batches, skipping those whose bytes did not change,
+  // and reports what rays read differently (`changes`).
   void uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
-                   const std::vector<glm::ivec3>& to_upload, std::vector<SlotChange>* changes,
+                   const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
                    UpdateStats* stats);
+  // What rays read differently in the slot of `brick` (at texel `at` of the pool), its parts
+  // re-packed into `main` and `smooth` as `parts` say; `added`: it read the empty slot;
+  // `main_changed`/`smooth_changed`: the re-packed part's hash changed.
+  void reportSlotChange(const Volume& volume, glm::ivec3 brick, glm::ivec3 at, uint8_t parts,
+                        bool added, bool main_changed, bool smooth_changed, const uint8_t* main,
+                        const uint16_t* smooth, std::vector<SlotChange>* changes);
 
   glm::ivec3 brick_dims_{0};
   glm::ivec3 pool_texels_{0};               // pool texture size: capacity_ · kSlotTexels
@@ -215,6 +238,7 @@ class BrickPool {
   std::vector<glm::u8vec4> free_slots_;     // a stack
   std::vector<uint8_t> mark_;               // per brick, scratch for de-duplicating candidates
   std::vector<uint64_t> slot_hash_;         // per brick, hash of its slot's bytes (slotHash)
+  std::vector<uint64_t> smooth_hash_;       // per brick, hash of its companion's bytes
   size_t slots_in_use_ = 0;
   GLuint pool_texture_ = 0, smooth_texture_ = 0, indirection_texture_ = 0;
   bool full_reported_ = false;

@@ -480,15 +480,21 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // growth the bricks along the old edge.
   std::vector<glm::ivec3> changed_bricks =
       fresh ? std::vector<glm::ivec3>{} : volume.changedBricksSince(synced_generation_);
-  if (!fresh && !growth_edge_bricks_.empty())
+  // The density changed within st.dirty, so the pool re-packs only the slots reading it; the old
+  // edge's slots after a growth changed beyond it (they read the grown sky): every slot around
+  // a changed brick then.
+  const VoxelBox* density_box = &st.dirty;
+  if (!fresh && !growth_edge_bricks_.empty()) {
     changed_bricks.insert(changed_bricks.end(), growth_edge_bricks_.begin(),
                           growth_edge_bricks_.end());
+    density_box = nullptr;
+  }
   growth_edge_bricks_.clear();
   // Texel by texel changes are listed only when the light stayed: after it moved no frame held
   // is reused (its image key names the light), so they are dropped, not compared.
   const BrickPool::UpdateStats pool =
       pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &light_bytes,
-                   st.light_moved ? nullptr : &st.changes);
+                   st.light_moved ? nullptr : &st.changes, density_box);
   for (FrameHistory* history : {&history_, &spare_history_}) {
     if (fresh || st.light_moved) *history = FrameHistory{};
     if (!history->valid) continue;
