@@ -336,11 +336,11 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
   if (pool_texture_ && cap == capacity_) return false;
   const glm::ivec3 texels = cap * kSlotTexels;
   const GLuint texture = makeSlotTexture(GL_RGBA8, texels);
-  const GLuint smooth = texture ? makeSlotTexture(GL_RG16, texels) : 0;
-  if (!smooth) {
+  const GLuint smooth = texture && smooth_enabled_ ? makeSlotTexture(GL_RG16, texels) : 0;
+  if (!texture || (smooth_enabled_ && !smooth)) {
     if (texture) glDeleteTextures(1, &texture);
     std::fprintf(stderr, "cloudbrush: render: out of memory growing the brick pool to %zu bytes\n",
-                 slotCount(cap) * (kSlotBytes + kSmoothSlotBytes));
+                 slotCount(cap) * (kSlotBytes + (smooth_enabled_ ? kSmoothSlotBytes : 0)));
     return false;
   }
   if (pool_texture_) {
@@ -349,10 +349,11 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     const glm::ivec3 old = pool_texels_;
     glCopyImageSubData(pool_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY,
                        0, 0, 0, 0, old.x, old.y, old.z);
-    glCopyImageSubData(smooth_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, smooth,
-                       GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, old.x, old.y, old.z);
+    if (smooth)
+      glCopyImageSubData(smooth_texture_, GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, smooth,
+                         GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, old.x, old.y, old.z);
     glDeleteTextures(1, &pool_texture_);
-    glDeleteTextures(1, &smooth_texture_);
+    if (smooth_texture_) glDeleteTextures(1, &smooth_texture_);
     std::vector<glm::u8vec4> added;
     for (int z = cap.z - 1; z >= 0; --z)
       for (int y = cap.y - 1; y >= 0; --y)
@@ -365,14 +366,48 @@ bool BrickPool::reserve(size_t slots, UpdateStats* stats) {
     resetUnpackState();
     glTextureSubImage3D(texture, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RGBA,
                         GL_UNSIGNED_BYTE, emptySlotBytes().data());
-    glTextureSubImage3D(smooth, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
-                        GL_UNSIGNED_SHORT, emptySmoothSlot().data());
+    if (smooth)
+      glTextureSubImage3D(smooth, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+                          GL_UNSIGNED_SHORT, emptySmoothSlot().data());
   }
   pool_texture_ = texture;
   smooth_texture_ = smooth;
   pool_texels_ = texels;
   capacity_ = cap;
   return slotCount(cap) >= needed;
+}
+
+void BrickPool::enableSmooth(const Volume& volume) {
+  if (smooth_enabled_) return;
+  smooth_enabled_ = true;
+  if (!pool_texture_) return;  // made with the pool
+  smooth_texture_ = makeSlotTexture(GL_RG16, pool_texels_);
+  if (!smooth_texture_) {
+    std::fprintf(stderr,
+                 "cloudbrush: render: out of memory making the brick pool's smoothed companion "
+                 "(%zu bytes)\n",
+                 slotCapacity() * kSmoothSlotBytes);
+    smooth_enabled_ = false;
+    return;
+  }
+  resetUnpackState();
+  glTextureSubImage3D(smooth_texture_, 0, 0, 0, 0, kSlotTexels, kSlotTexels, kSlotTexels, GL_RG,
+                      GL_UNSIGNED_SHORT, emptySmoothSlot().data());
+  std::vector<uint16_t> smoothed(kSmoothSlotBytes / 2);
+  const glm::ivec3 bd = brick_dims_;
+  for (int z = 0; z < bd.z; ++z)
+    for (int y = 0; y < bd.y; ++y)
+      for (int x = 0; x < bd.x; ++x) {
+        const glm::ivec3 b(x, y, z);
+        const size_t i = brickIndex(b);
+        if (!slot_of_brick_[i].w) continue;
+        packSmoothSlot(volume, b, smoothed.data());
+        smooth_hash_[i] =
+            mixWords(reinterpret_cast<const uint8_t*>(smoothed.data()), kSmoothSlotBytes, 0) | 1;
+        const glm::ivec3 at = glm::ivec3(slot_of_brick_[i]) * kSlotTexels;
+        glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
+                            kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smoothed.data());
+      }
 }
 
 void BrickPool::followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset) {
@@ -438,8 +473,8 @@ std::vector<BrickPool::Repack> BrickPool::slotCandidates(
           const VoxelBox main{lo, lo + kSlotTexels};
           uint8_t parts = 0;
           if (!main.intersect(changed).empty())
-            parts = kBothParts;
-          else if (!main.grow(1).intersect(changed).empty())
+            parts = allParts();
+          else if (smooth_enabled_ && !main.grow(1).intersect(changed).empty())
             parts = kSmoothPart;
           uint8_t& m = mark_[brickIndex(b)];
           if (!m) bricks.push_back(b);
@@ -515,7 +550,7 @@ void BrickPool::assignSlots(const Volume& volume, bool fresh, const std::vector<
     ++slots_in_use_;
     ++st.slots_added;
     *indirection_changed = indirection_changed->unite({b, b + 1});
-    to_upload.push_back({b, kBothParts});
+    to_upload.push_back({b, allParts()});
   }
 }
 
@@ -583,7 +618,7 @@ void BrickPool::reportSlotChange(const Volume& volume, glm::ivec3 b, glm::ivec3 
     return into->data();
   };
   if (!(parts & kMainPart)) main = readMain(&main_held);
-  if (!(parts & kSmoothPart)) smooth = nullptr;  // unchanged: not compared
+  if (!(parts & kSmoothPart)) smooth = nullptr;  // unchanged or not held: not compared
   if (!added) {
     old = main_changed ? readMain(&main_before) : main;
     old_smooth = smooth;
@@ -672,7 +707,7 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       if (state[s] & (kMainChanged | kAdded))
         glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
                             kSlotTexels, GL_RGBA, GL_UNSIGNED_BYTE, main);
-      if (state[s] & (kSmoothChanged | kAdded))
+      if (smooth_texture_ && (state[s] & (kSmoothChanged | kAdded)))
         glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
                             kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smoothed);
     }

@@ -149,8 +149,14 @@ class BrickPool {
   void followGrowth(glm::ivec3 brick_dims, glm::ivec3 brick_offset);
 
   GLuint poolTexture() const { return pool_texture_; }
-  // The smoothed-density companion (RG16, the pool's size and slots).
+  // The smoothed-density companion (RG16, the pool's size and slots); 0 until enableSmooth.
   GLuint smoothTexture() const { return smooth_texture_; }
+  // The companion is made, and kept up to date by every update, only once a style that reads it
+  // is drawn (the iso-surface styles' inner-surface search): it doubles the pool's bytes, which
+  // the thesis and physical styles never read. Packs it for every slot held now (`volume`: the
+  // one the pool was last updated from).
+  void enableSmooth(const Volume& volume);
+  bool smoothEnabled() const { return smooth_enabled_; }
   GLuint indirectionTexture() const { return indirection_texture_; }
   // The pool texture's size in texels (whole slots: 20 × its size in slots).
   glm::ivec3 poolTexels() const { return pool_texels_; }
@@ -161,10 +167,11 @@ class BrickPool {
   size_t slotCapacity() const { return slotCount(capacity_); }
   // The slot coordinates of brick b ((0,0,0): the empty slot).
   glm::u8vec4 slotOf(glm::ivec3 b) const { return slot_of_brick_[brickIndex(b)]; }
-  // GL texture bytes: the pool with its smoothed-density companion, and the indirection table.
+  // GL texture bytes: the pool with its smoothed-density companion (once enabled), and the
+  // indirection table.
   size_t poolBytes() const {
     return size_t(pool_texels_.x) * size_t(pool_texels_.y) * size_t(pool_texels_.z) *
-           (kTexelBytes + kSmoothTexelBytes);
+           (kTexelBytes + (smooth_enabled_ ? kSmoothTexelBytes : 0));
   }
   size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
   // CPU bytes of the tables (indirection copy, free list, marks).
@@ -241,6 +248,9 @@ class BrickPool {
   std::vector<uint64_t> smooth_hash_;       // per brick, hash of its companion's bytes
   size_t slots_in_use_ = 0;
   GLuint pool_texture_ = 0, smooth_texture_ = 0, indirection_texture_ = 0;
+  bool smooth_enabled_ = false;
+  // The parts a slot holds: its main texels, and its companion once enabled.
+  uint8_t allParts() const { return smooth_enabled_ ? kBothParts : kMainPart; }
   bool full_reported_ = false;
 };
 

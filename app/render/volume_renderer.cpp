@@ -521,6 +521,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   st.upload_ms = pool.upload_ms + msSince(t0);
 
   synced_volume_id_ = volume.instanceId();
+  synced_volume_ = &volume;
   synced_generation_ = volume.generation();
   synced_light_ = light;
   return st;
@@ -807,6 +808,10 @@ void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint 
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;
   }
+  // The iso-surface styles' inner-surface search reads the pool's smoothed companion, made at
+  // their first frame (the other styles never pay its bytes).
+  if (drawsIsoSurface(options.style) && !pool_.smoothEnabled() && synced_volume_)
+    pool_.enableSmooth(*synced_volume_);
   FramePlan plan;
   if (!ensureCastImages(width, height, target_fbo, options, &plan)) return;
   frame_camera_ = camera;

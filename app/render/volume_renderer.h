@@ -191,10 +191,16 @@ class VolumeRenderer {
   bool prepare(const RenderOptions& options, std::string* error);
   RenderStats lastStats() const { return stats_; }
   // Forgets what was uploaded: the next sync() re-uploads everything.
-  void invalidate() { synced_volume_id_ = 0; }
+  void invalidate() {
+    synced_volume_id_ = 0;
+    synced_volume_ = nullptr;
+  }
   const LightVolume& lightVolume() const { return light_volume_; }
   const OccupancyPyramid& occupancy() const { return occupancy_; }
   const BrickPool& brickPool() const { return pool_; }
+  // For tests: BrickPool::enableSmooth before the first sync (render does it at the first frame
+  // of a style that reads the companion).
+  BrickPool& brickPool() { return pool_; }
   // The last frame's R32F depth (RenderOptions::write_depth) at the cast image's size; 0 before
   // a frame wrote one.
   GLuint frameDepthTexture() const { return depth_texture_; }
@@ -261,6 +267,10 @@ class VolumeRenderer {
   glm::ivec3 dims_{0};
   glm::vec3 world_min_{0.0f}, world_max_{0.0f};
   uint64_t synced_volume_id_ = 0;  // Volume::instanceId() last synced, 0: none
+  // The volume last synced: read by the first render in a style that needs the pool's smoothed
+  // companion (BrickPool::enableSmooth), which packs it then. Every caller syncs the volume it
+  // renders just before rendering, so it is alive there.
+  const Volume* synced_volume_ = nullptr;
   uint64_t synced_generation_ = 0;
   // After following a growth: the allocated bricks on the old edge, for the pool's update.
   std::vector<glm::ivec3> growth_edge_bricks_;

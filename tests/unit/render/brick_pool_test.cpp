@@ -58,11 +58,11 @@ BrickSet bricksWithSlots(const BrickPool& pool) {
   return s;
 }
 
-ImageRgba8 render(VolumeRenderer& r, const Camera& camera) {
+ImageRgba8 render(VolumeRenderer& r, const Camera& camera, RenderOptions options = {}) {
   RenderTarget target;
   std::string err;
   EXPECT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
-  r.render(camera, kW, kH, target.fbo(), RenderOptions{});
+  r.render(camera, kW, kH, target.fbo(), options);
   return target.readRgba8();
 }
 
@@ -265,6 +265,9 @@ class BrickPoolTest : public ::testing::Test {
     CB_REQUIRE_GL();
     std::string err;
     ASSERT_TRUE(renderer.init(&err)) << err;
+    // The smoothed companion kept from the first sync, as after an iso-surface style's frame
+    // (TheSmoothedCompanionIsMadeAtTheFirstIsoSurfaceFrame checks that path).
+    renderer.brickPool().enableSmooth(Volume(glm::ivec3(16)));
   }
   VolumeRenderer renderer;
 };
@@ -478,6 +481,7 @@ TEST_F(BrickPoolTest, AFreshVolumeGetsAPoolSizedForItNotTheLargestSoFar) {
   VolumeRenderer fresh;
   std::string err;
   ASSERT_TRUE(fresh.init(&err)) << err;
+  fresh.brickPool().enableSmooth(next);  // as the fixture's renderer
   fresh.sync(next, light);
   EXPECT_EQ(pool.poolBytes(), fresh.brickPool().poolBytes());
   ASSERT_EQ(render(renderer, camera).pixels, render(fresh, camera).pixels);
@@ -557,6 +561,35 @@ void expectPoolIsAFreshPack(const VolumeRenderer& renderer, const Volume& v, con
                         << (held == packed ? " (smoothed texels)" : " (main texels)");
       }
   EXPECT_EQ(mismatched, 0) << "after " << after;
+}
+
+// The thesis and physical styles never read the companion: a renderer makes it at the first
+// frame of a style that does (cartoon here), packed for every slot then, and keeps it from then.
+TEST(BrickPoolCompanion, TheSmoothedCompanionIsMadeAtTheFirstIsoSurfaceFrame) {
+  CB_REQUIRE_GL();
+  VolumeRenderer r;
+  std::string err;
+  ASSERT_TRUE(r.init(&err)) << err;
+  Volume v(glm::ivec3(64, 48, 64));
+  paintBall(v, {30, 20, 34}, 12);
+  const Light light;
+  r.sync(v, light);
+  const Camera camera = Camera::reference().orbited(35.0f);
+  render(r, camera);
+  EXPECT_EQ(r.brickPool().smoothTexture(), 0u) << "made for the thesis style";
+  paintBall(v, {40, 30, 20}, 6);
+  r.sync(v, light);
+  const size_t main_bytes = r.brickPool().poolBytes();
+  EXPECT_EQ(main_bytes, size_t(r.brickPool().slotCapacity()) * BrickPool::kSlotBytes);
+  RenderOptions cartoon;
+  cartoon.style = RenderStyle::kCartoon;
+  render(r, camera, cartoon);
+  ASSERT_NE(r.brickPool().smoothTexture(), 0u);
+  EXPECT_EQ(r.brickPool().poolBytes(), 2 * main_bytes);  // RGBA8 + RG16
+  expectPoolIsAFreshPack(r, v, "the first cartoon frame");
+  eraseBox(v, {{24, 14, 28}, {33, 23, 37}});
+  r.sync(v, light);
+  expectPoolIsAFreshPack(r, v, "an erase after it");
 }
 
 TEST_F(BrickPoolTest, AfterRandomSmallEditsThePoolIsAFreshPackTexelForTexel) {
