@@ -22,8 +22,10 @@ float quantise8(float v) {
   return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
 }
 
-// Trilinear fetch of channel c (0 density, 1 transmittance) at texture coordinate tc.
-float fetch(const ReferenceScene& s, glm::vec3 tc, int c) {
+// Trilinear filtering at texture coordinate tc as the GPU does it: the 8 voxels around it, each
+// weighted (`weighted(voxel, weight)` gives the voxel's weighted value), summed in a fixed order.
+template <class Weighted>
+float trilinear(const ReferenceScene& s, glm::vec3 tc, Weighted weighted) {
   glm::vec3 u = tc * glm::vec3(s.dims) - 0.5f;
   glm::vec3 i0 = glm::floor(u);
   glm::vec3 f = u - i0;
@@ -32,10 +34,17 @@ float fetch(const ReferenceScene& s, glm::vec3 tc, int c) {
     glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
     glm::ivec3 v = glm::clamp(glm::ivec3(i0) + o, glm::ivec3(0), s.dims - 1);
     float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
-    size_t idx = (size_t(v.z) * s.dims.y + v.y) * s.dims.x + v.x;
-    sum += w * float(s.voxels[idx * 2 + c]) / 255.0f;
+    sum += weighted(v, w);
   }
   return sum;
+}
+
+// Trilinear fetch of channel c (0 density, 1 transmittance) at texture coordinate tc.
+float fetch(const ReferenceScene& s, glm::vec3 tc, int c) {
+  return trilinear(s, tc, [&](glm::ivec3 v, float w) {
+    size_t idx = (size_t(v.z) * s.dims.y + v.y) * s.dims.x + v.x;
+    return w * float(s.voxels[idx * 2 + c]) / 255.0f;
+  });
 }
 
 // The smoothed density of voxel v (app/render/brick_pool.h, packSmoothSlot): the mean of the 8
@@ -50,20 +59,9 @@ float smoothedVoxel(const ReferenceScene& s, glm::ivec3 v) {
   return float(smoothUnorm16(sum)) / 65535.0f;
 }
 
-// Trilinear fetch of the smoothed density at texture coordinate tc: the mean of 8 density
-// fetches ±1 voxel apart.
+// Trilinear fetch of the smoothed density at texture coordinate tc.
 float fetchSmoothed(const ReferenceScene& s, glm::vec3 tc) {
-  glm::vec3 u = tc * glm::vec3(s.dims) - 0.5f;
-  glm::vec3 i0 = glm::floor(u);
-  glm::vec3 f = u - i0;
-  float sum = 0.0f;
-  for (int k = 0; k < 8; ++k) {
-    glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-    glm::ivec3 v = glm::clamp(glm::ivec3(i0) + o, glm::ivec3(0), s.dims - 1);
-    float w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
-    sum += w * smoothedVoxel(s, v);
-  }
-  return sum;
+  return trilinear(s, tc, [&](glm::ivec3 v, float w) { return w * smoothedVoxel(s, v); });
 }
 
 // Nearest, repeating fetch of the fBm cube.
