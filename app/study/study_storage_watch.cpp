@@ -1,7 +1,8 @@
 #include "app/study/study_storage_watch.h"
 
-#include <cstdio>
 #include <ctime>
+
+#include "app/core/json_text.h"
 
 namespace cb {
 namespace {
@@ -13,23 +14,6 @@ std::string utc(int64_t unix_ns) {
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return text;
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(c));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
 // Runs a libFuzzer target without libFuzzer: every file of the corpus directories given on the
 // command line, then deterministic mutations of them (bit flips, truncations, splices, random
 // bytes). A crash or sanitizer report fails the test; a clean run prints how many inputs ran.
+// The mutations' seed is CB_FUZZ_SEED when set (else 12345) and is always printed, so a failure
+// reruns exactly. A target's LLVMFuzzerInitialize, when it has one, runs first, as libFuzzer does.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -11,8 +14,13 @@
 #include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
+extern "C" __attribute__((weak)) int LLVMFuzzerInitialize(int* argc, char*** argv);
 
 int main(int argc, char** argv) {
+  if (LLVMFuzzerInitialize) LLVMFuzzerInitialize(&argc, &argv);
+  const char* seed_text = std::getenv("CB_FUZZ_SEED");
+  const unsigned long long seed = seed_text ? std::strtoull(seed_text, nullptr, 10) : 12345;
+  std::printf("fuzz driver: mutation seed %llu (CB_FUZZ_SEED)\n", seed);
   std::vector<std::vector<uint8_t>> corpus;
   for (int i = 1; i < argc; ++i) {
     std::filesystem::path p(argv[i]);
@@ -35,7 +43,7 @@ int main(int argc, char** argv) {
   corpus.push_back({});
   size_t runs = 0;
   for (auto& c : corpus) LLVMFuzzerTestOneInput(c.data(), c.size()), ++runs;
-  std::mt19937_64 rng(12345);
+  std::mt19937_64 rng(seed);
   for (int round = 0; round < 20000; ++round) {
     std::vector<uint8_t> m = corpus[rng() % corpus.size()];
     switch (rng() % 5) {

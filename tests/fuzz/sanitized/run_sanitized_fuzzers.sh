@@ -4,8 +4,9 @@
 # when present), builds only the given targets, and runs each with libFuzzer's
 # -max_total_time=SECONDS on a scratch copy of its corpus (tests/fuzz/NAME/corpus is read, never
 # written). A crash, leak, sanitizer report or timeout fails; its input is kept under
-# WORK_DIR/artifacts/TARGET/. Per target it prints libFuzzer's last status: inputs run (#N),
-# edges (cov) and features (ft) covered, the corpus kept.
+# WORK_DIR/artifacts/TARGET/. Per target it prints libFuzzer's seed (CB_FUZZ_SEED when set, so a
+# failure reruns with the same mutations) and its last status: inputs run (#N), edges (cov) and
+# features (ft) covered, the corpus kept.
 #
 # The clang build is a unity build (CMAKE_UNITY_BUILD): the parsers' libraries reach most of
 # the app (journal_replay replays whole sessions), and one translation unit per eight sources
@@ -59,22 +60,26 @@ echo "sanitized fuzzing: clang -fsanitize=fuzzer,address,undefined build ready i
 fuzz_start=$(date +%s)
 passed=0; failed=0
 for t in "$@"; do
-  seed=$(dirname "$(find "$src/tests/fuzz" -name "$t.cpp" | head -1)")/corpus
+  seed_corpus=$(dirname "$(find "$src/tests/fuzz" -name "$t.cpp" | head -1)")/corpus
   bin=$(find "$build/tests/fuzz" -type f -name "$t" -perm -u+x | head -1)
   scratch=$work/corpus/$t; artifacts=$work/artifacts/$t/
   rm -rf "$scratch"; mkdir -p "$scratch" "$artifacts"
   log=$work/$t.log
+  seed_arg=()
+  [ -n "${CB_FUZZ_SEED:-}" ] && seed_arg=(-seed="$CB_FUZZ_SEED")
   if "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="$artifacts" "$scratch" "$seed" >"$log" 2>&1; then
+      "${seed_arg[@]}" -artifact_prefix="$artifacts" "$scratch" "$seed_corpus" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
     ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
     corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1 | cut -d' ' -f2)
-    echo "fuzz $t: ok, ${runs:-?} inputs in $secs s, cov ${cov:-?} edges, ft ${ft:-?}," \
+    echo "fuzz $t: ok, seed $(sed -n 's/^INFO: Seed: //p' "$log" | head -1)," \
+      "${runs:-?} inputs in $secs s, cov ${cov:-?} edges, ft ${ft:-?}," \
       "corpus ${corp:-?} (last: $(grep -E '^#[0-9]+' "$log" | tail -1 | cut -c1-110))"
     passed=$((passed + 1))
   else
-    echo "fuzz $t: FAILED (log $log, input kept in $artifacts)"
+    echo "fuzz $t: FAILED, seed $(sed -n 's/^INFO: Seed: //p' "$log" | head -1) (log $log," \
+      "input kept in $artifacts)"
     grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$log" | head -20 || tail -20 "$log"
     failed=$((failed + 1))
   fi
