@@ -315,25 +315,319 @@ struct ResetSample {
   int fds;
 };
 
-int runKiosk(const SoakOptions& o) {
-  // As `cloudbrush kiosk` does first (app/cli/command_paint.cpp).
-  if (!setKioskHeapPolicy()) throw std::runtime_error("glibc refused the kiosk's heap settings");
-  const std::string config_dir = defaultConfigDir();
-  const auto configPath = [&](const std::string& name) { return config_dir + "/" + name; };
-  // Settings as `cloudbrush kiosk` loads them (app/cli/command_paint.cpp).
+// What `cloudbrush kiosk` loads before its loop (app/cli/command_paint.cpp), and the strokes of
+// the attract journal the visitors replay.
+struct KioskParts {
+  std::string config_dir;
   KioskSetup setup;
+  RenderConfig render_config;
+  BrushConfig brush;
+  PenDeviceInfo tablet{};
+  std::vector<Stroke> pool;
+};
+
+KioskParts loadKioskParts() {
+  KioskParts parts;
+  parts.config_dir = defaultConfigDir();
+  const auto configPath = [&](const std::string& name) { return parts.config_dir + "/" + name; };
+  KioskSetup& setup = parts.setup;
   setup.config = loadKioskConfig(configPath("kiosk.toml"));
   setup.texts = KioskTexts::load(
       configPath("kiosk/texts.toml"), setup.config.language,
       [](const std::string& line) { std::fprintf(stderr, "kiosk_soak: %s\n", line.c_str()); });
-  const RenderConfig render_config = loadRenderConfig(configPath("render.toml"));
-  const MappingConfig mapping = loadMappingConfig(configPath("mapping.toml"));
-  const BrushConfig brush = loadDefaultBrushConfig();
+  parts.render_config = loadRenderConfig(configPath("render.toml"));
+  parts.brush = loadDefaultBrushConfig();
   JournalReadResult attract = readJournal(configPath(setup.config.attract_journal));
   if (!attract.error.empty()) throw std::runtime_error("attract journal: " + attract.error);
-  PenDeviceInfo tablet{};
-  const std::vector<Stroke> pool = strokesOf(attract.records, &tablet);
-  if (pool.empty() || tablet.x_max <= 0) throw std::runtime_error("no strokes to replay");
+  parts.pool = strokesOf(attract.records, &parts.tablet);
+  if (parts.pool.empty() || parts.tablet.x_max <= 0)
+    throw std::runtime_error("no strokes to replay");
+  setup.config_dir = parts.config_dir;
+  setup.attract_journal = std::move(attract.records);
+  setup.brush = parts.brush;
+  setup.mapping = loadMappingConfig(configPath("mapping.toml"));
+  setup.light = parts.render_config.light;
+  setup.style = renderStyleName(parts.render_config.options.style);
+  setup.render = parts.render_config.options;
+  setup.render_settings = formatRenderConfig(parts.render_config);
+  setup.moving_scale = parts.render_config.moving_scale;
+  return parts;
+}
+
+// The director: after every frame-loop iteration, what happens next at the kiosk (a visitor
+// arrives, plays their strokes and commands, leaves; the idle reset), the clock's step, and the
+// figures the soak is judged on (VmRSS and fds after each reset, the real-clock stalls).
+class SoakDirector {
+ public:
+  SoakDirector(const SoakOptions& o, const KioskParts& parts, ManualClock& clock, VisitorPen& pen,
+               KioskService& service, VolumeRenderer& renderer)
+      : o_(o),
+        parts_(parts),
+        clock_(clock),
+        pen_(pen),
+        service_(service),
+        renderer_(renderer),
+        rng_(o.seed),
+        attract_s_(o.attract_min_s, o.attract_max_s),
+        end_ns_(clock.nowNs() + int64_t(o.hours * 3600.0 * 1e9)),
+        next_visit_ns_(clock.nowNs() + int64_t(attract_s_(rng_) * 1e9)),
+        steady_start_(std::chrono::steady_clock::now()) {}
+
+  void watch(KioskScreen* kiosk) { kiosk_ = kiosk; }
+
+  void onIteration(bool presented) {
+    service_.onIteration(presented);
+    ++iterations_;
+    frames_ += presented;
+    timeIteration();
+    const int64_t now = clock_.nowNs();
+    switch (phase_) {
+      case Phase::kAttract:
+        onAttract(now);
+        break;
+      case Phase::kVisiting:
+        onVisiting(now);
+        break;
+      case Phase::kLeft:
+        onLeft(now);
+        break;
+    }
+    if (long(simS() / 3600.0) > hour_reported_) reportHour(++hour_reported_);
+    clock_.advance(int64_t((phase_ == Phase::kVisiting ? o_.stroke_step_s : o_.idle_step_s) * 1e9));
+  }
+
+  // After the loop: a reset whose figures were still to be read is read now.
+  void finish() {
+    if (!sample_pending_) return;
+    resets_.back().rss_kb = vmRssKb();
+    resets_.back().fds = openFds();
+  }
+
+  int judge(const Display& display, double ping_interval_s) const;
+
+ private:
+  enum class Phase { kAttract, kVisiting, kLeft };
+
+  double simS() const { return double(clock_.nowNs() - kSecond) / 1e9; }
+  double realS() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - steady_start_).count();
+  }
+
+  // Real time between iterations, from the first frame on (READY: systemd's watchdog runs), and
+  // the process's CPU time over the same iteration (all threads: llvmpipe's too), which says what
+  // the iteration costs when the machine is not shared.
+  void timeIteration() {
+    const int64_t real_now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now().time_since_epoch())
+                                 .count();
+    timespec cpu_ts{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu_ts);
+    const int64_t cpu_now = int64_t(cpu_ts.tv_sec) * kSecond + cpu_ts.tv_nsec;
+    if (service_.readySent() && last_real_ > 0) {
+      const double gap = double(real_now - last_real_) / 1e9;
+      const double cpu = double(cpu_now - last_cpu_) / 1e9;
+      max_cpu_s_ = std::max(max_cpu_s_, cpu);
+      if (gap > 2.0 && ++stalls_over_2s_ <= 10)
+        std::printf("kiosk_soak: iteration of %.2f s (%.2f s of CPU) at simulated %.0f s (%s)\n",
+                    gap, cpu, simS(), KioskScreen::stateName(kiosk_->state()));
+      if (gap > max_stall_s_) {
+        max_stall_s_ = gap;
+        max_stall_cpu_s_ = cpu;
+        max_stall_at_s_ = simS();
+        max_stall_state_ = KioskScreen::stateName(kiosk_->state());
+      }
+    }
+    last_real_ = service_.readySent() ? real_now : 0;
+    last_cpu_ = cpu_now;
+  }
+
+  void onAttract(int64_t now) {
+    if (sample_pending_ && kiosk_->nextVisitorReady()) {
+      // Sampled once the reset is complete: the cleared sky on the attract loop, the finished
+      // visitor's session given back and the next visitor's fresh one made.
+      resets_.back().rss_kb = vmRssKb();
+      resets_.back().fds = openFds();
+      std::printf("kiosk_soak: reset %zu at simulated %.0f s: VmRSS %.1f MB, %d fds\n",
+                  resets_.size(), resets_.back().sim_s, double(resets_.back().rss_kb) / 1024.0,
+                  resets_.back().fds);
+      if (o_.memory_detail) printMemoryDetail();
+      sample_pending_ = false;
+      if (now >= end_ns_) g_stop.store(true);
+    }
+    if (!sample_pending_ && now >= next_visit_ns_) {
+      visit_ = makeVisit(parts_.pool, parts_.tablet, visits_, o_.strokes_per_visit, o_.seed);
+      pen_.play(visit_.samples, now);
+      visit_start_ns_ = now;
+      next_command_ = 0;
+      strokes_fed_ += visit_.strokes;
+      ++visits_;
+      phase_ = Phase::kVisiting;
+    }
+  }
+
+  void noteStrokesMapped() {
+    if (kiosk_->state() == KioskScreen::State::kVisitor && kiosk_->visitorSession())
+      visit_strokes_mapped_ = kiosk_->visitorSession()->strokesMapped();
+  }
+
+  void onVisiting(int64_t now) {
+    noteStrokesMapped();
+    for (; next_command_ < visit_.commands.size() &&
+           now - visit_start_ns_ >= visit_.commands[next_command_].t_ns;
+         ++next_command_)
+      kiosk_->onCommand(visit_.commands[next_command_].command, now);
+    if (pen_.done() && next_command_ == visit_.commands.size()) phase_ = Phase::kLeft;
+  }
+
+  void onLeft(int64_t now) {
+    noteStrokesMapped();
+    if (kiosk_->state() != KioskScreen::State::kAttract) return;
+    // The idle reset.
+    strokes_mapped_ += visit_strokes_mapped_;
+    visit_strokes_mapped_ = 0;
+    resets_.push_back({simS(), 0, 0});
+    sample_pending_ = true;
+    next_visit_ns_ = now + int64_t(attract_s_(rng_) * 1e9);
+    phase_ = Phase::kAttract;
+  }
+
+  void printMemoryDetail() const {
+    const RendererGpuMemory gpu = renderer_.gpuMemory();
+    const PaintSession* v = kiosk_->visitorSession();
+    std::printf(
+        "kiosk_soak:   %s | renderer pool %.1f occupancy %.1f targets %.1f "
+        "styles %.1f MB; light %.1f tables %.1f attract vol %.1f visitor vol %.1f "
+        "hist %.1f MB; attract scale %.2f\n",
+        test::describe(test::readProcessMemory()).c_str(), gpu.pool / 1048576.0,
+        gpu.occupancy / 1048576.0, gpu.frame_targets / 1048576.0, gpu.styles / 1048576.0,
+        renderer_.lightVolume().memoryBytes() / 1048576.0,
+        renderer_.brickPool().tableBytes() / 1048576.0,
+        kiosk_->attract().volume().memoryBytes() / 1048576.0,
+        v ? v->volume().memoryBytes() / 1048576.0 : 0.0,
+        v ? v->history().copyBytes() / 1048576.0 : 0.0, double(kiosk_->attract().scale()));
+  }
+
+  void reportHour(long hour) const {
+    std::vector<double> rss;
+    int fd_min = 1 << 30, fd_max = 0;
+    for (const ResetSample& r : resets_)
+      if (r.rss_kb > 0 && r.sim_s > double(hour - 1) * 3600.0 && r.sim_s <= double(hour) * 3600.0) {
+        rss.push_back(double(r.rss_kb));
+        fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
+      }
+    std::printf(
+        "kiosk_soak: simulated %.2f h (real %.0f s): %ld visits, %ld strokes mapped; after the "
+        "resets of this hour VmRSS median %.1f MB, fds %d..%d; longest loop stall so far %.2f s\n",
+        simS() / 3600.0, realS(), visits_, strokes_mapped_, median(rss) / 1024.0,
+        rss.empty() ? 0 : fd_min, rss.empty() ? 0 : fd_max, max_stall_s_);
+    std::fflush(stdout);
+  }
+
+  const SoakOptions& o_;
+  const KioskParts& parts_;
+  ManualClock& clock_;
+  VisitorPen& pen_;
+  KioskService& service_;
+  VolumeRenderer& renderer_;
+  KioskScreen* kiosk_ = nullptr;
+  Phase phase_ = Phase::kAttract;
+  std::mt19937 rng_;
+  std::uniform_real_distribution<double> attract_s_;
+  int64_t end_ns_, next_visit_ns_, visit_start_ns_ = 0;
+  Visit visit_;
+  size_t next_command_ = 0;
+  long visits_ = 0, strokes_fed_ = 0, strokes_mapped_ = 0, iterations_ = 0, frames_ = 0;
+  uint32_t visit_strokes_mapped_ = 0;
+  std::vector<ResetSample> resets_;
+  double max_stall_s_ = 0.0, max_stall_at_s_ = 0.0, max_stall_cpu_s_ = 0.0, max_cpu_s_ = 0.0;
+  std::string max_stall_state_;
+  int64_t last_real_ = 0, last_cpu_ = 0;
+  long stalls_over_2s_ = 0, hour_reported_ = 0;
+  bool sample_pending_ = false;  // a reset whose VmRSS and fds are still to be read
+  std::chrono::steady_clock::time_point steady_start_;
+};
+
+// The soak's verdict: prints the figures and a FAILED line per check missed; 0 when none.
+int SoakDirector::judge(const Display& display, double ping_interval_s) const {
+  const int64_t warmup_end_ns = kSecond + int64_t(o_.warmup_minutes * 60e9);
+  const int64_t reference_end_ns = warmup_end_ns + int64_t(o_.reference_minutes * 60e9);
+  std::vector<std::string> failures;
+  std::vector<double> reference;
+  for (const ResetSample& r : resets_)
+    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond) &&
+        r.sim_s * 1e9 <= double(reference_end_ns - kSecond))
+      reference.push_back(double(r.rss_kb));
+  const double reference_kb = median(reference);
+  const double final_kb = resets_.empty() ? 0.0 : double(resets_.back().rss_kb);
+  const double drift = reference_kb > 0.0 ? (final_kb - reference_kb) / reference_kb : 1.0;
+  int fd_min = 1 << 30, fd_max = 0;
+  size_t judged = 0;
+  for (const ResetSample& r : resets_)
+    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond)) {
+      fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
+      ++judged;
+    }
+  if (reference.size() < 3)
+    failures.push_back("only " + std::to_string(reference.size()) +
+                       " resets in the reference window (run longer)");
+  // The check, both ways: the final VmRSS within the band (2 %) of the reference median.
+  const double band = o_.rss_band_percent / 100.0;
+  if (std::abs(drift) > band)
+    failures.push_back("final VmRSS " + std::to_string(long(final_kb)) + " kB is " +
+                       std::to_string(drift * 100.0) + "% off the reference median " +
+                       std::to_string(long(reference_kb)) + " kB (within " +
+                       std::to_string(o_.rss_band_percent) + "% wanted)");
+  if (judged == 0 || fd_max != fd_min)
+    failures.push_back("open fds after the resets past the warm-up: " + std::to_string(fd_min) +
+                       ".." + std::to_string(fd_max) + " (flat wanted)");
+  if (max_stall_s_ >= ping_interval_s)
+    failures.push_back("the frame loop stalled " + std::to_string(max_stall_s_) + " s (" +
+                       max_stall_state_ + ", simulated " + std::to_string(max_stall_at_s_) +
+                       " s): the watchdog's ping interval is " + std::to_string(ping_interval_s) +
+                       " s");
+  if (kiosk_->idleResets() != long(resets_.size()) || long(resets_.size()) != visits_)
+    failures.push_back(std::to_string(visits_) + " visits, " + std::to_string(resets_.size()) +
+                       " resets seen, " + std::to_string(kiosk_->idleResets()) + " counted");
+  if (strokes_mapped_ != strokes_fed_)
+    failures.push_back(std::to_string(strokes_fed_) + " strokes replayed, " +
+                       std::to_string(strokes_mapped_) + " mapped");
+  std::printf(
+      "kiosk_soak: %.2f simulated hours in %.0f s real, %ldx%d, grid %d: %ld visits, %ld idle "
+      "resets, %ld strokes mapped of %ld replayed, %ld frames in %ld iterations\n",
+      simS() / 3600.0, realS(), long(display.width()), display.height(), o_.grid, visits_,
+      kiosk_->idleResets(), strokes_mapped_, strokes_fed_, frames_, iterations_);
+  std::printf(
+      "kiosk_soak: VmRSS after the last reset %.1f MB, median over the reference window (%zu "
+      "resets, simulated %.0f-%.0f min) %.1f MB: %+.2f%% (within %.0f%% wanted)\n",
+      final_kb / 1024.0, reference.size(), o_.warmup_minutes,
+      o_.warmup_minutes + o_.reference_minutes, reference_kb / 1024.0, drift * 100.0,
+      o_.rss_band_percent);
+  std::printf("kiosk_soak: open fds after %zu resets past the warm-up: %d..%d\n", judged,
+              judged ? fd_min : 0, judged ? fd_max : 0);
+  std::printf(
+      "kiosk_soak: longest frame-loop stall (real clock) %.2f s (%.2f s of process CPU; %s, "
+      "simulated %.0f s); %ld iterations over 2 s; the most CPU one iteration took %.2f s; the "
+      "watchdog pings every %.1f s\n",
+      max_stall_s_, max_stall_cpu_s_, max_stall_state_.c_str(), max_stall_at_s_, stalls_over_2s_,
+      max_cpu_s_, ping_interval_s);
+  for (const std::string& f : failures) std::printf("kiosk_soak: FAILED: %s\n", f.c_str());
+  std::printf(
+      "{\"soak\":\"kiosk\",\"figures\":{\"simulated_hours\":%.3f,\"real_seconds\":%.0f,"
+      "\"visits\":%ld,\"strokes\":%ld,\"frames\":%ld,\"final_rss_kb\":%ld,"
+      "\"reference_rss_kb\":%.0f,\"rss_drift_percent\":%.3f,\"fds_min\":%d,\"fds_max\":%d,"
+      "\"max_stall_s\":%.3f,\"max_stall_cpu_s\":%.3f,\"max_iteration_cpu_s\":%.3f,"
+      "\"ping_interval_s\":%.1f,\"simulated_seconds\":%.0f}}\n",
+      simS() / 3600.0, realS(), visits_, strokes_mapped_, frames_, long(final_kb), reference_kb,
+      drift * 100.0, judged ? fd_min : 0, judged ? fd_max : 0, max_stall_s_, max_stall_cpu_s_,
+      max_cpu_s_, ping_interval_s, simS());
+  std::fflush(stdout);
+  return failures.empty() ? 0 : 1;
+}
+
+int runKiosk(const SoakOptions& o) {
+  // As `cloudbrush kiosk` does first (app/cli/command_paint.cpp).
+  if (!setKioskHeapPolicy()) throw std::runtime_error("glibc refused the kiosk's heap settings");
+  KioskParts parts = loadKioskParts();
 
   std::string error;
   DisplayOptions display_options;
@@ -346,7 +640,7 @@ int runKiosk(const SoakOptions& o) {
   if (!renderer.init(&error)) throw std::runtime_error(error);
 
   ManualClock clock(kSecond);
-  VisitorPen pen(clock, tablet);
+  VisitorPen pen(clock, parts.tablet);
   std::string watchdog_error;
   const std::optional<WatchdogTimeout> watchdog = watchdogTimeoutFromEnvironment(&watchdog_error);
   if (!watchdog) throw std::runtime_error("no watchdog asked for: " + watchdog_error);
@@ -355,260 +649,43 @@ int runKiosk(const SoakOptions& o) {
                          std::fprintf(stderr, "kiosk_soak: service: %s\n", problem.c_str());
                        });
 
-  PaintSessionSettings settings;
-  settings.screen_width = display->width();
-  settings.screen_height = display->height();
-  settings.grid = o.grid;
-  settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
-  settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+  KioskSetup setup = parts.setup;
+  setup.visitor_settings.screen_width = display->width();
+  setup.visitor_settings.screen_height = display->height();
+  setup.visitor_settings.grid = o.grid;
+  setup.visitor_settings.auto_end_still_ms = parts.brush.stroke.auto_end_still_ms;
+  setup.visitor_settings.auto_end_light_ms = parts.brush.stroke.auto_end_light_ms;
   setup.data_dir = o.data_dir;
-  setup.config_dir = config_dir;
-  setup.attract_journal = std::move(attract.records);
-  setup.visitor_settings = settings;
-  setup.brush = brush;
-  setup.mapping = mapping;
-  setup.light = render_config.light;
-  setup.style = renderStyleName(render_config.options.style);
-  setup.render = render_config.options;
-  setup.render_settings = formatRenderConfig(render_config);
-  setup.moving_scale = render_config.moving_scale;
   setup.on_status = [&service](const std::string& status) { service.onStatus(status); };
   setup.on_input = [&service]() { service.onInput(); };
 
   const Volume demo = makeBundledCumulus(glm::ivec3(o.grid), 1);
   PaintLoopOptions loop_options;
-  loop_options.render = render_config.options;
-  loop_options.moving_scale = render_config.moving_scale;
+  loop_options.render = parts.render_config.options;
+  loop_options.moving_scale = parts.render_config.moving_scale;
   loop_options.visitor_mode = true;
   loop_options.orbit_degrees_per_second = 0.0f;
-  loop_options.config_dir = config_dir;
+  loop_options.config_dir = parts.config_dir;
   loop_options.state_dir = o.data_dir;
   loop_options.clock = &clock;
   std::unique_ptr<KioskScreen> kiosk;
   loop_options.before_start_again = [&kiosk]() { kiosk->keepFinishedCloud("start again"); };
+  SoakDirector director(o, parts, clock, pen, service, renderer);
+  loop_options.each_iteration = [&director](bool presented) { director.onIteration(presented); };
 
-  // The director: after every iteration, what happens next at the kiosk, and the clock's step.
-  enum class Phase { kAttract, kVisiting, kLeft } phase = Phase::kAttract;
-  std::mt19937 rng(o.seed);
-  std::uniform_real_distribution<double> attract_s(o.attract_min_s, o.attract_max_s);
-  const int64_t end_ns = clock.nowNs() + int64_t(o.hours * 3600.0 * 1e9);
-  const int64_t warmup_end_ns = kSecond + int64_t(o.warmup_minutes * 60e9);
-  const int64_t reference_end_ns = warmup_end_ns + int64_t(o.reference_minutes * 60e9);
-  int64_t next_visit_ns = clock.nowNs() + int64_t(attract_s(rng) * 1e9), visit_start_ns = 0;
-  Visit visit;
-  size_t next_command = 0;
-  long visits = 0, strokes_fed = 0, strokes_mapped = 0, iterations = 0, frames = 0;
-  uint32_t visit_strokes_mapped = 0;
-  std::vector<ResetSample> resets;
-  double max_stall_s = 0.0, max_stall_at_s = 0.0, max_stall_cpu_s = 0.0, max_cpu_s = 0.0;
-  std::string max_stall_state;
-  int64_t last_real = 0, last_cpu = 0;
-  long stalls_over_2s = 0;
-  long hour_reported = 0;
-  bool sample_pending = false;  // a reset whose VmRSS and fds are still to be read
-  const auto steady_start = std::chrono::steady_clock::now();
-  const auto real_s = [&]() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - steady_start).count();
-  };
-  const auto sim_s = [&]() { return double(clock.nowNs() - kSecond) / 1e9; };
-  const auto report_hour = [&](long hour) {
-    std::vector<double> rss;
-    int fd_min = 1 << 30, fd_max = 0;
-    for (const ResetSample& r : resets)
-      if (r.rss_kb > 0 && r.sim_s > double(hour - 1) * 3600.0 && r.sim_s <= double(hour) * 3600.0) {
-        rss.push_back(double(r.rss_kb));
-        fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
-      }
-    std::printf(
-        "kiosk_soak: simulated %.2f h (real %.0f s): %ld visits, %ld strokes mapped; after the "
-        "resets of this hour VmRSS median %.1f MB, fds %d..%d; longest loop stall so far %.2f s\n",
-        sim_s() / 3600.0, real_s(), visits, strokes_mapped, median(rss) / 1024.0,
-        rss.empty() ? 0 : fd_min, rss.empty() ? 0 : fd_max, max_stall_s);
-    std::fflush(stdout);
-  };
-
-  loop_options.each_iteration = [&](bool presented) {
-    service.onIteration(presented);
-    ++iterations;
-    frames += presented;
-    // Real time between iterations, from the first frame on (READY: systemd's watchdog runs).
-    const int64_t real_now = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::steady_clock::now().time_since_epoch())
-                                 .count();
-    // And the process's CPU time over the same iteration (all threads: llvmpipe's too), which
-    // says what the iteration costs when the machine is not shared.
-    timespec cpu_ts{};
-    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu_ts);
-    const int64_t cpu_now = int64_t(cpu_ts.tv_sec) * kSecond + cpu_ts.tv_nsec;
-    if (service.readySent() && last_real > 0) {
-      const double gap = double(real_now - last_real) / 1e9;
-      const double cpu = double(cpu_now - last_cpu) / 1e9;
-      max_cpu_s = std::max(max_cpu_s, cpu);
-      if (gap > 2.0 && ++stalls_over_2s <= 10)
-        std::printf("kiosk_soak: iteration of %.2f s (%.2f s of CPU) at simulated %.0f s (%s)\n",
-                    gap, cpu, sim_s(), KioskScreen::stateName(kiosk->state()));
-      if (gap > max_stall_s) {
-        max_stall_s = gap;
-        max_stall_cpu_s = cpu;
-        max_stall_at_s = sim_s();
-        max_stall_state = KioskScreen::stateName(kiosk->state());
-      }
-    }
-    last_real = service.readySent() ? real_now : 0;
-    last_cpu = cpu_now;
-    const int64_t now = clock.nowNs();
-    const KioskScreen::State state = kiosk->state();
-    switch (phase) {
-      case Phase::kAttract:
-        if (sample_pending && kiosk->nextVisitorReady()) {
-          // Sampled once the reset is complete: the cleared sky on the attract loop, the
-          // finished visitor's session given back and the next visitor's fresh one made.
-          resets.back().rss_kb = vmRssKb();
-          resets.back().fds = openFds();
-          std::printf("kiosk_soak: reset %zu at simulated %.0f s: VmRSS %.1f MB, %d fds\n",
-                      resets.size(), resets.back().sim_s, double(resets.back().rss_kb) / 1024.0,
-                      resets.back().fds);
-          if (o.memory_detail) {
-            const RendererGpuMemory gpu = renderer.gpuMemory();
-            const PaintSession* v = kiosk->visitorSession();
-            std::printf(
-                "kiosk_soak:   %s | renderer pool %.1f occupancy %.1f targets %.1f "
-                "styles %.1f MB; light %.1f tables %.1f attract vol %.1f visitor vol %.1f "
-                "hist %.1f MB; attract scale %.2f\n",
-                test::describe(test::readProcessMemory()).c_str(), gpu.pool / 1048576.0,
-                gpu.occupancy / 1048576.0, gpu.frame_targets / 1048576.0, gpu.styles / 1048576.0,
-                renderer.lightVolume().memoryBytes() / 1048576.0,
-                renderer.brickPool().tableBytes() / 1048576.0,
-                kiosk->attract().volume().memoryBytes() / 1048576.0,
-                v ? v->volume().memoryBytes() / 1048576.0 : 0.0,
-                v ? v->history().copyBytes() / 1048576.0 : 0.0, double(kiosk->attract().scale()));
-          }
-          sample_pending = false;
-          if (now >= end_ns) g_stop.store(true);
-        }
-        if (!sample_pending && now >= next_visit_ns) {
-          visit = makeVisit(pool, tablet, visits, o.strokes_per_visit, o.seed);
-          pen.play(visit.samples, now);
-          visit_start_ns = now;
-          next_command = 0;
-          strokes_fed += visit.strokes;
-          ++visits;
-          phase = Phase::kVisiting;
-        }
-        break;
-      case Phase::kVisiting:
-        if (state == KioskScreen::State::kVisitor && kiosk->visitorSession())
-          visit_strokes_mapped = kiosk->visitorSession()->strokesMapped();
-        for (; next_command < visit.commands.size() &&
-               now - visit_start_ns >= visit.commands[next_command].t_ns;
-             ++next_command)
-          kiosk->onCommand(visit.commands[next_command].command, now);
-        if (pen.done() && next_command == visit.commands.size()) phase = Phase::kLeft;
-        break;
-      case Phase::kLeft:
-        if (state == KioskScreen::State::kVisitor && kiosk->visitorSession())
-          visit_strokes_mapped = kiosk->visitorSession()->strokesMapped();
-        if (state == KioskScreen::State::kAttract) {  // the idle reset
-          strokes_mapped += visit_strokes_mapped;
-          visit_strokes_mapped = 0;
-          resets.push_back({sim_s(), 0, 0});
-          sample_pending = true;
-          next_visit_ns = now + int64_t(attract_s(rng) * 1e9);
-          phase = Phase::kAttract;
-        }
-        break;
-    }
-    if (long(sim_s() / 3600.0) > hour_reported) report_hour(++hour_reported);
-    clock.advance(int64_t((phase == Phase::kVisiting ? o.stroke_step_s : o.idle_step_s) * 1e9));
-  };
-
-  PaintLoop loop(*display, renderer, demo, render_config.light, loop_options);
+  PaintLoop loop(*display, renderer, demo, parts.render_config.light, loop_options);
   loop.attachPen(&pen, nullptr);
   kiosk = std::make_unique<KioskScreen>(*display, renderer, loop.screen(), &pen, clock,
                                         std::move(setup));
+  director.watch(kiosk.get());
   PaintLoopSummary summary;
   const bool ran = loop.run(&g_stop, &summary, &error, kiosk.get());
   service.stopping();
   if (!ran) throw std::runtime_error(error);
-
-  if (sample_pending) {  // the loop ended before the last reset was complete
-    resets.back().rss_kb = vmRssKb();
-    resets.back().fds = openFds();
-  }
-
-  // Judge.
-  std::vector<std::string> failures;
-  std::vector<double> reference;
-  for (const ResetSample& r : resets)
-    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond) &&
-        r.sim_s * 1e9 <= double(reference_end_ns - kSecond))
-      reference.push_back(double(r.rss_kb));
-  const double reference_kb = median(reference);
-  const double final_kb = resets.empty() ? 0.0 : double(resets.back().rss_kb);
-  const double drift = reference_kb > 0.0 ? (final_kb - reference_kb) / reference_kb : 1.0;
-  int fd_min = 1 << 30, fd_max = 0;
-  size_t judged = 0;
-  for (const ResetSample& r : resets)
-    if (r.sim_s * 1e9 > double(warmup_end_ns - kSecond)) {
-      fd_min = std::min(fd_min, r.fds), fd_max = std::max(fd_max, r.fds);
-      ++judged;
-    }
-  const double ping_interval_s = double(watchdog->pingIntervalNs()) / 1e9;
-  if (reference.size() < 3)
-    failures.push_back("only " + std::to_string(reference.size()) +
-                       " resets in the reference window (run longer)");
-  // The check, both ways: the final VmRSS within the band (2 %) of the reference median.
-  const double band = o.rss_band_percent / 100.0;
-  if (std::abs(drift) > band)
-    failures.push_back("final VmRSS " + std::to_string(long(final_kb)) + " kB is " +
-                       std::to_string(drift * 100.0) + "% off the reference median " +
-                       std::to_string(long(reference_kb)) + " kB (within " +
-                       std::to_string(o.rss_band_percent) + "% wanted)");
-  if (judged == 0 || fd_max != fd_min)
-    failures.push_back("open fds after the resets past the warm-up: " + std::to_string(fd_min) +
-                       ".." + std::to_string(fd_max) + " (flat wanted)");
-  if (max_stall_s >= ping_interval_s)
-    failures.push_back("the frame loop stalled " + std::to_string(max_stall_s) + " s (" +
-                       max_stall_state + ", simulated " + std::to_string(max_stall_at_s) +
-                       " s): the watchdog's ping interval is " + std::to_string(ping_interval_s) +
-                       " s");
-  if (kiosk->idleResets() != long(resets.size()) || long(resets.size()) != visits)
-    failures.push_back(std::to_string(visits) + " visits, " + std::to_string(resets.size()) +
-                       " resets seen, " + std::to_string(kiosk->idleResets()) + " counted");
-  if (strokes_mapped != strokes_fed)
-    failures.push_back(std::to_string(strokes_fed) + " strokes replayed, " +
-                       std::to_string(strokes_mapped) + " mapped");
-  std::printf(
-      "kiosk_soak: %.2f simulated hours in %.0f s real, %ldx%d, grid %d: %ld visits, %ld idle "
-      "resets, %ld strokes mapped of %ld replayed, %ld frames in %ld iterations\n",
-      sim_s() / 3600.0, real_s(), long(display->width()), display->height(), o.grid, visits,
-      kiosk->idleResets(), strokes_mapped, strokes_fed, frames, iterations);
-  std::printf(
-      "kiosk_soak: VmRSS after the last reset %.1f MB, median over the reference window (%zu "
-      "resets, simulated %.0f-%.0f min) %.1f MB: %+.2f%% (within %.0f%% wanted)\n",
-      final_kb / 1024.0, reference.size(), o.warmup_minutes, o.warmup_minutes + o.reference_minutes,
-      reference_kb / 1024.0, drift * 100.0, o.rss_band_percent);
-  std::printf("kiosk_soak: open fds after %zu resets past the warm-up: %d..%d\n", judged,
-              judged ? fd_min : 0, judged ? fd_max : 0);
-  std::printf(
-      "kiosk_soak: longest frame-loop stall (real clock) %.2f s (%.2f s of process CPU; %s, "
-      "simulated %.0f s); %ld iterations over 2 s; the most CPU one iteration took %.2f s; the "
-      "watchdog pings every %.1f s\n",
-      max_stall_s, max_stall_cpu_s, max_stall_state.c_str(), max_stall_at_s, stalls_over_2s,
-      max_cpu_s, ping_interval_s);
-  for (const std::string& f : failures) std::printf("kiosk_soak: FAILED: %s\n", f.c_str());
-  std::printf(
-      "{\"soak\":\"kiosk\",\"figures\":{\"simulated_hours\":%.3f,\"real_seconds\":%.0f,"
-      "\"visits\":%ld,\"strokes\":%ld,\"frames\":%ld,\"final_rss_kb\":%ld,"
-      "\"reference_rss_kb\":%.0f,\"rss_drift_percent\":%.3f,\"fds_min\":%d,\"fds_max\":%d,"
-      "\"max_stall_s\":%.3f,\"max_stall_cpu_s\":%.3f,\"max_iteration_cpu_s\":%.3f,"
-      "\"ping_interval_s\":%.1f,\"simulated_seconds\":%.0f}}\n",
-      sim_s() / 3600.0, real_s(), visits, strokes_mapped, frames, long(final_kb), reference_kb,
-      drift * 100.0, judged ? fd_min : 0, judged ? fd_max : 0, max_stall_s, max_stall_cpu_s,
-      max_cpu_s, ping_interval_s, sim_s());
-  std::fflush(stdout);
+  director.finish();
+  const int verdict = director.judge(*display, double(watchdog->pingIntervalNs()) / 1e9);
   kiosk.reset();
-  return failures.empty() ? 0 : 1;
+  return verdict;
 }
 
 // ---- systemd's side and the trace (parent process) -------------------------------------------
