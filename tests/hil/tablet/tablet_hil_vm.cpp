@@ -275,6 +275,122 @@ std::vector<PenStep> slowStroke(PenStep start) {
   return steps;
 }
 
+// Slow strokes: X/Y fuzz 4 (config/devices/wacom-generic.toml, the wacom driver's generic pen
+// path), evdev against the filtered hidraw path.
+void checkPth660SlowStroke(UhidDevice& dev, const hid::PenLayout& layout, const PenStep& start,
+                           EvdevPenSource& evdev, hid::HidapiPenSource& hidraw) {
+  hid::HidapiPenSourceOptions raw_options = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
+  raw_options.input_fuzz = false;
+  hid::HidapiPenSource raw(raw_options);
+  if (check(waitConnected(raw, 5000), "uhid: a second hidraw reader without the filter opens")) {
+    std::vector<std::vector<uint8_t>> reports;
+    for (const PenStep& st : slowStroke(start)) reports.push_back(encodePenReport(layout, st));
+    PenStep out = start;
+    out.in_range = out.sense = out.tip = false;
+    reports.push_back(encodePenReport(layout, out));
+    checkSlowStroke(
+        "uhid-pth660 slow stroke", reports, reports.size() - 1,
+        [&](const std::vector<uint8_t>& r) { return dev.input(r); }, evdev, hidraw, raw);
+  }
+}
+
+// An unprivileged user (no udev rule installed) gets a state naming the rule, not an exit.
+void checkUnprivilegedStates() {
+  int pipefd[2];
+  if (pipe(pipefd) == 0) {
+    pid_t child = fork();
+    if (child == 0) {
+      close(pipefd[0]);
+      std::string verdict = "setuid failed";
+      if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) {
+        EvdevPenSource e({});
+        hid::HidapiPenSource h(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
+        verdict = std::string(penConnectionName(e.connection())) + "|" + e.statusMessage() + "|" +
+                  penConnectionName(h.connection()) + "|" + h.statusMessage();
+      }
+      (void)!write(pipefd[1], verdict.data(), verdict.size());
+      _exit(0);
+    }
+    close(pipefd[1]);
+    std::string verdict;
+    char buf[512];
+    for (ssize_t n; (n = read(pipefd[0], buf, sizeof buf)) > 0;) verdict.append(buf, n);
+    close(pipefd[0]);
+    waitpid(child, nullptr, 0);
+    const size_t bar = verdict.find('|', verdict.find('|') + 1);
+    const std::string ev = verdict.substr(0, bar),
+                      hr = bar == std::string::npos ? "" : verdict.substr(bar + 1);
+    check(ev.rfind("permission-denied|", 0) == 0 &&
+              ev.find("70-cloudbrush-tablet.rules") != std::string::npos,
+          "uhid: as an unprivileged user evdev reports permission denied naming the udev rule (" +
+              ev + ")");
+    check(hr.rfind("permission-denied|", 0) == 0 &&
+              hr.find("70-cloudbrush-tablet.rules") != std::string::npos,
+          "uhid: as an unprivileged user hidraw reports permission denied naming the udev rule (" +
+              hr + ")");
+  }
+}
+
+// What `cloudbrush devices` reports to that user: the event nodes (or /dev/input itself)
+// closed to it, each with the error.
+void checkUnprivilegedSurvey() {
+  const std::string survey = asNobody([] {
+    const EvdevSurvey s = surveyEvdevNodes();
+    if (!s.dir_error.empty())
+      return std::string(s.dir_permission_denied ? "dir-denied " : "dir-error ") + s.dir + ": " +
+             s.dir_error;
+    int denied = 0;
+    std::string first;
+    for (const EvdevNodeReport& n : s.nodes) {
+      if (n.kind == EvdevNodeKind::kCannotOpen && n.permission_denied) ++denied;
+      if (first.empty() && n.kind == EvdevNodeKind::kCannotOpen) first = n.path + ": " + n.detail;
+    }
+    return std::string(denied > 0 && denied == static_cast<int>(s.nodes.size()) ? "nodes-denied "
+                                                                                : "nodes ") +
+           std::to_string(denied) + "/" + std::to_string(s.nodes.size()) + " " + first;
+  });
+  const bool named =
+      (survey.rfind("dir-denied ", 0) == 0 || survey.rfind("nodes-denied ", 0) == 0) &&
+      survey.find("Permission denied") != std::string::npos;
+  check(named, "uhid: as an unprivileged user the device survey names what is closed and why (" +
+                   survey + ")");
+}
+
+// Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
+// the source with the device's true state.
+void checkOverflowResync(UhidDevice& dev, const hid::PenLayout& layout, const PenStep& start,
+                         const PenDeviceInfo& info, EvdevPenSource& evdev,
+                         hid::HidapiPenSource& hidraw) {
+  PenStep st = start;
+  for (int i = 0; i < 300; ++i) {
+    st.x = 1000 + 37 * i;
+    st.pressure = (i * 53) % info.pressure_max;
+    dev.input(encodePenReport(layout, st));
+  }
+  // Read at once: the wacom driver forces the pen out of proximity 100 ms after its last report.
+  std::vector<PenSample> got;
+  evdev.poll(0, got);
+  check(evdev.resyncCount() >= 1,
+        "uhid: evdev overflow reported SYN_DROPPED and libevdev resynced (" +
+            std::to_string(evdev.resyncCount()) + " resyncs, " + std::to_string(got.size()) +
+            " of 300 samples)");
+  const bool final_seen = !got.empty() && got.back().in_proximity && got.back().x_raw == st.x &&
+                          got.back().pressure_raw == st.pressure && got.back().tipDown();
+  check(final_seen, "uhid: after the resync the sample is the device's final state" +
+                        (got.empty() ? std::string() : " (" + describe(got.back()) + ")"));
+  // The pen stops reporting without leaving: the kernel's idle-proximity timer ends the stroke
+  // on evdev; the hidraw backend's own idle timeout must do the same. (hidraw keeps only the
+  // first 64 of the 300 queued reports.)
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  for (PenSource* src : {static_cast<PenSource*>(&evdev), static_cast<PenSource*>(&hidraw)}) {
+    std::vector<PenSample> out;
+    for (int i = 0; i < 60; ++i) src->poll(5, out);
+    check(!out.empty() && !out.back().in_proximity && out.back().buttons == 0,
+          std::string("uhid: a pen that stops reporting leaves proximity via ") +
+              src->backendName() + (out.empty() ? "" : " (" + describe(out.back()) + ")"));
+  }
+}
+
 void phaseUhidPth660(const std::string& fixtures) {
   const std::vector<uint8_t> desc = readFile(fixtures + "/wacom-pth660_v145.rdesc");
   auto parsed = hid::parseReportDescriptor(desc.data(), desc.size());
@@ -320,120 +436,10 @@ void phaseUhidPth660(const std::string& fixtures) {
   const auto steps = penScript(info.x_max, info.y_max, info.pressure_max, info.distance_max);
   runScript("uhid-pth660", steps, false, info, inject, {&evdev, &hidraw});
 
-  // Slow strokes: X/Y fuzz 4 (config/devices/wacom-generic.toml, the wacom driver's generic pen
-  // path), evdev against the filtered hidraw path.
-  {
-    hid::HidapiPenSourceOptions raw_options = hidOptions(hid::HidapiBackend::kHidraw, 0x056A);
-    raw_options.input_fuzz = false;
-    hid::HidapiPenSource raw(raw_options);
-    if (check(waitConnected(raw, 5000), "uhid: a second hidraw reader without the filter opens")) {
-      std::vector<std::vector<uint8_t>> reports;
-      for (const PenStep& st : slowStroke(steps[6]))
-        reports.push_back(encodePenReport(*layout.layout, st));
-      PenStep out = steps[6];
-      out.in_range = out.sense = out.tip = false;
-      reports.push_back(encodePenReport(*layout.layout, out));
-      checkSlowStroke(
-          "uhid-pth660 slow stroke", reports, reports.size() - 1,
-          [&](const std::vector<uint8_t>& r) { return dev.input(r); }, evdev, hidraw, raw);
-    }
-  }
-
-  // An unprivileged user (no udev rule installed) gets a state naming the rule, not an exit.
-  {
-    int pipefd[2];
-    if (pipe(pipefd) == 0) {
-      pid_t child = fork();
-      if (child == 0) {
-        close(pipefd[0]);
-        std::string verdict = "setuid failed";
-        if (setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0) {
-          EvdevPenSource e({});
-          hid::HidapiPenSource h(hidOptions(hid::HidapiBackend::kHidraw, 0x056A));
-          verdict = std::string(penConnectionName(e.connection())) + "|" + e.statusMessage() + "|" +
-                    penConnectionName(h.connection()) + "|" + h.statusMessage();
-        }
-        (void)!write(pipefd[1], verdict.data(), verdict.size());
-        _exit(0);
-      }
-      close(pipefd[1]);
-      std::string verdict;
-      char buf[512];
-      for (ssize_t n; (n = read(pipefd[0], buf, sizeof buf)) > 0;) verdict.append(buf, n);
-      close(pipefd[0]);
-      waitpid(child, nullptr, 0);
-      const size_t bar = verdict.find('|', verdict.find('|') + 1);
-      const std::string ev = verdict.substr(0, bar),
-                        hr = bar == std::string::npos ? "" : verdict.substr(bar + 1);
-      check(ev.rfind("permission-denied|", 0) == 0 &&
-                ev.find("70-cloudbrush-tablet.rules") != std::string::npos,
-            "uhid: as an unprivileged user evdev reports permission denied naming the udev rule (" +
-                ev + ")");
-      check(
-          hr.rfind("permission-denied|", 0) == 0 &&
-              hr.find("70-cloudbrush-tablet.rules") != std::string::npos,
-          "uhid: as an unprivileged user hidraw reports permission denied naming the udev rule (" +
-              hr + ")");
-    }
-  }
-
-  // What `cloudbrush devices` reports to that user: the event nodes (or /dev/input itself)
-  // closed to it, each with the error.
-  {
-    const std::string survey = asNobody([] {
-      const EvdevSurvey s = surveyEvdevNodes();
-      if (!s.dir_error.empty())
-        return std::string(s.dir_permission_denied ? "dir-denied " : "dir-error ") + s.dir + ": " +
-               s.dir_error;
-      int denied = 0;
-      std::string first;
-      for (const EvdevNodeReport& n : s.nodes) {
-        if (n.kind == EvdevNodeKind::kCannotOpen && n.permission_denied) ++denied;
-        if (first.empty() && n.kind == EvdevNodeKind::kCannotOpen) first = n.path + ": " + n.detail;
-      }
-      return std::string(denied > 0 && denied == static_cast<int>(s.nodes.size()) ? "nodes-denied "
-                                                                                  : "nodes ") +
-             std::to_string(denied) + "/" + std::to_string(s.nodes.size()) + " " + first;
-    });
-    const bool named =
-        (survey.rfind("dir-denied ", 0) == 0 || survey.rfind("nodes-denied ", 0) == 0) &&
-        survey.find("Permission denied") != std::string::npos;
-    check(named, "uhid: as an unprivileged user the device survey names what is closed and why (" +
-                     survey + ")");
-  }
-
-  // Overflow evdev's buffer (a stalled consumer): SYN_DROPPED, then libevdev's resync must leave
-  // the source with the device's true state.
-  {
-    PenStep st = steps[6];
-    for (int i = 0; i < 300; ++i) {
-      st.x = 1000 + 37 * i;
-      st.pressure = (i * 53) % info.pressure_max;
-      dev.input(encodePenReport(*layout.layout, st));
-    }
-    // Read at once: the wacom driver forces the pen out of proximity 100 ms after its last report.
-    std::vector<PenSample> got;
-    evdev.poll(0, got);
-    check(evdev.resyncCount() >= 1,
-          "uhid: evdev overflow reported SYN_DROPPED and libevdev resynced (" +
-              std::to_string(evdev.resyncCount()) + " resyncs, " + std::to_string(got.size()) +
-              " of 300 samples)");
-    const bool final_seen = !got.empty() && got.back().in_proximity && got.back().x_raw == st.x &&
-                            got.back().pressure_raw == st.pressure && got.back().tipDown();
-    check(final_seen, "uhid: after the resync the sample is the device's final state" +
-                          (got.empty() ? std::string() : " (" + describe(got.back()) + ")"));
-    // The pen stops reporting without leaving: the kernel's idle-proximity timer ends the stroke
-    // on evdev; the hidraw backend's own idle timeout must do the same. (hidraw keeps only the
-    // first 64 of the 300 queued reports.)
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    for (PenSource* src : {static_cast<PenSource*>(&evdev), static_cast<PenSource*>(&hidraw)}) {
-      std::vector<PenSample> out;
-      for (int i = 0; i < 60; ++i) src->poll(5, out);
-      check(!out.empty() && !out.back().in_proximity && out.back().buttons == 0,
-            std::string("uhid: a pen that stops reporting leaves proximity via ") +
-                src->backendName() + (out.empty() ? "" : " (" + describe(out.back()) + ")"));
-    }
-  }
+  checkPth660SlowStroke(dev, *layout.layout, steps[6], evdev, hidraw);
+  checkUnprivilegedStates();
+  checkUnprivilegedSurvey();
+  checkOverflowResync(dev, *layout.layout, steps[6], info, evdev, hidraw);
 
   // Unplug mid-stroke (pen pressed), replug.
   runScript("uhid-pth660 before unplug", steps, false, info, inject, {&evdev, &hidraw}, 7);
