@@ -160,192 +160,255 @@ class Walk {
   long frame_ = 0;
 };
 
-TEST(ScreensWalk, AFirstTimePainterIsToldWhatToDoAndLosesNothing) {
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("cb_screens_walk_" + std::to_string(::getpid())))
-          .string();
-  std::filesystem::create_directories(dir + "/state");
-  std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  // The product's defaults: the sky, brush and mapping `cloudbrush paint` starts with.
-  PaintSessionSettings settings;
-  settings.screen_width = kW;
-  settings.screen_height = kH;
-  settings.grid = 256;  // `cloudbrush paint`'s default (--grid)
-  const BrushConfig brush = loadDefaultBrushConfig();
-  settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
-  settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
-  ASSERT_GT(settings.auto_end_still_ms, 0) << "brush.toml ends a stroke held still";
-  PaintSession session(settings, brush, loadMappingConfig(configFile("mapping.toml")));
-  session.setQuietMapping(true);
-  // No tablet: a pen source that finds none (the mouse paints).
-  PenSourceOptions pen_options;
-  pen_options.backend = "evdev";
-  pen_options.device = "/nonexistent/cloudbrush-pen";
-  std::unique_ptr<PenSource> pen = openPenSource(pen_options, &error);
-  ASSERT_TRUE(pen) << error;
-  ManualClock clock(1'000'000'000);
-  PaintLoopOptions options;  // the orbit at its default speed: the painter starts still anyway
-  options.state_dir = dir + "/state";
-  options.config_dir = dir + "/config";
-  options.clock = &clock;
-  PaintScreen screen(*display, renderer, session.volume(), Light{}, options);
-  screen.attachPen(pen.get(), &session);
-  Walk walk(*display, screen, clock);
+// The painter as `cloudbrush paint` starts it with no tablet (the mouse paints), and the steps
+// of a first-time painter's walk, each a member below, in the order the test takes them.
+class FirstTimePainter : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        (std::filesystem::temp_directory_path() / ("cb_screens_walk_" + std::to_string(::getpid())))
+            .string();
+    std::filesystem::create_directories(dir_ + "/state");
+    std::string error;
+    display_ = test::openTestDisplay(kW, kH, &error);
+    ASSERT_TRUE(display_) << error;
+    ASSERT_TRUE(renderer_.init(&error)) << error;
+    // The product's defaults: the sky, brush and mapping `cloudbrush paint` starts with.
+    PaintSessionSettings settings;
+    settings.screen_width = kW;
+    settings.screen_height = kH;
+    settings.grid = 256;  // `cloudbrush paint`'s default (--grid)
+    const BrushConfig brush = loadDefaultBrushConfig();
+    settings.auto_end_still_ms = brush.stroke.auto_end_still_ms;
+    settings.auto_end_light_ms = brush.stroke.auto_end_light_ms;
+    ASSERT_GT(settings.auto_end_still_ms, 0) << "brush.toml ends a stroke held still";
+    session_ = std::make_unique<PaintSession>(settings, brush,
+                                              loadMappingConfig(configFile("mapping.toml")));
+    session_->setQuietMapping(true);
+    // No tablet: a pen source that finds none (the mouse paints).
+    PenSourceOptions pen_options;
+    pen_options.backend = "evdev";
+    pen_options.device = "/nonexistent/cloudbrush-pen";
+    pen_ = openPenSource(pen_options, &error);
+    ASSERT_TRUE(pen_) << error;
+    PaintLoopOptions options;  // the orbit at its default speed: the painter starts still anyway
+    options.state_dir = dir_ + "/state";
+    options.config_dir = dir_ + "/config";
+    options.clock = &clock_;
+    screen_ =
+        std::make_unique<PaintScreen>(*display_, renderer_, session_->volume(), Light{}, options);
+    screen_->attachPen(pen_.get(), session_.get());
+    walk_ = std::make_unique<Walk>(*display_, *screen_, clock_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  // 1. The first screen: the framed paint view, still, the hint naming the mouse; a fresh frame.
-  const auto t0 = std::chrono::steady_clock::now();
-  walk.frames(1);
-  const double first_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("start view, first frame at %dx%d: %.0f ms (warm-up and UI set-up included)\n", kW,
-              kH, first_ms);
-  walk.frames(2);
-  walk.keep("01_first_screen");
-  EXPECT_EQ(screen.shownCamera().eye, initialPaintCamera(session.settings()).eye)
-      << "the painter starts at the paint view, not orbiting";
-  const std::vector<std::string> hint = screen.hint();
-  EXPECT_TRUE(anyContains(hint, msg::kHowToPaint.en));
-  EXPECT_TRUE(anyContains(hint, msg::kHowToPaint.zh));
-  EXPECT_TRUE(anyContains(hint, "mouse")) << "no tablet: the hint names the mouse";
-  EXPECT_FALSE(contains(screen.statusLine(), "plug one in"));
-  EXPECT_TRUE(contains(screen.statusLine(), "mouse"));
-  ASSERT_TRUE(screen.ui());
-  EXPECT_TRUE(screen.ui()->statusFits()) << screen.statusLine();
+  // The first screen: the framed paint view, still, the hint naming the mouse; a fresh frame.
+  void firstScreen() {
+    const auto t0 = std::chrono::steady_clock::now();
+    walk_->frames(1);
+    const double first_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("start view, first frame at %dx%d: %.0f ms (warm-up and UI set-up included)\n", kW,
+                kH, first_ms);
+    walk_->frames(2);
+    walk_->keep("01_first_screen");
+    EXPECT_EQ(screen_->shownCamera().eye, initialPaintCamera(session_->settings()).eye)
+        << "the painter starts at the paint view, not orbiting";
+    const std::vector<std::string> hint = screen_->hint();
+    EXPECT_TRUE(anyContains(hint, msg::kHowToPaint.en));
+    EXPECT_TRUE(anyContains(hint, msg::kHowToPaint.zh));
+    EXPECT_TRUE(anyContains(hint, "mouse")) << "no tablet: the hint names the mouse";
+    EXPECT_FALSE(contains(screen_->statusLine(), "plug one in"));
+    EXPECT_TRUE(contains(screen_->statusLine(), "mouse"));
+    ASSERT_TRUE(screen_->ui());
+    EXPECT_TRUE(screen_->ui()->statusFits()) << screen_->statusLine();
+  }
 
-  // 2. A mode key in another mode says where it acts, and does nothing.
-  EXPECT_EQ(session.mode(), Mode::kPaint);
-  const Camera before_r = session.camera();
-  walk.keys("r");
-  EXPECT_TRUE(contains(screen.toast(), "R acts in Camera mode")) << screen.toast();
-  EXPECT_TRUE(contains(screen.toast(), "相机")) << screen.toast();
-  EXPECT_EQ(session.camera().eye, before_r.eye);
-  walk.keep("02_refused_key");
-  const float altitude = session.canvas().altitude;
-  walk.keys("pageup");
-  EXPECT_TRUE(contains(screen.toast(), "Canvas mode")) << screen.toast();
-  EXPECT_EQ(session.canvas().altitude, altitude);
-  walk.keys("space");
-  EXPECT_TRUE(contains(screen.toast(), "Space acts in Camera mode")) << screen.toast();
+  // A mode key in another mode says where it acts, and does nothing.
+  void modeKeysElsewhere() {
+    EXPECT_EQ(session_->mode(), Mode::kPaint);
+    const Camera before_r = session_->camera();
+    walk_->keys("r");
+    EXPECT_TRUE(contains(screen_->toast(), "R acts in Camera mode")) << screen_->toast();
+    EXPECT_TRUE(contains(screen_->toast(), "相机")) << screen_->toast();
+    EXPECT_EQ(session_->camera().eye, before_r.eye);
+    walk_->keep("02_refused_key");
+    const float altitude = session_->canvas().altitude;
+    walk_->keys("pageup");
+    EXPECT_TRUE(contains(screen_->toast(), "Canvas mode")) << screen_->toast();
+    EXPECT_EQ(session_->canvas().altitude, altitude);
+    walk_->keys("space");
+    EXPECT_TRUE(contains(screen_->toast(), "Space acts in Camera mode")) << screen_->toast();
+  }
 
-  // 3. The help overlay: H shows every mode's keys; Esc closes it and does not quit.
-  walk.keys("h");
-  EXPECT_TRUE(screen.helpShown());
-  walk.keep("03_help");
-  EXPECT_EQ(walk.keys("esc"), "");
-  EXPECT_FALSE(screen.helpShown());
+  // The help overlay: H shows every mode's keys; Esc closes it and does not quit.
+  void helpOverlay() {
+    walk_->keys("h");
+    EXPECT_TRUE(screen_->helpShown());
+    walk_->keep("03_help");
+    EXPECT_EQ(walk_->keys("esc"), "");
+    EXPECT_FALSE(screen_->helpShown());
+  }
 
-  // 4. A mouse stroke held still with the button down ends by itself after 2 s.
-  const glm::vec2 a(0.38f * kW, 0.5f * kH), b(0.62f * kW, 0.52f * kH);
-  walk.mouseStroke(a, b, /*release=*/false);
-  EXPECT_TRUE(session.engine().inStroke());
-  EXPECT_TRUE(screen.hint().empty()) << "the hint goes as the stroke begins";
-  walk.idle(2.5, 25);
-  EXPECT_FALSE(session.engine().inStroke()) << "resting still 2 s ends the stroke";
-  EXPECT_EQ(session.strokesMapped(), 1u);
-  EXPECT_TRUE(contains(screen.toast(), "Stroke ended")) << screen.toast();
-  walk.pointer(DisplayEvent::Kind::PointerUp, b);
-  walk.frames(3);
-  walk.keep("04_first_cloud");
-  EXPECT_TRUE(screen.hint().empty()) << "no hint after the first stroke";
-  EXPECT_GT(density(session.volume()), 0.0);
+  // A mouse stroke held still with the button down ends by itself after 2 s.
+  void strokeHeldStill() {
+    walk_->mouseStroke(a_, b_, /*release=*/false);
+    EXPECT_TRUE(session_->engine().inStroke());
+    EXPECT_TRUE(screen_->hint().empty()) << "the hint goes as the stroke begins";
+    walk_->idle(2.5, 25);
+    EXPECT_FALSE(session_->engine().inStroke()) << "resting still 2 s ends the stroke";
+    EXPECT_EQ(session_->strokesMapped(), 1u);
+    EXPECT_TRUE(contains(screen_->toast(), "Stroke ended")) << screen_->toast();
+    walk_->pointer(DisplayEvent::Kind::PointerUp, b_);
+    walk_->frames(3);
+    walk_->keep("04_first_cloud");
+    EXPECT_TRUE(screen_->hint().empty()) << "no hint after the first stroke";
+    EXPECT_GT(density(session_->volume()), 0.0);
+  }
 
-  // 5. Save: the screen names the file, a date and time.
-  walk.keys("ctrl+s");
-  EXPECT_TRUE(contains(screen.toast(), "Saved as cloud-")) << screen.toast();
-  EXPECT_TRUE(contains(screen.toast(), "已保存")) << screen.toast();
-  const std::string saved = std::filesystem::path(screen.lastSaved()).filename().string();
-  EXPECT_TRUE(std::regex_match(saved, std::regex(R"(cloud-\d{4}-\d\d-\d\d_\d\d-\d\d-\d\d\.vol)")))
-      << saved;
-  EXPECT_TRUE(std::filesystem::exists(screen.lastSaved()));
-  EXPECT_FALSE(screen.unsavedWork());
-  walk.keep("05_saved");
+  // Save: the screen names the file, a date and time.
+  void save() {
+    walk_->keys("ctrl+s");
+    EXPECT_TRUE(contains(screen_->toast(), "Saved as cloud-")) << screen_->toast();
+    EXPECT_TRUE(contains(screen_->toast(), "已保存")) << screen_->toast();
+    const std::string saved = std::filesystem::path(screen_->lastSaved()).filename().string();
+    EXPECT_TRUE(std::regex_match(saved, std::regex(R"(cloud-\d{4}-\d\d-\d\d_\d\d-\d\d-\d\d\.vol)")))
+        << saved;
+    EXPECT_TRUE(std::filesystem::exists(screen_->lastSaved()));
+    EXPECT_FALSE(screen_->unsavedWork());
+    walk_->keep("05_saved");
+  }
 
-  // 6. Delete: the screen says Ctrl+Z brings it back, and it does.
-  const double painted = density(session.volume());
-  walk.keys("delete");
-  EXPECT_EQ(density(session.volume()), 0.0);
-  EXPECT_TRUE(contains(screen.toast(), "Ctrl+Z brings it back")) << screen.toast();
-  walk.keep("06_cleared");
-  walk.keys("ctrl+z");
-  EXPECT_DOUBLE_EQ(density(session.volume()), painted);
+  // Delete: the screen says Ctrl+Z brings it back, and it does.
+  void deleteAndUndo() {
+    const double painted = density(session_->volume());
+    walk_->keys("delete");
+    EXPECT_EQ(density(session_->volume()), 0.0);
+    EXPECT_TRUE(contains(screen_->toast(), "Ctrl+Z brings it back")) << screen_->toast();
+    walk_->keep("06_cleared");
+    walk_->keys("ctrl+z");
+    EXPECT_DOUBLE_EQ(density(session_->volume()), painted);
+  }
 
-  // 7. The vacuum under the pointer: two cuts at the cloud leave a hole there.
-  walk.keys("4,v");
-  ASSERT_EQ(session.eraseTool(), EraseTool::kVacuum);
-  const glm::vec2 target = 0.5f * (a + b);
-  walk.pointer(DisplayEvent::Kind::PointerMove, target);
-  walk.frames(2);
-  ASSERT_TRUE(screen.vacuumCentre());
-  const glm::vec2 shown = project(session.camera(), *screen.vacuumCentre());
-  EXPECT_LT(glm::length(shown - target), 2.0f) << "the sphere sits under the pointer";
-  const float radius = 0.5f * session.eraseDiameter(EraseTool::kVacuum);
-  const double before_cut = densityNear(session.volume(), *screen.vacuumCentre(), radius);
-  EXPECT_GT(before_cut, 0.0) << "cloud under the pointer to cut";
-  walk.keep("07_vacuum");
-  walk.keys("space");
-  walk.keys("space");
-  EXPECT_TRUE(contains(screen.toast(), "Ctrl+Z brings it back")) << screen.toast();
-  // Inside the sphere's inner radius (volume_erase.h: the rim fades over the outer quarter),
-  // less a voxel for the voxel centres' sampling.
-  EXPECT_EQ(densityNear(session.volume(), *screen.vacuumCentre(),
-                        0.75f * radius - session.volume().voxelSize().x),
-            0.0)
-      << "a hole under the pointer";
-  walk.keep("08_vacuum_hole");
+  // The vacuum under the pointer: two cuts at the cloud leave a hole there.
+  void vacuumUnderPointer() {
+    walk_->keys("4,v");
+    ASSERT_EQ(session_->eraseTool(), EraseTool::kVacuum);
+    const glm::vec2 target = 0.5f * (a_ + b_);
+    walk_->pointer(DisplayEvent::Kind::PointerMove, target);
+    walk_->frames(2);
+    ASSERT_TRUE(screen_->vacuumCentre());
+    const glm::vec2 shown = project(session_->camera(), *screen_->vacuumCentre());
+    EXPECT_LT(glm::length(shown - target), 2.0f) << "the sphere sits under the pointer";
+    const float radius = 0.5f * session_->eraseDiameter(EraseTool::kVacuum);
+    const double before_cut = densityNear(session_->volume(), *screen_->vacuumCentre(), radius);
+    EXPECT_GT(before_cut, 0.0) << "cloud under the pointer to cut";
+    walk_->keep("07_vacuum");
+    walk_->keys("space");
+    walk_->keys("space");
+    EXPECT_TRUE(contains(screen_->toast(), "Ctrl+Z brings it back")) << screen_->toast();
+    // Inside the sphere's inner radius (volume_erase.h: the rim fades over the outer quarter),
+    // less a voxel for the voxel centres' sampling.
+    EXPECT_EQ(densityNear(session_->volume(), *screen_->vacuumCentre(),
+                          0.75f * radius - session_->volume().voxelSize().x),
+              0.0)
+        << "a hole under the pointer";
+    walk_->keep("08_vacuum_hole");
+  }
 
-  // 8. Light mode: the ball is on screen.
-  walk.keys("5");
-  const glm::vec2 ball = screen.lightBallOnScreen();
-  EXPECT_TRUE(ball.x > 0 && ball.x < kW && ball.y > 0 && ball.y < kH) << ball.x << "," << ball.y;
-  walk.keep("09_light");
+  // Light mode: the ball is on screen.
+  void lightBallOnScreen() {
+    walk_->keys("5");
+    const glm::vec2 ball = screen_->lightBallOnScreen();
+    EXPECT_TRUE(ball.x > 0 && ball.x < kW && ball.y > 0 && ball.y < kH) << ball.x << "," << ball.y;
+    walk_->keep("09_light");
+  }
 
-  // 8b. Ink in the veil: the front view (Camera mode's Down) shows sky above the horizon, where
+  // Ink in the veil: the front view (Camera mode's Down) shows sky above the horizon, where
   // the canvas does not reach; a stroke there is left out, said in both languages, and neither
   // grows the sky nor changes the cloud.
-  walk.keys("1,down,3");
-  const SkyExtent sky_before = session.sky();
-  const double cloud_before = density(session.volume());
-  const uint32_t strokes_before = session.strokesMapped();
-  walk.mouseStroke({0.3f * kW, 0.12f * kH}, {0.6f * kW, 0.15f * kH}, /*release=*/false);
-  walk.keep("09b_veil_stroke");
-  walk.pointer(DisplayEvent::Kind::PointerUp, {0.6f * kW, 0.15f * kH});
-  walk.frames(3);
-  walk.keep("09c_veil_left_out");
-  EXPECT_EQ(session.strokesMapped(), strokes_before + 1);
-  EXPECT_TRUE(contains(screen.toast(), msg::kInkLeftOut.en)) << screen.toast();
-  EXPECT_TRUE(contains(screen.toast(), msg::kInkLeftOut.zh)) << screen.toast();
-  EXPECT_EQ(session.sky().span, sky_before.span) << "ink that cannot land does not grow the sky";
-  EXPECT_EQ(density(session.volume()), cloud_before);
-  walk.keys("1,r");
-
-  // 9. The menu: every target labelled in both languages; the font draws every character.
-  walk.keys("m");
-  walk.frames(2);
-  walk.keep("10_menu");
-  EXPECT_EQ(screen.ui()->missingGlyphs(commandTableText() + painterMessagesText()), 0);
-  for (int i = 0; i < int(Command::kCount); ++i) {
-    float rect[4];
-    if (!screen.ui()->targetRect(Command(i), rect)) continue;
-    const Bilingual label = commandLabelIn(Command(i), session.mode());
-    EXPECT_GT(std::string(label.en).size(), 0u) << commandName(Command(i));
-    EXPECT_GT(std::string(label.zh).size(), 0u) << commandName(Command(i));
+  void inkInTheVeil() {
+    walk_->keys("1,down,3");
+    const SkyExtent sky_before = session_->sky();
+    const double cloud_before = density(session_->volume());
+    const uint32_t strokes_before = session_->strokesMapped();
+    walk_->mouseStroke({0.3f * kW, 0.12f * kH}, {0.6f * kW, 0.15f * kH}, /*release=*/false);
+    walk_->keep("09b_veil_stroke");
+    walk_->pointer(DisplayEvent::Kind::PointerUp, {0.6f * kW, 0.15f * kH});
+    walk_->frames(3);
+    walk_->keep("09c_veil_left_out");
+    EXPECT_EQ(session_->strokesMapped(), strokes_before + 1);
+    EXPECT_TRUE(contains(screen_->toast(), msg::kInkLeftOut.en)) << screen_->toast();
+    EXPECT_TRUE(contains(screen_->toast(), msg::kInkLeftOut.zh)) << screen_->toast();
+    EXPECT_EQ(session_->sky().span, sky_before.span)
+        << "ink that cannot land does not grow the sky";
+    EXPECT_EQ(density(session_->volume()), cloud_before);
+    walk_->keys("1,r");
   }
-  walk.keys("esc");
-  EXPECT_FALSE(screen.menuOpen()) << "Esc closes the menu first";
 
-  // 10. q with unsaved work asks; a second q (or Y) quits. Saved: q quits at once.
-  walk.keys("3");
-  walk.mouseStroke({0.3f * kW, 0.4f * kH}, {0.45f * kW, 0.42f * kH});
-  ASSERT_TRUE(screen.unsavedWork());
-  EXPECT_EQ(walk.keys("q"), "") << "q alone does not end a session with unsaved work";
-  EXPECT_TRUE(contains(screen.toast(), "press Esc again or Y")) << screen.toast();
-  walk.keep("11_quit_asks");
-  EXPECT_EQ(walk.keys("y"), "q (confirmed)");
-  std::filesystem::remove_all(dir);
+  // The menu: every target labelled in both languages; the font draws every character.
+  void menuLabels() {
+    walk_->keys("m");
+    walk_->frames(2);
+    walk_->keep("10_menu");
+    EXPECT_EQ(screen_->ui()->missingGlyphs(commandTableText() + painterMessagesText()), 0);
+    for (int i = 0; i < int(Command::kCount); ++i) {
+      float rect[4];
+      if (!screen_->ui()->targetRect(Command(i), rect)) continue;
+      const Bilingual label = commandLabelIn(Command(i), session_->mode());
+      EXPECT_GT(std::string(label.en).size(), 0u) << commandName(Command(i));
+      EXPECT_GT(std::string(label.zh).size(), 0u) << commandName(Command(i));
+    }
+    walk_->keys("esc");
+    EXPECT_FALSE(screen_->menuOpen()) << "Esc closes the menu first";
+  }
+
+  // q with unsaved work asks; a second q (or Y) quits. Saved: q quits at once.
+  void quitAsks() {
+    walk_->keys("3");
+    walk_->mouseStroke({0.3f * kW, 0.4f * kH}, {0.45f * kW, 0.42f * kH});
+    ASSERT_TRUE(screen_->unsavedWork());
+    EXPECT_EQ(walk_->keys("q"), "") << "q alone does not end a session with unsaved work";
+    EXPECT_TRUE(contains(screen_->toast(), "press Esc again or Y")) << screen_->toast();
+    walk_->keep("11_quit_asks");
+    EXPECT_EQ(walk_->keys("y"), "q (confirmed)");
+  }
+
+  std::string dir_;
+  std::unique_ptr<Display> display_;
+  VolumeRenderer renderer_;
+  std::unique_ptr<PaintSession> session_;
+  std::unique_ptr<PenSource> pen_;
+  ManualClock clock_{1'000'000'000};
+  std::unique_ptr<PaintScreen> screen_;
+  std::unique_ptr<Walk> walk_;
+  // The first stroke's ends (the vacuum cuts between them).
+  glm::vec2 a_{0.38f * kW, 0.5f * kH}, b_{0.62f * kW, 0.52f * kH};
+};
+
+TEST_F(FirstTimePainter, IsToldWhatToDoAndLosesNothing) {
+  firstScreen();
+  if (HasFatalFailure()) return;
+  modeKeysElsewhere();
+  if (HasFatalFailure()) return;
+  helpOverlay();
+  if (HasFatalFailure()) return;
+  strokeHeldStill();
+  if (HasFatalFailure()) return;
+  save();
+  if (HasFatalFailure()) return;
+  deleteAndUndo();
+  if (HasFatalFailure()) return;
+  vacuumUnderPointer();
+  if (HasFatalFailure()) return;
+  lightBallOnScreen();
+  if (HasFatalFailure()) return;
+  inkInTheVeil();
+  if (HasFatalFailure()) return;
+  menuLabels();
+  if (HasFatalFailure()) return;
+  quitAsks();
+  if (HasFatalFailure()) return;
 }
 
 // Every command has a label in both languages, and the mode keys act only in their modes.
