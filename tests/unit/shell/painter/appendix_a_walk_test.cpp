@@ -168,17 +168,12 @@ SyntheticStroke strokeAcross(glm::vec2 a, glm::vec2 b) {
   return s;
 }
 
-TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("cb_appendix_a_" + std::to_string(::getpid())))
-          .string();
-  std::filesystem::create_directories(dir + "/state");
-  MappingConfig mapping = loadMappingConfig(configFile("mapping.toml"));
-  const BrushConfig brush = loadDefaultBrushConfig();
-  const PaintSessionSettings settings{kW, kH, 256};
-
-  // The pen's part of the walk, as a journal for the replay backend: strokes left and right
-  // (steps 9, 12), a rub-out over the left one (15), calligraphy (24: three strokes of 永).
+// The pen's part of the walk, written as a journal for the replay backend: strokes left and right
+// (steps 9, 12), a rub-out over the left one (15), calligraphy (24: three strokes of 永).
+// Returns each stroke's sample count.
+std::vector<size_t> writeTutorialPen(const std::string& pen_path,
+                                     const PaintSessionSettings& settings, const BrushConfig& brush,
+                                     const MappingConfig& mapping) {
   const PenDeviceInfo tablet = syntheticTablet(kW, kH);
   const std::vector<SyntheticStroke> pen_strokes = {
       strokeAcross({0.25f * kW, 0.45f * kH}, {0.42f * kW, 0.55f * kH}),  // left
@@ -188,10 +183,9 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
       strokeAcross({0.5f * kW, 0.3f * kH}, {0.51f * kW, 0.7f * kH}),     // vertical
       strokeAcross({0.48f * kW, 0.5f * kH}, {0.3f * kW, 0.68f * kH})};   // sweep left
   std::vector<size_t> counts;
-  const std::string pen_path = dir + "/pen.cbj";
   {
     JournalWriter journal;
-    ASSERT_TRUE(journal.open(pen_path));
+    EXPECT_TRUE(journal.open(pen_path)) << pen_path;
     PaintSession recorder(settings, brush, mapping);
     recorder.recordTo(&journal, 0);
     recorder.setDevice(tablet, 0);
@@ -203,6 +197,38 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
       t = samples.back().t_ns + 200'000'000;
     }
   }
+  return counts;
+}
+
+bool holdsASavedCloud(const std::string& folder) {
+  bool saved = false;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    saved |= entry.path().extension() == ".vol";
+  return saved;
+}
+
+// The walk's journal replays whole, to the volume the walk painted.
+void expectReplaysTo(const std::string& journal, const BrushConfig& brush,
+                     const MappingConfig& mapping, const Volume& painted) {
+  const SessionReplay replay = replaySession(readJournal(journal), brush, mapping);
+  ASSERT_TRUE(replay.session);
+  EXPECT_TRUE(replay.complete()) << replay.journal_error
+                                 << (replay.problems.empty() ? "" : replay.problems[0]);
+  EXPECT_EQ(volumeChecksum(replay.session->volume()), volumeChecksum(painted));
+}
+
+TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_appendix_a_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(dir + "/state");
+  MappingConfig mapping = loadMappingConfig(configFile("mapping.toml"));
+  const BrushConfig brush = loadDefaultBrushConfig();
+  const PaintSessionSettings settings{kW, kH, 256};
+
+  const std::string pen_path = dir + "/pen.cbj";
+  const std::vector<size_t> counts = writeTutorialPen(pen_path, settings, brush, mapping);
+  ASSERT_EQ(counts.size(), 6u);
 
   std::string error;
   std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
@@ -302,17 +328,9 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   ASSERT_TRUE(screen.ui() && screen.ui()->targetRect(Command::kSave, rect));
   walk.keys("ctrl+s");  // the same command the Save target gives (the tap is tested elsewhere)
   walk.keep("saved");
-  bool saved = false;
-  for (const auto& entry : std::filesystem::directory_iterator(dir + "/state"))
-    saved |= entry.path().extension() == ".vol";
-  EXPECT_TRUE(saved);
+  EXPECT_TRUE(holdsASavedCloud(dir + "/state"));
   journal.close();
-
-  const SessionReplay replay = replaySession(readJournal(recorded), brush, mapping);
-  ASSERT_TRUE(replay.session);
-  EXPECT_TRUE(replay.complete()) << replay.journal_error
-                                 << (replay.problems.empty() ? "" : replay.problems[0]);
-  EXPECT_EQ(volumeChecksum(replay.session->volume()), volumeChecksum(session.volume()));
+  expectReplaysTo(recorded, brush, mapping, session.volume());
   std::filesystem::remove_all(dir);
 }
 
