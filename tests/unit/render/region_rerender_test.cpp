@@ -84,6 +84,45 @@ struct Case {
   bool side_view;  // a low sun and a camera from the side (the shadow off the stroke)
 };
 
+// The side view: where the second stroke will land (painted once in a scratch session), then a
+// low sun behind it as seen from the first, so its shadow falls on the first stroke's cloud, and
+// a camera looking across the line between them.
+void lookAcrossTheStrokes(const Volume& volume, const VoxelBox& receiver, Camera* camera,
+                          Light* light) {
+  PaintSession scratch_session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
+  scratch_session.setQuietMapping(true);
+  const glm::vec3 c2 = worldCentre(volume, paint(&scratch_session, shortStroke(), 0));
+  const glm::vec3 c1 = worldCentre(volume, receiver);
+  glm::vec3 across = c2 - c1;
+  across.y = 0.0f;
+  light->direction = glm::normalize(glm::normalize(across) + glm::vec3(0.0f, 0.15f, 0.0f));
+  camera->target = 0.5f * (c1 + c2);
+  camera->eye =
+      camera->target +
+      3.0f * glm::normalize(glm::cross(glm::normalize(across), glm::vec3(0.0f, 1.0f, 0.0f))) +
+      glm::vec3(0.0f, 0.4f, 0.0f);
+}
+
+// The pixels the last render cast: the region, grown by a screen-space style's reach (ink: 3),
+// clipped; inside it only those whose rays pass through a changed pool slot (a stencil mask; the
+// screen-space styles cast the whole rectangle).
+void expectCastOnlyTheRegion(const VolumeRenderer& renderer, const ScreenRegion& region,
+                             const Case& c) {
+  const int reach = screenSpaceReach(c.style);
+  const glm::ivec2 lo = glm::max(glm::ivec2(region.rect.x, region.rect.y) - reach, glm::ivec2(0));
+  const glm::ivec2 hi =
+      glm::min(glm::ivec2(region.rect.x + region.rect.z, region.rect.y + region.rect.w) + reach,
+               glm::ivec2(kW, kH));
+  const long long rect_pixels = (long long)(hi.x - lo.x) * (hi.y - lo.y);
+  std::printf("%s: %lld pixels cast of the region's %lld\n", c.name,
+              renderer.lastStats().pixels_cast, rect_pixels);
+  EXPECT_GT(renderer.lastStats().pixels_cast, 0);
+  if (hasScreenSpacePass(c.style))
+    EXPECT_EQ(renderer.lastStats().pixels_cast, rect_pixels);
+  else
+    EXPECT_LE(renderer.lastStats().pixels_cast, rect_pixels);
+}
+
 class RegionRerender : public ::testing::TestWithParam<Case> {};
 
 TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
@@ -96,23 +135,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   ASSERT_FALSE(receiver.empty());
   Light light;
   Camera camera = session.camera();  // the painter's default view
-  if (c.side_view) {
-    // Where the second stroke will land (painted once in a scratch session), then a low sun
-    // behind it as seen from the first, so its shadow falls on the first stroke's cloud, and a
-    // camera looking across the line between them.
-    PaintSession scratch_session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-    scratch_session.setQuietMapping(true);
-    const glm::vec3 c2 = worldCentre(session.volume(), paint(&scratch_session, shortStroke(), 0));
-    const glm::vec3 c1 = worldCentre(session.volume(), receiver);
-    glm::vec3 across = c2 - c1;
-    across.y = 0.0f;
-    light.direction = glm::normalize(glm::normalize(across) + glm::vec3(0.0f, 0.15f, 0.0f));
-    camera.target = 0.5f * (c1 + c2);
-    camera.eye =
-        camera.target +
-        3.0f * glm::normalize(glm::cross(glm::normalize(across), glm::vec3(0.0f, 1.0f, 0.0f))) +
-        glm::vec3(0.0f, 0.4f, 0.0f);
-  }
+  if (c.side_view) lookAcrossTheStrokes(session.volume(), receiver, &camera, &light);
   VolumeRenderer renderer;
   ASSERT_TRUE(renderer.init(&error)) << error;
   const Volume& volume = session.volume();
@@ -141,24 +164,7 @@ TEST_P(RegionRerender, EqualsAFullRerenderAfterAStroke) {
   options.region = region.renderRegion();
   renderer.render(camera, kW, kH, full.fbo(), options);
   const ImageRgba8 partial = full.readRgba8();
-  {
-    // Pixels ray cast: the region, grown by a screen-space style's reach (ink: 3), clipped.
-    const int reach = screenSpaceReach(c.style);
-    const glm::ivec2 lo = glm::max(glm::ivec2(region.rect.x, region.rect.y) - reach, glm::ivec2(0));
-    const glm::ivec2 hi =
-        glm::min(glm::ivec2(region.rect.x + region.rect.z, region.rect.y + region.rect.w) + reach,
-                 glm::ivec2(kW, kH));
-    // Inside it, only the pixels whose rays pass through a changed pool slot (a stencil mask;
-    // the screen-space styles cast the whole rectangle).
-    const long long rect_pixels = (long long)(hi.x - lo.x) * (hi.y - lo.y);
-    std::printf("%s: %lld pixels cast of the region's %lld\n", c.name,
-                renderer.lastStats().pixels_cast, rect_pixels);
-    EXPECT_GT(renderer.lastStats().pixels_cast, 0);
-    if (hasScreenSpacePass(c.style))
-      EXPECT_EQ(renderer.lastStats().pixels_cast, rect_pixels);
-    else
-      EXPECT_LE(renderer.lastStats().pixels_cast, rect_pixels);
-  }
+  expectCastOnlyTheRegion(renderer, region, c);
   options.region = glm::ivec4(0);
   renderer.render(camera, kW, kH, scratch.fbo(), options);
   const ImageRgba8 reference = scratch.readRgba8();
