@@ -39,6 +39,89 @@ Window findWindowNamed(::Display* x, const char* wanted) {
   return found;
 }
 
+// The screen's colours: the red of the middle row at x and of a corner, the corner's blue.
+struct Look {
+  int centre_r = 0, corner_r = 0, corner_b = 0;
+  bool sky() const { return corner_b > corner_r + 30; }
+};
+
+// A second client of the test's X server: looks at the screen, and sends the painter's window
+// keys and mouse events as a person's would arrive.
+class Observer {
+ public:
+  explicit Observer(const std::string& server) : x_(XOpenDisplay(server.c_str())) {}
+  ~Observer() {
+    if (x_) XCloseDisplay(x_);
+  }
+  bool open() const { return x_ != nullptr; }
+  ::Display* display() const { return x_; }
+  void use(Window window) { window_ = window; }
+
+  Look look(int x) const {
+    Look l;
+    XImage* image = XGetImage(x_, DefaultRootWindow(x_), 0, 0, kW, kH, AllPlanes, ZPixmap);
+    if (!image) return l;
+    auto channel = [&](int px, int py, unsigned long mask) {
+      const unsigned long p = XGetPixel(image, px, py) & mask;
+      return int(p / (mask & ~(mask << 1)));  // shift the masked bits down to 0..255
+    };
+    l.centre_r = channel(x, kH / 2, image->red_mask);
+    l.corner_r = channel(kW - 2, kH - 2, image->red_mask);
+    l.corner_b = channel(kW - 2, kH - 2, image->blue_mask);
+    XDestroyImage(image);
+    return l;
+  }
+  void press(KeySym sym) const {
+    XEvent key{};
+    key.xkey.type = KeyPress;
+    key.xkey.display = x_;
+    key.xkey.window = window_;
+    key.xkey.root = DefaultRootWindow(x_);
+    key.xkey.keycode = XKeysymToKeycode(x_, sym);
+    key.xkey.same_screen = True;
+    XSendEvent(x_, window_, True, KeyPressMask, &key);
+    XFlush(x_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  }
+  void pointer(int type, int x, int y) const {
+    XEvent e{};
+    e.type = type;
+    if (type == MotionNotify) {
+      e.xmotion.window = window_;
+      e.xmotion.x = x;
+      e.xmotion.y = y;
+      e.xmotion.same_screen = True;
+    } else {
+      e.xbutton.window = window_;
+      e.xbutton.x = x;
+      e.xbutton.y = y;
+      e.xbutton.button = Button1;
+      e.xbutton.same_screen = True;
+    }
+    XSendEvent(x_, window_, True,
+               type == MotionNotify ? PointerMotionMask
+                                    : (type == ButtonPress ? ButtonPressMask : ButtonReleaseMask),
+               &e);
+    XFlush(x_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+  }
+
+ private:
+  ::Display* x_;
+  Window window_ = 0;
+};
+
+std::string slurp(const std::string& path) {
+  std::string text;
+  if (FILE* f = std::fopen(path.c_str(), "r")) {
+    char buf[4096];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) text.append(buf, n);
+    std::fclose(f);
+  }
+  return text;
+}
+
 TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
   if (!xvfbInstalled())
     GTEST_SKIP() << "SKIPPED LOUDLY: Xvfb is not installed (apt-get install xvfb)";
@@ -54,114 +137,50 @@ TEST(PaintX11, OpensFullscreenDrawsTheCloudAndQuitsOnEsc) {
   std::remove((dir + "/paint_x11.status").c_str());
   std::thread runner([&] { std::system(command.c_str()); });
 
-  ::Display* observer = XOpenDisplay(server.name().c_str());
-  ASSERT_NE(observer, nullptr);
-  // The screen's colours: the red of the middle row at x and of a corner, the corner's blue.
-  struct Look {
-    int centre_r = 0, corner_r = 0, corner_b = 0;
-  };
-  const auto look = [&](int x) {
-    Look l;
-    XImage* image =
-        XGetImage(observer, DefaultRootWindow(observer), 0, 0, kW, kH, AllPlanes, ZPixmap);
-    if (!image) return l;
-    auto channel = [&](int px, int py, unsigned long mask) {
-      const unsigned long p = XGetPixel(image, px, py) & mask;
-      return int(p / (mask & ~(mask << 1)));  // shift the masked bits down to 0..255
-    };
-    l.centre_r = channel(x, kH / 2, image->red_mask);
-    l.corner_r = channel(kW - 2, kH - 2, image->red_mask);
-    l.corner_b = channel(kW - 2, kH - 2, image->blue_mask);
-    XDestroyImage(image);
-    return l;
-  };
+  Observer observer(server.name());
+  ASSERT_TRUE(observer.open());
   // Wait for the window and the sky it opens on (blue corners: the first screen is the
   // paintable sky, with the hint over its middle).
   Window window = 0;
   bool sky_seen = false;
   for (int i = 0; i < 600 && !sky_seen; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (!window) window = findWindowNamed(observer, "cloudbrush");
+    if (!window) window = findWindowNamed(observer.display(), "cloudbrush");
     if (!window) continue;
-    const Look l = look(kW / 2);
-    sky_seen = l.corner_b > l.corner_r + 30;
+    sky_seen = observer.look(kW / 2).sky();
   }
   ASSERT_NE(window, 0u) << "no window named cloudbrush appeared";
+  observer.use(window);
   XWindowAttributes attributes{};
-  XGetWindowAttributes(observer, window, &attributes);
+  XGetWindowAttributes(observer.display(), window, &attributes);
   EXPECT_EQ(attributes.width, kW);
   EXPECT_EQ(attributes.height, kH);
   EXPECT_TRUE(sky_seen) << "the screen never showed the sky";
 
-  const auto press = [&](KeySym sym) {
-    XEvent key{};
-    key.xkey.type = KeyPress;
-    key.xkey.display = observer;
-    key.xkey.window = window;
-    key.xkey.root = DefaultRootWindow(observer);
-    key.xkey.keycode = XKeysymToKeycode(observer, sym);
-    key.xkey.same_screen = True;
-    XSendEvent(observer, window, True, KeyPressMask, &key);
-    XFlush(observer);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  };
   // The mode keys on X11: Canvas, Light, then Paint.
-  press(XK_2);
-  press(XK_5);
-  press(XK_3);
+  observer.press(XK_2);
+  observer.press(XK_5);
+  observer.press(XK_3);
   // No tablet here: the mouse paints a stroke across the middle.
-  const auto pointer = [&](int type, int x, int y) {
-    XEvent e{};
-    e.type = type;
-    if (type == MotionNotify) {
-      e.xmotion.window = window;
-      e.xmotion.x = x;
-      e.xmotion.y = y;
-      e.xmotion.same_screen = True;
-    } else {
-      e.xbutton.window = window;
-      e.xbutton.x = x;
-      e.xbutton.y = y;
-      e.xbutton.button = Button1;
-      e.xbutton.same_screen = True;
-    }
-    XSendEvent(observer, window, True,
-               type == MotionNotify ? PointerMotionMask
-                                    : (type == ButtonPress ? ButtonPressMask : ButtonReleaseMask),
-               &e);
-    XFlush(observer);
-    std::this_thread::sleep_for(std::chrono::milliseconds(15));
-  };
-  pointer(MotionNotify, kW / 4, kH / 2);
-  pointer(ButtonPress, kW / 4, kH / 2);
+  observer.pointer(MotionNotify, kW / 4, kH / 2);
+  observer.pointer(ButtonPress, kW / 4, kH / 2);
   for (int i = 0; i <= 40; ++i)
-    pointer(MotionNotify, kW / 4 + i * kW / 80, kH / 2 + int(10 * std::sin(i * 0.2)));
-  pointer(ButtonRelease, 3 * kW / 4, kH / 2);
+    observer.pointer(MotionNotify, kW / 4 + i * kW / 80, kH / 2 + int(10 * std::sin(i * 0.2)));
+  observer.pointer(ButtonRelease, 3 * kW / 4, kH / 2);
   // The lifted stroke becomes a lit cloud where it was drawn (the hint is gone after it): a
   // bright middle on the sky.
   bool cloud_seen = false;
   for (int i = 0; i < 300 && !cloud_seen; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    const Look l = look(kW / 2);
-    cloud_seen = l.corner_b > l.corner_r + 30 && l.centre_r > l.corner_r + 40;
+    const Look l = observer.look(kW / 2);
+    cloud_seen = l.sky() && l.centre_r > l.corner_r + 40;
   }
   EXPECT_TRUE(cloud_seen) << "the painted stroke never showed as a cloud in front of the sky";
-  press(XK_Escape);  // a stroke is unsaved: the painter asks first
+  observer.press(XK_Escape);  // a stroke is unsaved: the painter asks first
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  press(XK_Escape);  // and Esc again quits
-  runner.join();     // the binary must end by itself after Esc Esc (ctest's timeout guards this)
-  XCloseDisplay(observer);
+  observer.press(XK_Escape);  // and Esc again quits
+  runner.join();  // the binary must end by itself after Esc Esc (ctest's timeout guards this)
 
-  auto slurp = [](const std::string& path) {
-    std::string text;
-    if (FILE* f = std::fopen(path.c_str(), "r")) {
-      char buf[4096];
-      size_t n;
-      while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0) text.append(buf, n);
-      std::fclose(f);
-    }
-    return text;
-  };
   const std::string status = slurp(dir + "/paint_x11.status");
   const std::string stdout_text = slurp(out), stderr_text = slurp(err);
   EXPECT_EQ(status, "0\n") << stderr_text;
