@@ -12,6 +12,8 @@
 #include <X11/Xutil.h>
 #include <X11/keysym.h>
 
+#include "x11_window.h"
+
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -28,26 +30,6 @@ namespace cb {
 namespace {
 
 constexpr int kScreenW = 320, kScreenH = 200;
-
-bool xvfbInstalled() {
-  return system("command -v Xvfb >/dev/null 2>&1") == 0;
-}
-
-Window findWindowNamed(::Display* x, const char* wanted) {
-  Window root_return, parent, *children = nullptr;
-  unsigned count = 0;
-  Window found = 0;
-  XQueryTree(x, DefaultRootWindow(x), &root_return, &parent, &children, &count);
-  for (unsigned i = 0; i < count && !found; ++i) {
-    char* name = nullptr;
-    if (XFetchName(x, children[i], &name) && name) {
-      if (std::strcmp(name, wanted) == 0) found = children[i];
-      XFree(name);
-    }
-  }
-  if (children) XFree(children);
-  return found;
-}
 
 // Polls the display until an event matching `want` arrives (2 s at most).
 template <typename Pred>

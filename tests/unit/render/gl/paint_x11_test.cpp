@@ -18,26 +18,12 @@
 #include <X11/Xutil.h>
 #include <X11/keysym.h>
 
+#include "x11_window.h"
+
 namespace cb {
 namespace {
 
 constexpr int kW = 320, kH = 200;
-
-Window findWindowNamed(::Display* x, const char* wanted) {
-  Window root, parent, *children = nullptr;
-  unsigned count = 0;
-  Window found = 0;
-  XQueryTree(x, DefaultRootWindow(x), &root, &parent, &children, &count);
-  for (unsigned i = 0; i < count && !found; ++i) {
-    char* name = nullptr;
-    if (XFetchName(x, children[i], &name) && name) {
-      if (std::strcmp(name, wanted) == 0) found = children[i];
-      XFree(name);
-    }
-  }
-  if (children) XFree(children);
-  return found;
-}
 
 // The screen's colours: the red of the middle row at x and of a corner, the corner's blue.
 struct Look {
