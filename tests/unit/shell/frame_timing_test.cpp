@@ -16,6 +16,7 @@
 #include "drivers/core/journal.h"
 #include "drivers/core/journal_frame.h"
 #include "drivers/replay/replay_pen_source.h"
+#include "tests/support/recorded_painter.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -133,16 +134,12 @@ void paintAndCheck(bool ink_first) {
     }
   }
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, MonotonicClock().nowNs());
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj",
+                           MonotonicClock().nowNs(), &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   PaintLoopOptions options;
   options.max_seconds = 60.0;  // a bound for a stuck loop; the replay ends it in about 2 s
   options.ink_first = ink_first;
@@ -152,14 +149,14 @@ void paintAndCheck(bool ink_first) {
   replay.realtime = true;
   replay.restamp = true;
   ReplayPenSource pen(pen_path, replay);
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
   EXPECT_EQ(summary.quit_reason, "replay finished");
-  journal.close();
+  painter.journal.close();
 
-  const JournalReadResult read = readJournal(recorded);
+  const JournalReadResult read = readJournal(painter.recorded);
   ASSERT_TRUE(read.error.empty()) << read.error;
   std::vector<FrameRecord> frames;
   std::vector<PenSample> samples;

@@ -24,6 +24,7 @@
 #include "app/volume/scene_generators.h"
 #include "app/volume/volume_file.h"
 
+#include "tests/support/recorded_painter.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -180,15 +181,12 @@ TEST(AnimationPainter, TheMenuStartsAndStopsMorphAndWindAndApplyReplays) {
   saveVolume(makeSparsePuffs(glm::ivec3(kGrid), 5), dir + "/target.vol");
 
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
 
   PaintLoopOptions options;
   options.max_frames = 400;
@@ -198,15 +196,15 @@ TEST(AnimationPainter, TheMenuStartsAndStopsMorphAndWindAndApplyReplays) {
   options.morph_target = dir + "/target.vol";
   options.morph_seconds = 1.0;
   ASSERT_TRUE(parseKeyList("ctrl+o,m", &options.initial_keys, &error)) << error;
-  AnimationScript script(*display, session);
+  AnimationScript script(display, session);
   options.on_frame = [&script](const PaintFrameInfo&) { script.onFrame(); };
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(nullptr, &session);
   const PaintScreen* screen = &loop.screen();
   script.watch(screen);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
-  journal.close();
+  painter.journal.close();
 
   EXPECT_EQ(script.stage(), 4) << "the script ran to its end (stage " << script.stage() << ")";
   EXPECT_EQ(summary.quit_reason, "Esc");
@@ -218,7 +216,7 @@ TEST(AnimationPainter, TheMenuStartsAndStopsMorphAndWindAndApplyReplays) {
   EXPECT_NE(script.opened, 0u);
   EXPECT_NE(script.morphed, script.opened) << "the morph moved the cloud";
   EXPECT_FALSE(screen->animation()->active());
-  expectHistoryAndReplay(session, script, recorded);
+  expectHistoryAndReplay(session, script, painter.recorded);
   std::filesystem::remove_all(dir);
 }
 

@@ -28,6 +28,7 @@
 #include "drivers/core/clock.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/recorded_painter.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -231,16 +232,10 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   ASSERT_EQ(counts.size(), 6u);
 
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session(settings, brush, mapping);
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/walk.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open(settings, brush, mapping, dir + "/walk.cbj", 0, &error)) << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   ReplayOptions replay_options;
   replay_options.realtime = false;
   replay_options.batch = 1;
@@ -251,9 +246,9 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   options.clock = &clock;
   options.state_dir = dir + "/state";
   options.config_dir = dir + "/config";
-  PaintScreen screen(*display, renderer, session.volume(), Light{}, options);
+  PaintScreen screen(display, painter.renderer, session.volume(), Light{}, options);
   screen.attachPen(&pen, &session);
-  Walk walk(*display, screen, pen, clock);
+  Walk walk(display, screen, pen, clock);
   walk.frames(2);  // the pen connects; its calibration is chosen
   const auto shoot = [&](const char* name) {
     walk.keys("m");  // the menu open over the mode
@@ -329,8 +324,8 @@ TEST(AppendixA, TheGuidedTutorialWalksThroughTheRealScreens) {
   walk.keys("ctrl+s");  // the same command the Save target gives (the tap is tested elsewhere)
   walk.keep("saved");
   EXPECT_TRUE(holdsASavedCloud(dir + "/state"));
-  journal.close();
-  expectReplaysTo(recorded, brush, mapping, session.volume());
+  painter.journal.close();
+  expectReplaysTo(painter.recorded, brush, mapping, session.volume());
   std::filesystem::remove_all(dir);
 }
 

@@ -18,6 +18,7 @@
 #include "app/shell/ui_overlay.h"
 #include "drivers/replay/replay_pen_source.h"
 
+#include "tests/support/recorded_painter.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -45,16 +46,12 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
       recorder.feed(s);
   }
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   const BrushKind first_brush = session.selectedBrush();
 
   PaintLoopOptions options;
@@ -64,7 +61,8 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   ASSERT_TRUE(
       parseKeyList("1,p,p,shift+left,shift+right,shift+up,shift+down,up,down,left,right,r,g,space,"
                    "space,2,pageup,pagedown,pageup,minus,"
-                   "plus,3,bracketright,bracketleft,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,plus,delete,ctrl+z,"
+                   "plus,3,bracketright,bracketleft,b,n,c,c,s,s,4,v,minus,plus,space,v,5,minus,"
+                   "plus,delete,ctrl+z,"
                    "ctrl+y,m,m,h,h,ctrl+s,ctrl+o,f,w,d,a,x,t,ctrl+alt+p,ctrl+alt+s,ctrl+alt+a,3",
                    &options.initial_keys, &error))
       << error;
@@ -72,12 +70,12 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
   replay_options.realtime = false;
   replay_options.batch = 16;
   ReplayPenSource pen(stroke, replay_options);
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
   EXPECT_EQ(summary.quit_reason, "replay finished");
-  journal.close();
+  painter.journal.close();
 
   std::set<std::string> routed(loop.routedCommands().begin(), loop.routedCommands().end());
   for (int i = 0; i < int(Command::kCount); ++i) {
@@ -97,7 +95,8 @@ TEST(PaintScreenCommands, EveryCommandKeyIsRoutedAndTheJournalReplays) {
     saved |= entry.path().extension() == ".vol";
   EXPECT_TRUE(saved) << "Ctrl+S saved the cloud";
 
-  const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
+  const SessionReplay replay =
+      replaySession(readJournal(painter.recorded), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session);
   EXPECT_TRUE(replay.complete()) << replay.journal_error
                                  << (replay.problems.empty() ? "" : replay.problems[0]);
@@ -116,10 +115,12 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
           .string();
   std::filesystem::create_directories(dir + "/state");
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   // Where the Light target is: one frame with the menu open.
   float rect[4];
   {
@@ -128,7 +129,7 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
     options.max_frames = 3;  // ImGui sizes a new window on its first frame, shows it on the next
     options.orbit_degrees_per_second = 0.0f;
     ASSERT_TRUE(parseKeyList("m", &options.initial_keys, &error));
-    PaintLoop loop(*display, renderer, probe.volume(), Light{}, options);
+    PaintLoop loop(display, painter.renderer, probe.volume(), Light{}, options);
     loop.attachPen(nullptr, &probe);
     PaintLoopSummary summary;
     ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
@@ -136,7 +137,7 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
     ASSERT_TRUE(loop.screen().ui()->targetRect(Command::kModeLight, rect));
     if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
       writePng(std::string(keep) + "/menu_probe.png",
-               readFramebufferRgba8(display->framebuffer(), kW, kH));
+               readFramebufferRgba8(display.framebuffer(), kW, kH));
   }
   std::printf("light target %g,%g - %g,%g\n", rect[0], rect[1], rect[2], rect[3]);
   const glm::vec2 light_target(0.5f * (rect[0] + rect[2]), 0.5f * (rect[1] + rect[3]));
@@ -158,12 +159,6 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
         t = sample.t_ns + 1'000'000;
       }
   }
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
   PaintLoopOptions options;
   options.max_frames = 3000;
   options.state_dir = dir + "/state";
@@ -173,11 +168,11 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
   replay_options.realtime = false;
   replay_options.batch = 2;  // a few samples per frame, as a real pen at 200 Hz and 60 fps
   ReplayPenSource pen(pen_path, replay_options);
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
-  journal.close();
+  painter.journal.close();
   const std::vector<Command>& tapped = loop.screen().tappedCommands();
   EXPECT_NE(std::find(tapped.begin(), tapped.end(), Command::kModeLight), tapped.end())
       << tapped.size() << " taps";
@@ -187,7 +182,8 @@ TEST(PaintScreenCommands, APenTapOnTheMenuChoosesAModeAndPaintsNothing) {
   double density = 0;
   for (float d : session.volume().toDense()) density += d;
   EXPECT_EQ(density, 0.0);
-  const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
+  const SessionReplay replay =
+      replaySession(readJournal(painter.recorded), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session);
   EXPECT_TRUE(replay.complete());
   EXPECT_EQ(replay.session->mode(), Mode::kLight);
@@ -217,16 +213,12 @@ TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
       recorder.feed(s);
   }
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   PaintLoopOptions options;
   options.max_frames = 2000;
   options.orbit_degrees_per_second = 0.0f;
@@ -238,11 +230,11 @@ TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
   replay_options.batch = 4;
   ReplayPenSource pen(pen_path, replay_options);
   const Camera before = session.camera();
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
-  journal.close();
+  painter.journal.close();
 
   const Camera after = session.camera();
   const glm::vec3 d0 = glm::normalize(before.target - before.eye);
@@ -259,7 +251,7 @@ TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
   EXPECT_GT(glm::dot(moved, right), -0.3f * kW * step);
 
   int pans = 0;
-  for (const JournalRecord& r : readJournal(recorded).records)
+  for (const JournalRecord& r : readJournal(painter.recorded).records)
     if (r.type == JournalRecordType::kUi) {
       UiChange change;
       std::string why;
@@ -268,7 +260,8 @@ TEST(PaintScreenCommands, PenDragAndShiftArrowsPanTheViewAndReplay) {
         pans += std::get<ui::SetCamera>(change).move == CameraMove::kPan;
     }
   EXPECT_EQ(pans, 2) << "one for the key, one for the drag";
-  const SessionReplay replay = replaySession(readJournal(recorded), BrushConfig{}, MappingConfig{});
+  const SessionReplay replay =
+      replaySession(readJournal(painter.recorded), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session);
   EXPECT_TRUE(replay.complete());
   EXPECT_EQ(replay.session->camera().eye, after.eye);

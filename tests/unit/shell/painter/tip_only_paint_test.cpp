@@ -13,6 +13,7 @@
 #include "app/shell/painter/paint_screen.h"
 #include "drivers/core/journal.h"
 #include "drivers/replay/replay_pen_source.h"
+#include "tests/support/recorded_painter.h"
 #include "tests/support/test_display.h"
 
 namespace cb {
@@ -44,16 +45,12 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
     }
   }
   std::string error;
-  std::unique_ptr<Display> display = test::openTestDisplay(kW, kH, &error);
-  ASSERT_TRUE(display) << error;
-  VolumeRenderer renderer;
-  ASSERT_TRUE(renderer.init(&error)) << error;
-  PaintSession session({kW, kH, kGrid}, BrushConfig{}, MappingConfig{});
-  session.setQuietMapping(true);
-  const std::string recorded = dir + "/session.cbj";
-  JournalWriter journal;
-  ASSERT_TRUE(journal.open(recorded));
-  session.recordTo(&journal, 0);
+  test::RecordedPainter painter;
+  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
   PaintLoopOptions options;
   options.max_frames = 400;
   options.state_dir = dir + "/state";
@@ -63,14 +60,14 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
   replay_options.batch = 2;
   replay_options.loop = true;  // stays connected, as a tablet does
   ReplayPenSource pen(pen_path, replay_options);
-  PaintLoop loop(*display, renderer, session.volume(), Light{}, options);
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
   loop.attachPen(&pen, &session);
   PaintLoopSummary summary;
   ASSERT_TRUE(loop.run(nullptr, &summary, &error)) << error;
-  journal.close();
+  painter.journal.close();
   if (const char* keep = std::getenv("CB_KEEP_FRAMES"))
     writePng(std::string(keep) + "/tip_only_pen.png",
-             readFramebufferRgba8(display->framebuffer(), kW, kH));
+             readFramebufferRgba8(display.framebuffer(), kW, kH));
   const std::string status = loop.screen().statusLine();
   EXPECT_NE(status.find("pen without pressure: strokes at 0.60 (-/+), erase: 4 or Menu"),
             std::string::npos)
@@ -81,7 +78,7 @@ TEST(TipOnlyPaint, APenWithoutPressurePaintsAtTheChosenLevel) {
   EXPECT_GT(density, 0.0) << "the strokes of a pen without pressure made cloud";
   // The session journal holds what was painted: the level while the tip was down, the device's
   // own pressure_raw 0, and nothing while hovering.
-  const JournalReadResult read = readJournal(recorded);
+  const JournalReadResult read = readJournal(painter.recorded);
   ASSERT_TRUE(read.error.empty()) << read.error;
   int down = 0;
   for (const JournalRecord& r : read.records) {
