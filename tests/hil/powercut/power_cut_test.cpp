@@ -55,6 +55,55 @@ Kernel fetchKernel() {
   return k;
 }
 
+// What the guest said of one boot between its WRITING line and the next boot's READBACK: the
+// records written (W index t at) and synced (S index at ms), with the guest's own clock.
+struct BootLog {
+  long last_written = 0, last_synced = -1;
+  std::map<long, long long> written_at;  // record -> when it was handed to the OS
+  long long last_seen = 0;               // the guest's last sign of life before the reset
+  double longest_sync_ms = 0;
+};
+
+BootLog readBootLog(const std::vector<std::string>& lines, size_t from, size_t to, long first) {
+  BootLog b;
+  b.last_written = first - 1;
+  for (size_t i = from; i < to; ++i) {
+    const std::string& line = lines[i];
+    if (line.find("POWERCUT BOOT") != std::string::npos) break;
+    long index = 0;
+    long long t = 0, at = 0;
+    double ms = 0;
+    if (std::sscanf(line.c_str(), "W %ld %lld %lld", &index, &t, &at) == 3) {
+      b.last_written = index;
+      b.written_at[index] = at;
+      b.last_seen = std::max(b.last_seen, at);
+    } else if (std::sscanf(line.c_str(), "S %ld %lld %lf", &index, &at, &ms) == 3) {
+      b.last_synced = index;
+      b.longest_sync_ms = std::max(b.longest_sync_ms, ms);
+      b.last_seen = std::max(b.last_seen, at);
+    } else if (std::sscanf(line.c_str(), "H %lld", &at) == 1) {
+      b.last_seen = std::max(b.last_seen, at);
+    }
+  }
+  return b;
+}
+
+// `cloudbrush replay` of both journals gives the same volume checksum; returns it.
+std::string expectSameReplay(const std::string& source, const std::string& final_journal) {
+  std::string source_replay, final_replay;
+  EXPECT_EQ(
+      runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + source + " 2>&1", &source_replay), 0)
+      << source_replay;
+  EXPECT_EQ(runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + final_journal + " 2>&1",
+                       &final_replay),
+            0)
+      << final_replay;
+  const std::string checksum = capture(source_replay, "volume checksum: ([0-9a-f]{16})");
+  EXPECT_FALSE(checksum.empty()) << source_replay;
+  EXPECT_EQ(capture(final_replay, "volume checksum: ([0-9a-f]{16})"), checksum) << final_replay;
+  return checksum;
+}
+
 TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
   const Kernel kernel = fetchKernel();
   ASSERT_TRUE(kernel.error.empty()) << kernel.error;
@@ -123,28 +172,9 @@ TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
     // What the guest had written and synced before the reset: the lines of the boot that was
     // reset (up to the next boot's first line), with the guest's own clock.
     const long first = std::atol(capture(writing, "from=([0-9]+)").c_str());
-    long last_written = first - 1, last_synced = -1;
-    std::map<long, long long> written_at;  // record -> when it was handed to the OS
-    long long last_seen = 0;               // the guest's last sign of life before the reset
-    double longest_sync_ms = 0;
-    for (size_t i = writing_at + 1; i < back_at; ++i) {
-      const std::string& line = vm.lines()[i];
-      if (line.find("POWERCUT BOOT") != std::string::npos) break;
-      long index = 0;
-      long long t = 0, at = 0;
-      double ms = 0;
-      if (std::sscanf(line.c_str(), "W %ld %lld %lld", &index, &t, &at) == 3) {
-        last_written = index;
-        written_at[index] = at;
-        last_seen = std::max(last_seen, at);
-      } else if (std::sscanf(line.c_str(), "S %ld %lld %lf", &index, &at, &ms) == 3) {
-        last_synced = index;
-        longest_sync_ms = std::max(longest_sync_ms, ms);
-        last_seen = std::max(last_seen, at);
-      } else if (std::sscanf(line.c_str(), "H %lld", &at) == 1) {
-        last_seen = std::max(last_seen, at);
-      }
-    }
+    const BootLog boot = readBootLog(vm.lines(), writing_at + 1, back_at, first);
+    const long last_written = boot.last_written, last_synced = boot.last_synced;
+    const double longest_sync_ms = boot.longest_sync_ms;
     const long kept = std::atol(capture(back, "records=([0-9]+)").c_str());
     EXPECT_NE(back.find("prefix=ok"), std::string::npos) << back;
     EXPECT_GE(kept, last_synced + 1) << "a synced record was lost at reset " << r << "\n" << back;
@@ -152,8 +182,9 @@ TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
     const long lost = std::max(0L, last_written + 1 - kept);
     // How long before the reset the oldest lost record was handed to the OS (the reset came
     // after the guest's last line), and how much of the session the lost records span.
-    const double lost_age_s =
-        lost > 0 && written_at.count(kept) ? double(last_seen - written_at[kept]) / 1e9 : 0.0;
+    const double lost_age_s = lost > 0 && boot.written_at.count(kept)
+                                  ? double(boot.last_seen - boot.written_at.at(kept)) / 1e9
+                                  : 0.0;
     const double lost_span_s =
         lost > 0 ? double(times[size_t(last_written)] - times[size_t(kept)]) / 1e9 : 0.0;
     worst_loss_s = std::max(worst_loss_s, lost_age_s);
@@ -186,17 +217,7 @@ TEST(PowerCut, ResetWhileWritingTheJournalLosesAtMostTheLastSecond) {
   const JournalReadResult final_read = readJournal(final_journal);
   EXPECT_TRUE(final_read.error.empty()) << final_read.error;
   ASSERT_EQ(final_read.records.size(), source_read.records.size());
-  std::string source_replay, final_replay;
-  ASSERT_EQ(
-      runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + source + " 2>&1", &source_replay), 0)
-      << source_replay;
-  ASSERT_EQ(runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + final_journal + " 2>&1",
-                       &final_replay),
-            0)
-      << final_replay;
-  const std::string checksum = capture(source_replay, "volume checksum: ([0-9a-f]{16})");
-  EXPECT_FALSE(checksum.empty()) << source_replay;
-  EXPECT_EQ(capture(final_replay, "volume checksum: ([0-9a-f]{16})"), checksum) << final_replay;
+  const std::string checksum = expectSameReplay(source, final_journal);
   std::printf(
       "%d resets; oldest lost record written %.3f s before its reset at worst; longest "
       "sync %.1f ms; the final journal replays to %s\n",
