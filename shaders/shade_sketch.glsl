@@ -3,7 +3,8 @@
 // CB_COMPOSE_SKETCH) draws as pencil strokes on paper:
 //   r = tone (0 lit … 1 dark, for hatching), g = outline stroke, a = coverage.
 // Tone is 1 − d with d = N·L times 0.35 + 0.65·T (T the light volume's transmittance); the outline
-// and the inner surface's silhouette are those of the cartoon style (shade_cartoon.glsl).
+// and the inner surface's silhouette (innerSilhouette, surface_sample.glsl: a line at most two
+// pixels wide) are those of the cartoon style (shade_cartoon.glsl).
 uniform vec3 u_light_dir;  // towards the sun, unit
 uniform float u_outline_width;  // [style.sketch] outline_width, 0.3 (as the cartoon's)
 
@@ -13,6 +14,5 @@ vec4 shadeSurface(SurfaceSample s) {
   float d = max(dot(s.normal, u_light_dir), 0.0) * (0.35 + 0.65 * s.light_transmittance);
   float outline =
       1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
-  float inner = 1.0 - smoothstep(0.03, 0.06, abs(s.inner_max_density - u_inner_iso));
-  return vec4(1.0 - d, max(outline, 0.7 * inner), 0.0, 1.0);
+  return vec4(1.0 - d, max(outline, 0.7 * innerSilhouette(s)), 0.0, 1.0);
 }
