@@ -54,14 +54,15 @@ constexpr float kInkDark = 0.5f, kCartoonDark = 0.45f;
 constexpr double kMaxCartoonIslands = 16.0;
 // Ink: the silhouette line drawn where N·V < 0.15 alone (shade_ink.glsl) is under a pixel wide
 // on these strokes and broke into dashes: 23.8–39.7 islands per 10,000 cloud pixels; with the
-// image-space outline (style_compose.frag.glsl: the blurred coverage's crossing of ½) 5.3–9.7.
+// image-space outline (style_compose.frag.glsl: the blurred coverage's crossing of ½) 5.3–9.7
+// (all twelve strokes: 0.8–9.7).
 // The bound lies between (as the cartoon's).
 constexpr double kMaxInkIslands = 16.0;
 // Ink outline breaks: a silhouette pixel with no dark pixel within kOutlineReach (the bleeding
 // kernel's half width, 3 px: the line is blurred that far either side of the silhouette) is on a
 // gap of the outline. The silhouette is the cartoon's image's extent (the ink's lit wash is bare
 // paper). Dashed (N·V line alone): 2.1–12.0 % of the silhouette; with the image-space outline
-// 0.0 % on all four. The bound lies between.
+// 0.0 % on all twelve. The bound lies between.
 constexpr int kOutlineReach = 3;
 constexpr double kMaxInkOutlineBreaks = 0.01;
 // Sketch: pencil lines and hatching always leave paper between them; a solid patch is a cloud
@@ -69,8 +70,8 @@ constexpr double kMaxInkOutlineBreaks = 0.01;
 // period of 4–7 px plus its line) is all marked, below kSketchMarked (paper is about 0.93, a
 // hatching line at most half graphite about 0.6). The inner surface's silhouette drawn without
 // its two-pixel width limit (shade_sketch.glsl before it shared the cartoon's innerSilhouette)
-// filled 5.5–22.3 % of the silhouette's area with grey; drawn as lines 0.11–0.28 %. The bound
-// lies between.
+// filled 5.5–22.3 % of the silhouette's area with grey; drawn as lines 0.08–0.22 % (all twelve
+// strokes: 0–0.29 %). The bound lies between.
 constexpr float kSketchMarked = 0.8f;
 constexpr int kPatchRadius = 2;
 constexpr double kMaxSketchPatches = 0.01;

@@ -306,7 +306,7 @@ glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensiti
   const float width = s.options.style_params.sketch.outline_width;
   float outline = 1 - smoothStep(0.5f * width, width, std::abs(glm::dot(f.normal, f.view)));
   float inner = 1 - smoothStep(0.03f, 0.06f, std::abs(f.inner_max - kReferenceInnerIso));
-  return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.7f * inner)), 0, 1);
+  return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.45f * inner)), 0, 1);
 }
 
 // Screen-space noise of the paper styles: an integer hash of the pixel and its smooth
