@@ -5,7 +5,7 @@
 // Tone is 1 − d with d = N·L times 0.35 + 0.65·T (T the light volume's transmittance); the outline
 // and the inner surface's silhouette (innerSilhouette, surface_sample.glsl: a line at most two
 // pixels wide) are those of the cartoon style (shade_cartoon.glsl).
-uniform vec3 u_light_dir;  // towards the sun, unit
+uniform vec3 u_light_dir;       // towards the sun, unit
 uniform float u_outline_width;  // [style.sketch] outline_width, 0.3 (as the cartoon's)
 // The inner surface's lines in lighter pencil than the outline (seed 003 Fig. 6: detail drawn
 // over the outline's weight): at 0.7 a painted stroke's inner bodies drew as heavy as its outline.
