@@ -8,10 +8,8 @@
 //    field, anti-aliased by that band).
 //  - Detail layer (§5): a second, inner surface at density u_inner_iso (the seed shrinks the
 //    particles' radius and mass; a higher threshold of the same field does that), drawn only as
-//    its silhouette over the outer surface: rays whose largest density in u_inner_depth voxels
-//    behind the hit comes within ±0.06 of u_inner_iso graze it, and at most two pixels wide
-//    (that density's change to the next pixel, fwidth): a painted cloud's noisy interior stays
-//    near u_inner_iso over wide areas, which drew solid dark patches instead of lines. The ray
+//    its silhouette over the outer surface (innerSilhouette, surface_sample.glsl: a line at most
+//    two pixels wide where the largest density behind the hit grazes u_inner_iso). The ray
 //    caster reads that density smoothed over about 3 voxels (raycast.frag.glsl), so single
 //    voxels of a painted cloud's scattered edge samples draw no dots or broken dashes.
 uniform vec3 u_light_dir;  // towards the sun, unit
@@ -36,8 +34,5 @@ vec4 shadeSurface(SurfaceSample s) {
   vec3 cel = kCel[celBand(d)] * u_light_colour;
   float outline =
       1.0 - smoothstep(0.5 * u_outline_width, u_outline_width, abs(dot(s.normal, s.view)));
-  float inner_off = abs(s.inner_max_density - u_inner_iso);
-  float inner = (1.0 - smoothstep(0.03, 0.06, inner_off)) *
-                (1.0 - smoothstep(1.0, 2.0, inner_off / max(fwidth(s.inner_max_density), 1e-4)));
-  return vec4(mix(cel, kOutline, max(outline, 0.8 * inner)), 1.0);
+  return vec4(mix(cel, kOutline, max(outline, 0.8 * innerSilhouette(s))), 1.0);
 }

@@ -11,7 +11,9 @@
 // Silhouette (§3.3.4): edge = N·V; where edge < threshold (0.5, §4.1.1) the ink falls off as the
 // Gaussian exp(−x²/2) of x = 3·edge/threshold. Rays that pass just outside the surface (their
 // largest density within 40% of the iso level) continue the line outwards, so the outline is
-// taken from the density field on both sides of the silhouette.
+// taken from the density field on both sides of the silhouette. On a painted stroke this line is
+// under a pixel wide; the compose pass adds an outline of fixed screen width found from the
+// blurred coverage (a), style_compose.frag.glsl.
 uniform vec3 u_light_dir;  // towards the sun, unit
 
 // Style parameters (render_style_params.h, config/render.toml [style.ink]); defaults:

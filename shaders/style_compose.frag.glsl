@@ -5,6 +5,12 @@
 //    silhouette comes from u_bleed blurred once more along y (the second pass of the separable
 //    Gaussian; with CB_BLEED 0, moving, the unblurred silhouette); grey = smoothstep(0.1, 0.92,
 //    1 − ink) (the seed's edges); the colour is the ink tone laid on xuan paper by grey.
+//    The outline is also found in image space (seed 001 §2.5: silhouettes detected on the image
+//    plane): the coverage blurred by the same Gaussian (b of u_bleed, then y here) crosses ½ on
+//    the silhouette, and 4·A·(1 − A) of the blurred coverage A is a line about 2σ wide that
+//    follows it without a break wherever the cloud meets the paper. The line from N·V alone
+//    (shade_ink.glsl) is under a pixel wide on a painted stroke a few tens of pixels thick
+//    (N·V < 0.15 within ~1 % of its radius of the edge) and broke into dashes and specks.
 //  CB_COMPOSE_SKETCH (seed 003, Fig. 2 and 6): pencil hatching, one more stroke direction per
 //    tone level (r), wobbling and grainy, and the outline strokes (g), on drawing paper.
 // Paper and strokes are functions of the output pixel, so they stay put while the cloud moves.
@@ -47,6 +53,11 @@ float valueNoise(vec2 p) {
 
 #if CB_COMPOSE_INK
 const vec3 kInkTone = vec3(0.07, 0.07, 0.09);
+// The image-space outline's ink at the silhouette: a grey line (seed 001 Fig. 4.3–4.4: soft,
+// graded edges) that the N·V line darkens where the surface grazes the eye. At 0.75 the stroke
+// gallery's outlines read as solid black rims (28 % of an s-curve's inked pixels dark, against
+// 16 % with the dashed N·V line alone); at 0.6, 25 % and a grey line.
+const float kOutlineInk = 0.6;
 
 // Xuan paper: warm off-white with long fibres (noise stretched along x) and a fine grain.
 vec3 xuanPaper(vec2 p) {
@@ -73,18 +84,21 @@ void main() {
 #if CB_COMPOSE_INK
 #if CB_BLEED
   vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
-  float silhouette = texture(u_bleed, uv).g, norm = 1.0;
+  vec2 blurred = texture(u_bleed, uv).gb;  // silhouette ink, coverage
+  float norm = 1.0;
   float inv_two_sigma2 = 1.0 / (2.0 * u_sigma * u_sigma);
   for (int i = 1; i <= u_radius; ++i) {
     float w = exp(-float(i * i) * inv_two_sigma2);
-    silhouette += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).g +
-                       texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).g);
+    blurred += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).gb +
+                    texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).gb);
     norm += 2.0 * w;
   }
-  silhouette /= norm;
+  blurred /= norm;
 #else
-  float silhouette = image.g;
+  vec2 blurred = image.ga;
 #endif
+  float outline = kOutlineInk * 4.0 * blurred.y * (1.0 - blurred.y);
+  float silhouette = max(blurred.x, outline);
   float ink = 1.0 - (1.0 - image.r) * (1.0 - silhouette);
   float grey = smoothstep(0.1, 0.92, 1.0 - ink);
   o_colour = layOn(xuanPaper(p), kInkTone, grey, image.a);

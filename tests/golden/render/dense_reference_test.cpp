@@ -20,7 +20,10 @@
 // smoothed over ~3 voxels (raycast.frag.glsl), and once more (cumulus128_cartoon_side,
 // cumulus128_sketch_reference, puffs128_cartoon_reference: a few line pixels) when that density
 // came from the pool's 16-bit smoothed companion instead of 8 reads of 8-bit filtered density;
-// the others are still the dense path's.
+// cumulus128_ink_reference again when ink drew its outline in image space from the blurred
+// coverage (style_compose.frag.glsl), cumulus128_sketch_reference when the sketch's inner line
+// took the cartoon's two-pixel width limit (a few line pixels); the others are still the dense
+// path's.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

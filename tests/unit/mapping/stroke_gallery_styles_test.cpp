@@ -1,13 +1,15 @@
 // Fine speckle on painted strokes in the line-drawn styles: strokes of the stroke gallery
 // (app/brush/stroke_gallery.h) painted at the product's defaults (app/session/
 // gallery_painting.h: the painter's 1920×1080 screen and starting paint view, config/brush.toml,
-// mapping.toml) and rendered at that size with config/render.toml in cartoon and ink wash, where
-// a person sees every pixel. Each image's dark pixels (lines, darker than the style's fill
-// tones) are grouped into 8-connected islands (tests/unit/mapping/speckle.h). A clean drawing
+// mapping.toml) and rendered at that size with config/render.toml in cartoon, ink wash and
+// sketch, where a person sees every pixel. Each image's dark pixels (lines, darker than the style's
+// fill tones) are grouped into 8-connected islands (tests/unit/mapping/speckle.h). A clean drawing
 // is a few long lines: the outline and, in the cartoon, one inner silhouette per inner body.
-// Speckle is many islands — dots and a line broken into dashes. Checked for the cartoon:
-// islands per 10,000 cloud pixels ≤ kMaxCartoonIslands. Printed for both styles, with the share
-// of cloud pixels in islands of at most kSpeckPixels. CB_SHOTS_DIR=DIR writes each image as
+// Speckle is many islands — dots and a line broken into dashes. Checked: islands per 10,000
+// cloud pixels ≤ kMaxCartoonIslands and kMaxInkIslands, printed with the share of cloud pixels in
+// islands of at most kSpeckPixels; the ink's outline has no gaps (≤ kMaxInkOutlineBreaks of the
+// silhouette without a line near, line_measures.h); the sketch has no solid grey patches
+// (≤ kMaxSketchPatches of the silhouette's area). CB_SHOTS_DIR=DIR writes each image as
 // DIR/STROKE-STYLE.png; CB_GALLERY_ALL=1 measures all twelve strokes, not kStrokes.
 #include <algorithm>
 #include <cstdio>
@@ -26,6 +28,7 @@
 #include "app/render/render_target.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/gallery_painting.h"
+#include "line_measures.h"
 #include "speckle.h"
 #include "tests/unit/render/gl_test_context.h"
 
@@ -49,6 +52,29 @@ constexpr float kInkDark = 0.5f, kCartoonDark = 0.45f;
 // (raycast.frag.glsl) 11–14 (all twelve: 6.5–14); read from the brick pool's 16-bit smoothed
 // companion (one read a step, app/render/brick_pool.h) 10.9–13.3. The bound lies between.
 constexpr double kMaxCartoonIslands = 16.0;
+// Ink: the silhouette line drawn where N·V < 0.15 alone (shade_ink.glsl) is under a pixel wide
+// on these strokes and broke into dashes: 23.8–39.7 islands per 10,000 cloud pixels; with the
+// image-space outline (style_compose.frag.glsl: the blurred coverage's crossing of ½) 5.3–9.7
+// (all twelve strokes: 0.8–9.7).
+// The bound lies between (as the cartoon's).
+constexpr double kMaxInkIslands = 16.0;
+// Ink outline breaks: a silhouette pixel with no dark pixel within kOutlineReach (the bleeding
+// kernel's half width, 3 px: the line is blurred that far either side of the silhouette) is on a
+// gap of the outline. The silhouette is the cartoon's image's extent (the ink's lit wash is bare
+// paper). Dashed (N·V line alone): 2.1–12.0 % of the silhouette; with the image-space outline
+// 0.0 % on all twelve. The bound lies between.
+constexpr int kOutlineReach = 3;
+constexpr double kMaxInkOutlineBreaks = 0.01;
+// Sketch: pencil lines and hatching always leave paper between them; a solid patch is a cloud
+// pixel whose 5×5 window (kPatchRadius 2: wider than a 2-pixel line, narrower than a hatching
+// period of 4–7 px plus its line) is all marked, below kSketchMarked (paper is about 0.93, a
+// hatching line at most half graphite about 0.6). The inner surface's silhouette drawn without
+// its two-pixel width limit (shade_sketch.glsl before it shared the cartoon's innerSilhouette)
+// filled 5.5–22.3 % of the silhouette's area with grey; drawn as lines 0.08–0.22 % (all twelve
+// strokes: 0–0.29 %). The bound lies between.
+constexpr float kSketchMarked = 0.8f;
+constexpr int kPatchRadius = 2;
+constexpr double kMaxSketchPatches = 0.01;
 
 ImageRgba8 render(VolumeRenderer& renderer, RenderTarget& target, const Volume& volume,
                   const RenderConfig& config, const GalleryCloud& cloud, RenderStyle style) {
@@ -67,7 +93,19 @@ bool measured(const std::string& name) {
   return false;
 }
 
-TEST(StrokeGalleryStyles, NoFineSpeckleInTheCartoon) {
+// extent, extent_empty: the cartoon's images of the same view (its tones all differ from the sky).
+void checkSketch(const std::string& stroke, const ImageRgba8& image, const ImageRgba8& extent,
+                 const ImageRgba8& extent_empty) {
+  const test::SolidPatches p =
+      test::measureSolidPatches(image, extent, extent_empty, kSketchMarked, kPatchRadius);
+  std::printf("%-12s %-8s silhouette area %6ld px, %5ld in solid patches: %.2f %%\n",
+              stroke.c_str(), "sketch", p.cloud, p.solid, 100.0 * p.fraction());
+  std::fflush(stdout);
+  EXPECT_GT(p.cloud, kW * kH / 200) << stroke << " sketch: the stroke is in view";
+  EXPECT_LE(p.fraction(), kMaxSketchPatches) << stroke << ": grey patches in the sketch";
+}
+
+TEST(StrokeGalleryStyles, LinesHoldOnPaintedStrokes) {
   CB_REQUIRE_GL();
   const BrushConfig brush = loadDefaultBrushConfig();
   StrokeMapper mapper(loadMappingConfig(configFile("mapping.toml")));
@@ -87,12 +125,19 @@ TEST(StrokeGalleryStyles, NoFineSpeckleInTheCartoon) {
     const GalleryCloud cloud =
         paintGalleryStroke(g, brush.default_brush, brush, mapper, kW, kH, 100 + uint32_t(i));
     const Volume empty(cloud.volume.dims(), cloud.volume.worldMin(), cloud.volume.worldMax());
-    for (const RenderStyle style : {RenderStyle::kCartoon, RenderStyle::kInk}) {
+    ImageRgba8 cartoon_image, cartoon_sky;
+    for (const RenderStyle style :
+         {RenderStyle::kCartoon, RenderStyle::kInk, RenderStyle::kSketch}) {
       const char* name = renderStyleName(style);
       const ImageRgba8 sky = render(renderer, target, empty, config, cloud, style);
       const ImageRgba8 image = render(renderer, target, cloud.volume, config, cloud, style);
       if (dir) writePng(std::string(dir) + "/" + g.name + "-" + name + ".png", image);
+      if (style == RenderStyle::kSketch) {
+        checkSketch(g.name, image, cartoon_image, cartoon_sky);
+        continue;
+      }
       const bool cartoon = style == RenderStyle::kCartoon;
+      if (cartoon) cartoon_image = image, cartoon_sky = sky;  // the cloud's extent for the ink
       const test::Speckle s =
           test::measureSpeckle(image, sky, cartoon ? kCartoonDark : kInkDark, kSpeckPixels);
       const double per_10k = 1e4 * double(s.islands) / double(std::max(s.cloud, 1L));
@@ -106,6 +151,13 @@ TEST(StrokeGalleryStyles, NoFineSpeckleInTheCartoon) {
       if (cartoon) {
         EXPECT_LE(per_10k, kMaxCartoonIslands) << g.name << ": the cartoon's lines are speckled";
         ++checked;
+      } else {
+        const test::OutlineBreaks b =
+            test::measureOutlineBreaks(image, cartoon_image, cartoon_sky, kInkDark, kOutlineReach);
+        std::printf("%-12s %-8s silhouette %6ld px, %5ld without a line near: %.1f %%\n",
+                    g.name.c_str(), name, b.edge, b.broken, 100.0 * b.fraction());
+        EXPECT_LE(per_10k, kMaxInkIslands) << g.name << ": the ink's lines are speckled";
+        EXPECT_LE(b.fraction(), kMaxInkOutlineBreaks) << g.name << ": the ink's outline is dashed";
       }
     }
   }

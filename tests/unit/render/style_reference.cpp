@@ -306,7 +306,7 @@ glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensiti
   const float width = s.options.style_params.sketch.outline_width;
   float outline = 1 - smoothStep(0.5f * width, width, std::abs(glm::dot(f.normal, f.view)));
   float inner = 1 - smoothStep(0.03f, 0.06f, std::abs(f.inner_max - kReferenceInnerIso));
-  return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.7f * inner)), 0, 1);
+  return glm::vec4(quantise8(1 - d), quantise8(std::max(outline, 0.45f * inner)), 0, 1);
 }
 
 // Screen-space noise of the paper styles: an integer hash of the pixel and its smooth
@@ -361,7 +361,7 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
     out.rgba = cartoonPixel(s, surfaceAt(x, yb), bg, &out.ambiguous, &out.sensitive);
   } else if (style == RenderStyle::kInk) {
     glm::vec4 centre = inkAmounts(s, surfaceAt(x, yb), &out.ambiguous, &out.sensitive);
-    float silhouette = centre.g;
+    float silhouette = centre.g, coverage = centre.a;
     if (!s.options.moving) {
       // Separable Gaussian e^(−x²/(2σ²)) over ±R (seed 001 §3.3.5; σ² = 2, R = 3 by default):
       // x into an 8-bit target, then y.
@@ -374,22 +374,29 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
         sum += i ? 2 * w[i] : w[i];
       }
       const float norm = 1.0f / sum;
-      // A neighbour's wash band does not reach this pixel (only its silhouette ink bleeds).
+      // A neighbour's wash band does not reach this pixel (only its silhouette ink and its
+      // coverage, for the image-space outline, are blurred).
       const int n = 2 * R + 1;
-      std::vector<float> g(size_t(n * n));
+      std::vector<glm::vec2> ga(size_t(n * n));
       bool band_ambiguous = false;
       for (int j = -R; j <= R; ++j)
-        for (int i = -R; i <= R; ++i)
-          g[size_t((j + R) * n + i + R)] =
-              inkAmounts(s, surfaceAt(x + i, yb + j), &band_ambiguous, &out.sensitive).g;
-      silhouette = 0.0f;
+        for (int i = -R; i <= R; ++i) {
+          const glm::vec4 a =
+              inkAmounts(s, surfaceAt(x + i, yb + j), &band_ambiguous, &out.sensitive);
+          ga[size_t((j + R) * n + i + R)] = glm::vec2(a.g, a.a);
+        }
+      glm::vec2 blurred(0.0f);
       for (int j = -R; j <= R; ++j) {
-        float row = 0.0f;
-        for (int i = -R; i <= R; ++i) row += w[std::abs(i)] * g[size_t((j + R) * n + i + R)];
-        silhouette += w[std::abs(j)] * quantise8(row * norm);
+        glm::vec2 row(0.0f);
+        for (int i = -R; i <= R; ++i) row += w[std::abs(i)] * ga[size_t((j + R) * n + i + R)];
+        row *= norm;
+        blurred += w[std::abs(j)] * glm::vec2(quantise8(row.x), quantise8(row.y));
       }
-      silhouette *= norm;
+      silhouette = blurred.x * norm;
+      coverage = blurred.y * norm;
     }
+    // The image-space outline (style_compose.frag.glsl): 0.6 · 4A(1 − A) of the blurred coverage.
+    silhouette = std::max(silhouette, 0.6f * 4.0f * coverage * (1.0f - coverage));
     float ink = 1 - (1 - centre.r) * (1 - silhouette);
     float grey = smoothStep(0.1f, 0.92f, 1 - ink);
     out.rgba = glm::vec4(glm::mix(glm::vec3(0.07f, 0.07f, 0.09f), xuanPaper(p), grey), 1.0f);
