@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <random>
+#include "tests/support/test_seed.h"
 
 namespace cb {
 namespace {
@@ -21,7 +22,7 @@ int countTransitions(ContactHysteresis& h, const std::vector<float>& pressures) 
 }
 
 TEST(ContactHysteresis, NoChatterOnNoisyConstantPressure) {
-  std::mt19937_64 rng(3);
+  std::mt19937_64 rng(test::testSeed("ContactHysteresis.NoChatterOnNoisyConstantPressure", 3));
   // A resting pen at various levels, including right at each threshold, with 0.5 % noise.
   for (float level : {0.01f, 0.02f, 0.03f, 0.05f, 0.2f}) {
     std::normal_distribution<float> noise(level, 0.005f);
@@ -34,7 +35,7 @@ TEST(ContactHysteresis, NoChatterOnNoisyConstantPressure) {
 
 TEST(ContactHysteresis, PlainThresholdWouldChatter) {
   // The same noise around a single 3 % threshold: the reason for hysteresis.
-  std::mt19937_64 rng(3);
+  std::mt19937_64 rng(test::testSeed("ContactHysteresis.PlainThresholdWouldChatter", 3));
   std::normal_distribution<float> noise(0.03f, 0.005f);
   ContactHysteresis single(ContactThresholds{0.03f, 0.03f});
   std::vector<float> p(4000);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "calibration/contact_hysteresis.h"
+#include "tests/support/test_seed.h"
 
 namespace cb {
 namespace {
@@ -33,7 +34,7 @@ std::vector<PenSample> wornNibTrace(float air_pressure, uint64_t seed) {
 
 TEST(NibOffset, DetectsWornNibWhileHoveringHighAndStopsPhantomStrokes) {
   const float air = 0.08f;
-  auto trace = wornNibTrace(air, 5);
+  auto trace = wornNibTrace(air, test::testSeed("NibOffset worn nib", 5));
   NibOffsetDetector nib;
   ContactHysteresis naive, corrected;
   int naive_down_while_hovering = 0, corrected_down_while_hovering = 0,

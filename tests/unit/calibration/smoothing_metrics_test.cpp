@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include "tests/support/test_seed.h"
 
 namespace cb {
 namespace {
@@ -25,7 +26,7 @@ TEST(SmoothingMetrics, LagFindsKnownSubSampleDelays) {
     EXPECT_NEAR(lagByCrossCorrelation(truth, delayed, dt, 100), delay, 0.0003) << delay;
   }
   // Noise does not bias it.
-  std::mt19937_64 rng(2);
+  std::mt19937_64 rng(test::testSeed("SmoothingMetrics lag under noise", 2));
   std::normal_distribution<double> noise(0.0, 0.05);
   auto noisy = circle(600, dt, 100, 40, 0.004);
   for (auto& p : noisy) p += glm::dvec2(noise(rng), noise(rng));
@@ -33,7 +34,7 @@ TEST(SmoothingMetrics, LagFindsKnownSubSampleDelays) {
 }
 
 TEST(SmoothingMetrics, JitterIsPerAxisStd) {
-  std::mt19937_64 rng(4);
+  std::mt19937_64 rng(test::testSeed("SmoothingMetrics.JitterIsPerAxisStd", 4));
   std::normal_distribution<double> noise(0.0, 0.05);
   std::vector<glm::dvec2> v;
   for (int i = 0; i < 20000; ++i) v.push_back({5 + noise(rng), 7 + noise(rng)});
