@@ -411,8 +411,12 @@ void PaintScreen::saveCloud() {
     saved_volume_ = session_->volume().instanceId();
     saved_generation_ = session_->volume().generation();
     last_saved_ = path.string();
-    tell(std::string(msg::kSavedAs.en) + " " + path.filename().string() + " in " +
-         path.parent_path().string() + " / " + msg::kSavedAs.zh + " " + path.filename().string());
+    // A person reads the file's name (or the caller's words); the log has the whole path.
+    say("saved " + path.string());
+    const std::string name = path.filename().string();
+    tell(save_words_
+             ? save_words_(path.string())
+             : std::string(msg::kSavedAs.en) + " " + name + " / " + msg::kSavedAs.zh + " " + name);
   } catch (const std::exception& e) {
     tell(std::string(msg::kSaveFailed.en) + ": " + e.what() + " / " + msg::kSaveFailed.zh);
   }

@@ -174,6 +174,14 @@ class StudyRunScreen : public Screen {
   bool panel_holds_pen_ = false;  // painting stage: the pen is over the panel's targets
   float form_pen_x_ = 0.0f, form_pen_y_ = 0.0f;
   bool done_asked_ = false;  // "I'm done" tapped: the panel asks to confirm
+  // The task that ended last (its number in the order, from 1), said on the next page until
+  // `saved_until_ns_`; `saved_pending_` while its files wait for the disk.
+  int saved_task_ = 0;
+  bool saved_pending_ = false;
+  int64_t saved_until_ns_ = 0;
+  static constexpr int64_t kSavedNoticeNs = 5'000'000'000;
+  int saves_in_stage_ = 0;  // the painter's Saves in this stage (the save's answer counts them)
+  std::string saveWords();
 
   // The stage the screen set up last (to notice changes)
   StudyStageKind last_stage_ = StudyStageKind::kDone;

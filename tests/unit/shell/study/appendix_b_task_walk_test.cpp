@@ -9,12 +9,13 @@
 // - the task's panel: its title, its picture, what to do and that the cloud is saved for the
 //   participant, "I'm done", the countdown (10:00, then red in the last minute), the foot line;
 // - three strokes paint (the status line names the recorded pen);
-// - the save as Appendix B asks, with the pen through the painter's menu: the toast names the
-//   file, which lies in the session folder's saved/, in a box clear of the task's panel;
+// - the save as Appendix B asks, with the pen through the painter's menu: the toast says which
+//   cloud was saved ("task 1, save 1"; no folder), the file lies in the session folder's saved/,
+//   the toast's box clear of the task's panel;
 // - time up while the pen is down: the panel says time is up and to lift the pen (no "I'm
 //   done" any more), the countdown shows 0:00 in red; lifted, the stroke is not lost, the stage
 //   closes by itself, the task's files are written, trials.csv says `time-up`, and the next task's
-//   page follows at 10:00.
+//   page follows at 10:00, saying "Task 1 saved." for five seconds; task titles on one line.
 //
 // CB_KEEP_FRAMES=DIR writes each step as appendix_b_NN_<step>.png for looking.
 #include <gtest/gtest.h>
@@ -172,6 +173,18 @@ class Walk {
     return nullptr;
   }
   bool shown(const std::string& part) const { return label(part) != nullptr; }
+  // The label that is exactly `text` is drawn on one line (measured with the runner's font,
+  // whose line height is at most 1.5 times the size).
+  void expectOneLine(const std::string& text) const {
+    const UiLabel* l = nullptr;
+    for (const UiLabel& c : screen->page().labels)
+      if (c.text == text) l = &c;
+    ASSERT_TRUE(l) << "no label '" << text << "': " << words();
+    float r[4];
+    screen->paintScreen().ui()->labelRect(*l, r);
+    EXPECT_LT(r[3] - r[1], 1.5f * l->size_px) << "'" << text << "' wraps";
+    EXPECT_LE(r[2], float(kW)) << "'" << text << "' runs off the screen";
+  }
   std::string words() const {
     std::string all;
     for (const UiLabel& l : screen->page().labels) all += "[" + l.text + "] ";
@@ -210,7 +223,9 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const StudyTask* task = w.state->task();
   ASSERT_TRUE(task);
   w.keep("task_start");
-  EXPECT_TRUE(w.shown("Task 1 of 4: " + task->title)) << w.words();
+  EXPECT_TRUE(w.shown("Task 1 of 4")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.expectOneLine(task->title));
+  EXPECT_FALSE(w.shown("saved.")) << "no task ended before the first: " << w.words();
   EXPECT_TRUE(w.shown("Paint a cloud like the picture.")) << w.words();
   EXPECT_TRUE(w.shown("saved for you when you tap \"I'm done\" or when the time is up"))
       << w.words();
@@ -250,9 +265,13 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const std::string saved = w.screen->paintScreen().lastSaved();
   ASSERT_NE(saved, "");
   EXPECT_EQ(std::filesystem::path(saved).parent_path(), std::filesystem::path(w.folder + "/saved"));
-  EXPECT_NE(w.screen->paintScreen().toast().find(std::filesystem::path(saved).filename().string()),
-            std::string::npos)
-      << w.screen->paintScreen().toast();
+  // The participant reads which cloud was saved, not where: the folder is the log's.
+  const std::string said = w.screen->paintScreen().toast();
+  EXPECT_NE(said.find("Your cloud is saved (task 1, save 1)."), std::string::npos) << said;
+  EXPECT_NE(said.find("您的云已保存"), std::string::npos) << said;
+  EXPECT_EQ(said.find(w.folder), std::string::npos) << "no folder in the toast: " << said;
+  EXPECT_EQ(said.find('/' + std::filesystem::path(saved).filename().string()), std::string::npos)
+      << said;
   const float* toast = w.screen->paintScreen().ui()->toastRect();
   EXPECT_GE(toast[0], 0.0f) << "the save's answer on the screen";
   EXPECT_LE(toast[2], kStudyPanelLeft * kW) << "the save's answer clear of the task's panel";
@@ -294,6 +313,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   w.frames(0, kFrame, up);
   w.frames(30);
   w.keep("next_task");
+  // The next task's panel says the last one was saved, for a few seconds.
+  EXPECT_TRUE(w.shown("Task 1 saved. 任务 1 已保存。")) << w.words();
+  EXPECT_TRUE(w.shown("Task 2 of 4")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.expectOneLine(w.state->task()->title));
   const std::vector<TrialRow> trials = trialsOfSession(loadSessionTrace(w.folder + "/session.cbj"));
   ASSERT_GE(trials.size(), 1u);
   EXPECT_EQ(trials[0].end_reason, "time-up") << closing;
@@ -301,8 +324,11 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   for (const char* ext : {".vdb", ".cbvol", ".exr", ".png"})
     EXPECT_TRUE(std::filesystem::exists(w.folder + "/tasks/" + task->id + ext)) << ext;
   ASSERT_EQ(w.state->stage(), StudyStageKind::kTask) << w.state->waitingFor(w.now);
-  EXPECT_TRUE(w.shown("Task 2 of 4: " + w.state->task()->title)) << w.words();
   EXPECT_TRUE(w.shown("Time left 10:00") || w.shown("Time left 9:5")) << w.words();
+  w.frames(1, 6 * kSecond);  // the notice's five seconds are over
+  w.frames(1);
+  w.keep("next_task_later");
+  EXPECT_FALSE(w.shown("Task 1 saved.")) << w.words();
   std::printf("closing page said: %s\n", closing.c_str());
 }
 
