@@ -359,6 +359,34 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
   state_.closeStage(now_ns_, saved, pending);
 }
 
+void StudyRunScreen::writeTaskSoFar() {
+  const StudyTask* task = state_.task();
+  const Volume& v = session_.volume();
+  if (!task || cloud_empty_ || session_.engine().inStroke() || now_ns_ < so_far_due_ns_ ||
+      v.generation() == so_far_generation_)
+    return;
+  if (std::find(task->save.begin(), task->save.end(), TaskSaveKind::kVolumeVdb) ==
+          task->save.end() &&
+      std::find(task->save.begin(), task->save.end(), TaskSaveKind::kVolumeRaw) == task->save.end())
+    return;
+  so_far_generation_ = v.generation();
+  so_far_due_ns_ = now_ns_ + kSoFarNs;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> written;
+  std::string note, error;
+  if (!task_files_.writeVolumeSoFar(task->id, v, &written, &note, &error)) {
+    // Not kept: the task's end writes them (and keeps them when the disk still fails).
+    std::fprintf(stderr, "cloudbrush study: task %s so far not written: %s\n", task->id.c_str(),
+                 error.c_str());
+    return;
+  }
+  std::string files;
+  for (const std::string& file : written) files += (files.empty() ? "" : ", ") + file;
+  std::fprintf(
+      stderr, "cloudbrush study: task %s so far: %s (%.0f ms)\n", task->id.c_str(), files.c_str(),
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
 std::string StudyRunScreen::saveWords() {
   // The answer to the painter's Save in a study: which stage's cloud, how many saves so far;
   // the folder and file name go to the log only (PaintScreen::saveCloud).
@@ -771,6 +799,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
       recordStepProgress();
       state_.observeTutorial(tutorialState(), now_ns_);
     }
+    if (state_.stage() == StudyStageKind::kTask && !state_.closing()) writeTaskSoFar();
     if (state_.closing() && !session_.engine().inStroke()) {
       if (state_.stage() == StudyStageKind::kTask)
         saveTask(now_ns_);

@@ -121,6 +121,13 @@ class StudyRunScreen : public Screen {
   void enterStage(int64_t t_ns);
   void setUpTask(int64_t t_ns);
   void saveTask(int64_t t_ns);
+  // The running task's volume files written as it goes: at a stroke's end when the cloud
+  // changed, at most every kSoFarNs (a runner killed mid-task leaves them; a resumed one writes
+  // them at once from the replayed journal). The end frame (EXR, PNG) is rendered at the end.
+  void writeTaskSoFar();
+  static constexpr int64_t kSoFarNs = 2'000'000'000;
+  uint64_t so_far_generation_ = 0;
+  int64_t so_far_due_ns_ = 0;
   bool renderTaskFrame(ImageRgbaF* frame, std::string* error);
   void retryTaskFiles();
   void writeAnswers();

@@ -321,6 +321,10 @@ TEST(StudyRunSlips, TaskFilesThatCannotBeWrittenAreNamedAndWrittenLater) {
   const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
   rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
   ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  // The task's volume as it goes (written at the stroke's end), then taken away and the
+  // folder's place taken by a file.
+  EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol"));
+  std::filesystem::remove_all(rig.folder + "/tasks");
   std::ofstream(rig.folder + "/tasks") << "in the way";
   rig.tap(StudyTargetAction::kDone);
   rig.tap(StudyTargetAction::kDoneConfirm);
