@@ -99,8 +99,6 @@ class Walk : public test::StudyScreenRig {
     ASSERT_NO_FATAL_FAILURE(start(walkProtocol(), options));
   }
 
-  // The recorded pen's next `count` samples (one stroke), played with their own pace.
-  void stroke(size_t count) { recordedStroke(count); }
   // The label that is exactly `text` is drawn on one line (measured with the runner's font,
   // whose line height is at most 1.5 times the size).
   void expectOneLine(const std::string& text) const {
@@ -154,7 +152,7 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
 
   // Three strokes with the recorded pen, a minute apart on the task's clock.
   for (size_t s = 0; s < kStrokes.size(); ++s) {
-    ASSERT_NO_FATAL_FAILURE(w.stroke(w.stroke_samples[s]));
+    ASSERT_NO_FATAL_FAILURE(w.recordedStroke(w.stroke_samples[s]));
     w.frames(3);
     w.frames(1, 60 * kSecond);
     EXPECT_EQ(w.session->strokesMapped(), s + 1);

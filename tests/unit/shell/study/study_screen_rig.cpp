@@ -96,6 +96,10 @@ void StudyScreenRig::pen(const std::vector<PenSample>& samples, size_t per_frame
   frames(settle >= 0 ? settle : settle_frames);
 }
 
+void StudyScreenRig::stroke(const SyntheticStroke& s) {
+  pen(syntheticPenSamples(s, tablet, w, h, 200.0, now));
+}
+
 void StudyScreenRig::recordedStroke(size_t count) {
   std::vector<PenSample> samples;
   for (size_t i = 0; i < count; ++i) pen_source->poll(0, samples);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/brush/synthetic_strokes.h"
 #include "app/render/image_io.h"
 #include "app/render/volume_renderer.h"
 #include "app/session/paint_session.h"
@@ -53,6 +54,8 @@ class StudyScreenRig {
               size_t per_frame = 3);
   // `samples` at `per_frame` a frame, then `settle` frames (-1: settle_frames).
   void pen(const std::vector<PenSample>& samples, size_t per_frame = 3, int settle = -1);
+  // A synthetic stroke with the synthetic tablet, 200 samples a second from now.
+  void stroke(const SyntheticStroke& s);
   // The recorded pen's next `count` samples (one stroke), at their own pace.
   void recordedStroke(size_t count);
   // A pen tap (hover in, tip down, lift, out) in the middle of the page's target, or at (x, y).
