@@ -257,6 +257,7 @@ TEST(ScreensWalk, AFirstTimePainterIsToldWhatToDoAndLosesNothing) {
   walk.keys("ctrl+s");
   EXPECT_TRUE(contains(screen.toast(), "Saved as cloud-")) << screen.toast();
   EXPECT_TRUE(contains(screen.toast(), "已保存")) << screen.toast();
+  EXPECT_FALSE(contains(screen.toast(), dir)) << "the folder is the log's: " << screen.toast();
   const std::string saved = std::filesystem::path(screen.lastSaved()).filename().string();
   EXPECT_TRUE(std::regex_match(saved, std::regex(R"(cloud-\d{4}-\d\d-\d\d_\d\d-\d\d-\d\d\.vol)")))
       << saved;
