@@ -14,6 +14,7 @@
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
 #include "app/study/inkml_writer.h"
+#include "app/study/saved_clouds.h"
 #include "app/study/session_trace.h"
 #include "app/study/trace_csv.h"
 #include "app/study/trial_table.h"
@@ -103,6 +104,13 @@ int exportSession(const TraceExportRequest& request, size_t i, const ReplayConfi
   } catch (const StudyInputError& e) {
     return studyFail(e.what());
   }
+  // The clouds the participant saved with the painter's Save, as --bids copies them.
+  std::vector<std::string> saved;
+  std::string error;
+  if (!copySavedClouds(path, (fs::path(request.out) / "saved" / request.ids[i]).string(), &saved,
+                       &error))
+    return studyFail(error);
+  for (const std::string& file : saved) std::printf("%s\n", file.c_str());
   if (!replay_config) return 0;
   const SessionReplay replay = replaySession(journal, replay_config->brush, replay_config->mapping);
   for (const std::string& problem : replay.problems)

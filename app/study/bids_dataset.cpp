@@ -13,6 +13,7 @@
 #include "app/study/bids_behaviour.h"
 #include "app/study/bids_motion.h"
 #include "app/study/bids_text.h"
+#include "app/study/saved_clouds.h"
 #include "app/study/study_marker_text.h"
 #include "app/study/study_session_record.h"
 
@@ -132,25 +133,9 @@ bool BidsDatasetWriter::write(const std::string& relative, const std::string& co
 
 bool BidsDatasetWriter::copySaved(const SessionTrace& trace, const std::string& to,
                                   std::string* error) {
-  // The clouds the participant saved with the painter's Save, in the session folder's saved/
-  // beside the journal; byte for byte, in name order.
-  const std::filesystem::path saved = std::filesystem::path(trace.path).parent_path() / "saved";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(saved, ec)) return true;
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(saved, ec))
-    if (entry.is_regular_file() && entry.path().filename().string().rfind(".", 0) != 0)
-      files.push_back(entry.path());
-  if (ec) return *error = saved.string() + ": cannot list the folder: " + ec.message(), false;
-  std::sort(files.begin(), files.end());
-  for (const std::filesystem::path& file : files) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in) return *error = file.string() + ": cannot be read", false;
-    if (!write(to + file.filename().string(), bytes.str(), error)) return false;
-  }
-  return true;
+  // The clouds the participant saved with the painter's Save (saved_clouds.h: the one copy
+  // `study export --out` makes too).
+  return copySavedClouds(trace.path, (std::filesystem::path(dir_) / to).string(), &written_, error);
 }
 
 bool BidsDatasetWriter::addSession(const SessionTrace& trace, std::string* error) {

@@ -25,6 +25,14 @@ class TaskFileRetry {
   // kept for retry(), *error says why and false is returned.
   bool writeVolume(const std::string& task, const Volume& volume, std::vector<std::string>* written,
                    std::string* note, std::string* error);
+  // The task's volume files as the task goes (so a runner killed mid-task leaves them as of
+  // its last write): written as writeVolume does, but nothing is kept when it fails (the task's
+  // end writes them again).
+  bool writeVolumeSoFar(const std::string& task, const Volume& volume,
+                        std::vector<std::string>* written, std::string* note,
+                        std::string* error) const {
+    return tryVolume(task, volume, written, note, error);
+  }
   // Likewise the task's end frame (display-encoded RGBA float) as EXR and PNG.
   bool writeFrame(const std::string& task, const ImageRgbaF& frame,
                   std::vector<std::string>* written, std::string* error);

@@ -32,6 +32,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -109,6 +110,12 @@ class PaintScreen : public Screen {
   void setVisitorText(VisitorText text, std::string glyphs) {
     visitor_text_ = std::move(text);
     visitor_glyphs_ = std::move(glyphs);
+  }
+  // What the answer to a Save says (given the saved file's path), in place of "Saved as NAME";
+  // `glyphs`: the characters it may use beyond the painter's own. The log names the whole path.
+  void setSaveWords(std::function<std::string(const std::string&)> words, std::string glyphs) {
+    save_words_ = std::move(words);
+    visitor_glyphs_ += glyphs;
   }
   // The developer's line (mapping, canvas altitude, sky size, pen state), shown with S.
   std::string detailLine() const;
@@ -300,7 +307,8 @@ class PaintScreen : public Screen {
                                 // a UI target last frame
   std::string notice_;          // shown above the status line
   VisitorText visitor_text_;    // the kiosk's words (visitor mode), or none
-  std::string visitor_glyphs_;  // their characters
+  std::string visitor_glyphs_;  // their characters (and the save words')
+  std::function<std::string(const std::string&)> save_words_;
   bool visitorWords() const { return options_.visitor_mode && bool(visitor_text_); }
   std::vector<Command> tapped_;
   bool visitorAllows(Command command) const;

@@ -411,8 +411,13 @@ void PaintScreen::saveCloud() {
     saved_volume_ = session_->volume().instanceId();
     saved_generation_ = session_->volume().generation();
     last_saved_ = path.string();
-    tell(std::string(msg::kSavedAs.en) + " " + path.filename().string() + " in " +
-         path.parent_path().string() + " / " + msg::kSavedAs.zh + " " + path.filename().string());
+    // The painter says the file's name and its folder; a caller's words (the study runner's:
+    // which task's cloud) replace them, and the log has the whole path.
+    say("saved " + path.string());
+    const std::string name = path.filename().string();
+    tell(save_words_ ? save_words_(path.string())
+                     : std::string(msg::kSavedAs.en) + " " + name + " in " +
+                           path.parent_path().string() + " / " + msg::kSavedAs.zh + " " + name);
   } catch (const std::exception& e) {
     tell(std::string(msg::kSaveFailed.en) + ": " + e.what() + " / " + msg::kSaveFailed.zh);
   }

@@ -17,6 +17,8 @@ const glm::vec4 kSelectedColour{0.95f, 0.62f, 0.18f, 1.0f};
 const glm::vec4 kQuietColour{0.25f, 0.27f, 0.31f, 1.0f};
 const glm::vec4 kVeil{0.0f, 0.0f, 0.0f, 0.72f};
 const glm::vec4 kDoneColour{0.18f, 0.55f, 0.3f, 1.0f};
+const uint32_t kSavedColour =
+    0x8ee6a6ffu;  // a saved task's words: the green of "I'm done", lighter
 
 // What the participant taps and reads around it, English over Chinese (the painter's menu's
 // languages, app/shell/command_table.h).
@@ -36,6 +38,9 @@ const Bilingual kKeepPaintingText{"Keep painting", "继续画"};
 // the pen to end before it saves: in place of "I'm done".
 const Bilingual kTimeUpText{"Time is up. Lift the pen: your cloud is being saved.",
                             "时间到了。请抬起笔：您的云正在保存。"};
+// The task that just ended, on the next page (%d: its number in the participant's order).
+const Bilingual kTaskSavedText{"Task %d saved.", "任务 %d 已保存。"};
+const Bilingual kTaskKeptText{"Task %d is kept and being saved.", "任务 %d 已保留，正在保存。"};
 const Bilingual kFinishingText{"This task is ending. Lift the pen: your cloud is being saved.",
                                "这个任务即将结束。请抬起笔：您的云正在保存。"};
 
@@ -483,11 +488,28 @@ void taskPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput&
   } else {
     bottom = doneTargets(b, l, input.done_asked) - l.pad;
   }
-  y = b.block(x, y,
-              "Task " + std::to_string(state.position().order + 1) + " of " +
-                  std::to_string(state.taskCount()) + ": " + task->title,
-              b.body(), l.wrap, y + 2.6f * b.body()) +
-      0.6f * b.body();
+  // "Task 2 of 4" over the task's own title, which keeps to one line when it can (a title
+  // such as "Cloud 2: cloud photograph 1" wrapped after "Task 2 of 4: " left its number alone
+  // on the second line).
+  const std::string order = "Task " + std::to_string(state.position().order + 1) + " of " +
+                            std::to_string(state.taskCount());
+  b.text(x, y, order, b.small(), kStudyHintColour);
+  y += b.size(order, b.small(), 0.0f)[1] + 0.25f * b.small();
+  const float title_size = b.fit(task->title, b.body(), 0.0f, 1.5f * b.body(), l.wrap);
+  if (b.size(task->title, title_size, 0.0f)[0] <= l.wrap) {
+    b.text(x, y, task->title, title_size);
+    y += b.size(task->title, title_size, 0.0f)[1];
+  } else {
+    y = b.block(x, y, task->title, title_size, l.wrap, y + 2.6f * b.body());
+  }
+  y += 0.5f * b.body();
+  if (input.saved_task > 0) {
+    // The task before this one, saved: said here for a few seconds.
+    const StudyWords saved = studyTaskSavedText(input.saved_task, input.saved_pending);
+    y = b.block(x, y, saved.en + " " + saved.zh, b.small(), l.wrap, y + 2.4f * b.small(),
+                kSavedColour) +
+        0.5f * b.small();
+  }
   // What to do and how it ends, under the picture; the picture takes the room left.
   const std::string how =
       "Paint a cloud like the picture. It is saved for you when you tap \"I'm done\" or when "
@@ -647,11 +669,19 @@ void studyTextEstimate(const UiLabel& label, float rect[4]) {
   rect[3] = label.y + em * float(lines);
 }
 
+StudyWords studyTaskSavedText(int task, bool pending) {
+  const Bilingual& words = pending ? kTaskKeptText : kTaskSavedText;
+  char en[96], zh[96];
+  std::snprintf(en, sizeof en, words.en, task);
+  std::snprintf(zh, sizeof zh, words.zh, task);
+  return {en, zh};
+}
+
 std::string studyPageText(const StudyProtocol& p) {
   std::string text;
-  for (const Bilingual& b :
-       {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText, kDoneAskText,
-        kDoneYesText, kKeepPaintingText, kTimeUpText, kFinishingText})
+  for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
+                             kDoneAskText, kDoneYesText, kKeepPaintingText, kTimeUpText,
+                             kFinishingText, kTaskSavedText, kTaskKeptText})
     text += b.zh;
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;
@@ -686,7 +716,14 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
                          int height) {
   StudyPage page;
   PageBuilder b(&page, input, width, height);
-  b.frame(input.storage_warning, state.waitingFor(input.now_ns));
+  // A task that just ended is said on the page after it: in the task panel when a task follows,
+  // else at the head of the foot line.
+  std::string foot = state.waitingFor(input.now_ns);
+  if (input.saved_task > 0 && state.stage() != StudyStageKind::kTask) {
+    const StudyWords saved = studyTaskSavedText(input.saved_task, input.saved_pending);
+    foot = saved.en + " " + saved.zh + "  " + foot;
+  }
+  b.frame(input.storage_warning, foot);
   if (isPaintingStage(state.stage())) {
     if (!input.painter_menu_open) paintingPanel(b, state, input);
   } else {

@@ -90,7 +90,11 @@ struct StudyPageInput {
   int64_t now_ns = 0;
   bool painter_menu_open = false;  // the painter's pen menu is open: the panel steps aside
   bool done_asked = false;         // "I'm done" was tapped: the panel asks to confirm
-  int keyboard_page = 0;           // the on-screen keyboard's page (kKeyboard*)
+  // The task that just ended (its number in the participant's order, from 1; 0: none), said
+  // on the next page for a few seconds: saved, or kept and still being written (`pending`).
+  int saved_task = 0;
+  bool saved_pending = false;
+  int keyboard_page = 0;  // the on-screen keyboard's page (kKeyboard*)
   // The operator's warning that the session folder cannot be written (study_storage_watch.h),
   // shown over every page; "" when writing works.
   std::string storage_warning;
@@ -108,6 +112,13 @@ inline constexpr int kKeyboardLower = 0, kKeyboardUpper = 1, kKeyboardSymbols = 
 // chooser or pause veil over it when one is open.
 StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
                          int height);
+
+// What the next page says of the task that ended: "Task N saved." (or kept and being saved
+// when its files wait for the disk), English and Chinese.
+struct StudyWords {
+  std::string en, zh;
+};
+StudyWords studyTaskSavedText(int task, bool pending);
 
 // Every text the pages may show beyond Latin: their own Chinese and the protocol's texts (the
 // font atlas holds their characters).

@@ -88,6 +88,8 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
   } else {
     paint_->attachPen(pen, &session);
   }
+  paint_->setSaveWords([this](const std::string&) { return saveWords(); },
+                       "您的云已保存任务教程自由绘画第次（），。");
   now_ns_ = options.resumed ? options.start_ns : options.info.anchor_monotonic_ns;
   circles_shown_ = options.paint.show_circles_overlay;
   last_stage_ = state_.stage();
@@ -283,6 +285,7 @@ void StudyRunScreen::enterStage(int64_t t_ns) {
   keyboard_page_ = kKeyboardLower;
   pressed_.reset();
   done_asked_ = false;
+  saves_in_stage_ = 0;
   if (state_.stage() == StudyStageKind::kTask) {
     if (!options_.replay_view) setUpTask(t_ns);  // a replay has the setup in its journal
     std::string error;
@@ -342,7 +345,69 @@ void StudyRunScreen::saveTask(int64_t t_ns) {
   if (task)
     for (const std::string& file : task_files_.pendingFiles())
       if (file.rfind("tasks/" + task->id + ".", 0) == 0) pending.push_back(file);
+  // The participant reads it on the next page for a few seconds; the operator in the log.
+  saved_task_ = state_.position().order + 1;
+  saved_pending_ = !pending.empty();
+  saved_until_ns_ = now_ns_ + kSavedNoticeNs;
+  std::string files;
+  for (const std::string& file : saved) files += (files.empty() ? "" : ", ") + file;
+  std::fprintf(stderr, "cloudbrush study: %s (%s): %s%s%s\n",
+               studyTaskSavedText(saved_task_, saved_pending_).en.c_str(),
+               task ? task->id.c_str() : "-", files.empty() ? "no files" : files.c_str(),
+               pending.empty() ? "" : "; waiting for the disk: ",
+               pending.empty() ? "" : std::to_string(pending.size()).append(" file(s)").c_str());
   state_.closeStage(now_ns_, saved, pending);
+}
+
+void StudyRunScreen::writeTaskSoFar() {
+  const StudyTask* task = state_.task();
+  const Volume& v = session_.volume();
+  if (!task || cloud_empty_ || session_.engine().inStroke() || now_ns_ < so_far_due_ns_ ||
+      v.generation() == so_far_generation_)
+    return;
+  if (std::find(task->save.begin(), task->save.end(), TaskSaveKind::kVolumeVdb) ==
+          task->save.end() &&
+      std::find(task->save.begin(), task->save.end(), TaskSaveKind::kVolumeRaw) == task->save.end())
+    return;
+  so_far_generation_ = v.generation();
+  so_far_due_ns_ = now_ns_ + kSoFarNs;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> written;
+  std::string note, error;
+  if (!task_files_.writeVolumeSoFar(task->id, v, &written, &note, &error)) {
+    // Not kept: the task's end writes them (and keeps them when the disk still fails).
+    std::fprintf(stderr, "cloudbrush study: task %s so far not written: %s\n", task->id.c_str(),
+                 error.c_str());
+    return;
+  }
+  std::string files;
+  for (const std::string& file : written) files += (files.empty() ? "" : ", ") + file;
+  std::fprintf(
+      stderr, "cloudbrush study: task %s so far: %s (%.0f ms)\n", task->id.c_str(), files.c_str(),
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+std::string StudyRunScreen::saveWords() {
+  // The answer to the painter's Save in a study: which stage's cloud, how many saves so far;
+  // the folder and file name go to the log only (PaintScreen::saveCloud).
+  ++saves_in_stage_;
+  const std::string n = std::to_string(saves_in_stage_);
+  std::string where_en, where_zh;
+  switch (state_.stage()) {
+    case StudyStageKind::kTask: {
+      const std::string task = std::to_string(state_.position().order + 1);
+      where_en = "task " + task, where_zh = "任务 " + task;
+      break;
+    }
+    case StudyStageKind::kTutorial:
+      where_en = "tutorial", where_zh = "教程";
+      break;
+    default:
+      where_en = "free drawing", where_zh = "自由绘画";
+      break;
+  }
+  return "Your cloud is saved (" + where_en + ", save " + n + "). / 您的云已保存（" + where_zh +
+         "，第 " + n + " 次保存）。";
 }
 
 bool StudyRunScreen::renderTaskFrame(ImageRgbaF* frame, std::string* error) {
@@ -734,6 +799,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
       recordStepProgress();
       state_.observeTutorial(tutorialState(), now_ns_);
     }
+    if (state_.stage() == StudyStageKind::kTask && !state_.closing()) writeTaskSoFar();
     if (state_.closing() && !session_.engine().inStroke()) {
       if (state_.stage() == StudyStageKind::kTask)
         saveTask(now_ns_);
@@ -767,6 +833,10 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
   if (ui_) input.measure = [ui = ui_.get()](const UiLabel& l, float r[4]) { ui->labelRect(l, r); };
   input.painter_menu_open = isPaintingStage(state_.stage()) && paint_->menuOpen();
   input.done_asked = done_asked_;
+  if (now_ns_ < saved_until_ns_) {
+    input.saved_task = saved_task_;
+    input.saved_pending = saved_pending_;
+  }
   input.image_aspect = state_.stage() == StudyStageKind::kTask ? image_aspect_ : 0.0f;
   if (state_.stage() == StudyStageKind::kTutorial) {
     const TutorialState s = tutorialState();

@@ -121,6 +121,13 @@ class StudyRunScreen : public Screen {
   void enterStage(int64_t t_ns);
   void setUpTask(int64_t t_ns);
   void saveTask(int64_t t_ns);
+  // The running task's volume files written as it goes: at a stroke's end when the cloud
+  // changed, at most every kSoFarNs (a runner killed mid-task leaves them; a resumed one writes
+  // them at once from the replayed journal). The end frame (EXR, PNG) is rendered at the end.
+  void writeTaskSoFar();
+  static constexpr int64_t kSoFarNs = 2'000'000'000;
+  uint64_t so_far_generation_ = 0;
+  int64_t so_far_due_ns_ = 0;
   bool renderTaskFrame(ImageRgbaF* frame, std::string* error);
   void retryTaskFiles();
   void writeAnswers();
@@ -174,6 +181,14 @@ class StudyRunScreen : public Screen {
   bool panel_holds_pen_ = false;  // painting stage: the pen is over the panel's targets
   float form_pen_x_ = 0.0f, form_pen_y_ = 0.0f;
   bool done_asked_ = false;  // "I'm done" tapped: the panel asks to confirm
+  // The task that ended last (its number in the order, from 1), said on the next page until
+  // `saved_until_ns_`; `saved_pending_` while its files wait for the disk.
+  int saved_task_ = 0;
+  bool saved_pending_ = false;
+  int64_t saved_until_ns_ = 0;
+  static constexpr int64_t kSavedNoticeNs = 5'000'000'000;
+  int saves_in_stage_ = 0;  // the painter's Saves in this stage (the save's answer counts them)
+  std::string saveWords();
 
   // The stage the screen set up last (to notice changes)
   StudyStageKind last_stage_ = StudyStageKind::kDone;

@@ -121,6 +121,12 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
   // formats); participant 2 saved none.
   EXPECT_EQ(readText(bids + "/sourcedata/sub-C01/ses-1/saved/" + saved_name), saved_bytes);
   EXPECT_FALSE(fs::exists(bids + "/sourcedata/sub-C02"));
+  // --out carries the same copy (one code path, app/study/saved_clouds.h), under the session id.
+  EXPECT_EQ(readText(csv + "/saved/" + ids[0] + "/" + saved_name), saved_bytes);
+  EXPECT_FALSE(fs::exists(csv + "/saved/" + ids[1]));
+  EXPECT_NE(exported.out.find(csv + "/saved/" + ids[0] + "/" + saved_name), std::string::npos)
+      << "the copy is named among the files written\n"
+      << exported.out;
   for (const char* file : {"dataset_description.json", "README", "participants.json"})
     EXPECT_TRUE(fs::exists(bids + "/" + file)) << file;
   const Table participants = readTable(bids + "/participants.tsv", '\t');

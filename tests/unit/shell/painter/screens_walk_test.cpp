@@ -271,6 +271,8 @@ class FirstTimePainter : public ::testing::Test {
     walk_->keys("ctrl+s");
     EXPECT_TRUE(contains(screen_->toast(), "Saved as cloud-")) << screen_->toast();
     EXPECT_TRUE(contains(screen_->toast(), "已保存")) << screen_->toast();
+    // The painter's answer says where (a study's says which cloud, the folder only in the log).
+    EXPECT_TRUE(contains(screen_->toast(), " in " + dir_ + "/state")) << screen_->toast();
     const std::string saved = std::filesystem::path(screen_->lastSaved()).filename().string();
     EXPECT_TRUE(std::regex_match(saved, std::regex(R"(cloud-\d{4}-\d\d-\d\d_\d\d-\d\d-\d\d\.vol)")))
         << saved;

@@ -9,12 +9,13 @@
 // - the task's panel: its title, its picture, what to do and that the cloud is saved for the
 //   participant, "I'm done", the countdown (10:00, then red in the last minute), the foot line;
 // - three strokes paint (the status line names the recorded pen);
-// - the save as Appendix B asks, with the pen through the painter's menu: the toast names the
-//   file, which lies in the session folder's saved/, in a box clear of the task's panel;
+// - the save as Appendix B asks, with the pen through the painter's menu: the toast says which
+//   cloud was saved ("task 1, save 1"; no folder), the file lies in the session folder's saved/,
+//   the toast's box clear of the task's panel;
 // - time up while the pen is down: the panel says time is up and to lift the pen (no "I'm
 //   done" any more), the countdown shows 0:00 in red; lifted, the stroke is not lost, the stage
 //   closes by itself, the task's files are written, trials.csv says `time-up`, and the next task's
-//   page follows at 10:00.
+//   page follows at 10:00, saying "Task 1 saved." for five seconds; task titles on one line.
 //
 // CB_KEEP_FRAMES=DIR writes each step as appendix_b_NN_<step>.png for looking.
 #include <gtest/gtest.h>
@@ -35,6 +36,7 @@
 
 #include "tests/support/short_study.h"
 #include "tests/support/test_display.h"
+#include "tests/unit/shell/study/study_screen_rig.h"
 
 namespace cb {
 namespace {
@@ -63,38 +65,23 @@ const std::vector<SyntheticStroke> kStrokes = {
     strokeAcross({0.45f * kW, 0.35f * kH}, {0.55f * kW, 0.42f * kH}),
     strokeAcross({0.55f * kW, 0.4f * kH}, {0.65f * kW, 0.41f * kH})};
 
-class Walk {
+// The runner on a test display (study_screen_rig.h) with the recorded pen.
+class Walk : public test::StudyScreenRig {
  public:
-  std::string dir, folder;
-  std::unique_ptr<Display> display;
-  VolumeRenderer renderer;
-  std::unique_ptr<PaintSession> session;
-  JournalWriter journal;
-  PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  std::unique_ptr<ReplayPenSource> pen;
-  StudyProtocol protocol = walkProtocol();
-  std::unique_ptr<StudyRunState> state;
-  std::unique_ptr<StudyRunScreen> screen;
-  int64_t now = 50 * kSecond;
-  long frame_count = 0;
-  int kept = 0;
   std::vector<size_t> stroke_samples;
-
-  ~Walk() {
-    if (!dir.empty()) std::filesystem::remove_all(dir);
-  }
 
   // The recorded pen: a Device record and kStrokes, 200 samples a second.
   void recordPen(const std::string& path) {
     JournalWriter writer;
     ASSERT_TRUE(writer.open(path));
+    const PenDeviceInfo device = syntheticTablet(kW, kH);
     PaintSession recorder({kW, kH}, loadDefaultBrushConfig(),
                           loadMappingConfig(configFile("mapping.toml")));
     recorder.recordTo(&writer, 0);
-    recorder.setDevice(tablet, 0);
+    recorder.setDevice(device, 0);
     int64_t t = kSecond;
     for (const SyntheticStroke& s : kStrokes) {
-      const std::vector<PenSample> samples = syntheticPenSamples(s, tablet, kW, kH, 200.0, t);
+      const std::vector<PenSample> samples = syntheticPenSamples(s, device, kW, kH, 200.0, t);
       for (const PenSample& sample : samples) writer.appendPenSample(sample);
       stroke_samples.push_back(samples.size());
       t = samples.back().t_ns + 200'000'000;
@@ -102,89 +89,28 @@ class Walk {
   }
 
   void open() {
-    dir = (std::filesystem::temp_directory_path() / ("cb_appendix_b_" + std::to_string(::getpid())))
-              .string();
-    std::filesystem::remove_all(dir);
-    folder = dir + "/data/P01-walk";
-    std::filesystem::create_directories(folder);
+    prepare("cb_appendix_b_");
     ASSERT_NO_FATAL_FAILURE(recordPen(dir + "/pen.cbj"));
-    std::string error;
-    display = test::openTestDisplay(kW, kH, &error);
-    ASSERT_TRUE(display) << error;
-    ASSERT_TRUE(renderer.init(&error)) << error;
-    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
-                                             loadMappingConfig(configFile("mapping.toml")));
-    session->setQuietMapping(true);
-    ASSERT_TRUE(journal.open(folder + "/session.cbj"));
-    session->recordTo(&journal, now);
-    ReplayOptions replay;
-    replay.realtime = false;
-    replay.batch = 1;
-    pen = std::make_unique<ReplayPenSource>(dir + "/pen.cbj", replay);
-    state = std::make_unique<StudyRunState>(protocol, 1, now);
-    StudyRunOptions options;
-    options.folder = folder;
-    options.info.protocol_name = protocol.name;
-    options.info.participant_id = state->participantId();
-    options.info.participant_number = 1;
-    options.info.anchor_monotonic_ns = now;
-    options.paint.config_dir = dir + "/config";
-    options.paint.state_dir = dir + "/state";
-    screen = std::make_unique<StudyRunScreen>(*display, renderer, *session, pen.get(), &journal,
-                                              *state, options);
+    test::StudyRigOptions options;
+    options.pen_journal = dir + "/pen.cbj";
+    options.keep_prefix = "appendix_b_";
+    options.numbered = true;
+    options.adjust = [](StudyRunOptions& run) { run.end_seconds = 8.0; };
+    ASSERT_NO_FATAL_FAILURE(start(walkProtocol(), options));
   }
 
-  // Frames as FrameLoop steps them; `samples` pen samples are handed in, 3 a frame, first.
-  void frames(int n, int64_t step_ns = kFrame, std::vector<PenSample> samples = {}) {
-    for (int i = 0; i < n || !samples.empty(); ++i) {
-      now += step_ns;
-      const size_t take = std::min<size_t>(3, samples.size());
-      screen->onPenSamples(std::vector<PenSample>(samples.begin(), samples.begin() + long(take)));
-      samples.erase(samples.begin(), samples.begin() + long(take));
-      FrameContext frame{*display, kW, kH, frame_count, now, double(step_ns) / 1e9};
-      ASSERT_EQ(screen->update(frame), "");
-      std::string error;
-      ASSERT_TRUE(screen->draw(frame, &error)) << error;
-      last = readFramebufferRgba8(display->framebuffer(), kW, kH);
-      ASSERT_TRUE(display->present(&error)) << error;
-      ++frame_count;
-    }
+  // The label that is exactly `text` is drawn on one line (measured with the runner's font,
+  // whose line height is at most 1.5 times the size).
+  void expectOneLine(const std::string& text) const {
+    const UiLabel* l = nullptr;
+    for (const UiLabel& c : screen->page().labels)
+      if (c.text == text) l = &c;
+    ASSERT_TRUE(l) << "no label '" << text << "': " << words();
+    float r[4];
+    screen->paintScreen().ui()->labelRect(*l, r);
+    EXPECT_LT(r[3] - r[1], 1.5f * l->size_px) << "'" << text << "' wraps";
+    EXPECT_LE(r[2], float(kW)) << "'" << text << "' runs off the screen";
   }
-  // The recorded pen's next `count` samples (one stroke), played with their own pace.
-  void stroke(size_t count) {
-    std::vector<PenSample> samples;
-    for (size_t i = 0; i < count; ++i) pen->poll(0, samples);
-    frames(0, kFrame, samples);
-  }
-  void tapAt(float x, float y) {
-    frames(2, kFrame, test::penTapSamples(tablet, x, y, kW, kH, now));
-  }
-  void tap(StudyTargetAction action) {
-    const StudyTarget* t = screen->page().find(action);
-    ASSERT_TRUE(t) << "no target " << int(action)
-                   << "; the page waits for: " << state->waitingFor(now);
-    tapAt(0.5f * (t->x0 + t->x1), 0.5f * (t->y0 + t->y1));
-  }
-  // A label of the runner's page containing `part`, or null.
-  const UiLabel* label(const std::string& part) const {
-    for (const UiLabel& l : screen->page().labels)
-      if (l.text.find(part) != std::string::npos) return &l;
-    return nullptr;
-  }
-  bool shown(const std::string& part) const { return label(part) != nullptr; }
-  std::string words() const {
-    std::string all;
-    for (const UiLabel& l : screen->page().labels) all += "[" + l.text + "] ";
-    return all;
-  }
-  void keep(const std::string& what) {
-    if (const char* out = std::getenv("CB_KEEP_FRAMES")) {
-      char name[128];
-      std::snprintf(name, sizeof name, "/appendix_b_%02d_%s.png", ++kept, what.c_str());
-      writePng(std::string(out) + name, last);
-    }
-  }
-  ImageRgba8 last;
 };
 
 TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
@@ -210,7 +136,9 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const StudyTask* task = w.state->task();
   ASSERT_TRUE(task);
   w.keep("task_start");
-  EXPECT_TRUE(w.shown("Task 1 of 4: " + task->title)) << w.words();
+  EXPECT_TRUE(w.shown("Task 1 of 4")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.expectOneLine(task->title));
+  EXPECT_FALSE(w.shown("saved.")) << "no task ended before the first: " << w.words();
   EXPECT_TRUE(w.shown("Paint a cloud like the picture.")) << w.words();
   EXPECT_TRUE(w.shown("saved for you when you tap \"I'm done\" or when the time is up"))
       << w.words();
@@ -224,7 +152,7 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
 
   // Three strokes with the recorded pen, a minute apart on the task's clock.
   for (size_t s = 0; s < kStrokes.size(); ++s) {
-    ASSERT_NO_FATAL_FAILURE(w.stroke(w.stroke_samples[s]));
+    ASSERT_NO_FATAL_FAILURE(w.recordedStroke(w.stroke_samples[s]));
     w.frames(3);
     w.frames(1, 60 * kSecond);
     EXPECT_EQ(w.session->strokesMapped(), s + 1);
@@ -250,9 +178,13 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const std::string saved = w.screen->paintScreen().lastSaved();
   ASSERT_NE(saved, "");
   EXPECT_EQ(std::filesystem::path(saved).parent_path(), std::filesystem::path(w.folder + "/saved"));
-  EXPECT_NE(w.screen->paintScreen().toast().find(std::filesystem::path(saved).filename().string()),
-            std::string::npos)
-      << w.screen->paintScreen().toast();
+  // The participant reads which cloud was saved, not where: the folder is the log's.
+  const std::string said = w.screen->paintScreen().toast();
+  EXPECT_NE(said.find("Your cloud is saved (task 1, save 1)."), std::string::npos) << said;
+  EXPECT_NE(said.find("您的云已保存"), std::string::npos) << said;
+  EXPECT_EQ(said.find(w.folder), std::string::npos) << "no folder in the toast: " << said;
+  EXPECT_EQ(said.find('/' + std::filesystem::path(saved).filename().string()), std::string::npos)
+      << said;
   const float* toast = w.screen->paintScreen().ui()->toastRect();
   EXPECT_GE(toast[0], 0.0f) << "the save's answer on the screen";
   EXPECT_LE(toast[2], kStudyPanelLeft * kW) << "the save's answer clear of the task's panel";
@@ -294,6 +226,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   w.frames(0, kFrame, up);
   w.frames(30);
   w.keep("next_task");
+  // The next task's panel says the last one was saved, for a few seconds.
+  EXPECT_TRUE(w.shown("Task 1 saved. 任务 1 已保存。")) << w.words();
+  EXPECT_TRUE(w.shown("Task 2 of 4")) << w.words();
+  ASSERT_NO_FATAL_FAILURE(w.expectOneLine(w.state->task()->title));
   const std::vector<TrialRow> trials = trialsOfSession(loadSessionTrace(w.folder + "/session.cbj"));
   ASSERT_GE(trials.size(), 1u);
   EXPECT_EQ(trials[0].end_reason, "time-up") << closing;
@@ -301,8 +237,12 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   for (const char* ext : {".vdb", ".cbvol", ".exr", ".png"})
     EXPECT_TRUE(std::filesystem::exists(w.folder + "/tasks/" + task->id + ext)) << ext;
   ASSERT_EQ(w.state->stage(), StudyStageKind::kTask) << w.state->waitingFor(w.now);
-  EXPECT_TRUE(w.shown("Task 2 of 4: " + w.state->task()->title)) << w.words();
   EXPECT_TRUE(w.shown("Time left 10:00") || w.shown("Time left 9:5")) << w.words();
+  EXPECT_EQ(w.quit, "") << "the session goes on";
+  w.frames(1, 6 * kSecond);  // the notice's five seconds are over
+  w.frames(1);
+  w.keep("next_task_later");
+  EXPECT_FALSE(w.shown("Task 1 saved.")) << w.words();
   std::printf("closing page said: %s\n", closing.c_str());
 }
 

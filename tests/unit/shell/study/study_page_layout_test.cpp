@@ -4,7 +4,8 @@
 // step, free drawing, a task (with a wide and a tall picture, "I'm done" and its question, the
 // last minute, time up), each demographic field (a refused answer shown), each questionnaire item,
 // each free-text question, the end (thanks, declined, stopped), the operator's chooser and the
-// pause veil. On each page:
+// pause veil; the task that ended before, said saved (or kept) on the next task's panel and on
+// the first demographics page's foot line. On each page:
 // - every word and target lies on the screen;
 // - no two words overlap, no two targets overlap, a target's words lie inside it and no other
 //   words touch a target;
@@ -222,7 +223,11 @@ TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
   for (int task = 0; state.stage() == StudyStageKind::kTask; ++task) {
     const std::string n = std::to_string(task + 1);
     input.image_aspect = task % 2 ? 0.75f : 1.5f;  // a tall and a wide picture
+    input.saved_task = task;  // the task before, said saved (none before the first)
     check(state, input, "task_" + n);
+    input.saved_pending = true;  // its files wait for the disk
+    check(state, input, "task_" + n + "_saved_pending");
+    input.saved_task = 0, input.saved_pending = false;
     input.done_asked = true;
     check(state, input, "task_" + n + "_done_asked");
     input.done_asked = false;
@@ -237,7 +242,9 @@ TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
 
   ASSERT_EQ(state.stage(), StudyStageKind::kDemographics);
   for (int f = 0; state.stage() == StudyStageKind::kDemographics; ++f) {
+    input.saved_task = f == 0 ? int(protocol_.tasks.size()) : 0;  // the last task, saved
     check(state, input, "demographics_" + std::to_string(f + 1));
+    input.saved_task = 0;
     input.typed = "12";
     input.message = "Please give a whole number from 16 to 99.";
     check(state, input, "demographics_" + std::to_string(f + 1) + "_refused");

@@ -35,6 +35,7 @@
 
 #include "tests/support/file_text.h"
 #include "tests/support/test_display.h"
+#include "tests/unit/shell/study/study_screen_rig.h"
 
 namespace cb {
 namespace {
@@ -43,118 +44,6 @@ constexpr int kW = 640, kH = 360;
 constexpr int64_t kSecond = 1'000'000'000;
 
 using cb::test::readText;
-
-// One raw sample of the synthetic tablet at screen pixel (x, y).
-PenSample sampleAt(const PenDeviceInfo& tablet, float x, float y, int64_t t_ns, float pressure,
-                   bool tip, bool proximity) {
-  PenSample s;
-  s.t_ns = t_ns;
-  s.x_mm = double(x) * double(tablet.x_max) / tablet.x_res / kW;
-  s.y_mm = double(y) * double(tablet.y_max) / tablet.y_res / kH;
-  s.x_raw = int32_t(std::lround(s.x_mm * tablet.x_res));
-  s.y_raw = int32_t(std::lround(s.y_mm * tablet.y_res));
-  s.pressure_raw = int32_t(std::lround(pressure * float(tablet.pressure_max)));
-  s.pressure = float(s.pressure_raw) / float(tablet.pressure_max);
-  s.distance_raw = tip ? 0 : 10;
-  s.distance = float(s.distance_raw) / float(tablet.distance_max);
-  s.buttons = tip ? kPenTip : 0u;
-  s.tool = proximity ? PenTool::kPen : PenTool::kNone;
-  s.tool_id = proximity ? 0x802u : 0u;
-  s.in_proximity = proximity;
-  return s;
-}
-
-// Drives the screen as FrameLoop does, with the test's clock.
-class Driver {
- public:
-  Driver(Display& display, StudyRunScreen& screen, const PenDeviceInfo& tablet, int64_t t0)
-      : display_(display), screen_(screen), tablet_(tablet), now_(t0) {}
-
-  void frames(int n, int64_t step_ns = 16'666'667) {
-    for (int i = 0; i < n && quit_.empty(); ++i) {
-      now_ += step_ns;
-      FrameContext frame{display_, kW, kH, frame_, now_, double(step_ns) / 1e9};
-      screen_.onPenSamples({});
-      quit_ = screen_.update(frame);
-      if (!quit_.empty()) return;
-      std::string error;
-      ASSERT_TRUE(screen_.draw(frame, &error)) << error;
-      if (!keep_.empty()) {
-        if (const char* dir = std::getenv("CB_KEEP_FRAMES"))
-          writePng(std::string(dir) + "/study_" + keep_ + ".png",
-                   readFramebufferRgba8(display_.framebuffer(), kW, kH));
-        keep_.clear();
-      }
-      ASSERT_TRUE(display_.present(&error)) << error;
-      ++frame_;
-    }
-  }
-  void keep(const std::string& name) {
-    keep_ = name;
-    frames(1);
-  }
-  void keys(const char* list) {
-    std::vector<DisplayEvent> events;
-    std::string error;
-    ASSERT_TRUE(parseKeyList(list, &events, &error)) << error;
-    for (const DisplayEvent& e : events) {
-      const std::optional<Command> command = commandFor(e);
-      ASSERT_TRUE(command) << list;
-      screen_.onCommand(*command, now_);
-      frames(1);
-    }
-    frames(1);
-  }
-  void pen(const std::vector<PenSample>& samples) {
-    for (size_t i = 0; i < samples.size(); i += 3) {
-      std::vector<PenSample> batch(samples.begin() + long(i),
-                                   samples.begin() + long(std::min(samples.size(), i + 3)));
-      screen_.onPenSamples(batch);
-      frames(1);
-    }
-    frames(3);
-  }
-  // A pen tap in the middle of a target of the page last drawn.
-  void tap(StudyTargetAction action, int value = -1) {
-    const StudyTarget* t = screen_.page().find(action, value);
-    ASSERT_TRUE(t) << "no target " << int(action) << " value " << value << " on the page";
-    tapAt(0.5f * (t->x0 + t->x1), 0.5f * (t->y0 + t->y1));
-  }
-  void tapKey(const std::string& key) {
-    for (const StudyTarget& t : screen_.page().targets)
-      if (t.action == StudyTargetAction::kKey && t.text == key)
-        return tapAt(0.5f * (t.x0 + t.x1), 0.5f * (t.y0 + t.y1));
-    FAIL() << "no key " << key;
-  }
-  void tapAt(float x, float y) {
-    std::vector<PenSample> s;
-    int64_t t = now_;
-    const int64_t dt = 5'000'000;
-    for (int i = 0; i < 3; ++i) s.push_back(sampleAt(tablet_, x, y, t += dt, 0.0f, false, true));
-    for (int i = 0; i < 4; ++i) s.push_back(sampleAt(tablet_, x, y, t += dt, 0.6f, true, true));
-    for (int i = 0; i < 2; ++i) s.push_back(sampleAt(tablet_, x, y, t += dt, 0.0f, false, true));
-    s.push_back(sampleAt(tablet_, x, y, t += dt, 0.0f, false, false));
-    pen(s);
-  }
-  void stroke(const SyntheticStroke& stroke) {
-    pen(syntheticPenSamples(stroke, tablet_, kW, kH, 200.0, now_));
-  }
-  bool labelShown(const std::string& part) const {
-    for (const UiLabel& l : screen_.page().labels)
-      if (l.text.find(part) != std::string::npos) return true;
-    return false;
-  }
-  const std::string& quit() const { return quit_; }
-  int64_t now() const { return now_; }
-
- private:
-  Display& display_;
-  StudyRunScreen& screen_;
-  PenDeviceInfo tablet_;
-  int64_t now_;
-  long frame_ = 0;
-  std::string keep_, quit_;
-};
 
 // The bundled protocol, shortened (see the file comment).
 StudyProtocol shortThesisProtocol() {
@@ -170,76 +59,29 @@ StudyProtocol shortThesisProtocol() {
   return p;
 }
 
-struct Rig {
-  std::string dir, folder;
-  std::unique_ptr<Display> display;
-  VolumeRenderer renderer;
+// The runner on a 640x360 test display (study_screen_rig.h) with the shortened protocol;
+// `protocol` may be changed before open().
+struct Rig : test::StudyScreenRig {
+  Rig() { protocol = shortThesisProtocol(); }
   MappingConfig mapping = loadMappingConfig(configFile("mapping.toml"));
   BrushConfig brush = loadDefaultBrushConfig();
-  std::unique_ptr<PaintSession> session;
-  JournalWriter journal;
-  PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  std::unique_ptr<ReplayPenSource> pen;
-  StudyProtocol protocol = shortThesisProtocol();
-  std::unique_ptr<StudyRunState> state;
-  std::unique_ptr<StudyRunScreen> screen;
   int64_t t0 = 50 * kSecond;
 
   bool open(const std::string& name) {
-    dir = (std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()))).string();
-    std::filesystem::remove_all(dir);
-    folder = dir + "/data/P01-test";
-    std::filesystem::create_directories(folder);
-    std::filesystem::create_directories(dir + "/state");
-    std::string error;
-    display = test::openTestDisplay(kW, kH, &error);
-    EXPECT_TRUE(display) << error;
-    if (!display) return false;
-    EXPECT_TRUE(renderer.init(&error)) << error;
-    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, brush, mapping);
-    session->setQuietMapping(true);
-    EXPECT_TRUE(journal.open(folder + "/session.cbj"));
-    session->recordTo(&journal, t0);
-    // The pen: the synthetic tablet, connected (the test hands its samples to the screen).
-    std::vector<JournalRecord> records(2);
-    records[0].type = JournalRecordType::kDevice;
-    records[0].payload = encodeDeviceInfo(tablet);
-    records[1].type = JournalRecordType::kPenSample;
-    records[1].payload = encodePenSample(sampleAt(tablet, 1, 1, 0, 0, false, false));
-    ReplayOptions replay;
-    replay.realtime = false;
-    pen = std::make_unique<ReplayPenSource>(records, replay);
-    state = std::make_unique<StudyRunState>(protocol, 1, t0);
-    StudyRunOptions options;
-    options.folder = folder;
-    options.end_seconds = 1.0;
-    options.info.protocol_name = protocol.name;
-    options.info.protocol_version = protocol.version;
-    options.info.participant_id = state->participantId();
-    options.info.participant_number = 1;
-    options.info.anchor_monotonic_ns = t0;
-    options.info.display_platform = display->platformName();
-    options.info.display_width = kW;
-    options.info.display_height = kH;
-    options.paint.config_dir = dir + "/config";
-    options.paint.state_dir = dir + "/state";
-    screen = std::make_unique<StudyRunScreen>(*display, renderer, *session, pen.get(), &journal,
-                                              *state, options);
-    return true;
-  }
-  std::vector<std::string> markers() {
-    journal.sync();
-    std::vector<std::string> out;
-    for (const JournalRecord& r : readJournal(folder + "/session.cbj").records)
-      if (r.type == JournalRecordType::kMarker) out.emplace_back(r.text());
-    return out;
-  }
-  std::vector<std::string> syncMarkers() {
-    journal.sync();
-    std::vector<std::string> out;
-    for (const JournalRecord& r : readJournal(folder + "/session.cbj").records)
-      if (r.type == JournalRecordType::kSync) out.emplace_back(r.text());
-    return out;
+    prepare(name);
+    settle_frames = 3;
+    test::StudyRigOptions options;
+    options.width = kW, options.height = kH;
+    options.keep_prefix = "study_";
+    options.adjust = [this](StudyRunOptions& run) {
+      run.info.protocol_version = protocol.version;
+      run.info.display_platform = display->platformName();
+      run.info.display_width = kW;
+      run.info.display_height = kH;
+    };
+    now = t0;
+    start(protocol, options);
+    return !::testing::Test::HasFatalFailure();
   }
 };
 
@@ -252,74 +94,73 @@ bool anyContains(const std::vector<std::string>& lines, const std::string& part)
 TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   Rig rig;
   if (!rig.open("cb_study_run_")) return;
-  Driver d(*rig.display, *rig.screen, rig.tablet, rig.t0);
   StudyRunState& state = *rig.state;
 
-  d.keep("consent");
-  EXPECT_TRUE(d.labelShown("I agree"));
-  EXPECT_TRUE(d.labelShown("Waiting for your consent"));
-  d.tap(StudyTargetAction::kAgree);
+  rig.keep("consent");
+  EXPECT_TRUE(rig.shown("I agree"));
+  EXPECT_TRUE(rig.shown("Waiting for your consent"));
+  rig.tap(StudyTargetAction::kAgree);
   ASSERT_EQ(state.stage(), StudyStageKind::kParticipant);
   EXPECT_TRUE(rig.session->penCaptured()) << "the form holds the pen: taps never paint";
   EXPECT_EQ(rig.session->strokesMapped(), 0u);
-  d.keep("participant");
-  EXPECT_TRUE(d.labelShown("P01"));
-  d.tap(StudyTargetAction::kContinue);
+  rig.keep("participant");
+  EXPECT_TRUE(rig.shown("P01"));
+  rig.tap(StudyTargetAction::kContinue);
   ASSERT_EQ(state.stage(), StudyStageKind::kIntroduction);
-  d.keep("introduction");
-  d.keys("space");
+  rig.keep("introduction");
+  rig.keys("space");
   ASSERT_EQ(state.stage(), StudyStageKind::kTutorial);
 
   // The tutorial: each step waits until the participant does it.
-  d.keep("tutorial");
-  EXPECT_TRUE(d.labelShown("Reset the camera"));
-  EXPECT_TRUE(d.labelShown("camera_view == reset (now none yet, not yet)"));
-  d.frames(3);
+  rig.keep("tutorial");
+  EXPECT_TRUE(rig.shown("Reset the camera"));
+  EXPECT_TRUE(rig.shown("camera_view == reset (now none yet, not yet)"));
+  rig.frames(3);
   EXPECT_EQ(state.tutorialStep(), 0) << "nothing done, nothing advances";
-  d.keys("r");  // the tutorial starts in Camera mode, where R acts
+  rig.keys("r");  // the tutorial starts in Camera mode, where R acts
   EXPECT_EQ(state.tutorialStep(), 1);
-  d.keys("3");
+  rig.keys("3");
   EXPECT_EQ(state.tutorialStep(), 1) << "Paint mode is not the Canvas mode asked for";
-  d.keys("2");
+  rig.keys("2");
   EXPECT_EQ(state.tutorialStep(), 2);
-  d.keys("3");
+  rig.keys("3");
   EXPECT_EQ(state.tutorialStep(), 3);
-  d.keys("b");
+  rig.keys("b");
   EXPECT_EQ(state.tutorialStep(), 4);
   EXPECT_EQ(rig.session->mode(), Mode::kPaint);
-  d.keep("tutorial_stroke_step");
-  d.stroke(referencePaintStrokes(kW, kH)[0]);
-  d.frames(2);
-  ASSERT_EQ(state.stage(), StudyStageKind::kTask) << state.waitingFor(d.now());
+  rig.keep("tutorial_stroke_step");
+  rig.stroke(referencePaintStrokes(kW, kH)[0]);
+  rig.frames(2);
+  ASSERT_EQ(state.stage(), StudyStageKind::kTask) << state.waitingFor(rig.now);
 
   // The task: an empty sky, the picture beside it, the countdown; one stroke, then time is up.
   EXPECT_EQ(state.task()->id, "cloud1");
-  d.frames(1);
-  d.keep("task");
-  EXPECT_TRUE(d.labelShown("Time left 1:00") || d.labelShown("Time left 0:5"))
+  rig.frames(1);
+  rig.keep("task");
+  EXPECT_TRUE(rig.shown("Time left 1:00") || rig.shown("Time left 0:5"))
       << "a one-minute countdown";
   EXPECT_GT(rig.screen->page().image[2], rig.screen->page().image[0]) << "the reference picture";
-  d.stroke(referencePaintStrokes(kW, kH)[1]);
+  rig.stroke(referencePaintStrokes(kW, kH)[1]);
   EXPECT_EQ(rig.session->strokesMapped(), 2u);
-  d.frames(1, 61 * kSecond);
-  d.frames(2);
-  ASSERT_EQ(state.stage(), StudyStageKind::kDemographics) << state.waitingFor(d.now());
+  rig.frames(1, 61 * kSecond);
+  rig.frames(2);
+  ASSERT_EQ(state.stage(), StudyStageKind::kDemographics) << state.waitingFor(rig.now);
 
   // Demographics on the on-screen keyboard: an age out of range is refused and said so.
-  d.tapKey("9");
-  d.tap(StudyTargetAction::kOk);
+  rig.tapKey("9");
+  rig.tap(StudyTargetAction::kOk);
   EXPECT_EQ(state.fieldIndex(), 0);
-  d.keep("demographics_refused");
-  EXPECT_TRUE(d.labelShown("whole number from 16 to 99"));
-  d.tap(StudyTargetAction::kBackspace);
-  d.tapKey("3");
-  d.tapKey("4");
-  d.tap(StudyTargetAction::kOk);
+  rig.keep("demographics_refused");
+  EXPECT_TRUE(rig.shown("whole number from 16 to 99"));
+  rig.tap(StudyTargetAction::kBackspace);
+  rig.tapKey("3");
+  rig.tapKey("4");
+  rig.tap(StudyTargetAction::kOk);
   ASSERT_EQ(state.fieldIndex(), 1);
-  d.tapKey("f");
-  d.keep("demographics_text");
-  d.tap(StudyTargetAction::kOk);
-  d.tap(StudyTargetAction::kSkipField);
+  rig.tapKey("f");
+  rig.keep("demographics_text");
+  rig.tap(StudyTargetAction::kOk);
+  rig.tap(StudyTargetAction::kSkipField);
   ASSERT_EQ(state.stage(), StudyStageKind::kQuestionnaire);
 
   // The questionnaire: one tap per item; item 5 skipped; the last is the lag item.
@@ -327,58 +168,58 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   ASSERT_EQ(items, 28u);
   for (size_t i = 0; i < items; ++i) {
     ASSERT_EQ(state.itemIndex(), int(i));
-    if (i == 0) d.keep("questionnaire");
+    if (i == 0) rig.keep("questionnaire");
     if (i == items - 1) {
-      d.keep("questionnaire_lag_item");
+      rig.keep("questionnaire_lag_item");
       std::string lag = rig.protocol.items.back().text;  // shown without the *emphasis* marks
       lag.erase(std::remove(lag.begin(), lag.end(), '*'), lag.end());
-      EXPECT_TRUE(d.labelShown(lag)) << lag;
+      EXPECT_TRUE(rig.shown(lag)) << lag;
       EXPECT_NE(lag.find("wait after each stroke"), std::string::npos) << "the lag item";
     }
     if (i == 4)
-      d.tap(StudyTargetAction::kSkipItem);
+      rig.tap(StudyTargetAction::kSkipItem);
     else
-      d.tap(StudyTargetAction::kAnswer, int(i % 5) + 1);
+      rig.tap(StudyTargetAction::kAnswer, int(i % 5) + 1);
   }
   ASSERT_EQ(state.stage(), StudyStageKind::kFreeText);
   // Free text beyond lowercase ASCII: Shift, the symbols page, the protocol's Chinese page
   // (bundled protocol's [keyboard]), then a physical keyboard's text (an input method's UTF-8)
   // and its BackSpace, which deletes one character (all of its bytes).
-  d.tapKey("o");
-  d.tapKey("k");
-  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardUpper);
-  d.keep("free_text_shift");
-  d.tapKey("K");
-  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardSymbols);
-  d.keep("free_text_symbols");
-  d.tapKey("\u20ac");  // €
-  d.tap(StudyTargetAction::kKeyboardPage, kKeyboardProtocol);
-  d.keep("free_text_chinese");
-  d.tapKey("\u4e91");                                                      // 云
+  rig.tapKey("o");
+  rig.tapKey("k");
+  rig.tap(StudyTargetAction::kKeyboardPage, kKeyboardUpper);
+  rig.keep("free_text_shift");
+  rig.tapKey("K");
+  rig.tap(StudyTargetAction::kKeyboardPage, kKeyboardSymbols);
+  rig.keep("free_text_symbols");
+  rig.tapKey("\u20ac");  // €
+  rig.tap(StudyTargetAction::kKeyboardPage, kKeyboardProtocol);
+  rig.keep("free_text_chinese");
+  rig.tapKey("\u4e91");                                                    // 云
   const std::string typed = " \u00dcn\u00efc\u00f6d\u00e9 \u4e91 \u2601";  // " Ünïcödé 云 ☁"
   for (const std::string& text : {std::string(" \u00dcn\u00efc\u00f6d\u00e9 \u4e91 "),
                                   std::string("\u96fe"), std::string("\u2601")}) {
     DisplayEvent key = DisplayEvent::key(0x20);
     key.text = text;
-    EXPECT_TRUE(rig.screen->onKey(key, d.now()));
-    d.frames(1);
+    EXPECT_TRUE(rig.screen->onKey(key, rig.now));
+    rig.frames(1);
   }
-  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), d.now()));  // BackSpace: the ☁
-  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), d.now()));  // and the 雾
+  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), rig.now));  // BackSpace: the ☁
+  EXPECT_TRUE(rig.screen->onKey(DisplayEvent::key(0xff08), rig.now));  // and the 雾
   DisplayEvent cloud = DisplayEvent::key(0x1002601);
   cloud.text = "\u2601";
-  EXPECT_TRUE(rig.screen->onKey(cloud, d.now()));
+  EXPECT_TRUE(rig.screen->onKey(cloud, rig.now));
   // The operator's Ctrl+Alt keys are not typed.
   EXPECT_FALSE(
-      rig.screen->onKey(DisplayEvent::key('p', DisplayEvent::kCtrl | DisplayEvent::kAlt), d.now()));
+      rig.screen->onKey(DisplayEvent::key('p', DisplayEvent::kCtrl | DisplayEvent::kAlt), rig.now));
   const std::string free_text = "okK\u20ac\u4e91" + typed;
-  d.keep("free_text");
-  EXPECT_TRUE(d.labelShown(free_text + "_")) << "the field shows what was typed";
-  d.tap(StudyTargetAction::kOk);
+  rig.keep("free_text");
+  EXPECT_TRUE(rig.shown(free_text + "_")) << "the field shows what was typed";
+  rig.tap(StudyTargetAction::kOk);
   ASSERT_TRUE(state.done());
-  d.keep("done");
-  d.frames(200, kSecond / 10);
-  EXPECT_EQ(d.quit(), "study complete");
+  rig.keep("done");
+  rig.frames(200, kSecond / 10);
+  EXPECT_EQ(rig.quit, "study complete");
   EXPECT_TRUE(rig.screen->problems().empty()) << rig.screen->problems().front();
 
   // The folder: answers as tapped, the journal's records, the task's files read back.
@@ -467,55 +308,55 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
 TEST(StudyRunScreen, OperatorPausesSkipsAndAbortsWithAReason) {
   Rig rig;
   if (!rig.open("cb_study_operator_")) return;
-  Driver d(*rig.display, *rig.screen, rig.tablet, rig.t0);
   StudyRunState& state = *rig.state;
-  d.frames(1);
-  d.tap(StudyTargetAction::kAgree);
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
   // Pause: a reason by digit key; the participant's buttons wait; resume.
-  d.keys("ctrl+alt+p");
+  rig.keys("ctrl+alt+p");
   ASSERT_TRUE(state.choosing());
-  d.keep("operator_chooser");
-  EXPECT_TRUE(d.labelShown("Operator: why pause?"));
-  d.keys("2");
+  rig.keep("operator_chooser");
+  EXPECT_TRUE(rig.shown("Operator: why pause?"));
+  rig.keys("2");
   ASSERT_TRUE(state.paused());
-  d.keep("paused");
-  EXPECT_TRUE(d.labelShown("Paused by the operator (participant needs a break)"));
-  d.keys("space");
+  rig.keep("paused");
+  EXPECT_TRUE(rig.shown("Paused by the operator (participant needs a break)"));
+  rig.keys("space");
   EXPECT_EQ(state.stage(), StudyStageKind::kParticipant) << "nothing moves while paused";
-  d.keys("ctrl+alt+p");
+  rig.keys("ctrl+alt+p");
   EXPECT_FALSE(state.paused());
-  d.keys("space");
+  rig.keys("space");
   ASSERT_EQ(state.stage(), StudyStageKind::kIntroduction);
   // Skip the introduction with a reason tapped by the pen; Esc cancels a chooser.
-  d.keys("ctrl+alt+a");
-  d.keys("esc");
+  rig.keys("ctrl+alt+a");
+  rig.keys("esc");
   EXPECT_FALSE(state.choosing());
   EXPECT_FALSE(state.done());
-  d.keys("ctrl+alt+s");
-  d.tap(StudyTargetAction::kReason, 0);
+  rig.keys("ctrl+alt+s");
+  rig.tap(StudyTargetAction::kReason, 0);
   ASSERT_EQ(state.stage(), StudyStageKind::kTutorial);
   // Skip the steps (step 7, "Paint mode", holds already and passes by itself).
-  for (int i = 0; i < 10 && state.stage() == StudyStageKind::kTutorial; ++i) d.keys("ctrl+alt+s,4");
-  d.frames(2);
+  for (int i = 0; i < 10 && state.stage() == StudyStageKind::kTutorial; ++i)
+    rig.keys("ctrl+alt+s,4");
+  rig.frames(2);
   ASSERT_EQ(state.stage(), StudyStageKind::kTask);
   // In the task, the clock stops while paused.
-  d.frames(1, 10 * kSecond);
-  const double left = state.secondsLeft(d.now());
-  d.keys("ctrl+alt+p,1");
-  d.frames(3, 100 * kSecond);
+  rig.frames(1, 10 * kSecond);
+  const double left = state.secondsLeft(rig.now);
+  rig.keys("ctrl+alt+p,1");
+  rig.frames(3, 100 * kSecond);
   EXPECT_EQ(state.stage(), StudyStageKind::kTask);
-  EXPECT_NEAR(state.secondsLeft(d.now()), left, 0.5);
-  d.keys("ctrl+alt+p");
+  EXPECT_NEAR(state.secondsLeft(rig.now), left, 0.5);
+  rig.keys("ctrl+alt+p");
   // Abort: the task's files are saved, then the session ends as aborted.
-  d.keys("ctrl+alt+a");
-  d.keep("operator_abort");
-  d.tap(StudyTargetAction::kReason, 2);
-  d.frames(2);
+  rig.keys("ctrl+alt+a");
+  rig.keep("operator_abort");
+  rig.tap(StudyTargetAction::kReason, 2);
+  rig.frames(2);
   ASSERT_TRUE(state.done());
   EXPECT_TRUE(state.aborted());
-  d.keep("aborted");
-  d.frames(50, kSecond / 10);
-  EXPECT_EQ(d.quit(), "study aborted");
+  rig.keep("aborted");
+  rig.frames(50, kSecond / 10);
+  EXPECT_EQ(rig.quit, "study aborted");
   const std::string json = readText(rig.folder + "/session.json");
   EXPECT_NE(json.find("\"status\": \"aborted\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"abort_reason\": \"technical problem\""), std::string::npos) << json;
@@ -550,23 +391,22 @@ TEST(StudyRunScreen, AResumedTutorialStepKeepsItsCountersAndTheMenu) {
   rig.protocol.tutorial = {protocol.tutorial[21], protocol.tutorial[23]};  // Paint mode; 4 strokes
   ASSERT_EQ(rig.protocol.tutorial[1].expect.at(0).text(), "strokes_in_step >= 4");
   if (!rig.open("cb_study_resume_")) return;
-  Driver d(*rig.display, *rig.screen, rig.tablet, rig.t0);
-  d.frames(1);
-  d.tap(StudyTargetAction::kAgree);
-  d.tap(StudyTargetAction::kContinue);
-  d.keys("space");
+  rig.frames(1);
+  rig.tap(StudyTargetAction::kAgree);
+  rig.tap(StudyTargetAction::kContinue);
+  rig.keys("space");
   ASSERT_EQ(rig.state->stage(), StudyStageKind::kTutorial);
-  d.keys("3");
+  rig.keys("3");
   ASSERT_EQ(rig.state->tutorialStep(), 1);
-  d.stroke(referencePaintStrokes(kW, kH)[0]);
-  d.stroke(referencePaintStrokes(kW, kH)[1]);
-  d.keys("c,m");
+  rig.stroke(referencePaintStrokes(kW, kH)[0]);
+  rig.stroke(referencePaintStrokes(kW, kH)[1]);
+  rig.keys("c,m");
   ASSERT_EQ(rig.state->tutorialStep(), 1);
   TutorialState before = rig.screen->tutorialState();
   EXPECT_EQ(before.numbers["strokes_in_step"], 2);
   EXPECT_EQ(before.numbers["circles_shown"], 1);
   EXPECT_EQ(before.numbers["menu_open"], 1);
-  d.keep("before_restart");
+  rig.keep("before_restart");
 
   // The restart, 30 s later.
   ASSERT_TRUE(rig.journal.sync());
@@ -609,10 +449,16 @@ TEST(StudyRunScreen, AResumedTutorialStepKeepsItsCountersAndTheMenu) {
   options.resumed = true;
   options.start_ns = restart;
   options.last_mapped = replay.last_mapped;
-  StudyRunScreen resumed(*rig.display, rig.renderer, *replay.session, rig.pen.get(), nullptr, state,
-                         options);
-  Driver again(*rig.display, resumed, rig.tablet, restart);
-  again.frames(1);
+  rig.screen = std::make_unique<StudyRunScreen>(*rig.display, rig.renderer, *replay.session,
+                                                rig.pen_source.get(), nullptr, state, options);
+  StudyRunScreen& resumed = *rig.screen;
+  rig.now = restart;
+  // The resumed screen goes before the session and state it uses.
+  struct Release {
+    test::StudyScreenRig& rig;
+    ~Release() { rig.screen.reset(); }
+  } release{rig};
+  rig.frames(1);
   ASSERT_EQ(state.stage(), StudyStageKind::kTutorial);
   ASSERT_EQ(state.tutorialStep(), 1);
   TutorialState after = resumed.tutorialState();
@@ -621,16 +467,16 @@ TEST(StudyRunScreen, AResumedTutorialStepKeepsItsCountersAndTheMenu) {
   EXPECT_EQ(after.numbers["menu_open"], 1);
   EXPECT_TRUE(resumed.paintScreen().menuOpen());
   EXPECT_TRUE(resumed.paintScreen().circlesShown());
-  again.keep("resumed_tutorial_menu");
-  again.keys("m");
+  rig.keep("resumed_tutorial_menu");
+  rig.keys("m");
   EXPECT_FALSE(resumed.paintScreen().menuOpen());
-  again.keep("resumed_tutorial");
-  EXPECT_TRUE(again.labelShown("strokes_in_step >= 4 (now 2, not yet)"));
-  EXPECT_LT(state.stageSeconds(again.now()), 60.0) << "the 30 s down do not count";
-  again.stroke(referencePaintStrokes(kW, kH)[0]);
+  rig.keep("resumed_tutorial");
+  EXPECT_TRUE(rig.shown("strokes_in_step >= 4 (now 2, not yet)"));
+  EXPECT_LT(state.stageSeconds(rig.now), 60.0) << "the 30 s down do not count";
+  rig.stroke(referencePaintStrokes(kW, kH)[0]);
   EXPECT_EQ(state.stage(), StudyStageKind::kTutorial) << "three of four";
-  again.stroke(referencePaintStrokes(kW, kH)[1]);
-  again.frames(2);
+  rig.stroke(referencePaintStrokes(kW, kH)[1]);
+  rig.frames(2);
   EXPECT_NE(state.stage(), StudyStageKind::kTutorial) << "the fourth stroke ends the step";
   std::filesystem::remove_all(rig.dir);
 }

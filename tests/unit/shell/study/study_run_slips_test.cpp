@@ -28,6 +28,7 @@
 #include "tests/support/file_text.h"
 #include "tests/support/short_study.h"
 #include "tests/support/test_display.h"
+#include "tests/unit/shell/study/study_screen_rig.h"
 
 namespace cb {
 namespace {
@@ -47,119 +48,17 @@ StudyProtocol slipsProtocol() {
   return p;
 }
 
-// The runner's screen on a test display, driven as FrameLoop drives it with the test's clock.
-struct Rig {
-  std::string dir, folder;
-  std::unique_ptr<Display> display;
-  VolumeRenderer renderer;
-  std::unique_ptr<PaintSession> session;
-  JournalWriter journal;
-  PenDeviceInfo tablet = syntheticTablet(kW, kH);
-  std::unique_ptr<ReplayPenSource> pen;
-  StudyProtocol protocol = slipsProtocol();
-  std::unique_ptr<StudyRunState> state;
-  std::unique_ptr<StudyRunScreen> screen;
-  int64_t now = 50 * kSecond;
-  long frame_count = 0;
-  std::string quit;
-
+// The runner's screen on a test display (study_screen_rig.h) with the slips' protocol.
+struct Rig : test::StudyScreenRig {
   bool open(const std::string& name) {
-    dir = (std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()))).string();
-    std::filesystem::remove_all(dir);
-    folder = dir + "/data/P01-test";
-    std::filesystem::create_directories(folder);
-    std::string error;
-    display = test::openTestDisplay(kW, kH, &error);
-    EXPECT_TRUE(display) << error;
-    if (!display || !renderer.init(&error)) return false;
-    session = std::make_unique<PaintSession>(PaintSessionSettings{kW, kH}, loadDefaultBrushConfig(),
-                                             loadMappingConfig(configFile("mapping.toml")));
-    session->setQuietMapping(true);
-    EXPECT_TRUE(journal.open(folder + "/session.cbj"));
-    session->recordTo(&journal, now);
-    // The pen: the synthetic tablet, connected (the test hands its samples to the screen).
-    std::vector<JournalRecord> records(2);
-    records[0].type = JournalRecordType::kDevice;
-    records[0].payload = encodeDeviceInfo(tablet);
-    records[1].type = JournalRecordType::kPenSample;
-    records[1].payload =
-        encodePenSample(test::tabletSampleAt(tablet, 1, 1, kW, kH, 0, false, false));
-    ReplayOptions replay;
-    replay.realtime = false;
-    pen = std::make_unique<ReplayPenSource>(records, replay);
-    state = std::make_unique<StudyRunState>(protocol, 1, now);
-    StudyRunOptions options;
-    options.folder = folder;
-    options.end_seconds = 1.0;
-    options.info.protocol_name = protocol.name;
-    options.info.participant_id = state->participantId();
-    options.info.participant_number = 1;
-    options.info.anchor_monotonic_ns = now;
-    options.paint.config_dir = dir + "/config";
-    options.paint.state_dir = dir + "/state";
-    screen = std::make_unique<StudyRunScreen>(*display, renderer, *session, pen.get(), &journal,
-                                              *state, options);
-    return true;
+    prepare(name);
+    test::StudyRigOptions options;
+    options.keep_prefix = "slips_";
+    start(slipsProtocol(), options);
+    return !::testing::Test::HasFatalFailure();
   }
-  ~Rig() {
-    if (!dir.empty()) std::filesystem::remove_all(dir);
-  }
-
-  void frames(int n, int64_t step_ns = 16'666'667, const std::string& keep = "") {
-    for (int i = 0; i < n && quit.empty(); ++i) {
-      now += step_ns;
-      FrameContext frame{*display, kW, kH, frame_count, now, double(step_ns) / 1e9};
-      screen->onPenSamples({});
-      quit = screen->update(frame);
-      if (!quit.empty()) return;
-      std::string error;
-      ASSERT_TRUE(screen->draw(frame, &error)) << error;
-      if (const char* out = std::getenv("CB_KEEP_FRAMES"); out && !keep.empty() && i == n - 1)
-        writePng(std::string(out) + "/slips_" + keep + ".png",
-                 readFramebufferRgba8(display->framebuffer(), kW, kH));
-      ASSERT_TRUE(display->present(&error)) << error;
-      ++frame_count;
-    }
-  }
-  void keep(const std::string& name) { frames(1, 16'666'667, name); }
   void pen_samples(const std::vector<PenSample>& samples, size_t per_frame) {
-    for (size_t i = 0; i < samples.size(); i += per_frame) {
-      screen->onPenSamples(
-          std::vector<PenSample>(samples.begin() + long(i),
-                                 samples.begin() + long(std::min(samples.size(), i + per_frame))));
-      frames(1);
-    }
-    frames(2);
-  }
-  // A pen tap: hover in, tip down, lift, out, in the middle of the page's target.
-  void tap(StudyTargetAction action) {
-    const StudyTarget* t = screen->page().find(action);
-    ASSERT_TRUE(t) << "no target " << int(action) << " on the page";
-    const float x = 0.5f * (t->x0 + t->x1), y = 0.5f * (t->y0 + t->y1);
-    pen_samples(test::penTapSamples(tablet, x, y, kW, kH, now), 3);
-  }
-  void click(StudyTargetAction action) {
-    const StudyTarget* t = screen->page().find(action);
-    ASSERT_TRUE(t) << "no target " << int(action) << " on the page";
-    DisplayEvent e;
-    e.x = 0.5f * (t->x0 + t->x1), e.y = 0.5f * (t->y0 + t->y1), e.button = 1;
-    e.kind = DisplayEvent::Kind::PointerDown;
-    screen->onPointer(e);
-    e.kind = DisplayEvent::Kind::PointerUp;
-    screen->onPointer(e);
-    frames(2);
-  }
-  bool shown(const std::string& part) const {
-    for (const UiLabel& l : screen->page().labels)
-      if (l.text.find(part) != std::string::npos) return true;
-    return false;
-  }
-  std::vector<std::string> markers() {
-    journal.sync();
-    std::vector<std::string> out;
-    for (const JournalRecord& r : readJournal(folder + "/session.cbj").records)
-      if (r.type == JournalRecordType::kMarker) out.emplace_back(r.text());
-    return out;
+    pen(samples, per_frame);
   }
 };
 
@@ -321,6 +220,10 @@ TEST(StudyRunSlips, TaskFilesThatCannotBeWrittenAreNamedAndWrittenLater) {
   const SyntheticStroke stroke = referencePaintStrokes(kW, kH)[0];
   rig.pen_samples(syntheticPenSamples(stroke, rig.tablet, kW, kH, 200.0, rig.now), 24);
   ASSERT_EQ(rig.session->strokesMapped(), 1u);
+  // The task's volume as it goes (written at the stroke's end), then taken away and the
+  // folder's place taken by a file.
+  EXPECT_TRUE(std::filesystem::exists(rig.folder + "/tasks/cloud1.cbvol"));
+  std::filesystem::remove_all(rig.folder + "/tasks");
   std::ofstream(rig.folder + "/tasks") << "in the way";
   rig.tap(StudyTargetAction::kDone);
   rig.tap(StudyTargetAction::kDoneConfirm);
