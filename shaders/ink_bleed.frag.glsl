@@ -5,7 +5,7 @@
 // (radius 3), the default ([style.ink] bleed_sigma). The coverage (a) is blurred the same way into
 // b, for the outline the compose pass draws where the blurred coverage crosses ½ (image-space
 // silhouette detection, seed 001 §2.5); the sketch style runs this pass too, for that outline
-// alone (σ = 1, screenBlurSigma). r and a pass through. Reads u_radius pixels either side:
+// alone (σ = 0.85, screenBlurSigma). r and a pass through. Reads u_radius pixels either side:
 // screenSpaceReach(style, params) in render_style.h.
 layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;

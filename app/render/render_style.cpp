@@ -39,8 +39,8 @@ bool shadesWithScreenDerivatives(RenderStyle style) {
 }
 
 int screenSpaceReach(RenderStyle style) {
-  // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side; sketch's σ = 1 as
-  // well (paper and hatching are functions of the pixel's position).
+  // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side; sketch's σ = 0.85:
+  // 2 pixels (paper and hatching are functions of the pixel's position).
   return screenSpaceReach(style, StyleParams{});
 }
 

@@ -131,9 +131,10 @@ IsoSurfaceReach isoSurfaceReach(glm::vec3 voxel_size);
 // image-space outline; ink: also the bleeding of its silhouette ink): ink.bleed_sigma for ink,
 // kSketchOutlineSigma for sketch; 0 for a style without such a pass.
 float screenBlurSigma(RenderStyle style, const StyleParams& params);
-// The sketch's outline blur: σ = 1 pixel draws 4A(1 − A) as a pencil line about 2 pixels wide
-// (half the ink's σ² = 2 brush line).
-inline constexpr float kSketchOutlineSigma = 1.0f;
+// The sketch's outline blur: σ = 0.85 pixel draws 4A(1 − A) as a pencil line about 2 pixels wide
+// (the ink's σ² = 2 brush line is about 3) over 5 taps (radius 2). At σ = 1 (7 taps) the line's
+// overlap with the N·V line filled 1.0–1.2 % of two gallery strokes in solid patches.
+inline constexpr float kSketchOutlineSigma = 0.85f;
 
 // How far, in pixels of the ray-cast image, the style's screen-space pass reads around the pixel
 // it writes (the Gaussian blur's half kernel; 0 for a style without such a pass).

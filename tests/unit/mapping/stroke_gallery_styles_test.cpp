@@ -77,13 +77,15 @@ constexpr float kSketchMarked = 0.8f;
 constexpr int kPatchRadius = 2;
 constexpr double kMaxSketchPatches = 0.01;
 // Sketch outline breaks, measured as the ink's but held tighter: the pencil outline lies on the
-// silhouette (4A(1 − A) of the coverage blurred by σ = 1 peaks where it crosses ½), so a silhouette
-// pixel with no line pixel within kSketchOutlineReach = 1 is on a gap. A line pixel is darker than
-// kSketchLine: hatching (at most half graphite 0.22 on paper 0.93–0.96: 0.58 and lighter) and the
-// inner surface's lines (0.45 pencil: about 0.62 and lighter) are not; the outline's pencil is.
-// The N·V outline with its near-miss band alone (shade_sketch.glsl) thinned to a soft grey on
-// the lower edges of the strokes: 3.7–6.8 % of the silhouette bare; with the image-space outline
-// (style_compose.frag.glsl) 0.0–0.3 %. The bound lies between.
+// silhouette (4A(1 − A) of the coverage blurred by σ = 0.85 peaks where it crosses ½), so a
+// silhouette pixel with no line pixel within kSketchOutlineReach = 1 is on a gap. A line pixel is
+// darker than kSketchLine: hatching (at most half graphite 0.22 on paper 0.93–0.96: 0.58 and
+// lighter) and the inner surface's lines (0.45 pencil: about 0.62 and lighter) are not; the
+// outline's pencil is. The N·V outline with its near-miss band alone (shade_sketch.glsl) thinned to
+// a soft grey on the lower edges of the strokes: 3.7–6.8 % of the silhouette bare; with the
+// image-space outline (style_compose.frag.glsl) 0.0–0.3 % (all twelve strokes 0–0.9 %). The bound
+// lies between. The outline's pencil raised the solid patches above to 0.22–0.40 % (all twelve
+// 0.13–0.96 %).
 constexpr float kSketchLine = 0.45f;
 constexpr int kSketchOutlineReach = 1;
 constexpr double kMaxSketchOutlineBreaks = 0.01;

@@ -27,7 +27,7 @@ TEST(RenderStyle, NamesRoundTripAndUnknownNamesAreRejected) {
   EXPECT_EQ(renderStyleNameList(), "thesis|physical|ink|cartoon|sketch");
   EXPECT_EQ(RenderOptions{}.style, RenderStyle::kThesis);
   EXPECT_EQ(screenSpaceReach(RenderStyle::kInk), 3);
-  EXPECT_EQ(screenSpaceReach(RenderStyle::kSketch), 3);  // its outline blur, σ = 1
+  EXPECT_EQ(screenSpaceReach(RenderStyle::kSketch), 2);  // its outline blur, σ = 0.85
   EXPECT_EQ(screenSpaceReach(RenderStyle::kThesis), 0);
 }
 
