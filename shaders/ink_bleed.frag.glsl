@@ -4,8 +4,9 @@
 // over ±u_radius pixels; the seed's G(x,y) = e^(−(x²+y²)/4)/4π is σ² = 2 with kernel width 7
 // (radius 3), the default ([style.ink] bleed_sigma). The coverage (a) is blurred the same way into
 // b, for the outline the compose pass draws where the blurred coverage crosses ½ (image-space
-// silhouette detection, seed 001 §2.5). r and a pass through. Reads u_radius pixels either side:
-// screenSpaceReach(kInk, params) in render_style.h.
+// silhouette detection, seed 001 §2.5); the sketch style runs this pass too, for that outline
+// alone (σ = 0.85, screenBlurSigma). r and a pass through. Reads u_radius pixels either side:
+// screenSpaceReach(style, params) in render_style.h.
 layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;
 uniform ivec2 u_axis;  // (1,0) or (0,1)

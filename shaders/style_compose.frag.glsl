@@ -1,28 +1,31 @@
 #version 450 core
 // Screen-space finish of the paper styles, from the ray-cast image u_image (one texel per
-// ray; the output may be larger when the frame was cast at reduced scale):
+// ray; the output may be larger when the frame was cast at reduced scale). Both paper styles
+// draw their outline in image space (seed 001 §2.5: silhouettes detected on the image plane):
+// the coverage (a) blurred by a Gaussian of σ u_sigma (x in ink_bleed.frag.glsl into b, y here,
+// blurredLines) crosses ½ on the silhouette, and 4·A·(1 − A) of the blurred coverage A is a line
+// about 2σ wide that follows it without a break wherever the cloud meets the paper. The lines
+// from N·V alone (shade_ink.glsl, shade_sketch.glsl) are under a pixel wide on a painted stroke a
+// few tens of pixels thick (N·V < 0.15 within ~1 % of its radius of the edge) and broke into
+// dashes, specks and bare stretches. With CB_BLEED 0 (moving) the image is not blurred and the
+// line is that of the unblurred coverage.
 //  CB_COMPOSE_INK (seed 001 §3.3.5, §4.1.3): ink = 1 − (1 − wash)(1 − silhouette), where the
-//    silhouette comes from u_bleed blurred once more along y (the second pass of the separable
-//    Gaussian; with CB_BLEED 0, moving, the unblurred silhouette); grey = smoothstep(0.1, 0.92,
-//    1 − ink) (the seed's edges); the colour is the ink tone laid on xuan paper by grey.
-//    The outline is also found in image space (seed 001 §2.5: silhouettes detected on the image
-//    plane): the coverage blurred by the same Gaussian (b of u_bleed, then y here) crosses ½ on
-//    the silhouette, and 4·A·(1 − A) of the blurred coverage A is a line about 2σ wide that
-//    follows it without a break wherever the cloud meets the paper. The line from N·V alone
-//    (shade_ink.glsl) is under a pixel wide on a painted stroke a few tens of pixels thick
-//    (N·V < 0.15 within ~1 % of its radius of the edge) and broke into dashes and specks.
+//    silhouette is the N·V ink (g) blurred by the same Gaussian (the ink bleeding, σ² = 2) or the
+//    outline, whichever is darker; grey = smoothstep(0.1, 0.92, 1 − ink) (the seed's edges); the
+//    colour is the ink tone laid on xuan paper by grey.
 //  CB_COMPOSE_SKETCH (seed 003, Fig. 2 and 6): pencil hatching, one more stroke direction per
-//    tone level (r), wobbling and grainy, and the outline strokes (g), on drawing paper.
+//    tone level (r), wobbling and grainy, and the outline strokes (g, unblurred: the N·V outline
+//    and the inner surface's lines) or the image-space outline in pencil, on drawing paper.
 // Paper and strokes are functions of the output pixel, so they stay put while the cloud moves.
 // CB_OVER_SKY ([style.ink] / [style.sketch] sky = true): the paper shows only inside the cloud
 // (coverage a) and the output is premultiplied, blended over the sky drawn first (sky_pass.h):
 //   C = (1 − grey)·ink + grey·a·paper + grey·(1 − a)·sky,  so  α = 1 − grey·(1 − a).
 layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;
-uniform sampler2D u_bleed;   // ink: u_image with its silhouette blurred along x
+uniform sampler2D u_bleed;   // u_image with its g and its coverage (into b) blurred along x
 uniform vec2 u_output_size;  // pixels
-uniform int u_radius;        // ink: bleeding half width (ink_bleed.frag.glsl)
-uniform float u_sigma;       // ink: bleeding σ, pixels
+uniform int u_radius;        // the blur's half width (ink_bleed.frag.glsl)
+uniform float u_sigma;       // the blur's σ, pixels (screenBlurSigma, render_style.h)
 
 // Lays `stroke` (1 = full stroke colour) over `paper`; with CB_OVER_SKY the paper covers only the
 // cloud and the rest stays transparent (premultiplied) for the sky beneath.
@@ -51,6 +54,30 @@ float valueNoise(vec2 p) {
              w.y);
 }
 
+// (g, coverage) of the image blurred by the Gaussian: the second, y pass over u_bleed.
+vec2 blurredLines(vec2 uv, vec4 image) {
+#if CB_BLEED
+  vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
+  vec2 blurred = texture(u_bleed, uv).gb;
+  float norm = 1.0;
+  float inv_two_sigma2 = 1.0 / (2.0 * u_sigma * u_sigma);
+  for (int i = 1; i <= u_radius; ++i) {
+    float w = exp(-float(i * i) * inv_two_sigma2);
+    blurred += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).gb +
+                    texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).gb);
+    norm += 2.0 * w;
+  }
+  return blurred / norm;
+#else
+  return image.ga;
+#endif
+}
+
+// The image-space outline, 0 … 1: 1 where the blurred coverage crosses ½.
+float coverageOutline(float blurred_coverage) {
+  return 4.0 * blurred_coverage * (1.0 - blurred_coverage);
+}
+
 #if CB_COMPOSE_INK
 const vec3 kInkTone = vec3(0.07, 0.07, 0.09);
 // The image-space outline's ink at the silhouette: a grey line (seed 001 Fig. 4.3–4.4: soft,
@@ -69,6 +96,9 @@ vec3 xuanPaper(vec2 p) {
 
 #if CB_COMPOSE_SKETCH
 const vec3 kGraphite = vec3(0.22, 0.22, 0.26);
+// The image-space outline's pencil at the silhouette (before the grain's 0.75–1): as dark as the
+// N·V outline drew where it held (seed 003 Fig. 6: a firm contour, lighter inner lines at 0.45).
+const float kOutlinePencil = 0.9;
 
 // 1 on a pencil line every `spacing` pixels along coordinate u, 0 between (soft edges).
 float hatchLines(float u, float spacing) {
@@ -82,22 +112,8 @@ void main() {
   vec4 image = texture(u_image, uv);
   vec2 p = gl_FragCoord.xy;
 #if CB_COMPOSE_INK
-#if CB_BLEED
-  vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
-  vec2 blurred = texture(u_bleed, uv).gb;  // silhouette ink, coverage
-  float norm = 1.0;
-  float inv_two_sigma2 = 1.0 / (2.0 * u_sigma * u_sigma);
-  for (int i = 1; i <= u_radius; ++i) {
-    float w = exp(-float(i * i) * inv_two_sigma2);
-    blurred += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).gb +
-                    texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).gb);
-    norm += 2.0 * w;
-  }
-  blurred /= norm;
-#else
-  vec2 blurred = image.ga;
-#endif
-  float outline = kOutlineInk * 4.0 * blurred.y * (1.0 - blurred.y);
+  vec2 blurred = blurredLines(uv, image);  // silhouette ink, coverage
+  float outline = kOutlineInk * coverageOutline(blurred.y);
   float silhouette = max(blurred.x, outline);
   float ink = 1.0 - (1.0 - image.r) * (1.0 - silhouette);
   float grey = smoothstep(0.1, 0.92, 1.0 - ink);
@@ -109,7 +125,8 @@ void main() {
   hatch = max(hatch, smoothstep(0.6, 0.7, tone) * hatchLines(p.x - p.y - wobble, 7.0));
   hatch = max(hatch, smoothstep(0.85, 0.95, tone) * hatchLines(p.y + 0.5 * wobble, 4.0));
   float grain = 0.65 + 0.35 * valueNoise(p * vec2(0.6, 0.08));
-  float stroke = max(image.g * (0.75 + 0.25 * grain), 0.5 * hatch * grain);
+  float line = max(image.g, kOutlinePencil * coverageOutline(blurredLines(uv, image).y));
+  float stroke = max(line * (0.75 + 0.25 * grain), 0.5 * hatch * grain);
   vec3 paper = vec3(0.97, 0.96, 0.93) * (0.97 + 0.03 * hash(p));
   o_colour = layOn(paper, kGraphite, 1.0 - stroke, image.a);
 #else

@@ -39,15 +39,25 @@ bool shadesWithScreenDerivatives(RenderStyle style) {
 }
 
 int screenSpaceReach(RenderStyle style) {
-  // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side. Sketch's pass reads
-  // only its own pixel (paper and hatching are functions of the pixel's position).
+  // Ink: Gaussian kernel width 7 (seed 001 §4.1.2), so 3 pixels each side; sketch's σ = 0.85:
+  // 2 pixels (paper and hatching are functions of the pixel's position).
   return screenSpaceReach(style, StyleParams{});
 }
 
+float screenBlurSigma(RenderStyle style, const StyleParams& params) {
+  switch (renderStyleRow(style).screen_pass) {
+    case ScreenPass::kInkWash:
+      return params.ink.bleed_sigma;
+    case ScreenPass::kSketchPaper:
+      return kSketchOutlineSigma;
+    case ScreenPass::kNone:
+      break;
+  }
+  return 0.0f;
+}
+
 int screenSpaceReach(RenderStyle style, const StyleParams& params) {
-  return renderStyleRow(style).screen_pass == ScreenPass::kInkWash
-             ? inkBleedRadius(params.ink.bleed_sigma)
-             : 0;
+  return hasScreenSpacePass(style) ? inkBleedRadius(screenBlurSigma(style, params)) : 0;
 }
 
 int inkBleedRadius(float sigma) {

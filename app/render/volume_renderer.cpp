@@ -31,7 +31,7 @@ constexpr float kDetailNoisePeriodVoxels = 32.0f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
-// The variant of style_compose.frag.glsl: ink (with or without bleeding) or sketch.
+// The variant of style_compose.frag.glsl: ink or sketch, with or without the blur (bleed).
 std::string composeDefines(bool ink, bool bleed, bool over_sky) {
   return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
          "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
@@ -189,7 +189,7 @@ bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
   bool ok = ensureProgram(options);
   if (ok && hasScreenSpacePass(options.style)) {
     const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
-    const bool bleed = ink && !options.moving;
+    const bool bleed = !options.moving;
     const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
     ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky)) != 0 &&
          (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
@@ -231,7 +231,8 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
                                        int height, const RenderOptions& options, bool partial,
                                        glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
   const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
-  const bool bleed = ink && !options.moving;
+  const bool bleed = !options.moving;
+  const float sigma = screenBlurSigma(options.style, options.style_params);
   const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
   GLuint compose =
       fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky));
@@ -245,7 +246,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   glTextureParameteri(image, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindVertexArray(vao_);
   if (bleed) {
-    // First axis of the ink bleeding into bleed_; the compose pass does the second.
+    // First axis of the blur (ink: the bleeding) into bleed_; the compose pass does the second.
     GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", "");
     if (!blur) {
       std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
@@ -268,9 +269,8 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
     glUseProgram(blur);
     glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
     glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
-    glUniform1i(glGetUniformLocation(blur, "u_radius"),
-                inkBleedRadius(options.style_params.ink.bleed_sigma));
-    glUniform1f(glGetUniformLocation(blur, "u_sigma"), options.style_params.ink.bleed_sigma);
+    glUniform1i(glGetUniformLocation(blur, "u_radius"), inkBleedRadius(sigma));
+    glUniform1f(glGetUniformLocation(blur, "u_sigma"), sigma);
     glBindTextureUnit(0, image);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
@@ -279,9 +279,8 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
   if (over_sky) drawSkyUnder(width, height, width, height, options);
   glUseProgram(compose);
-  glUniform1i(glGetUniformLocation(compose, "u_radius"),
-              inkBleedRadius(options.style_params.ink.bleed_sigma));
-  glUniform1f(glGetUniformLocation(compose, "u_sigma"), options.style_params.ink.bleed_sigma);
+  glUniform1i(glGetUniformLocation(compose, "u_radius"), inkBleedRadius(sigma));
+  glUniform1f(glGetUniformLocation(compose, "u_sigma"), sigma);
   glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
   glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
   glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));

@@ -22,8 +22,9 @@
 // came from the pool's 16-bit smoothed companion instead of 8 reads of 8-bit filtered density;
 // cumulus128_ink_reference again when ink drew its outline in image space from the blurred
 // coverage (style_compose.frag.glsl), cumulus128_sketch_reference when the sketch's inner line
-// took the cartoon's two-pixel width limit (a few line pixels); the others are still the dense
-// path's.
+// took the cartoon's two-pixel width limit (a few line pixels) and again when the sketch drew its
+// outline in image space from the blurred coverage (5916 channels, worst 158); the others are
+// still the dense path's.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

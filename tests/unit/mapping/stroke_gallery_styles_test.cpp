@@ -9,7 +9,8 @@
 // cloud pixels ≤ kMaxCartoonIslands and kMaxInkIslands, printed with the share of cloud pixels in
 // islands of at most kSpeckPixels; the ink's outline has no gaps (≤ kMaxInkOutlineBreaks of the
 // silhouette without a line near, line_measures.h); the sketch has no solid grey patches
-// (≤ kMaxSketchPatches of the silhouette's area). CB_SHOTS_DIR=DIR writes each image as
+// (≤ kMaxSketchPatches of the silhouette's area) and no gaps in its outline
+// (≤ kMaxSketchOutlineBreaks). CB_SHOTS_DIR=DIR writes each image as
 // DIR/STROKE-STYLE.png; CB_GALLERY_ALL=1 measures all twelve strokes, not kStrokes.
 #include <algorithm>
 #include <cstdio>
@@ -75,6 +76,19 @@ constexpr double kMaxInkOutlineBreaks = 0.01;
 constexpr float kSketchMarked = 0.8f;
 constexpr int kPatchRadius = 2;
 constexpr double kMaxSketchPatches = 0.01;
+// Sketch outline breaks, measured as the ink's but held tighter: the pencil outline lies on the
+// silhouette (4A(1 − A) of the coverage blurred by σ = 0.85 peaks where it crosses ½), so a
+// silhouette pixel with no line pixel within kSketchOutlineReach = 1 is on a gap. A line pixel is
+// darker than kSketchLine: hatching (at most half graphite 0.22 on paper 0.93–0.96: 0.58 and
+// lighter) and the inner surface's lines (0.45 pencil: about 0.62 and lighter) are not; the
+// outline's pencil is. The N·V outline with its near-miss band alone (shade_sketch.glsl) thinned to
+// a soft grey on the lower edges of the strokes: 3.7–6.8 % of the silhouette bare; with the
+// image-space outline (style_compose.frag.glsl) 0.0–0.3 % (all twelve strokes 0–0.9 %). The bound
+// lies between. The outline's pencil raised the solid patches above to 0.22–0.40 % (all twelve
+// 0.13–0.96 %).
+constexpr float kSketchLine = 0.45f;
+constexpr int kSketchOutlineReach = 1;
+constexpr double kMaxSketchOutlineBreaks = 0.01;
 
 ImageRgba8 render(VolumeRenderer& renderer, RenderTarget& target, const Volume& volume,
                   const RenderConfig& config, const GalleryCloud& cloud, RenderStyle style) {
@@ -103,6 +117,12 @@ void checkSketch(const std::string& stroke, const ImageRgba8& image, const Image
   std::fflush(stdout);
   EXPECT_GT(p.cloud, kW * kH / 200) << stroke << " sketch: the stroke is in view";
   EXPECT_LE(p.fraction(), kMaxSketchPatches) << stroke << ": grey patches in the sketch";
+  const test::OutlineBreaks b =
+      test::measureOutlineBreaks(image, extent, extent_empty, kSketchLine, kSketchOutlineReach);
+  std::printf("%-12s %-8s silhouette %6ld px, %5ld without a line near: %.1f %%\n", stroke.c_str(),
+              "sketch", b.edge, b.broken, 100.0 * b.fraction());
+  std::fflush(stdout);
+  EXPECT_LE(b.fraction(), kMaxSketchOutlineBreaks) << stroke << ": the sketch's outline is broken";
 }
 
 TEST(StrokeGalleryStyles, LinesHoldOnPaintedStrokes) {

@@ -27,6 +27,7 @@ TEST(RenderStyle, NamesRoundTripAndUnknownNamesAreRejected) {
   EXPECT_EQ(renderStyleNameList(), "thesis|physical|ink|cartoon|sketch");
   EXPECT_EQ(RenderOptions{}.style, RenderStyle::kThesis);
   EXPECT_EQ(screenSpaceReach(RenderStyle::kInk), 3);
+  EXPECT_EQ(screenSpaceReach(RenderStyle::kSketch), 2);  // its outline blur, σ = 0.85
   EXPECT_EQ(screenSpaceReach(RenderStyle::kThesis), 0);
 }
 
@@ -148,8 +149,12 @@ TEST_P(StyleShaderMatchesCpu, OnAGridOfRays) {
   // The tuned ink bleeds over 9×9 pixels instead of 7×7, so more rays have a neighbour near a
   // band threshold and are skipped.
   const bool wide_kernel = c.tuned && c.style == RenderStyle::kInk;
-  EXPECT_GE(compared, wide_kernel ? 160 : 200);    // most of the 22×14 grid
-  EXPECT_GE(cloud_pixels, wide_kernel ? 45 : 60);  // and many on the cloud, not the background
+  // The sketch's rays that just miss the surface add coverage but no grey of their own (its
+  // outline is the compose pass's): 59 of the grid's rays differ from the paper where the
+  // near-miss band's grey made it 60 and more.
+  const int min_cloud = wide_kernel ? 45 : c.style == RenderStyle::kSketch ? 55 : 60;
+  EXPECT_GE(compared, wide_kernel ? 160 : 200);  // most of the 22×14 grid
+  EXPECT_GE(cloud_pixels, min_cloud);            // and many on the cloud, not the background
   EXPECT_GE(compared - on_ramps, wide_kernel ? 80 : 100);  // most held to the strict tolerance
 }
 

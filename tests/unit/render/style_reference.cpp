@@ -301,7 +301,7 @@ glm::vec4 inkAmounts(const ReferenceScene& s, const Surface& f, bool* band_ambig
 glm::vec4 sketchAmounts(const ReferenceScene& s, const Surface& f, bool* sensitive) {
   float nm = smoothStep(0.6f * kReferenceIso, kReferenceIso, f.max_density);
   *sensitive |= outlineSensitive(f) || (nm > 0.0f && nm < 1.0f);
-  if (!f.hit) return glm::vec4(0, quantise8(nm), 0, quantise8(nm));
+  if (!f.hit) return glm::vec4(0, 0, 0, quantise8(nm));  // the near miss: coverage only
   float d = std::max(glm::dot(f.normal, s.light.direction), 0.0f) * (0.35f + 0.65f * f.light_t);
   const float width = s.options.style_params.sketch.outline_width;
   float outline = 1 - smoothStep(0.5f * width, width, std::abs(glm::dot(f.normal, f.view)));
@@ -334,6 +334,44 @@ glm::vec3 xuanPaper(glm::vec2 p) {
   return glm::vec3(0.93f, 0.90f, 0.82f) * (0.95f + 0.05f * fibres + 0.02f * hash(p));
 }
 
+// The compose pass's Gaussian blur of (g, coverage) around the pixel whose amounts are centre:
+// along x into an 8-bit target (ink_bleed.frag.glsl), then along y (style_compose.frag.glsl),
+// σ = screenBlurSigma of the style; unblurred while moving. amounts(i, j): the amounts of the
+// pixel i, j away.
+template <class Amounts>
+glm::vec2 blurredLines(const ReferenceScene& s, glm::vec4 centre, Amounts amounts) {
+  if (s.options.moving) return glm::vec2(centre.g, centre.a);
+  const float sigma = screenBlurSigma(s.options.style, s.options.style_params);
+  const int R = inkBleedRadius(sigma);
+  float w[kMaxInkBleedRadius + 1];
+  float sum = 0.0f;
+  for (int i = 0; i <= R; ++i) {
+    w[i] = std::exp(-float(i * i) / (2 * sigma * sigma));
+    sum += i ? 2 * w[i] : w[i];
+  }
+  const float norm = 1.0f / sum;
+  const int n = 2 * R + 1;
+  std::vector<glm::vec2> ga(size_t(n * n));
+  for (int j = -R; j <= R; ++j)
+    for (int i = -R; i <= R; ++i) {
+      const glm::vec4 a = amounts(i, j);
+      ga[size_t((j + R) * n + i + R)] = glm::vec2(a.g, a.a);
+    }
+  glm::vec2 blurred(0.0f);
+  for (int j = -R; j <= R; ++j) {
+    glm::vec2 row(0.0f);
+    for (int i = -R; i <= R; ++i) row += w[std::abs(i)] * ga[size_t((j + R) * n + i + R)];
+    row *= norm;
+    blurred += w[std::abs(j)] * glm::vec2(quantise8(row.x), quantise8(row.y));
+  }
+  return blurred * norm;
+}
+
+// The image-space outline of the paper styles: 1 where the blurred coverage crosses ½.
+float coverageOutline(float blurred_coverage) {
+  return 4.0f * blurred_coverage * (1.0f - blurred_coverage);
+}
+
 float hatchLines(float u, float spacing) {
   float f = std::abs(u / spacing - std::floor(u / spacing) - 0.5f) * 2.0f;
   return smoothStep(0.72f, 0.92f, f);
@@ -361,47 +399,24 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
     out.rgba = cartoonPixel(s, surfaceAt(x, yb), bg, &out.ambiguous, &out.sensitive);
   } else if (style == RenderStyle::kInk) {
     glm::vec4 centre = inkAmounts(s, surfaceAt(x, yb), &out.ambiguous, &out.sensitive);
-    float silhouette = centre.g, coverage = centre.a;
-    if (!s.options.moving) {
-      // Separable Gaussian e^(−x²/(2σ²)) over ±R (seed 001 §3.3.5; σ² = 2, R = 3 by default):
-      // x into an 8-bit target, then y.
-      const float sigma = s.options.style_params.ink.bleed_sigma;
-      const int R = inkBleedRadius(sigma);
-      float w[kMaxInkBleedRadius + 1];
-      float sum = 0.0f;
-      for (int i = 0; i <= R; ++i) {
-        w[i] = std::exp(-float(i * i) / (2 * sigma * sigma));
-        sum += i ? 2 * w[i] : w[i];
-      }
-      const float norm = 1.0f / sum;
-      // A neighbour's wash band does not reach this pixel (only its silhouette ink and its
-      // coverage, for the image-space outline, are blurred).
-      const int n = 2 * R + 1;
-      std::vector<glm::vec2> ga(size_t(n * n));
-      bool band_ambiguous = false;
-      for (int j = -R; j <= R; ++j)
-        for (int i = -R; i <= R; ++i) {
-          const glm::vec4 a =
-              inkAmounts(s, surfaceAt(x + i, yb + j), &band_ambiguous, &out.sensitive);
-          ga[size_t((j + R) * n + i + R)] = glm::vec2(a.g, a.a);
-        }
-      glm::vec2 blurred(0.0f);
-      for (int j = -R; j <= R; ++j) {
-        glm::vec2 row(0.0f);
-        for (int i = -R; i <= R; ++i) row += w[std::abs(i)] * ga[size_t((j + R) * n + i + R)];
-        row *= norm;
-        blurred += w[std::abs(j)] * glm::vec2(quantise8(row.x), quantise8(row.y));
-      }
-      silhouette = blurred.x * norm;
-      coverage = blurred.y * norm;
-    }
+    // Ink bleeding (seed 001 §3.3.5; σ² = 2, R = 3 by default). A neighbour's wash band does not
+    // reach this pixel (only its silhouette ink and its coverage, for the outline, are blurred).
+    bool band_ambiguous = false;
+    const glm::vec2 blurred = blurredLines(s, centre, [&](int i, int j) {
+      return inkAmounts(s, surfaceAt(x + i, yb + j), &band_ambiguous, &out.sensitive);
+    });
     // The image-space outline (style_compose.frag.glsl): 0.6 · 4A(1 − A) of the blurred coverage.
-    silhouette = std::max(silhouette, 0.6f * 4.0f * coverage * (1.0f - coverage));
+    const float silhouette = std::max(blurred.x, 0.6f * coverageOutline(blurred.y));
     float ink = 1 - (1 - centre.r) * (1 - silhouette);
     float grey = smoothStep(0.1f, 0.92f, 1 - ink);
     out.rgba = glm::vec4(glm::mix(glm::vec3(0.07f, 0.07f, 0.09f), xuanPaper(p), grey), 1.0f);
   } else {
     glm::vec4 a = sketchAmounts(s, surfaceAt(x, yb), &out.sensitive);
+    const glm::vec2 blurred = blurredLines(s, a, [&](int i, int j) {
+      return sketchAmounts(s, surfaceAt(x + i, yb + j), &out.sensitive);
+    });
+    // The outline strokes or the image-space outline in pencil (0.9, style_compose.frag.glsl).
+    const float line = std::max(a.g, 0.9f * coverageOutline(blurred.y));
     float wobble = (valueNoise(p * 0.03f) - 0.5f) * 5.0f;
     float tone = a.r;
     // The hatching fades in over tone ramps of 0.1 (slope 10): a ramp is as steep as an outline.
@@ -411,7 +426,7 @@ ReferencePixel referencePixel(const ReferenceScene& s, int x, int y) {
     hatch = std::max(hatch, smoothStep(0.6f, 0.7f, tone) * hatchLines(p.x - p.y - wobble, 7.0f));
     hatch = std::max(hatch, smoothStep(0.85f, 0.95f, tone) * hatchLines(p.y + 0.5f * wobble, 4.0f));
     float grain = 0.65f + 0.35f * valueNoise(p * glm::vec2(0.6f, 0.08f));
-    float stroke = std::max(a.g * (0.75f + 0.25f * grain), 0.5f * hatch * grain);
+    float stroke = std::max(line * (0.75f + 0.25f * grain), 0.5f * hatch * grain);
     glm::vec3 paper = glm::vec3(0.97f, 0.96f, 0.93f) * (0.97f + 0.03f * hash(p));
     out.rgba = glm::vec4(glm::mix(paper, glm::vec3(0.22f, 0.22f, 0.26f), stroke), 1.0f);
   }
