@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "app/bench/bench_report.h"
@@ -80,6 +81,7 @@ struct Script {
   std::vector<double> drag_ms, release_ms, picture_ms, model_ms, wind_ms;
   std::vector<double> drag_cpu, release_cpu, wind_cpu;
   std::string problem;
+  const char* shots = nullptr;  // a folder for the first drag's frames as PNG
 
   void pointer(DisplayEvent::Kind kind, float x, float y) {
     DisplayEvent e;
@@ -135,6 +137,10 @@ void Script::onFrame() {
         act_cpu = cpu;
       }
       if (n == kDragFrames + 2) release_ms.push_back(act_ms), release_cpu.push_back(cpu - act_cpu);
+      // What a person sees of the first drag (the readback is timed into the next frame).
+      if (shots && drag == 0 && (n == 2 || n == 7 || n == kDragFrames || n == kDragFrames + 2))
+        writePng(std::string(shots) + "/light_drag_" + std::to_string(n) + ".png",
+                 readFramebufferRgba8(display.framebuffer(), w, h));
       if (n == kDragFrames + 4) ++drag < kDrags ? void(n = 0) : next();
       break;
     }
@@ -186,6 +192,7 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   Script script(display, session);
   script.w = width;
   script.h = height;
+  if (!baseline) script.shots = std::getenv("CLOUDBRUSH_BENCH_SHOTS");
   script.picture = dir + "/silhouette.png";
   script.model = dir + "/torus.obj";
   writePng(script.picture, silhouette(512, 512));

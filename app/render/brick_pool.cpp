@@ -232,7 +232,8 @@ BrickPool::~BrickPool() {
 size_t BrickPool::tableBytes() const {
   return slot_of_brick_.capacity() * sizeof(glm::u8vec4) +
          free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity() +
-         (slot_hash_.capacity() + smooth_hash_.capacity()) * sizeof(uint64_t);
+         (slot_hash_.capacity() + smooth_hash_.capacity()) * sizeof(uint64_t) +
+         staging_slots_ * (kSlotBytes + (staging_smooth_ ? kSmoothSlotBytes : 0));
 }
 
 void BrickPool::makeIndirectionTexture(glm::ivec3 brick_dims) {
@@ -644,6 +645,17 @@ void BrickPool::reportSlotChange(const Volume& volume, glm::ivec3 b, glm::ivec3 
   }
 }
 
+BrickPool::StagingBuffers BrickPool::staging(size_t slots) {
+  if (staging_slots_ < slots) {
+    staging_main_.reset(new uint8_t[slots * kSlotBytes]);  // not zeroed: every byte is packed
+    staging_smooth_.reset();
+    staging_slots_ = slots;
+  }
+  if (smooth_enabled_ && !staging_smooth_)
+    staging_smooth_.reset(new uint16_t[staging_slots_ * (kSmoothSlotBytes / 2)]);
+  return {staging_main_.get(), staging_smooth_.get()};
+}
+
 void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
                             const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
                             UpdateStats* stats) {
@@ -651,13 +663,15 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
   auto t0 = std::chrono::steady_clock::now();
   resetUnpackState();
   constexpr size_t kSmoothValues = kSmoothSlotBytes / 2;
-  std::vector<uint8_t> staging;  // packed main texels of one batch
-  std::vector<uint16_t> smooth;  // their companions
   for (size_t first = 0; first < to_upload.size(); first += kUploadBatch) {
     const size_t n = std::min(kUploadBatch, to_upload.size() - first);
     t0 = std::chrono::steady_clock::now();
-    staging.resize(n * kSlotBytes);
-    smooth.resize(n * kSmoothValues);
+    // The batch's packed main texels and companions, in buffers kept from one update to the
+    // next: a fresh 8 MB buffer a sync cost its page faults and zero-fill (a light change
+    // re-packs about 2,300 slots: ~18 % of its CPU, docs/bench.md).
+    const StagingBuffers buffers = staging(n);
+    uint8_t* const staging = buffers.main;
+    uint16_t* const smooth = buffers.smooth;
     // Per slot: which re-packed parts hold other bytes than the slot did (by their hashes; the
     // slot of an added brick held nothing: hash 0).
     enum : uint8_t { kMainChanged = 1, kSmoothChanged = 2, kAdded = 4 };
@@ -667,8 +681,8 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       for (size_t s = s0; s < s1; ++s) {
         const auto [b, parts] = to_upload[first + s];
         const size_t i = brickIndex(b);
-        uint8_t* main = staging.data() + s * kSlotBytes;
-        uint16_t* smoothed = smooth.data() + s * kSmoothValues;
+        uint8_t* main = staging + s * kSlotBytes;
+        uint16_t* smoothed = smooth ? smooth + s * kSmoothValues : nullptr;
         if (slot_hash_[i] == 0) state[s] |= kAdded;
         if (parts & kMainPart) {
           packBrickSlot(volume, light, b, main);
@@ -694,8 +708,8 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       }
       const auto [b, parts] = to_upload[first + s];
       const glm::ivec3 at = glm::ivec3(slot_of_brick_[brickIndex(b)]) * kSlotTexels;
-      const uint8_t* main = staging.data() + s * kSlotBytes;
-      const uint16_t* smoothed = smooth.data() + s * kSmoothValues;
+      const uint8_t* main = staging + s * kSlotBytes;
+      const uint16_t* smoothed = smooth ? smooth + s * kSmoothValues : nullptr;
       if (changes && fresh) {
         // Everything is new (the renderer starts its frames over): the whole slot, no compare.
         const VoxelBox whole = slotVoxels(b, volume);

@@ -53,6 +53,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -174,7 +175,7 @@ class BrickPool {
            (kTexelBytes + (smooth_enabled_ ? kSmoothTexelBytes : 0));
   }
   size_t indirectionBytes() const { return slot_of_brick_.size() * 4; }
-  // CPU bytes of the tables (indirection copy, free list, marks).
+  // CPU bytes of the tables (indirection copy, free list, marks, hashes) and the staging buffers.
   size_t tableBytes() const;
 
  private:
@@ -226,6 +227,13 @@ class BrickPool {
   // Adds the slots that read light bytes which changed (their main texels).
   void addLightReaders(const Volume& volume, const VoxelBox& light_box,
                        const LightByteChanges* light_bytes, std::vector<Repack>* upload);
+  // The staging buffers of a batch of `slots` slots (kept between updates; the companion's
+  // only once enabled, else nullptr).
+  struct StagingBuffers {
+    uint8_t* main;
+    uint16_t* smooth;
+  };
+  StagingBuffers staging(size_t slots);
   // Packs and uploads the slots' parts in batches, skipping those whose bytes did not change,
   // and reports what rays read differently (`changes`).
   void uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
@@ -252,6 +260,9 @@ class BrickPool {
   // The parts a slot holds: its main texels, and its companion once enabled.
   uint8_t allParts() const { return smooth_enabled_ ? kBothParts : kMainPart; }
   bool full_reported_ = false;
+  std::unique_ptr<uint8_t[]> staging_main_;  // a batch's packed main texels (staging)
+  std::unique_ptr<uint16_t[]> staging_smooth_;
+  size_t staging_slots_ = 0;
 };
 
 // The allocated bricks of `grown` on the faces of the box a growth moved the old volume's bricks

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <barrier>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -917,6 +918,94 @@ VoxelBox rewrittenBox(LightVolume& lv, const Volume& volume, const SweepFrame& f
   return out;
 }
 
+// Hashes of the 8-bit light of one brick's 16³ values (unorm8, as the GPU copy holds it), one
+// per part: part bit a set for the voxels with coordinate a below LightByteChanges::kLowVoxels
+// (those the slot one brick below on that axis reads too).
+LightVolume::BrickHash brickByteHash(const float* t) {
+  constexpr int S = Volume::kBrickSize, L = LightByteChanges::kLowVoxels;
+  static_assert(S == 16 && L == 4, "a row is one 4-byte low word and 12 high bytes");
+  alignas(16) uint8_t bytes[Volume::kBrickVoxels];
+  for (int i = 0; i < Volume::kBrickVoxels; ++i) bytes[i] = unorm8(t[i]);
+  LightVolume::BrickHash h;
+  h.fill(0x9E3779B97F4A7C15ull);
+  auto mix = [](uint64_t& into, uint64_t w) {
+    into = (into ^ w) * 0xBF58476D1CE4E5B9ull;
+    into ^= into >> 31;
+  };
+  for (int z = 0; z < S; ++z)
+    for (int y = 0; y < S; ++y) {
+      const uint8_t* row = bytes + (z * S + y) * S;
+      const int yz = (y < L ? 2 : 0) | (z < L ? 4 : 0);
+      uint32_t low, tail;
+      uint64_t mid;
+      std::memcpy(&low, row, 4);
+      std::memcpy(&mid, row + 4, 8);
+      std::memcpy(&tail, row + 12, 4);
+      mix(h[size_t(yz | 1)], low);
+      mix(h[size_t(yz)], mid);
+      mix(h[size_t(yz)], tail);
+    }
+  return h;
+}
+
+// Every brick's byte hashes (an absent brick reads 1: the hashes of a brick of ones). Each
+// brick's hashes are its own, so the split over threads changes nothing.
+std::vector<LightVolume::BrickHash> brickByteHashes(const LightVolume& lv) {
+  const glm::ivec3 bd = lv.through.brickDims();
+  const size_t n = size_t(bd.x) * size_t(bd.y) * size_t(bd.z);
+  std::vector<LightVolume::BrickHash> hashes(n);
+  const LightVolume::BrickHash ones = brickByteHash(onesBrick());
+  parallelFor(n, 2048, [&](size_t, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) {
+      const float* p = lv.lit.get(i);
+      if (!p) p = lv.through.get(i);
+      hashes[i] = p ? brickByteHash(p) : ones;
+    }
+  });
+  return hashes;
+}
+
+// After a full sweep: the bricks whose byte hashes differ from `before`, each with the slots
+// below it that read a changed part (LightByteChanges::Brick::readers), when `before` was known
+// for this grid; else `all` stays.
+void listFullSweepChanges(LightVolume& lv, const std::vector<LightVolume::BrickHash>& before,
+                          LightByteChanges* changes) {
+  if (!changes) return;
+  lv.byte_hash = brickByteHashes(lv);
+  if (before.size() != lv.byte_hash.size()) return;
+  changes->all = false;
+  const glm::ivec3 bd = lv.through.brickDims();
+  for (int z = 0; z < bd.z; ++z)
+    for (int y = 0; y < bd.y; ++y)
+      for (int x = 0; x < bd.x; ++x) {
+        const size_t i = lv.through.brickIndex({x, y, z});
+        if (lv.byte_hash[i] == before[i]) continue;
+        // The slot of brick − δ reads part r's voxels when r is low on every axis δ names.
+        uint8_t readers = 0;
+        for (int r = 0; r < 8; ++r)
+          if (lv.byte_hash[i][size_t(r)] != before[i][size_t(r)])
+            for (int d = 0; d < 8; ++d)
+              if ((d & ~r) == 0) readers |= uint8_t(1u << d);
+        changes->bricks.push_back({{x, y, z}, readers});
+      }
+}
+
+// After an incremental sweep: the byte hashes of the bricks it names as changed, re-hashed
+// (they stay unknown when it named none: `changes` not asked for).
+void rehashChangedBricks(LightVolume& lv, const LightByteChanges* changes) {
+  const glm::ivec3 bd = lv.through.brickDims();
+  if (!changes || lv.byte_hash.size() != size_t(bd.x) * size_t(bd.y) * size_t(bd.z)) {
+    lv.byte_hash.clear();
+    return;
+  }
+  for (const LightByteChanges::Brick& c : changes->bricks) {
+    const size_t i = lv.through.brickIndex(c.brick);
+    const float* p = lv.lit.get(i);
+    if (!p) p = lv.through.get(i);
+    lv.byte_hash[i] = brickByteHash(p ? p : onesBrick());
+  }
+}
+
 }  // namespace
 
 VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& light,
@@ -966,11 +1055,13 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   const std::vector<int> depth = storedSlices(volume, f, ob, oc);
   std::vector<int> depth_before = std::exchange(lv.stored_slices, depth);
   if (region == volume.bounds()) {
+    const std::vector<LightVolume::BrickHash> hashes_before = std::exchange(lv.byte_hash, {});
     lv.lit.recycle(volume.brickDims());
     lv.through.recycle(volume.brickDims());
     sweepAllTiles(t, depth);
     lv.lit.dropSpare();
     lv.through.dropSpare();
+    listFullSweepChanges(lv, hashes_before, changes);
     return volume.bounds();
   }
   if (depth_before.size() != depth.size()) depth_before.assign(depth.size(), 0);
@@ -985,6 +1076,7 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
   const int slices = grow.stored_end - first;
   if (slices <= 0) {
     collectBrickChanges(lv, volume.brickDims(), changed_bytes, changes);
+    rehashChangedBricks(lv, changes);
     return {};
   }
   const ChangedSlices in{t,
@@ -1000,7 +1092,9 @@ VoxelBox sweepLightVolume(LightVolume& lv, const Volume& volume, const Light& li
                          Rect{glm::ivec2(0), lateral_dims}};
   const SweptSlices done = sweepChangedSlices(in);
   collectBrickChanges(lv, volume.brickDims(), changed_bytes, changes);
-  return rewrittenBox(lv, volume, f, start, done);
+  const VoxelBox rewritten = rewrittenBox(lv, volume, f, start, done);
+  rehashChangedBricks(lv, changes);
+  return rewritten;
 }
 
 void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,
@@ -1019,6 +1113,7 @@ void shiftLightVolume(LightVolume& lv, glm::ivec3 old_dims, const Volume& grown,
   }
   lv.lit.shift(bd, brick_offset);
   lv.through.shift(bd, brick_offset);
+  lv.byte_hash.clear();  // the next full sweep reports every brick
   lv.dims = dims;
   const int ntb = bd[f.b], ntc = bd[f.c];
   const int offset_slices = brick_offset[f.axis] * Volume::kBrickSize;

@@ -38,6 +38,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -111,6 +112,14 @@ struct LightVolume {
   // sweep reads. Past it the shadow falls on nothing the renderer reads, so it is neither swept
   // nor stored (see the file comment).
   std::vector<int> stored_slices;
+  // Per brick (LightBricks::brickIndex): 64-bit hashes of its 8-bit light as the GPU copy holds
+  // it (unorm8 of `at`), one per part of the brick (part bit a: the voxels below
+  // LightByteChanges::kLowVoxels on axis a, which the slot below reads too), kept by
+  // sweepLightVolume while it reports LightByteChanges, so that a full sweep (a new light
+  // direction) can name the bricks whose 8 bits changed instead of every brick; empty when not
+  // known (anything else that writes the bricks clears it).
+  using BrickHash = std::array<uint64_t, 8>;
+  std::vector<BrickHash> byte_hash;
 
   bool matches(const Volume& volume, const Light& light) const;
   // T at voxel (x,y,z), 1 = fully lit: after sweepLightVolume exact in the stored slices (every
@@ -131,9 +140,10 @@ struct LightVolume {
   // Never nullptr for a brick of the grid (a fully lit brick shares one brick of ones); nullptr
   // outside the grid or before the first sweep.
   const float* brickTransmittance(glm::ivec3 brick) const;
-  // Bytes held: both brick sets, their tables and the stored depths.
+  // Bytes held: both brick sets, their tables, the stored depths and the byte hashes.
   size_t memoryBytes() const {
-    return lit.memoryBytes() + through.memoryBytes() + stored_slices.size() * sizeof(int);
+    return lit.memoryBytes() + through.memoryBytes() + stored_slices.size() * sizeof(int) +
+           byte_hash.size() * sizeof(BrickHash);
   }
   // Every voxel's T in the volume's dense order (tests and tools; at most 2^31 voxels).
   std::vector<float> toDense() const;
@@ -176,6 +186,9 @@ std::vector<glm::ivec3> lightBrickList(const Volume& volume);
 // the voxels rewritten (empty if none; the whole grid after a full recompute). `changes`, if
 // given, receives the bricks whose 8-bit light changed (far fewer than the box holds: deep in
 // the shadow the float values move but their 8 bits stay; brick_pool.h re-packs only those).
+// A full recompute lists them too when the light volume's byte hashes are known from the sweep
+// before (LightVolume::byte_hash: a new light leaves the 8 bits of the bricks in full light, or
+// deep in shadow, as they were); else it reports `all`.
 VoxelBox sweepLightVolume(LightVolume& light_volume, const Volume& volume, const Light& light,
                           const VoxelBox& dirty, LightByteChanges* changes = nullptr);
 

@@ -89,6 +89,7 @@ VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const L
   lv.dims = dims;
   lv.direction = lightDirectionInVoxels(volume, light);
   lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
+  lv.byte_hash.clear();   // nor are its bricks' bytes known
   lv.lit.recycle(volume.brickDims());  // the previous drag frame's bricks are reused
   lv.through.reset(volume.brickDims());
   struct Tap {
