@@ -221,7 +221,8 @@ void StudyRunScreen::writeSessionJson() {
                 : state_.aborted()  ? "aborted"
                                     : "completed";
   info.abort_reason = state_.abortReason();
-  if (pen_ && pen_->connection() == PenConnection::kConnected) {
+  // The pen this run gave the session (it may have finished since: a recording played out).
+  if (pen_ && (pen_->connection() == PenConnection::kConnected || device_selected_)) {
     info.device = pen_->deviceInfo();
     info.device_serial = pen_->serialNumber(&info.device_serial_note);
   }
@@ -235,6 +236,7 @@ void StudyRunScreen::writeSessionJson() {
 
 void StudyRunScreen::selectCalibration() {
   const PenDeviceInfo& device = pen_->deviceInfo();
+  device_selected_ = true;
   session_.setDevice(device, now_ns_);
   ProfileSelection selection =
       selectProfile(device, tool_serial_, options_.paint.config_dir, options_.paint.state_dir);
@@ -542,12 +544,31 @@ void StudyRunScreen::restoreStepProgress(const std::string& text) {
 }
 
 void StudyRunScreen::onPenSamples(const std::vector<PenSample>& samples) {
+  if (!page_drawn_) {
+    held_.insert(held_.end(), samples.begin(), samples.end());
+    return;
+  }
+  if (!held_.empty()) {
+    std::vector<PenSample> waited = std::move(held_);
+    held_.clear();
+    waited.insert(waited.end(), samples.begin(), samples.end());
+    feedSamples(waited);
+    return;
+  }
+  feedSamples(samples);
+}
+
+void StudyRunScreen::feedSamples(const std::vector<PenSample>& samples) {
   if (pen_) {
     const int connection = int(pen_->connection());
-    if (connection != last_connection_) {
-      last_connection_ = connection;
-      if (pen_->connection() == PenConnection::kConnected) selectCalibration();
-    }
+    const bool changed = connection != last_connection_;
+    last_connection_ = connection;
+    if (changed && pen_->connection() != PenConnection::kConnected) device_selected_ = false;
+    // The device and its calibration before the pen's first sample: at the connection, or when
+    // samples come from a pen already finished again (a recording played out in one poll).
+    if ((changed && pen_->connection() == PenConnection::kConnected) ||
+        (!samples.empty() && !device_selected_))
+      selectCalibration();
   }
   const bool painting = isPaintingStage(state_.stage()) && !state_.paused() && !state_.choosing();
   if (!painting) panel_holds_pen_ = false;
@@ -872,6 +893,7 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
     if (!ui_->init(error)) return false;
   }
   page_ = currentPage(w, h);
+  page_drawn_ = true;
   if (!hud_ready_) {
     if (!hud_.init(error)) return false;
     hud_ready_ = true;

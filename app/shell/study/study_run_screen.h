@@ -108,6 +108,8 @@ class StudyRunScreen : public Screen {
 
  private:
   void activate(const StudyTarget& target, int64_t t_ns);
+  // The samples of one poll, each to the form or the painter (onPenSamples, once a frame drew).
+  void feedSamples(const std::vector<PenSample>& samples);
   void formSample(const PenSample& sample);
   // A painting stage's sample: to the painter, or to the panel's targets while the pen is over
   // them (handed over only while the pen is up and no stroke is open).
@@ -154,6 +156,10 @@ class StudyRunScreen : public Screen {
   HudOverlay hud_;
   bool hud_ready_ = false;
   StudyPage page_;
+  // Samples polled before the first frame drew its page wait for it: a tap lands on the
+  // targets where that frame draws them (its font measures the texts), not on an estimate.
+  std::vector<PenSample> held_;
+  bool page_drawn_ = false;
   std::string typed_, message_;
   int keyboard_page_ = kKeyboardLower;  // the on-screen keyboard's page
   // Writing to the session folder: outages for the operator and session.json; answer files and
@@ -175,6 +181,7 @@ class StudyRunScreen : public Screen {
   PenEventDeriver pen_events_;
   std::vector<PenEvent> events_;
   int last_connection_ = -1;
+  bool device_selected_ = false;  // the pen's device and calibration given to the session
   uint64_t tool_serial_ = 0;
   std::optional<StudyTarget> pressed_;  // the target under the pen (or mouse) when it went down
   bool mouse_down_ = false;
