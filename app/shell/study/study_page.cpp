@@ -31,6 +31,10 @@ const Bilingual kDeclinedBody{
     "您没有同意参加，本次会话到此结束：没有开始任何任务，也不会记录您的绘画或回答。感谢您抽出时间"
     "。"};
 const Bilingual kDoneText{"I'm done", "我画完了"};
+const Bilingual kTaskHowText{
+    "Paint a cloud like the picture. It is saved for you when you tap \"I'm done\" or when the "
+    "time is up.",
+    "照着图片画一朵云。点“我画完了”或时间到时，它会为您保存。"};
 const Bilingual kDoneAskText{"Finish this task now?", "现在结束这个任务吗？"};
 const Bilingual kDoneYesText{"Yes, I'm done", "是的，画完了"};
 const Bilingual kKeepPaintingText{"Keep painting", "继续画"};
@@ -511,9 +515,7 @@ void taskPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput&
         0.5f * b.small();
   }
   // What to do and how it ends, under the picture; the picture takes the room left.
-  const std::string how =
-      "Paint a cloud like the picture. It is saved for you when you tap \"I'm done\" or when "
-      "the time is up.";
+  const std::string how = std::string(kTaskHowText.en) + " " + kTaskHowText.zh;
   const float how_size = b.fit(how, b.small(), l.wrap, 4.0f * b.small());
   const float how_h = b.size(how, how_size, l.wrap)[1];
   if (input.image_aspect > 0.0f) {
@@ -681,7 +683,7 @@ std::string studyPageText(const StudyProtocol& p) {
   std::string text;
   for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
                              kDoneAskText, kDoneYesText, kKeepPaintingText, kTimeUpText,
-                             kFinishingText, kTaskSavedText, kTaskKeptText})
+                             kFinishingText, kTaskSavedText, kTaskKeptText, kTaskHowText})
     text += b.zh;
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;
