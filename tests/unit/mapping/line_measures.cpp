@@ -3,19 +3,10 @@
 #include <cstdlib>
 #include <vector>
 
+#include "speckle.h"
+
 namespace cb::test {
 namespace {
-
-float luminance(const uint8_t* p) {
-  return (0.2126f * float(p[0]) + 0.7152f * float(p[1]) + 0.0722f * float(p[2])) / 255.0f;
-}
-
-// 12 of 765 summed levels: above the renderer's rounding, below any painted tone (speckle.cpp).
-bool differs(const uint8_t* p, const uint8_t* q) {
-  return std::abs(int(p[0]) - int(q[0])) + std::abs(int(p[1]) - int(q[1])) +
-             std::abs(int(p[2]) - int(q[2])) >
-         12;
-}
 
 struct Masks {
   int w = 0, h = 0;
@@ -37,8 +28,8 @@ Masks masksOf(const ImageRgba8& image, const ImageRgba8& extent, const ImageRgba
   for (int y = 0; y < m.h; ++y)
     for (int x = 0; x < m.w; ++x) {
       const size_t i = size_t(y) * size_t(m.w) + size_t(x);
-      m.cloud[i] = differs(extent.at(x, y), extent_empty.at(x, y));
-      m.dark[i] = luminance(image.at(x, y)) < dark_luminance;
+      m.cloud[i] = differsFromEmpty(extent.at(x, y), extent_empty.at(x, y));
+      m.dark[i] = pixelLuminance(image.at(x, y)) < dark_luminance;
     }
   return m;
 }

@@ -4,20 +4,16 @@
 #include <vector>
 
 namespace cb::test {
-namespace {
 
-float luminance(const uint8_t* p) {
+float pixelLuminance(const uint8_t* p) {
   return (0.2126f * float(p[0]) + 0.7152f * float(p[1]) + 0.0722f * float(p[2])) / 255.0f;
 }
 
-bool differs(const uint8_t* p, const uint8_t* q) {
-  // 12 of 765 summed levels: above the renderer's rounding, below any painted tone.
-  return std::abs(int(p[0]) - int(q[0])) + std::abs(int(p[1]) - int(q[1])) +
-             std::abs(int(p[2]) - int(q[2])) >
+bool differsFromEmpty(const uint8_t* p, const uint8_t* empty) {
+  return std::abs(int(p[0]) - int(empty[0])) + std::abs(int(p[1]) - int(empty[1])) +
+             std::abs(int(p[2]) - int(empty[2])) >
          12;
 }
-
-}  // namespace
 
 Speckle measureSpeckle(const ImageRgba8& image, const ImageRgba8& empty, float dark_luminance,
                        int max_island) {
@@ -27,9 +23,9 @@ Speckle measureSpeckle(const ImageRgba8& image, const ImageRgba8& empty, float d
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const uint8_t* p = image.at(x, y);
-      const bool cloud = differs(p, empty.at(x, y));
+      const bool cloud = differsFromEmpty(p, empty.at(x, y));
       s.cloud += cloud;
-      dark[size_t(y) * size_t(w) + size_t(x)] = cloud && luminance(p) < dark_luminance;
+      dark[size_t(y) * size_t(w) + size_t(x)] = cloud && pixelLuminance(p) < dark_luminance;
     }
   // Flood-fill each dark island (8-connected); islands of at most max_island pixels are specks.
   std::vector<int> stack, island;

@@ -16,6 +16,12 @@ struct Speckle {
   double fraction() const { return cloud ? double(speckle) / double(cloud) : 0.0; }
 };
 
+// A pixel's luminance (0..1, Rec. 709) from its 8-bit RGB.
+float pixelLuminance(const uint8_t* p);
+// A pixel of the image that differs from the empty sky's: by more than 12 of 765 summed levels,
+// above the renderer's rounding and below any painted tone.
+bool differsFromEmpty(const uint8_t* p, const uint8_t* empty);
+
 // `image` and `empty` (the same view without the cloud) of equal size; `dark_luminance` the
 // luminance (0..1, Rec. 709) below which a cloud pixel is line ink, not a fill tone.
 Speckle measureSpeckle(const ImageRgba8& image, const ImageRgba8& empty, float dark_luminance,
