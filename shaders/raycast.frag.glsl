@@ -1,6 +1,7 @@
 // Compiled in variants (the renderer prepends #defines): CB_SKIP (ray bounds), CB_BRICK_STEPPING
 // (hierarchical stepping inside them), CB_STATS (sample statistics), CB_SURFACE (the style draws
-// an iso-surface instead of compositing the volume). Variants rather than uniform branches,
+// an iso-surface instead of compositing the volume), CB_LIGHT_PREVIEW (the light from a light
+// drag's coarse grid, volume_pool.glsl). Variants rather than uniform branches,
 // because llvmpipe runs untaken branches' straight-line code with all lanes masked.
 //
 // Ray casting of the density volume (thesis §4.3, Alg. 4) with lossless empty-space skipping
@@ -247,7 +248,12 @@ void main() {
         samples += uint(live);
         float density = styleDensity(s.r, base + float(k + i) * delta) * live;
         float t_next = transmittance * exp2(neg_optical_depth_log2 * density);
-        shade_sum += (transmittance - t_next) * shadeSample(density, s.g);  // T·α·shade
+#if CB_LIGHT_PREVIEW
+        float light_t = previewTransmittance(base + float(k + i) * delta);
+#else
+        float light_t = s.g;
+#endif
+        shade_sum += (transmittance - t_next) * shadeSample(density, light_t);  // T·α·shade
 #if CB_DEPTH
         depth_sum += (transmittance - t_next) * float(k + i);
 #endif
@@ -287,7 +293,11 @@ void main() {
                          sampleVolume(p + vec3(0, 0, h.z)).r - sampleVolume(p - vec3(0, 0, h.z)).r);
     vec3 g_world = gradient / u_voxel_size;
     surface.normal = dot(g_world, g_world) > 1e-12 ? -normalize(g_world) : surface.view;
+#if CB_LIGHT_PREVIEW
+    surface.light_transmittance = previewTransmittance(p);
+#else
     surface.light_transmittance = sampleVolume(p).g;
+#endif
     // Inner surface (seed 003 §5): the largest density within u_inner_depth voxels behind the
     // hit; it equals u_inner_iso where the ray grazes the inner surface (its silhouette). Read
     // smoothed over about 3 voxels (the pool's companion, volume_pool.glsl: the mean of the 8

@@ -125,3 +125,16 @@ float sampleSmoothDensity(vec3 coord) {
   PoolBrick pb = poolBrickAt(q);
   return poolFetchSmooth(clamp(q + pb.to_pool, pb.lo, pb.hi));
 }
+
+#if CB_LIGHT_PREVIEW
+// While the light ball is dragged the light is read from a coarse grid of its own
+// (app/render/reduced_light_sweep.h, light_preview_texture.h) instead of the pool's g and a:
+// one trilinear fetch of an R8 3D texture over the cloud's box, clamped at its edge.
+uniform sampler3D u_light_preview;
+uniform vec3 u_preview_scale;   // dense texture coordinate -> the grid's texture coordinate
+uniform vec3 u_preview_offset;
+
+float previewTransmittance(vec3 coord) {
+  return textureLod(u_light_preview, coord * u_preview_scale + u_preview_offset, 0.0).r;
+}
+#endif

@@ -15,7 +15,7 @@
 #include "app/shell/painter/paint_loop.h"
 #include "app/shell/painter/paint_screen.h"
 #include "app/tools/procedural_mesh.h"
-#include "drivers/core/pen_source.h"
+#include "drivers/core/no_pen_source.h"
 
 namespace cb {
 namespace {
@@ -25,20 +25,6 @@ using Clock = std::chrono::steady_clock;
 constexpr int kDrags = 3;        // light drags, each released once
 constexpr int kDragFrames = 12;  // frames of each drag that move the light
 constexpr int kWindFrames = 16;  // wind frames timed (after the first few)
-
-// No tablet: a pen source that searches for ever, so the mouse drives the painter as it does on
-// a machine without a tablet (PaintScreen::onPointer).
-class NoTablet final : public PenSource {
- public:
-  const char* backendName() const override { return "none"; }
-  void poll(int, std::vector<PenSample>&) override {}
-  PenConnection connection() const override { return PenConnection::kSearching; }
-  const PenDeviceInfo& deviceInfo() const override { return info_; }
-  std::string statusMessage() const override { return "bench: no tablet"; }
-
- private:
-  PenDeviceInfo info_;
-};
 
 // The bench tools' silhouette: six overlapping dark discs on white (a cumulus's outline).
 ImageRgba8 silhouette(int w, int h) {
@@ -203,12 +189,12 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   options.config_dir = dir + "/config";
   options.state_dir = dir + "/state";
   if (baseline) {
-    options.light_drag_divisor = 2;  // the thesis's preview while dragging
+    options.light_drag_divisor = 1;  // the light volume swept in full every drag frame
     options.region_rerender = false;
     options.reproject_moving = true;
   }
   options.on_frame = [&](const PaintFrameInfo&) { script.onFrame(); };
-  NoTablet no_tablet;
+  NoPenSource no_tablet;
   PaintLoop loop(display, renderer, cumulus, Light{}, options);
   loop.attachPen(&no_tablet, &session);
   script.screen = &loop.screen();

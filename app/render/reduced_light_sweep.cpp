@@ -64,98 +64,76 @@ void averageBlocks(const Volume& volume, int divisor, Volume* coarse) {
   coarse->markDirty(coarse->bounds());
 }
 
+// The fine box of the allocated bricks (empty for an empty volume).
+VoxelBox allocatedBox(const Volume& volume) {
+  VoxelBox box;
+  for (const glm::ivec3 b : volume.allocatedBrickList()) box = box.unite(volume.brickBox(b));
+  return box;
+}
+
 }  // namespace
 
-VoxelBox ReducedLightSweep::sweep(LightVolume& lv, const Volume& volume, const Light& light,
-                                  int divisor) {
-  if (divisor <= 1) {
-    lv = LightVolume{};
-    return sweepLightVolume(lv, volume, light, volume.bounds());
-  }
+float LightPreviewGrid::sample(glm::vec3 p) const {
+  if (divisor == 0 || bytes.empty()) return 1.0f;
+  const glm::vec3 c =
+      glm::clamp(p / float(divisor) - 0.5f - glm::vec3(lo), glm::vec3(0.0f), glm::vec3(size - 1));
+  const glm::ivec3 i0(c), i1 = glm::min(i0 + 1, size - 1);
+  const glm::vec3 t = c - glm::vec3(i0);
+  const auto at = [&](int x, int y, int z) {
+    return float(bytes[(size_t(z) * size_t(size.y) + size_t(y)) * size_t(size.x) + size_t(x)]) /
+           255.0f;
+  };
+  const auto row = [&](int y, int z) { return at(i0.x, y, z) * (1 - t.x) + at(i1.x, y, z) * t.x; };
+  const float z0 = row(i0.y, i0.z) * (1 - t.y) + row(i1.y, i0.z) * t.y;
+  const float z1 = row(i0.y, i1.z) * (1 - t.y) + row(i1.y, i1.z) * t.y;
+  return z0 * (1 - t.z) + z1 * t.z;
+}
+
+const LightPreviewGrid& ReducedLightSweep::sweep(const Volume& volume, const Light& light,
+                                                 int divisor) {
   const glm::ivec3 dims = volume.dims();
-  const glm::ivec3 cdims = (dims + divisor - 1) / divisor;
-  coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());  // empty
+  const VoxelBox fine = allocatedBox(volume);
+  divisor = std::max(divisor, 2);
+  glm::ivec3 lo(0), size(1), cdims(1);
+  for (;; divisor *= 2) {
+    cdims = (dims + divisor - 1) / divisor;
+    if (fine.empty()) break;
+    lo = glm::max(fine.lo / divisor - 1, glm::ivec3(0));
+    size = glm::min((fine.hi + divisor - 1) / divisor + 1, cdims) - lo;
+    if (size_t(size.x) * size_t(size.y) * size_t(size.z) <= kMaxGridVoxels) break;
+  }
+  grid_.divisor = divisor;
+  grid_.lo = lo;
+  grid_.size = size;
+  grid_.bytes.assign(size_t(size.x) * size_t(size.y) * size_t(size.z), 255);
+  if (fine.empty()) return grid_;
 
-  averageBlocks(volume, divisor, &coarse_);
-
+  if (averaged_id_ != volume.instanceId() || averaged_generation_ != volume.generation() ||
+      averaged_divisor_ != divisor) {
+    coarse_ = Volume(cdims, volume.worldMin(), volume.worldMax());  // empty
+    averageBlocks(volume, divisor, &coarse_);
+    coarse_light_ = LightVolume{};
+    averaged_id_ = volume.instanceId();
+    averaged_generation_ = volume.generation();
+    averaged_divisor_ = divisor;
+  }
   Light coarse_light = light;
   coarse_light.extinction =
       1.0f - std::pow(1.0f - std::min(light.extinction, 1.0f), float(divisor));
   sweepLightVolume(coarse_light_, coarse_, coarse_light, coarse_.bounds());
 
-  // Trilinear interpolation of the coarse transmittance at every voxel centre of the light
-  // bricks (the only ones the renderer reads), row by row: the four coarse rows around a fine
-  // row are blended in y and z once, then each voxel in x.
-  lv.dims = dims;
-  lv.direction = lightDirectionInVoxels(volume, light);
-  lv.extinction = -1.0f;  // matches no light: the next full sweep recomputes everything
-  lv.byte_hash.clear();   // nor are its bricks' bytes known
-  lv.lit.recycle(volume.brickDims());  // the previous drag frame's bricks are reused
-  lv.through.reset(volume.brickDims());
-  struct Tap {
-    int i0, i1;
-    float t;
-  };
-  const auto taps = [&](int n_fine, int n_coarse) {
-    std::vector<Tap> out(static_cast<size_t>(n_fine));
-    for (int i = 0; i < n_fine; ++i) {
-      const float c =
-          std::clamp((float(i) + 0.5f) / float(divisor) - 0.5f, 0.0f, float(n_coarse - 1));
-      const int i0 = int(c);
-      out[size_t(i)] = {i0, std::min(i0 + 1, n_coarse - 1), c - float(i0)};
-    }
-    return out;
-  };
-  const std::vector<Tap> tx = taps(dims.x, cdims.x), ty = taps(dims.y, cdims.y),
-                         tz = taps(dims.z, cdims.z);
-  const LightVolume& T = coarse_light_;
-  const std::vector<glm::ivec3> bricks = lightBrickList(volume);
-  std::vector<float*> out(bricks.size());
-  for (size_t k = 0; k < bricks.size(); ++k) out[k] = lv.lit.create(lv.lit.brickIndex(bricks[k]));
-  parallelFor(bricks.size(), 4, [&](size_t, size_t k0, size_t k1) {
-    std::vector<float> coarse_block, blended;
-    for (size_t k = k0; k < k1; ++k) {
-      const VoxelBox box = volume.brickBox(bricks[k]);
-      // The coarse values this brick interpolates, read once: [c0, c1] per axis.
-      const glm::ivec3 c0(tx[size_t(box.lo.x)].i0, ty[size_t(box.lo.y)].i0,
-                          tz[size_t(box.lo.z)].i0);
-      const glm::ivec3 c1(tx[size_t(box.hi.x - 1)].i1, ty[size_t(box.hi.y - 1)].i1,
-                          tz[size_t(box.hi.z - 1)].i1);
-      const glm::ivec3 n = c1 - c0 + 1;
-      coarse_block.resize(size_t(n.x) * size_t(n.y) * size_t(n.z));
-      for (int z = 0; z < n.z; ++z)
-        for (int y = 0; y < n.y; ++y)
-          for (int x = 0; x < n.x; ++x)
-            coarse_block[(size_t(z) * size_t(n.y) + size_t(y)) * size_t(n.x) + size_t(x)] =
-                T.at(c0.x + x, c0.y + y, c0.z + z);
-      auto coarseRow = [&](int y, int z) {
-        return coarse_block.data() +
-               (size_t(z - c0.z) * size_t(n.y) + size_t(y - c0.y)) * size_t(n.x);
-      };
-      blended.resize(size_t(n.x));
-      for (int z = box.lo.z; z < box.hi.z; ++z) {
-        const Tap& a = tz[size_t(z)];
-        for (int y = box.lo.y; y < box.hi.y; ++y) {
-          const Tap& b = ty[size_t(y)];
-          const float *r00 = coarseRow(b.i0, a.i0), *r01 = coarseRow(b.i1, a.i0),
-                      *r10 = coarseRow(b.i0, a.i1), *r11 = coarseRow(b.i1, a.i1);
-          for (int x = 0; x < n.x; ++x)
-            blended[size_t(x)] = (r00[x] * (1 - b.t) + r01[x] * b.t) * (1 - a.t) +
-                                 (r10[x] * (1 - b.t) + r11[x] * b.t) * a.t;
-          constexpr int m = Volume::kBrickSize - 1;
-          float* row =
-              out[k] + ((size_t(z & m) * Volume::kBrickSize + size_t(y & m)) * Volume::kBrickSize);
-          for (int x = box.lo.x; x < box.hi.x; ++x) {
-            const Tap& c = tx[size_t(x)];
-            row[x & m] =
-                blended[size_t(c.i0 - c0.x)] * (1 - c.t) + blended[size_t(c.i1 - c0.x)] * c.t;
-          }
-        }
-      }
+  // The box's rows as bytes.
+  const size_t rows = size_t(size.y) * size_t(size.z);
+  parallelFor(rows, 16, [&](size_t, size_t r0, size_t r1) {
+    std::vector<float> row(size_t(size.x));
+    for (size_t r = r0; r < r1; ++r) {
+      const int y = lo.y + int(r % size_t(size.y)), z = lo.z + int(r / size_t(size.y));
+      coarse_light_.readRow({lo.x, y, z}, size.x, row.data());
+      uint8_t* out = grid_.bytes.data() + r * size_t(size.x);
+      for (int x = 0; x < size.x; ++x) out[x] = unorm8(row[size_t(x)]);
     }
   });
-  lv.lit.dropSpare();
-  return volume.bounds();
+  return grid_;
 }
 
 }  // namespace cb

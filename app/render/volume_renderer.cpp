@@ -166,7 +166,8 @@ bool VolumeRenderer::ensureProgram(const RenderOptions& options) {
       "\n#define CB_STATS " + (options.collect_stats ? "1" : "0") + "\n#define CB_SURFACE " +
       (surface ? "1" : "0") + "\n#define CB_MOVING " + (options.moving ? "1" : "0") +
       "\n#define CB_CHUNK " + std::to_string(chunkSamples(rayStepVoxels(options))) +
-      "\n#define CB_DEPTH " + (options.write_depth && options.skip_empty_space ? "1" : "0") + "\n";
+      "\n#define CB_DEPTH " + (options.write_depth && options.skip_empty_space ? "1" : "0") +
+      "\n#define CB_LIGHT_PREVIEW " + (light_is_preview_ ? "1" : "0") + "\n";
   const std::string stage = shadingStageFile(options.style);
   const std::string key = stage + "\n" + defines;
   auto it = programs_.find(key);
@@ -378,23 +379,27 @@ void VolumeRenderer::followGrowth(const Volume& volume) {
   synced_generation_ = g.generation;
 }
 
-// The light volume brought up to date with the volume and the light: a coarse sweep while the
-// light is dragged (recomputed in full at release), else the sweep of what changed. Returns the
-// box whose light changed.
+// The light brought up to date with the volume and the light: while the light is dragged over
+// a volume that stayed the same, a coarse sweep into the preview texture (the light volume and
+// the pool keep the light before; nothing of them changes); else the light volume's sweep of
+// what changed. Returns the box whose light changed in the light volume.
 VoxelBox VolumeRenderer::syncLight(const Volume& volume, const Light& light, bool fresh,
                                    const VoxelBox& dirty, LightByteChanges* light_bytes) {
-  if (fresh) light_volume_ = LightVolume{};
-  const bool light_unchanged = synced_light_.direction == light.direction &&
-                               synced_light_.extinction == light.extinction && !fresh;
-  const bool stale = light_is_preview_ ? !light_unchanged || !dirty.empty()
-                                       : !light_volume_.matches(volume, light);
-  light_bytes->all = true;
-  if (light_preview_divisor_ > 1 && stale) {
-    light_is_preview_ = true;
-    return reduced_light_.sweep(light_volume_, volume, light, light_preview_divisor_);
+  if (fresh) {
+    light_volume_ = LightVolume{};
+    light_preview_.release();
   }
-  if (light_preview_divisor_ > 1 && light_is_preview_) return {};  // the same preview light
+  if (light_preview_divisor_ > 1 && !fresh && dirty.empty() &&
+      !light_volume_.matches(volume, light)) {
+    const bool same = light_is_preview_ && preview_light_.direction == light.direction &&
+                      preview_light_.extinction == light.extinction;
+    if (!same) light_preview_.upload(reduced_light_.sweep(volume, light, light_preview_divisor_));
+    light_is_preview_ = true;
+    preview_light_ = light;
+    return {};
+  }
   light_is_preview_ = false;
+  light_bytes->all = true;
   return sweepLightVolume(light_volume_, volume, light, dirty, light_bytes);
 }
 
@@ -533,6 +538,7 @@ RendererGpuMemory VolumeRenderer::gpuMemory() const {
   if (occupancy_texture_)
     for (const OccupancyCells& level : occupancy_.levels) m.occupancy += level.size();
   m.ray_bounds = bounds_vbo_bytes_;
+  m.light_preview = light_preview_.bytes();
   // RG32F bounds + RGBA8 frame + 24/8 depth-stencil per pixel, for the current and spare size.
   constexpr size_t kTargetBytesPerPixel = 8 + 4 + 4;
   m.frame_targets = (size_t(bounds_w_) * size_t(bounds_h_) +
@@ -1008,6 +1014,7 @@ void VolumeRenderer::setCastUniforms(const FramePlan& p, const Camera& camera,
   glUniform1f(loc("u_depth_min"), kDepthMinOpacity);
   if (options.skip_empty_space) glBindTextureUnit(2, bounds_texture_);
   glUniform3fv(loc("u_light_colour"), 1, glm::value_ptr(synced_light_.colour));
+  if (light_is_preview_) light_preview_.bind(program_, 7, dims_);
 }
 
 // The shading stages' uniforms: set for every stage (a stage that does not declare one ignores

@@ -21,6 +21,7 @@
 
 #include "app/render/brick_pool.h"
 #include "app/render/gl/gl.h"
+#include "app/render/light_preview_texture.h"
 #include "app/render/light_volume.h"
 #include "app/render/occupancy_pyramid.h"
 #include "app/render/reduced_light_sweep.h"
@@ -133,10 +134,11 @@ struct RendererGpuMemory {
   size_t indirection = 0;    // one RGBA8UI texel per brick
   size_t occupancy = 0;      // the R8UI occupancy mip chain
   size_t ray_bounds = 0;     // the occupied cells' faces (vertex buffer)
+  size_t light_preview = 0;  // a light drag's coarse light (R8, at most 4 MB), once dragged
   size_t frame_targets = 0;  // ray-bounds, frame and stencil targets (current and spare size),
                              // the reduced-scale and style images: these follow the screen size
   size_t styles = 0;         // the physical style's noise cube and light table, once used
-  size_t volume() const { return pool + indirection + occupancy + ray_bounds; }
+  size_t volume() const { return pool + indirection + occupancy + ray_bounds + light_preview; }
   size_t total() const { return volume() + frame_targets + styles; }
 };
 
@@ -173,11 +175,13 @@ class VolumeRenderer {
   // contents without markDirty (never do that) call invalidate().
   SyncStats sync(const Volume& volume, const Light& light);
   // While the light is dragged: a light change is swept on a grid `divisor` times coarser per
-  // axis (2: the thesis's 128³ for 256³; reduced_light_sweep.h); 1, the default, sweeps at full
-  // resolution. A light volume made coarse is recomputed in full by the first sync after the
-  // divisor returns to 1, even if the light did not change again.
+  // axis (2: the thesis's 128³ for 256³; reduced_light_sweep.h) and read by the ray caster from
+  // a small texture of its own, leaving the light volume and the pool as they were; 1, the
+  // default, sweeps at full resolution. The first sync after the divisor returns to 1 brings the
+  // light volume to the light then (a full sweep unless it is the light before the drag).
+  // A sync that changes the volume, or a fresh one, sweeps in full whatever the divisor.
   void setLightPreviewDivisor(int divisor) { light_preview_divisor_ = divisor < 1 ? 1 : divisor; }
-  // True while the light volume on the GPU is a reduced-resolution preview.
+  // True while frames read the light from the preview texture.
   bool lightIsPreview() const { return light_is_preview_; }
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
   // renders into an internal smaller target and blits it up. With skipping, only the boundary's
@@ -278,6 +282,8 @@ class VolumeRenderer {
   BrickPool pool_;  // density and transmittance on the GPU (brick_pool.h)
   LightVolume light_volume_;
   ReducedLightSweep reduced_light_;
+  LightPreviewTexture light_preview_;  // the drag's coarse light on the GPU
+  Light preview_light_;                // the light it was swept for
   int light_preview_divisor_ = 1;
   bool light_is_preview_ = false;
   OccupancyPyramid occupancy_;

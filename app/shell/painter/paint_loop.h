@@ -86,13 +86,11 @@ struct PaintLoopOptions {
   // full-resolution pass gathers ~7 texels a pixel; docs/reprojection.md), and it replaces the
   // reduced scale only where it is.
   bool reproject_moving = false;
-  // While the light ball is dragged the light volume is swept at 1/light_drag_divisor per axis,
-  // in full at release. 1 (the default) sweeps it in full every drag frame; 2 is the thesis's
-  // 128³ preview for 256³ (the bench's baseline). On llvmpipe the preview saves nothing while
-  // dragging and costs a second sweep at release (bench scale, quiet, 1920×1080, default sky,
-  // both orders: drag 4.2–4.8 fps either way, whichever runs second being faster; release →
-  // lit 379 and 445 ms in full against 460 and 522 previewed; docs/bench.md).
-  int light_drag_divisor = 1;
+  // While the light ball is dragged the light is swept at 1/light_drag_divisor per axis into a
+  // small texture the ray caster reads instead of the pool's light (reduced_light_sweep.h: the
+  // thesis's 128³ preview for 256³), and in full at release; 1 sweeps the light volume in full
+  // and re-packs the pool every drag frame (the bench's baseline).
+  int light_drag_divisor = 2;
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;

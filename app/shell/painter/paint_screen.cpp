@@ -638,9 +638,8 @@ void PaintScreen::renderScene(SceneWork* work) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
   const SceneKey key = currentKey();
-  // While the light ball is dragged the light volume may be swept at reduced resolution per
-  // axis (PaintLoopOptions::light_drag_divisor, 1 by default: in full); after a reduced sweep
-  // the first frame at release recomputes it in full.
+  // While the light ball is dragged the light is swept at reduced resolution per axis
+  // (PaintLoopOptions::light_drag_divisor); the first frame at release sweeps it in full.
   renderer_.setLightPreviewDivisor(drag_light_ ? std::max(1, options_.light_drag_divisor) : 1);
   const bool stale = sceneStale();
   // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
@@ -648,6 +647,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   const bool refine = refine_pending_ && !stale && !inkLive();
   work->refine = work->refine || refine;
   if (!stale && !refine) return;
+  // The release of a light drag sweeps the light in full: its first frame is shown at the moving
+  // resolution as the drag's were, then refined, so the final light shows as soon as it can.
+  const bool light_released = renderer_.lightIsPreview() && !drag_light_;
   const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
   const auto synced = std::chrono::steady_clock::now();
   work->sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
@@ -657,8 +659,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   options.style = key.style;
   options.collect_stats = show_stats_;
   const bool dragging = drag_camera_ || drag_light_;
-  options.scale =
-      (lit_pending_ || dragging || animationPlaying()) && !refine ? moving_scale_ : 1.0f;
+  options.scale = (lit_pending_ || dragging || light_released || animationPlaying()) && !refine
+                      ? moving_scale_
+                      : 1.0f;
   options.moving = options.scale < 1.0f;
   // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
   // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;

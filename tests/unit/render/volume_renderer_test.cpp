@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <random>
 
@@ -415,34 +417,53 @@ TEST_F(VolumeRendererTest, AMovingHalfScaleFrameStepsTwiceAsFarAndLooksTheSame) 
   EXPECT_LE(worst, 4);    // measured 2
 }
 
-// Dragging the light ball: light changes are swept at half resolution per axis while the divisor
-// is 2; when it returns to 1 the next sync recomputes the light volume in full, even though the
-// light did not move again, and the frame shows exactly what a plain full sync shows.
+// Dragging the light ball: while the divisor is 2 a light change is swept coarse into the
+// preview texture — the light volume and the pool stay as they were (nothing re-packed) and the
+// frame shows the new light, close to the full one; when the divisor returns to 1 the next sync
+// sweeps the light volume in full, even though the light did not move again, and the frame shows
+// exactly what a plain full sync shows.
 TEST_F(VolumeRendererTest, ALightDragIsSweptCoarseAndTheReleaseInFull) {
   Volume v = makeBundledCumulus(glm::ivec3(64), 1);
   Light light;
   renderer.sync(v, light);
   EXPECT_FALSE(renderer.lightIsPreview());
+  const std::vector<float> before = renderer.lightVolume().toDense();
+  const Camera cam = Camera::reference();
+  const ImageRgba8 old_light = renderImage(renderer, cam, RenderOptions{});
   renderer.setLightPreviewDivisor(2);
   light.direction = Light::directionTowards(glm::vec3(-3.0f, 2.0f, 1.0f));
-  EXPECT_EQ(renderer.sync(v, light).light_box, v.bounds());
+  const SyncStats drag = renderer.sync(v, light);
   EXPECT_TRUE(renderer.lightIsPreview());
-  EXPECT_TRUE(renderer.sync(v, light).light_box.empty()) << "the same drag light: no new sweep";
-  const std::vector<float> coarse = renderer.lightVolume().toDense();
+  EXPECT_TRUE(drag.light_moved);
+  EXPECT_TRUE(drag.light_box.empty()) << "the light volume is not swept while dragging";
+  EXPECT_EQ(drag.slots_uploaded, 0) << "nor is the pool re-packed";
+  EXPECT_EQ(renderer.lightVolume().toDense(), before);
+  EXPECT_GT(renderer.gpuMemory().light_preview, 0u);
+  const ImageRgba8 previewed = renderImage(renderer, cam, RenderOptions{});
+  EXPECT_EQ(renderer.sync(v, light).slots_uploaded, 0) << "the same drag light: nothing new";
   renderer.setLightPreviewDivisor(1);
-  EXPECT_EQ(renderer.sync(v, light).light_box, v.bounds()) << "the release sweeps in full";
+  EXPECT_FALSE(renderer.sync(v, light).light_box.empty()) << "the release sweeps in full";
   EXPECT_FALSE(renderer.lightIsPreview());
   LightVolume full;
   sweepLightVolume(full, v, light, v.bounds());
   EXPECT_EQ(renderer.lightVolume().toDense(), full.toDense());
-  EXPECT_NE(coarse, full.toDense());
-  const Camera cam = Camera::reference();
   const ImageRgba8 released = renderImage(renderer, cam, RenderOptions{});
   VolumeRenderer plain;
   std::string err;
   ASSERT_TRUE(plain.init(&err)) << err;
   plain.sync(v, light);
   EXPECT_EQ(maxChannelDifference(released, renderImage(plain, cam, RenderOptions{})), 0);
+  // The preview shows the new light: nearer the released frame than the frame before the drag.
+  const auto mean = [](const ImageRgba8& a, const ImageRgba8& b) {
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(a.pixels[i] - b.pixels[i]);
+    return sum / double(a.pixels.size());
+  };
+  const double to_released = mean(previewed, released), to_old = mean(old_light, released);
+  std::printf("preview frame against the released one: mean %.3f/255 (the old light's: %.3f)\n",
+              to_released, to_old);
+  EXPECT_GT(to_released, 0.0) << "a coarse light is not the full one";
+  EXPECT_LT(to_released, 0.25 * to_old);
 }
 
 // A moved light changes every lit voxel: the sync lists no texel changes (it says the light
