@@ -96,9 +96,9 @@ struct EraseLightTimes {
 };
 
 // Erase (a vacuum cut at the scene's centre) and a light change, to the lit frame. A light-ball
-// drag frame (the light volume swept at half resolution per axis, as the painter does while
-// dragging) and the release frame after it (the full sweep), beside the full-resolution light
-// change measured the same way.
+// drag frame (the light swept at half resolution per axis into the preview texture, as the
+// painter does while dragging) and the release frame after it (the full sweep), beside the
+// full-resolution light change measured the same way.
 EraseLightTimes timeEraseAndLight(HistoryBench& b) {
   EraseLightTimes r;
   PaintSession& session = b.session;
@@ -182,7 +182,7 @@ void printHistoryFigures(const UndoRedoTimes& u, const EraseLightTimes& e, const
   std::printf("erase (vacuum) → lit frame %.1f ms; light change → lit frame %.1f ms (≤ 200)\n",
               median(e.erase_frame), median(e.light_frame));
   std::printf(
-      "light drag frame (light volume at 1/2 per axis) %.1f ms, its sweep %.1f ms, sync CPU %.1f "
+      "light drag frame (the coarse light at 1/2 per axis) %.1f ms, its sweep %.1f ms, sync CPU %.1f "
       "ms; full sweep %.1f ms, sync CPU %.1f ms; release → full lit frame %.1f ms\n",
       median(e.light_drag_frame), median(e.light_drag_sweep_ms), median(e.light_drag_sync_cpu_ms),
       median(e.light_sweep_ms), median(e.light_sync_cpu_ms), median(e.light_release_frame));
