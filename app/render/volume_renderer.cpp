@@ -15,6 +15,7 @@
 #include "app/core/parallel_for.h"
 #include "app/render/detail_noise.h"
 #include "app/render/physical_light_table.h"
+#include "app/render/screen_blur.h"
 #include "app/render/shader_program.h"
 #include "app/render/sky_function.h"
 
@@ -31,11 +32,18 @@ constexpr float kDetailNoisePeriodVoxels = 32.0f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
-// The variant of style_compose.frag.glsl: ink or sketch, with or without the blur (bleed).
-std::string composeDefines(bool ink, bool bleed, bool over_sky) {
+// The variant of style_compose.frag.glsl: ink or sketch, with or without the blur (bleed) of
+// that radius, the ray-cast image at the output's size or upscaled (full_scale).
+std::string composeDefines(bool ink, bool bleed, bool over_sky, bool full_scale, int radius) {
   return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
          "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
-         (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") + "\n";
+         (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") +
+         "\n#define CB_FULL_SCALE " + (full_scale ? "1" : "0") + "\n" + screenBlurDefine(radius);
+}
+
+// The blur's weights (screen_blur.h) as a screen-space pass's uniforms.
+void setBlurWeights(GLuint program, const ScreenBlurWeights& weights, int radius) {
+  glUniform1fv(glGetUniformLocation(program, "u_weight"), radius + 1, weights.data());
 }
 
 // The rectangle (x, y, width, height) from lo to hi, clipped to a cw×ch image.
@@ -191,8 +199,11 @@ bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
     const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
     const bool bleed = !options.moving;
     const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
-    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky)) != 0 &&
-         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
+    const bool full_scale = options.scale >= 1.0f;
+    const int radius = screenSpaceReach(options.style, options.style_params);
+    ok = fullscreenProgram("style_compose.frag.glsl",
+                           composeDefines(ink, bleed, over_sky, full_scale, radius)) != 0 &&
+         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", screenBlurDefine(radius)) != 0);
   }
   if (ok && !sky_.prepare(options.sky, options.style, &error_)) ok = false;
   if (!ok) *error = error_;
@@ -233,9 +244,12 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
   const bool bleed = !options.moving;
   const float sigma = screenBlurSigma(options.style, options.style_params);
+  const int radius = inkBleedRadius(sigma);
+  const ScreenBlurWeights weights = screenBlurWeights(sigma, radius);
   const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
-  GLuint compose =
-      fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky));
+  const bool full_scale = w == width && h == height;
+  GLuint compose = fullscreenProgram("style_compose.frag.glsl",
+                                     composeDefines(ink, bleed, over_sky, full_scale, radius));
   if (!compose) {
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
     return;
@@ -247,7 +261,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   glBindVertexArray(vao_);
   if (bleed) {
     // First axis of the blur (ink: the bleeding) into bleed_; the compose pass does the second.
-    GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", "");
+    GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", screenBlurDefine(radius));
     if (!blur) {
       std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
       return;
@@ -269,8 +283,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
     glUseProgram(blur);
     glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
     glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
-    glUniform1i(glGetUniformLocation(blur, "u_radius"), inkBleedRadius(sigma));
-    glUniform1f(glGetUniformLocation(blur, "u_sigma"), sigma);
+    setBlurWeights(blur, weights, radius);
     glBindTextureUnit(0, image);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
@@ -279,8 +292,7 @@ void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target
   if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
   if (over_sky) drawSkyUnder(width, height, width, height, options);
   glUseProgram(compose);
-  glUniform1i(glGetUniformLocation(compose, "u_radius"), inkBleedRadius(sigma));
-  glUniform1f(glGetUniformLocation(compose, "u_sigma"), sigma);
+  if (bleed) setBlurWeights(compose, weights, radius);
   glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
   glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
   glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));
