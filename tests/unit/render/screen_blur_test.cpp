@@ -3,8 +3,10 @@
 // texels, guarded pixel by pixel by render_style_test's CPU reference; a still frame cast at a
 // reduced scale (the attract loop's) reads the blurred image through bilinear taps, a program
 // variant no other test draws: checked here to draw every pixel and its image-space outline.
+// And the blur confined to the boundary's projection (FramePlan::blur_rect) changes no pixel.
 #include "app/render/screen_blur.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -34,6 +36,13 @@ TEST(ScreenBlur, WeightsAreTheNormalisedGaussianWithinTheRadius) {
     for (int i = radius + 1; i <= kMaxInkBleedRadius; ++i) EXPECT_EQ(w[i], 0.0f);
   }
   EXPECT_EQ(screenBlurDefine(2), "#define CB_BLUR_RADIUS 2\n");
+}
+
+// Channel sum of |a − b| at pixel (x, y).
+int pixelDifference(const ImageRgba8& a, const ImageRgba8& b, int x, int y) {
+  int d = 0;
+  for (int c = 0; c < 3; ++c) d += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+  return d;
 }
 
 // Pixels darker than mid grey: the outline and the darkest washes or hatching.
@@ -93,6 +102,65 @@ TEST(ScreenBlur, AReducedScaleStillFrameDrawsTheBlurredOutline) {
     EXPECT_LT(double(dark_still), kMaxDarkVsFullScale * double(dark_full))
         << renderStyleName(style);
   }
+}
+
+// The blur runs only within its reach of the boundary's projection (FramePlan::blur_rect), the
+// rest drawn by the compose pass's unblurred variant: the frame must equal one cast without
+// skipping (every pixel cast and blurred), here with the cloud in a corner of the frame so that
+// most of it lies outside the rectangle; on bare paper and over the sky (CB_OVER_SKY).
+TEST(ScreenBlur, BlurringOnlyNearTheBoundaryChangesNoPixel) {
+  CB_REQUIRE_GL();
+  constexpr int kW = 240, kH = 160;
+  const Volume volume = makeBundledCumulus(glm::ivec3(32), 1);
+  VolumeRenderer renderer;
+  std::string err;
+  ASSERT_TRUE(renderer.init(&err)) << err;
+  renderer.sync(volume, Light{});
+  Camera camera = Camera::reference();
+  camera.fov_y_deg = 70.0f;                      // the cloud small in the frame
+  camera.target += glm::vec3(0.6f, 0.3f, 0.0f);  // and off centre
+  RenderTarget target;
+  ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  for (RenderStyle style : {RenderStyle::kInk, RenderStyle::kSketch})
+    for (bool over_sky : {false, true}) {
+      RenderOptions options;
+      options.style = style;
+      if (over_sky) {  // the paper only inside the cloud, over the sky drawn first
+        options.sky.kind = SkyKind::kColour;
+        options.style_params.ink.sky = options.style_params.sketch.sky = true;
+      }
+      auto frame = [&](bool skip) {
+        options.skip_empty_space = skip;
+        renderer.render(camera, kW, kH, target.fbo(), options);
+        return target.readRgba8();
+      };
+      const ImageRgba8 skipped = frame(true), whole = frame(false);
+      const ImageRgba8 paper = [&] {
+        VolumeRenderer empty;
+        std::string e;
+        EXPECT_TRUE(empty.init(&e)) << e;
+        empty.sync(Volume(glm::ivec3(32)), Light{});
+        options.skip_empty_space = true;
+        empty.render(camera, kW, kH, target.fbo(), options);
+        return target.readRgba8();
+      }();
+      long cloud = 0, differ = 0;
+      int worst = 0;
+      for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+          cloud += pixelDifference(whole, paper, x, y) > 0;
+          const int d = pixelDifference(skipped, whole, x, y);
+          differ += d > 0;
+          worst = std::max(worst, d);
+        }
+      std::printf(
+          "%s%s: %ld of %d pixels differ from the empty frame; skipping vs not: %ld differ, "
+          "worst %d (channel sum)\n",
+          renderStyleName(style), over_sky ? " over the sky" : "", cloud, kW * kH, differ, worst);
+      EXPECT_GT(cloud, 500) << renderStyleName(style) << ": the cloud is in view";
+      EXPECT_LT(cloud, kW * kH / 3) << renderStyleName(style) << ": most of the frame is paper";
+      EXPECT_EQ(worst, 0) << renderStyleName(style);
+    }
 }
 
 }  // namespace
