@@ -24,8 +24,9 @@ layout(location = 0) out vec4 o_colour;
 uniform sampler2D u_image;
 uniform sampler2D u_bleed;   // u_image with its g and its coverage (into b) blurred along x
 uniform vec2 u_output_size;  // pixels
-uniform int u_radius;        // the blur's half width (ink_bleed.frag.glsl)
-uniform float u_sigma;       // the blur's σ, pixels (screenBlurSigma, render_style.h)
+#if CB_BLEED
+uniform float u_weight[CB_BLUR_RADIUS + 1];  // the blur's weights (ink_bleed.frag.glsl)
+#endif
 
 // Lays `stroke` (1 = full stroke colour) over `paper`; with CB_OVER_SKY the paper covers only the
 // cloud and the rest stays transparent (premultiplied) for the sky beneath.
@@ -54,20 +55,25 @@ float valueNoise(vec2 p) {
              w.y);
 }
 
-// (g, coverage) of the image blurred by the Gaussian: the second, y pass over u_bleed.
+// (g, coverage) of the image blurred by the Gaussian: the second, y pass over u_bleed. With
+// CB_FULL_SCALE (the image is the output's size) one texel fetch per tap; otherwise the taps are
+// bilinear, the blurred image upscaled.
 vec2 blurredLines(vec2 uv, vec4 image) {
-#if CB_BLEED
-  vec2 texel = 1.0 / vec2(textureSize(u_bleed, 0));
-  vec2 blurred = texture(u_bleed, uv).gb;
-  float norm = 1.0;
-  float inv_two_sigma2 = 1.0 / (2.0 * u_sigma * u_sigma);
-  for (int i = 1; i <= u_radius; ++i) {
-    float w = exp(-float(i * i) * inv_two_sigma2);
-    blurred += w * (texture(u_bleed, uv + vec2(0.0, float(i) * texel.y)).gb +
-                    texture(u_bleed, uv - vec2(0.0, float(i) * texel.y)).gb);
-    norm += 2.0 * w;
-  }
-  return blurred / norm;
+#if CB_BLEED && CB_FULL_SCALE
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  int last = textureSize(u_bleed, 0).y - 1;
+  vec2 blurred = u_weight[0] * texelFetch(u_bleed, p, 0).gb;
+  for (int i = 1; i <= CB_BLUR_RADIUS; ++i)
+    blurred += u_weight[i] * (texelFetch(u_bleed, ivec2(p.x, min(p.y + i, last)), 0).gb +
+                              texelFetch(u_bleed, ivec2(p.x, max(p.y - i, 0)), 0).gb);
+  return blurred;
+#elif CB_BLEED
+  float texel = 1.0 / float(textureSize(u_bleed, 0).y);
+  vec2 blurred = u_weight[0] * texture(u_bleed, uv).gb;
+  for (int i = 1; i <= CB_BLUR_RADIUS; ++i)
+    blurred += u_weight[i] * (texture(u_bleed, uv + vec2(0.0, float(i) * texel)).gb +
+                              texture(u_bleed, uv - vec2(0.0, float(i) * texel)).gb);
+  return blurred;
 #else
   return image.ga;
 #endif
@@ -109,7 +115,11 @@ float hatchLines(float u, float spacing) {
 
 void main() {
   vec2 uv = gl_FragCoord.xy / u_output_size;
+#if CB_FULL_SCALE
+  vec4 image = texelFetch(u_image, ivec2(gl_FragCoord.xy), 0);
+#else
   vec4 image = texture(u_image, uv);
+#endif
   vec2 p = gl_FragCoord.xy;
 #if CB_COMPOSE_INK
   vec2 blurred = blurredLines(uv, image);  // silhouette ink, coverage

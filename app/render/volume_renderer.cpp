@@ -15,6 +15,7 @@
 #include "app/core/parallel_for.h"
 #include "app/render/detail_noise.h"
 #include "app/render/physical_light_table.h"
+#include "app/render/screen_blur.h"
 #include "app/render/shader_program.h"
 #include "app/render/sky_function.h"
 
@@ -31,11 +32,40 @@ constexpr float kDetailNoisePeriodVoxels = 32.0f;
 // Occupancy level whose cells are rasterised for the ray bounds (level 0: 4-voxel bricks).
 constexpr int kRayBoundsLevel = 0;
 
-// The variant of style_compose.frag.glsl: ink or sketch, with or without the blur (bleed).
-std::string composeDefines(bool ink, bool bleed, bool over_sky) {
+// The variant of style_compose.frag.glsl: ink or sketch, with or without the blur (bleed) of
+// that radius, the ray-cast image at the output's size or upscaled (full_scale).
+std::string composeDefines(bool ink, bool bleed, bool over_sky, bool full_scale, int radius) {
   return std::string("#define CB_COMPOSE_INK ") + (ink ? "1" : "0") +
          "\n#define CB_COMPOSE_SKETCH " + (ink ? "0" : "1") + "\n#define CB_BLEED " +
-         (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") + "\n";
+         (bleed ? "1" : "0") + "\n#define CB_OVER_SKY " + (over_sky ? "1" : "0") +
+         "\n#define CB_FULL_SCALE " + (full_scale ? "1" : "0") + "\n" + screenBlurDefine(radius);
+}
+
+// The blur's weights (screen_blur.h) as a screen-space pass's uniforms.
+void setBlurWeights(GLuint program, const ScreenBlurWeights& weights, int radius) {
+  glUniform1fv(glGetUniformLocation(program, "u_weight"), radius + 1, weights.data());
+}
+
+// The overlap of rectangles (x, y, width, height); empty (zero size) when they do not meet.
+glm::ivec4 intersectRects(glm::ivec4 a, glm::ivec4 b) {
+  const glm::ivec2 lo = glm::max(glm::ivec2(a.x, a.y), glm::ivec2(b.x, b.y));
+  const glm::ivec2 hi =
+      glm::min(glm::ivec2(a.x + a.z, a.y + a.w), glm::ivec2(b.x + b.z, b.y + b.w));
+  return glm::ivec4(lo, glm::max(hi - lo, glm::ivec2(0)));
+}
+
+// `outer` less `inner` (inside it, or empty) as up to four rectangles: the rows below and above
+// inner across outer's width, then the columns left and right of it.
+std::vector<glm::ivec4> rectMinus(glm::ivec4 outer, glm::ivec4 inner) {
+  if (inner.z <= 0 || inner.w <= 0) return {outer};
+  const int x0 = outer.x, x1 = outer.x + outer.z, y0 = outer.y, y1 = outer.y + outer.w;
+  const int ix0 = inner.x, ix1 = inner.x + inner.z, iy0 = inner.y, iy1 = inner.y + inner.w;
+  std::vector<glm::ivec4> parts = {{x0, y0, x1 - x0, iy0 - y0},
+                                   {x0, iy1, x1 - x0, y1 - iy1},
+                                   {x0, iy0, ix0 - x0, iy1 - iy0},
+                                   {ix1, iy0, x1 - ix1, iy1 - iy0}};
+  std::erase_if(parts, [](const glm::ivec4& r) { return r.z <= 0 || r.w <= 0; });
+  return parts;
 }
 
 // The rectangle (x, y, width, height) from lo to hi, clipped to a cw×ch image.
@@ -192,8 +222,14 @@ bool VolumeRenderer::prepare(const RenderOptions& options, std::string* error) {
     const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
     const bool bleed = !options.moving;
     const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
-    ok = fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky)) != 0 &&
-         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", "") != 0);
+    const bool full_scale = options.scale >= 1.0f;
+    const int radius = screenSpaceReach(options.style, options.style_params);
+    // The still frame draws the pixels away from the cloud with the unblurred variant.
+    ok = fullscreenProgram("style_compose.frag.glsl",
+                           composeDefines(ink, bleed, over_sky, full_scale, radius)) != 0 &&
+         fullscreenProgram("style_compose.frag.glsl",
+                           composeDefines(ink, false, over_sky, full_scale, radius)) != 0 &&
+         (!bleed || fullscreenProgram("ink_bleed.frag.glsl", screenBlurDefine(radius)) != 0);
   }
   if (ok && !sky_.prepare(options.sky, options.style, &error_)) ok = false;
   if (!ok) *error = error_;
@@ -226,70 +262,6 @@ void VolumeRenderer::ensurePhysicalTextures() {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage3D(detail_noise_texture_, 0, 0, 0, 0, noise.size, noise.size, noise.size, GL_RED,
                       GL_UNSIGNED_BYTE, noise.texels.data());
-}
-
-void VolumeRenderer::finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width,
-                                       int height, const RenderOptions& options, bool partial,
-                                       glm::ivec4 bleed_rect, glm::ivec4 out_rect) {
-  const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
-  const bool bleed = !options.moving;
-  const float sigma = screenBlurSigma(options.style, options.style_params);
-  const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
-  GLuint compose =
-      fullscreenProgram("style_compose.frag.glsl", composeDefines(ink, bleed, over_sky));
-  if (!compose) {
-    std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
-    return;
-  }
-  glTextureParameteri(image, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(image, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(image, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(image, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glBindVertexArray(vao_);
-  if (bleed) {
-    // First axis of the blur (ink: the bleeding) into bleed_; the compose pass does the second.
-    GLuint blur = fullscreenProgram("ink_bleed.frag.glsl", "");
-    if (!blur) {
-      std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
-      return;
-    }
-    if (bleed_.width() != w || bleed_.height() != h) {
-      std::string err;
-      if (!bleed_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
-        std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
-        return;
-      }
-      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-      glTextureParameteri(bleed_.texture(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-      glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bleed_.fbo());
-    glViewport(0, 0, w, h);
-    if (partial) glScissor(bleed_rect.x, bleed_rect.y, bleed_rect.z, bleed_rect.w);
-    glUseProgram(blur);
-    glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
-    glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
-    glUniform1i(glGetUniformLocation(blur, "u_radius"), inkBleedRadius(sigma));
-    glUniform1f(glGetUniformLocation(blur, "u_sigma"), sigma);
-    glBindTextureUnit(0, image);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
-  glViewport(0, 0, width, height);
-  if (partial) glScissor(out_rect.x, out_rect.y, out_rect.z, out_rect.w);
-  if (over_sky) drawSkyUnder(width, height, width, height, options);
-  glUseProgram(compose);
-  glUniform1i(glGetUniformLocation(compose, "u_radius"), inkBleedRadius(sigma));
-  glUniform1f(glGetUniformLocation(compose, "u_sigma"), sigma);
-  glUniform1i(glGetUniformLocation(compose, "u_image"), 0);
-  glUniform1i(glGetUniformLocation(compose, "u_bleed"), 1);
-  glUniform2f(glGetUniformLocation(compose, "u_output_size"), float(width), float(height));
-  glBindTextureUnit(0, image);
-  glBindTextureUnit(1, bleed ? bleed_.texture() : image);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDisable(GL_BLEND);
-  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
 }
 
 bool VolumeRenderer::drawSkyUnder(int w, int h, int width, int height,
@@ -800,6 +772,8 @@ struct VolumeRenderer::FramePlan {
   // bounds_rect: the pixels the ray-bounds pass can cover. frame_rect: what this frame touches;
   // pass_rect: where the ray bounds and the cast run (their intersection).
   glm::ivec4 bounds_rect{0}, frame_rect{0}, pass_rect{0};
+  // blur_rect: the pixels a screen-space style's blur can change (see finishScreenSpace).
+  glm::ivec4 blur_rect{0};
   std::string key;  // the image key (FrameHistory), with skipping
   float read_reach = 0.0f;
   std::vector<VoxelBox> pending;  // the changes the style's image shows
@@ -930,6 +904,10 @@ void VolumeRenderer::planFrame(const Camera& camera, const RenderOptions& option
   p.pass_rect = clipRect(
       glm::max(glm::ivec2(f), glm::ivec2(b)),
       glm::min(glm::ivec2(f) + glm::ivec2(f.z, f.w), glm::ivec2(b) + glm::ivec2(b.z, b.w)), w, h);
+  // Where the blur runs (finishScreenSpace): within its reach of the boundary's projection, the
+  // cast image's only pixels that are not the background; at a reduced scale, everywhere.
+  p.blur_rect = p.skip && !p.reduced ? grow(p.bounds_rect, reach, reach)
+                                     : glm::ivec4(0, 0, p.width, p.height);
 }
 
 void VolumeRenderer::bindCastTargets(const FramePlan& p, const Camera& camera,
@@ -1104,6 +1082,102 @@ void VolumeRenderer::updateFrameHistory(const FramePlan& p, const RenderOptions&
   }  // else: the rectangle is fresh; the pending boxes outside it are still to do
 }
 
+// The paper styles' screen-space pass from the ray-cast image to the target. The blur (first
+// axis here into bleed_, second in the compose pass) runs only over blur_rect, the cast pixels
+// within the blur's reach of the boundary's projection (FramePlan): beyond it the image is the
+// cleared background, whose blur is the background again, so the compose pass draws those
+// pixels with its unblurred variant, bit for bit the same output at a fraction of the reads.
+void VolumeRenderer::finishScreenSpace(GLuint image, const FramePlan& p, GLuint target_fbo,
+                                       const RenderOptions& options) {
+  const int w = p.w, h = p.h, width = p.width, height = p.height;
+  const bool ink = renderStyleRow(options.style).screen_pass == ScreenPass::kInkWash;
+  const bool bleed = !options.moving;
+  const float sigma = screenBlurSigma(options.style, options.style_params);
+  const int radius = inkBleedRadius(sigma);
+  const bool over_sky = SkyPass::shows(options.sky, options.style, options.style_params);
+  const bool full_scale = w == width && h == height;
+  GLuint compose = fullscreenProgram("style_compose.frag.glsl",
+                                     composeDefines(ink, bleed, over_sky, full_scale, radius));
+  GLuint plain = fullscreenProgram("style_compose.frag.glsl",
+                                   composeDefines(ink, false, over_sky, full_scale, radius));
+  GLuint blur = bleed ? fullscreenProgram("ink_bleed.frag.glsl", screenBlurDefine(radius)) : 0;
+  if (!compose || !plain || (bleed && !blur)) {
+    std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());
+    return;
+  }
+  glTextureParameteri(image, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(image, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindVertexArray(vao_);
+  const ScreenBlurWeights weights = screenBlurWeights(sigma, radius);
+  const glm::ivec4 whole_image(0, 0, w, h), whole_target(0, 0, width, height);
+  if (bleed) {
+    // First axis of the blur over the rows the compose pass's taps read around blur_rect.
+    const glm::ivec4& b = p.blur_rect;
+    const glm::ivec4 rows = intersectRects(glm::ivec4(b.x, b.y - radius, b.z, b.w + 2 * radius),
+                                           p.partial ? p.bleed_rect : whole_image);
+    if (!blurAlongX(blur, image, w, h, rows, weights, radius)) return;
+  }
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_fbo);
+  glViewport(0, 0, width, height);
+  glEnable(GL_SCISSOR_TEST);
+  const glm::ivec4 out = p.partial ? p.out_rect : whole_target;
+  glScissor(out.x, out.y, out.z, out.w);
+  if (over_sky) drawSkyUnder(width, height, width, height, options);
+  const glm::ivec4 blurred = bleed ? intersectRects(out, p.blur_rect) : glm::ivec4(0);
+  for (const glm::ivec4& r : rectMinus(out, blurred))
+    drawCompose(plain, image, image, r, width, height, weights, -1);
+  if (blurred.z > 0 && blurred.w > 0)
+    drawCompose(compose, image, bleed_.texture(), blurred, width, height, weights, radius);
+  glDisable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+}
+
+// The blur's first axis from `image` into bleed_ (made w×h), over `rect`; false on failure.
+bool VolumeRenderer::blurAlongX(GLuint blur, GLuint image, int w, int h, glm::ivec4 rect,
+                                const ScreenBlurWeights& weights, int radius) {
+  if (bleed_.width() != w || bleed_.height() != h) {
+    std::string err;
+    if (!bleed_.create(w, h, RenderTarget::Format::kRgba8, &err)) {
+      std::fprintf(stderr, "cloudbrush: render: %s\n", err.c_str());
+      return false;
+    }
+    glTextureParameteri(bleed_.texture(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(bleed_.texture(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(bleed_.texture(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  if (rect.z <= 0 || rect.w <= 0) return true;
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, bleed_.fbo());
+  glViewport(0, 0, w, h);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(rect.x, rect.y, rect.z, rect.w);
+  glUseProgram(blur);
+  glUniform1i(glGetUniformLocation(blur, "u_image"), 0);
+  glUniform2i(glGetUniformLocation(blur, "u_axis"), 1, 0);
+  setBlurWeights(blur, weights, radius);
+  glBindTextureUnit(0, image);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  return true;
+}
+
+// One compose program over the target's rectangle `rect` (radius < 0: a variant without the blur).
+void VolumeRenderer::drawCompose(GLuint program, GLuint image, GLuint bleed, glm::ivec4 rect,
+                                 int width, int height, const ScreenBlurWeights& weights,
+                                 int radius) {
+  if (rect.z <= 0 || rect.w <= 0) return;
+  glScissor(rect.x, rect.y, rect.z, rect.w);
+  glUseProgram(program);
+  if (radius >= 0) setBlurWeights(program, weights, radius);
+  glUniform1i(glGetUniformLocation(program, "u_image"), 0);
+  glUniform1i(glGetUniformLocation(program, "u_bleed"), 1);
+  glUniform2f(glGetUniformLocation(program, "u_output_size"), float(width), float(height));
+  glBindTextureUnit(0, image);
+  glBindTextureUnit(1, bleed);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 // The cast image to the target: the style's screen-space pass, or the blit (an upscale at a
 // reduced size).
 void VolumeRenderer::finishFrame(const FramePlan& p, GLuint target_fbo,
@@ -1112,8 +1186,7 @@ void VolumeRenderer::finishFrame(const FramePlan& p, GLuint target_fbo,
   glScissor(p.out_rect.x, p.out_rect.y, p.out_rect.z, p.out_rect.w);  // the blit, too
   if (!p.partial) glDisable(GL_SCISSOR_TEST);
   if (p.screen_space) {
-    finishScreenSpace(p.skip ? frame_texture_ : style_image_.texture(), w, h, target_fbo, width,
-                      height, options, p.partial, p.bleed_rect, p.out_rect);
+    finishScreenSpace(p.skip ? frame_texture_ : style_image_.texture(), p, target_fbo, options);
   } else if (p.skip) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, bounds_fbo_);
     glReadBuffer(GL_COLOR_ATTACHMENT0);

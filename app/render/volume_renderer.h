@@ -27,6 +27,7 @@
 #include "app/render/reduced_light_sweep.h"
 #include "app/render/render_style.h"
 #include "app/render/render_target.h"
+#include "app/render/screen_blur.h"
 #include "app/render/sky_pass.h"
 #include "app/render/sky_settings.h"
 #include "app/scene/camera.h"
@@ -217,11 +218,16 @@ class VolumeRenderer {
   bool ensureProgram(const RenderOptions& options);
   // A fullscreen program of `fragment` with `defines` (compiled on first use, then cached).
   GLuint fullscreenProgram(const std::string& fragment, const std::string& defines);
-  // The screen-space pass of ink and sketch: `image` (w×h, the ray-cast image) -> target_fbo.
-  // With `partial`, the first blur axis is scissored to bleed_rect and the finish to out_rect.
-  void finishScreenSpace(GLuint image, int w, int h, GLuint target_fbo, int width, int height,
-                         const RenderOptions& options, bool partial, glm::ivec4 bleed_rect,
-                         glm::ivec4 out_rect);
+  // The screen-space pass of ink and sketch: `image` (the plan's w×h ray-cast image) ->
+  // target_fbo. With a partial plan the first blur axis is scissored to bleed_rect and the finish
+  // to out_rect; the blur runs only over blur_rect.
+  struct FramePlan;
+  void finishScreenSpace(GLuint image, const FramePlan& plan, GLuint target_fbo,
+                         const RenderOptions& options);
+  bool blurAlongX(GLuint blur, GLuint image, int w, int h, glm::ivec4 rect,
+                  const ScreenBlurWeights& weights, int radius);
+  void drawCompose(GLuint program, GLuint image, GLuint bleed, glm::ivec4 rect, int width,
+                   int height, const ScreenBlurWeights& weights, int radius);
   void ensurePhysicalTextures();
   // The sky hook: draws options.sky into the bound framebuffer and sets the blending that
   // composites what is drawn next over it (premultiplied "over"). False when the style shows
@@ -247,7 +253,6 @@ class VolumeRenderer {
   // Attaches a depth texture to the current frame targets (RenderOptions::write_depth).
   void ensureDepthTarget();
   // render()'s passes, in order, over one frame's plan (defined in volume_renderer.cpp).
-  struct FramePlan;
   // The cast image's size and where it goes (making the reduced and style images): false with
   // a message on failure.
   bool ensureCastImages(int width, int height, GLuint target_fbo, const RenderOptions& options,

@@ -39,6 +39,12 @@ namespace {
 constexpr int kW = 1920, kH = 1080;  // the painter's screen: a speck is a fixed pixel size
 // Four long strokes of different shapes (each render at 1920×1080 costs about a second).
 const char* const kStrokes[] = {"s_curve", "hook", "fast_flick", "mouse"};
+// The stroke is in view: its cloud covers at least 0.1 % of the screen (2,073 px). The gallery's
+// single presses are small by design: at the product's defaults the dot covers 6,170 px of the
+// cartoon's and sketch's extent and 4,147 of the ink's (whose lit wash is bare paper), the dab
+// 9,398 and 5,637; at 0.5 % of the screen (10,368) these two failed the guard, not a line measure.
+// A stroke out of view or not painted covers none.
+constexpr long kMinCloudPixels = long(kW) * kH / 1000;
 // A speck: a dark island of at most 12 pixels (a dot up to about 4 px across).
 constexpr int kSpeckPixels = 12;
 // Dark: below the style's lightest line tone and above its darkest fill:
@@ -115,7 +121,7 @@ void checkSketch(const std::string& stroke, const ImageRgba8& image, const Image
   std::printf("%-12s %-8s silhouette area %6ld px, %5ld in solid patches: %.2f %%\n",
               stroke.c_str(), "sketch", p.cloud, p.solid, 100.0 * p.fraction());
   std::fflush(stdout);
-  EXPECT_GT(p.cloud, kW * kH / 200) << stroke << " sketch: the stroke is in view";
+  EXPECT_GT(p.cloud, kMinCloudPixels) << stroke << " sketch: the stroke is in view";
   EXPECT_LE(p.fraction(), kMaxSketchPatches) << stroke << ": grey patches in the sketch";
   const test::OutlineBreaks b =
       test::measureOutlineBreaks(image, extent, extent_empty, kSketchLine, kSketchOutlineReach);
@@ -167,7 +173,7 @@ TEST(StrokeGalleryStyles, LinesHoldOnPaintedStrokes) {
           g.name.c_str(), name, s.cloud, s.dark, s.islands, per_10k, kSpeckPixels,
           100.0 * s.fraction());
       std::fflush(stdout);
-      EXPECT_GT(s.cloud, kW * kH / 200) << g.name << " " << name << ": the stroke is in view";
+      EXPECT_GT(s.cloud, kMinCloudPixels) << g.name << " " << name << ": the stroke is in view";
       if (cartoon) {
         EXPECT_LE(per_10k, kMaxCartoonIslands) << g.name << ": the cartoon's lines are speckled";
         ++checked;
