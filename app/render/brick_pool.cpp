@@ -184,13 +184,16 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   for (int axis = 0; axis < 3; ++axis) {
     const size_t st = strides[axis];
     std::memcpy(scratch, near, N);
-    for (size_t i = 0; i < N; ++i) {
-      const int c = int(i / st) % S;  // the texel's coordinate on this axis
-      uint8_t v = scratch[i];
-      if (c > 0) v |= scratch[i - st];
-      if (c < S - 1) v |= scratch[i + st];
-      near[i] = v;
-    }
+    size_t i = 0;
+    for (int z = 0; z < S; ++z)
+      for (int y = 0; y < S; ++y)
+        for (int x = 0; x < S; ++x, ++i) {
+          const int c = axis == 0 ? x : axis == 1 ? y : z;  // the texel's coordinate on the axis
+          uint8_t v = scratch[i];
+          if (c > 0) v |= scratch[i - st];
+          if (c < S - 1) v |= scratch[i + st];
+          near[i] = v;
+        }
   }
   constexpr int B = BrickPool::kChangeBlockTexels, blocks = S / B;
   glm::ivec3 lo[blocks * blocks * blocks], hi[blocks * blocks * blocks];
