@@ -67,7 +67,7 @@ struct Script {
   std::vector<double> drag_ms, release_ms, picture_ms, model_ms, wind_ms;
   std::vector<double> drag_cpu, release_cpu, wind_cpu;
   std::string problem;
-  const char* shots = nullptr;  // a folder for the first drag's frames as PNG
+  const char* shots = nullptr;  // a folder for the first drag's and the wind's frames as PNG
 
   void pointer(DisplayEvent::Kind kind, float x, float y) {
     DisplayEvent e;
@@ -143,6 +143,10 @@ void Script::onFrame() {
       const bool blowing = a && a->playing();
       if (n >= 5 && blowing) wind_ms.push_back(frame_ms), wind_cpu.push_back(frame_cpu);
       if (n > 4 && !blowing) problem = "the wind does not blow";
+      // What a person sees while it blows (the readback is timed into the next frame).
+      if (shots && blowing && (n == 6 || n == 12 || n == 19))
+        writePng(std::string(shots) + "/wind_" + std::to_string(n) + ".png",
+                 readFramebufferRgba8(display.framebuffer(), w, h));
       if (int(wind_ms.size()) >= kWindFrames || !problem.empty()) {
         display.injectEvent(DisplayEvent::key('x'));
         next();

@@ -15,6 +15,8 @@ namespace {
 constexpr glm::ivec3 kInitialSlots{3, 3, 1};
 // Slots packed into one staging buffer before their uploads (≈ 5 MB).
 constexpr size_t kUploadBatch = 512;
+// Slots whose changed texels are compared together (their bytes before kept meanwhile: 4 MB).
+constexpr size_t kCompareChunk = 64;
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -184,13 +186,16 @@ void slotDifference(const uint8_t* before, const uint8_t* now,
   for (int axis = 0; axis < 3; ++axis) {
     const size_t st = strides[axis];
     std::memcpy(scratch, near, N);
-    for (size_t i = 0; i < N; ++i) {
-      const int c = int(i / st) % S;  // the texel's coordinate on this axis
-      uint8_t v = scratch[i];
-      if (c > 0) v |= scratch[i - st];
-      if (c < S - 1) v |= scratch[i + st];
-      near[i] = v;
-    }
+    size_t i = 0;
+    for (int z = 0; z < S; ++z)
+      for (int y = 0; y < S; ++y)
+        for (int x = 0; x < S; ++x, ++i) {
+          const int c = axis == 0 ? x : axis == 1 ? y : z;  // the texel's coordinate on the axis
+          uint8_t v = scratch[i];
+          if (c > 0) v |= scratch[i - st];
+          if (c < S - 1) v |= scratch[i + st];
+          near[i] = v;
+        }
   }
   constexpr int B = BrickPool::kChangeBlockTexels, blocks = S / B;
   glm::ivec3 lo[blocks * blocks * blocks], hi[blocks * blocks * blocks];
@@ -233,7 +238,8 @@ size_t BrickPool::tableBytes() const {
   return slot_of_brick_.capacity() * sizeof(glm::u8vec4) +
          free_slots_.capacity() * sizeof(glm::u8vec4) + mark_.capacity() +
          (slot_hash_.capacity() + smooth_hash_.capacity()) * sizeof(uint64_t) +
-         staging_slots_ * (kSlotBytes + (staging_smooth_ ? kSmoothSlotBytes : 0));
+         staging_slots_ * (kSlotBytes + (staging_smooth_ ? kSmoothSlotBytes : 0)) +
+         compare_main_.capacity() + compare_smooth_.capacity() * sizeof(uint16_t);
 }
 
 void BrickPool::makeIndirectionTexture(glm::ivec3 brick_dims) {
@@ -599,50 +605,62 @@ void BrickPool::addLightReaders(const Volume& volume, const VoxelBox& light_box,
   }
 }
 
-void BrickPool::reportSlotChange(const Volume& volume, glm::ivec3 b, glm::ivec3 at, uint8_t parts,
-                                 bool added, bool main_changed, bool smooth_changed,
-                                 const uint8_t* main, const uint16_t* smooth,
-                                 std::vector<SlotChange>* changes) {
+BrickPool::SlotCompare BrickPool::slotBeforeAndNow(glm::ivec3 b, glm::ivec3 at, uint8_t parts,
+                                                   bool added, bool main_changed,
+                                                   bool smooth_changed, const uint8_t* main,
+                                                   const uint16_t* smooth, size_t s) {
   constexpr size_t kSmoothValues = kSmoothSlotBytes / 2;
   // What rays read there before: the empty slot for an added brick, else the slot's bytes, read
   // back from the pool for a part whose hash changed. A part not re-packed reads as before (the
   // main texels are read back when the companion changed: slotDifference weighs by density).
-  thread_local std::vector<uint8_t> main_before, main_held;
-  thread_local std::vector<uint16_t> smooth_before;
-  const uint8_t* old = emptySlotBytes().data();
+  SlotCompare c;
+  c.brick = b;
+  c.before = emptySlotBytes().data();
   const uint16_t* old_smooth = emptySmoothSlot().data();
-  auto readMain = [&](std::vector<uint8_t>* into) {
+  auto readMain = [&](uint8_t* into) {
     // Rows of 80 bytes: tight under any pack alignment (the project sets no other pack state).
-    into->resize(kSlotBytes);
     glGetTextureSubImage(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels, kSlotTexels,
-                         GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes), into->data());
-    return into->data();
+                         GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(kSlotBytes), into);
+    return into;
   };
-  if (!(parts & kMainPart)) main = readMain(&main_held);
+  uint8_t* const before = compare_main_.data() + s * 2 * kSlotBytes;
+  if (!(parts & kMainPart)) main = readMain(before + kSlotBytes);
   if (!(parts & kSmoothPart)) smooth = nullptr;  // unchanged or not held: not compared
   if (!added) {
-    old = main_changed ? readMain(&main_before) : main;
+    c.before = main_changed ? readMain(before) : main;
     old_smooth = smooth;
     if (smooth && smooth_changed) {
-      smooth_before.resize(kSmoothValues);
+      uint16_t* into = compare_smooth_.data() + s * kSmoothValues;
       glGetTextureSubImage(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
-                           kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, GLsizei(kSmoothSlotBytes),
-                           smooth_before.data());
-      old_smooth = smooth_before.data();
+                           kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, GLsizei(kSmoothSlotBytes), into);
+      old_smooth = into;
     }
   }
-  const size_t first_change = changes->size();
-  slotDifference(old, main, changes, smooth ? old_smooth : nullptr, smooth);
-  // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its last
-  // voxel, which then changed too).
-  const glm::ivec3 lo = b * Volume::kBrickSize;
-  auto toVoxels = [&](const VoxelBox& t) {
-    return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
-  };
-  for (size_t c = first_change; c < changes->size(); ++c) {
-    SlotChange& change = (*changes)[c];
-    change = {b, toVoxels(change.bytes), toVoxels(change.weighted)};
-  }
+  c.now = main;
+  c.smooth_now = smooth;
+  c.smooth_before = smooth ? old_smooth : nullptr;
+  return c;
+}
+
+void BrickPool::reportSlotChanges(const Volume& volume, const std::vector<SlotCompare>& compares,
+                                  std::vector<SlotChange>* changes) const {
+  std::vector<std::vector<SlotChange>> per_slot(compares.size());
+  parallelFor(compares.size(), 8, [&](size_t, size_t k0, size_t k1) {
+    for (size_t k = k0; k < k1; ++k) {
+      const SlotCompare& c = compares[k];
+      slotDifference(c.before, c.now, &per_slot[k], c.smooth_before, c.smooth_now);
+      // Texels to voxels: texel j is voxel 16b + j (those past the volume's edge repeat its
+      // last voxel, which then changed too).
+      const glm::ivec3 lo = c.brick * Volume::kBrickSize;
+      auto toVoxels = [&](const VoxelBox& t) {
+        return t.empty() ? t : VoxelBox{lo + t.lo, lo + t.hi}.intersect(volume.bounds());
+      };
+      for (SlotChange& change : per_slot[k])
+        change = {c.brick, toVoxels(change.bytes), toVoxels(change.weighted)};
+    }
+  });
+  for (const std::vector<SlotChange>& slot : per_slot)
+    changes->insert(changes->end(), slot.begin(), slot.end());
 }
 
 BrickPool::StagingBuffers BrickPool::staging(size_t slots) {
@@ -701,6 +719,13 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
     });
     st.pack_ms += msSince(t0);
     t0 = std::chrono::steady_clock::now();
+    // The bytes read back for up to kCompareChunk slots (sized before: the compares point into
+    // them), compared in parallel when the chunk is full and at the batch's end.
+    std::vector<SlotCompare> compares;
+    if (changes && !fresh) {
+      compare_main_.resize(kCompareChunk * 2 * kSlotBytes);
+      if (smooth) compare_smooth_.resize(kCompareChunk * kSmoothValues);
+    }
     for (size_t s = 0; s < n; ++s) {
       if (state[s] == 0) {
         ++st.slots_unchanged;
@@ -715,8 +740,13 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
         const VoxelBox whole = slotVoxels(b, volume);
         changes->push_back({b, whole, whole});
       } else if (changes) {
-        reportSlotChange(volume, b, at, parts, state[s] & kAdded, state[s] & kMainChanged,
-                         state[s] & kSmoothChanged, main, smoothed, changes);
+        compares.push_back(slotBeforeAndNow(b, at, parts, state[s] & kAdded,
+                                            state[s] & kMainChanged, state[s] & kSmoothChanged,
+                                            main, smoothed, compares.size()));
+        if (compares.size() == kCompareChunk) {
+          reportSlotChanges(volume, compares, changes);
+          compares.clear();
+        }
       }
       if (state[s] & (kMainChanged | kAdded))
         glTextureSubImage3D(pool_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
@@ -725,6 +755,7 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
         glTextureSubImage3D(smooth_texture_, 0, at.x, at.y, at.z, kSlotTexels, kSlotTexels,
                             kSlotTexels, GL_RG, GL_UNSIGNED_SHORT, smoothed);
     }
+    if (!compares.empty()) reportSlotChanges(volume, compares, changes);
     st.upload_ms += msSince(t0);
   }
 }

@@ -239,12 +239,25 @@ class BrickPool {
   void uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
                    const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
                    UpdateStats* stats);
-  // What rays read differently in the slot of `brick` (at texel `at` of the pool), its parts
-  // re-packed into `main` and `smooth` as `parts` say; `added`: it read the empty slot;
-  // `main_changed`/`smooth_changed`: the re-packed part's hash changed.
-  void reportSlotChange(const Volume& volume, glm::ivec3 brick, glm::ivec3 at, uint8_t parts,
-                        bool added, bool main_changed, bool smooth_changed, const uint8_t* main,
-                        const uint16_t* smooth, std::vector<SlotChange>* changes);
+  // A slot's bytes before and after an upload, for slotDifference.
+  struct SlotCompare {
+    glm::ivec3 brick{0};
+    const uint8_t *before = nullptr, *now = nullptr;
+    const uint16_t *smooth_before = nullptr, *smooth_now = nullptr;  // null: not compared
+  };
+  // What rays read in the slot of `brick` (at texel `at` of the pool) before its upload and
+  // after, its parts re-packed into `main` and `smooth` as `parts` say; `added`: it read the
+  // empty slot; `main_changed`/`smooth_changed`: the re-packed part's hash changed. Read back
+  // from the pool (before the upload) into the batch's slot `s` of the compare buffers.
+  SlotCompare slotBeforeAndNow(glm::ivec3 brick, glm::ivec3 at, uint8_t parts, bool added,
+                               bool main_changed, bool smooth_changed, const uint8_t* main,
+                               const uint16_t* smooth, size_t s);
+  // What rays read differently in each compared slot, in their order (the slots compared in
+  // parallel).
+  void reportSlotChanges(const Volume& volume, const std::vector<SlotCompare>& compares,
+                         std::vector<SlotChange>* changes) const;
+  std::vector<uint8_t> compare_main_;     // per batch slot: the bytes before, the bytes held
+  std::vector<uint16_t> compare_smooth_;  // per batch slot: the companion before
 
   glm::ivec3 brick_dims_{0};
   glm::ivec3 pool_texels_{0};               // pool texture size: capacity_ · kSlotTexels

@@ -48,6 +48,112 @@ float sampleDensity(const Volume& volume, glm::vec3 v) {
   return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
 }
 
+// A volume's voxels in a dense array with a border of one zero voxel on every side, so the
+// trilinear read of a sample whose eight voxels lie within the border needs no bounds checks.
+class PaddedDense {
+ public:
+  explicit PaddedDense(const Volume& volume)
+      : dims_(volume.dims()),
+        padded_(dims_ + 2),
+        voxels_(size_t(padded_.x) * padded_.y * padded_.z, 0.0f) {
+    parallelFor(size_t(dims_.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+      for (int z = int(z_begin); z < int(z_end); ++z)
+        for (int y = 0; y < dims_.y; ++y)
+          volume.readLine({0, y, z}, 0, dims_.x, &voxels_[index(0, y, z)]);
+    });
+  }
+
+  // sampleDensity's value (the same arithmetic on the same voxels, so the same bits).
+  float sample(glm::vec3 v) const {
+    const glm::ivec3 i0 = glm::ivec3(glm::floor(v));
+    const glm::vec3 f = v - glm::vec3(i0);
+    if (glm::all(glm::greaterThanEqual(i0, glm::ivec3(-1))) && glm::all(glm::lessThan(i0, dims_))) {
+      const float* p = &voxels_[index(i0.x, i0.y, i0.z)];
+      const size_t sy = size_t(padded_.x), sz = size_t(padded_.x) * padded_.y;
+      const float c00 = lerp(p[0], p[1], f.x);
+      const float c10 = lerp(p[sy], p[sy + 1], f.x);
+      const float c01 = lerp(p[sz], p[sz + 1], f.x);
+      const float c11 = lerp(p[sz + sy], p[sz + sy + 1], f.x);
+      return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
+    }
+    auto at = [&](int x, int y, int z) {
+      if (x < 0 || y < 0 || z < 0 || x >= dims_.x || y >= dims_.y || z >= dims_.z) return 0.0f;
+      return voxels_[index(x, y, z)];
+    };
+    const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
+    const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
+    const float c01 = lerp(at(i0.x, i0.y, i0.z + 1), at(i0.x + 1, i0.y, i0.z + 1), f.x);
+    const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
+    return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
+  }
+
+ private:
+  // Voxel (x, y, z) of the volume, −1 ≤ x, y, z ≤ dims.
+  size_t index(int x, int y, int z) const {
+    return (size_t(z + 1) * padded_.y + size_t(y + 1)) * padded_.x + size_t(x + 1);
+  }
+  glm::ivec3 dims_, padded_;
+  HugePageVector<float> voxels_;
+};
+
+// sampleClamped of a cell grid at voxel centres, v·voxel_to_cells + offset for voxel v, with the
+// per-axis part (clamp, cell and weight) computed once per axis: the same arithmetic, so the
+// same bits, without redoing a row's y and z part at every voxel.
+class VoxelCellSampler {
+ public:
+  VoxelCellSampler(const std::vector<glm::vec3>& grid, glm::ivec3 cells, glm::ivec3 voxels,
+                   glm::vec3 voxel_to_cells, glm::vec3 offset)
+      : grid_(grid), cells_(cells) {
+    for (int a = 0; a < 3; ++a) {
+      Taps& t = taps_[a];
+      t.i0.resize(size_t(voxels[a]));
+      t.i1.resize(size_t(voxels[a]));
+      t.f.resize(size_t(voxels[a]));
+      for (int v = 0; v < voxels[a]; ++v) {
+        const float c =
+            glm::clamp(float(v) * voxel_to_cells[a] + offset[a], 0.0f, float(cells[a] - 1));
+        const int i0 = std::min(int(std::floor(c)), std::max(cells[a] - 2, 0));
+        t.i0[size_t(v)] = i0;
+        t.i1[size_t(v)] = std::min(i0 + 1, cells[a] - 1);
+        t.f[size_t(v)] = c - float(i0);
+      }
+    }
+  }
+
+  // The cells a row of voxels (y, z) interpolates between.
+  struct Row {
+    const glm::vec3 *r00, *r10, *r01, *r11;  // (y0, z0), (y1, z0), (y0, z1), (y1, z1)
+    float fy, fz;
+  };
+  Row row(int y, int z) const {
+    const Taps &ty = taps_[1], &tz = taps_[2];
+    auto line = [&](int j, int k) { return &grid_[(size_t(k) * cells_.y + j) * cells_.x]; };
+    const int y0 = ty.i0[size_t(y)], y1 = ty.i1[size_t(y)];
+    const int z0 = tz.i0[size_t(z)], z1 = tz.i1[size_t(z)];
+    return {line(y0, z0), line(y1, z0),    line(y0, z1),
+            line(y1, z1), ty.f[size_t(y)], tz.f[size_t(z)]};
+  }
+  glm::vec3 at(const Row& r, int x) const {
+    const Taps& tx = taps_[0];
+    const int x0 = tx.i0[size_t(x)], x1 = tx.i1[size_t(x)];
+    const float fx = tx.f[size_t(x)];
+    const glm::vec3 c00 = lerp(r.r00[x0], r.r00[x1], fx);
+    const glm::vec3 c10 = lerp(r.r10[x0], r.r10[x1], fx);
+    const glm::vec3 c01 = lerp(r.r01[x0], r.r01[x1], fx);
+    const glm::vec3 c11 = lerp(r.r11[x0], r.r11[x1], fx);
+    return lerp(lerp(c00, c10, r.fy), lerp(c01, c11, r.fy), r.fz);
+  }
+
+ private:
+  struct Taps {
+    std::vector<int> i0, i1;
+    std::vector<float> f;
+  };
+  const std::vector<glm::vec3>& grid_;
+  glm::ivec3 cells_;
+  Taps taps_[3];
+};
+
 // The box of non-zero voxels (per z slab, united in slab order).
 VoxelBox nonZeroBox(const Volume& volume) {
   const glm::ivec3 d = volume.dims();
@@ -129,6 +235,25 @@ class OccupiedBlocks {
 };
 
 }  // namespace
+
+struct WindSolver::StartCopy {
+  static constexpr int kBlock = 8;  // resampleDensity's blocks
+  StartCopy(const Volume& start)
+      : instance(start.instanceId()),
+        generation(start.generation()),
+        dense(start),
+        occupied(start, kBlock) {}
+  uint64_t instance, generation;
+  PaddedDense dense;
+  OccupiedBlocks occupied;  // which kBlock³ blocks of the start hold density
+};
+
+const WindSolver::StartCopy& WindSolver::startCopy(const Volume& start) const {
+  if (!start_copy_ || start_copy_->instance != start.instanceId() ||
+      start_copy_->generation != start.generation())
+    start_copy_ = std::make_shared<const StartCopy>(start);
+  return *start_copy_;
+}
 
 WindSolver::WindSolver(glm::vec3 world_min, glm::vec3 world_max, const WindParams& params)
     : params_(params),
@@ -291,14 +416,13 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
       out->worldMax() != start.worldMax())
     throw ToolError(ToolErrorKind::kMismatchedVolumes,
                     "wind: the density shown must have the starting density's dims and box");
-  constexpr int kBlock = 8;
+  constexpr int kBlock = StartCopy::kBlock;
+  const StartCopy& copy = startCopy(start);
   const glm::ivec3 d = start.dims(), n = params_.grid;
   const glm::ivec3 blocks = (d + kBlock - 1) / kBlock;
   auto block_index = [&](glm::ivec3 b) { return (size_t(b.z) * blocks.y + b.y) * blocks.x + b.x; };
   const size_t block_count = size_t(blocks.x) * blocks.y * blocks.z;
-  // Which blocks of the start hold density.
-  const OccupiedBlocks occupied(start, kBlock);
-  auto anyOccupied = [&](glm::ivec3 lo, glm::ivec3 hi) { return occupied.any(lo, hi); };
+  auto anyOccupied = [&](glm::ivec3 lo, glm::ivec3 hi) { return copy.occupied.any(lo, hi); };
   const glm::vec3 vs = start.voxelSize();
   const glm::vec3 voxel_to_cells = vs / cell_;
   const glm::vec3 offset_cells = 0.5f * voxel_to_cells - 0.5f;
@@ -336,6 +460,7 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
         }
   });
   const VoxelBox cleared = previous.intersect(out->bounds());
+  const VoxelCellSampler flow(displacement_, n, d, voxel_to_cells, offset_cells);
   const std::vector<float> zeros(size_t(kBlock), 0.0f);
   parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
     float row[kBlock];
@@ -355,11 +480,11 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
           bool any = false;
           for (int z = block.lo.z; z < block.hi.z; ++z)
             for (int y = block.lo.y; y < block.hi.y; ++y) {
+              const VoxelCellSampler::Row cells = flow.row(y, z);
               for (int x = block.lo.x; x < block.hi.x; ++x) {
                 const glm::vec3 v(x, y, z);
-                const glm::vec3 disp =
-                    sampleClamped(displacement_, n, v * voxel_to_cells + offset_cells);
-                const float rho = sampleDensity(start, v + disp / vs) * fade;
+                const glm::vec3 disp = flow.at(cells, x);
+                const float rho = copy.dense.sample(v + disp / vs) * fade;
                 row[x - block.lo.x] = rho;
                 any = any || rho != 0.0f;
               }

@@ -22,6 +22,8 @@
 // and 1).
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -60,6 +62,9 @@ class WindSolver {
   // last call returned; the bounds for a volume holding anything else) and those that can hold
   // density are rewritten and marked dirty; the box of the latter is returned.
   // `every_block` samples every block (the tests' reference for the skipping).
+  // What is read of `start` (a dense copy and its occupied blocks) is kept for the next call
+  // with the same start (its instance and generation): an animation resamples one start every
+  // frame. Not for concurrent calls on one solver.
   VoxelBox resampleDensity(const Volume& start, Volume* out, const VoxelBox& previous,
                            bool every_block = false) const;
   // The first version of step 3: the density itself advected by one step, every voxel of its
@@ -96,6 +101,9 @@ class WindSolver {
   double elapsed_ = 0.0;
   std::vector<float> divergence_, pressure_, scratch_pressure_;
   HugePageVector<float> scratch_density_;
+  struct StartCopy;  // wind.cpp
+  mutable std::shared_ptr<const StartCopy> start_copy_;
+  const StartCopy& startCopy(const Volume& start) const;
 };
 
 }  // namespace cb
