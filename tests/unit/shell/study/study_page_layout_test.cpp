@@ -15,7 +15,8 @@
 //   waitingWords; English first, its Chinese after), and every character of every word on the
 //   page is in the font atlas studyPageText fills (none would be drawn as a box).
 //
-// CB_KEEP_FRAMES=DIR writes each 1920x1080 page as layout_<page>[_band].png (the page's boxes
+// CB_KEEP_FRAMES=DIR writes each 1920x1080 page as layout_<page>[_band].png (and each 1024x768
+// page as layout_<page>[_band]_1024x768.png) (the page's boxes
 // and words over black; the picture's place as a grey box; the painter's canvas is not drawn).
 #include <gtest/gtest.h>
 
@@ -186,12 +187,13 @@ class StudyPageLayout : public ::testing::Test {
                                    wordsFaults(page, state.waitingWords(input.now_ns), font_);
         EXPECT_EQ(faults, "") << name << (with_band ? " with the operator's band" : "") << " at "
                               << s.w << "x" << s.h;
-        if (s.w == 1920 && !keep_.empty()) keep(page, name + (with_band ? "_band" : ""));
+        if ((s.w == 1920 || s.w == 1024) && !keep_.empty())
+          keep(page, s, name + (with_band ? "_band" : "") + (s.w == 1920 ? "" : "_1024x768"));
       }
     }
   }
 
-  void keep(const StudyPage& page, const std::string& name) {
+  void keep(const StudyPage& page, Size s, const std::string& name) {
     const GLuint fb = display_->framebuffer();
     const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     glClearNamedFramebufferfv(fb, GL_COLOR, 0, black);
@@ -199,11 +201,11 @@ class StudyPageLayout : public ::testing::Test {
     if (page.image[2] > page.image[0])
       boxes.push_back(makeHudRect(page.image[0], page.image[1], page.image[2], page.image[3],
                                   {0.5f, 0.5f, 0.5f, 1.0f}));
-    hud_.draw(fb, 1920, 1080, boxes);
+    hud_.draw(fb, s.w, s.h, boxes);
     glBindFramebuffer(GL_FRAMEBUFFER, fb);
-    glViewport(0, 0, 1920, 1080);
-    font_.drawLabels(1920, 1080, page.labels);
-    writePng(keep_ + "/layout_" + name + ".png", readFramebufferRgba8(fb, 1920, 1080));
+    glViewport(0, 0, s.w, s.h);
+    font_.drawLabels(s.w, s.h, page.labels);
+    writePng(keep_ + "/layout_" + name + ".png", readFramebufferRgba8(fb, s.w, s.h));
   }
 
   std::unique_ptr<Display> display_;
