@@ -441,51 +441,46 @@ std::string countdownText(double seconds_left) {
 }
 
 std::string StudyRunState::waitingFor(int64_t t_ns) const {
-  if (choosing_)
-    return std::string("Operator: choose why to ") + operatorActionName(*choosing_) +
-           " (tap a reason or press its number; Esc cancels)";
-  if (paused_)
-    return "Paused by the operator (" + pause_reason_ +
-           "). Waiting for the operator to resume (Ctrl+Alt+P).";
-  if (closing_) return "Finishing (" + *closing_ + "): lift the pen; the work is being saved.";
+  return waitingWords(t_ns).en;
+}
+
+StudyWords StudyRunState::waitingWords(int64_t t_ns) const {
+  using L = StudyWaitLine;
+  if (choosing_) {
+    const OperatorAction a = *choosing_;
+    return studyWaitingWords(a == OperatorAction::kPause  ? L::kChoosePause
+                             : a == OperatorAction::kSkip ? L::kChooseSkip
+                                                          : L::kChooseAbort);
+  }
+  if (paused_) return studyWaitingWords(L::kPaused, {pause_reason_});
+  if (closing_) return studyWaitingWords(L::kClosing, {*closing_});
   switch (stage()) {
     case StudyStageKind::kConsent:
-      return "Waiting for your consent: read the text, then tap \"I agree\" (or press Space), "
-             "or \"I do not agree\" to end the session here.";
+      return studyWaitingWords(L::kConsent);
     case StudyStageKind::kParticipant:
-      return "Your participant code is " + participant_id_ +
-             ". Tap \"Continue\" (or press Space) to begin.";
+      return studyWaitingWords(L::kParticipant, {participant_id_});
     case StudyStageKind::kIntroduction:
-      return "Read the introduction, then tap \"Continue\" (or press Space).";
-    case StudyStageKind::kTutorial: {
-      return "Step " + std::to_string(tutorial_step_ + 1) + " of " +
-             std::to_string(protocol_.tutorial.size()) +
-             ": do what the step says; it moves on by itself when it is done.";
-    }
+      return studyWaitingWords(L::kIntroduction);
+    case StudyStageKind::kTutorial:
+      return studyWaitingWords(L::kTutorial, {std::to_string(tutorial_step_ + 1),
+                                              std::to_string(protocol_.tutorial.size())});
     case StudyStageKind::kFreeDrawing:
     case StudyStageKind::kTask: {
+      const bool task = stage() == StudyStageKind::kTask;
       const double left = secondsLeft(t_ns);
-      char text[160];
-      const char* done = stage() == StudyStageKind::kTask ? " Tap \"I'm done\" when finished." : "";
-      if (left >= 0)
-        std::snprintf(text, sizeof text, "Paint with the pen. Time left %s.%s",
-                      countdownText(left).c_str(), done);
-      else
-        std::snprintf(text, sizeof text, "Paint with the pen.%s", done);
-      return text;
+      if (left < 0) return studyWaitingWords(task ? L::kTask : L::kPaint);
+      return studyWaitingWords(task ? L::kTaskTimed : L::kPaintTimed, {countdownText(left)});
     }
     case StudyStageKind::kDemographics:
-      return "Enter your answer with the on-screen keys and tap OK (or Skip to leave it blank).";
+      return studyWaitingWords(L::kDemographics);
     case StudyStageKind::kQuestionnaire:
-      return "Tap the box that matches how much you agree (Skip leaves it blank).";
+      return studyWaitingWords(L::kQuestionnaire);
     case StudyStageKind::kFreeText:
-      return "Type a comment with the on-screen keys and tap OK (Skip if you have none).";
+      return studyWaitingWords(L::kFreeText);
     case StudyStageKind::kDone:
-      if (declined_) return "You did not agree, so the session has ended. Thank you for your time.";
-      return aborted_ ? "The session was stopped by the operator. Thank you."
-                      : "All done. Thank you for taking part!";
+      return studyWaitingWords(declined_ ? L::kDeclined : aborted_ ? L::kAborted : L::kDone);
   }
-  return "";
+  return {};
 }
 
 void StudyRunState::resumedAfter(int64_t last_record_ns, int64_t t_ns) {

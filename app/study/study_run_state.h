@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "app/study/protocol.h"
+#include "app/study/study_waiting_words.h"
 
 namespace cb {
 
@@ -142,8 +143,10 @@ class StudyRunState {
   bool paused() const { return paused_; }
   const std::string& pauseReason() const { return pause_reason_; }
 
-  // What the screen waits for, in words (shown on every screen).
+  // What the screen waits for, in words (shown on every screen): English (logs, tests) and
+  // English with Chinese (the page's foot line).
   std::string waitingFor(int64_t t_ns) const;
+  StudyWords waitingWords(int64_t t_ns) const;
 
   std::vector<StudyRunRecord> takeRecords();
 

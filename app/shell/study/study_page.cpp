@@ -45,6 +45,8 @@ const Bilingual kTimeUpText{"Time is up. Lift the pen: your cloud is being saved
 // The task that just ended, on the next page (%d: its number in the participant's order).
 const Bilingual kTaskSavedText{"Task %d saved.", "任务 %d 已保存。"};
 const Bilingual kTaskKeptText{"Task %d is kept and being saved.", "任务 %d 已保留，正在保存。"};
+// The countdown (%s: "M:SS"): English, big, over its Chinese.
+const Bilingual kTimeLeftText{"Time left %s", "剩余时间 %s"};
 const Bilingual kFinishingText{"This task is ending. Lift the pen: your cloud is being saved.",
                                "这个任务即将结束。请抬起笔：您的云正在保存。"};
 
@@ -434,10 +436,11 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
   }
 }
 
-// The panel's column: x0 and its text width; the countdown's place above the foot line.
+// The panel's column: x0 and its text width; the countdown's place above the foot line (its
+// English, then its Chinese under it at `countdown_zh_size`).
 struct PanelLayout {
   float x0, pad, wrap;
-  float countdown_size, countdown_top;
+  float countdown_size, countdown_top, countdown_zh_size;
 };
 
 PanelLayout panelLayout(const PageBuilder& b) {
@@ -446,7 +449,9 @@ PanelLayout panelLayout(const PageBuilder& b) {
   l.wrap = b.w() - l.x0 - 2 * l.pad;
   // Big, but within the column at any width ("0:00" digits are as wide as any).
   l.countdown_size = b.fit("Time left 00:00", 1.5f * b.title(), 0.0f, 1.5f * b.title(), l.wrap);
-  l.countdown_top = b.foot() - 0.012f * b.h() - l.countdown_size;
+  l.countdown_zh_size = b.small();
+  const float zh_h = b.size("剩余时间 00:00", l.countdown_zh_size, 0.0f)[1];
+  l.countdown_top = b.foot() - 0.012f * b.h() - zh_h - l.countdown_size;
   return l;
 }
 
@@ -575,10 +580,14 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
       break;
   }
   if (left >= 0) {
-    char text[64];
-    std::snprintf(text, sizeof text, "Time left %s", countdownText(left).c_str());
-    b.text(x, l.countdown_top, text, l.countdown_size,
-           left <= 59.0 ? 0xff8060ffu : kStudyTextColour);  // red from 0:59
+    const std::string clock = countdownText(left);
+    char en[64], zh[64];
+    std::snprintf(en, sizeof en, kTimeLeftText.en, clock.c_str());
+    std::snprintf(zh, sizeof zh, kTimeLeftText.zh, clock.c_str());
+    const uint32_t colour = left <= 59.0 ? 0xff8060ffu : kStudyTextColour;  // red from 0:59
+    b.text(x, l.countdown_top, en, l.countdown_size, colour);
+    b.text(x, l.countdown_top + b.size(en, l.countdown_size, 0.0f)[1], zh, l.countdown_zh_size,
+           colour);
   }
 }
 
@@ -681,10 +690,12 @@ StudyWords studyTaskSavedText(int task, bool pending) {
 
 std::string studyPageText(const StudyProtocol& p) {
   std::string text;
-  for (const Bilingual& b : {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText,
-                             kDoneAskText, kDoneYesText, kKeepPaintingText, kTimeUpText,
-                             kFinishingText, kTaskSavedText, kTaskKeptText, kTaskHowText})
+  for (const Bilingual& b :
+       {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText, kDoneAskText,
+        kDoneYesText, kKeepPaintingText, kTimeUpText, kFinishingText, kTaskSavedText, kTaskKeptText,
+        kTaskHowText, kTimeLeftText})
     text += b.zh;
+  text += studyWaitingZhText();
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;
   for (const StudyTask& t : p.tasks) text += t.title;
@@ -719,13 +730,13 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
   StudyPage page;
   PageBuilder b(&page, input, width, height);
   // A task that just ended is said on the page after it: in the task panel when a task follows,
-  // else at the head of the foot line.
-  std::string foot = state.waitingFor(input.now_ns);
+  // else at the head of the foot line. The foot line: its English over its Chinese.
+  StudyWords foot = state.waitingWords(input.now_ns);
   if (input.saved_task > 0 && state.stage() != StudyStageKind::kTask) {
     const StudyWords saved = studyTaskSavedText(input.saved_task, input.saved_pending);
-    foot = saved.en + " " + saved.zh + "  " + foot;
+    foot = {saved.en + "  " + foot.en, saved.zh + "  " + foot.zh};
   }
-  b.frame(input.storage_warning, foot);
+  b.frame(input.storage_warning, foot.en + "\n" + foot.zh);
   if (isPaintingStage(state.stage())) {
     if (!input.painter_menu_open) paintingPanel(b, state, input);
   } else {

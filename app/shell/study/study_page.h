@@ -4,7 +4,8 @@
 // questionnaire one item at a time, free text, the end), the panel beside the painter in the
 // tutorial, free drawing and tasks (stage, instruction and its check, the countdown, the
 // reference image's place), and the operator's reason chooser and pause veil over any stage.
-// Every page says in words what it waits for (StudyRunState::waitingFor) at its foot. Pages are
+// Every page says in words what it waits for at its foot, English over Chinese
+// (StudyRunState::waitingWords). Pages are
 // laid out from measured texts between the operator's band (when shown) and the foot line, so
 // nothing overlaps at any screen size: long texts take a smaller size, boxes shrink to fit. The
 // participant's buttons (consent, "I'm done") are labelled in English over Chinese, like the
@@ -114,10 +115,7 @@ StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input
                          int height);
 
 // What the next page says of the task that ended: "Task N saved." (or kept and being saved
-// when its files wait for the disk), English and Chinese.
-struct StudyWords {
-  std::string en, zh;
-};
+// when its files wait for the disk), English and Chinese (StudyWords: study_waiting_words.h).
 StudyWords studyTaskSavedText(int task, bool pending);
 
 // Every text the pages may show beyond Latin: their own Chinese and the protocol's texts (the

@@ -143,6 +143,7 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   EXPECT_TRUE(w.shown("saved for you when you tap \"I'm done\" or when the time is up"))
       << w.words();
   EXPECT_TRUE(w.shown("Time left 10:00")) << w.words();
+  EXPECT_TRUE(w.shown("剩余时间 10:00")) << "the countdown's Chinese: " << w.words();
   EXPECT_TRUE(w.shown("Paint with the pen. Time left 10:00. Tap \"I'm done\" when finished."))
       << w.words();
   EXPECT_TRUE(w.screen->page().find(StudyTargetAction::kDone));
@@ -201,6 +202,9 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const UiLabel* countdown = w.label("Time left 0:4");
   ASSERT_TRUE(countdown) << w.words();
   EXPECT_EQ(countdown->rgba, 0xff8060ffu) << "red in the last minute";
+  const UiLabel* countdown_zh = w.label("剩余时间 0:4");
+  ASSERT_TRUE(countdown_zh) << w.words();
+  EXPECT_EQ(countdown_zh->rgba, 0xff8060ffu) << "its Chinese red too";
 
   // Time up with the pen down in a stroke: the page asks to lift the pen; lifted, the stage
   // closes by itself and the stroke is kept.

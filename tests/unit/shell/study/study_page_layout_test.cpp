@@ -10,9 +10,13 @@
 // - no two words overlap, no two targets overlap, a target's words lie inside it and no other
 //   words touch a target;
 // - the operator's band and the foot line overlap nothing but their own words;
-// - the task's picture overlaps no words or targets.
+// - the task's picture overlaps no words or targets;
+// - the foot line says what the page waits for in English, then in Chinese (the state's
+//   waitingWords; English first, its Chinese after), and every character of every word on the
+//   page is in the font atlas studyPageText fills (none would be drawn as a box).
 //
-// CB_KEEP_FRAMES=DIR writes each 1920x1080 page as layout_<page>[_band].png (the page's boxes
+// CB_KEEP_FRAMES=DIR writes each 1920x1080 page as layout_<page>[_band].png (and each 1024x768
+// page as layout_<page>[_band]_1024x768.png) (the page's boxes
 // and words over black; the picture's place as a grey box; the painter's canvas is not drawn).
 #include <gtest/gtest.h>
 
@@ -114,6 +118,36 @@ std::string layoutFaults(const StudyPage& page, const UiOverlay& font, int w, in
   return out.str();
 }
 
+// Whether `text` holds a CJK ideograph (U+4E00..U+9FFF: three UTF-8 bytes from E4 to E9).
+bool hasCjk(const std::string& text) {
+  for (size_t i = 0; i + 2 < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0xe4 && c <= 0xe9) return true;
+  }
+  return false;
+}
+
+// What is wrong with the foot line of `page` and the glyphs of its words ("" when nothing).
+std::string wordsFaults(const StudyPage& page, const StudyWords& waiting, const UiOverlay& font) {
+  std::ostringstream out;
+  if (waiting.en.empty() || !hasCjk(waiting.zh))
+    out << "waitingWords lacks a language: \"" << waiting.en << "\" / \"" << waiting.zh << "\"\n";
+  const UiLabel* foot = nullptr;
+  for (const UiLabel& l : page.labels)
+    if (l.y >= page.foot[1] && l.text.find(waiting.en) != std::string::npos) foot = &l;
+  if (!foot) {
+    out << "no foot line says \"" << waiting.en << "\"\n";
+  } else {
+    const size_t en = foot->text.find(waiting.en), zh = foot->text.find(waiting.zh);
+    if (zh == std::string::npos || zh < en + waiting.en.size())
+      out << "the foot line lacks the Chinese after the English: \"" << foot->text << "\"\n";
+  }
+  for (const UiLabel& l : page.labels)
+    if (const int missing = font.missingGlyphs(l.text); missing != 0)
+      out << missing << " characters not in the font atlas: " << shortText(l.text) << "\n";
+  return out.str();
+}
+
 // A realistic operator band: the disk-full text with two tasks' files waiting.
 const char* const kBandText =
     "OPERATOR: the session folder cannot be written for 12 s: No space left on device. Nothing "
@@ -149,15 +183,17 @@ class StudyPageLayout : public ::testing::Test {
       input.storage_warning = with_band ? kBandText : "";
       for (const Size& s : kSizes) {
         const StudyPage page = buildStudyPage(state, input, s.w, s.h);
-        const std::string faults = layoutFaults(page, font_, s.w, s.h);
+        const std::string faults = layoutFaults(page, font_, s.w, s.h) +
+                                   wordsFaults(page, state.waitingWords(input.now_ns), font_);
         EXPECT_EQ(faults, "") << name << (with_band ? " with the operator's band" : "") << " at "
                               << s.w << "x" << s.h;
-        if (s.w == 1920 && !keep_.empty()) keep(page, name + (with_band ? "_band" : ""));
+        if ((s.w == 1920 || s.w == 1024) && !keep_.empty())
+          keep(page, s, name + (with_band ? "_band" : "") + (s.w == 1920 ? "" : "_1024x768"));
       }
     }
   }
 
-  void keep(const StudyPage& page, const std::string& name) {
+  void keep(const StudyPage& page, Size s, const std::string& name) {
     const GLuint fb = display_->framebuffer();
     const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     glClearNamedFramebufferfv(fb, GL_COLOR, 0, black);
@@ -165,11 +201,11 @@ class StudyPageLayout : public ::testing::Test {
     if (page.image[2] > page.image[0])
       boxes.push_back(makeHudRect(page.image[0], page.image[1], page.image[2], page.image[3],
                                   {0.5f, 0.5f, 0.5f, 1.0f}));
-    hud_.draw(fb, 1920, 1080, boxes);
+    hud_.draw(fb, s.w, s.h, boxes);
     glBindFramebuffer(GL_FRAMEBUFFER, fb);
-    glViewport(0, 0, 1920, 1080);
-    font_.drawLabels(1920, 1080, page.labels);
-    writePng(keep_ + "/layout_" + name + ".png", readFramebufferRgba8(fb, 1920, 1080));
+    glViewport(0, 0, s.w, s.h);
+    font_.drawLabels(s.w, s.h, page.labels);
+    writePng(keep_ + "/layout_" + name + ".png", readFramebufferRgba8(fb, s.w, s.h));
   }
 
   std::unique_ptr<Display> display_;
