@@ -11,9 +11,9 @@ struct Wording {
   const char* zh;
 };
 
-// In StudyWaitLine's order. The participant's buttons "Continue", "OK" and "Skip" are labelled in
-// English only, so the Chinese names them as shown with their meaning after them; "I agree",
-// "I do not agree" and "I'm done" carry their Chinese (app/shell/study/study_page.cpp).
+// In StudyWaitLine's order. The participant's buttons read English over Chinese
+// (app/shell/study/study_page.cpp), so each language names a button by its own line: "Continue"
+// is 点“继续”, "OK" 点“确定”, "Skip" 点“跳过”, "I agree" 点“我同意”, "I'm done" 点“我画完了”.
 constexpr Wording kWordings[] = {
     {StudyWaitLine::kChoosePause,
      "Operator: choose why to pause (tap a reason or press its number; Esc cancels)",
@@ -36,9 +36,9 @@ constexpr Wording kWordings[] = {
      "会话就在这里结束。"},
     {StudyWaitLine::kParticipant,
      "Your participant code is %s. Tap \"Continue\" (or press Space) to begin.",
-     "您的参与者编号是 %s。点“Continue”（继续）或按空格键开始。"},
+     "您的参与者编号是 %s。点“继续”或按空格键开始。"},
     {StudyWaitLine::kIntroduction, "Read the introduction, then tap \"Continue\" (or press Space).",
-     "请阅读介绍，然后点“Continue”（继续）或按空格键。"},
+     "请阅读介绍，然后点“继续”或按空格键。"},
     {StudyWaitLine::kTutorial,
      "Step %s of %s: do what the step says; it moves on by itself when it is done.",
      "第 %s 步，共 %s 步：按这一步说的做，做到后会自动进入下一步。"},
@@ -50,13 +50,13 @@ constexpr Wording kWordings[] = {
      "用笔画画。画完后点“我画完了”。"},
     {StudyWaitLine::kDemographics,
      "Enter your answer with the on-screen keys and tap OK (or Skip to leave it blank).",
-     "用屏幕上的键盘输入答案，然后点“OK”（确定）；点“Skip”（跳过）可以不填。"},
+     "用屏幕上的键盘输入答案，然后点“确定”；点“跳过”可以不填。"},
     {StudyWaitLine::kQuestionnaire,
      "Tap the box that matches how much you agree (Skip leaves it blank).",
-     "点最符合您同意程度的方框；点“Skip”（跳过）可以不答。"},
+     "点最符合您同意程度的方框；点“跳过”可以不答。"},
     {StudyWaitLine::kFreeText,
      "Type a comment with the on-screen keys and tap OK (Skip if you have none).",
-     "用屏幕上的键盘写下您的意见，然后点“OK”（确定）；没有意见就点“Skip”（跳过）。"},
+     "用屏幕上的键盘写下您的意见，然后点“确定”；没有意见就点“跳过”。"},
     {StudyWaitLine::kDeclined,
      "You did not agree, so the session has ended. Thank you for your time.",
      "您没有同意参加，会话已结束。感谢您抽出时间。"},

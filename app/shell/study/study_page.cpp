@@ -49,6 +49,46 @@ const Bilingual kTaskKeptText{"Task %d is kept and being saved.", "任务 %d 已
 const Bilingual kTimeLeftText{"Time left %s", "剩余时间 %s"};
 const Bilingual kFinishingText{"This task is ending. Lift the pen: your cloud is being saved.",
                                "这个任务即将结束。请抬起笔：您的云正在保存。"};
+// The form pages' buttons and the on-screen keyboard's named keys.
+const Bilingual kContinueText{"Continue", "继续"};
+const Bilingual kOkText{"OK", "确定"};
+const Bilingual kSkipText{"Skip", "跳过"};
+const Bilingual kBackText{"Back", "返回"};
+const Bilingual kDeleteText{"delete", "删除"};
+const Bilingual kSpaceText{"space", "空格"};
+// The form pages' headings (%d: an item's number, the number of items).
+const Bilingual kConsentTitle{"Consent", "知情同意"};
+const Bilingual kParticipantTitle{"Your participant code", "您的参与者编号"};
+const Bilingual kParticipantBody{
+    "Everything recorded today is filed under this code, never under your name.",
+    "今天记录的一切都只按这个编号保存，不会用您的名字。"};
+const Bilingual kIntroductionTitle{"Introduction", "介绍"};
+const Bilingual kAboutYouTitle{"About you (%d of %d)", "关于您（第 %d 项，共 %d 项）"};
+const Bilingual kQuestionnaireTitle{"Questionnaire: item %d of %d", "问卷：第 %d 题，共 %d 题"};
+const Bilingual kCommentsTitle{"Comments (%d of %d, optional)",
+                               "意见（第 %d 条，共 %d 条，可不填）"};
+const Bilingual kThanksTitle{"Thank you", "谢谢您"};
+const Bilingual kStoppedTitle{"Session stopped", "会话已停止"};
+// The panel beside the painter: the tutorial's step, its check and its clock (%d:%02d: minutes
+// and seconds; %.0f: the planned minutes), the task's place in the participant's order.
+const Bilingual kTutorialStepText{"Tutorial: step %d of %d", "教程：第 %d 步，共 %d 步"};
+const Bilingual kDoneWhenText{"Done when", "完成条件"};
+const Bilingual kTutorialTimeText{"Tutorial time %d:%02d (planned %.0f min)",
+                                  "教程用时 %d:%02d（计划 %.0f 分钟）"};
+const Bilingual kTaskOrderText{"Task %d of %d", "第 %d 个任务，共 %d 个"};
+// The pause veil (the reason is the operator's, in English).
+const Bilingual kPausedTitle{"Paused", "已暂停"};
+const Bilingual kPausedBy{"by the operator: ", "操作员暂停了会话。"};
+const Bilingual kPausedHow{"The session goes on when the operator resumes (Ctrl+Alt+P).",
+                           "操作员恢复后（Ctrl+Alt+P），会话就会继续。"};
+
+// `words` with two numbers in place of its %d: English over Chinese on two lines.
+std::string numbered(const Bilingual& words, int a, int b) {
+  char en[128], zh[128];
+  std::snprintf(en, sizeof en, words.en, a, b);
+  std::snprintf(zh, sizeof zh, words.zh, a, b);
+  return std::string(en) + "\n" + zh;
+}
 
 class PageBuilder {
  public:
@@ -235,12 +275,15 @@ void keyboard(PageBuilder& b, const StudyPageInput& input, const StudyKeyboardPa
     if (!own.keys.empty())
       key(1, StudyTargetAction::kKeyboardPage, own.label, kKeyboardProtocol,
           page == kKeyboardProtocol, kTargetColour);
-    key(own.keys.empty() ? 3 : 2, StudyTargetAction::kKey, "space", 0, false, kTargetColour).text =
-        " ";
+    key(own.keys.empty() ? 3 : 2, StudyTargetAction::kKey, kSpaceText.twoLines(), 0, false,
+        kTargetColour)
+        .text = " ";
   }
-  key(digits_only ? 2 : 1.5f, StudyTargetAction::kBackspace, "delete", 0, false, kTargetColour);
-  key(digits_only ? 2 : 1.5f, StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
-  b.target(x, y, left + row_w, y + key_h, StudyTargetAction::kOk, "OK", 0, false,
+  key(digits_only ? 2 : 1.5f, StudyTargetAction::kBackspace, kDeleteText.twoLines(), 0, false,
+      kTargetColour);
+  key(digits_only ? 2 : 1.5f, StudyTargetAction::kSkipField, kSkipText.twoLines(), 0, false,
+      kQuietColour);
+  b.target(x, y, left + row_w, y + key_h, StudyTargetAction::kOk, kOkText.twoLines(), 0, false,
            {0.18f, 0.55f, 0.3f, 1.0f});
 }
 
@@ -249,11 +292,21 @@ struct FormLayout {
   float margin, wrap, button_w, button_h, button_y;
 };
 
-// A form page's heading at y; returns the y below it.
-float formHeading(PageBuilder& b, const FormLayout& l, float y, const std::string& text) {
-  const float size = b.fit(text, b.title(), 0.0f, 2.0f * b.title(), l.wrap);
-  b.text(l.margin, y, text, size);
-  return y + 1.5f * size;
+// A form page's heading at y: its English, its Chinese under it (smaller); returns the y below.
+float formHeading(PageBuilder& b, const FormLayout& l, float y, const std::string& en,
+                  const std::string& zh) {
+  const float size = b.fit(en, b.title(), 0.0f, 2.0f * b.title(), l.wrap);
+  b.text(l.margin, y, en, size);
+  y += 1.25f * size;
+  const float zh_size = b.fit(zh, b.body(), 0.0f, 2.0f * b.body(), l.wrap);
+  b.text(l.margin, y, zh, zh_size);
+  return y + 1.2f * zh_size + 0.3f * size;
+}
+// A heading from `words` (two lines: English, then Chinese), as numbered() gives.
+float formHeading(PageBuilder& b, const FormLayout& l, float y, const std::string& words) {
+  const size_t at = words.find('\n');
+  return formHeading(b, l, y, words.substr(0, at),
+                     at == std::string::npos ? "" : words.substr(at + 1));
 }
 
 // A demographic field: its label, a refused answer's message, then its choices in a row or the
@@ -263,8 +316,7 @@ void demographicsForm(PageBuilder& b, const StudyRunState& state, const StudyPag
   const StudyProtocol& p = state.protocol();
   const DemographicField& f = p.demographics[size_t(state.fieldIndex())];
   y = formHeading(b, l, y,
-                  "About you (" + std::to_string(state.fieldIndex() + 1) + " of " +
-                      std::to_string(p.demographics.size()) + ")");
+                  numbered(kAboutYouTitle, state.fieldIndex() + 1, int(p.demographics.size())));
   y = b.block(l.margin, y, f.label, b.body(), l.wrap, y + 3.0f * b.body()) + 0.4f * b.body();
   if (!input.message.empty())
     y = b.block(l.margin, y, input.message, b.small(), l.wrap, y + 2.2f * b.small(),
@@ -280,7 +332,7 @@ void demographicsForm(PageBuilder& b, const StudyRunState& state, const StudyPag
       t.text = f.choices[i];
     }
     b.target(l.margin, y + 1.4f * bh, l.margin + l.button_w, y + 2.4f * bh,
-             StudyTargetAction::kSkipField, "Skip", 0, false, kQuietColour);
+             StudyTargetAction::kSkipField, kSkipText.twoLines(), 0, false, kQuietColour);
   } else {
     keyboard(b, input, p.keyboard, y, f.kind == DemographicField::Kind::kInteger);
   }
@@ -291,10 +343,12 @@ void questionnaireForm(PageBuilder& b, const StudyRunState& state, const FormLay
   const StudyProtocol& p = state.protocol();
   const int i = state.itemIndex();
   const QuestionnaireItem& item = p.items[size_t(i)];
-  y = formHeading(b, l, y,
-                  "Questionnaire: item " + std::to_string(i + 1) + " of " +
-                      std::to_string(p.items.size()) +
-                      (item.section.empty() ? std::string() : " (" + item.section + ")"));
+  const std::string heading = numbered(kQuestionnaireTitle, i + 1, int(p.items.size()));
+  const size_t zh = heading.find('\n');
+  y = formHeading(
+      b, l, y,
+      heading.substr(0, zh) + (item.section.empty() ? std::string() : " (" + item.section + ")"),
+      heading.substr(zh + 1));
   // Under the item: the boxes (16% of the height, less when the room is short), the scale's
   // words under them, then Back and Skip; the item's text takes what is left above.
   const int n = int(p.scale_labels.size());
@@ -327,22 +381,22 @@ void questionnaireForm(PageBuilder& b, const StudyRunState& state, const FormLay
   }
   const float ry = by + bh + gap + words_h + gap;
   if (i > 0)
-    b.target(l.margin, ry, l.margin + l.button_w, ry + row_h, StudyTargetAction::kBackItem, "Back",
-             0, false, kQuietColour);
+    b.target(l.margin, ry, l.margin + l.button_w, ry + row_h, StudyTargetAction::kBackItem,
+             kBackText.twoLines(), 0, false, kQuietColour);
   b.target(b.w() - l.margin - l.button_w, ry, b.w() - l.margin, ry + row_h,
-           StudyTargetAction::kSkipItem, "Skip", 0, false, kQuietColour);
+           StudyTargetAction::kSkipItem, kSkipText.twoLines(), 0, false, kQuietColour);
 }
 
 // The closing page: thanks, declined or stopped.
 void donePage(PageBuilder& b, const StudyRunState& state, const FormLayout& l, float y) {
   const float bottom = b.foot() - 0.03f * b.h();
   if (state.declined()) {
-    y = formHeading(b, l, y, kDeclinedTitle.oneLine());
+    y = formHeading(b, l, y, kDeclinedTitle.en, kDeclinedTitle.zh);
     b.block(l.margin, y, std::string(kDeclinedBody.en) + "\n\n" + kDeclinedBody.zh, b.body(),
             l.wrap, bottom);
     return;
   }
-  y = formHeading(b, l, y, state.aborted() ? "Session stopped" : "Thank you");
+  y = formHeading(b, l, y, (state.aborted() ? kStoppedTitle : kThanksTitle).twoLines());
   b.block(l.margin, y,
           state.aborted() ? "The operator stopped the session (" + state.abortReason() +
                                 "). What was recorded so far is kept."
@@ -380,11 +434,11 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
   float y = b.top() + 0.05f * b.h();
   const auto continueButton = [&] {
     b.target(0.5f * b.w() - button_w * 0.5f, button_y, 0.5f * b.w() + button_w * 0.5f,
-             button_y + button_h, StudyTargetAction::kContinue, "Continue");
+             button_y + button_h, StudyTargetAction::kContinue, kContinueText.twoLines());
   };
   switch (state.stage()) {
     case StudyStageKind::kConsent: {
-      y = formHeading(b, l, y, "Consent");
+      y = formHeading(b, l, y, kConsentTitle.en, kConsentTitle.zh);
       b.block(margin, y, flowed(p.consent), b.body(), wrap, text_bottom);
       // Agree and decline side by side, the same size: declining is as easy as agreeing.
       const float gap = 0.04f * b.w();
@@ -395,17 +449,15 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
       break;
     }
     case StudyStageKind::kParticipant: {
-      y = formHeading(b, l, y, "Your participant code");
+      y = formHeading(b, l, y, kParticipantTitle.en, kParticipantTitle.zh);
       const float code = std::min(2.4f * b.title(), 0.3f * (text_bottom - y));
       b.centred(0.5f * b.w(), y + 0.3f * code, state.participantId(), code, kStudyHintColour);
-      b.block(margin, y + 1.8f * code,
-              "Everything recorded today is filed under this code, never under your name.",
-              b.body(), wrap, text_bottom);
+      b.block(margin, y + 1.8f * code, kParticipantBody.twoLines(), b.body(), wrap, text_bottom);
       continueButton();
       break;
     }
     case StudyStageKind::kIntroduction: {
-      y = formHeading(b, l, y, "Introduction");
+      y = formHeading(b, l, y, kIntroductionTitle.en, kIntroductionTitle.zh);
       std::string text = flowed(p.introduction.text);
       if (!p.introduction.video.empty())
         text += "\n(The operator plays the video " + p.introduction.video + ".)";
@@ -422,8 +474,7 @@ void formPage(PageBuilder& b, const StudyRunState& state, const StudyPageInput& 
     case StudyStageKind::kFreeText: {
       const FreeTextQuestion& q = p.free_text[size_t(state.freeTextIndex())];
       y = formHeading(b, l, y,
-                      "Comments (" + std::to_string(state.freeTextIndex() + 1) + " of " +
-                          std::to_string(p.free_text.size()) + ", optional)");
+                      numbered(kCommentsTitle, state.freeTextIndex() + 1, int(p.free_text.size())));
       y = b.block(margin, y, q.prompt, b.body(), wrap, y + 3.2f * b.body());
       keyboard(b, input, p.keyboard, y + 0.6f * b.body(), false);
       break;
@@ -500,8 +551,7 @@ void taskPanel(PageBuilder& b, const StudyRunState& state, const StudyPageInput&
   // "Task 2 of 4" over the task's own title, which keeps to one line when it can (a title
   // such as "Cloud 2: cloud photograph 1" wrapped after "Task 2 of 4: " left its number alone
   // on the second line).
-  const std::string order = "Task " + std::to_string(state.position().order + 1) + " of " +
-                            std::to_string(state.taskCount());
+  const std::string order = numbered(kTaskOrderText, state.position().order + 1, state.taskCount());
   b.text(x, y, order, b.small(), kStudyHintColour);
   y += b.size(order, b.small(), 0.0f)[1] + 0.25f * b.small();
   const float title_size = b.fit(task->title, b.body(), 0.0f, 1.5f * b.body(), l.wrap);
@@ -549,24 +599,25 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
     case StudyStageKind::kTutorial: {
       const TutorialStep& step = p.tutorial[size_t(state.tutorialStep())];
       y = b.block(x, y,
-                  "Tutorial: step " + std::to_string(state.tutorialStep() + 1) + " of " +
-                      std::to_string(p.tutorial.size()),
-                  b.body(), l.wrap, y + 1.2f * b.body()) +
+                  numbered(kTutorialStepText, state.tutorialStep() + 1, int(p.tutorial.size())),
+                  b.body(), l.wrap, y + 2.5f * b.body()) +
           0.6f * b.body();
       // The step's words take the room the check and the clock leave.
-      const float rest = 4.4f * b.small() + 1.5f * b.small();
+      const float rest = 4.4f * b.small() + 2.8f * b.small();
       y = b.block(x, y, step.instruction, 1.1f * b.body(), l.wrap, bottom - rest) +
           0.8f * b.small();
-      y = b.block(x, y, "Done when: " + input.check_status, b.small(), l.wrap,
-                  bottom - 1.5f * b.small()) +
+      y = b.block(x, y, kDoneWhenText.oneLine() + ": " + input.check_status, b.small(), l.wrap,
+                  bottom - 2.8f * b.small()) +
           0.6f * b.small();
       // The tutorial has a planned length (§7.5: ten minutes), not a limit: it ends when its
       // steps are done (or skipped by the operator).
       const int elapsed = int(state.stageSeconds(input.now_ns));
-      char text[96];
-      std::snprintf(text, sizeof text, "Tutorial time %d:%02d (planned %.0f min)", elapsed / 60,
-                    elapsed % 60, p.tutorial_minutes);
-      b.block(x, y, text, b.small(), l.wrap, bottom);
+      char en[96], zh[96];
+      std::snprintf(en, sizeof en, kTutorialTimeText.en, elapsed / 60, elapsed % 60,
+                    p.tutorial_minutes);
+      std::snprintf(zh, sizeof zh, kTutorialTimeText.zh, elapsed / 60, elapsed % 60,
+                    p.tutorial_minutes);
+      b.block(x, y, std::string(en) + "\n" + zh, b.small(), l.wrap, bottom);
       break;
     }
     case StudyStageKind::kFreeDrawing:
@@ -622,13 +673,16 @@ void operatorChooser(PageBuilder& b, const StudyRunState& state) {
 void pausedVeil(PageBuilder& b, const StudyRunState& state) {
   b.box(0, 0, b.w(), b.h(), kVeil);
   const float y = b.top() + 0.3f * (b.foot() - b.top());
-  b.centred(0.5f * b.w(), y, "Paused", 2.0f * b.title());
-  const std::string by = "by the operator: " + state.pauseReason();
-  const std::string how = "The session goes on when the operator resumes (Ctrl+Alt+P).";
-  b.centred(0.5f * b.w(), y + 3.0f * b.title(), by,
-            b.fit(by, b.body(), 0, b.body(), 0.94f * b.w()));
-  b.centred(0.5f * b.w(), y + 3.0f * b.title() + 1.8f * b.body(), how,
-            b.fit(how, b.body(), 0, b.body(), 0.94f * b.w()));
+  // "Paused" big over its Chinese, then who paused and how it goes on, each English over Chinese.
+  b.centred(0.5f * b.w(), y, kPausedTitle.en, 2.0f * b.title());
+  b.centred(0.5f * b.w(), y + 2.3f * b.title(), kPausedTitle.zh, 1.2f * b.title());
+  const std::string by = kPausedBy.en + state.pauseReason();
+  float line = y + 4.0f * b.title();
+  for (const std::string& words :
+       {by, std::string(kPausedBy.zh), std::string(kPausedHow.en), std::string(kPausedHow.zh)}) {
+    b.centred(0.5f * b.w(), line, words, b.fit(words, b.body(), 0, b.body(), 0.94f * b.w()));
+    line += 1.5f * b.body();
+  }
 }
 
 }  // namespace
@@ -691,9 +745,15 @@ StudyWords studyTaskSavedText(int task, bool pending) {
 std::string studyPageText(const StudyProtocol& p) {
   std::string text;
   for (const Bilingual& b :
-       {kAgreeText, kDeclineText, kDeclinedTitle, kDeclinedBody, kDoneText, kDoneAskText,
-        kDoneYesText, kKeepPaintingText, kTimeUpText, kFinishingText, kTaskSavedText, kTaskKeptText,
-        kTaskHowText, kTimeLeftText})
+       {kAgreeText,     kDeclineText,        kDeclinedTitle,   kDeclinedBody,
+        kDoneText,      kDoneAskText,        kDoneYesText,     kKeepPaintingText,
+        kTimeUpText,    kFinishingText,      kTaskSavedText,   kTaskKeptText,
+        kTaskHowText,   kTimeLeftText,       kContinueText,    kOkText,
+        kSkipText,      kBackText,           kDeleteText,      kSpaceText,
+        kConsentTitle,  kParticipantTitle,   kParticipantBody, kIntroductionTitle,
+        kAboutYouTitle, kQuestionnaireTitle, kCommentsTitle,   kThanksTitle,
+        kStoppedTitle,  kTutorialStepText,   kDoneWhenText,    kTutorialTimeText,
+        kTaskOrderText, kPausedTitle,        kPausedBy,        kPausedHow})
     text += b.zh;
   text += studyWaitingZhText();
   text += p.consent + p.introduction.text + p.free_drawing.text;

@@ -8,8 +8,10 @@
 // (StudyRunState::waitingWords). Pages are
 // laid out from measured texts between the operator's band (when shown) and the foot line, so
 // nothing overlaps at any screen size: long texts take a smaller size, boxes shrink to fit. The
-// participant's buttons (consent, "I'm done") are labelled in English over Chinese, like the
-// painter's menu.
+// participant's buttons (consent, Continue, OK, Skip, Back, the keyboard's named keys, "I'm
+// done") are labelled in English over Chinese, like the painter's menu, and so are the pages'
+// own words (headings, the tutorial's step and clock, "Task N of M", the pause veil); the
+// operator's chooser stays English.
 //
 // Drawn by the runner with the HUD overlay (boxes) and ui_overlay's labels (Noto Sans CJK).
 #pragma once

@@ -13,7 +13,12 @@
 // - the task's picture overlaps no words or targets;
 // - the foot line says what the page waits for in English, then in Chinese (the state's
 //   waitingWords; English first, its Chinese after), and every character of every word on the
-//   page is in the font atlas studyPageText fills (none would be drawn as a box).
+//   page is in the font atlas studyPageText fills (none would be drawn as a box);
+// - every button the participant taps (Continue, OK, Skip, Back, delete, space, "I agree", "I'm
+//   done" and its question's answers) carries Chinese under its English, and each of the panel's
+//   and the pause veil's own words ("Tutorial: step", "Done when", "Tutorial time", "Task N of
+//   M", "Paused", ...) carries its Chinese in the same label or the one right after it; each of
+//   those words is seen on some page (the check is not vacuous).
 //
 // CB_KEEP_FRAMES=DIR writes each 1920x1080 page as layout_<page>[_band].png (and each 1024x768
 // page as layout_<page>[_band]_1024x768.png) (the page's boxes
@@ -22,6 +27,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <sstream>
 
 #include "app/core/config_paths.h"
@@ -148,6 +154,60 @@ std::string wordsFaults(const StudyPage& page, const StudyWords& waiting, const 
   return out.str();
 }
 
+// The participant's buttons: their label must hold Chinese (the keyboard's letter keys, the
+// demographic choices, the scale's numbers and the operator's chooser are not among them).
+bool participantButton(const StudyTarget& t) {
+  switch (t.action) {
+    case StudyTargetAction::kAgree:
+    case StudyTargetAction::kDecline:
+    case StudyTargetAction::kContinue:
+    case StudyTargetAction::kSkipItem:
+    case StudyTargetAction::kBackItem:
+    case StudyTargetAction::kBackspace:
+    case StudyTargetAction::kOk:
+    case StudyTargetAction::kSkipField:
+    case StudyTargetAction::kDone:
+    case StudyTargetAction::kDoneConfirm:
+    case StudyTargetAction::kDoneCancel:
+      return true;
+    case StudyTargetAction::kKey:
+      return t.text == " ";  // the space bar
+    default:
+      return false;
+  }
+}
+
+// The English words the pages draw themselves (beside the protocol's texts), each of which must
+// carry its Chinese.
+const char* const kOwnWords[] = {"Tutorial: step",
+                                 "Done when",
+                                 "Tutorial time",
+                                 "Task ",
+                                 "Paused",
+                                 "by the operator",
+                                 "The session goes on",
+                                 "Your participant code",
+                                 "Everything recorded today",
+                                 "Questionnaire: item"};
+
+// Every participant button and page word on `page` without Chinese ("" when none); counts
+// the page words seen in `seen`.
+std::string untranslated(const StudyPage& page, std::map<std::string, int>* seen) {
+  std::ostringstream out;
+  for (const StudyTarget& t : page.targets)
+    if (participantButton(t) && !hasCjk(t.label))
+      out << "a button without Chinese: " << shortText(t.label) << "\n";
+  for (size_t i = 0; i < page.labels.size(); ++i)
+    for (const char* words : kOwnWords) {
+      if (page.labels[i].text.rfind(words, 0) != 0) continue;
+      ++(*seen)[words];
+      const bool next = i + 1 < page.labels.size() && hasCjk(page.labels[i + 1].text);
+      if (!hasCjk(page.labels[i].text) && !next)
+        out << "words without their Chinese: " << shortText(page.labels[i].text) << "\n";
+    }
+  return out.str();
+}
+
 // A realistic operator band: the disk-full text with two tasks' files waiting.
 const char* const kBandText =
     "OPERATOR: the session folder cannot be written for 12 s: No space left on device. Nothing "
@@ -184,7 +244,8 @@ class StudyPageLayout : public ::testing::Test {
       for (const Size& s : kSizes) {
         const StudyPage page = buildStudyPage(state, input, s.w, s.h);
         const std::string faults = layoutFaults(page, font_, s.w, s.h) +
-                                   wordsFaults(page, state.waitingWords(input.now_ns), font_);
+                                   wordsFaults(page, state.waitingWords(input.now_ns), font_) +
+                                   untranslated(page, &seen_);
         EXPECT_EQ(faults, "") << name << (with_band ? " with the operator's band" : "") << " at "
                               << s.w << "x" << s.h;
         if ((s.w == 1920 || s.w == 1024) && !keep_.empty())
@@ -214,6 +275,7 @@ class StudyPageLayout : public ::testing::Test {
   HudOverlay hud_;
   std::string keep_;
   int pages_ = 0;
+  std::map<std::string, int> seen_;  // kOwnWords: how often each was drawn
 };
 
 TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
@@ -310,6 +372,8 @@ TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
   check(stopped, input, "operator_abort");
   stopped.chooseReason(0, t);
   check(stopped, input, "end_stopped");
+  for (const char* words : kOwnWords)
+    EXPECT_GT(seen_[words], 0) << "no page drew \"" << words << "\": its Chinese went unchecked";
   std::printf("%d pages checked at %zu sizes, with and without the band\n", pages_,
               std::size(kSizes));
 }
