@@ -69,6 +69,15 @@ const Bilingual kCommentsTitle{"Comments (%d of %d, optional)",
                                "意见（第 %d 条，共 %d 条，可不填）"};
 const Bilingual kThanksTitle{"Thank you", "谢谢您"};
 const Bilingual kStoppedTitle{"Session stopped", "会话已停止"};
+// The closing page's words (%s: the participant code; the operator's reason, English only).
+const Bilingual kThanksBody{
+    "Your answers and clouds are saved under %s. Please tell the operator you have finished.",
+    "您的回答和云已保存在编号 %s 下。请告诉操作员您已完成。"};
+const Bilingual kStoppedBody{
+    "The operator stopped the session (%s). What was recorded so far is "
+    "kept.",
+    "操作员停止了本次会话。到目前为止记录的内容都会保留。"};
+const Bilingual kFreeDrawingTitle{"Free drawing", "自由绘画"};
 // The panel beside the painter: the tutorial's step, its check and its clock (%d:%02d: minutes
 // and seconds; %.0f: the planned minutes), the task's place in the participant's order.
 const Bilingual kTutorialStepText{"Tutorial: step %d of %d", "教程：第 %d 步，共 %d 步"};
@@ -397,12 +406,12 @@ void donePage(PageBuilder& b, const StudyRunState& state, const FormLayout& l, f
     return;
   }
   y = formHeading(b, l, y, (state.aborted() ? kStoppedTitle : kThanksTitle).twoLines());
-  b.block(l.margin, y,
-          state.aborted() ? "The operator stopped the session (" + state.abortReason() +
-                                "). What was recorded so far is kept."
-                          : "Your answers and clouds are saved under " + state.participantId() +
-                                ". Please tell the operator you have finished.",
-          b.body(), l.wrap, bottom);
+  const Bilingual& body = state.aborted() ? kStoppedBody : kThanksBody;
+  const std::string value = state.aborted() ? state.abortReason() : state.participantId();
+  char en[512], zh[512];
+  std::snprintf(en, sizeof en, body.en, value.c_str());
+  std::snprintf(zh, sizeof zh, body.zh, value.c_str());
+  b.block(l.margin, y, std::string(en) + "\n\n" + zh, b.body(), l.wrap, bottom);
 }
 
 // A protocol's text as a paragraph flows: the TOML's line breaks inside a paragraph are the
@@ -621,7 +630,8 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
       break;
     }
     case StudyStageKind::kFreeDrawing:
-      y = b.block(x, y, "Free drawing", b.body(), l.wrap, y + 1.2f * b.body()) + 0.6f * b.body();
+      y = b.block(x, y, kFreeDrawingTitle.twoLines(), b.body(), l.wrap, y + 2.5f * b.body()) +
+          0.6f * b.body();
       b.block(x, y, flowed(p.free_drawing.text), b.small(), l.wrap, bottom);
       break;
     case StudyStageKind::kTask:
@@ -753,7 +763,8 @@ std::string studyPageText(const StudyProtocol& p) {
         kConsentTitle,  kParticipantTitle,   kParticipantBody, kIntroductionTitle,
         kAboutYouTitle, kQuestionnaireTitle, kCommentsTitle,   kThanksTitle,
         kStoppedTitle,  kTutorialStepText,   kDoneWhenText,    kTutorialTimeText,
-        kTaskOrderText, kPausedTitle,        kPausedBy,        kPausedHow})
+        kTaskOrderText, kPausedTitle,        kPausedBy,        kPausedHow,
+        kThanksBody,    kStoppedBody,        kFreeDrawingTitle})
     text += b.zh;
   text += studyWaitingZhText();
   text += p.consent + p.introduction.text + p.free_drawing.text;

@@ -188,7 +188,12 @@ const char* const kOwnWords[] = {"Tutorial: step",
                                  "The session goes on",
                                  "Your participant code",
                                  "Everything recorded today",
-                                 "Questionnaire: item"};
+                                 "Questionnaire: item",
+                                 "Free drawing",
+                                 "Thank you",
+                                 "Session stopped",
+                                 "Your answers and clouds",
+                                 "The operator stopped"};
 
 // Every participant button and page word on `page` without Chinese ("" when none); counts
 // the page words seen in `seen`.
