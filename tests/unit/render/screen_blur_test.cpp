@@ -54,6 +54,22 @@ long darkPixels(const ImageRgba8& image) {
   return n;
 }
 
+// The frames below: the 32³ cumulus synced under the default light, a 240×160 RGBA8 target.
+class ScreenBlurFrame : public ::testing::Test {
+ protected:
+  static constexpr int kW = 240, kH = 160;
+  void SetUp() override {
+    CB_REQUIRE_GL();
+    ASSERT_TRUE(renderer.init(&err)) << err;
+    renderer.sync(volume, Light{});
+    ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  }
+  const Volume volume = makeBundledCumulus(glm::ivec3(32), 1);
+  VolumeRenderer renderer;
+  RenderTarget target;
+  std::string err;
+};
+
 // The image-space outline (4A(1 − A) of the blurred coverage A) adds dark pixels to the unblurred
 // moving frame of the same scale: measured +38 % (ink) and +39 % (sketch) at 240×160; without
 // the blur's taps (A the unblurred coverage, 0 or 1 on a hit) it adds none. Weights that did
@@ -61,18 +77,9 @@ long darkPixels(const ImageRgba8& image) {
 // area: measured 1.26× the full-scale still frame's dark pixels, so 2× bounds it.
 constexpr double kMinOutlineGain = 1.15, kMaxDarkVsFullScale = 2.0;
 
-TEST(ScreenBlur, AReducedScaleStillFrameDrawsTheBlurredOutline) {
-  CB_REQUIRE_GL();
-  constexpr int kW = 240, kH = 160;
-  const Volume volume = makeBundledCumulus(glm::ivec3(32), 1);
-  VolumeRenderer renderer;
-  std::string err;
-  ASSERT_TRUE(renderer.init(&err)) << err;
-  renderer.sync(volume, Light{});
+TEST_F(ScreenBlurFrame, AReducedScaleStillFrameDrawsTheBlurredOutline) {
   Camera camera = Camera::reference();
-  camera.fov_y_deg = 30.0f;  // the cloud fills the frame
-  RenderTarget target;
-  ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  camera.fov_y_deg = 30.0f;                            // the cloud fills the frame
   const float sentinel[4] = {1.0f, 0.0f, 1.0f, 1.0f};  // magenta: a pixel the pass did not draw
   for (RenderStyle style : {RenderStyle::kInk, RenderStyle::kSketch}) {
     RenderOptions options;
@@ -108,19 +115,10 @@ TEST(ScreenBlur, AReducedScaleStillFrameDrawsTheBlurredOutline) {
 // rest drawn by the compose pass's unblurred variant: the frame must equal one cast without
 // skipping (every pixel cast and blurred), here with the cloud in a corner of the frame so that
 // most of it lies outside the rectangle; on bare paper and over the sky (CB_OVER_SKY).
-TEST(ScreenBlur, BlurringOnlyNearTheBoundaryChangesNoPixel) {
-  CB_REQUIRE_GL();
-  constexpr int kW = 240, kH = 160;
-  const Volume volume = makeBundledCumulus(glm::ivec3(32), 1);
-  VolumeRenderer renderer;
-  std::string err;
-  ASSERT_TRUE(renderer.init(&err)) << err;
-  renderer.sync(volume, Light{});
+TEST_F(ScreenBlurFrame, BlurringOnlyNearTheBoundaryChangesNoPixel) {
   Camera camera = Camera::reference();
   camera.fov_y_deg = 70.0f;                      // the cloud small in the frame
   camera.target += glm::vec3(0.6f, 0.3f, 0.0f);  // and off centre
-  RenderTarget target;
-  ASSERT_TRUE(target.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
   for (RenderStyle style : {RenderStyle::kInk, RenderStyle::kSketch})
     for (bool over_sky : {false, true}) {
       RenderOptions options;
