@@ -399,7 +399,6 @@ DeviceFileLoad parseDeviceFiles(const std::vector<std::pair<std::string, std::st
   DeviceFileLoad result;
   auto db = std::make_shared<DeviceDatabase>();
   std::vector<ParsedFile> parsed;
-  std::vector<bool> sound;
   for (const auto& [name, text] : files) {
     try {
       parsed.push_back({name, toml::parse(text, name)});
@@ -407,8 +406,11 @@ DeviceFileLoad parseDeviceFiles(const std::vector<std::pair<std::string, std::st
       result.errors.push_back(where(name, e.source()) + ": " + std::string(e.description()));
     }
   }
-  // Tool tables first: a family may name one from any file.
-  for (const ParsedFile& p : parsed) {
+  // Tool tables first: a family may name one from any file. A file whose tool tables have a
+  // mistake adds no entry either, like a mistake anywhere else in it.
+  std::vector<bool> tables_sound(parsed.size(), true);
+  for (size_t i = 0; i < parsed.size(); ++i) {
+    const ParsedFile& p = parsed[i];
     Reader r(p.name, &result.errors);
     std::vector<std::shared_ptr<ToolTable>> tables;
     readToolTables(r, p.root, tables);
@@ -420,12 +422,14 @@ DeviceFileLoad parseDeviceFiles(const std::vector<std::pair<std::string, std::st
       }
       db->addToolTable(std::move(t));
     }
+    tables_sound[i] = r.ok();
   }
-  for (const ParsedFile& p : parsed) {
+  for (size_t i = 0; i < parsed.size(); ++i) {
+    const ParsedFile& p = parsed[i];
     Reader r(p.name, &result.errors);
     std::vector<DeviceEntry> entries;
     readFamily(r, p.root, *db, entries);
-    if (!r.ok()) continue;  // a file with a mistake adds no entry
+    if (!r.ok() || !tables_sound[i]) continue;  // a file with a mistake adds no entry
     for (DeviceEntry& e : entries) {
       std::string clash;
       const std::string at = e.where;

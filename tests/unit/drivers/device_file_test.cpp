@@ -104,6 +104,9 @@ TEST(DeviceFiles, MistakesAreReportedWithFileLineColumn) {
       {std::string(kMinimal) + "[[report_fixup]]\noffset = 3\nexpect = [1, 2]\nreplace = [3]\n",
        "t.toml:10:11: report_fixup.replace: must have as many bytes as expect (2)"},
       {"[family\nname = 1\n", "t.toml:1:8: "},  // a TOML syntax error
+      // A mistake in the file's tool table keeps its family out too (a fuzzer's find).
+      {std::string(kMinimal) + "[tool_table.t]\neraser = [1]\ny_max = 2\n",
+       "t.toml:9:1: tool_table.t.y_max: unknown key"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const DeviceFileLoad load = parseOne(cases[i].text);
