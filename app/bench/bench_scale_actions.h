@@ -3,13 +3,16 @@
 // cumulus, at the session's starting view, no tablet: the mouse drives it as on a kiosk without
 // a pen) scripted frame by frame through its display's event queue.
 //   - drag the light ball (mode 5, the mouse pressed and moved a little each frame): frames per
-//     second while the light follows; release → the lit frame (full light sweep, full resolution);
+//     second while the light follows; release → the first frame lit by the released light (the
+//     drag's coarse light at the drag's scale), and → the frame after it (the light swept in
+//     full, full resolution);
 //   - place a picture and a model (PlaceShape, the bench tools' silhouette and torus) → the lit
 //     frame that shows the new cloud;
 //   - the wind (W) on the 256³ cloud: frames per second while it blows.
 // Each act is also timed in a second painter run with the painter's earlier choices, the
 // baseline in the same process: the light volume swept in full every drag frame, the whole frame
-// re-rendered after a placement, the wind at full resolution by temporal reprojection.
+// re-rendered after a placement, the wind at full resolution by temporal reprojection; the
+// light drag and its release at the moving scale.
 #pragma once
 
 #include <string>
@@ -22,8 +25,9 @@
 namespace cb {
 
 struct PainterActionFigures {
-  double light_drag_fps = -1;    // median frame while the light is dragged
-  double light_release_ms = -1;  // mouse released → glFinish of the lit frame, median
+  double light_drag_fps = -1;         // median frame while the light is dragged
+  double light_release_ms = -1;       // mouse released → glFinish of the lit frame, median
+  double light_release_full_ms = -1;  // → glFinish of the frame with the full light, full res
   double place_picture_ms = -1;  // PlaceShape (picture) issued → glFinish of the frame showing it
   double place_model_ms = -1;    // the same for a model
   double wind_fps = -1;          // median frame while the wind blows

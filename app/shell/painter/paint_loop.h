@@ -91,6 +91,12 @@ struct PaintLoopOptions {
   // thesis's 128³ preview for 256³), and in full at release; 1 sweeps the light volume in full
   // and re-packs the pool every drag frame (the bench's baseline).
   int light_drag_divisor = 2;
+  // While the light ball is dragged the scene is cast at a scale of its own, adapted after each
+  // drag frame towards light_drag_frame_ms (15 fps) within [min_light_drag_scale,
+  // moving_scale], and kept for the next drag: the camera holds still, so the shading, not the
+  // outline, is what a drag frame shows, and it stays fluid where the cloud fills the screen.
+  double light_drag_frame_ms = 1000.0 / 15.0;
+  float min_light_drag_scale = 0.25f;
   // After a stroke (or erase, undo) only the pixels whose rays cross what changed are
   // re-rendered (changed_region.h); false re-renders the whole frame (the bench's baseline).
   bool region_rerender = true;
@@ -168,15 +174,28 @@ struct PaintLoopSummary {
 // The painter's moving-resolution policy (orbit): after a moving frame that took frame_ms, the
 // next scale shrinks by 10% when over target_frame_ms and grows by 5% below 70% of it, within
 // [min_moving_scale, 1].
-inline float nextMovingScale(float scale, double frame_ms, const PaintLoopOptions& options) {
-  if (frame_ms > options.target_frame_ms) return std::max(options.min_moving_scale, scale * 0.9f);
-  if (frame_ms < 0.7 * options.target_frame_ms) return std::min(1.0f, scale * 1.05f);
+inline float nextAdaptedScale(float scale, double frame_ms, double target_ms, float lo, float hi) {
+  if (frame_ms > target_ms) return std::max(lo, scale * 0.9f);
+  if (frame_ms < 0.7 * target_ms) return std::min(hi, scale * 1.05f);
   return scale;
 }
-// The scale an orbit frame is rendered at: quantised to 1/20 so the renderer's reduced-size
-// target is not reallocated every frame, never below min_moving_scale.
+inline float nextMovingScale(float scale, double frame_ms, const PaintLoopOptions& options) {
+  return nextAdaptedScale(scale, frame_ms, options.target_frame_ms, options.min_moving_scale, 1.0f);
+}
+// The light drag's (PaintLoopOptions::light_drag_frame_ms): the same steps, within
+// [min_light_drag_scale, moving_scale].
+inline float nextLightDragScale(float scale, double frame_ms, const PaintLoopOptions& options) {
+  const float hi = std::max(options.moving_scale, options.min_light_drag_scale);
+  return nextAdaptedScale(scale, frame_ms, options.light_drag_frame_ms,
+                          options.min_light_drag_scale, hi);
+}
+// The scale a moving frame is rendered at: quantised to 1/20 so the renderer's reduced-size
+// target is not reallocated every frame, never below `lo`.
+inline float quantisedScale(float scale, float lo) {
+  return std::max(lo, std::round(scale * 20.0f) / 20.0f);
+}
 inline float orbitRenderScale(float scale, const PaintLoopOptions& options) {
-  return std::max(options.min_moving_scale, std::round(scale * 20.0f) / 20.0f);
+  return quantisedScale(scale, options.min_moving_scale);
 }
 
 class PaintScreen;

@@ -115,7 +115,9 @@ PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volum
       orbiting_(options.orbit_degrees_per_second != 0.0f),
       moving_scale_(std::clamp(options.moving_scale, options.min_moving_scale, 1.0f)),
       show_stats_(options.show_stats_overlay),
-      show_circles_(options.show_circles_overlay) {}
+      show_circles_(options.show_circles_overlay) {
+  light_drag_scale_ = std::clamp(options.moving_scale, options.min_light_drag_scale, 1.0f);
+}
 
 PaintScreen::~PaintScreen() = default;
 
@@ -495,7 +497,10 @@ void PaintScreen::handleEvent(const PenEvent& event, const MappedSample& mapped)
       if (drag_camera_) apply(ui::SetCamera{*drag_camera_, drag_move_}, event.t_ns);
       if (drag_canvas_)
         apply(ui::SetCanvas{drag_canvas_->altitude, drag_canvas_->thickness}, event.t_ns);
-      if (drag_light_) apply(ui::SetLight{drag_light_->direction, drag_light_->colour}, event.t_ns);
+      if (drag_light_) {
+        apply(ui::SetLight{drag_light_->direction, drag_light_->colour}, event.t_ns);
+        light_release_pending_ = true;
+      }
       drag_camera_.reset();
       drag_canvas_.reset();
       drag_light_.reset();
@@ -534,6 +539,7 @@ std::string PaintScreen::update(const FrameContext& frame) {
 bool PaintScreen::needsFrame() const {
   if (orbiting_ || !refined_ || lit_pending_ || refine_pending_) return true;
   if (animationPlaying()) return true;
+  if (renderer_.lightIsPreview() && !drag_light_) return true;  // the full light is to come
   if (menu_open_ || pointer_moved_ || toast_until_ns_ != 0) return true;  // the UI moves
   if (pen_ && pen_connected_once_) return true;  // the cursor and footprint follow the pen
   return !drawn_ || !(*drawn_ == currentKey());
@@ -571,6 +577,7 @@ bool PaintScreen::paintingSetUp(std::string* error) {
 void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
+  still_start_ = render_start;
   SceneWork work;
   renderScene(&work);
   // Late latching: the ink shows the samples that came while the scene was being cast. A
@@ -627,7 +634,9 @@ void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
 
 bool PaintScreen::sceneStale() const {
   const SceneKey key = currentKey();
-  return !drawn_ || !(*drawn_ == key) || (renderer_.lightIsPreview() && !drag_light_);
+  // A light drag's coarse light is swept in full once its release has been shown.
+  return !drawn_ || !(*drawn_ == key) ||
+         (renderer_.lightIsPreview() && !drag_light_ && !light_release_pending_);
 }
 
 bool PaintScreen::inkLive() const {
@@ -638,18 +647,20 @@ void PaintScreen::renderScene(SceneWork* work) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
   const SceneKey key = currentKey();
-  // While the light ball is dragged the light is swept at reduced resolution per axis
-  // (PaintLoopOptions::light_drag_divisor); the first frame at release sweeps it in full.
-  renderer_.setLightPreviewDivisor(drag_light_ ? std::max(1, options_.light_drag_divisor) : 1);
+  // While the light ball is dragged, and for the first frame at its release, the light is swept
+  // at reduced resolution per axis (PaintLoopOptions::light_drag_divisor) and the scene cast at
+  // the light drag's scale; the frame after the release sweeps it in full at full resolution.
+  const bool light_preview = drag_light_ || light_release_pending_;
+  renderer_.setLightPreviewDivisor(light_preview ? std::max(1, options_.light_drag_divisor) : 1);
   const bool stale = sceneStale();
   // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
   // do: each cast pays the ray bounds and clears of the whole sky, 100+ ms on a loaded llvmpipe).
-  const bool refine = refine_pending_ && !stale && !inkLive();
+  // Nor is a coarse light refined: its full sweep comes first.
+  const bool refine = refine_pending_ && !stale && !inkLive() && !light_preview;
   work->refine = work->refine || refine;
   if (!stale && !refine) return;
-  // The release of a light drag sweeps the light in full: its first frame is shown at the moving
-  // resolution as the drag's were, then refined, so the final light shows as soon as it can.
-  const bool light_released = renderer_.lightIsPreview() && !drag_light_;
+  const bool light_scaled = light_preview && !refine;
+  light_drag_frame_ = drag_light_.has_value();
   const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
   const auto synced = std::chrono::steady_clock::now();
   work->sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
@@ -659,9 +670,9 @@ void PaintScreen::renderScene(SceneWork* work) {
   options.style = key.style;
   options.collect_stats = show_stats_;
   const bool dragging = drag_camera_ || drag_light_;
-  options.scale = (lit_pending_ || dragging || light_released || animationPlaying()) && !refine
-                      ? moving_scale_
-                      : 1.0f;
+  options.scale = light_scaled ? quantisedScale(light_drag_scale_, options_.min_light_drag_scale)
+                  : (lit_pending_ || dragging || animationPlaying()) && !refine ? moving_scale_
+                                                                                : 1.0f;
   options.moving = options.scale < 1.0f;
   // When only the volume changed (a stroke, erase, undo), only the pixels whose rays cross
   // what the sync rewrote (its dirty box and light box) are re-rendered over the cached scene;
@@ -872,6 +883,12 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   // Every presented frame's timing goes to the session's journal (a replay draws, not records).
   if (frame.record && session_ && !replay_view_) session_->journalFrame(*frame.record);
   const PaintFrameInfo& info = last_info_;
+  light_release_pending_ = false;  // the release's frame is shown
+  if (info.painting_view && light_drag_frame_) {
+    // The drag frame's own time (its draw to its present), not the wait for the next mouse move.
+    light_drag_scale_ = nextLightDragScale(light_drag_scale_, msSince(still_start_), options_);
+    light_drag_frame_ = false;
+  }
   if (info.painting_view) {
     // Frames while a stroke is drawn, except the lift frames (mapping + re-render).
     if (info.in_stroke && !info.first_lit_after_lift && !info.refined_after_lift)

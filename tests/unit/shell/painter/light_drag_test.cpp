@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "app/session/paint_session.h"
 #include "app/session/session_replay.h"
@@ -89,6 +90,114 @@ TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
   ASSERT_TRUE(replay.session);
   EXPECT_EQ(replay.session->light().direction, session.light().direction);
   std::filesystem::remove_all(dir);
+}
+
+// The light drag keeps to its frame budget by its own resolution scale: over budget every drag
+// frame shrinks it by a tenth down to min_light_drag_scale, under budget it grows back no
+// further than the moving scale; the release's frame still shows the coarse light at that scale,
+// and the frame after it is cast at full resolution with the light swept in full.
+struct DragRun {
+  std::vector<int> drag_widths;  // the cast image's width on each drag frame
+  int release_width = 0;         // on the frame the release was shown
+  bool release_preview = false;  // that frame still read the coarse light
+  int full_width = 0;            // on the frame after it
+  bool full_preview = true;
+};
+
+DragRun runDrag(double frame_budget_ms, const std::string& name) {
+  DragRun run;
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(dir + "/state");
+  std::string error;
+  test::RecordedPainter painter;
+  EXPECT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                           &error))
+      << error;
+  if (!painter.display) return run;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
+  EXPECT_TRUE(
+      session.replaceVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), 0, "cumulus", &error));
+  VolumeRenderer& renderer = painter.renderer;
+  std::atomic<bool> stop{false};
+  int frame = 0;
+  const auto pointer = [&](DisplayEvent::Kind kind, int i) {
+    DisplayEvent e;
+    e.kind = kind;
+    e.x = kW * (0.3f + 0.03f * float(i));
+    e.y = kH * 0.3f;
+    e.button = 1;
+    display.injectEvent(e);
+  };
+  PaintLoopOptions options;
+  options.max_frames = 200;
+  options.state_dir = dir + "/state";
+  options.config_dir = dir + "/config";
+  options.light_drag_frame_ms = frame_budget_ms;
+  options.on_frame = [&](const PaintFrameInfo&) {
+    ++frame;
+    if (frame == 2) display.injectEvent(DisplayEvent::key('5'));
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerDown, frame);
+    if (frame > kDragFrom && frame <= kDragTo)
+      run.drag_widths.push_back(renderer.lastStats().width);
+    if (frame > kDragFrom && frame < kDragTo) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragTo) pointer(DisplayEvent::Kind::PointerUp, kDragTo - 1);
+    if (frame == kDragTo + 1) {
+      run.release_width = renderer.lastStats().width;
+      run.release_preview = renderer.lightIsPreview();
+    }
+    if (frame == kDragTo + 2) {
+      run.full_width = renderer.lastStats().width;
+      run.full_preview = renderer.lightIsPreview();
+      stop = true;
+    }
+  };
+  PaintLoop loop(display, renderer, session.volume(), Light{}, options);
+  NoPenSource no_tablet;
+  loop.attachPen(&no_tablet, &session);
+  PaintLoopSummary summary;
+  EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
+  painter.journal.close();
+  std::filesystem::remove_all(dir);
+  return run;
+}
+
+TEST(LightDrag, ItsScaleKeepsToTheFrameBudget) {
+  const PaintLoopOptions defaults;
+  const int moving = int(std::lround(kW * defaults.moving_scale));
+  const int floor = int(std::lround(kW * defaults.min_light_drag_scale));
+  // No frame can meet a budget of a microsecond: the scale shrinks to its floor and stays.
+  const DragRun over = runDrag(0.001, "cb_light_drag_over");
+  ASSERT_EQ(over.drag_widths.size(), size_t(kDragTo - kDragFrom));
+  EXPECT_EQ(over.drag_widths.front(), moving) << "the first drag frame is at the moving scale";
+  for (size_t i = 1; i < over.drag_widths.size(); ++i)
+    EXPECT_LE(over.drag_widths[i], over.drag_widths[i - 1]) << "drag frame " << i;
+  EXPECT_EQ(over.drag_widths.back(), floor) << "0.9^7 of 0.5 is below the floor";
+  EXPECT_EQ(over.release_width, floor) << "the release is shown at the drag's scale";
+  EXPECT_TRUE(over.release_preview) << "with the drag's coarse light";
+  EXPECT_EQ(over.full_width, kW) << "then at full resolution";
+  EXPECT_FALSE(over.full_preview) << "with the light swept in full";
+  // Every frame meets a budget of an hour: the scale never goes past the moving scale.
+  const DragRun under = runDrag(3.6e6, "cb_light_drag_under");
+  ASSERT_FALSE(under.drag_widths.empty());
+  for (int w : under.drag_widths) EXPECT_EQ(w, moving);
+  EXPECT_EQ(under.full_width, kW);
+}
+
+TEST(LightDrag, TheScalePolicyStepsWithinItsBounds) {
+  PaintLoopOptions o;
+  o.moving_scale = 0.5f;
+  o.min_light_drag_scale = 0.25f;
+  o.light_drag_frame_ms = 50.0;
+  EXPECT_FLOAT_EQ(nextLightDragScale(0.5f, 80.0, o), 0.45f);   // over: a tenth less
+  EXPECT_FLOAT_EQ(nextLightDragScale(0.26f, 80.0, o), 0.25f);  // not below the floor
+  EXPECT_FLOAT_EQ(nextLightDragScale(0.4f, 40.0, o), 0.4f);    // within 70-100 %: kept
+  EXPECT_FLOAT_EQ(nextLightDragScale(0.4f, 10.0, o), 0.42f);   // under 70 %: 5 % more
+  EXPECT_FLOAT_EQ(nextLightDragScale(0.49f, 10.0, o), 0.5f);   // not past the moving scale
+  EXPECT_FLOAT_EQ(quantisedScale(0.33f, 0.25f), 0.35f);
+  EXPECT_FLOAT_EQ(quantisedScale(0.2f, 0.25f), 0.25f);
 }
 
 }  // namespace
