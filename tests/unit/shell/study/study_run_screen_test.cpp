@@ -114,7 +114,10 @@ TEST(StudyRunScreen, ConsentTutorialTaskAndQuestionnaireByPen) {
   // The tutorial: each step waits until the participant does it.
   rig.keep("tutorial");
   EXPECT_TRUE(rig.shown("Reset the camera"));
-  EXPECT_TRUE(rig.shown("camera_view == reset (now none yet, not yet)"));
+  // The step's check in words, English over Chinese; never its expression.
+  EXPECT_TRUE(rig.shown("Turn the camera to the starting view (not yet)"));
+  EXPECT_TRUE(rig.shown("把相机转到初始视角（还没有）"));
+  EXPECT_FALSE(rig.shown("camera_view"));
   rig.frames(3);
   EXPECT_EQ(state.tutorialStep(), 0) << "nothing done, nothing advances";
   rig.keys("r");  // the tutorial starts in Camera mode, where R acts
@@ -471,7 +474,8 @@ TEST(StudyRunScreen, AResumedTutorialStepKeepsItsCountersAndTheMenu) {
   rig.keys("m");
   EXPECT_FALSE(resumed.paintScreen().menuOpen());
   rig.keep("resumed_tutorial");
-  EXPECT_TRUE(rig.shown("strokes_in_step >= 4 (now 2, not yet)"));
+  EXPECT_TRUE(rig.shown("Paint 4 strokes (2 of 4 so far)"));
+  EXPECT_TRUE(rig.shown("画 4 笔（目前 2 / 4）"));
   EXPECT_LT(state.stageSeconds(rig.now), 60.0) << "the 30 s down do not count";
   rig.stroke(referencePaintStrokes(kW, kH)[0]);
   EXPECT_EQ(state.stage(), StudyStageKind::kTutorial) << "three of four";
