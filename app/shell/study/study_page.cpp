@@ -81,7 +81,7 @@ const Bilingual kFreeDrawingTitle{"Free drawing", "自由绘画"};
 // The panel beside the painter: the tutorial's step, its check and its clock (%d:%02d: minutes
 // and seconds; %.0f: the planned minutes), the task's place in the participant's order.
 const Bilingual kTutorialStepText{"Tutorial: step %d of %d", "教程：第 %d 步，共 %d 步"};
-const Bilingual kDoneWhenText{"Done when", "完成条件"};
+const Bilingual kToFinishText{"To finish this step", "完成这一步"};
 const Bilingual kTutorialTimeText{"Tutorial time %d:%02d (planned %.0f min)",
                                   "教程用时 %d:%02d（计划 %.0f 分钟）"};
 const Bilingual kTaskOrderText{"Task %d of %d", "第 %d 个任务，共 %d 个"};
@@ -615,9 +615,9 @@ void paintingPanel(PageBuilder& b, const StudyRunState& state, const StudyPageIn
       const float rest = 4.4f * b.small() + 2.8f * b.small();
       y = b.block(x, y, step.instruction, 1.1f * b.body(), l.wrap, bottom - rest) +
           0.8f * b.small();
-      y = b.block(x, y, kDoneWhenText.oneLine() + ": " + input.check_status, b.small(), l.wrap,
-                  bottom - 2.8f * b.small()) +
-          0.6f * b.small();
+      const std::string check = std::string(kToFinishText.en) + ": " + input.check.en + "\n" +
+                                kToFinishText.zh + "：" + input.check.zh;
+      y = b.block(x, y, check, b.small(), l.wrap, bottom - 2.8f * b.small()) + 0.6f * b.small();
       // The tutorial has a planned length (§7.5: ten minutes), not a limit: it ends when its
       // steps are done (or skipped by the operator).
       const int elapsed = int(state.stageSeconds(input.now_ns));
@@ -762,11 +762,11 @@ std::string studyPageText(const StudyProtocol& p) {
         kSkipText,      kBackText,           kDeleteText,      kSpaceText,
         kConsentTitle,  kParticipantTitle,   kParticipantBody, kIntroductionTitle,
         kAboutYouTitle, kQuestionnaireTitle, kCommentsTitle,   kThanksTitle,
-        kStoppedTitle,  kTutorialStepText,   kDoneWhenText,    kTutorialTimeText,
+        kStoppedTitle,  kTutorialStepText,   kToFinishText,    kTutorialTimeText,
         kTaskOrderText, kPausedTitle,        kPausedBy,        kPausedHow,
         kThanksBody,    kStoppedBody,        kFreeDrawingTitle})
     text += b.zh;
-  text += studyWaitingZhText();
+  text += studyWaitingZhText() + tutorialWordsZhText();
   text += p.consent + p.introduction.text + p.free_drawing.text;
   for (const TutorialStep& s : p.tutorial) text += s.instruction;
   for (const StudyTask& t : p.tasks) text += t.title;

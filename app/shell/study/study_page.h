@@ -24,6 +24,7 @@
 #include "app/render/hud_overlay.h"
 #include "app/shell/ui_overlay.h"
 #include "app/study/study_run_state.h"
+#include "app/study/tutorial_words.h"
 
 namespace cb {
 
@@ -84,11 +85,12 @@ StudyTextMeasure studyPageFont(const StudyProtocol& protocol, std::string* error
 void studyTextEstimate(const UiLabel& label, float rect[4]);
 
 // What the screen knows besides the state: the text typed so far, a message (a refused answer),
-// the tutorial check's live status, and the reference image's aspect (width / height; 0: none).
+// the tutorial step's checks in words with their live status (tutorial_words.h), and the reference
+// image's aspect (width / height; 0: none).
 struct StudyPageInput {
   std::string typed;
   std::string message;
-  std::string check_status;
+  StudyWords check;
   float image_aspect = 0.0f;
   int64_t now_ns = 0;
   bool painter_menu_open = false;  // the painter's pen menu is open: the panel steps aside

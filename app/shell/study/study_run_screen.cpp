@@ -56,17 +56,6 @@ const char* presetWord(Command command) {
   }
 }
 
-std::string valueText(const TutorialCondition& c, const TutorialState& s) {
-  if (c.kind == ConditionKind::kWord) {
-    const auto it = s.words.find(c.variable);
-    return it == s.words.end() ? "none yet" : it->second;
-  }
-  const auto it = s.numbers.find(c.variable);
-  if (it == s.numbers.end()) return "none yet";
-  if (c.kind == ConditionKind::kBoolean) return it->second ? "true" : "false";
-  return std::to_string(it->second);
-}
-
 }  // namespace
 
 StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, PaintSession& session,
@@ -860,13 +849,8 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
   }
   input.image_aspect = state_.stage() == StudyStageKind::kTask ? image_aspect_ : 0.0f;
   if (state_.stage() == StudyStageKind::kTutorial) {
-    const TutorialState s = tutorialState();
-    for (const TutorialCondition& c :
-         state_.protocol().tutorial[size_t(state_.tutorialStep())].expect) {
-      if (!input.check_status.empty()) input.check_status += "; ";
-      input.check_status +=
-          c.text() + " (now " + valueText(c, s) + (conditionHolds(c, s) ? ", done)" : ", not yet)");
-    }
+    input.check = tutorialStepWords(
+        state_.protocol().tutorial[size_t(state_.tutorialStep())].expect, tutorialState());
   }
   return buildStudyPage(state_, input, width, height);
 }

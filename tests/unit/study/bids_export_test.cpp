@@ -75,20 +75,26 @@ void expectDescribed(const std::string& tsv, const std::string& json) {
         << name << " of " << tsv << " is not described in " << json;
 }
 
-TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError) {
-  const char* keep = std::getenv("CB_KEEP_BIDS");
-  const std::string dir =
-      keep ? std::string(keep)
-           : (fs::temp_directory_path() / ("cb_bids_" + std::to_string(::getpid()))).string();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+// What the test exports: two participants' sessions of the short study (participant 1 with a
+// cloud saved by the painter's Save), as CSV (`csv`) and as a BIDS dataset (`bids`).
+struct Exported {
+  std::string dir, bids, csv;
+  StudyProtocol protocol;
+  std::vector<std::string> journals, ids;
+  std::string saved_name, saved_bytes;
+  test::CommandRun exported;
+};
+
+// Runs both sessions with the recorded pen in `e->dir`, adds the saved cloud, exports.
+void runTwoSessionsAndExport(Exported* e) {
+  const std::string& dir = e->dir;
+  e->bids = dir + "/bids", e->csv = dir + "/csv";
   fs::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
   const std::string protocol_path = dir + "/short.toml";
   std::ofstream(protocol_path) << test::kShortStudyProtocol;
-  const StudyProtocol protocol = loadStudyProtocol(protocol_path);
+  e->protocol = loadStudyProtocol(protocol_path);
   const std::string pen = dir + "/pen.cbj";
-  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(protocol, pen));
-  std::vector<std::string> journals, ids;
+  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(e->protocol, pen));
   for (int participant : {1, 2}) {
     const test::CommandRun run = test::runCommand(
         std::string(CB_CLOUDBRUSH_BIN) + " study run " + protocol_path +
@@ -101,22 +107,28 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
     ASSERT_NE(at, std::string::npos) << run.out;
     const std::string folder = run.out.substr(at + 16, run.out.find('\n', at) - at - 16);
     ASSERT_TRUE(fs::exists(folder + "/session.cbj")) << run.out;
-    journals.push_back(folder + "/session.cbj");
-    ids.push_back(fs::path(folder).filename().string());
+    e->journals.push_back(folder + "/session.cbj");
+    e->ids.push_back(fs::path(folder).filename().string());
   }
   // A cloud participant 1 saved with the painter's Save (the session folder's saved/).
-  const std::string saved_name = "cloud-2026-11-29_10-00-00.vol";
-  const std::string saved_bytes = std::string("CBVOL\0\x01 a saved cloud's bytes\xff", 30);
-  fs::create_directories(fs::path(journals[0]).parent_path() / "saved");
-  std::ofstream((fs::path(journals[0]).parent_path() / "saved" / saved_name).string(),
+  e->saved_name = "cloud-2026-11-29_10-00-00.vol";
+  e->saved_bytes = std::string("CBVOL\0\x01 a saved cloud's bytes\xff", 30);
+  fs::create_directories(fs::path(e->journals[0]).parent_path() / "saved");
+  std::ofstream((fs::path(e->journals[0]).parent_path() / "saved" / e->saved_name).string(),
                 std::ios::binary)
-      << saved_bytes;
-  const std::string bids = dir + "/bids", csv = dir + "/csv";
-  const test::CommandRun exported =
-      test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " study export " + journals[0] + " " +
-                       journals[1] + " --out " + csv + " --bids " + bids);
-  ASSERT_EQ(exported.status, 0) << exported.out;
+      << e->saved_bytes;
+  e->exported =
+      test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " study export " + e->journals[0] + " " +
+                       e->journals[1] + " --out " + e->csv + " --bids " + e->bids);
+  ASSERT_EQ(e->exported.status, 0) << e->exported.out;
+}
 
+// The saved cloud in sourcedata/ and in --out; the dataset's top-level files; participants.tsv.
+void checkSavedCloudAndParticipants(const Exported& e) {
+  const std::string &bids = e.bids, &csv = e.csv, &saved_name = e.saved_name,
+                    &saved_bytes = e.saved_bytes;
+  const std::vector<std::string>& ids = e.ids;
+  const test::CommandRun& exported = e.exported;
   // The saved cloud, byte for byte, in sourcedata/ (BIDS's place for files in their own
   // formats); participant 2 saved none.
   EXPECT_EQ(readText(bids + "/sourcedata/sub-C01/ses-1/saved/" + saved_name), saved_bytes);
@@ -134,9 +146,13 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
   EXPECT_EQ(participants[1][0], "sub-C01");
   EXPECT_EQ(participants[2][0], "sub-C02");
   expectDescribed(bids + "/participants.tsv", bids + "/participants.json");
+}
 
-  // phenotype/: the Likert answers (the short study's pen answers 4, 2, 5), a row per session,
-  // every item described with its statement and the scale's levels; no free-text questions.
+// phenotype/: the Likert answers (the short study's pen answers 4, 2, 5), a row per session,
+// every item described with its statement and the scale's levels; no free-text questions.
+void checkPhenotype(const Exported& e) {
+  const std::string& bids = e.bids;
+  const StudyProtocol& protocol = e.protocol;
   const Table questionnaire = readTable(bids + "/phenotype/questionnaire.tsv", '\t');
   const std::vector<std::vector<std::string>> expected_answers = {
       {"participant_id", "session_id", "Q1", "Q2", "Q3"},
@@ -153,87 +169,119 @@ TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError
               std::string::npos)
         << item.id << " in " << questionnaire_json;
   EXPECT_FALSE(fs::exists(bids + "/phenotype/feedback.tsv")) << "the protocol has no free text";
+}
+
+// The participant's sessions.tsv, described.
+void checkSessionsTable(const std::string& bids, const std::string& subject, const std::string& ses,
+                        const std::string& id) {
+  const std::string sessions = bids + "/" + subject + "/" + subject + "_sessions";
+  const Table session_rows = readTable(sessions + ".tsv", '\t');
+  ASSERT_EQ(session_rows.size(), 2u);
+  EXPECT_EQ(session_rows[1][0], "ses-" + ses);
+  EXPECT_EQ(session_rows[1][2], id);
+  expectDescribed(sessions + ".tsv", sessions + ".json");
+}
+
+// beh.tsv is the session's rows of trials.csv (missing values n/a instead of NA).
+void checkBeh(const std::string& base, const std::string& name, const Table& trials,
+              const std::string& id, Table* beh_out) {
+  const Table beh = readTable(base + "beh/" + name + "_beh.tsv", '\t');
+  const Table session_trials = rowsOfSession(trials, id);
+  ASSERT_EQ(session_trials.size(), 2u) << "the short study's two tasks";
+  ASSERT_EQ(beh.size(), session_trials.size() + 1);
+  for (size_t r = 0; r < session_trials.size(); ++r) {
+    std::vector<std::string> expected = session_trials[r];
+    for (std::string& v : expected)
+      if (v == "NA") v = "n/a";
+    EXPECT_EQ(beh[r + 1], expected) << "trial " << r;
+  }
+  expectDescribed(base + "beh/" + name + "_beh.tsv", base + "beh/" + name + "_beh.json");
+  *beh_out = beh;
+}
+
+// events.tsv: the stages in order; each task row is its trial (onset, order, figures).
+void checkEvents(const std::string& base, const std::string& name, const Table& beh) {
+  const Table events = readTable(base + "beh/" + name + "_events.tsv", '\t');
+  expectDescribed(base + "beh/" + name + "_events.tsv", base + "beh/" + name + "_events.json");
+  ASSERT_GT(events.size(), 1u);
+  EXPECT_EQ(events[0][0], "onset");
+  EXPECT_EQ(events[0][1], "duration");
+  EXPECT_EQ(events[0][2], "trial_type");
+  std::vector<std::string> stages;
+  size_t task = 0;
+  for (size_t r = 1; r < events.size(); ++r) {
+    stages.push_back(events[r][2]);
+    if (r > 1) {
+      EXPECT_LE(std::stod(events[r - 1][0]), std::stod(events[r][0])) << "sorted";
+    }
+    if (events[r][2] != "task" || task >= beh.size() - 1) continue;
+    const std::vector<std::string>& t = beh[++task];
+    EXPECT_EQ(events[r][0], t[column(beh, "onset_s")]);
+    EXPECT_EQ(events[r][3], t[column(beh, "task")]);
+    EXPECT_EQ(events[r][column(events, "active_duration")], t[column(beh, "duration_s")]);
+    EXPECT_GE(std::stod(events[r][1]) + 1e-9, std::stod(t[column(beh, "duration_s")]))
+        << "the recording's span holds the stage clock's";
+  }
+  EXPECT_EQ(task, 2u);
+  const std::vector<std::string> order = {"consent",  "participant",  "introduction",
+                                          "tutorial", "free-drawing", "task",
+                                          "task",     "questionnaire"};
+  EXPECT_EQ(stages, order);
+  EXPECT_EQ(readText(base + "motion/" + name + "_events.tsv"),
+            readText(base + "beh/" + name + "_events.tsv"));
+}
+
+// The motion recording: samples.csv's samples of the session, a column per channel.
+void checkMotion(const std::string& base, const std::string& name, const Table& samples,
+                 const std::string& id) {
+  const Table channels = readTable(base + "motion/" + name + "_tracksys-tablet_channels.tsv", '\t');
+  const Table motion = readTable(base + "motion/" + name + "_tracksys-tablet_motion.tsv", '\t');
+  const Table session_samples = rowsOfSession(samples, id);
+  ASSERT_EQ(motion.size(), session_samples.size());
+  ASSERT_GT(motion.size(), 10u);
+  EXPECT_EQ(channels[0][0], "name");
+  EXPECT_EQ(channels[0][1], "component");
+  const size_t t_s = column(samples, "t_s"), x = column(samples, "x_mm"),
+               y = column(samples, "y_mm"), p = column(samples, "pressure");
+  for (size_t r = 0; r < motion.size(); ++r) {
+    ASSERT_EQ(motion[r].size(), channels.size() - 1) << "row " << r;
+    EXPECT_EQ(motion[r][0], session_samples[r][t_s]) << "latency, row " << r;
+    EXPECT_EQ(motion[r][1], session_samples[r][x]) << "pen_x, row " << r;
+    EXPECT_EQ(motion[r][2], session_samples[r][y]) << "pen_y, row " << r;
+    EXPECT_EQ(motion[r][5], session_samples[r][p]) << "pressure, row " << r;
+  }
+  const std::string motion_json =
+      readText(base + "motion/" + name + "_tracksys-tablet_motion.json");
+  EXPECT_NE(motion_json.find("\"SamplingFrequency\": "), std::string::npos) << motion_json;
+  EXPECT_NE(motion_json.find("\"LATENCYChannelCount\": 1"), std::string::npos) << motion_json;
+}
+
+TEST(StudyBidsExport, TheDatasetHoldsTheStudysExportsAndTheValidatorFindsNoError) {
+  const char* keep = std::getenv("CB_KEEP_BIDS");
+  Exported e;
+  e.dir = keep ? std::string(keep)
+               : (fs::temp_directory_path() / ("cb_bids_" + std::to_string(::getpid()))).string();
+  const std::string& dir = e.dir;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_NO_FATAL_FAILURE(runTwoSessionsAndExport(&e));
+  const std::string &bids = e.bids, &csv = e.csv;
+  ASSERT_NO_FATAL_FAILURE(checkSavedCloudAndParticipants(e));
+  ASSERT_NO_FATAL_FAILURE(checkPhenotype(e));
 
   const Table trials = readTable(csv + "/trials.csv", ','),
               samples = readTable(csv + "/samples.csv", ',');
-  for (size_t i = 0; i < ids.size(); ++i) {
-    SCOPED_TRACE(ids[i]);
+  for (size_t i = 0; i < e.ids.size(); ++i) {
+    SCOPED_TRACE(e.ids[i]);
     const std::string subject = "sub-C0" + std::to_string(i + 1);
     const std::string ses = "1";  // each participant's first session
-    const std::string sessions = bids + "/" + subject + "/" + subject + "_sessions";
-    const Table session_rows = readTable(sessions + ".tsv", '\t');
-    ASSERT_EQ(session_rows.size(), 2u);
-    EXPECT_EQ(session_rows[1][0], "ses-" + ses);
-    EXPECT_EQ(session_rows[1][2], ids[i]);
-    expectDescribed(sessions + ".tsv", sessions + ".json");
+    ASSERT_NO_FATAL_FAILURE(checkSessionsTable(bids, subject, ses, e.ids[i]));
     const std::string base = bids + "/" + subject + "/ses-" + ses + "/";
     const std::string name = subject + "_ses-" + ses + "_task-cloudpainting";
-
-    // beh.tsv is trials.csv (missing values n/a instead of NA).
-    const Table beh = readTable(base + "beh/" + name + "_beh.tsv", '\t');
-    const Table session_trials = rowsOfSession(trials, ids[i]);
-    ASSERT_EQ(session_trials.size(), 2u) << "the short study's two tasks";
-    ASSERT_EQ(beh.size(), session_trials.size() + 1);
-    for (size_t r = 0; r < session_trials.size(); ++r) {
-      std::vector<std::string> expected = session_trials[r];
-      for (std::string& v : expected)
-        if (v == "NA") v = "n/a";
-      EXPECT_EQ(beh[r + 1], expected) << "trial " << r;
-    }
-    expectDescribed(base + "beh/" + name + "_beh.tsv", base + "beh/" + name + "_beh.json");
-
-    // events.tsv: the stages in order; each task row is its trial (onset, order, figures).
-    const Table events = readTable(base + "beh/" + name + "_events.tsv", '\t');
-    expectDescribed(base + "beh/" + name + "_events.tsv", base + "beh/" + name + "_events.json");
-    ASSERT_GT(events.size(), 1u);
-    EXPECT_EQ(events[0][0], "onset");
-    EXPECT_EQ(events[0][1], "duration");
-    EXPECT_EQ(events[0][2], "trial_type");
-    std::vector<std::string> stages;
-    size_t task = 0;
-    for (size_t r = 1; r < events.size(); ++r) {
-      stages.push_back(events[r][2]);
-      if (r > 1) {
-        EXPECT_LE(std::stod(events[r - 1][0]), std::stod(events[r][0])) << "sorted";
-      }
-      if (events[r][2] != "task" || task >= beh.size() - 1) continue;
-      const std::vector<std::string>& t = beh[++task];
-      EXPECT_EQ(events[r][0], t[column(beh, "onset_s")]);
-      EXPECT_EQ(events[r][3], t[column(beh, "task")]);
-      EXPECT_EQ(events[r][column(events, "active_duration")], t[column(beh, "duration_s")]);
-      EXPECT_GE(std::stod(events[r][1]) + 1e-9, std::stod(t[column(beh, "duration_s")]))
-          << "the recording's span holds the stage clock's";
-    }
-    EXPECT_EQ(task, 2u);
-    const std::vector<std::string> order = {"consent",  "participant",  "introduction",
-                                            "tutorial", "free-drawing", "task",
-                                            "task",     "questionnaire"};
-    EXPECT_EQ(stages, order);
-    EXPECT_EQ(readText(base + "motion/" + name + "_events.tsv"),
-              readText(base + "beh/" + name + "_events.tsv"));
-
-    // The motion recording: samples.csv's samples, a column per channel.
-    const Table channels =
-        readTable(base + "motion/" + name + "_tracksys-tablet_channels.tsv", '\t');
-    const Table motion = readTable(base + "motion/" + name + "_tracksys-tablet_motion.tsv", '\t');
-    const Table session_samples = rowsOfSession(samples, ids[i]);
-    ASSERT_EQ(motion.size(), session_samples.size());
-    ASSERT_GT(motion.size(), 10u);
-    EXPECT_EQ(channels[0][0], "name");
-    EXPECT_EQ(channels[0][1], "component");
-    const size_t t_s = column(samples, "t_s"), x = column(samples, "x_mm"),
-                 y = column(samples, "y_mm"), p = column(samples, "pressure");
-    for (size_t r = 0; r < motion.size(); ++r) {
-      ASSERT_EQ(motion[r].size(), channels.size() - 1) << "row " << r;
-      EXPECT_EQ(motion[r][0], session_samples[r][t_s]) << "latency, row " << r;
-      EXPECT_EQ(motion[r][1], session_samples[r][x]) << "pen_x, row " << r;
-      EXPECT_EQ(motion[r][2], session_samples[r][y]) << "pen_y, row " << r;
-      EXPECT_EQ(motion[r][5], session_samples[r][p]) << "pressure, row " << r;
-    }
-    const std::string motion_json =
-        readText(base + "motion/" + name + "_tracksys-tablet_motion.json");
-    EXPECT_NE(motion_json.find("\"SamplingFrequency\": "), std::string::npos) << motion_json;
-    EXPECT_NE(motion_json.find("\"LATENCYChannelCount\": 1"), std::string::npos) << motion_json;
+    Table beh;
+    ASSERT_NO_FATAL_FAILURE(checkBeh(base, name, trials, e.ids[i], &beh));
+    ASSERT_NO_FATAL_FAILURE(checkEvents(base, name, beh));
+    ASSERT_NO_FATAL_FAILURE(checkMotion(base, name, samples, e.ids[i]));
   }
 
   // The validator: no error (its warnings are printed).

@@ -229,18 +229,8 @@ const ItemSummary& itemOf(const StudyReport& r, const std::string& id) {
   throw std::runtime_error("no item " + id);
 }
 
-TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessions) {
-  const StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
-  const Study study = recordStudy(p);
-  std::vector<SessionTrace> traces;
-  for (const std::string& path : study.journals) traces.push_back(loadSessionTrace(path));
-  const LikertAnswers answers = loadLikertAnswers(study.answers);
-  ASSERT_EQ(answers.participants.size(), 4u) << "the runner writes a row for every session";
-  StudyReportOptions options;
-  for (const ProtocolConstruct& c : p.constructs) options.constructs.push_back({c.name, c.items});
-  const StudyReport report = computeStudyReport(answers, options, traces);
-
-  // Only the two completed sessions count; P03 (aborted) and P04 (declined) are set apart.
+// Only the two completed sessions count; P03 (aborted) and P04 (declined) are set apart.
+void checkCountedAndSetApart(const StudyReport& report) {
   EXPECT_EQ(report.participants, 2u);
   ASSERT_EQ(report.set_apart.size(), 2u);
   EXPECT_EQ(report.set_apart[0].participant, "P03");
@@ -262,8 +252,10 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
   EXPECT_EQ(report.constructs[3].definition.name, "Lag acceptance");
   EXPECT_FALSE(report.constructs[3].mean.has_value());
   EXPECT_EQ(report.constructs[3].participants, 0u);
+}
 
-  // Session status and duration on the session's clock (study.session → study.end).
+// Session status and duration on the session's clock (study.session → study.end).
+void checkSessionsAndTasks(const StudyReport& report, const Study& study) {
   ASSERT_EQ(report.sessions.size(), 4u);
   const char* statuses[] = {"completed", "completed", "aborted", "declined"};
   for (size_t i = 0; i < 4; ++i) {
@@ -291,8 +283,10 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
     EXPECT_EQ(t.trials, 3u) << t.task << ": P01, P02 and the aborted P03 painted every task";
     ASSERT_TRUE(t.duration_s.has_value()) << t.task;
   }
+}
 
-  // The artefact: named, and the median speed stays where the strokes are (60..160 mm/s).
+// The artefact: named, and the median speed stays where the strokes are (60..160 mm/s).
+void checkArtefact(const StudyReport& report, const Study& study) {
   const SessionFigures& p01 = report.sessions[0];
   ASSERT_EQ(p01.speed_outliers.size(), 1u);
   EXPECT_NEAR(p01.speed_outliers[0].speed_mm_s, 17873.0, 1e-6);
@@ -304,9 +298,11 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
   EXPECT_GT(p01.speed->median, 60.0);
   EXPECT_LT(p01.speed->median, 170.0);
   EXPECT_TRUE(report.sessions[1].speed_outliers.empty()) << "P02 has no artefact";
+}
 
-  // The page: NA for Q28 and the lag construct, the set-apart table, the artefact named and
-  // the speed chart's scale not stretched to it.
+// The page: NA for Q28 and the lag construct, the set-apart table, the artefact named and
+// the speed chart's scale not stretched to it.
+void checkPage(const StudyReport& report, const StudyReportOptions& options) {
   const std::string html = studyReportHtml(report, options, 1, 5);
   EXPECT_NE(html.find("<td>Q28</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td><td>0</td>"
                       "<td>NA</td>"),
@@ -324,22 +320,32 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
   EXPECT_EQ(svg.find(">17873"), std::string::npos) << "the axis does not run to the artefact";
   EXPECT_NE(svg.find("fill=\"#ca0020\""), std::string::npos) << "the artefact's mark";
   EXPECT_NE(html.find("<h2>Tasks</h2>"), std::string::npos);
+}
 
-  // The real binary: the constructs of the protocol the sessions name, Lag acceptance too.
-  std::string command = std::string(CB_CLOUDBRUSH_BIN) + " study report " + study.answers;
-  for (const std::string& j : study.journals) command += " " + j;
-  command += " --out " + study.dir + "/report.html";
-  const test::CommandRun run = test::runCommand(command);
+// The real binary: the constructs of the protocol the sessions name, Lag acceptance too.
+// `command`: the report command on the CSV and the journals; `page`: the page it wrote.
+void checkBinaryReport(const Study& study, const StudyProtocol& p, std::string* command,
+                       std::string* page) {
+  *command = std::string(CB_CLOUDBRUSH_BIN) + " study report " + study.answers;
+  for (const std::string& j : study.journals) *command += " " + j;
+  *command += " --out " + study.dir + "/report.html";
+  const test::CommandRun run = test::runCommand(*command);
   ASSERT_EQ(run.status, 0) << run.out;
-  const std::string page = readText(study.dir + "/report.html");
-  EXPECT_NE(
-      page.find("<td class=\"t\">Lag acceptance</td><td class=\"t\">Q28</td><td>0</td><td>NA</td>"),
-      std::string::npos);
-  EXPECT_NE(page.find("Constructs of the study protocol " + p.source), std::string::npos);
-  EXPECT_EQ(page.find("0.00</td><td>–"), std::string::npos) << "no mean of 0.00 anywhere";
+  *page = readText(study.dir + "/report.html");
+  EXPECT_NE(page->find(
+                "<td class=\"t\">Lag acceptance</td><td class=\"t\">Q28</td><td>0</td><td>NA</td>"),
+            std::string::npos);
+  EXPECT_NE(page->find("Constructs of the study protocol " + p.source), std::string::npos);
+  EXPECT_EQ(page->find("0.00</td><td>–"), std::string::npos) << "no mean of 0.00 anywhere";
+}
 
-  // The answers from the journals (the source of truth) are the CSV's, and so is the report;
-  // without the CSV the real binary reports the same page from the journals alone.
+// The answers from the journals (the source of truth) are the CSV's, and so is the report;
+// without the CSV the real binary reports the same page from the journals alone.
+void checkJournalsAreTheSource(const Study& study, const StudyProtocol& p,
+                               const std::vector<SessionTrace>& traces,
+                               const LikertAnswers& answers, const StudyReportOptions& options,
+                               const StudyReport& report, const std::string& command,
+                               const std::string& page) {
   std::vector<std::string> items;
   for (const QuestionnaireItem& item : p.items) items.push_back(item.id);
   const LikertAnswers from_journals = likertAnswersFromSessions(traces, items);
@@ -371,6 +377,27 @@ TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessio
       << disagreeing.out;
   EXPECT_EQ(without_source(readText(study.dir + "/report.html"), study.answers),
             without_source(page, study.answers));
+}
+
+TEST(StudyReportSessions, AbortedDeclinedUnansweredAndAnArtefactOnRecordedSessions) {
+  const StudyProtocol p = loadStudyProtocol(defaultStudyProtocolPath());
+  const Study study = recordStudy(p);
+  std::vector<SessionTrace> traces;
+  for (const std::string& path : study.journals) traces.push_back(loadSessionTrace(path));
+  const LikertAnswers answers = loadLikertAnswers(study.answers);
+  ASSERT_EQ(answers.participants.size(), 4u) << "the runner writes a row for every session";
+  StudyReportOptions options;
+  for (const ProtocolConstruct& c : p.constructs) options.constructs.push_back({c.name, c.items});
+  const StudyReport report = computeStudyReport(answers, options, traces);
+
+  ASSERT_NO_FATAL_FAILURE(checkCountedAndSetApart(report));
+  ASSERT_NO_FATAL_FAILURE(checkSessionsAndTasks(report, study));
+  ASSERT_NO_FATAL_FAILURE(checkArtefact(report, study));
+  ASSERT_NO_FATAL_FAILURE(checkPage(report, options));
+  std::string command, page;
+  ASSERT_NO_FATAL_FAILURE(checkBinaryReport(study, p, &command, &page));
+  ASSERT_NO_FATAL_FAILURE(
+      checkJournalsAreTheSource(study, p, traces, answers, options, report, command, page));
   if (!std::getenv("CB_KEEP_REPORT")) fs::remove_all(study.dir);
 }
 

@@ -64,26 +64,13 @@ size_t fillDisk(const std::string& path) {
   return written;
 }
 
-TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) {
-  const std::string dir =
-      (fs::temp_directory_path() / ("cb_disk_full_" + std::to_string(::getpid()))).string();
-  fs::remove_all(dir);
-  fs::create_directories(dir + "/data");
-  if (::mount("tmpfs", (dir + "/data").c_str(), "tmpfs", 0, "size=16m") != 0) {
-    const std::string why = std::strerror(errno);
-    fs::remove_all(dir);
-    GTEST_SKIP() << "cannot mount a tmpfs here (" << why << ")";
-  }
-  fs::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
-  const std::string protocol_path = dir + "/short.toml";
-  std::ofstream(protocol_path) << test::kShortStudyProtocol;
-  const StudyProtocol protocol = loadStudyProtocol(protocol_path);
-  const std::string pen = dir + "/pen.cbj";
-  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(protocol, pen));
-
-  test::CommandRun run;
+// Runs the short study into `dir`/data (a 16 MiB tmpfs) and fills the disk as the first task
+// begins, for 5 s; `run`: what the runner said; `journal_path`: its session's journal.
+void runWithTheDiskFullInTheFirstTask(const std::string& dir, const std::string& protocol_path,
+                                      const std::string& pen, test::CommandRun* run,
+                                      std::string* journal_path) {
   std::thread runner([&] {
-    run =
+    *run =
         test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " study run " + protocol_path +
                          " --display surfaceless --size " + std::to_string(test::kShortStudyWidth) +
                          "x" + std::to_string(test::kShortStudyHeight) +
@@ -91,14 +78,13 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
                          " --end-seconds 0.3 --seconds 90 --data-dir " + dir + "/data");
   });
   // As the first task begins (its marker reached the journal), the disk fills.
-  std::string journal_path;
   bool in_task = false;
   for (int i = 0; i < 600 && !in_task; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     for (const auto& e : fs::directory_iterator(dir + "/data"))
-      if (e.is_directory()) journal_path = e.path().string() + "/session.cbj";
-    in_task = !journal_path.empty() &&
-              readText(journal_path).find("study.stage-begin stage=task") != std::string::npos;
+      if (e.is_directory()) *journal_path = e.path().string() + "/session.cbj";
+    in_task = !journal_path->empty() &&
+              readText(*journal_path).find("study.stage-begin stage=task") != std::string::npos;
   }
   const std::string filler = dir + "/data/filler";
   size_t filled = 0;
@@ -110,16 +96,17 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
     fs::remove(filler);
   }
   runner.join();
-  ASSERT_TRUE(in_task) << "the first task never began\n" << run.out;
+  ASSERT_TRUE(in_task) << "the first task never began\n" << run->out;
   EXPECT_GT(filled, 0u);
+}
 
-  // Said: a problem (exit status 1) naming the full disk, and that writing came back.
+// Said: a problem (exit status 1) naming the full disk, and that writing came back.
+void checkSaid(const test::CommandRun& run, const std::string& folder) {
   EXPECT_EQ(run.status, 1) << run.out;
   // (the first write to fail is the journal's or session.json's, whichever came first)
   EXPECT_NE(run.out.find("problem: storage: "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("No space left on device"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("storage: writing again; nothing was lost"), std::string::npos) << run.out;
-  const std::string folder = fs::path(journal_path).parent_path().string();
   const std::string json = readText(folder + "/session.json");
   EXPECT_NE(json.find("\"status\": \"completed\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"storage\": {\"status\": \"recovered\", \"outages\": [{\"error\": "),
@@ -127,9 +114,13 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
       << json;
   EXPECT_NE(json.find("No space left on device"), std::string::npos) << json;
   EXPECT_EQ(json.find("\"recovered_utc\": null"), std::string::npos) << json;
+}
 
-  // Kept: the journal is whole and holds everything the participant did.
-  const JournalReadResult journal = readJournal(journal_path);
+// Kept: the journal is whole and holds everything the participant did; it replays (`replay`) to
+// the volume the runner ended with.
+void checkKept(const JournalReadResult& journal, const std::string& journal_path,
+               const std::string& pen, const std::string& folder, const test::CommandRun& run,
+               test::CommandRun* replay) {
   EXPECT_EQ(journal.error, "");
   EXPECT_TRUE(journal.gaps.empty());
   const JournalReadResult input = readJournal(pen);
@@ -144,12 +135,14 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
   const size_t at = run.out.find("volume checksum ");
   ASSERT_NE(at, std::string::npos) << run.out;
   const std::string checksum = run.out.substr(at + 16, 16);
-  const test::CommandRun replay =
-      test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal_path);
-  EXPECT_NE(replay.out.find(checksum), std::string::npos) << checksum << "\n" << replay.out;
+  *replay = test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + journal_path);
+  EXPECT_NE(replay->out.find(checksum), std::string::npos) << checksum << "\n" << replay->out;
+}
 
-  // The first task's files could not be written at its end: listed as pending, then written
-  // when space returned; every task's .cbvol is the journal's volume at that task's end.
+// The first task's files could not be written at its end: listed as pending, then written
+// when space returned; every task's .cbvol is the journal's volume at that task's end.
+void checkPendingThenWritten(const JournalReadResult& journal, const std::string& folder,
+                             const test::CommandRun& replay) {
   size_t saved_first = std::string::npos, written_first = std::string::npos;
   for (size_t i = 0; i < journal.records.size(); ++i) {
     const JournalRecord& r = journal.records[i];
@@ -183,6 +176,35 @@ TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) 
   for (const auto& e : fs::recursive_directory_iterator(folder))
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos)
         << "a temporary file: " << e.path();
+}
+
+TEST(StudyDiskFull, TheRunnerSaysSoKeepsEverythingAndCarriesOnWhenSpaceReturns) {
+  const std::string dir =
+      (fs::temp_directory_path() / ("cb_disk_full_" + std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/data");
+  if (::mount("tmpfs", (dir + "/data").c_str(), "tmpfs", 0, "size=16m") != 0) {
+    const std::string why = std::strerror(errno);
+    fs::remove_all(dir);
+    GTEST_SKIP() << "cannot mount a tmpfs here (" << why << ")";
+  }
+  fs::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
+  const std::string protocol_path = dir + "/short.toml";
+  std::ofstream(protocol_path) << test::kShortStudyProtocol;
+  const StudyProtocol protocol = loadStudyProtocol(protocol_path);
+  const std::string pen = dir + "/pen.cbj";
+  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(protocol, pen));
+
+  test::CommandRun run;
+  std::string journal_path;
+  ASSERT_NO_FATAL_FAILURE(
+      runWithTheDiskFullInTheFirstTask(dir, protocol_path, pen, &run, &journal_path));
+  const std::string folder = fs::path(journal_path).parent_path().string();
+  ASSERT_NO_FATAL_FAILURE(checkSaid(run, folder));
+  const JournalReadResult journal = readJournal(journal_path);
+  test::CommandRun replay;
+  ASSERT_NO_FATAL_FAILURE(checkKept(journal, journal_path, pen, folder, run, &replay));
+  ASSERT_NO_FATAL_FAILURE(checkPendingThenWritten(journal, folder, replay));
 
   ::umount((dir + "/data").c_str());
   fs::remove_all(dir);

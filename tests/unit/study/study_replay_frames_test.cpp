@@ -75,83 +75,106 @@ bool boxShown(const ImageRgba8& frame, const StudyTarget* target) {
   return std::max({m.r, m.g, m.b}) > 90.0f;  // a target's box (the page around it is < 60)
 }
 
-TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame) {
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("cb_study_frames_" + std::to_string(::getpid())))
-          .string();
-  std::filesystem::remove_all(dir);
+// The short study run to its end by the recorded pen in `dir`, and the session's checksum.
+struct Recorded {
+  StudyProtocol protocol;
+  std::string folder, session_volume;
+};
+
+void runSession(const std::string& dir, Recorded* r) {
   std::filesystem::create_directories(dir);
   std::filesystem::copy(std::string(CB_SOURCE_DIR) + "/config/study/images", dir + "/images");
   const std::string protocol_path = dir + "/short.toml";
   std::ofstream(protocol_path) << test::kShortStudyProtocol;
-  const StudyProtocol protocol = loadStudyProtocol(protocol_path);
+  r->protocol = loadStudyProtocol(protocol_path);
   const std::string pen = dir + "/pen.cbj";
-  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(protocol, pen));
+  ASSERT_NO_FATAL_FAILURE(test::recordShortStudyPen(r->protocol, pen));
 
-  const std::string folder = dir + "/data/C01";
+  r->folder = dir + "/data/C01";
   const test::CommandRun run = test::runCommand(
       std::string(CB_CLOUDBRUSH_BIN) + " study run " + protocol_path +
       " --display surfaceless --size " + std::to_string(kW) + "x" + std::to_string(kH) +
       " --grid 64 --participant 1 --backend replay --journal " + pen +
-      " --end-seconds 0.3 --seconds 90 --resume " + folder);
+      " --end-seconds 0.3 --seconds 90 --resume " + r->folder);
   ASSERT_EQ(run.status, 0) << run.out;
   ASSERT_NE(run.out.find("stage done"), std::string::npos) << run.out;
-  const std::string session_volume = capture(run.out, "volume checksum ([0-9a-f]{16})");
+  r->session_volume = capture(run.out, "volume checksum ([0-9a-f]{16})");
+}
 
-  const char* keep = std::getenv("CB_KEEP_FRAMES");
-  const std::string frames = keep ? std::string(keep) : dir + "/frames";
-  std::filesystem::remove_all(frames);
-  const test::CommandRun replay =
+// `cloudbrush replay` of the session into `frames`: the task volumes and the session's are the
+// runner's.
+void replayFrames(const Recorded& r, const std::string& frames, test::CommandRun* replay) {
+  const std::string& folder = r.folder;
+  const std::string& session_volume = r.session_volume;
+  *replay =
       test::runCommand(std::string(CB_CLOUDBRUSH_BIN) + " replay " + folder +
                        "/session.cbj --fps " + std::to_string(int(kFps)) + " --frames " + frames);
-  ASSERT_EQ(replay.status, 0) << replay.out;
+  ASSERT_EQ(replay->status, 0) << replay->out;
   // The volumes: each task's end as the runner saved it, and the whole session.
   for (const char* task : {"first", "second"})
-    EXPECT_NE(replay.out.find(std::string("task ") + task + ": volume checksum "),
+    EXPECT_NE(replay->out.find(std::string("task ") + task + ": volume checksum "),
               std::string::npos)
-        << replay.out;
-  EXPECT_EQ(std::regex_search(replay.out, std::regex("task (first|second): volume checksum "
-                                                     "[0-9a-f]{16}, identical to ")),
+        << replay->out;
+  EXPECT_EQ(std::regex_search(replay->out, std::regex("task (first|second): volume checksum "
+                                                      "[0-9a-f]{16}, identical to ")),
             true)
-      << replay.out;
-  EXPECT_EQ(replay.out.find("DIFFERENT"), std::string::npos) << replay.out;
-  EXPECT_EQ(capture(replay.out, "volume checksum: ([0-9a-f]{16})"), session_volume) << replay.out;
-  EXPECT_TRUE(std::regex_search(replay.out, std::regex("frames [0-9]+/[0-9]+ \\(100%\\)")))
+      << replay->out;
+  EXPECT_EQ(replay->out.find("DIFFERENT"), std::string::npos) << replay->out;
+  EXPECT_EQ(capture(replay->out, "volume checksum: ([0-9a-f]{16})"), session_volume) << replay->out;
+  EXPECT_TRUE(std::regex_search(replay->out, std::regex("frames [0-9]+/[0-9]+ \\(100%\\)")))
       << "progress on stderr\n"
-      << replay.out;
+      << replay->out;
+}
 
-  // The time line: the journal's first to last pen sample or study marker.
-  const JournalReadResult journal = readJournal(folder + "/session.cbj");
-  int64_t t_first = INT64_MAX, t_last = 0;
-  for (const JournalRecord& r : journal.records) {
-    const bool marker = r.type == JournalRecordType::kMarker && r.text().rfind("study.", 0) == 0 &&
-                        r.text().rfind("study.info ", 0) != 0;
-    if (r.type != JournalRecordType::kPenSample && !marker) continue;
-    t_first = std::min(t_first, r.t_ns);
-    t_last = std::max(t_last, r.t_ns);
-  }
-  const long total = long(std::floor(double(t_last - t_first) * 1e-9 * kFps)) + 1;
-  EXPECT_EQ(capture(replay.out, "frames: ([0-9]+) PNGs"), std::to_string(total)) << replay.out;
-  long files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(frames))
-    files += entry.path().extension() == ".png";
-  EXPECT_EQ(files, total);
+// The frames' time line: the journal's first pen sample or study marker, the frame count.
+struct Timeline {
+  std::string frames;
+  int64_t t_first = 0;
+  long total = 0;
+
   // The frame shown at `seconds` after the pen journal's start (short_study.h's times).
-  const auto frameAt = [&](double seconds) {
+  ImageRgba8 frameAt(double seconds) const {
     const int64_t t = test::kShortStudyT0 + int64_t(seconds * 1e9);
     const long k = std::clamp(long(std::ceil(double(t - t_first) * 1e-9 * kFps)), 0L, total - 1);
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%06ld.png", k);
     return readPng(frames + name);
-  };
+  }
+};
 
-  // The pages as the runner lays them out at each stage.
+// The time line: the journal's first to last pen sample or study marker; a PNG a frame.
+void checkTimeline(const std::string& folder, const std::string& replay_out, Timeline* t) {
+  const JournalReadResult journal = readJournal(folder + "/session.cbj");
+  int64_t t_last = 0;
+  t->t_first = INT64_MAX;
+  for (const JournalRecord& r : journal.records) {
+    const bool marker = r.type == JournalRecordType::kMarker && r.text().rfind("study.", 0) == 0 &&
+                        r.text().rfind("study.info ", 0) != 0;
+    if (r.type != JournalRecordType::kPenSample && !marker) continue;
+    t->t_first = std::min(t->t_first, r.t_ns);
+    t_last = std::max(t_last, r.t_ns);
+  }
+  t->total = long(std::floor(double(t_last - t->t_first) * 1e-9 * kFps)) + 1;
+  EXPECT_EQ(capture(replay_out, "frames: ([0-9]+) PNGs"), std::to_string(t->total)) << replay_out;
+  long files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(t->frames))
+    files += entry.path().extension() == ".png";
+  EXPECT_EQ(files, t->total);
+}
+
+// The pages as the runner lays them out at each stage; the task's picture as shown.
+struct Pages {
+  StudyPage consent, task, questionnaire;
+  ImageRgba8 picture;
+};
+
+void layOutPages(const StudyProtocol& protocol, const std::string& dir, Pages* p) {
   StudyRunState layout(protocol, 1, 0);
   StudyPageInput form_input;  // measured with the runner's font
   std::string font_error;
   form_input.measure = studyPageFont(protocol, &font_error);
   ASSERT_TRUE(form_input.measure) << font_error;
-  const StudyPage consent = buildStudyPage(layout, form_input, kW, kH);
+  p->consent = buildStudyPage(layout, form_input, kW, kH);
   layout.agree(0);
   layout.proceed(0);
   layout.proceed(0);
@@ -161,39 +184,43 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
   layout.closeStage(7 * kSecond);  // free drawing: the first task now
   ASSERT_EQ(layout.stage(), StudyStageKind::kTask);
   // As the participant sees it: composited over the paper background (reference_picture.h).
-  const ImageRgba8 picture = referencePictureForDisplay(readPng(dir + "/images/cloud1_duck.png"));
+  p->picture = referencePictureForDisplay(readPng(dir + "/images/cloud1_duck.png"));
   StudyPageInput task_input = form_input;
-  task_input.image_aspect = float(picture.width) / float(picture.height);
-  const StudyPage task = buildStudyPage(layout, task_input, kW, kH);
+  task_input.image_aspect = float(p->picture.width) / float(p->picture.height);
+  p->task = buildStudyPage(layout, task_input, kW, kH);
   for (int i = 2; i < 4; ++i) {
     layout.tick(7 * kSecond * i);
     layout.closeStage(7 * kSecond * i);
   }
   ASSERT_EQ(layout.stage(), StudyStageKind::kQuestionnaire);
-  const StudyPage questionnaire = buildStudyPage(layout, form_input, kW, kH);
+  p->questionnaire = buildStudyPage(layout, form_input, kW, kH);
+}
 
+// What the frames show at consent, in the first task and at the questionnaire.
+void checkFramesShowThePages(const Timeline& t, const Pages& p) {
   // Consent, before the first tap (1.0 s): a form on black, its "I agree" box drawn.
-  const ImageRgba8 at_consent = frameAt(0.7);
+  const ImageRgba8 at_consent = t.frameAt(0.7);
   EXPECT_GT(darkShare(at_consent), 0.8);
-  EXPECT_TRUE(boxShown(at_consent, consent.find(StudyTargetAction::kAgree)));
+  EXPECT_TRUE(boxShown(at_consent, p.consent.find(StudyTargetAction::kAgree)));
   // The first task while its stroke is painted (5.3 s on): the sky, and the task's picture in
   // its place in the panel.
-  const ImageRgba8 in_task = frameAt(6.0);
+  const ImageRgba8 in_task = t.frameAt(6.0);
   EXPECT_LT(darkShare(in_task), 0.1) << "the sky fills the painting view";
-  ASSERT_GT(task.image[2], task.image[0]);
-  const glm::vec3 shown =
-                      meanIn(in_task, task.image[0], task.image[1], task.image[2], task.image[3]),
-                  expected = meanIn(picture, 0, 0, float(picture.width), float(picture.height));
+  ASSERT_GT(p.task.image[2], p.task.image[0]);
+  const glm::vec3 shown = meanIn(in_task, p.task.image[0], p.task.image[1], p.task.image[2],
+                                 p.task.image[3]),
+                  expected =
+                      meanIn(p.picture, 0, 0, float(p.picture.width), float(p.picture.height));
   EXPECT_LT(glm::length(shown - expected), 20.0f)
       << "the reference picture's mean colour " << expected.r << "," << expected.g << ","
       << expected.b << "; the frame shows " << shown.r << "," << shown.g << "," << shown.b;
   // The questionnaire before its first answer (12.6 s): a form, the five answer boxes drawn;
   // the consent frame has no such boxes there.
-  const ImageRgba8 at_questions = frameAt(12.3);
+  const ImageRgba8 at_questions = t.frameAt(12.3);
   EXPECT_GT(darkShare(at_questions), 0.5);  // (the answer boxes)
   int boxes_in_questions = 0, boxes_in_consent = 0;
   for (int value = 1; value <= 5; ++value) {
-    const StudyTarget* answer = questionnaire.find(StudyTargetAction::kAnswer, value);
+    const StudyTarget* answer = p.questionnaire.find(StudyTargetAction::kAnswer, value);
     ASSERT_TRUE(answer) << value;
     boxes_in_questions += boxShown(at_questions, answer);
     boxes_in_consent += boxShown(at_consent, answer);
@@ -202,6 +229,26 @@ TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame
   EXPECT_LT(boxes_in_consent, 5);
   EXPECT_GT(glm::length(meanOf(at_questions) - meanOf(at_consent)), 0.5f)
       << "the consent and questionnaire frames differ";
+}
+
+TEST(StudyReplayFrames, TheFramesAreTheRunnersScreensAndTheTaskVolumesAreTheSame) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("cb_study_frames_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::remove_all(dir);
+  Recorded recorded;
+  ASSERT_NO_FATAL_FAILURE(runSession(dir, &recorded));
+
+  const char* keep = std::getenv("CB_KEEP_FRAMES");
+  Timeline timeline;
+  timeline.frames = keep ? std::string(keep) : dir + "/frames";
+  std::filesystem::remove_all(timeline.frames);
+  test::CommandRun replay;
+  ASSERT_NO_FATAL_FAILURE(replayFrames(recorded, timeline.frames, &replay));
+  ASSERT_NO_FATAL_FAILURE(checkTimeline(recorded.folder, replay.out, &timeline));
+  Pages pages;
+  ASSERT_NO_FATAL_FAILURE(layOutPages(recorded.protocol, dir, &pages));
+  ASSERT_NO_FATAL_FAILURE(checkFramesShowThePages(timeline, pages));
   if (!HasFailure() && !keep) std::filesystem::remove_all(dir);
 }
 

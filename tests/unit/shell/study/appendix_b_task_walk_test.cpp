@@ -113,12 +113,8 @@ class Walk : public test::StudyScreenRig {
   }
 };
 
-TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
-  Walk w;
-  ASSERT_NO_FATAL_FAILURE(w.open());
-  w.frames(2);
-
-  // Consent, the code, the introduction: each page says what it waits for.
+// Consent, the code, the introduction: each page says what it waits for.
+void consentCodeIntroduction(Walk& w) {
   w.keep("consent");
   EXPECT_TRUE(w.shown("Waiting for your consent")) << w.words();
   EXPECT_TRUE(w.shown("You are invited to take part")) << w.words();
@@ -131,9 +127,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   ASSERT_NO_FATAL_FAILURE(w.tap(StudyTargetAction::kContinue));
   ASSERT_EQ(w.state->stage(), StudyStageKind::kTask) << w.state->waitingFor(w.now);
   w.frames(3);
+}
 
-  // The task's page before the first stroke.
-  const StudyTask* task = w.state->task();
+// The task's page before the first stroke.
+void checkTaskStart(Walk& w, const StudyTask* task) {
   ASSERT_TRUE(task);
   w.keep("task_start");
   EXPECT_TRUE(w.shown("Task 1 of 4")) << w.words();
@@ -150,8 +147,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   EXPECT_GT(w.screen->page().image[2] - w.screen->page().image[0], 0.2f * kW)
       << "the picture is shown in the panel";
   EXPECT_TRUE(w.screen->paintScreen().ui()->statusFits()) << "the status line is not cut";
+}
 
-  // Three strokes with the recorded pen, a minute apart on the task's clock.
+// Three strokes with the recorded pen, a minute apart on the task's clock.
+void threeStrokes(Walk& w) {
   for (size_t s = 0; s < kStrokes.size(); ++s) {
     ASSERT_NO_FATAL_FAILURE(w.recordedStroke(w.stroke_samples[s]));
     w.frames(3);
@@ -163,8 +162,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const double left = w.state->secondsLeft(w.now);
   EXPECT_LT(left, 7 * 60) << "three minutes and the strokes' seconds gone";
   EXPECT_TRUE(w.shown("Time left " + countdownText(left))) << w.words();
+}
 
-  // "Save the data in the end" (Appendix B), with the pen: the menu button, then Save.
+// "Save the data in the end" (Appendix B), with the pen: the menu button, then Save.
+void saveByTheMenu(Walk& w) {
   const float* menu = w.screen->paintScreen().ui()->menuButtonRect();
   ASSERT_GT(menu[2], menu[0]);
   w.tapAt(0.5f * (menu[0] + menu[2]), 0.5f * (menu[1] + menu[3]));
@@ -194,8 +195,10 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
     w.tapAt(0.5f * (menu[0] + menu[2]), 0.5f * (menu[1] + menu[3]));  // closed again
     w.frames(2);
   }
+}
 
-  // The last minute: the countdown turns red.
+// The last minute: the countdown turns red.
+void lastMinuteRed(Walk& w) {
   w.frames(1, int64_t(w.state->secondsLeft(w.now) - 45) * kSecond);
   w.frames(2);
   w.keep("last_minute");
@@ -205,9 +208,11 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   const UiLabel* countdown_zh = w.label("剩余时间 0:4");
   ASSERT_TRUE(countdown_zh) << w.words();
   EXPECT_EQ(countdown_zh->rgba, 0xff8060ffu) << "its Chinese red too";
+}
 
-  // Time up with the pen down in a stroke: the page asks to lift the pen; lifted, the stage
-  // closes by itself and the stroke is kept.
+// Time up with the pen down in a stroke: the page asks to lift the pen; lifted, the stage
+// closes by itself and the stroke is kept (`closing`: what the closing page said).
+void timeUpWithThePenDown(Walk& w, std::string* closing) {
   const SyntheticStroke last_stroke = strokeAcross({0.2f * kW, 0.3f * kH}, {0.3f * kW, 0.32f * kH});
   std::vector<PenSample> down, up;
   bool was_down = false;  // hover in and the tip's samples, then the lift and what follows
@@ -220,7 +225,7 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   w.frames(2);
   w.keep("time_up_pen_down");
   EXPECT_TRUE(w.state->closing());
-  const std::string closing = w.state->waitingFor(w.now);
+  *closing = w.state->waitingFor(w.now);
   EXPECT_TRUE(w.shown("lift the pen")) << w.words();
   EXPECT_TRUE(w.shown("Time is up. Lift the pen: your cloud is being saved.")) << w.words();
   EXPECT_TRUE(w.shown("时间到了")) << w.words();
@@ -229,6 +234,11 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   for (PenSample& s : up) s.t_ns = w.now;
   w.frames(0, kFrame, up);
   w.frames(30);
+}
+
+// The next task's panel says the last one was saved, for a few seconds; the task's trial
+// ended at time up with every stroke, its files written.
+void checkNextTask(Walk& w, const StudyTask* task, const std::string& closing) {
   w.keep("next_task");
   // The next task's panel says the last one was saved, for a few seconds.
   EXPECT_TRUE(w.shown("Task 1 saved. 任务 1 已保存。")) << w.words();
@@ -247,6 +257,21 @@ TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
   w.frames(1);
   w.keep("next_task_later");
   EXPECT_FALSE(w.shown("Task 1 saved.")) << w.words();
+}
+
+TEST(AppendixB, ATimedTaskAsAParticipantMeetsIt) {
+  Walk w;
+  ASSERT_NO_FATAL_FAILURE(w.open());
+  w.frames(2);
+  ASSERT_NO_FATAL_FAILURE(consentCodeIntroduction(w));
+  const StudyTask* task = w.state->task();
+  ASSERT_NO_FATAL_FAILURE(checkTaskStart(w, task));
+  ASSERT_NO_FATAL_FAILURE(threeStrokes(w));
+  ASSERT_NO_FATAL_FAILURE(saveByTheMenu(w));
+  ASSERT_NO_FATAL_FAILURE(lastMinuteRed(w));
+  std::string closing;
+  ASSERT_NO_FATAL_FAILURE(timeUpWithThePenDown(w, &closing));
+  ASSERT_NO_FATAL_FAILURE(checkNextTask(w, task, closing));
   std::printf("closing page said: %s\n", closing.c_str());
 }
 
