@@ -56,27 +56,54 @@ std::string shippedText() {
   return commandTableText() + painterMessagesText() + "重新开始关闭";
 }
 
+// Text about 2.4% of the screen height (26 px at 1080 lines), never under 14 px.
+float fontScale(int height) {
+  return std::max(14.0f / 26.0f, float(height) / 1080.0f);
+}
+
+// The box of `lines` at `size_px` centred at (x, y_top): widest line and padding (x0, y0, x1, y1).
+void textBoxRect(ImFont* font, float x, float y, const std::vector<std::string>& lines,
+                 float size_px, float rect[4]) {
+  float w = 0.0f;
+  for (const std::string& l : lines)
+    w = std::max(w, font->CalcTextSizeA(size_px, 1e9f, 0.0f, l.c_str()).x);
+  const float line_h = size_px * 1.25f, pad = 0.6f * size_px;
+  rect[0] = x - 0.5f * w - pad, rect[1] = y - pad, rect[2] = x + 0.5f * w + pad;
+  rect[3] = y + line_h * float(lines.size()) + pad;
+}
+
 // A box of lines centred at (x, y_top), drawn on the foreground (no window, no input); its
 // rectangle goes to *rect when given.
 void drawTextBox(ImDrawList* draw, float x, float y, const std::vector<std::string>& lines,
                  float size_px, ImU32 colour, ImU32 background, float* rect = nullptr) {
   ImFont* font = ImGui::GetFont();
-  float w = 0.0f;
-  for (const std::string& l : lines)
-    w = std::max(w, font->CalcTextSizeA(size_px, 1e9f, 0.0f, l.c_str()).x);
-  const float line_h = size_px * 1.25f, pad = 0.6f * size_px;
-  const float h = line_h * float(lines.size());
-  draw->AddRectFilled(ImVec2(x - 0.5f * w - pad, y - pad), ImVec2(x + 0.5f * w + pad, y + h + pad),
-                      background, 0.4f * size_px);
-  if (rect)
-    rect[0] = x - 0.5f * w - pad, rect[1] = y - pad, rect[2] = x + 0.5f * w + pad,
-    rect[3] = y + h + pad;
+  float box[4];
+  textBoxRect(font, x, y, lines, size_px, box);
+  draw->AddRectFilled(ImVec2(box[0], box[1]), ImVec2(box[2], box[3]), background, 0.4f * size_px);
+  if (rect) std::copy(box, box + 4, rect);
+  const float line_h = size_px * 1.25f;
   for (size_t i = 0; i < lines.size(); ++i) {
     observe(lines[i]);
     const float lw = font->CalcTextSizeA(size_px, 1e9f, 0.0f, lines[i].c_str()).x;
     draw->AddText(font, size_px, ImVec2(x - 0.5f * lw, y + line_h * float(i)), colour,
                   lines[i].c_str());
   }
+}
+
+// The toast's and the hint's centre: the middle of the message area.
+float messageCentre(int width, const UiOverlayState& state) {
+  return 0.5f * (state.message_width > 0.0f ? state.message_width : float(width));
+}
+
+// The first screen's hint: low in the middle, where the eye goes after the cloud, above what
+// the host draws along the bottom. Its lines' top and size at the UI's font size `font_px`.
+struct HintPlace {
+  float y, size_px;
+};
+HintPlace hintPlace(int height, const UiOverlayState& state, float font_px) {
+  const float size = 1.2f * font_px;
+  return {float(height) - state.message_bottom - (1.25f * float(state.hint.size()) + 2.5f) * size,
+          size};
 }
 
 }  // namespace
@@ -172,8 +199,7 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
   }
   io.MousePos = ImVec2(pointer_.x, pointer_.y);
   io.MouseDown[0] = pointer_.down;
-  // Text about 2.4% of the screen height (26 px at 1080 lines), never under 14 px.
-  const float scale = std::max(14.0f / 26.0f, float(height) / 1080.0f);
+  const float scale = fontScale(height);
   io.FontGlobalScale = scale;
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
@@ -229,6 +255,7 @@ std::vector<Command> UiOverlay::draw(int width, int height, double dt_s,
     ImGui::End();
   }
 
+  std::fill(hint_rect_, hint_rect_ + 4, 0.0f);
   if (state.help.empty()) drawMessages(width, height, bar_h, state);
 
   if (state.menu_open) drawMenu(width, height, state, fixed, &tapped);
@@ -401,16 +428,25 @@ void UiOverlay::drawMessages(int width, int height, float bar_h, const UiOverlay
   // open menu, which fills the middle, so neither hides the other.
   const float toast_y = state.menu_open ? float(height) - 2.2f * size
                                         : bar_h + (state.notice.empty() ? 1.0f : 3.2f) * size;
-  const float centre = 0.5f * (state.message_width > 0.0f ? state.message_width : float(width));
+  const float centre = messageCentre(width, state);
   std::fill(toast_rect_, toast_rect_ + 4, 0.0f);
   if (!state.toast.empty())
     drawTextBox(draw, centre, toast_y, {state.toast}, size, IM_COL32(255, 255, 255, 255),
                 IM_COL32(20, 40, 70, 215), toast_rect_);
-  // The first screen's hint: low in the middle, where the eye goes after the cloud.
-  if (!state.hint.empty() && !state.menu_open)
-    drawTextBox(draw, centre,
-                float(height) - (1.25f * float(state.hint.size()) + 2.5f) * size * 1.2f, state.hint,
-                1.2f * size, IM_COL32(255, 255, 255, 255), IM_COL32(0, 0, 0, 170));
+  if (!state.hint.empty() && !state.menu_open) {
+    const HintPlace hint = hintPlace(height, state, size);
+    drawTextBox(draw, centre, hint.y, state.hint, hint.size_px, IM_COL32(255, 255, 255, 255),
+                IM_COL32(0, 0, 0, 170), hint_rect_);
+  }
+}
+
+void UiOverlay::hintBox(int width, int height, const UiOverlayState& state, float rect[4]) const {
+  std::fill(rect, rect + 4, 0.0f);
+  if (!context_ || state.hint.empty() || state.menu_open || !state.help.empty()) return;
+  ImGui::SetCurrentContext(context_);
+  ImFont* font = ImGui::GetIO().Fonts->Fonts[0];
+  const HintPlace hint = hintPlace(height, state, font->FontSize * fontScale(height));
+  textBoxRect(font, messageCentre(width, state), hint.y, state.hint, hint.size_px, rect);
 }
 
 void UiOverlay::drawHelp(int width, int height, const std::vector<HelpSection>& help) {

@@ -50,6 +50,7 @@ struct UiOverlayState {
   std::string toast;       // a transient answer under the status line (a save, a refused key)
   std::vector<std::string> hint;  // the first screen's lines, low in the middle, or none
   float message_width = 0.0f;     // toast and hint centred in [0, message_width] (0: the width)
+  float message_bottom = 0.0f;    // pixels along the bottom the host covers: the hint is above
   std::vector<HelpSection> help;  // the help overlay (H or ?), or none
   std::vector<UiLabel> labels;    // words over the heads-up items (the statistics panel's)
   // A kiosk visitor's screen in the kiosk's words (visitor_words.h): the menu button's (closed,
@@ -102,6 +103,11 @@ class UiOverlay {
   const float* menuButtonRect() const { return menu_button_; }
   // The last frame's toast box (x0, y0, x1, y1; zero size: none), for tests.
   const float* toastRect() const { return toast_rect_; }
+  // The last frame's first-screen hint box (x0, y0, x1, y1; zero size: none), for tests.
+  const float* hintRect() const { return hint_rect_; }
+  // The box the hint of `state` takes on a width x height screen (zero size: none), as draw()
+  // places it, after init() or initFont(): layouts check it against what the host draws.
+  void hintBox(int width, int height, const UiOverlayState& state, float rect[4]) const;
   // The rectangle of a command's target in the open menu, for tests; false when not shown.
   bool targetRect(Command command, float rect[4]) const;
   // Told every text any overlay draws (status, notice, answer, hint, targets, help, labels), as
@@ -131,6 +137,7 @@ class UiOverlay {
   bool last_draw_ = false;  // ImGui's draw data is draw()'s (redraw repeats it)
   float menu_button_[4] = {0, 0, 0, 0};
   float toast_rect_[4] = {0, 0, 0, 0};
+  float hint_rect_[4] = {0, 0, 0, 0};
   struct Target {
     Command command;
     float rect[4];

@@ -133,6 +133,10 @@ struct PaintLoopOptions {
   // The left part of the width (a fraction) in which the answer to an action (a save's toast)
   // and the first screen's hint are centred: a study's panel covers the rest.
   float message_area = 1.0f;
+  // The height (pixels) along the bottom of a width x height screen that the host draws over
+  // (a study's foot line): the first screen's hint keeps above it. Null: nothing (the plain
+  // painter, the kiosk).
+  std::function<float(int width, int height)> message_bottom;
   // Morph (F): the saved cloud to morph into (`--morph-to`); empty: the newest saved cloud of
   // the save folder (save_dir, else state_dir), else the bundled cumulus ("bundled:1", the cloud
   // that orbits at the start). Played over morph_seconds, then held until applied (A) or left (X).

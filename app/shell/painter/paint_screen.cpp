@@ -922,6 +922,8 @@ void PaintScreen::drawUi(const FrameContext& frame) {
   state.toast = toast();
   state.hint = hint();
   state.message_width = options_.message_area * float(frame.width);
+  if (!state.hint.empty() && options_.message_bottom)
+    state.message_bottom = options_.message_bottom(frame.width, frame.height);
   if (help_open_) state.help = helpSections(options_.visitor_mode);
   if (show_stats_) appendStatsLabels(frame.width, frame.height, &state.labels);
   // A morph or wind shown says what it is and how to apply or leave it.
@@ -980,12 +982,8 @@ std::vector<std::string> PaintScreen::hint() const {
   if (session_->strokesMapped() > 0 || session_->engine().inStroke() ||
       session_->volume().allocatedBricks() > 0)
     return {};
-  const Bilingual how =
-      session_->mode() == Mode::kPaint ? msg::kHowToPaint : msg::kPressThreeToPaint;
-  const bool tablet = pen_ && pen_->connection() == PenConnection::kConnected;
-  const Bilingual input = tablet ? msg::kPenPaints : msg::kMousePaints;
-  return {how.en, how.zh, std::string(input.en) + " · " + msg::kHelpKey.en,
-          std::string(input.zh) + " · " + msg::kHelpKey.zh};
+  return firstScreenHint(session_->mode() == Mode::kPaint,
+                         pen_ && pen_->connection() == PenConnection::kConnected);
 }
 
 std::string PaintScreen::statusLine() const {

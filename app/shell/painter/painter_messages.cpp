@@ -15,4 +15,11 @@ std::string painterMessagesText() {
   return text;
 }
 
+std::vector<std::string> firstScreenHint(bool paint_mode, bool tablet) {
+  const Bilingual how = paint_mode ? msg::kHowToPaint : msg::kPressThreeToPaint;
+  const Bilingual input = tablet ? msg::kPenPaints : msg::kMousePaints;
+  return {how.en, how.zh, std::string(input.en) + " · " + msg::kHelpKey.en,
+          std::string(input.zh) + " · " + msg::kHelpKey.zh};
+}
+
 }  // namespace cb

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/shell/command_table.h"
 
@@ -58,5 +59,9 @@ inline constexpr Bilingual kStatsMax{"max per pixel", "每像素最大"};
 
 // Every Chinese character of the messages above (for the font atlas).
 std::string painterMessagesText();
+
+// The first screen's hint, English over Chinese: how to paint (in Paint mode, else how to get
+// there), then the input named honestly (the tablet's pen, else the mouse) with the help key.
+std::vector<std::string> firstScreenHint(bool paint_mode, bool tablet);
 
 }  // namespace cb

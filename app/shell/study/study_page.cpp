@@ -796,18 +796,35 @@ const StudyTarget* StudyPage::hit(float x, float y) const {
   return nullptr;
 }
 
-StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
-                         int height) {
-  StudyPage page;
-  PageBuilder b(&page, input, width, height);
-  // A task that just ended is said on the page after it: in the task panel when a task follows,
-  // else at the head of the foot line. The foot line: its English over its Chinese.
+namespace {
+
+// The foot line's words: what the page waits for, its English over its Chinese. A task that
+// just ended is said on the page after it: in the task panel when a task follows, else at the
+// head of the foot line.
+std::string footText(const StudyRunState& state, const StudyPageInput& input) {
   StudyWords foot = state.waitingWords(input.now_ns);
   if (input.saved_task > 0 && state.stage() != StudyStageKind::kTask) {
     const StudyWords saved = studyTaskSavedText(input.saved_task, input.saved_pending);
     foot = {saved.en + "  " + foot.en, saved.zh + "  " + foot.zh};
   }
-  b.frame(input.storage_warning, foot.en + "\n" + foot.zh);
+  return foot.en + "\n" + foot.zh;
+}
+
+}  // namespace
+
+float studyFootHeight(const StudyRunState& state, const StudyPageInput& input, int width,
+                      int height) {
+  StudyPage page;
+  PageBuilder b(&page, input, width, height);
+  b.frame(input.storage_warning, footText(state, input));
+  return b.h() - b.foot();
+}
+
+StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
+                         int height) {
+  StudyPage page;
+  PageBuilder b(&page, input, width, height);
+  b.frame(input.storage_warning, footText(state, input));
   if (isPaintingStage(state.stage())) {
     if (!input.painter_menu_open) paintingPanel(b, state, input);
   } else {

@@ -118,6 +118,11 @@ inline constexpr int kKeyboardLower = 0, kKeyboardUpper = 1, kKeyboardSymbols = 
 StudyPage buildStudyPage(const StudyRunState& state, const StudyPageInput& input, int width,
                          int height);
 
+// The height of the foot line along the bottom of `state`'s page (pixels; as buildStudyPage
+// lays it out): the painter's first-screen hint keeps above it.
+float studyFootHeight(const StudyRunState& state, const StudyPageInput& input, int width,
+                      int height);
+
 // What the next page says of the task that ended: "Task N saved." (or kept and being saved
 // when its files wait for the disk), English and Chinese (StudyWords: study_waiting_words.h).
 StudyWords studyTaskSavedText(int task, bool pending);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <utility>
 
 #include "app/render/image_io.h"
 #include "app/scene/paint_camera.h"
@@ -21,13 +23,16 @@
 namespace cb {
 namespace {
 
-PaintLoopOptions paintOptionsFor(PaintLoopOptions options, const std::string& folder) {
+PaintLoopOptions paintOptionsFor(PaintLoopOptions options, const std::string& folder,
+                                 std::function<float(int, int)> foot_height) {
   options.orbit_degrees_per_second = 0.0f;  // a study paints from the start: no attract orbit
   // The painter's Save writes into the session folder (withdrawn and exported with it), never
   // into the state dir, where no withdrawal of this participant would find it.
   options.save_dir = folder + "/saved";
   // A save's answer and the first screen's hint in the canvas, clear of the runner's panel.
   options.message_area = kStudyPanelLeft;
+  // The hint above the foot line that says what the page waits for (drawn over the painter).
+  options.message_bottom = std::move(foot_height);
   options.visitor_mode = false;
   options.max_frames = 0;
   options.max_seconds = 0.0;
@@ -69,8 +74,11 @@ StudyRunScreen::StudyRunScreen(Display& display, VolumeRenderer& renderer, Paint
       state_(state),
       options_(options),
       task_files_(options.folder),
-      paint_(std::make_unique<PaintScreen>(display, renderer, session.volume(), session.light(),
-                                           paintOptionsFor(options.paint, options.folder))) {
+      paint_(std::make_unique<PaintScreen>(
+          display, renderer, session.volume(), session.light(),
+          paintOptionsFor(options.paint, options.folder, [this](int w, int h) {
+            return studyFootHeight(state_, pageInput(), w, h);
+          }))) {
   if (options.replay_view) {
     std::string error;
     if (!paint_->showReplay(&session, &error)) problem("replay: " + error);
@@ -826,7 +834,7 @@ std::string StudyRunScreen::update(const FrameContext& frame) {
   return "";
 }
 
-StudyPage StudyRunScreen::currentPage(int width, int height) const {
+StudyPageInput StudyRunScreen::pageInput() const {
   StudyPageInput input;
   input.typed = typed_;
   input.keyboard_page = keyboard_page_;
@@ -852,18 +860,17 @@ StudyPage StudyRunScreen::currentPage(int width, int height) const {
     input.check = tutorialStepWords(
         state_.protocol().tutorial[size_t(state_.tutorialStep())].expect, tutorialState());
   }
-  return buildStudyPage(state_, input, width, height);
+  return input;
+}
+
+StudyPage StudyRunScreen::currentPage(int width, int height) const {
+  return buildStudyPage(state_, pageInput(), width, height);
 }
 
 bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
   const int w = frame.width, h = frame.height;
-  if (isPaintingStage(state_.stage())) {
-    if (!paint_->draw(frame, error)) return false;
-  } else {
-    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-    glClearNamedFramebufferfv(display_.framebuffer(), GL_COLOR, 0, black);
-  }
-  // The font first: the page is laid out from its texts' measured sizes.
+  // The font first: the page, and the painter's hint above its foot line, are laid out from
+  // their texts' measured sizes.
   if (ui_ && !atlasHolds(typed_)) {
     // Characters typed beyond the atlas (an input method's Chinese): the atlas is made again
     // with them (once per new character; Latin-1 and the protocol's texts are in it).
@@ -875,6 +882,12 @@ bool StudyRunScreen::draw(FrameContext& frame, std::string* error) {
     atlas_text_ = studyPageText(state_.protocol()) + glyphs_;
     ui_->addGlyphs(atlas_text_);
     if (!ui_->init(error)) return false;
+  }
+  if (isPaintingStage(state_.stage())) {
+    if (!paint_->draw(frame, error)) return false;
+  } else {
+    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    glClearNamedFramebufferfv(display_.framebuffer(), GL_COLOR, 0, black);
   }
   page_ = currentPage(w, h);
   page_drawn_ = true;

@@ -115,6 +115,8 @@ class StudyRunScreen : public Screen {
   // them (handed over only while the pen is up and no stroke is open).
   void paintingSample(const PenSample& sample);
   bool panelTargetAt(float x, float y) const;
+  // What the page is laid out from besides the state (typed text, message, checks, the font).
+  StudyPageInput pageInput() const;
   StudyPage currentPage(int width, int height) const;
   void tap(float x, float y, bool down, int64_t t_ns);
   void selectCalibration();

@@ -147,6 +147,12 @@ void checkTaskStart(Walk& w, const StudyTask* task) {
   EXPECT_GT(w.screen->page().image[2] - w.screen->page().image[0], 0.2f * kW)
       << "the picture is shown in the panel";
   EXPECT_TRUE(w.screen->paintScreen().ui()->statusFits()) << "the status line is not cut";
+  // The painter's first-screen hint, shown until the first stroke, sits above the foot line.
+  const float* hint = w.screen->paintScreen().ui()->hintRect();
+  const float* foot = w.screen->page().foot;
+  EXPECT_GT(hint[3], hint[1]) << "the painter's first-screen hint is shown";
+  EXPECT_LE(hint[3], foot[1]) << "the hint (" << hint[0] << "," << hint[1] << ")-(" << hint[2]
+                              << "," << hint[3] << ") runs into the foot line from " << foot[1];
 }
 
 // Three strokes with the recorded pen, a minute apart on the task's clock.

@@ -11,6 +11,9 @@
 //   words touch a target;
 // - the operator's band and the foot line overlap nothing but their own words;
 // - the task's picture overlaps no words or targets;
+// - on the painting pages, the painter's first-screen hint (drawn over the painter's canvas,
+//   above the foot line's height the runner passes it) overlaps neither the foot line nor the
+//   band and lies on the screen;
 // - the foot line says what the page waits for in English, then in Chinese (the state's
 //   waitingWords; English first, its Chinese after), and every character of every word on the
 //   page is in the font atlas studyPageText fills (none would be drawn as a box);
@@ -33,6 +36,7 @@
 #include "app/core/config_paths.h"
 #include "app/render/hud_overlay.h"
 #include "app/render/image_io.h"
+#include "app/shell/painter/painter_messages.h"
 #include "app/shell/study/study_page.h"
 #include "app/study/protocol.h"
 
@@ -262,13 +266,42 @@ class StudyPageLayout : public ::testing::Test {
         const StudyPage page = buildStudyPage(state, input, s.w, s.h);
         const std::string faults = layoutFaults(page, font_, s.w, s.h) +
                                    wordsFaults(page, state.waitingWords(input.now_ns), font_) +
-                                   untranslated(page, &seen_);
+                                   untranslated(page, &seen_) + hintFaults(state, input, s);
         EXPECT_EQ(faults, "") << name << (with_band ? " with the operator's band" : "") << " at "
                               << s.w << "x" << s.h;
         if ((s.w == 1920 || s.w == 1024) && !keep_.empty())
           keep(page, s, name + (with_band ? "_band" : "") + (s.w == 1920 ? "" : "_1024x768"));
       }
     }
+  }
+
+  // Painting stages: the painter's first-screen hint (mouse, no tablet: its widest lines) as
+  // the runner has it drawn, in the canvas left of the panel and above the foot line's height
+  // (studyFootHeight), against the page the runner lays out with its font: it must lie on the
+  // screen, below the operator's band and clear of the foot line.
+  std::string hintFaults(const StudyRunState& state, StudyPageInput input, Size s) {
+    if (!isPaintingStage(state.stage()) || state.choosing() || state.paused()) return "";
+    input.measure = [this](const UiLabel& l, float r[4]) { font_.labelRect(l, r); };
+    const StudyPage page = buildStudyPage(state, input, s.w, s.h);
+    UiOverlayState ui;
+    ui.hint = firstScreenHint(true, false);
+    ui.message_width = kStudyPanelLeft * float(s.w);
+    ui.message_bottom = studyFootHeight(state, input, s.w, s.h);
+    float r[4];
+    font_.hintBox(s.w, s.h, ui, r);
+    const Rect hint{r[0], r[1], r[2], r[3]};
+    const Rect foot{page.foot[0], page.foot[1], page.foot[2], page.foot[3]};
+    const Rect band{page.band[0], page.band[1], page.band[2], page.band[3]};
+    ++hints_;
+    std::ostringstream out;
+    if (hint.empty()) out << "the painter's hint has no box\n";
+    if (overlaps(hint, foot))
+      out << "the painter's hint " << str(hint) << " overlaps the foot line " << str(foot) << "\n";
+    if (overlaps(hint, band))
+      out << "the painter's hint " << str(hint) << " overlaps the band " << str(band) << "\n";
+    if (!inside(hint, Rect{0, 0, float(s.w), float(s.h)}))
+      out << "the painter's hint " << str(hint) << " is off the screen\n";
+    return out.str();
   }
 
   void keep(const StudyPage& page, Size s, const std::string& name) {
@@ -292,6 +325,7 @@ class StudyPageLayout : public ::testing::Test {
   HudOverlay hud_;
   std::string keep_;
   int pages_ = 0;
+  int hints_ = 0;  // painting pages whose painter's hint was checked against the foot line
   std::map<std::string, int> seen_;  // kOwnWords: how often each was drawn
 };
 
@@ -390,6 +424,7 @@ TEST_F(StudyPageLayout, NoPageOverlapsItselfTheBandOrTheFootAtAnySize) {
   check(stopped, input, "operator_abort");
   stopped.chooseReason(0, t);
   check(stopped, input, "end_stopped");
+  EXPECT_GT(hints_, 0) << "no painting page: the painter's hint went unchecked";
   for (const char* words : kOwnWords)
     EXPECT_GT(seen_[words], 0) << "no page drew \"" << words << "\": its Chinese went unchecked";
   std::printf("%d pages checked at %zu sizes, with and without the band\n", pages_,

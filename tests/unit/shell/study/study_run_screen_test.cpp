@@ -133,6 +133,12 @@ void tutorialByKeysAndAStroke(Rig& rig) {
   EXPECT_EQ(state.tutorialStep(), 4);
   EXPECT_EQ(rig.session->mode(), Mode::kPaint);
   rig.keep("tutorial_stroke_step");
+  // Before the first stroke the painter's hint shows, above the page's foot line.
+  const float* hint = rig.screen->paintScreen().ui()->hintRect();
+  const StudyPage& page = rig.screen->page();
+  EXPECT_GT(hint[3], hint[1]) << "the painter's first-screen hint is shown";
+  EXPECT_LE(hint[3], page.foot[1])
+      << "the hint's foot " << hint[3] << " is below the foot line's top " << page.foot[1];
   rig.stroke(referencePaintStrokes(kW, kH)[0]);
   rig.frames(2);
   ASSERT_EQ(state.stage(), StudyStageKind::kTask) << state.waitingFor(rig.now);
