@@ -10,6 +10,7 @@ namespace cb {
 
 FootprintOverlay::~FootprintOverlay() {
   if (footprint_texture_) glDeleteTextures(1, &footprint_texture_);
+  if (scene_read_fbo_) glDeleteFramebuffers(1, &scene_read_fbo_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
   if (program_) glDeleteProgram(program_);
 }
@@ -21,6 +22,25 @@ bool FootprintOverlay::init(std::string* error) {
     return false;
   }
   glCreateVertexArrays(1, &vao_);
+  glCreateFramebuffers(1, &scene_read_fbo_);
+  return true;
+}
+
+bool FootprintOverlay::copyScene(GLuint scene_texture, int width, int height) {
+  GLint w = 0, h = 0;
+  glGetTextureLevelParameteriv(scene_texture, 0, GL_TEXTURE_WIDTH, &w);
+  glGetTextureLevelParameteriv(scene_texture, 0, GL_TEXTURE_HEIGHT, &h);
+  if (w != width || h != height || !scene_read_fbo_) return false;
+  glNamedFramebufferTexture(scene_read_fbo_, GL_COLOR_ATTACHMENT0, scene_texture, 0);
+  glDisable(GL_SCISSOR_TEST);
+  glBlitNamedFramebuffer(scene_read_fbo_, composite_.fbo(), 0, 0, width, height, 0, 0, width,
+                         height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  // The composite writes α = 1 (the scene's own α is not shown).
+  const float opaque[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glClearNamedFramebufferfv(composite_.fbo(), GL_COLOR, 0, opaque);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glEnable(GL_SCISSOR_TEST);
   return true;
 }
 
@@ -124,7 +144,12 @@ FootprintOverlay::ScreenRect FootprintOverlay::compositeChanges(GLuint scene_tex
                            : ScreenRect{std::min(box.x0, r.x0), std::min(box.y0, r.y0),
                                         std::max(box.x1, r.x1), std::max(box.y1, r.y1)};
   };
-  if (full_redraw_) {
+  if (full_redraw_ && inked_.empty() && copyScene(scene_texture, width, height)) {
+    // No ink on the footprint: the frame is the scene, copied, with the cursor drawn over it
+    // (a copy costs a fraction of the shader's pass over every pixel on llvmpipe).
+    grow({0, 0, width, height});
+    grow(composite(new_cursor, width, height));
+  } else if (full_redraw_) {
     grow(composite({0, 0, width, height}, width, height));
   } else {
     // The uploaded footprint texels, in screen pixels (+2 for the bilinear footprint lookup).

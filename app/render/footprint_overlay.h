@@ -82,8 +82,12 @@ class FootprintOverlay {
   ScreenRect compositeChanges(GLuint scene_texture, int width, int height,
                               const OverlayCursor& cursor, const OverlayStyle& style);
   ScreenRect cursorRect(const OverlayCursor& cursor, const OverlayStyle& style) const;
+  // The scene texture copied into composite_ whole (α set to 1), for a full redraw with no ink;
+  // false when it is not the target's size.
+  bool copyScene(GLuint scene_texture, int width, int height);
 
   GLuint program_ = 0, vao_ = 0, footprint_texture_ = 0;
+  GLuint scene_read_fbo_ = 0;  // reads the scene texture for copyScene
   int width_ = 0, height_ = 0;
   RenderTarget composite_;
   bool full_redraw_ = true;

@@ -3,6 +3,7 @@
 #include "app/render/footprint_overlay.h"
 
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -169,6 +170,62 @@ TEST(FootprintOverlay, IncrementalFramesEqualAFullComposite) {
   EXPECT_NEAR(full.at(60, 30)[0], 51, 1);
   EXPECT_GT(full.at(60, 70)[0], 100);
   EXPECT_LT(composited, size_t(kW) * kH * 39 / 4);  // far less than full frames
+}
+
+// With no ink on the footprint a whole frame is the scene copied, opaque, with the cursor
+// composited over it alone; the pixels are the shader's over every pixel (bit-identical: the
+// shader reads the same texel at each pixel's centre and mixes in nothing), and once ink is
+// uploaded every pixel goes through the shader again.
+TEST(FootprintOverlay, AFrameWithoutInkIsTheSceneCopiedWithTheCursor) {
+  CB_REQUIRE_GL();
+  std::string err;
+  RenderTarget scene, frame, reference;
+  ASSERT_TRUE(scene.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  ASSERT_TRUE(frame.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  ASSERT_TRUE(reference.create(kW, kH, RenderTarget::Format::kRgba8, &err)) << err;
+  // A scene that varies per pixel, with α below 1 (the frame shows it opaque).
+  std::vector<uint8_t> texels(size_t(kW) * kH * 4);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      uint8_t* t = &texels[(size_t(y) * kW + x) * 4];
+      t[0] = uint8_t(x * 37 + y), t[1] = uint8_t(y * 11 + x * 3), t[2] = uint8_t(x ^ y), t[3] = 90;
+    }
+  glTextureSubImage2D(scene.texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+  OverlayCursor cursor;
+  cursor.screen_px = {40.0f, 30.0f};
+  cursor.radius_px = 10.0f;
+  OverlayStyle style;
+  style.cursor_colour = {1.0f, 0.0f, 0.0f, 1.0f};
+  style.cursor_width_px = 2.0f;
+  FootprintOverlay copied, shaded;
+  ASSERT_TRUE(copied.init(&err)) << err;
+  ASSERT_TRUE(shaded.init(&err)) << err;
+  copied.beginFootprint(kW, kH);
+  shaded.beginFootprint(kW, kH);
+  // The shader's whole pass: ink of 0 uploaded over the whole footprint counts as ink.
+  Footprint none(kW, kH);
+  EXPECT_EQ(shaded.upload(none, {0, 0, kW, kH}), size_t(kW) * kH);
+  copied.draw(scene.texture(), frame.fbo(), kW, kH, cursor, style);
+  shaded.draw(scene.texture(), reference.fbo(), kW, kH, cursor, style);
+  EXPECT_LT(copied.lastCompositedPixels(), size_t(kW) * kH / 4) << "only the cursor shaded";
+  EXPECT_EQ(shaded.lastCompositedPixels(), size_t(kW) * kH);
+  const ImageRgba8 a = frame.readRgba8(), b = reference.readRgba8();
+  size_t differ = 0, translucent = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      for (int c = 0; c < 4; ++c) differ += a.at(x, y)[c] != b.at(x, y)[c];
+      translucent += a.at(x, y)[3] != 255;
+    }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(translucent, 0u);
+  EXPECT_GE(a.at(50, 30)[0], 230) << "the cursor ring";
+  // Ink: the next whole frame is shaded everywhere.
+  Footprint fp(kW, kH);
+  fp.at(5, 5) = 1.0f;
+  EXPECT_EQ(copied.upload(fp, {5, 5, 6, 6}), 1u);
+  copied.invalidate();
+  copied.draw(scene.texture(), frame.fbo(), kW, kH, cursor, style);
+  EXPECT_EQ(copied.lastCompositedPixels(), size_t(kW) * kH);
 }
 
 }  // namespace
