@@ -517,6 +517,7 @@ bool PaintScreen::hasPaint() const {
 }
 
 std::string PaintScreen::update(const FrameContext& frame) {
+  iteration_start_ = std::chrono::steady_clock::now();
   if (replay_view_) {
     menu_open_ = session_->menuOpen();  // as the replay has it; nothing else moves on its own
     return "";
@@ -577,7 +578,6 @@ bool PaintScreen::paintingSetUp(std::string* error) {
 void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
-  still_start_ = render_start;
   SceneWork work;
   renderScene(&work);
   // Late latching: the ink shows the samples that came while the scene was being cast. A
@@ -885,8 +885,8 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   const PaintFrameInfo& info = last_info_;
   light_release_pending_ = false;  // the release's frame is shown
   if (info.painting_view && light_drag_frame_) {
-    // The drag frame's own time (its draw to its present), not the wait for the next mouse move.
-    light_drag_scale_ = nextLightDragScale(light_drag_scale_, msSince(still_start_), options_);
+    // The drag frame's own time (its update to its present), not the wait for the next move.
+    light_drag_scale_ = nextLightDragScale(light_drag_scale_, msSince(iteration_start_), options_);
     light_drag_frame_ = false;
   }
   if (info.painting_view) {

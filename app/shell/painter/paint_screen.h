@@ -259,11 +259,11 @@ class PaintScreen : public Screen {
   std::optional<Canvas> drag_canvas_;
   std::optional<Light> drag_light_;
   // The light drag's own scale (PaintLoopOptions::light_drag_frame_ms), adapted from the time
-  // of each drag frame (its draw's start to its present); and the release, whose first frame
+  // of each drag frame (its update's start to its present); and the release, whose first frame
   // still reads the coarse light, for the released light at the drag's scale (the frame after
   // it sweeps the light in full at full resolution).
   float light_drag_scale_ = 0.5f;
-  std::chrono::steady_clock::time_point still_start_{};
+  std::chrono::steady_clock::time_point iteration_start_{};
   bool light_drag_frame_ = false;
   bool light_release_pending_ = false;
   glm::vec2 drag_start_{0.0f};
