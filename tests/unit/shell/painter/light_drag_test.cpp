@@ -24,20 +24,49 @@ namespace {
 constexpr int kW = 320, kH = 180, kGrid = 64;
 constexpr int kDragFrom = 4, kDragTo = 12;  // the frames the button is held over
 
-TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("cb_light_drag_" + std::to_string(::getpid())))
-          .string();
-  std::filesystem::create_directories(dir + "/state");
-  std::string error;
+// A recorded painter over the bundled cumulus in a temporary folder of its own, and the loop
+// options every run here uses.
+struct CumulusPainter {
+  std::string dir;
   test::RecordedPainter painter;
-  ASSERT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
-                           &error))
-      << error;
+  explicit CumulusPainter(const std::string& name)
+      : dir((std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid())))
+                .string()) {
+    std::filesystem::create_directories(dir + "/state");
+  }
+  ~CumulusPainter() { std::filesystem::remove_all(dir); }
+  bool open(std::string* error) {
+    return painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
+                        error) &&
+           painter.session->replaceVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), 0, "cumulus",
+                                          error);
+  }
+  PaintLoopOptions options() const {
+    PaintLoopOptions o;
+    o.max_frames = 200;
+    o.state_dir = dir + "/state";
+    o.config_dir = dir + "/config";
+    return o;
+  }
+};
+
+// The mouse's left button at (x, y) in pixels.
+void mouse(Display& display, DisplayEvent::Kind kind, float x, float y) {
+  DisplayEvent e;
+  e.kind = kind;
+  e.x = x;
+  e.y = y;
+  e.button = 1;
+  display.injectEvent(e);
+}
+
+TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
+  CumulusPainter fixture("cb_light_drag");
+  std::string error;
+  ASSERT_TRUE(fixture.open(&error)) << error;
+  test::RecordedPainter& painter = fixture.painter;
   Display& display = *painter.display;
   PaintSession& session = *painter.session;
-  ASSERT_TRUE(session.replaceVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), 0, "cumulus", &error))
-      << error;
   const Light before = session.light();
   VolumeRenderer& renderer = painter.renderer;
 
@@ -45,17 +74,9 @@ TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
   int frame = 0, previewed = 0, swept_during_drag = 0, preview_after_release = 0;
   const auto pointer = [&](DisplayEvent::Kind kind, int i) {
     const float a = 0.4f * float(i);
-    DisplayEvent e;
-    e.kind = kind;
-    e.x = kW * (0.5f + 0.25f * std::cos(a));
-    e.y = kH * (0.3f + 0.15f * std::sin(a));
-    e.button = 1;
-    display.injectEvent(e);
+    mouse(display, kind, kW * (0.5f + 0.25f * std::cos(a)), kH * (0.3f + 0.15f * std::sin(a)));
   };
-  PaintLoopOptions options;
-  options.max_frames = 200;
-  options.state_dir = dir + "/state";
-  options.config_dir = dir + "/config";
+  PaintLoopOptions options = fixture.options();
   options.on_frame = [&](const PaintFrameInfo&) {
     ++frame;
     if (frame == 2) display.injectEvent(DisplayEvent::key('5'));
@@ -89,7 +110,6 @@ TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
       replaySession(readJournal(painter.recorded), BrushConfig{}, MappingConfig{});
   ASSERT_TRUE(replay.session);
   EXPECT_EQ(replay.session->light().direction, session.light().direction);
-  std::filesystem::remove_all(dir);
 }
 
 // The light drag keeps to its frame budget by its own resolution scale: over budget every drag
@@ -106,34 +126,20 @@ struct DragRun {
 
 DragRun runDrag(double frame_budget_ms, const std::string& name) {
   DragRun run;
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))).string();
-  std::filesystem::create_directories(dir + "/state");
+  CumulusPainter fixture(name);
   std::string error;
-  test::RecordedPainter painter;
-  EXPECT_TRUE(painter.open({kW, kH, kGrid}, BrushConfig{}, MappingConfig{}, dir + "/session.cbj", 0,
-                           &error))
-      << error;
-  if (!painter.display) return run;
+  EXPECT_TRUE(fixture.open(&error)) << error;
+  if (!fixture.painter.display) return run;
+  test::RecordedPainter& painter = fixture.painter;
   Display& display = *painter.display;
   PaintSession& session = *painter.session;
-  EXPECT_TRUE(
-      session.replaceVolume(makeBundledCumulus(glm::ivec3(kGrid), 1), 0, "cumulus", &error));
   VolumeRenderer& renderer = painter.renderer;
   std::atomic<bool> stop{false};
   int frame = 0;
   const auto pointer = [&](DisplayEvent::Kind kind, int i) {
-    DisplayEvent e;
-    e.kind = kind;
-    e.x = kW * (0.3f + 0.03f * float(i));
-    e.y = kH * 0.3f;
-    e.button = 1;
-    display.injectEvent(e);
+    mouse(display, kind, kW * (0.3f + 0.03f * float(i)), kH * 0.3f);
   };
-  PaintLoopOptions options;
-  options.max_frames = 200;
-  options.state_dir = dir + "/state";
-  options.config_dir = dir + "/config";
+  PaintLoopOptions options = fixture.options();
   options.light_drag_frame_ms = frame_budget_ms;
   options.on_frame = [&](const PaintFrameInfo&) {
     ++frame;
@@ -160,7 +166,6 @@ DragRun runDrag(double frame_budget_ms, const std::string& name) {
   PaintLoopSummary summary;
   EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
   painter.journal.close();
-  std::filesystem::remove_all(dir);
   return run;
 }
 
