@@ -22,9 +22,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kDrags = 3;        // light drags, each released once
-constexpr int kDragFrames = 12;  // frames of each drag that move the light
-constexpr int kWindFrames = 16;  // wind frames timed (after the first few)
+constexpr int kDrags = 3;         // light drags, each released once
+constexpr int kDragFrames = 12;   // frames of each drag that move the light
+constexpr int kWindFrames = 16;   // wind frames timed (after the first few)
+constexpr int kOrbitFrames = 16;  // frames of the Camera-mode drag that turn the view
 
 // The bench tools' silhouette: six overlapping dark discs on white (a cumulus's outline).
 ImageRgba8 silhouette(int w, int h) {
@@ -66,6 +67,7 @@ struct Script {
   double last_cpu = 0, act_cpu = 0;  // process CPU (all threads) at the last frame, at the act
   std::vector<double> drag_ms, release_ms, release_full_ms, picture_ms, model_ms, wind_ms;
   std::vector<double> drag_cpu, release_cpu, wind_cpu;
+  std::vector<double> orbit_ms, orbit_cpu;  // the Camera-mode drag
   std::string problem;
   const char* shots = nullptr;  // a folder for the first drag's and the wind's frames as PNG
 
@@ -155,6 +157,22 @@ void Script::onFrame() {
       }
       break;
     }
+    case 4: {  // Camera mode (1): the view turned by dragging across the cloud, then let go
+      if (n == 1) display.injectEvent(DisplayEvent::key('1'));
+      if (n == 3 && session.mode() != Mode::kCamera) problem = "the painter is not in Camera mode";
+      const float x = w * (0.35f + 0.015f * float(n)), y = h * 0.5f;
+      if (n == 3) pointer(DisplayEvent::Kind::PointerMove, x, y);
+      if (n == 3) pointer(DisplayEvent::Kind::PointerDown, x, y);
+      if (n >= 4 && n < 4 + kOrbitFrames) pointer(DisplayEvent::Kind::PointerMove, x, y);
+      if (n >= 6 && n < 5 + kOrbitFrames)
+        orbit_ms.push_back(frame_ms), orbit_cpu.push_back(frame_cpu);
+      if (shots && n == 12)
+        writePng(std::string(shots) + "/camera_drag_" + std::to_string(n) + ".png",
+                 readFramebufferRgba8(display.framebuffer(), w, h));
+      if (n == 4 + kOrbitFrames) pointer(DisplayEvent::Kind::PointerUp, x, y);
+      if (n == 8 + kOrbitFrames) next();
+      break;
+    }
     default:
       stop = true;
   }
@@ -210,7 +228,7 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
     std::printf("  painter actions: %s\n", error.c_str());
     return fig;
   }
-  if (!script.problem.empty() || script.stage < 4)
+  if (!script.problem.empty() || script.stage < 5)
     std::printf("  painter actions: the script stopped at stage %d: %s\n", script.stage,
                 script.problem.empty() ? "frame limit" : script.problem.c_str());
   fig.light_drag_fps = fps(script.drag_ms);
@@ -219,10 +237,12 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   fig.place_picture_ms = script.picture_ms.empty() ? -1 : median(script.picture_ms);
   fig.place_model_ms = script.model_ms.empty() ? -1 : median(script.model_ms);
   fig.wind_fps = fps(script.wind_ms);
+  fig.camera_drag_fps = fps(script.orbit_ms);
   const auto med = [](const std::vector<double>& v) { return v.empty() ? -1.0 : median(v); };
   fig.light_drag_cpu_ms = med(script.drag_cpu);
   fig.light_release_cpu_ms = med(script.release_cpu);
   fig.wind_cpu_ms = med(script.wind_cpu);
+  fig.camera_drag_cpu_ms = med(script.orbit_cpu);
   fig.drag_frames = int(script.drag_ms.size());
   fig.wind_frames = int(script.wind_ms.size());
   return fig;

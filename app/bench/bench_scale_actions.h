@@ -8,7 +8,9 @@
 //     full, full resolution);
 //   - place a picture and a model (PlaceShape, the bench tools' silhouette and torus) → the lit
 //     frame that shows the new cloud;
-//   - the wind (W) on the 256³ cloud: frames per second while it blows.
+//   - the wind (W) on the 256³ cloud: frames per second while it blows;
+//   - Camera mode (1), the view turned by dragging across the cloud: frames per second while it
+//     turns (the painting view's own drag, not the no-tablet orbit).
 // Each act is also timed in a second painter run with the painter's earlier choices, the
 // baseline in the same process: the light volume swept in full every drag frame, the whole frame
 // re-rendered after a placement, the wind at full resolution by temporal reprojection; the
@@ -31,9 +33,11 @@ struct PainterActionFigures {
   double place_picture_ms = -1;  // PlaceShape (picture) issued → glFinish of the frame showing it
   double place_model_ms = -1;    // the same for a model
   double wind_fps = -1;          // median frame while the wind blows
+  double camera_drag_fps = -1;   // median frame while the view is dragged round in Camera mode
   // Process CPU (all threads; the figure to compare on a loaded machine), median: a drag
   // frame, the release to its lit frame, a wind frame.
   double light_drag_cpu_ms = -1, light_release_cpu_ms = -1, wind_cpu_ms = -1;
+  double camera_drag_cpu_ms = -1;
   int drag_frames = 0, wind_frames = 0;  // frames the medians are over
 };
 
