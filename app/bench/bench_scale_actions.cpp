@@ -72,12 +72,7 @@ struct Script {
   const char* shots = nullptr;  // a folder for the first drag's and the wind's frames as PNG
 
   void pointer(DisplayEvent::Kind kind, float x, float y) {
-    DisplayEvent e;
-    e.kind = kind;
-    e.x = x;
-    e.y = y;
-    e.button = 1;
-    display.injectEvent(e);
+    display.injectEvent(DisplayEvent::pointer(kind, x, y));
   }
   void next() {
     ++stage;

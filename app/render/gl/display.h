@@ -69,6 +69,15 @@ struct DisplayEvent {
     event.modifiers = modifiers;
     return event;
   }
+  // A pointer event at (x, y), framebuffer pixels, y down; button 1 is the left.
+  static DisplayEvent pointer(Kind kind, float x, float y, int button = 1) {
+    DisplayEvent event;
+    event.kind = kind;
+    event.x = x;
+    event.y = y;
+    event.button = button;
+    return event;
+  }
 };
 
 class Display {

@@ -50,16 +50,6 @@ struct CumulusPainter {
   }
 };
 
-// The mouse's left button at (x, y) in pixels.
-void mouse(Display& display, DisplayEvent::Kind kind, float x, float y) {
-  DisplayEvent e;
-  e.kind = kind;
-  e.x = x;
-  e.y = y;
-  e.button = 1;
-  display.injectEvent(e);
-}
-
 TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
   CumulusPainter fixture("cb_light_drag");
   std::string error;
@@ -74,7 +64,8 @@ TEST(LightDrag, FramesReadTheCoarseLightAndTheReleaseSweepsInFull) {
   int frame = 0, previewed = 0, swept_during_drag = 0, preview_after_release = 0;
   const auto pointer = [&](DisplayEvent::Kind kind, int i) {
     const float a = 0.4f * float(i);
-    mouse(display, kind, kW * (0.5f + 0.25f * std::cos(a)), kH * (0.3f + 0.15f * std::sin(a)));
+    display.injectEvent(DisplayEvent::pointer(kind, kW * (0.5f + 0.25f * std::cos(a)),
+                                              kH * (0.3f + 0.15f * std::sin(a))));
   };
   PaintLoopOptions options = fixture.options();
   options.on_frame = [&](const PaintFrameInfo&) {
@@ -137,7 +128,7 @@ DragRun runDrag(double frame_budget_ms, const std::string& name) {
   std::atomic<bool> stop{false};
   int frame = 0;
   const auto pointer = [&](DisplayEvent::Kind kind, int i) {
-    mouse(display, kind, kW * (0.3f + 0.03f * float(i)), kH * 0.3f);
+    display.injectEvent(DisplayEvent::pointer(kind, kW * (0.3f + 0.03f * float(i)), kH * 0.3f));
   };
   PaintLoopOptions options = fixture.options();
   options.light_drag_frame_ms = frame_budget_ms;
