@@ -1,5 +1,8 @@
 #include "app/render/shader_program.h"
 
+#include <algorithm>
+#include <initializer_list>
+
 #include "shaders/shader_source.h"
 
 namespace cb {
@@ -39,22 +42,15 @@ GLuint compileShaderStage(GLenum stage, const std::vector<std::string>& files, s
   return shader;
 }
 
-GLuint linkProgram(const std::vector<std::string>& vertex_files,
-                   const std::vector<std::string>& fragment_files, std::string* error,
-                   const std::string& fragment_defines) {
-  GLuint vs = compileShaderStage(GL_VERTEX_SHADER, vertex_files, error);
-  if (!vs) return 0;
-  GLuint fs = compileShaderStage(GL_FRAGMENT_SHADER, fragment_files, error, fragment_defines);
-  if (!fs) {
-    glDeleteShader(vs);
-    return 0;
-  }
+namespace {
+
+// Links the compiled stages into a program (the stages are deleted either way); 0 and the info
+// log in `error` on failure.
+GLuint linkStages(std::initializer_list<GLuint> stages, std::string* error) {
   GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
+  for (GLuint stage : stages) glAttachShader(program, stage);
   glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
+  for (GLuint stage : stages) glDeleteShader(stage);
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -67,6 +63,27 @@ GLuint linkProgram(const std::vector<std::string>& vertex_files,
     return 0;
   }
   return program;
+}
+
+}  // namespace
+
+GLuint linkProgram(const std::vector<std::string>& vertex_files,
+                   const std::vector<std::string>& fragment_files, std::string* error,
+                   const std::string& fragment_defines) {
+  GLuint vs = compileShaderStage(GL_VERTEX_SHADER, vertex_files, error);
+  if (!vs) return 0;
+  GLuint fs = compileShaderStage(GL_FRAGMENT_SHADER, fragment_files, error, fragment_defines);
+  if (!fs) {
+    glDeleteShader(vs);
+    return 0;
+  }
+  return linkStages({vs, fs}, error);
+}
+
+GLuint linkComputeProgram(const std::vector<std::string>& files, std::string* error,
+                          const std::string& defines) {
+  GLuint cs = compileShaderStage(GL_COMPUTE_SHADER, files, error, defines);
+  return cs ? linkStages({cs}, error) : 0;
 }
 
 }  // namespace cb

@@ -19,5 +19,8 @@ GLuint compileShaderStage(GLenum stage, const std::vector<std::string>& files, s
 GLuint linkProgram(const std::vector<std::string>& vertex_files,
                    const std::vector<std::string>& fragment_files, std::string* error,
                    const std::string& fragment_defines = "");
+// Links a compute program from one stage assembled as above.
+GLuint linkComputeProgram(const std::vector<std::string>& files, std::string* error,
+                          const std::string& defines = "");
 
 }  // namespace cb

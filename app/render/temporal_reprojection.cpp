@@ -37,19 +37,14 @@ TemporalReprojection::~TemporalReprojection() {
   releaseTargets();
   for (GLuint program : programs_)
     if (program) glDeleteProgram(program);
-  if (motion_program_) glDeleteProgram(motion_program_);
-  if (vao_) glDeleteVertexArrays(1, &vao_);
 }
 
 bool TemporalReprojection::init(std::string* error) {
   for (int mode = 0; mode < kModes; ++mode) {
-    programs_[mode] = linkProgram({"fullscreen.vert.glsl"}, {"reproject.frag.glsl"}, error,
-                                  "#define CB_REPROJECT_MODE " + std::to_string(mode) + "\n");
+    programs_[mode] = linkComputeProgram(
+        {"reproject.comp.glsl"}, error, "#define CB_REPROJECT_MODE " + std::to_string(mode) + "\n");
     if (!programs_[mode]) return false;
   }
-  motion_program_ = linkProgram({"fullscreen.vert.glsl"}, {"reproject_motion.frag.glsl"}, error);
-  if (!motion_program_) return false;
-  glCreateVertexArrays(1, &vao_);
   return true;
 }
 
@@ -62,11 +57,10 @@ void TemporalReprojection::releaseTargets() {
   for (Frame& f : frames_) {
     if (f.fbo) glDeleteFramebuffers(1, &f.fbo);
     if (f.colour) glDeleteTextures(1, &f.colour);
-    if (f.history) glDeleteTextures(1, &f.history);
+    if (f.depth) glDeleteTextures(1, &f.depth);
     f = Frame{};
   }
   cast_.release();
-  motion_.release();
   width_ = height_ = factor_ = 0;
   history_valid_ = false;
 }
@@ -75,13 +69,13 @@ void TemporalReprojection::ensureTargets(int width, int height, int factor) {
   if (width == width_ && height == height_ && factor == factor_) return;
   releaseTargets();
   for (Frame& f : frames_) {
-    // The shown colour (blitted into the target) and the history: colour and depth packed in
-    // one RG32UI texel (shaders/reproject.frag.glsl), read texel for texel.
+    // The shown colour (blitted into the target) and each pixel's depth: the next frame's
+    // history (shaders/reproject.comp.glsl), read texel for texel.
     glCreateTextures(GL_TEXTURE_2D, 1, &f.colour);
     glTextureStorage2D(f.colour, 1, GL_RGBA8, width, height);
-    glCreateTextures(GL_TEXTURE_2D, 1, &f.history);
-    glTextureStorage2D(f.history, 1, GL_RG32UI, width, height);
-    for (GLuint t : {f.colour, f.history}) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &f.depth);
+    glTextureStorage2D(f.depth, 1, GL_R32F, width, height);
+    for (GLuint t : {f.colour, f.depth}) {
       glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
       glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -89,14 +83,12 @@ void TemporalReprojection::ensureTargets(int width, int height, int factor) {
     }
     glCreateFramebuffers(1, &f.fbo);
     glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT0, f.colour, 0);
-    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.history, 0);
+    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.depth, 0);
     const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(f.fbo, 2, both);
   }
   std::string error;
   if (!cast_.create(width / factor, height / factor, RenderTarget::Format::kRgba8, &error))
-    std::fprintf(stderr, "cloudbrush: reprojection: %s\n", error.c_str());
-  if (!motion_.create(width / factor, height / factor, RenderTarget::Format::kRgba32F, &error))
     std::fprintf(stderr, "cloudbrush: reprojection: %s\n", error.c_str());
   width_ = width;
   height_ = height;
@@ -116,17 +108,9 @@ void TemporalReprojection::noteChanges(glm::ivec4 rect) {
   reject_ = glm::ivec4(lo, hi - lo);
 }
 
-void TemporalReprojection::renderMotion(const Camera& camera, const glm::mat4& view_proj,
-                                        GLuint cast_depth, glm::ivec2 phase) {
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, motion_.fbo());
-  glViewport(0, 0, width_ / factor_, height_ / factor_);
-  glUseProgram(motion_program_);
-  auto loc = [&](const char* name) { return glGetUniformLocation(motion_program_, name); };
-  glUniform1i(loc("u_cast_depth"), 0);
-  glUniform1i(loc("u_factor"), factor_);
-  glUniform2i(loc("u_phase"), phase.x, phase.y);
-  glUniform2i(loc("u_cast_last"), width_ / factor_ - 1, height_ / factor_ - 1);
-  glUniform2f(loc("u_size"), float(width_), float(height_));
+void TemporalReprojection::setMotionUniforms(GLuint program, const Camera& camera,
+                                            const glm::mat4& view_proj) {
+  auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
   // Directions through the screen's corners on the far plane, minus the eye: linear in the
   // screen position, so the shader interpolates them.
   const glm::mat4 inv = glm::inverse(view_proj);
@@ -141,9 +125,6 @@ void TemporalReprojection::renderMotion(const Camera& camera, const glm::mat4& v
   glUniformMatrix4fv(loc("u_prev_view_proj"), 1, GL_FALSE, glm::value_ptr(prev_view_proj_));
   glUniform3fv(loc("u_eye"), 1, glm::value_ptr(camera.eye));
   glUniform3fv(loc("u_prev_eye"), 1, glm::value_ptr(prev_eye_));
-  glUniform1f(loc("u_no_depth"), kNoDepth);
-  glBindTextureUnit(0, cast_depth);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
 void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera, int width,
@@ -190,39 +171,36 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   auto stage_start = t0;
   stage(&stats_.cast_ms, &stage_start);
 
-  const GLuint cast_depth = renderer.frameDepthTexture();
-  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);  // the gathers at edges
-  glTextureParameteri(cast_depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(vao_);
   const int mode = !history_valid_ ? kFresh : still ? kAtRest : kMoving;
-  if (mode == kMoving) renderMotion(camera, view_proj, cast_depth, phase);
   const int previous = current_;
   current_ = 1 - current_;
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frames_[current_].fbo);
-  glViewport(0, 0, width, height);
   const GLuint program = programs_[mode];
   glUseProgram(program);
   auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
   glUniform1i(loc("u_cast"), 0);
   glUniform1i(loc("u_cast_depth"), 1);
   glUniform1i(loc("u_history"), 2);
-  glUniform1i(loc("u_motion"), 3);
+  glUniform1i(loc("u_history_depth"), 3);
   glUniform1i(loc("u_factor"), factor);
   glUniform2i(loc("u_phase"), phase.x, phase.y);
-  glUniform2i(loc("u_cast_last"), width / factor - 1, height / factor - 1);
-  glUniform2f(loc("u_size"), float(width), float(height));
+  const glm::ivec2 cast_size(width / factor, height / factor);
+  glUniform2i(loc("u_cast_last"), cast_size.x - 1, cast_size.y - 1);
+  glUniform2i(loc("u_size"), width, height);
   glUniform4i(loc("u_reject"), reject_.x, reject_.y, reject_.z, reject_.w);
   glUniform1f(loc("u_depth_tolerance"), kDepthTolerance);
   glUniform1f(loc("u_no_depth"), kNoDepth);
+  if (mode == kMoving) setMotionUniforms(program, camera, view_proj);
   glBindTextureUnit(0, cast_.texture());
-  glBindTextureUnit(1, cast_depth);
-  glBindTextureUnit(2, frames_[previous].history);
-  glBindTextureUnit(3, motion_.texture());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindTextureUnit(1, renderer.frameDepthTexture());
+  glBindTextureUnit(2, frames_[previous].colour);
+  glBindTextureUnit(3, frames_[previous].depth);
+  glBindImageTexture(0, frames_[current_].colour, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  glBindImageTexture(1, frames_[current_].depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  // One invocation per cast quad, from −1 (the pixels before the first cast pixel) to the last.
+  constexpr int kGroup = 8;  // shaders/reproject.comp.glsl's local size
+  glDispatchCompute(GLuint((cast_size.x + kGroup) / kGroup), GLuint((cast_size.y + kGroup) / kGroup),
+                    1);
+  glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   stats_.history_used = history_valid_;
   stage(&stats_.reproject_ms, &stage_start);
 

@@ -5,9 +5,10 @@
 // phase by phase (reprojectionPhase) — as a 1/f-size image jittered onto those pixels
 // (RenderOptions::jitter), with each ray's transmittance-weighted depth (write_depth), and
 // reprojects the rest from the previous full frame through the camera's motion
-// (shaders/reproject.frag.glsl: history rejected on disocclusion, off-screen, in a changed
-// region and at a cloud's soft edge against the sky, clamped to the fresh pixels' range while
-// moving). While the camera moves the cast steps as the half-resolution moving frame does.
+// (shaders/reproject.comp.glsl, one invocation per cast quad: history rejected on disocclusion,
+// off-screen, in a changed region and at a cloud's soft edge against the sky, clamped to the
+// fresh pixels' range while moving). While the camera moves the cast steps as the
+// half-resolution moving frame does.
 //
 //   TemporalReprojection tr;
 //   tr.init(&error);
@@ -79,25 +80,19 @@ class TemporalReprojection {
 
  private:
   struct Frame {
-    GLuint fbo = 0, colour = 0, history = 0;
+    GLuint fbo = 0, colour = 0, depth = 0;  // the frame's colour (fbo: for the copy) and depths
   };
   void ensureTargets(int width, int height, int factor);
   void releaseTargets();
+  // The moving case's uniforms: the rays through the screen and the previous camera.
+  void setMotionUniforms(GLuint program, const Camera& camera, const glm::mat4& view_proj);
 
-  // The moving case's motion of each cast quad (shaders/reproject_motion.frag.glsl) into
-  // motion_, from the previous frame's camera.
-  void renderMotion(const Camera& camera, const glm::mat4& view_proj, GLuint cast_depth,
-                    glm::ivec2 phase);
-
-  // shaders/reproject.frag.glsl once per case (CB_REPROJECT_MODE): no history, at rest, moving.
+  // shaders/reproject.comp.glsl once per case (CB_REPROJECT_MODE): no history, at rest, moving.
   enum Mode { kFresh = 0, kAtRest = 1, kMoving = 2, kModes = 3 };
   GLuint programs_[kModes] = {0, 0, 0};
-  GLuint motion_program_ = 0;
-  GLuint vao_ = 0;
   Frame frames_[2];  // the previous full frame and the one being made (ping-pong)
   int current_ = 0;
-  RenderTarget cast_;    // the 1/f-size cast image
-  RenderTarget motion_;  // its quads' motion (RGBA32F, the cast's size)
+  RenderTarget cast_;  // the 1/f-size cast image
   int width_ = 0, height_ = 0, factor_ = 0;
   long frame_ = 0;
   bool history_valid_ = false;
