@@ -109,7 +109,7 @@ void TemporalReprojection::noteChanges(glm::ivec4 rect) {
 }
 
 void TemporalReprojection::setMotionUniforms(GLuint program, const Camera& camera,
-                                            const glm::mat4& view_proj) {
+                                             const glm::mat4& view_proj) {
   auto loc = [&](const char* name) { return glGetUniformLocation(program, name); };
   // Directions through the screen's corners on the far plane, minus the eye: linear in the
   // screen position, so the shader interpolates them.
@@ -198,8 +198,8 @@ void TemporalReprojection::render(VolumeRenderer& renderer, const Camera& camera
   glBindImageTexture(1, frames_[current_].depth, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   // One invocation per cast quad, from −1 (the pixels before the first cast pixel) to the last.
   constexpr int kGroup = 8;  // shaders/reproject.comp.glsl's local size
-  glDispatchCompute(GLuint((cast_size.x + kGroup) / kGroup), GLuint((cast_size.y + kGroup) / kGroup),
-                    1);
+  glDispatchCompute(GLuint((cast_size.x + kGroup) / kGroup),
+                    GLuint((cast_size.y + kGroup) / kGroup), 1);
   glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   stats_.history_used = history_valid_;
   stage(&stats_.reproject_ms, &stage_start);
