@@ -30,6 +30,7 @@
 #include "app/render/volume_renderer.h"
 #include "app/scene/camera.h"
 #include "app/scene/light.h"
+#include "app/shell/painter/moving_frames.h"
 #include "app/volume/volume.h"
 #include "drivers/core/pen_sample.h"
 
@@ -79,13 +80,11 @@ struct PaintLoopOptions {
   float moving_scale = 0.5f;
   float min_moving_scale = 0.5f;           // never below half resolution
   double target_frame_ms = 1000.0 / 30.0;  // 30 fps
-  // While the view moves, full resolution by temporal reprojection (temporal_reprojection.h:
-  // one pixel in reprojectionFactor² cast a frame) instead of moving_scale; false: the reduced
-  // scale (also where reprojection does not apply: ink, sketch, sizes f does not divide). Off
-  // by default: on llvmpipe at 1920×1080 it is not faster than the half-resolution orbit (its
-  // full-resolution pass gathers ~7 texels a pixel; docs/reprojection.md), and it replaces the
-  // reduced scale only where it is.
-  bool reproject_moving = false;
+  // While the view moves (orbit, a drag turning the view, morph, wind): the reduced scale, full
+  // resolution by temporal reprojection (one pixel in reprojectionFactor² cast a frame; ink,
+  // sketch and sizes f does not divide keep the reduced scale), or whichever of the two keeps
+  // to target_frame_ms or is the faster, measured (moving_frames.h; the default).
+  MovingFrames moving_frames = MovingFrames::kFaster;
   // While the light ball is dragged the light is swept at 1/light_drag_divisor per axis into a
   // small texture the ray caster reads instead of the pool's light (reduced_light_sweep.h: the
   // thesis's 128³ preview for 256³), and in full at release; 1 sweeps the light volume in full
@@ -160,6 +159,8 @@ struct PaintLoopSummary {
   double median_frame_ms = 0.0;    // present to present while orbiting
   double median_present_ms = 0.0;  // inside present(): swap (+ page flip wait on KMS)
   double final_moving_scale = 0.0;
+  // Moving frames (orbit, a drag turning the view, morph, wind) drawn each way (moving_frames.h).
+  long reprojected_moving_frames = 0, reduced_moving_frames = 0;
   long refined_frames = 0;  // full-resolution frames drawn after the camera stopped
   std::string quit_reason;  // "Esc", "window closed", "frame limit", "signal"
   long pen_samples = 0;

@@ -113,6 +113,7 @@ PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volum
       light_(light),
       options_(options),
       orbiting_(options.orbit_degrees_per_second != 0.0f),
+      moving_path_(options.moving_frames, options.target_frame_ms),
       moving_scale_(std::clamp(options.moving_scale, options.min_moving_scale, 1.0f)),
       show_stats_(options.show_stats_overlay),
       show_circles_(options.show_circles_overlay) {
@@ -578,6 +579,7 @@ bool PaintScreen::paintingSetUp(std::string* error) {
 void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
   const int w = display_.width(), h = display_.height();
   const auto render_start = std::chrono::steady_clock::now();
+  frame_index_ = frame.frame;
   SceneWork work;
   renderScene(&work);
   // Late latching: the ink shows the samples that came while the scene was being cast. A
@@ -702,7 +704,12 @@ void PaintScreen::renderScene(SceneWork* work) {
   if (options.scale >= 1.0f) region = region.unite(unrefined_);
   if (!region.empty()) {
     options.region = region.renderRegion();
-    renderer_.render(key.camera, w, h, scene_.fbo(), options);
+    // A drag turning the view: as the orbit's moving frames, full resolution by reprojection
+    // where that is the way chosen (the frame at rest, refined below, is a full cast either way).
+    if (drag_camera_ && !light_scaled && !refine)
+      renderMoving(frame_index_, w, h, options, sync, scene_.fbo());
+    else
+      renderer_.render(key.camera, w, h, scene_.fbo(), options);
     work->rendered_pixels = renderer_.lastStats().pixels_cast;
     work->render_scale = options.scale;
   }
@@ -837,7 +844,8 @@ bool PaintScreen::drawPass(FrameContext& frame, PaintFrameInfo* info, std::strin
     render_options.collect_stats = (!orbiting_ && options_.print_stats) || show_stats_;
     glBindFramebuffer(GL_FRAMEBUFFER, display_.framebuffer());
     if (moving)
-      renderMoving(frame.frame, frame.width, frame.height, render_options, sync);
+      renderMoving(frame.frame, frame.width, frame.height, render_options, sync,
+                   display_.framebuffer());
     else
       renderer_.render(shownCamera(), frame.width, frame.height, display_.framebuffer(),
                        render_options);
@@ -884,6 +892,12 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   if (frame.record && session_ && !replay_view_) session_->journalFrame(*frame.record);
   const PaintFrameInfo& info = last_info_;
   light_release_pending_ = false;  // the release's frame is shown
+  if (moving_frame_reprojected_) {
+    // The moving frame's own time (its update to its present), not the wait for the next move.
+    moving_path_.measured(*moving_frame_reprojected_, msSince(iteration_start_));
+    ++moving_frames_[*moving_frame_reprojected_ ? 1 : 0];
+    moving_frame_reprojected_.reset();
+  }
   if (info.painting_view && light_drag_frame_) {
     // The drag frame's own time (its update to its present), not the wait for the next move.
     light_drag_scale_ = nextLightDragScale(light_drag_scale_, msSince(iteration_start_), options_);
@@ -1098,6 +1112,8 @@ void PaintScreen::finish(PaintLoopSummary* summary) const {
   summary->lift_sample_to_refined_ms = lift_sample_to_refined_ms_;
   summary->refined_frames = refined_frames_;
   summary->final_moving_scale = moving_scale_;
+  summary->reduced_moving_frames = moving_frames_[0];
+  summary->reprojected_moving_frames = moving_frames_[1];
   summary->median_painting_frame_ms = medianOf(painting_frame_ms_);
   summary->painting_frames = long(painting_frame_ms_.size());
   summary->median_frame_ms = medianOf(moving_frame_ms_);

@@ -223,11 +223,16 @@ class PaintScreen : public Screen {
   void advanceAnimation(const FrameContext& frame);
   bool animationPlaying() const;
   std::unique_ptr<AnimationPreview> animation_;
-  // A frame while the view moves (orbit, morph, wind): full resolution by temporal reprojection
-  // where it applies (PaintLoopOptions::reproject_moving; paint_screen_reprojection.cpp), else
-  // the reduced scale in `options`. `sync`: what this frame's sync changed.
-  void renderMoving(long frame, int width, int height, RenderOptions options,
-                    const SyncStats& sync);
+  // A frame while the view moves (orbit, a drag turning the view, morph, wind) into `target`:
+  // full resolution by temporal reprojection where it applies and moving_path_ chooses it
+  // (paint_screen_reprojection.cpp), else the reduced scale and region in `options`. `sync`:
+  // what this frame's sync changed. Returns whether it was reprojected.
+  bool renderMoving(long frame, int width, int height, RenderOptions options, const SyncStats& sync,
+                    GLuint target);
+  // This frame was a moving one, reprojected or not: measured at its present (moving_path_).
+  std::optional<bool> moving_frame_reprojected_;
+  long frame_index_ = 0;            // the frame loop's index of the frame being drawn
+  long moving_frames_[2] = {0, 0};  // reduced, reprojected
   std::unique_ptr<TemporalReprojection> reprojection_;
   bool reprojection_failed_ = false;
   std::string reprojection_key_;          // the shading inputs its history was made with
@@ -249,6 +254,7 @@ class PaintScreen : public Screen {
   // Auto-rotation
   bool orbiting_ = true;
   float orbit_degrees_ = 0.0f;
+  MovingPathChooser moving_path_;  // how moving frames are drawn (renderMoving)
   float moving_scale_;
   bool refined_ = false;  // the still image is at full resolution
 

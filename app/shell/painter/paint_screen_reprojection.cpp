@@ -1,6 +1,8 @@
-// The painter's frames while the view moves (PaintScreen::renderMoving): the orbit, a morph or the
-// wind at full resolution by temporal reprojection (app/render/temporal_reprojection.h) where it
-// applies, the reduced scale where it does not. The frame at rest is a full cast either way.
+// The painter's frames while the view moves (PaintScreen::renderMoving): the orbit, a drag
+// turning the view, a morph or the wind at full resolution by temporal reprojection
+// (app/render/temporal_reprojection.h) where it applies and the painter's MovingPathChooser
+// (moving_frames.h) picks it, the reduced scale where not. The frame at rest is a full cast
+// either way.
 #include <string>
 
 #include "app/render/changed_region.h"
@@ -35,10 +37,10 @@ std::string shadingKey(const RenderOptions& o, const Light& light, const Volume&
 
 }  // namespace
 
-void PaintScreen::renderMoving(long frame, int width, int height, RenderOptions options,
-                               const SyncStats& sync) {
+bool PaintScreen::renderMoving(long frame, int width, int height, RenderOptions options,
+                               const SyncStats& sync, GLuint target) {
   const int factor = reprojectionFactor(width, height);
-  const bool applies = options_.reproject_moving && !reprojection_failed_ &&
+  const bool applies = moving_path_.reprojectNext() && !reprojection_failed_ &&
                        options.skip_empty_space &&
                        TemporalReprojection::supports(width, height, factor, options.style);
   if (applies && !reprojection_) {
@@ -51,8 +53,9 @@ void PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
     }
   }
   if (!applies || !reprojection_) {
-    renderer_.render(shownCamera(), width, height, display_.framebuffer(), options);
-    return;
+    renderer_.render(shownCamera(), width, height, target, options);
+    moving_frame_reprojected_ = false;
+    return false;
   }
   const Volume& volume = shownVolume();
   const std::string key = shadingKey(options, shownLight(), volume);
@@ -77,9 +80,12 @@ void PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
   // half-resolution moving frame does.
   options.scale = 1.0f;
   options.moving = false;
-  reprojection_->render(renderer_, camera, width, height, display_.framebuffer(), options, factor);
+  options.region = glm::ivec4(0);
+  reprojection_->render(renderer_, camera, width, height, target, options, factor);
   reprojection_frame_ = frame;
   reprojection_generation_ = volume.generation();
+  moving_frame_reprojected_ = true;
+  return true;
 }
 
 }  // namespace cb

@@ -1,7 +1,9 @@
 // Dragging the light ball with the mouse (Light mode, key 5): while it moves the frames read the
 // drag's coarse light (reduced_light_sweep.h) and the renderer's light volume stays the one before
 // the drag (nothing swept in full, nothing re-packed); the release sweeps it in full for the light
-// journalled, and the journal replays to that light.
+// journalled, and the journal replays to that light. Dragging the view round (Camera mode, key
+// 1): its frames are the painter's moving frames (moving_frames.h), and at rest the view is cast
+// in full again whichever way they were drawn.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -194,6 +196,74 @@ TEST(LightDrag, TheScalePolicyStepsWithinItsBounds) {
   EXPECT_FLOAT_EQ(nextLightDragScale(0.49f, 10.0, o), 0.5f);   // not past the moving scale
   EXPECT_FLOAT_EQ(quantisedScale(0.33f, 0.25f), 0.35f);
   EXPECT_FLOAT_EQ(quantisedScale(0.2f, 0.25f), 0.25f);
+}
+
+// A drag turning the view, drawn each way (MovingFrames): how many of its frames were
+// reprojected or reduced, the size of the last cast once at rest again, and the view then.
+struct CameraDragRun {
+  long reprojected = 0, reduced = 0;
+  int rest_width = 0, rest_height = 0;
+  Camera before, camera;
+};
+
+CameraDragRun runCameraDrag(MovingFrames way, const std::string& name) {
+  CameraDragRun run;
+  CumulusPainter fixture(name);
+  std::string error;
+  EXPECT_TRUE(fixture.open(&error)) << error;
+  if (!fixture.painter.display) return run;
+  test::RecordedPainter& painter = fixture.painter;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
+  std::atomic<bool> stop{false};
+  int frame = 0;
+  const auto pointer = [&](DisplayEvent::Kind kind, int i) {
+    display.injectEvent(DisplayEvent::pointer(kind, kW * (0.3f + 0.04f * float(i)), kH * 0.5f));
+  };
+  PaintLoopOptions options = fixture.options();
+  options.moving_frames = way;
+  options.on_frame = [&](const PaintFrameInfo&) {
+    ++frame;
+    if (frame == 2) display.injectEvent(DisplayEvent::key('1'));
+    if (frame == kDragFrom) run.before = session.camera();
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerDown, frame);
+    if (frame > kDragFrom && frame < kDragTo) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragTo) pointer(DisplayEvent::Kind::PointerUp, kDragTo - 1);
+    if (frame == kDragTo + 6) {
+      run.rest_width = painter.renderer.lastStats().width;
+      run.rest_height = painter.renderer.lastStats().height;
+      run.camera = session.camera();
+      stop = true;
+    }
+  };
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
+  NoPenSource no_tablet;
+  loop.attachPen(&no_tablet, &session);
+  PaintLoopSummary summary;
+  EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
+  painter.journal.close();
+  run.reprojected = summary.reprojected_moving_frames;
+  run.reduced = summary.reduced_moving_frames;
+  return run;
+}
+
+TEST(CameraDrag, ItsFramesAreTheMovingFramesAndItsRestTheFullCast) {
+  const CameraDragRun reduced = runCameraDrag(MovingFrames::kReduced, "cb_camera_drag_reduced");
+  const CameraDragRun reprojected =
+      runCameraDrag(MovingFrames::kReprojected, "cb_camera_drag_reprojected");
+  // Each drag frame that turned the view (the press's own frame does not) is a moving frame.
+  EXPECT_GE(reduced.reduced, kDragTo - kDragFrom - 2);
+  EXPECT_EQ(reduced.reprojected, 0);
+  EXPECT_GE(reprojected.reprojected, kDragTo - kDragFrom - 2);
+  EXPECT_EQ(reprojected.reduced, 0);
+  // At rest the view is cast whole at full resolution (the drag frames' casts were half as wide:
+  // the moving scale ½, or one pixel in 2×2 reprojected).
+  for (const CameraDragRun* run : {&reduced, &reprojected}) {
+    EXPECT_GT(glm::length(run->camera.eye - run->before.eye), 0.05f) << "the drag turned the view";
+    EXPECT_EQ(run->rest_width, kW);
+    EXPECT_EQ(run->rest_height, kH);
+  }
 }
 
 }  // namespace
