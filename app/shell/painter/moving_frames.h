@@ -19,8 +19,8 @@ enum class MovingFrames {
 // path's first frame ever is left out: it compiles its programs and makes its targets).
 // Reprojection first, kept while within budget_ms; over it, one reduced frame is measured, and
 // from then on the faster of the two is drawn, the other measured again for one frame every
-// kReprobeFrames (the view may have moved to where it is the faster: a close, dense cloud
-// against a far, thin one).
+// kReprobeFrames and at the first frame of each movement after a rest (the view may have moved
+// to where it is the faster: a close, dense cloud against a far, thin one).
 class MovingPathChooser {
  public:
   static constexpr int kReprobeFrames = 90;  // 3 s at 30 fps, 6 s at 15 fps
@@ -48,6 +48,8 @@ class MovingPathChooser {
     ms_[path] = ms_[path] < 0.0 || probe ? frame_ms : 0.75 * ms_[path] + 0.25 * frame_ms;
     frames_since_probe_ = probe ? 0 : frames_since_probe_ + 1;
   }
+  // A frame with nothing moving: the next movement starts with the other path's probe.
+  void rested() { frames_since_probe_ = kReprobeFrames; }
   double reprojectedMs() const { return ms_[1]; }  // < 0: not measured yet
   double reducedMs() const { return ms_[0]; }
 

@@ -113,7 +113,8 @@ PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volum
       light_(light),
       options_(options),
       orbiting_(options.orbit_degrees_per_second != 0.0f),
-      moving_path_(options.moving_frames, options.target_frame_ms),
+      moving_path_{{options.moving_frames, options.target_frame_ms},
+                   {options.moving_frames, options.target_frame_ms}},
       moving_scale_(std::clamp(options.moving_scale, options.min_moving_scale, 1.0f)),
       show_stats_(options.show_stats_overlay),
       show_circles_(options.show_circles_overlay) {
@@ -892,11 +893,14 @@ void PaintScreen::presented(const FrameContext& frame, double frame_ms) {
   if (frame.record && session_ && !replay_view_) session_->journalFrame(*frame.record);
   const PaintFrameInfo& info = last_info_;
   light_release_pending_ = false;  // the release's frame is shown
-  if (moving_frame_reprojected_) {
+  if (moving_frame_drawn_) {
     // The moving frame's own time (its update to its present), not the wait for the next move.
-    moving_path_.measured(*moving_frame_reprojected_, msSince(iteration_start_));
-    ++moving_frames_[*moving_frame_reprojected_ ? 1 : 0];
-    moving_frame_reprojected_.reset();
+    const MovingFrameDrawn drawn = *moving_frame_drawn_;
+    moving_path_[drawn.kind].measured(drawn.reprojected, msSince(iteration_start_));
+    ++moving_frames_[drawn.reprojected ? 1 : 0];
+    moving_frame_drawn_.reset();
+  } else {
+    for (MovingPathChooser& chooser : moving_path_) chooser.rested();
   }
   if (info.painting_view && light_drag_frame_) {
     // The drag frame's own time (its update to its present), not the wait for the next move.

@@ -229,8 +229,12 @@ class PaintScreen : public Screen {
   // what this frame's sync changed. Returns whether it was reprojected.
   bool renderMoving(long frame, int width, int height, RenderOptions options, const SyncStats& sync,
                     GLuint target);
-  // This frame was a moving one, reprojected or not: measured at its present (moving_path_).
-  std::optional<bool> moving_frame_reprojected_;
+  // This frame was a moving one of this kind, reprojected or not: measured at its present.
+  struct MovingFrameDrawn {
+    int kind = 0;  // moving_path_'s index
+    bool reprojected = false;
+  };
+  std::optional<MovingFrameDrawn> moving_frame_drawn_;
   long frame_index_ = 0;            // the frame loop's index of the frame being drawn
   long moving_frames_[2] = {0, 0};  // reduced, reprojected
   std::unique_ptr<TemporalReprojection> reprojection_;
@@ -254,7 +258,9 @@ class PaintScreen : public Screen {
   // Auto-rotation
   bool orbiting_ = true;
   float orbit_degrees_ = 0.0f;
-  MovingPathChooser moving_path_;  // how moving frames are drawn (renderMoving)
+  // How moving frames are drawn (renderMoving), measured apart for the view turning (orbit, a
+  // drag) and for an animation changing the volume (morph, wind: little history is kept).
+  MovingPathChooser moving_path_[2];
   float moving_scale_;
   bool refined_ = false;  // the still image is at full resolution
 

@@ -40,7 +40,8 @@ std::string shadingKey(const RenderOptions& o, const Light& light, const Volume&
 bool PaintScreen::renderMoving(long frame, int width, int height, RenderOptions options,
                                const SyncStats& sync, GLuint target) {
   const int factor = reprojectionFactor(width, height);
-  const bool applies = moving_path_.reprojectNext() && !reprojection_failed_ &&
+  const int kind = animationPlaying() ? 1 : 0;
+  const bool applies = moving_path_[kind].reprojectNext() && !reprojection_failed_ &&
                        options.skip_empty_space &&
                        TemporalReprojection::supports(width, height, factor, options.style);
   if (applies && !reprojection_) {
@@ -54,7 +55,7 @@ bool PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
   }
   if (!applies || !reprojection_) {
     renderer_.render(shownCamera(), width, height, target, options);
-    moving_frame_reprojected_ = false;
+    moving_frame_drawn_ = MovingFrameDrawn{kind, false};
     return false;
   }
   const Volume& volume = shownVolume();
@@ -84,7 +85,7 @@ bool PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
   reprojection_->render(renderer_, camera, width, height, target, options, factor);
   reprojection_frame_ = frame;
   reprojection_generation_ = volume.generation();
-  moving_frame_reprojected_ = true;
+  moving_frame_drawn_ = MovingFrameDrawn{kind, true};
   return true;
 }
 

@@ -1,5 +1,6 @@
 // The painter's choice of how to draw a frame while the view moves (moving_frames.h): the fixed
-// policies, and kFaster's measured choice with its warm-up frame, budget and re-probes.
+// policies, and kFaster's measured choice with its warm-up frame, budget and re-probes (every
+// kReprobeFrames and after a rest).
 #include <gtest/gtest.h>
 
 #include "app/shell/painter/moving_frames.h"
@@ -67,6 +68,17 @@ TEST(MovingFrames, OverTheBudgetTheFasterIsDrawnAndTheOtherReprobed) {
   EXPECT_FALSE(slower.reprojectNext());
   drive(slower, 10, 60.0, 90.0);
   EXPECT_TRUE(slower.reprojectNext());
+}
+
+TEST(MovingFrames, AMovementAfterARestStartsWithAProbe) {
+  MovingPathChooser chooser(MovingFrames::kFaster, kBudget);
+  drive(chooser, 10, 60.0, 40.0);  // settled on the reduced scale
+  EXPECT_FALSE(chooser.reprojectNext());
+  chooser.rested();  // the drag ended; the next one may turn a denser view
+  EXPECT_TRUE(chooser.reprojectNext()) << "the first frame of the next movement is a probe";
+  chooser.measured(true, 30.0);  // which shows reprojection within budget now
+  EXPECT_TRUE(chooser.reprojectNext());
+  EXPECT_EQ(drive(chooser, 50, 30.0, 40.0), 50);
 }
 
 }  // namespace
