@@ -428,7 +428,8 @@ void measureActions(Display& display, VolumeRenderer& renderer, const Volume& cu
         "  %s: the painter%s: light drag %.1f fps (%d frames; CPU %.1f ms a frame), release -> "
         "lit %.1f ms (CPU %.1f ms), -> full light at full resolution %.1f ms; picture placed -> "
         "lit %.1f ms, model %.1f ms; wind %.1f fps (%d frames; CPU %.1f ms a frame); camera "
-        "drag %.1f fps (CPU %.1f ms a frame)\n",
+        "drag %.1f fps (CPU %.1f ms a frame); moving frames: %ld reprojected, %ld at the moving "
+        "scale\n",
         size.name().c_str(),
         baseline
             ? " as before (baseline: the light volume swept in full every drag frame at the moving "
@@ -437,7 +438,8 @@ void measureActions(Display& display, VolumeRenderer& renderer, const Volume& cu
             : "",
         a.light_drag_fps, a.drag_frames, a.light_drag_cpu_ms, a.light_release_ms,
         a.light_release_cpu_ms, a.light_release_full_ms, a.place_picture_ms, a.place_model_ms,
-        a.wind_fps, a.wind_frames, a.wind_cpu_ms, a.camera_drag_fps, a.camera_drag_cpu_ms);
+        a.wind_fps, a.wind_frames, a.wind_cpu_ms, a.camera_drag_fps, a.camera_drag_cpu_ms,
+        a.moving_reprojected, a.moving_reduced);
     std::fflush(stdout);
   }
 }

@@ -238,6 +238,8 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   fig.light_release_cpu_ms = med(script.release_cpu);
   fig.wind_cpu_ms = med(script.wind_cpu);
   fig.camera_drag_cpu_ms = med(script.orbit_cpu);
+  fig.moving_reprojected = summary.reprojected_moving_frames;
+  fig.moving_reduced = summary.reduced_moving_frames;
   fig.drag_frames = int(script.drag_ms.size());
   fig.wind_frames = int(script.wind_ms.size());
   return fig;

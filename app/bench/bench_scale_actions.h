@@ -38,6 +38,8 @@ struct PainterActionFigures {
   // frame, the release to its lit frame, a wind frame.
   double light_drag_cpu_ms = -1, light_release_cpu_ms = -1, wind_cpu_ms = -1;
   double camera_drag_cpu_ms = -1;
+  // The moving frames (the wind, the view dragged round) drawn each way (moving_frames.h).
+  long moving_reprojected = 0, moving_reduced = 0;
   int drag_frames = 0, wind_frames = 0;  // frames the medians are over
 };
 
