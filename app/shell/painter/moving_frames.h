@@ -7,6 +7,9 @@
 // and loses where they are cheap (a far or thin one: the idle orbit).
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
 namespace cb {
 
 enum class MovingFrames {
@@ -15,8 +18,9 @@ enum class MovingFrames {
   kFaster,       // reprojection while it keeps to the frame budget or is the faster, measured
 };
 
-// kFaster's choice, from each path's measured frame time (an average of its recent frames; each
-// path's first frame ever is left out: it compiles its programs and makes its targets).
+// kFaster's choice, from each path's measured frame time (the median of its last kKept frames,
+// so one slow frame — a PNG written, another process — does not turn it; each path's first frame
+// ever is left out: it compiles its programs and makes its targets).
 // Reprojection first, kept while within budget_ms; over it, one reduced frame is measured, and
 // from then on the faster of the two is drawn, the other measured again for one frame every
 // kReprobeFrames and at the first frame of each movement after a rest (the view may have moved
@@ -24,6 +28,7 @@ enum class MovingFrames {
 class MovingPathChooser {
  public:
   static constexpr int kReprobeFrames = 90;  // 3 s at 30 fps, 6 s at 15 fps
+  static constexpr int kKept = 5;
 
   MovingPathChooser(MovingFrames policy, double budget_ms)
       : policy_(policy), budget_ms_(budget_ms) {}
@@ -31,8 +36,8 @@ class MovingPathChooser {
   // Whether the next moving frame is to be reprojected.
   bool reprojectNext() const {
     if (policy_ != MovingFrames::kFaster) return policy_ == MovingFrames::kReprojected;
-    if (ms_[1] < 0.0 || ms_[1] <= budget_ms_) return true;
-    if (ms_[0] < 0.0) return false;
+    if (ms(1) < 0.0 || ms(1) <= budget_ms_) return true;
+    if (ms(0) < 0.0) return false;
     const bool faster = preferred();
     return frames_since_probe_ >= kReprobeFrames ? !faster : faster;
   }
@@ -43,22 +48,32 @@ class MovingPathChooser {
       warm_[path] = true;
       return;
     }
-    // A probe (the path not preferred) replaces its old figure, which may be far out of date.
-    const bool probe = ms_[0] >= 0.0 && ms_[1] >= 0.0 && reprojected != preferred();
-    ms_[path] = ms_[path] < 0.0 || probe ? frame_ms : 0.75 * ms_[path] + 0.25 * frame_ms;
+    // A probe (the path not preferred) replaces its old frames, which may be far out of date.
+    const bool probe = ms(0) >= 0.0 && ms(1) >= 0.0 && reprojected != preferred();
+    std::vector<double>& kept = kept_[path];
+    if (probe) kept.clear();
+    if (kept.size() == size_t(kKept)) kept.erase(kept.begin());
+    kept.push_back(frame_ms);
     frames_since_probe_ = probe ? 0 : frames_since_probe_ + 1;
   }
   // A frame with nothing moving: the next movement starts with the other path's probe.
   void rested() { frames_since_probe_ = kReprobeFrames; }
-  double reprojectedMs() const { return ms_[1]; }  // < 0: not measured yet
-  double reducedMs() const { return ms_[0]; }
+  double reprojectedMs() const { return ms(1); }  // < 0: not measured yet
+  double reducedMs() const { return ms(0); }
 
  private:
-  bool preferred() const { return ms_[1] <= budget_ms_ || ms_[1] <= ms_[0]; }
+  // The median of path's kept frames (the upper one of an even count); < 0: none.
+  double ms(int path) const {
+    std::vector<double> v = kept_[path];
+    if (v.empty()) return -1.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  }
+  bool preferred() const { return ms(1) <= budget_ms_ || ms(1) <= ms(0); }
 
   MovingFrames policy_;
   double budget_ms_;
-  double ms_[2] = {-1.0, -1.0};  // reduced, reprojected
+  std::vector<double> kept_[2];  // reduced, reprojected: their last frames' times, oldest first
   bool warm_[2] = {false, false};
   int frames_since_probe_ = 0;
 };
