@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 #include "app/session/paint_session.h"
@@ -117,48 +118,63 @@ struct DragRun {
   bool full_preview = true;
 };
 
+// A mouse drag scripted frame by frame in the painter over the fixture's cumulus: `mode_key` at
+// frame 2, the button pressed at kDragFrom, moved right by `dx` of the width a frame from x0 at
+// height y (fractions of the screen) and released at kDragTo; `each` sees every frame (and may
+// stop the loop). Returns the loop's summary.
+PaintLoopSummary runScriptedDrag(CumulusPainter& fixture, PaintLoopOptions options, char mode_key,
+                                 float x0, float dx, float y,
+                                 const std::function<void(int, std::atomic<bool>&)>& each) {
+  test::RecordedPainter& painter = fixture.painter;
+  Display& display = *painter.display;
+  PaintSession& session = *painter.session;
+  std::atomic<bool> stop{false};
+  int frame = 0;
+  const auto pointer = [&](DisplayEvent::Kind kind, int i) {
+    display.injectEvent(DisplayEvent::pointer(kind, kW * (x0 + dx * float(i)), kH * y));
+  };
+  options.on_frame = [&](const PaintFrameInfo&) {
+    ++frame;
+    if (frame == 2) display.injectEvent(DisplayEvent::key(mode_key));
+    each(frame, stop);
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerDown, frame);
+    if (frame > kDragFrom && frame < kDragTo) pointer(DisplayEvent::Kind::PointerMove, frame);
+    if (frame == kDragTo) pointer(DisplayEvent::Kind::PointerUp, kDragTo - 1);
+  };
+  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
+  NoPenSource no_tablet;
+  loop.attachPen(&no_tablet, &session);
+  PaintLoopSummary summary;
+  std::string error;
+  EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
+  painter.journal.close();
+  return summary;
+}
+
 DragRun runDrag(double frame_budget_ms, const std::string& name) {
   DragRun run;
   CumulusPainter fixture(name);
   std::string error;
   EXPECT_TRUE(fixture.open(&error)) << error;
   if (!fixture.painter.display) return run;
-  test::RecordedPainter& painter = fixture.painter;
-  Display& display = *painter.display;
-  PaintSession& session = *painter.session;
-  VolumeRenderer& renderer = painter.renderer;
-  std::atomic<bool> stop{false};
-  int frame = 0;
-  const auto pointer = [&](DisplayEvent::Kind kind, int i) {
-    display.injectEvent(DisplayEvent::pointer(kind, kW * (0.3f + 0.03f * float(i)), kH * 0.3f));
-  };
+  const VolumeRenderer& renderer = fixture.painter.renderer;
   PaintLoopOptions options = fixture.options();
   options.light_drag_frame_ms = frame_budget_ms;
-  options.on_frame = [&](const PaintFrameInfo&) {
-    ++frame;
-    if (frame == 2) display.injectEvent(DisplayEvent::key('5'));
-    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerMove, frame);
-    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerDown, frame);
-    if (frame > kDragFrom && frame <= kDragTo)
-      run.drag_widths.push_back(renderer.lastStats().width);
-    if (frame > kDragFrom && frame < kDragTo) pointer(DisplayEvent::Kind::PointerMove, frame);
-    if (frame == kDragTo) pointer(DisplayEvent::Kind::PointerUp, kDragTo - 1);
-    if (frame == kDragTo + 1) {
-      run.release_width = renderer.lastStats().width;
-      run.release_preview = renderer.lightIsPreview();
-    }
-    if (frame == kDragTo + 2) {
-      run.full_width = renderer.lastStats().width;
-      run.full_preview = renderer.lightIsPreview();
-      stop = true;
-    }
-  };
-  PaintLoop loop(display, renderer, session.volume(), Light{}, options);
-  NoPenSource no_tablet;
-  loop.attachPen(&no_tablet, &session);
-  PaintLoopSummary summary;
-  EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
-  painter.journal.close();
+  runScriptedDrag(fixture, options, '5', 0.3f, 0.03f, 0.3f,
+                  [&](int frame, std::atomic<bool>& stop) {
+                    if (frame > kDragFrom && frame <= kDragTo)
+                      run.drag_widths.push_back(renderer.lastStats().width);
+                    if (frame == kDragTo + 1) {
+                      run.release_width = renderer.lastStats().width;
+                      run.release_preview = renderer.lightIsPreview();
+                    }
+                    if (frame == kDragTo + 2) {
+                      run.full_width = renderer.lastStats().width;
+                      run.full_preview = renderer.lightIsPreview();
+                      stop = true;
+                    }
+                  });
   return run;
 }
 
@@ -212,37 +228,20 @@ CameraDragRun runCameraDrag(MovingFrames way, const std::string& name) {
   std::string error;
   EXPECT_TRUE(fixture.open(&error)) << error;
   if (!fixture.painter.display) return run;
-  test::RecordedPainter& painter = fixture.painter;
-  Display& display = *painter.display;
-  PaintSession& session = *painter.session;
-  std::atomic<bool> stop{false};
-  int frame = 0;
-  const auto pointer = [&](DisplayEvent::Kind kind, int i) {
-    display.injectEvent(DisplayEvent::pointer(kind, kW * (0.3f + 0.04f * float(i)), kH * 0.5f));
-  };
+  const VolumeRenderer& renderer = fixture.painter.renderer;
+  const PaintSession& session = *fixture.painter.session;
   PaintLoopOptions options = fixture.options();
   options.moving_frames = way;
-  options.on_frame = [&](const PaintFrameInfo&) {
-    ++frame;
-    if (frame == 2) display.injectEvent(DisplayEvent::key('1'));
-    if (frame == kDragFrom) run.before = session.camera();
-    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerMove, frame);
-    if (frame == kDragFrom) pointer(DisplayEvent::Kind::PointerDown, frame);
-    if (frame > kDragFrom && frame < kDragTo) pointer(DisplayEvent::Kind::PointerMove, frame);
-    if (frame == kDragTo) pointer(DisplayEvent::Kind::PointerUp, kDragTo - 1);
-    if (frame == kDragTo + 6) {
-      run.rest_width = painter.renderer.lastStats().width;
-      run.rest_height = painter.renderer.lastStats().height;
-      run.camera = session.camera();
-      stop = true;
-    }
-  };
-  PaintLoop loop(display, painter.renderer, session.volume(), Light{}, options);
-  NoPenSource no_tablet;
-  loop.attachPen(&no_tablet, &session);
-  PaintLoopSummary summary;
-  EXPECT_TRUE(loop.run(&stop, &summary, &error)) << error;
-  painter.journal.close();
+  const PaintLoopSummary summary = runScriptedDrag(
+      fixture, options, '1', 0.3f, 0.04f, 0.5f, [&](int frame, std::atomic<bool>& stop) {
+        if (frame == kDragFrom) run.before = session.camera();
+        if (frame == kDragTo + 6) {
+          run.rest_width = renderer.lastStats().width;
+          run.rest_height = renderer.lastStats().height;
+          run.camera = session.camera();
+          stop = true;
+        }
+      });
   run.reprojected = summary.reprojected_moving_frames;
   run.reduced = summary.reduced_moving_frames;
   return run;
