@@ -600,6 +600,10 @@ std::string cell(double v, const char* format) {
 const char* verdict(bool met) {
   return met ? "met" : "MISSED";
 }
+// A target's verdict for a figure that is < 0 when its part of the bench did not run.
+const char* verdict(double figure, bool met) {
+  return figure < 0 ? "not measured" : verdict(met);
+}
 
 // A comma-separated list of integers in lo..hi; false when it is not one.
 bool parseIntList(const std::string& list, int lo, int hi, std::vector<int>* out) {
@@ -715,17 +719,16 @@ void printTargets(const ThreadFigures& f) {
                lit = f.get(2, hd, "pen_up_to_lit_ms"), full = f.get(2, hd, "pen_up_to_full_ms");
   std::printf("\ntargets at 1920x1080, 2 threads:\n");
   std::printf("  fresh full-resolution lit frame %.1f ms <= 100 ms: %s\n", fresh,
-              verdict(fresh >= 0 && fresh <= 100));
+              verdict(fresh, fresh <= 100));
   std::printf("  orbit (half resolution, baseline) %.1f fps (process CPU %.1f ms a frame)\n",
               f.get(2, hd, "orbit_fps", true), f.get(2, hd, "orbit_cpu_ms", true));
   std::printf("  orbit %.1f fps >= 30 at scale %.2f >= 0.5: %s\n", fps, scale,
-              verdict(fps >= 30 && scale >= 0.5));
+              verdict(fps, fps >= 30 && scale >= 0.5));
   std::printf("  painting %.1f ms/frame (%.0f fps) >= 60 fps: %s\n", paint,
-              paint > 0 ? 1000 / paint : 0.0, verdict(paint > 0 && paint <= 1000.0 / 60.0));
-  std::printf("  pen-up -> first lit frame %.1f ms <= 100 ms: %s\n", lit,
-              verdict(lit >= 0 && lit <= 100));
+              paint > 0 ? 1000 / paint : 0.0, verdict(paint, paint > 0 && paint <= 1000.0 / 60.0));
+  std::printf("  pen-up -> first lit frame %.1f ms <= 100 ms: %s\n", lit, verdict(lit, lit <= 100));
   std::printf("  pen-up -> full-resolution lit frame %.1f ms <= 150 ms: %s\n", full,
-              verdict(full >= 0 && full <= 150));
+              verdict(full, full <= 150));
 }
 
 // One row of what a person does: the figure, its baseline from the same child, the target.
