@@ -69,7 +69,7 @@ void TemporalReprojection::ensureTargets(int width, int height, int factor) {
   if (width == width_ && height == height_ && factor == factor_) return;
   releaseTargets();
   for (Frame& f : frames_) {
-    // The shown colour (blitted into the target) and each pixel's depth: the next frame's
+    // The shown colour (copied into the target) and each pixel's depth: the next frame's
     // history (shaders/reproject.comp.glsl), read texel for texel.
     glCreateTextures(GL_TEXTURE_2D, 1, &f.colour);
     glTextureStorage2D(f.colour, 1, GL_RGBA8, width, height);
@@ -82,10 +82,7 @@ void TemporalReprojection::ensureTargets(int width, int height, int factor) {
       glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
     glCreateFramebuffers(1, &f.fbo);
-    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT0, f.colour, 0);
-    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT1, f.depth, 0);
-    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(f.fbo, 2, both);
+    glNamedFramebufferTexture(f.fbo, GL_COLOR_ATTACHMENT0, f.colour, 0);  // the copy's source
   }
   std::string error;
   if (!cast_.create(width / factor, height / factor, RenderTarget::Format::kRgba8, &error))

@@ -8,7 +8,7 @@
 #pragma once
 
 #include <algorithm>
-#include <vector>
+#include <array>
 
 namespace cb {
 
@@ -50,10 +50,11 @@ class MovingPathChooser {
     }
     // A probe (the path not preferred) replaces its old frames, which may be far out of date.
     const bool probe = ms(0) >= 0.0 && ms(1) >= 0.0 && reprojected != preferred();
-    std::vector<double>& kept = kept_[path];
-    if (probe) kept.clear();
-    if (kept.size() == size_t(kKept)) kept.erase(kept.begin());
-    kept.push_back(frame_ms);
+    Kept& kept = kept_[path];
+    if (probe) kept = Kept{};
+    kept.ms[kept.next] = frame_ms;  // over the oldest once full
+    kept.next = (kept.next + 1) % kKept;
+    kept.count = std::min(kept.count + 1, kKept);
     frames_since_probe_ = probe ? 0 : frames_since_probe_ + 1;
   }
   // A frame with nothing moving: the next movement starts with the other path's probe.
@@ -64,16 +65,20 @@ class MovingPathChooser {
  private:
   // The median of path's kept frames (the upper one of an even count); < 0: none.
   double ms(int path) const {
-    std::vector<double> v = kept_[path];
-    if (v.empty()) return -1.0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
+    Kept k = kept_[path];
+    if (k.count == 0) return -1.0;
+    std::nth_element(k.ms.begin(), k.ms.begin() + k.count / 2, k.ms.begin() + k.count);
+    return k.ms[size_t(k.count / 2)];
   }
   bool preferred() const { return ms(1) <= budget_ms_ || ms(1) <= ms(0); }
 
   MovingFrames policy_;
   double budget_ms_;
-  std::vector<double> kept_[2];  // reduced, reprojected: their last frames' times, oldest first
+  struct Kept {
+    std::array<double, kKept> ms{};  // the last `count` frames' times
+    int count = 0, next = 0;         // next: where the next one goes (over the oldest)
+  };
+  Kept kept_[2];  // reduced, reprojected
   bool warm_[2] = {false, false};
   int frames_since_probe_ = 0;
 };
