@@ -674,7 +674,7 @@ BrickPool::StagingBuffers BrickPool::staging(size_t slots) {
   return {staging_main_.get(), staging_smooth_.get()};
 }
 
-void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
+void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool compare,
                             const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
                             UpdateStats* stats) {
   UpdateStats& st = *stats;
@@ -722,7 +722,7 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
     // The bytes read back for up to kCompareChunk slots (sized before: the compares point into
     // them), compared in parallel when the chunk is full and at the batch's end.
     std::vector<SlotCompare> compares;
-    if (changes && !fresh) {
+    if (changes && compare) {
       compare_main_.resize(kCompareChunk * 2 * kSlotBytes);
       if (smooth) compare_smooth_.resize(kCompareChunk * kSmoothValues);
     }
@@ -735,8 +735,9 @@ void BrickPool::uploadSlots(const Volume& volume, const LightVolume& light, bool
       const glm::ivec3 at = glm::ivec3(slot_of_brick_[brickIndex(b)]) * kSlotTexels;
       const uint8_t* main = staging + s * kSlotBytes;
       const uint16_t* smoothed = smooth ? smooth + s * kSmoothValues : nullptr;
-      if (changes && fresh) {
-        // Everything is new (the renderer starts its frames over): the whole slot, no compare.
+      if (changes && !compare) {
+        // Everything is new (the renderer starts its frames over), or the caller re-casts all a
+        // changed slot can show anyway: the whole slot, no compare.
         const VoxelBox whole = slotVoxels(b, volume);
         changes->push_back({b, whole, whole});
       } else if (changes) {
@@ -765,7 +766,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
                                          const VoxelBox& light_box,
                                          const LightByteChanges* light_bytes,
                                          std::vector<SlotChange>* changes,
-                                         const VoxelBox* density_box) {
+                                         const VoxelBox* density_box, ChangeDetail detail) {
   UpdateStats st;
   auto t0 = std::chrono::steady_clock::now();
   const glm::ivec3 bd = volume.brickDims();
@@ -782,7 +783,7 @@ BrickPool::UpdateStats BrickPool::update(const Volume& volume, const LightVolume
   std::erase_if(to_upload,
                 [&](const Repack& r) { return slot_of_brick_[brickIndex(r.brick)].w == 0; });
   st.pack_ms += msSince(t0);
-  uploadSlots(volume, light, fresh, to_upload, changes, &st);
+  uploadSlots(volume, light, !fresh && detail == ChangeDetail::kTexels, to_upload, changes, &st);
   st.slots_uploaded = int(to_upload.size()) - st.slots_unchanged;
   t0 = std::chrono::steady_clock::now();
   uploadIndirection(fresh ? VoxelBox{glm::ivec3(0), bd} : indirection_changed);

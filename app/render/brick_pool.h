@@ -65,6 +65,12 @@
 
 namespace cb {
 
+// How finely an update reports what rays read differently: texel by texel (each changed slot's
+// old bytes read back and compared: the least to re-cast after a small edit), or each changed
+// slot whole (nothing read back: for frames that re-cast all a change can show anyway, such as
+// an animation's, which changes the whole cloud every frame).
+enum class ChangeDetail { kTexels, kSlots };
+
 class BrickPool {
  public:
   // Per axis: a brick, the first voxel of the next one and kApron more.
@@ -134,11 +140,13 @@ class BrickPool {
   // `density_box`, if given, bounds the voxels of `changed_bricks` whose density changed
   // (Volume::dirtySince): only the slots reading one of them are re-packed (see above); without
   // it every slot around a changed brick is.
+  // With `detail` kSlots a re-packed slot's change is its whole slot, nothing read back.
   UpdateStats update(const Volume& volume, const LightVolume& light, bool fresh,
                      const std::vector<glm::ivec3>& changed_bricks, const VoxelBox& light_box,
                      const LightByteChanges* light_bytes = nullptr,
                      std::vector<SlotChange>* changes = nullptr,
-                     const VoxelBox* density_box = nullptr);
+                     const VoxelBox* density_box = nullptr,
+                     ChangeDetail detail = ChangeDetail::kTexels);
 
   // Follows a growth of the volume (Volume::movedInto): brick b's slot becomes brick
   // b + brick_offset's, in a table of `brick_dims` bricks. The slots stay where they are in the
@@ -235,8 +243,9 @@ class BrickPool {
   };
   StagingBuffers staging(size_t slots);
   // Packs and uploads the slots' parts in batches, skipping those whose bytes did not change,
-  // and reports what rays read differently (`changes`).
-  void uploadSlots(const Volume& volume, const LightVolume& light, bool fresh,
+  // and reports what rays read differently (`changes`: texel by texel when `compare`, else
+  // each changed slot whole: after a fresh update, every slot).
+  void uploadSlots(const Volume& volume, const LightVolume& light, bool compare,
                    const std::vector<Repack>& to_upload, std::vector<SlotChange>* changes,
                    UpdateStats* stats);
   // A slot's bytes before and after an upload, for slotDifference.

@@ -405,7 +405,7 @@ void VolumeRenderer::uploadRayBounds() {
                     faces.empty() ? nullptr : faces.data(), GL_STATIC_DRAW);
 }
 
-SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
+SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light, ChangeDetail detail) {
   SyncStats st;
   // A volume grown around the synced one (Volume::Growth): what the renderer holds is shifted by
   // the growth's brick offset, and only what changed since is brought up to date.
@@ -470,7 +470,7 @@ SyncStats VolumeRenderer::sync(const Volume& volume, const Light& light) {
   // is reused (its image key names the light), so they are dropped, not compared.
   const BrickPool::UpdateStats pool =
       pool_.update(volume, light_volume_, fresh, changed_bricks, st.light_box, &light_bytes,
-                   st.light_moved ? nullptr : &st.changes, density_box);
+                   st.light_moved ? nullptr : &st.changes, density_box, detail);
   for (FrameHistory* history : {&history_, &spare_history_}) {
     if (fresh || st.light_moved) *history = FrameHistory{};
     if (!history->valid) continue;

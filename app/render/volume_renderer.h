@@ -173,8 +173,10 @@ class VolumeRenderer {
   // shifted by the growth's brick offset (pool indirection, light bricks, occupancy), and updates
   // what changed since as an edit; the result equals a fresh sync of it (sky_growth_test). Any
   // other Volume (by instanceId()) or new dims re-uploads everything; after replacing a volume's
-  // contents without markDirty (never do that) call invalidate().
-  SyncStats sync(const Volume& volume, const Light& light);
+  // contents without markDirty (never do that) call invalidate(). `detail`: how SyncStats::changes
+  // lists a changed slot (BrickPool's ChangeDetail).
+  SyncStats sync(const Volume& volume, const Light& light,
+                 ChangeDetail detail = ChangeDetail::kTexels);
   // While the light is dragged: a light change is swept on a grid `divisor` times coarser per
   // axis (2: the thesis's 128³ for 256³; reduced_light_sweep.h) and read by the ray caster from
   // a small texture of its own, leaving the light volume and the pool as they were; 1, the

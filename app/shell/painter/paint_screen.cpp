@@ -181,6 +181,11 @@ const Volume& PaintScreen::shownVolume() const {
   return showsSession() ? session_->volume() : volume_;
 }
 
+SyncStats PaintScreen::syncShown() {
+  return renderer_.sync(shownVolume(), shownLight(),
+                        animationPlaying() ? ChangeDetail::kSlots : ChangeDetail::kTexels);
+}
+
 Light PaintScreen::shownLight() const {
   if (drag_light_) return *drag_light_;
   return showsSession() ? session_->light() : light_;
@@ -570,7 +575,7 @@ bool PaintScreen::paintingSetUp(std::string* error) {
     RenderOptions warm_up = options_.render;
     warm_up.scale = moving_scale_;
     warm_up.moving = warm_up.scale < 1.0f;  // the lit frame's program variant, compiled now
-    renderer_.sync(shownVolume(), shownLight());
+    syncShown();
     renderer_.render(shownCamera(), display_.width(), display_.height(), scene_.fbo(), warm_up);
     drawn_.reset();
   }
@@ -664,7 +669,7 @@ void PaintScreen::renderScene(SceneWork* work) {
   if (!stale && !refine) return;
   const bool light_scaled = light_preview && !refine;
   light_drag_frame_ = drag_light_.has_value();
-  const SyncStats sync = renderer_.sync(shownVolume(), shownLight());  // the dirty box only (§4)
+  const SyncStats sync = syncShown();  // the dirty box only (§4)
   const auto synced = std::chrono::steady_clock::now();
   work->sync_ms = std::chrono::duration<double, std::milli>(synced - render_start).count();
   // Right after a lift, and while a drag moves the view or the light, the scene is shown at
@@ -835,7 +840,7 @@ bool PaintScreen::drawPass(FrameContext& frame, PaintFrameInfo* info, std::strin
     if (!paintingSetUp(error)) return false;
     drawStill(frame, info);
   } else {
-    const SyncStats sync = renderer_.sync(shownVolume(), shownLight());
+    const SyncStats sync = syncShown();
     RenderOptions render_options = options_.render;
     render_options.style = currentStyle();
     const bool moving = orbiting_ || animationPlaying();

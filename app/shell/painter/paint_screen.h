@@ -183,6 +183,9 @@ class PaintScreen : public Screen {
   void warnIfEdgeOn();
   const Volume& shownVolume() const;
   Light shownLight() const;
+  // The renderer brought up to date with what is shown; while a morph or the wind plays (the
+  // whole cloud changes every frame) changed slots are listed whole, not compared texel by texel.
+  SyncStats syncShown();
   bool paintingSetUp(std::string* error);
   void drawStill(FrameContext& frame, PaintFrameInfo* info);
   // What a scene render did this frame (renderScene may run twice: after a late-latched lift).

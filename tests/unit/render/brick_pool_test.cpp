@@ -766,4 +766,42 @@ TEST_F(BrickPoolTest, AnEmptySkyCostsLittleOnTheGpu) {
 }
 
 }  // namespace
+// Listed by slot (ChangeDetail::kSlots, an animation's frames): the slots texel by texel reports
+// and the slots added, each whole (so covering every texel that changed in it); the pool the same.
+TEST_F(BrickPoolTest, ChangesListedBySlotAreTheChangedSlotsWhole) {
+  VolumeRenderer by_slot;
+  std::string err;
+  ASSERT_TRUE(by_slot.init(&err)) << err;
+  by_slot.brickPool().enableSmooth(Volume(glm::ivec3(16)));
+  Volume v(glm::ivec3(96));
+  paintBall(v, {40, 60, 40}, 12);
+  paintBall(v, {44, 30, 42}, 10);
+  const Light light;
+  renderer.sync(v, light);
+  by_slot.sync(v, light, ChangeDetail::kSlots);
+  const BrickSet had_slot = bricksWithSlots(by_slot.brickPool());
+  paintBall(v, {47, 62, 30}, 6);  // at the first ball's edge; its shadow falls on the second
+  const SyncStats texels = renderer.sync(v, light);
+  const SyncStats slots = by_slot.sync(v, light, ChangeDetail::kSlots);
+  ASSERT_FALSE(texels.changes.empty());
+  BrickSet texel_bricks, slot_bricks;
+  for (const BrickPool::SlotChange& c : texels.changes)
+    texel_bricks.insert({c.brick.x, c.brick.y, c.brick.z});
+  for (const BrickPool::SlotChange& c : slots.changes) {
+    slot_bricks.insert({c.brick.x, c.brick.y, c.brick.z});
+    // The whole slot: its brick and the high apron, clamped to the volume.
+    const glm::ivec3 lo = c.brick * Volume::kBrickSize;
+    EXPECT_EQ(c.bytes.lo, lo);
+    EXPECT_EQ(c.bytes.hi, glm::min(lo + BrickPool::kSlotTexels, v.dims()));
+    EXPECT_EQ(c.weighted, c.bytes);
+  }
+  // The same slots, and those added for the edit (texel by texel, an added slot holding what
+  // the empty slot held is not reported; by slot it is, whole).
+  for (const auto& b : texel_bricks) EXPECT_TRUE(slot_bricks.count(b));
+  for (const auto& b : slot_bricks)
+    EXPECT_TRUE(texel_bricks.count(b) || !had_slot.count(b)) << "an unchanged slot reported";
+  EXPECT_EQ(slots.slots_uploaded, texels.slots_uploaded);
+  expectPoolIsAFreshPack(by_slot, v, "a sync listing changes by slot");
+}
+
 }  // namespace cb
