@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/bench/bench_report.h"
+#include "app/render/gl/display_platforms.h"
 #include "app/render/gl/gl.h"
 #include "app/render/image_io.h"
 #include "app/session/paint_session.h"
@@ -68,11 +69,35 @@ struct Script {
   std::vector<double> drag_ms, release_ms, release_full_ms, picture_ms, model_ms, wind_ms;
   std::vector<double> drag_cpu, release_cpu, wind_cpu;
   std::vector<double> orbit_ms, orbit_cpu;  // the Camera-mode drag
+  // A mouse move of a drag and the present that shows it: the move, injected while frame k is
+  // drawn, is read by the next frame's update, so present k + 1 shows it (presents count from 1).
+  struct Move {
+    uint64_t at_ns = 0, present = 0;
+  };
+  std::vector<Move> drag_moves, orbit_moves;        // not yet on screen
+  std::vector<double> drag_seen_ms, orbit_seen_ms;  // mouse move -> the frame showing it shown
   std::string problem;
   const char* shots = nullptr;  // a folder for the first drag's and the wind's frames as PNG
 
   void pointer(DisplayEvent::Kind kind, float x, float y) {
     display.injectEvent(DisplayEvent::pointer(kind, x, y));
+  }
+  // A drag's mouse move, timed from now to the present that shows it (seen()).
+  void move(float x, float y, std::vector<Move>* moves) {
+    moves->push_back({monotonicNowNs(), display.frameTimings().total() + 2});
+    pointer(DisplayEvent::Kind::PointerMove, x, y);
+  }
+  // The moves whose present is now in the display's frame timings, into `seen` (ms).
+  void seen(std::vector<Move>* moves, std::vector<double>* seen_ms) {
+    const FrameTimingRing& timings = display.frameTimings();
+    std::erase_if(*moves, [&](const Move& m) {
+      for (size_t i = 0; i < timings.size(); ++i)
+        if (timings.at(i).frame == m.present) {
+          seen_ms->push_back(double(timings.at(i).shown_ns - m.at_ns) / 1e6);
+          return true;
+        }
+      return false;
+    });
   }
   void next() {
     ++stage;
@@ -102,6 +127,8 @@ void Script::onFrame() {
   last = now;
   last_cpu = cpu;
   ++n;
+  seen(&drag_moves, &drag_seen_ms);
+  seen(&orbit_moves, &orbit_seen_ms);
   switch (stage) {
     case 0:  // the starting view drawn; Light mode
       if (n == 3) display.injectEvent(DisplayEvent::key('5')), next();
@@ -113,7 +140,7 @@ void Script::onFrame() {
       if (n == 1) pointer(DisplayEvent::Kind::PointerDown, p.x, p.y);
       if (n >= 3 && n <= kDragFrames + 1)
         drag_ms.push_back(frame_ms), drag_cpu.push_back(frame_cpu);
-      if (n >= 2 && n <= kDragFrames) pointer(DisplayEvent::Kind::PointerMove, p.x, p.y);
+      if (n >= 2 && n <= kDragFrames) move(p.x, p.y, &drag_moves);
       if (n == kDragFrames + 1) {
         pointer(DisplayEvent::Kind::PointerUp, p.x, p.y);
         act = now;
@@ -158,7 +185,7 @@ void Script::onFrame() {
       const float x = w * (0.35f + 0.015f * float(n)), y = h * 0.5f;
       if (n == 3) pointer(DisplayEvent::Kind::PointerMove, x, y);
       if (n == 3) pointer(DisplayEvent::Kind::PointerDown, x, y);
-      if (n >= 4 && n < 4 + kOrbitFrames) pointer(DisplayEvent::Kind::PointerMove, x, y);
+      if (n >= 4 && n < 4 + kOrbitFrames) move(x, y, &orbit_moves);
       if (n >= 6 && n < 5 + kOrbitFrames)
         orbit_ms.push_back(frame_ms), orbit_cpu.push_back(frame_cpu);
       if (shots && n == 12)
@@ -234,6 +261,10 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   fig.wind_fps = fps(script.wind_ms);
   fig.camera_drag_fps = fps(script.orbit_ms);
   const auto med = [](const std::vector<double>& v) { return v.empty() ? -1.0 : median(v); };
+  script.seen(&script.drag_moves, &script.drag_seen_ms);
+  script.seen(&script.orbit_moves, &script.orbit_seen_ms);
+  fig.light_drag_seen_ms = med(script.drag_seen_ms);
+  fig.camera_drag_seen_ms = med(script.orbit_seen_ms);
   fig.light_drag_cpu_ms = med(script.drag_cpu);
   fig.light_release_cpu_ms = med(script.release_cpu);
   fig.wind_cpu_ms = med(script.wind_cpu);
