@@ -238,6 +238,7 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
     options.light_drag_divisor = 1;  // the light volume swept in full every drag frame
     options.min_light_drag_scale = options.moving_scale;  // and cast at the moving scale
     options.region_rerender = false;
+    options.cast_at_volume_detail = false;           // a ray per pixel at rest
     options.moving_frames = MovingFrames::kReduced;  // the moving scale, as the painter had
   }
   options.on_frame = [&](const PaintFrameInfo&) { script.onFrame(); };

@@ -18,6 +18,7 @@
 #include "app/render/screen_blur.h"
 #include "app/render/shader_program.h"
 #include "app/render/sky_function.h"
+#include "app/render/volume_detail.h"
 
 namespace cb {
 namespace {
@@ -779,9 +780,26 @@ struct VolumeRenderer::FramePlan {
   std::vector<VoxelBox> pending;  // the changes the style's image shows
 };
 
+float VolumeRenderer::castScale(const Camera& camera, int height,
+                                const RenderOptions& options) const {
+  const bool smooth_sky =
+      options.sky.kind == SkyKind::kNone || options.sky.kind == SkyKind::kColour;
+  if (!options.cast_at_volume_detail || options.scale < 1.0f || options.moving ||
+      options.jitter != glm::vec2(0.0f) || options.write_depth || !smooth_sky ||
+      !renderStyleRow(options.style).reprojects || dims_.x <= 0)
+    return options.scale;
+  const glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
+  std::vector<glm::vec3> corners;
+  corners.reserve(bounds_corners_.size());
+  for (const glm::vec3& v : bounds_corners_) corners.push_back(world_min_ + v * voxel);
+  return volumeDetailScale(camera, height, corners, std::min({voxel.x, voxel.y, voxel.z}));
+}
+
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,
-                            const RenderOptions& options) {
+                            const RenderOptions& requested) {
   auto t0 = std::chrono::steady_clock::now();
+  RenderOptions options = requested;
+  options.scale = castScale(camera, height, requested);
   stats_ = RenderStats{};
   if (!ensureProgram(options)) {
     std::fprintf(stderr, "cloudbrush: render: %s\n", error_.c_str());

@@ -119,6 +119,7 @@ PaintScreen::PaintScreen(Display& display, VolumeRenderer& renderer, const Volum
       show_stats_(options.show_stats_overlay),
       show_circles_(options.show_circles_overlay) {
   light_drag_scale_ = std::clamp(options.moving_scale, options.min_light_drag_scale, 1.0f);
+  options_.render.cast_at_volume_detail = options.cast_at_volume_detail;
 }
 
 PaintScreen::~PaintScreen() = default;

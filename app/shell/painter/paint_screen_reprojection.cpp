@@ -81,6 +81,7 @@ bool PaintScreen::renderMoving(long frame, int width, int height, RenderOptions 
   // half-resolution moving frame does.
   options.scale = 1.0f;
   options.moving = false;
+  options.cast_at_volume_detail = false;  // the interleaved casts are a ray per pixel
   options.region = glm::ivec4(0);
   reprojection_->render(renderer_, camera, width, height, target, options, factor);
   reprojection_frame_ = frame;

@@ -49,6 +49,9 @@ struct CumulusPainter {
     o.max_frames = 200;
     o.state_dir = dir + "/state";
     o.config_dir = dir + "/config";
+    // A ray per pixel at rest: these tests tell a drag's frames from the frame at rest by their
+    // cast's width (CameraDrag checks the painter's default, the rest cast at the volume's detail).
+    o.cast_at_volume_detail = false;
     return o;
   }
 };
@@ -222,7 +225,7 @@ struct CameraDragRun {
   Camera before, camera;
 };
 
-CameraDragRun runCameraDrag(MovingFrames way, const std::string& name) {
+CameraDragRun runCameraDrag(MovingFrames way, const std::string& name, bool at_detail = false) {
   CameraDragRun run;
   CumulusPainter fixture(name);
   std::string error;
@@ -232,6 +235,7 @@ CameraDragRun runCameraDrag(MovingFrames way, const std::string& name) {
   const PaintSession& session = *fixture.painter.session;
   PaintLoopOptions options = fixture.options();
   options.moving_frames = way;
+  options.cast_at_volume_detail = at_detail;
   const PaintLoopSummary summary = runScriptedDrag(
       fixture, options, '1', 0.3f, 0.04f, 0.5f, [&](int frame, std::atomic<bool>& stop) {
         if (frame == kDragFrom) run.before = session.camera();
@@ -263,6 +267,12 @@ TEST(CameraDrag, ItsFramesAreTheMovingFramesAndItsRestTheFullCast) {
     EXPECT_EQ(run->rest_width, kW);
     EXPECT_EQ(run->rest_height, kH);
   }
+  // With the painter's default the rest frame is cast at the volume's detail: the 64³ cumulus's
+  // voxels cover ~3 pixels here, so half the rays per axis (app/render/volume_detail.h).
+  const CameraDragRun detail = runCameraDrag(MovingFrames::kReduced, "cb_camera_drag_detail",
+                                             PaintLoopOptions{}.cast_at_volume_detail);
+  EXPECT_EQ(detail.rest_width, kW / 2);
+  EXPECT_EQ(detail.rest_height, kH / 2);
 }
 
 }  // namespace
