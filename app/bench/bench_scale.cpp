@@ -312,6 +312,8 @@ void measureOrbits(Display& display, VolumeRenderer& renderer, const Volume& cum
     PaintLoopOptions options;
     options.max_frames = size.huge() ? 24 : 48;
     options.moving_frames = way;
+    // The baseline as the painter had it: every moving frame at the moving scale.
+    options.cast_at_volume_detail = way != MovingFrames::kReduced;
     PaintLoop loop(display, renderer, cumulus, Light{}, options);
     PaintLoopSummary summary;
     const double cpu0 = processCpuMs();

@@ -6,7 +6,7 @@
 namespace cb {
 
 float volumeDetailScale(const Camera& camera, int height, const std::vector<glm::vec3>& occupied,
-                        float voxel) {
+                        float voxel, float floor) {
   if (occupied.empty() || height <= 0 || !(voxel > 0.0f)) return 1.0f;
   const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   float farthest = 0.0f;
@@ -17,7 +17,12 @@ float volumeDetailScale(const Camera& camera, int height, const std::vector<glm:
   const float half_height = farthest * std::tan(glm::radians(camera.fov_y_deg) * 0.5f);
   const float pixels_per_voxel = voxel * float(height) / (2.0f * half_height);
   const float scale = std::ceil(20.0f / pixels_per_voxel) / 20.0f;
-  return std::clamp(scale, kMinDetailScale, 1.0f);
+  return std::clamp(scale, floor, 1.0f);
+}
+
+float detailCastScale(float requested, bool moving, float detail) {
+  if (!moving) return std::clamp(detail, kMinStillDetailScale, 1.0f);
+  return std::min(requested, std::clamp(detail, kMinMovingDetailScale, 1.0f));
 }
 
 }  // namespace cb

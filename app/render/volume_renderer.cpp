@@ -784,7 +784,8 @@ float VolumeRenderer::castScale(const Camera& camera, int height,
                                 const RenderOptions& options) const {
   const bool smooth_sky =
       options.sky.kind == SkyKind::kNone || options.sky.kind == SkyKind::kColour;
-  if (!options.cast_at_volume_detail || options.scale < 1.0f || options.moving ||
+  const bool still = options.scale >= 1.0f && !options.moving;
+  if (!options.cast_at_volume_detail || !(still || options.moving) ||
       options.jitter != glm::vec2(0.0f) || options.write_depth || !smooth_sky ||
       !renderStyleRow(options.style).reprojects || dims_.x <= 0)
     return options.scale;
@@ -792,7 +793,9 @@ float VolumeRenderer::castScale(const Camera& camera, int height,
   std::vector<glm::vec3> corners;
   corners.reserve(bounds_corners_.size());
   for (const glm::vec3& v : bounds_corners_) corners.push_back(world_min_ + v * voxel);
-  return volumeDetailScale(camera, height, corners, std::min({voxel.x, voxel.y, voxel.z}));
+  const float detail =
+      volumeDetailScale(camera, height, corners, std::min({voxel.x, voxel.y, voxel.z}), 0.0f);
+  return detailCastScale(options.scale, options.moving, detail);
 }
 
 void VolumeRenderer::render(const Camera& camera, int width, int height, GLuint target_fbo,

@@ -45,9 +45,9 @@ struct RenderOptions {
   // Render at (width·scale)×(height·scale) and upscale (bilinear) into the target: for a moving
   // camera; use 1 when it stops.
   float scale = 1.0f;
-  // A still frame (scale 1, not moving, no jitter or depth) cast at the volume's detail rather
-  // than a ray per pixel where that looks the same (volume_detail.h): the painter's frames. Off
-  // for exports and for tests that compare casts.
+  // A frame cast at the volume's detail where that looks the same (volume_detail.h; no jitter or
+  // depth): at rest no coarser than half per axis rather than a ray per pixel, moving no finer
+  // than the volume needs. The painter's frames; off for exports and tests that compare casts.
   bool cast_at_volume_detail = false;
   float step_voxels = 1.0f;                         // ray step in voxels (the reference is 1)
   float extinction_per_voxel = 0.35f;               // σ: α = 1 − exp(−σ·density·step)
@@ -196,9 +196,9 @@ class VolumeRenderer {
   // background (with a sky under the cloud, the whole image is blitted).
   void render(const Camera& camera, int width, int height, GLuint target_fbo,
               const RenderOptions& options = {});
-  // The scale render() casts `options` at: options.scale, or for a still frame cast at the
-  // volume's detail (RenderOptions::cast_at_volume_detail) volumeDetailScale of the synced
-  // volume's occupied cells.
+  // The scale render() casts `options` at: options.scale, or for a frame cast at the volume's
+  // detail (RenderOptions::cast_at_volume_detail) detailCastScale of the synced volume's occupied
+  // cells.
   float castScale(const Camera& camera, int height, const RenderOptions& options) const;
   // Compiles (and caches) every program render(…, options) will use, without drawing: call it
   // when a style is chosen so the first frame in that style does not pay llvmpipe's shader

@@ -31,22 +31,34 @@ Camera straightOn() {
 TEST(VolumeDetailScale, OneCastPixelPerVoxelAtTheFarthestDepth) {
   const Camera c = straightOn();
   // Points at depths 5 and 8: the farthest decides. v = 0.04, h = 1000: 0.04·1000/16 = 2.5
-  // pixels a voxel there → scale 1/2.5 = 0.4, held at kMinDetailScale.
+  // pixels a voxel there → scale 1/2.5 = 0.4.
   const std::vector<glm::vec3> near_and_far = {{0, 0, 5}, {0.5f, 0, 2}};
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, near_and_far, 0.04f), kMinDetailScale);
+  EXPECT_NEAR(volumeDetailScale(c, 1000, near_and_far, 0.04f, 0.0f), 0.4f, 1e-6f);
+  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, near_and_far, 0.04f, 0.5f), 0.5f);  // the floor
   // 1.6 pixels a voxel (h = 640): 1/1.6 = 0.625 rounded up to the next 1/20: 0.65.
-  EXPECT_NEAR(volumeDetailScale(c, 640, near_and_far, 0.04f), 0.65f, 1e-6f);
+  EXPECT_NEAR(volumeDetailScale(c, 640, near_and_far, 0.04f, 0.0f), 0.65f, 1e-6f);
   // Under a pixel a voxel: every pixel cast.
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 300, near_and_far, 0.04f), 1.0f);
-  // Only the near point: 0.04·1000/10 = 4 pixels a voxel → 0.25, held at the minimum.
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {{0, 0, 5}}, 0.04f), kMinDetailScale);
+  EXPECT_FLOAT_EQ(volumeDetailScale(c, 300, near_and_far, 0.04f, 0.0f), 1.0f);
+  // Only the near point: 0.04·1000/10 = 4 pixels a voxel → 0.25.
+  EXPECT_NEAR(volumeDetailScale(c, 1000, {{0, 0, 5}}, 0.04f, 0.0f), 0.25f, 1e-6f);
 }
 
 TEST(VolumeDetailScale, NothingOccupiedOrBehindTheEyeCastsEveryPixel) {
   const Camera c = straightOn();
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {}, 0.04f), 1.0f);
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {{0, 0, 12}}, 0.04f), 1.0f);  // behind the eye
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 0, {{0, 0, 5}}, 0.04f), 1.0f);
+  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {}, 0.04f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {{0, 0, 12}}, 0.04f, 0.0f), 1.0f);  // behind
+  EXPECT_FLOAT_EQ(volumeDetailScale(c, 0, {{0, 0, 5}}, 0.04f, 0.0f), 1.0f);
+}
+
+// At rest no coarser than half per axis; moving no finer than the volume needs, down to a
+// quarter, and never finer than the moving scale asked.
+TEST(VolumeDetailScale, StillAndMovingFramesKeepTheirFloors) {
+  EXPECT_FLOAT_EQ(detailCastScale(1.0f, false, 0.25f), kMinStillDetailScale);
+  EXPECT_FLOAT_EQ(detailCastScale(1.0f, false, 0.7f), 0.7f);
+  EXPECT_FLOAT_EQ(detailCastScale(1.0f, false, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(detailCastScale(0.5f, true, 0.1f), kMinMovingDetailScale);
+  EXPECT_FLOAT_EQ(detailCastScale(0.5f, true, 0.35f), 0.35f);
+  EXPECT_FLOAT_EQ(detailCastScale(0.5f, true, 0.8f), 0.5f);
 }
 
 constexpr int kW = 640, kH = 360;
@@ -108,8 +120,36 @@ TEST_F(VolumeDetailRender, TheStillFrameIsCastAtHalfTheRaysAndLooksTheSame) {
   }
 }
 
-// Styles with a screen pass or screen derivatives, moving or jittered frames, a textured sky and
-// requests below scale 1 are cast as asked.
+// A moving frame of that cloud at the moving scale ½: no finer than the voxels need (~3 pixels a
+// voxel at its far side: a third), against the moving frame at ½ within the same bounds.
+TEST_F(VolumeDetailRender, AMovingFrameIsCastNoFinerThanTheVolumeNeeds) {
+  RenderOptions moving;
+  moving.scale = 0.5f;
+  moving.moving = true;
+  RenderOptions at_detail = moving;
+  at_detail.cast_at_volume_detail = true;
+  const float scale = renderer.castScale(Camera::reference(), kH, at_detail);
+  EXPECT_LT(scale, 0.5f);
+  EXPECT_GE(scale, kMinMovingDetailScale);
+  const Frame half = renderFrame(renderer, moving);
+  const Frame detail = renderFrame(renderer, at_detail);
+  EXPECT_EQ(half.cast_width, kW / 2);
+  EXPECT_EQ(detail.cast_width, int(std::lround(kW * scale)));
+  double sum = 0.0;
+  std::vector<int> diff(half.image.pixels.size());
+  for (size_t i = 0; i < diff.size(); ++i) {
+    diff[i] = std::abs(int(half.image.pixels[i]) - int(detail.image.pixels[i]));
+    sum += diff[i];
+  }
+  std::sort(diff.begin(), diff.end());
+  std::printf("moving at %.2f against 0.5: mean %.3f/255, p99 %d/255, max %d/255\n", scale,
+              sum / double(diff.size()), diff[diff.size() * 99 / 100], diff.back());
+  EXPECT_LT(sum / double(diff.size()), 0.5);
+  EXPECT_LE(diff[diff.size() * 99 / 100], 2);
+}
+
+// Styles with a screen pass or screen derivatives, jittered frames, a textured sky and the option
+// off are cast as asked.
 TEST_F(VolumeDetailRender, OtherFramesAreCastAsAsked) {
   RenderOptions o;
   o.cast_at_volume_detail = true;
@@ -118,10 +158,6 @@ TEST_F(VolumeDetailRender, OtherFramesAreCastAsAsked) {
     EXPECT_FLOAT_EQ(renderer.castScale(Camera::reference(), kH, o), 1.0f) << renderStyleName(style);
   }
   o.style = RenderStyle::kThesis;
-  RenderOptions moving = o;
-  moving.scale = 0.7f;
-  moving.moving = true;
-  EXPECT_FLOAT_EQ(renderer.castScale(Camera::reference(), kH, moving), 0.7f);
   RenderOptions jittered = o;
   jittered.jitter = glm::vec2(0.25f, 0.0f);
   EXPECT_FLOAT_EQ(renderer.castScale(Camera::reference(), kH, jittered), 1.0f);
