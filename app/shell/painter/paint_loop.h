@@ -85,9 +85,10 @@ struct PaintLoopOptions {
   // sketch and sizes f does not divide keep the reduced scale), or whichever of the two keeps
   // to target_frame_ms or is the faster, measured (moving_frames.h; the default).
   MovingFrames moving_frames = MovingFrames::kFaster;
-  // Frames at rest cast at the volume's detail where that looks the same as a ray per pixel
-  // (volume_detail.h: thesis and physical styles, half the pixels per axis at most); false casts
-  // every pixel (the bench's baseline).
+  // Frames cast at the volume's detail where that looks the same (volume_detail.h: the thesis and
+  // physical styles; at rest at most half the rays per axis fewer than a ray per pixel, moving no
+  // finer than the voxels need, down to a quarter); false casts a ray per pixel at rest and the
+  // moving scale while moving (the bench's baselines).
   bool cast_at_volume_detail = true;
   // While the light ball is dragged the light is swept at 1/light_drag_divisor per axis into a
   // small texture the ray caster reads instead of the pool's light (reduced_light_sweep.h: the
