@@ -70,7 +70,8 @@ struct Script {
   std::vector<double> drag_cpu, release_cpu, wind_cpu;
   std::vector<double> orbit_ms, orbit_cpu;  // the Camera-mode drag
   // A mouse move of a drag and the present that shows it: the move, injected while frame k is
-  // drawn, is read by the next frame's update, so present k + 1 shows it (presents count from 1).
+  // drawn (k − 1 presents so far, FrameTimingRing::total()), is read by frame k + 1's update, so
+  // present k + 1 shows it (presents count from 1).
   struct Move {
     uint64_t at_ns = 0, present = 0;
   };
