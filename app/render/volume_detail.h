@@ -25,13 +25,14 @@ namespace cb {
 constexpr float kMinStillDetailScale = 0.5f;
 constexpr float kMinMovingDetailScale = 0.25f;
 
-// The scale of width and height at which a cast pixel covers at most one voxel (edge `voxel`
-// world units) at the farthest view depth of `occupied` (world points bounding what can hold
-// density), through `camera` on an image `height` pixels high: 1 / (pixels a voxel covers
-// there), rounded up to a 1/20 step, within [floor, 1]. 1 when `occupied` is empty or lies
-// behind the eye.
+// The scale of width and height at which a cast pixel covers at most one voxel (its shortest
+// edge) at the farthest view depth of `occupied` — points bounding what can hold density, in
+// voxels of a grid whose corner is `world_min` and whose voxels are `voxel` world units (the
+// renderer's ray-bounds corners, read in place) — through `camera` on an image `height` pixels
+// high: 1 / (pixels a voxel covers there), rounded up to a 1/20 step, within [floor, 1]. 1 when
+// `occupied` is empty or lies behind the eye.
 float volumeDetailScale(const Camera& camera, int height, const std::vector<glm::vec3>& occupied,
-                        float voxel, float floor);
+                        glm::vec3 world_min, glm::vec3 voxel, float floor);
 
 // The scale a frame asked at `requested` is cast at, given the volume's detail scale `detail`
 // (volumeDetailScale with floor 0): a frame at rest (requested 1) at max(detail,

@@ -790,11 +790,7 @@ float VolumeRenderer::castScale(const Camera& camera, int height,
       !renderStyleRow(options.style).reprojects || dims_.x <= 0)
     return options.scale;
   const glm::vec3 voxel = (world_max_ - world_min_) / glm::vec3(dims_);
-  std::vector<glm::vec3> corners;
-  corners.reserve(bounds_corners_.size());
-  for (const glm::vec3& v : bounds_corners_) corners.push_back(world_min_ + v * voxel);
-  const float detail =
-      volumeDetailScale(camera, height, corners, std::min({voxel.x, voxel.y, voxel.z}), 0.0f);
+  const float detail = volumeDetailScale(camera, height, bounds_corners_, world_min_, voxel, 0.0f);
   return detailCastScale(options.scale, options.moving, detail);
 }
 

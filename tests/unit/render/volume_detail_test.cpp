@@ -20,6 +20,15 @@ namespace {
 
 // A camera on the z axis looking down −z, 90° vertical field of view: at view depth z an image
 // `h` pixels high spans 2z world units, so a voxel of edge v covers v·h / (2z) pixels.
+// The points below are world positions; given in voxels of a 0.04 grid at the origin.
+constexpr float kVoxel = 0.04f;
+std::vector<glm::vec3> inVoxels(std::vector<glm::vec3> world) {
+  for (glm::vec3& p : world) p /= kVoxel;
+  return world;
+}
+float detailOf(const Camera& c, int height, const std::vector<glm::vec3>& world, float floor) {
+  return volumeDetailScale(c, height, inVoxels(world), glm::vec3(0.0f), glm::vec3(kVoxel), floor);
+}
 Camera straightOn() {
   Camera c;
   c.eye = glm::vec3(0.0f, 0.0f, 10.0f);
@@ -33,21 +42,21 @@ TEST(VolumeDetailScale, OneCastPixelPerVoxelAtTheFarthestDepth) {
   // Points at depths 5 and 8: the farthest decides. v = 0.04, h = 1000: 0.04·1000/16 = 2.5
   // pixels a voxel there → scale 1/2.5 = 0.4.
   const std::vector<glm::vec3> near_and_far = {{0, 0, 5}, {0.5f, 0, 2}};
-  EXPECT_NEAR(volumeDetailScale(c, 1000, near_and_far, 0.04f, 0.0f), 0.4f, 1e-6f);
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, near_and_far, 0.04f, 0.5f), 0.5f);  // the floor
+  EXPECT_NEAR(detailOf(c, 1000, near_and_far, 0.0f), 0.4f, 1e-6f);
+  EXPECT_FLOAT_EQ(detailOf(c, 1000, near_and_far, 0.5f), 0.5f);  // the floor
   // 1.6 pixels a voxel (h = 640): 1/1.6 = 0.625 rounded up to the next 1/20: 0.65.
-  EXPECT_NEAR(volumeDetailScale(c, 640, near_and_far, 0.04f, 0.0f), 0.65f, 1e-6f);
+  EXPECT_NEAR(detailOf(c, 640, near_and_far, 0.0f), 0.65f, 1e-6f);
   // Under a pixel a voxel: every pixel cast.
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 300, near_and_far, 0.04f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(detailOf(c, 300, near_and_far, 0.0f), 1.0f);
   // Only the near point: 0.04·1000/10 = 4 pixels a voxel → 0.25.
-  EXPECT_NEAR(volumeDetailScale(c, 1000, {{0, 0, 5}}, 0.04f, 0.0f), 0.25f, 1e-6f);
+  EXPECT_NEAR(detailOf(c, 1000, {{0, 0, 5}}, 0.0f), 0.25f, 1e-6f);
 }
 
 TEST(VolumeDetailScale, NothingOccupiedOrBehindTheEyeCastsEveryPixel) {
   const Camera c = straightOn();
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {}, 0.04f, 0.0f), 1.0f);
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 1000, {{0, 0, 12}}, 0.04f, 0.0f), 1.0f);  // behind
-  EXPECT_FLOAT_EQ(volumeDetailScale(c, 0, {{0, 0, 5}}, 0.04f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(detailOf(c, 1000, {}, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(detailOf(c, 1000, {{0, 0, 12}}, 0.0f), 1.0f);  // behind
+  EXPECT_FLOAT_EQ(detailOf(c, 0, {{0, 0, 5}}, 0.0f), 1.0f);
 }
 
 // At rest no coarser than half per axis; moving no finer than the volume needs, down to a
