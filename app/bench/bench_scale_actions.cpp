@@ -236,7 +236,8 @@ PainterActionFigures measurePainterActions(Display& display, VolumeRenderer& ren
   options.config_dir = dir + "/config";
   options.state_dir = dir + "/state";
   if (baseline) {
-    options.light_drag_divisor = 1;  // the light volume swept in full every drag frame
+    options.light_drag_divisor = 1;       // the light volume swept in full every drag frame
+    options.animation_light_divisor = 1;  // and every wind frame's change
     options.min_light_drag_scale = options.moving_scale;  // and cast at the moving scale
     options.region_rerender = false;
     options.cast_at_volume_detail = false;           // a ray per pixel at rest

@@ -353,27 +353,38 @@ void VolumeRenderer::followGrowth(const Volume& volume) {
 }
 
 // The light brought up to date with the volume and the light: while the light is dragged over
-// a volume that stayed the same, a coarse sweep into the preview texture (the light volume and
-// the pool keep the light before; nothing of them changes); else the light volume's sweep of
-// what changed. Returns the box whose light changed in the light volume.
+// a volume that stayed the same (or, previewing every change, while an animation changes it), a
+// coarse sweep into the preview texture (the light volume keeps the light before, and the pool
+// the light volume's; what changed meanwhile is remembered); else the light volume's sweep of
+// what changed, and of what a preview left unswept. Returns the box whose light changed in the
+// light volume.
 VoxelBox VolumeRenderer::syncLight(const Volume& volume, const Light& light, bool fresh,
                                    const VoxelBox& dirty, LightByteChanges* light_bytes) {
   if (fresh) {
     light_volume_ = LightVolume{};
     light_preview_.release();
+    light_unswept_ = {};
   }
-  if (light_preview_divisor_ > 1 && !fresh && dirty.empty() &&
-      !light_volume_.matches(volume, light)) {
-    const bool same = light_is_preview_ && preview_light_.direction == light.direction &&
+  const bool moved = !light_volume_.matches(volume, light);
+  const bool preview = light_preview_divisor_ > 1 && !fresh &&
+                       (light_preview_of_ == LightPreviewOf::kEveryChange
+                            ? moved || light_is_preview_ || !dirty.empty()
+                            : moved && dirty.empty());
+  if (preview) {
+    const bool same = light_is_preview_ && dirty.empty() &&
+                      preview_light_.direction == light.direction &&
                       preview_light_.extinction == light.extinction;
     if (!same) light_preview_.upload(reduced_light_.sweep(volume, light, light_preview_divisor_));
+    light_unswept_ = light_unswept_.unite(dirty);
     light_is_preview_ = true;
     preview_light_ = light;
     return {};
   }
   light_is_preview_ = false;
   light_bytes->all = true;
-  return sweepLightVolume(light_volume_, volume, light, dirty, light_bytes);
+  const VoxelBox swept = dirty.unite(light_unswept_);
+  light_unswept_ = {};
+  return sweepLightVolume(light_volume_, volume, light, swept, light_bytes);
 }
 
 void VolumeRenderer::dropFrameTargets() {

@@ -186,8 +186,16 @@ class VolumeRenderer {
   // a small texture of its own, leaving the light volume and the pool as they were; 1, the
   // default, sweeps at full resolution. The first sync after the divisor returns to 1 brings the
   // light volume to the light then (a full sweep unless it is the light before the drag).
-  // A sync that changes the volume, or a fresh one, sweeps in full whatever the divisor.
-  void setLightPreviewDivisor(int divisor) { light_preview_divisor_ = divisor < 1 ? 1 : divisor; }
+  // With LightPreviewOf::kLightMoves (the light drag) a sync that changes the volume, or a fresh
+  // one, sweeps in full whatever the divisor. With kEveryChange (an animation's frames, each a
+  // changed volume) the coarse light is swept anew for every changed volume too, and what the
+  // frames changed is swept into the light volume at the first sync after the divisor returns
+  // to 1; a fresh sync sweeps in full.
+  enum class LightPreviewOf { kLightMoves, kEveryChange };
+  void setLightPreviewDivisor(int divisor, LightPreviewOf of = LightPreviewOf::kLightMoves) {
+    light_preview_divisor_ = divisor < 1 ? 1 : divisor;
+    light_preview_of_ = of;
+  }
   // True while frames read the light from the preview texture.
   bool lightIsPreview() const { return light_is_preview_; }
   // Ray casts the synced volume into `target_fbo` (width×height). With options.scale < 1 it
@@ -300,7 +308,9 @@ class VolumeRenderer {
   LightPreviewTexture light_preview_;  // the drag's coarse light on the GPU
   Light preview_light_;                // the light it was swept for
   int light_preview_divisor_ = 1;
+  LightPreviewOf light_preview_of_ = LightPreviewOf::kLightMoves;
   bool light_is_preview_ = false;
+  VoxelBox light_unswept_;  // density changed under a preview: swept when the preview ends
   OccupancyPyramid occupancy_;
   RenderTarget low_res_;
   RenderTarget style_image_;  // the ray-cast image of a screen-space style without skipping

@@ -95,6 +95,11 @@ struct PaintLoopOptions {
   // thesis's 128³ preview for 256³), and in full at release; 1 sweeps the light volume in full
   // and re-packs the pool every drag frame (the bench's baseline).
   int light_drag_divisor = 2;
+  // While a morph or the wind plays, the light of each frame is swept the same way, 1/divisor
+  // per axis into that texture, and what the frames changed is swept in full when it stops
+  // (VolumeRenderer's LightPreviewOf::kEveryChange); 1 sweeps every frame's change in full (the
+  // bench's baseline).
+  int animation_light_divisor = 2;
   // While the light ball is dragged the scene is cast at a scale of its own, adapted after each
   // drag frame towards light_drag_frame_ms (15 fps) within [min_light_drag_scale,
   // moving_scale], and kept for the next drag: the camera holds still, so the shading, not the

@@ -183,8 +183,16 @@ const Volume& PaintScreen::shownVolume() const {
 }
 
 SyncStats PaintScreen::syncShown() {
+  // The light's coarse preview (reduced_light_sweep.h): while the light ball is dragged and the
+  // first frame at its release, and while an animation plays (each frame's volume lit coarse).
+  const bool playing = animationPlaying();
+  const int divisor = playing                                 ? options_.animation_light_divisor
+                      : drag_light_ || light_release_pending_ ? options_.light_drag_divisor
+                                                              : 1;
+  renderer_.setLightPreviewDivisor(divisor, playing ? VolumeRenderer::LightPreviewOf::kEveryChange
+                                                    : VolumeRenderer::LightPreviewOf::kLightMoves);
   return renderer_.sync(shownVolume(), shownLight(),
-                        animationPlaying() ? ChangeDetail::kSlots : ChangeDetail::kTexels);
+                        playing ? ChangeDetail::kSlots : ChangeDetail::kTexels);
 }
 
 Light PaintScreen::shownLight() const {
@@ -643,9 +651,10 @@ void PaintScreen::drawStill(FrameContext& frame, PaintFrameInfo* info) {
 
 bool PaintScreen::sceneStale() const {
   const SceneKey key = currentKey();
-  // A light drag's coarse light is swept in full once its release has been shown.
+  // A coarse light is swept in full once its release has been shown, or the animation stopped.
   return !drawn_ || !(*drawn_ == key) ||
-         (renderer_.lightIsPreview() && !drag_light_ && !light_release_pending_);
+         (renderer_.lightIsPreview() && !drag_light_ && !light_release_pending_ &&
+          !animationPlaying());
 }
 
 bool PaintScreen::inkLive() const {
@@ -660,7 +669,6 @@ void PaintScreen::renderScene(SceneWork* work) {
   // at reduced resolution per axis (PaintLoopOptions::light_drag_divisor) and the scene cast at
   // the light drag's scale; the frame after the release sweeps it in full at full resolution.
   const bool light_preview = drag_light_ || light_release_pending_;
-  renderer_.setLightPreviewDivisor(light_preview ? std::max(1, options_.light_drag_divisor) : 1);
   const bool stale = sceneStale();
   // A refinement yields to the ink: while a stroke is drawn it waits (a band of rows would not
   // do: each cast pays the ray bounds and clears of the whole sky, 100+ ms on a loaded llvmpipe).

@@ -466,6 +466,59 @@ TEST_F(VolumeRendererTest, ALightDragIsSweptCoarseAndTheReleaseInFull) {
   EXPECT_LT(to_released, 0.25 * to_old);
 }
 
+// An animation's frames (LightPreviewOf::kEveryChange): each changed volume is lit by the coarse
+// sweep of that volume (the frame a renderer gets from sweeping the same volume coarse), the light
+// volume is left as it was meanwhile, and the first sync at divisor 1 sweeps what the frames
+// changed: its frame equals a fresh renderer's, bit for bit.
+TEST_F(VolumeRendererTest, AnAnimationsFramesAreLitCoarseAndWhatTheyChangedSweptAtTheEnd) {
+  Volume v = makeBundledCumulus(glm::ivec3(64), 1);
+  const Light light;
+  renderer.sync(v, light);
+  const std::vector<float> before = renderer.lightVolume().toDense();
+  const Camera cam = Camera::reference();
+  const RenderOptions opt;
+  renderer.setLightPreviewDivisor(2, VolumeRenderer::LightPreviewOf::kEveryChange);
+  for (int frame = 0; frame < 3; ++frame) {
+    // A slab of cloud moved a little each frame, as the wind's frames do.
+    const int at = 12 + 6 * frame;
+    const VoxelBox slab{{at, 30, 20}, {at + 8, 38, 44}};
+    for (int z = slab.lo.z; z < slab.hi.z; ++z)
+      for (int y = slab.lo.y; y < slab.hi.y; ++y)
+        for (int x = slab.lo.x; x < slab.hi.x; ++x) v.voxelForWrite(x, y, z) = 0.8f;
+    v.markDirty(slab);
+    const SyncStats s = renderer.sync(v, light);
+    ASSERT_TRUE(renderer.lightIsPreview()) << "frame " << frame;
+    EXPECT_TRUE(s.light_box.empty()) << "the light volume is not swept while it plays";
+    EXPECT_EQ(renderer.lightVolume().toDense(), before);
+    // The light shown is this frame's volume swept coarse: what a renderer shows that starts
+    // from another light and previews this one over the same volume.
+    VolumeRenderer coarse;
+    std::string err;
+    ASSERT_TRUE(coarse.init(&err)) << err;
+    Light other = light;
+    other.direction = Light::directionTowards(glm::vec3(-3.0f, 2.0f, 1.0f));
+    coarse.sync(v, other);
+    coarse.setLightPreviewDivisor(2);
+    coarse.sync(v, light);
+    ASSERT_TRUE(coarse.lightIsPreview());
+    EXPECT_EQ(maxChannelDifference(renderImage(renderer, cam, opt), renderImage(coarse, cam, opt)),
+              0)
+        << "frame " << frame;
+  }
+  renderer.setLightPreviewDivisor(1);
+  const SyncStats end = renderer.sync(v, light);
+  EXPECT_FALSE(renderer.lightIsPreview());
+  EXPECT_FALSE(end.light_box.empty()) << "what the frames changed is swept when they stop";
+  LightVolume full;
+  sweepLightVolume(full, v, light, v.bounds());
+  EXPECT_EQ(renderer.lightVolume().toDense(), full.toDense());
+  VolumeRenderer plain;
+  std::string err;
+  ASSERT_TRUE(plain.init(&err)) << err;
+  plain.sync(v, light);
+  EXPECT_EQ(maxChannelDifference(renderImage(renderer, cam, opt), renderImage(plain, cam, opt)), 0);
+}
+
 // A moved light changes every lit voxel: the sync lists no texel changes (it says the light
 // moved, and the changed region is the whole frame), and a frame cast after it — with an edit in
 // the same sync, and after the light returns to where it was — equals a fresh renderer's.
