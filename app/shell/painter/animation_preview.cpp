@@ -124,6 +124,8 @@ bool AnimationPreview::toggleWind(const PaintSession& session, std::string* erro
   display_at_ = display.at;
   start_ = std::make_unique<Volume>(*frame_);
   written_ = frame_->bounds();
+  spare_frame_ = std::make_unique<Volume>(*frame_);
+  spare_written_ = frame_->bounds();
   wind_ = std::make_unique<WindAnimation>(window, WindRun{}.speed, WindRun{}.gust);
   const glm::vec2 d = directionXZ(direction_);
   wind_->setDirection(d.x, d.y);
@@ -136,6 +138,7 @@ bool AnimationPreview::toggleWind(const PaintSession& session, std::string* erro
 void AnimationPreview::nextWindDirection() {
   direction_ = (direction_ + 1) % 8;
   if (wind_ && kind_ == Kind::kWind) {
+    dropWindAhead();  // stepped in the direction before
     const glm::vec2 d = directionXZ(direction_);
     wind_->setDirection(d.x, d.y);
   }
@@ -153,12 +156,51 @@ bool AnimationPreview::advance(double seconds) {
     written_ = morph_->frameInto(t_, frame_.get(), written_);
     if (t_ >= 1.0f) playing_ = false;  // holds the target until applied or left
   } else {
-    wind_->step();
-    written_ = wind_->show(*start_, frame_.get(), written_);
+    WindStep next = wind_ahead_.valid() ? wind_ahead_.get()
+                                        : stepWind(std::make_unique<WindAnimation>(*wind_), *start_,
+                                                   std::move(spare_frame_), spare_written_);
+    spare_frame_ = std::move(frame_);
+    spare_written_ = written_;
+    wind_ = std::move(next.wind);
+    frame_ = std::move(next.frame);
+    written_ = next.written;
+    startWindAhead();
   }
   // What was cleared and what was written: nothing else of the window changed.
   paste(before.unite(written_));
   return true;
+}
+
+AnimationPreview::WindStep AnimationPreview::stepWind(std::unique_ptr<WindAnimation> wind,
+                                                      const Volume& start,
+                                                      std::unique_ptr<Volume> frame,
+                                                      const VoxelBox& previous) {
+  wind->step();
+  const VoxelBox written = wind->show(start, frame.get(), previous);
+  return {std::move(wind), std::move(frame), written};
+}
+
+void AnimationPreview::startWindAhead() {
+  // The copy is made here, so the thread touches nothing this object still uses.
+  auto wind = std::make_unique<WindAnimation>(*wind_);
+  wind_ahead_ = std::async(std::launch::async,
+                           [wind = std::move(wind), start = start_.get(),
+                            frame = std::move(spare_frame_), previous = spare_written_]() mutable {
+                             return stepWind(std::move(wind), *start, std::move(frame), previous);
+                           });
+}
+
+void AnimationPreview::dropWindAhead() {
+  if (!wind_ahead_.valid()) return;
+  try {
+    WindStep dropped = wind_ahead_.get();
+    spare_frame_ = std::move(dropped.frame);
+    spare_written_ = dropped.written;
+  } catch (const std::exception&) {
+    // The step failed: its frame went with it; the spare starts again from the frame shown.
+    spare_frame_ = std::make_unique<Volume>(*frame_);
+    spare_written_ = written_;
+  }
 }
 
 bool AnimationPreview::advanceTo(int64_t now_ns) {
@@ -187,6 +229,7 @@ WindowFrame AnimationPreview::fullFrame(const PaintSession& session) const {
 
 bool AnimationPreview::apply(PaintSession* session, int64_t t_ns, std::string* error) {
   if (!active()) return *error = "apply: no morph or wind is shown", false;
+  dropWindAhead();
   if (stale(*session)) {
     leave();
     return *error = "apply: the cloud changed since the animation started; left it", false;
@@ -201,6 +244,8 @@ bool AnimationPreview::apply(PaintSession* session, int64_t t_ns, std::string* e
 }
 
 void AnimationPreview::leave() {
+  dropWindAhead();
+  spare_frame_.reset();
   kind_ = Kind::kNone;
   last_advance_ns_ = -1;
   playing_ = false;

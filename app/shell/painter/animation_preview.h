@@ -7,7 +7,9 @@
 // Both work on the tool's window of the sky (tool_window.h; the whole cloud in a one-box sky):
 // the window is cropped out when the animation starts, each frame is made on the window's copy
 // and pasted into the display copy of the whole sky (what the renderer is given), so a frame
-// costs what the window holds, and only the bricks that changed are uploaded.
+// costs what the window holds, and only the bricks that changed are uploaded. The wind's next
+// frame is made on another thread while the renderer draws this one (its steps do not depend on
+// what is shown), so a wind frame costs the longer of the two, not their sum.
 // The display copy is at half the resolution when the home box is 128³ or more (halfResolution:
 // an eighth of the voxels to move, upload and light each frame). The morph is planned once from
 // the full-resolution windows, and both they and the copy are carried along its paths when the
@@ -20,6 +22,7 @@
 // the animation first: the copy no longer starts from the cloud.
 #pragma once
 
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -105,8 +108,24 @@ class AnimationPreview {
   float t_ = 0.0f;
   VoxelBox written_;
   // Wind
-  int direction_ = 0;  // 0 east, 1 north-east, … (x is east, −z is north)
-  std::unique_ptr<WindAnimation> wind_;
+  int direction_ = 0;                    // 0 east, 1 north-east, … (x is east, −z is north)
+  std::unique_ptr<WindAnimation> wind_;  // the wind as shown: its steps made frame_
+  // The wind's next frame is made on another thread while this one is drawn: a copy of the wind
+  // stepped once, carrying start_ into the spare frame (the frame shown before this one, whose
+  // content spare_written_ bounds). The next advance takes it; a turn of the wind or leaving
+  // drops it (a turn applies from the next step), a pause keeps it.
+  struct WindStep {
+    std::unique_ptr<WindAnimation> wind;
+    std::unique_ptr<Volume> frame;
+    VoxelBox written;
+  };
+  static WindStep stepWind(std::unique_ptr<WindAnimation> wind, const Volume& start,
+                           std::unique_ptr<Volume> frame, const VoxelBox& previous);
+  void startWindAhead();
+  void dropWindAhead();
+  std::unique_ptr<Volume> spare_frame_;
+  VoxelBox spare_written_;
+  std::future<WindStep> wind_ahead_;  // last: it reads start_, so it is waited for first
 };
 
 }  // namespace cb

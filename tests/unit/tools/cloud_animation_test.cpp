@@ -164,6 +164,15 @@ TEST(CloudAnimation, ApplyIsOneStepUndoRestoresAndTheJournalReplaysOnAnyThreadCo
   ASSERT_TRUE(preview.toggleWind(s, &error));  // stopped: nothing moves
   EXPECT_FALSE(preview.advance(0.05));
   EXPECT_EQ(preview.windSteps(), 8);
+  // The turn took effect from the step after it (the next frame, made while one is drawn, was
+  // made again): two stretches, 5 and 3 steps, the second towards the next direction.
+  const UiChange change = preview.change();
+  const auto* wind = std::get_if<ui::ApplyWind>(&change);
+  ASSERT_TRUE(wind);
+  ASSERT_EQ(wind->run.segments.size(), 2u);
+  EXPECT_EQ(wind->run.segments[0].steps, 5);
+  EXPECT_EQ(wind->run.segments[1].steps, 3);
+  EXPECT_NE(wind->run.segments[0].dx, wind->run.segments[1].dx);
   const uint64_t shown_wind = volumeChecksum(preview.shown());
   ASSERT_TRUE(preview.apply(&s, 2000, &error)) << error;
   EXPECT_EQ(s.history().steps(), steps + 2);
