@@ -127,8 +127,9 @@ float sampleSmoothDensity(vec3 coord) {
 }
 
 #if CB_LIGHT_PREVIEW
-// While the light ball is dragged the light is read from a coarse grid of its own
-// (app/render/reduced_light_sweep.h, light_preview_texture.h) instead of the pool's g and a:
+// While the light ball is dragged, or a morph or the wind plays, the light is read from a coarse
+// grid of its own (app/render/reduced_light_sweep.h, light_preview_texture.h) instead of the
+// pool's g and a:
 // one trilinear fetch of an R8 3D texture over the cloud's box, clamped at its edge.
 uniform sampler3D u_light_preview;
 uniform vec3 u_preview_scale;   // dense texture coordinate -> the grid's texture coordinate
