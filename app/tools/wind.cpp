@@ -2,35 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "app/core/parallel_for.h"
 #include "app/tools/tool_error.h"
+#include "app/tools/wind_kernels.h"
 
 namespace cb {
 namespace {
 
-// a + (b − a)·t: exactly a at t = 0, so a zero displacement reproduces the input bit for bit.
-template <typename T>
-T lerp(T a, T b, float t) {
-  return a + (b - a) * t;
-}
-
-// Trilinear sample of a grid at continuous index c (cell centres at integers), clamped to the
-// border cells.
-template <typename T>
-T sampleClamped(const std::vector<T>& grid, glm::ivec3 n, glm::vec3 c) {
-  c = glm::clamp(c, glm::vec3(0), glm::vec3(n - 1));
-  const glm::ivec3 i0 = glm::min(glm::ivec3(glm::floor(c)), glm::max(n - 2, glm::ivec3(0)));
-  const glm::vec3 f = c - glm::vec3(i0);
-  const glm::ivec3 i1 = glm::min(i0 + 1, n - 1);
-  auto at = [&](int x, int y, int z) { return grid[(size_t(z) * n.y + y) * n.x + x]; };
-  const T c00 = lerp(at(i0.x, i0.y, i0.z), at(i1.x, i0.y, i0.z), f.x);
-  const T c10 = lerp(at(i0.x, i1.y, i0.z), at(i1.x, i1.y, i0.z), f.x);
-  const T c01 = lerp(at(i0.x, i0.y, i1.z), at(i1.x, i0.y, i1.z), f.x);
-  const T c11 = lerp(at(i0.x, i1.y, i1.z), at(i1.x, i1.y, i1.z), f.x);
-  return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
-}
+using wind::lerp;
 
 // Trilinear density at continuous voxel index v (voxel centres at integers); 0 outside.
 float sampleDensity(const Volume& volume, glm::vec3 v) {
@@ -47,112 +27,6 @@ float sampleDensity(const Volume& volume, glm::vec3 v) {
   const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
   return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
 }
-
-// A volume's voxels in a dense array with a border of one zero voxel on every side, so the
-// trilinear read of a sample whose eight voxels lie within the border needs no bounds checks.
-class PaddedDense {
- public:
-  explicit PaddedDense(const Volume& volume)
-      : dims_(volume.dims()),
-        padded_(dims_ + 2),
-        voxels_(size_t(padded_.x) * padded_.y * padded_.z, 0.0f) {
-    parallelFor(size_t(dims_.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
-      for (int z = int(z_begin); z < int(z_end); ++z)
-        for (int y = 0; y < dims_.y; ++y)
-          volume.readLine({0, y, z}, 0, dims_.x, &voxels_[index(0, y, z)]);
-    });
-  }
-
-  // sampleDensity's value (the same arithmetic on the same voxels, so the same bits).
-  float sample(glm::vec3 v) const {
-    const glm::ivec3 i0 = glm::ivec3(glm::floor(v));
-    const glm::vec3 f = v - glm::vec3(i0);
-    if (glm::all(glm::greaterThanEqual(i0, glm::ivec3(-1))) && glm::all(glm::lessThan(i0, dims_))) {
-      const float* p = &voxels_[index(i0.x, i0.y, i0.z)];
-      const size_t sy = size_t(padded_.x), sz = size_t(padded_.x) * padded_.y;
-      const float c00 = lerp(p[0], p[1], f.x);
-      const float c10 = lerp(p[sy], p[sy + 1], f.x);
-      const float c01 = lerp(p[sz], p[sz + 1], f.x);
-      const float c11 = lerp(p[sz + sy], p[sz + sy + 1], f.x);
-      return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
-    }
-    auto at = [&](int x, int y, int z) {
-      if (x < 0 || y < 0 || z < 0 || x >= dims_.x || y >= dims_.y || z >= dims_.z) return 0.0f;
-      return voxels_[index(x, y, z)];
-    };
-    const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
-    const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
-    const float c01 = lerp(at(i0.x, i0.y, i0.z + 1), at(i0.x + 1, i0.y, i0.z + 1), f.x);
-    const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
-    return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
-  }
-
- private:
-  // Voxel (x, y, z) of the volume, −1 ≤ x, y, z ≤ dims.
-  size_t index(int x, int y, int z) const {
-    return (size_t(z + 1) * padded_.y + size_t(y + 1)) * padded_.x + size_t(x + 1);
-  }
-  glm::ivec3 dims_, padded_;
-  HugePageVector<float> voxels_;
-};
-
-// sampleClamped of a cell grid at voxel centres, v·voxel_to_cells + offset for voxel v, with the
-// per-axis part (clamp, cell and weight) computed once per axis: the same arithmetic, so the
-// same bits, without redoing a row's y and z part at every voxel.
-class VoxelCellSampler {
- public:
-  VoxelCellSampler(const std::vector<glm::vec3>& grid, glm::ivec3 cells, glm::ivec3 voxels,
-                   glm::vec3 voxel_to_cells, glm::vec3 offset)
-      : grid_(grid), cells_(cells) {
-    for (int a = 0; a < 3; ++a) {
-      Taps& t = taps_[a];
-      t.i0.resize(size_t(voxels[a]));
-      t.i1.resize(size_t(voxels[a]));
-      t.f.resize(size_t(voxels[a]));
-      for (int v = 0; v < voxels[a]; ++v) {
-        const float c =
-            glm::clamp(float(v) * voxel_to_cells[a] + offset[a], 0.0f, float(cells[a] - 1));
-        const int i0 = std::min(int(std::floor(c)), std::max(cells[a] - 2, 0));
-        t.i0[size_t(v)] = i0;
-        t.i1[size_t(v)] = std::min(i0 + 1, cells[a] - 1);
-        t.f[size_t(v)] = c - float(i0);
-      }
-    }
-  }
-
-  // The cells a row of voxels (y, z) interpolates between.
-  struct Row {
-    const glm::vec3 *r00, *r10, *r01, *r11;  // (y0, z0), (y1, z0), (y0, z1), (y1, z1)
-    float fy, fz;
-  };
-  Row row(int y, int z) const {
-    const Taps &ty = taps_[1], &tz = taps_[2];
-    auto line = [&](int j, int k) { return &grid_[(size_t(k) * cells_.y + j) * cells_.x]; };
-    const int y0 = ty.i0[size_t(y)], y1 = ty.i1[size_t(y)];
-    const int z0 = tz.i0[size_t(z)], z1 = tz.i1[size_t(z)];
-    return {line(y0, z0), line(y1, z0),    line(y0, z1),
-            line(y1, z1), ty.f[size_t(y)], tz.f[size_t(z)]};
-  }
-  glm::vec3 at(const Row& r, int x) const {
-    const Taps& tx = taps_[0];
-    const int x0 = tx.i0[size_t(x)], x1 = tx.i1[size_t(x)];
-    const float fx = tx.f[size_t(x)];
-    const glm::vec3 c00 = lerp(r.r00[x0], r.r00[x1], fx);
-    const glm::vec3 c10 = lerp(r.r10[x0], r.r10[x1], fx);
-    const glm::vec3 c01 = lerp(r.r01[x0], r.r01[x1], fx);
-    const glm::vec3 c11 = lerp(r.r11[x0], r.r11[x1], fx);
-    return lerp(lerp(c00, c10, r.fy), lerp(c01, c11, r.fy), r.fz);
-  }
-
- private:
-  struct Taps {
-    std::vector<int> i0, i1;
-    std::vector<float> f;
-  };
-  const std::vector<glm::vec3>& grid_;
-  glm::ivec3 cells_;
-  Taps taps_[3];
-};
 
 // The box of non-zero voxels (per z slab, united in slab order).
 VoxelBox nonZeroBox(const Volume& volume) {
@@ -237,14 +111,14 @@ class OccupiedBlocks {
 }  // namespace
 
 struct WindSolver::StartCopy {
-  static constexpr int kBlock = 8;  // resampleDensity's blocks
+  static constexpr int kBlock = wind::kBlock;  // resampleDensity's blocks
   StartCopy(const Volume& start)
       : instance(start.instanceId()),
         generation(start.generation()),
         dense(start),
         occupied(start, kBlock) {}
   uint64_t instance, generation;
-  PaddedDense dense;
+  wind::PaddedDense dense;
   OccupiedBlocks occupied;  // which kBlock³ blocks of the start hold density
 };
 
@@ -285,28 +159,34 @@ void WindSolver::addForce(glm::vec3 force, glm::vec3 centre, float radius, float
 }
 
 glm::vec3 WindSolver::sampleVelocityInCells(glm::vec3 c) const {
-  return sampleClamped(velocity_, params_.grid, c);
+  return wind::sampleClamped(velocity_.data(), params_.grid, c);
 }
 
 glm::vec3 WindSolver::sampleVelocity(glm::vec3 world) const {
   return sampleVelocityInCells((world - world_min_) / cell_ - 0.5f);
 }
 
-void WindSolver::divergence(std::vector<float>* out) const {
+void WindSolver::divergence(std::vector<float>* out, std::vector<float>* first_sweep) const {
   const glm::ivec3 n = params_.grid;
+  const glm::vec3 inv_h2 = 1.0f / (cell_ * cell_);
+  const float diagonal = 2.0f * (inv_h2.x + inv_h2.y + inv_h2.z);
   parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
+    // Central differences; the border repeats its cell (open, zero-gradient outflow).
+    auto row = [&](int j, int k) {
+      return &velocity_[index(0, std::clamp(j, 0, n.y - 1), std::clamp(k, 0, n.z - 1))];
+    };
+    const std::vector<float> zeros(first_sweep ? size_t(n.x) : 0, 0.0f);
     for (int z = int(z_begin); z < int(z_end); ++z)
-      for (int y = 0; y < n.y; ++y)
-        for (int x = 0; x < n.x; ++x) {
-          // Central differences; the border repeats its cell (open, zero-gradient outflow).
-          auto u = [&](int i, int j, int k) {
-            return velocity_[index(std::clamp(i, 0, n.x - 1), std::clamp(j, 0, n.y - 1),
-                                   std::clamp(k, 0, n.z - 1))];
-          };
-          (*out)[index(x, y, z)] = (u(x + 1, y, z).x - u(x - 1, y, z).x) / (2 * cell_.x) +
-                                   (u(x, y + 1, z).y - u(x, y - 1, z).y) / (2 * cell_.y) +
-                                   (u(x, y, z + 1).z - u(x, y, z - 1).z) / (2 * cell_.z);
-        }
+      for (int y = 0; y < n.y; ++y) {
+        float* div = out->data() + index(0, y, z);
+        wind::divergenceRow(
+            {row(y, z), row(y - 1, z), row(y + 1, z), row(y, z - 1), row(y, z + 1), div}, n.x,
+            2.0f * cell_);
+        if (!first_sweep) continue;
+        const float* p = zeros.data();
+        wind::jacobiRow({p, p, p, p, p, div, first_sweep->data() + index(0, y, z)}, n.x, inv_h2,
+                        diagonal);
+      }
   });
 }
 
@@ -320,13 +200,18 @@ float WindSolver::maxDivergence() const {
 
 void WindSolver::project() {
   const glm::ivec3 n = params_.grid;
-  divergence(&divergence_);
   // Jacobi sweeps on ∇²p = ∇·u (7-point Laplacian, p = 0 outside), from p = 0 each step so the
-  // result depends on the velocity only.
-  std::fill(pressure_.begin(), pressure_.end(), 0.0f);
+  // result depends on the velocity only. The first sweep, whose neighbours are all 0, needs only
+  // the cell's divergence and is made with it.
+  if (params_.pressure_iterations > 0) {
+    divergence(&divergence_, &scratch_pressure_);
+    pressure_.swap(scratch_pressure_);
+  } else {
+    std::fill(pressure_.begin(), pressure_.end(), 0.0f);
+  }
   const glm::vec3 inv_h2 = 1.0f / (cell_ * cell_);
   const float diagonal = 2.0f * (inv_h2.x + inv_h2.y + inv_h2.z);
-  for (int iteration = 0; iteration < params_.pressure_iterations; ++iteration) {
+  for (int iteration = 1; iteration < params_.pressure_iterations; ++iteration) {
     parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
       // Rows of the neighbours; a row outside the grid reads zeros (p = 0 outside).
       const std::vector<float> zeros(size_t(n.x), 0.0f);
@@ -335,34 +220,27 @@ void WindSolver::project() {
         return pressure_.data() + index(0, j, k);
       };
       for (int z = int(z_begin); z < int(z_end); ++z)
-        for (int y = 0; y < n.y; ++y) {
-          const float* c = row(y, z);
-          const float *ym = row(y - 1, z), *yp = row(y + 1, z);
-          const float *zm = row(y, z - 1), *zp = row(y, z + 1);
-          const float* div = divergence_.data() + index(0, y, z);
-          float* out = scratch_pressure_.data() + index(0, y, z);
-          for (int x = 0; x < n.x; ++x) {
-            const float xm = x > 0 ? c[x - 1] : 0.0f, xp = x + 1 < n.x ? c[x + 1] : 0.0f;
-            const float neighbours =
-                (xm + xp) * inv_h2.x + (ym[x] + yp[x]) * inv_h2.y + (zm[x] + zp[x]) * inv_h2.z;
-            out[x] = (neighbours - div[x]) / diagonal;
-          }
-        }
+        for (int y = 0; y < n.y; ++y)
+          wind::jacobiRow(
+              {row(y, z), row(y - 1, z), row(y + 1, z), row(y, z - 1), row(y, z + 1),
+               divergence_.data() + index(0, y, z), scratch_pressure_.data() + index(0, y, z)},
+              n.x, inv_h2, diagonal);
     });
     pressure_.swap(scratch_pressure_);
   }
   // u ← u − ∇p.
   parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
-    auto p = [&](int i, int j, int k) {
-      if (i < 0 || j < 0 || k < 0 || i >= n.x || j >= n.y || k >= n.z) return 0.0f;
-      return pressure_[index(i, j, k)];
+    // Rows of the neighbours; a row outside the grid reads zeros (p = 0 outside).
+    const std::vector<float> zeros(size_t(n.x), 0.0f);
+    auto row = [&](int j, int k) -> const float* {
+      if (j < 0 || k < 0 || j >= n.y || k >= n.z) return zeros.data();
+      return pressure_.data() + index(0, j, k);
     };
     for (int z = int(z_begin); z < int(z_end); ++z)
       for (int y = 0; y < n.y; ++y)
-        for (int x = 0; x < n.x; ++x)
-          velocity_[index(x, y, z)] -= glm::vec3((p(x + 1, y, z) - p(x - 1, y, z)) / (2 * cell_.x),
-                                                 (p(x, y + 1, z) - p(x, y - 1, z)) / (2 * cell_.y),
-                                                 (p(x, y, z + 1) - p(x, y, z - 1)) / (2 * cell_.z));
+        wind::subtractGradientRow({row(y, z), row(y - 1, z), row(y + 1, z), row(y, z - 1),
+                                   row(y, z + 1), &velocity_[index(0, y, z)]},
+                                  n.x, 2.0f * cell_);
   });
 }
 
@@ -372,11 +250,8 @@ void WindSolver::stepVelocity(float dt) {
   parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
     for (int z = int(z_begin); z < int(z_end); ++z)
       for (int y = 0; y < n.y; ++y)
-        for (int x = 0; x < n.x; ++x) {
-          const glm::vec3 u = velocity_[index(x, y, z)];
-          scratch_velocity_[index(x, y, z)] =
-              sampleVelocityInCells(glm::vec3(x, y, z) - u * dt / cell_);
-        }
+        wind::backtraceRow(velocity_.data(), n, y, z, &velocity_[index(0, y, z)], dt, cell_, false,
+                           &scratch_velocity_[index(0, y, z)]);
   });
   velocity_.swap(scratch_velocity_);
   project();
@@ -395,11 +270,8 @@ void WindSolver::advectFlowMap(float dt) {
   parallelFor(size_t(n.z), 4, [&](size_t, size_t z_begin, size_t z_end) {
     for (int z = int(z_begin); z < int(z_end); ++z)
       for (int y = 0; y < n.y; ++y)
-        for (int x = 0; x < n.x; ++x) {
-          const glm::vec3 u = velocity_[index(x, y, z)];
-          scratch_displacement_[index(x, y, z)] =
-              sampleClamped(displacement_, n, glm::vec3(x, y, z) - u * dt / cell_) - u * dt;
-        }
+        wind::backtraceRow(displacement_.data(), n, y, z, &velocity_[index(0, y, z)], dt, cell_,
+                           true, &scratch_displacement_[index(0, y, z)]);
   });
   displacement_.swap(scratch_displacement_);
   elapsed_ += dt;
@@ -443,14 +315,8 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
                                             glm::vec3(0), glm::vec3(n - 1));
           const glm::ivec3 k_lo = glm::ivec3(glm::floor(c_lo)),
                            k_hi = glm::min(glm::ivec3(glm::floor(c_hi)) + 1, n - 1);
-          glm::vec3 d_min(std::numeric_limits<float>::infinity()), d_max(-d_min);
-          for (int z = k_lo.z; z <= k_hi.z; ++z)
-            for (int y = k_lo.y; y <= k_hi.y; ++y)
-              for (int x = k_lo.x; x <= k_hi.x; ++x) {
-                const glm::vec3 disp = displacement_[index(x, y, z)];
-                d_min = glm::min(d_min, disp);
-                d_max = glm::max(d_max, disp);
-              }
+          glm::vec3 d_min, d_max;
+          wind::cellRange(displacement_.data(), n, k_lo, k_hi, &d_min, &d_max);
           const glm::ivec3 src_lo = glm::ivec3(glm::floor(glm::vec3(lo) + d_min / vs)) - 1;
           const glm::ivec3 src_hi = glm::ivec3(glm::floor(glm::vec3(hi - 1) + d_max / vs)) + 2;
           live[block_index({bx, by, bz})] =
@@ -460,9 +326,10 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
         }
   });
   const VoxelBox cleared = previous.intersect(out->bounds());
-  const VoxelCellSampler flow(displacement_, n, d, voxel_to_cells, offset_cells);
+  const wind::VoxelCellSampler flow(displacement_, n, d, voxel_to_cells, offset_cells);
   const std::vector<float> zeros(size_t(kBlock), 0.0f);
   parallelFor(size_t(blocks.z), 1, [&](size_t, size_t bz_begin, size_t bz_end) {
+    wind::BlockDisplacement disp;
     float row[kBlock];
     for (int bz = int(bz_begin); bz < int(bz_end); ++bz)
       for (int by = 0; by < blocks.y; ++by)
@@ -477,18 +344,16 @@ VoxelBox WindSolver::resampleDensity(const Volume& start, Volume* out, const Vox
                 out->writeLine({clear.lo.x, y, z}, 0, clear.hi.x - clear.lo.x, zeros.data());
             continue;
           }
+          flow.block(block, &disp);
           bool any = false;
           for (int z = block.lo.z; z < block.hi.z; ++z)
             for (int y = block.lo.y; y < block.hi.y; ++y) {
-              const VoxelCellSampler::Row cells = flow.row(y, z);
-              for (int x = block.lo.x; x < block.hi.x; ++x) {
-                const glm::vec3 v(x, y, z);
-                const glm::vec3 disp = flow.at(cells, x);
-                const float rho = copy.dense.sample(v + disp / vs) * fade;
-                row[x - block.lo.x] = rho;
-                any = any || rho != 0.0f;
-              }
-              out->writeLine({block.lo.x, y, z}, 0, block.hi.x - block.lo.x, row);
+              const int at = ((z - lo.z) * kBlock + y - lo.y) * kBlock;
+              const int width = block.hi.x - block.lo.x;
+              any = copy.dense.sampleRow(lo.x, y, z, width, disp.d[0] + at, disp.d[1] + at,
+                                         disp.d[2] + at, vs, fade, row) ||
+                    any;
+              out->writeLine({block.lo.x, y, z}, 0, width, row);
             }
           nonzero[b] = any;
         }

@@ -90,7 +90,8 @@ class WindSolver {
     return (size_t(z) * params_.grid.y + y) * params_.grid.x + x;
   }
   glm::vec3 sampleVelocityInCells(glm::vec3 c) const;
-  void divergence(std::vector<float>* out) const;
+  // ∇·u into out; with first_sweep, also the first Jacobi sweep from p = 0 into it.
+  void divergence(std::vector<float>* out, std::vector<float>* first_sweep = nullptr) const;
   void project();
   glm::ivec3 reachInVoxels(float dt, const Volume& density) const;
 
