@@ -87,7 +87,7 @@ struct PaintLoopOptions {
   MovingFrames moving_frames = MovingFrames::kFaster;
   // Frames cast at the volume's detail where that looks the same (volume_detail.h: the thesis and
   // physical styles; at rest at most half the rays per axis fewer than a ray per pixel, moving no
-  // finer than the voxels need, down to a quarter); false casts a ray per pixel at rest and the
+  // finer than the voxels need, down to 3/20); false casts a ray per pixel at rest and the
   // moving scale while moving (the bench's baselines).
   bool cast_at_volume_detail = true;
   // While the light ball is dragged the light is swept at 1/light_drag_divisor per axis into a
