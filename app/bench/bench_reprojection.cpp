@@ -56,21 +56,24 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
   half.scale = 0.5f;
   half.moving = true;
   half.finish = true;
+  RenderOptions detail = half;
+  detail.cast_at_volume_detail = true;
   RenderOptions cast;
   cast.finish = true;
-  std::vector<double> ms, cpu, base_ms, base_cpu, cast_ms, pass_ms, copy_ms;
+  std::vector<double> ms, cpu, base_ms, base_cpu, detail_ms, detail_cpu, cast_ms, pass_ms, copy_ms;
   int frame = 0;
-  // Alternating blocks: the baseline's frames, then as many reprojected ones (a frame costs the
-  // same with or without history: every pixel runs the whole reprojection pass).
+  // Alternating blocks: the baseline's frames, the detail's, then as many reprojected ones (a
+  // frame costs the same with or without history: every pixel runs the whole reprojection pass).
   for (int b = 0; b < blocks; ++b) {
-    for (int i = 0; i < kBlockFrames; ++i, ++frame) {
-      const double c0 = processCpuMs();
-      renderer.render(view.orbited(kDegreesPerFrame * float(frame)), width, height, target.fbo(),
-                      half);
-      if (b == 0 && i == 0) continue;  // the first frame compiles the programs
-      base_cpu.push_back(processCpuMs() - c0);
-      base_ms.push_back(renderer.lastStats().frame_ms);
-    }
+    for (const RenderOptions* options : {&half, &detail})
+      for (int i = 0; i < kBlockFrames; ++i, ++frame) {
+        const double c0 = processCpuMs();
+        renderer.render(view.orbited(kDegreesPerFrame * float(frame)), width, height, target.fbo(),
+                        *options);
+        if (b == 0 && i == 0) continue;  // the first frame compiles the programs
+        (options == &half ? base_cpu : detail_cpu).push_back(processCpuMs() - c0);
+        (options == &half ? base_ms : detail_ms).push_back(renderer.lastStats().frame_ms);
+      }
     reprojection.invalidate();  // the view jumped over the baseline's block
     for (int i = 0; i < kBlockFrames; ++i, ++frame) {
       const double c0 = processCpuMs();
@@ -89,6 +92,9 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
   fig.cpu_ms = median(cpu);
   fig.base_ms = median(base_ms);
   fig.base_cpu_ms = median(base_cpu);
+  fig.detail_ms = median(detail_ms);
+  fig.detail_cpu_ms = median(detail_cpu);
+  fig.detail_scale = renderer.castScale(view, height, detail);
   fig.cast_ms = median(cast_ms);
   fig.reproject_ms = median(pass_ms);
   fig.copy_ms = median(copy_ms);
@@ -98,6 +104,7 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
   RenderTarget full;
   full.create(width, height, RenderTarget::Format::kRgba8, &error);
   fig.error_mean = fig.error_p99 = fig.base_error_mean = fig.base_error_p99 = 0;
+  fig.detail_error_mean = fig.detail_error_p99 = 0;
   const int measured = 4;
   for (int i = 0; i < factor * factor + 2 * measured; ++i) {
     const Camera cam = view.orbited(kDegreesPerFrame * float(i));
@@ -110,8 +117,11 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
     low.create(width, height, RenderTarget::Format::kRgba8, &error);
     renderer.render(cam, width, height, low.fbo(), half);
     const ImageRgba8 reduced = low.readRgba8();
+    renderer.render(cam, width, height, low.fbo(), detail);
+    const ImageRgba8 at_detail = low.readRgba8();
     addError(pixelDifferences(image, reference), &fig.error_mean, &fig.error_p99);
     addError(pixelDifferences(reduced, reference), &fig.base_error_mean, &fig.base_error_p99);
+    addError(pixelDifferences(at_detail, reference), &fig.detail_error_mean, &fig.detail_error_p99);
     if (!shots_dir.empty()) {
       char name[256];
       std::snprintf(name, sizeof name, "%s/%dx%d_f%d_frame%02d_", shots_dir.c_str(), width, height,
@@ -119,10 +129,12 @@ ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const 
       writePng(std::string(name) + "reprojected.png", image);
       writePng(std::string(name) + "full_cast.png", reference);
       writePng(std::string(name) + "half_resolution.png", reduced);
+      writePng(std::string(name) + "at_detail.png", at_detail);
     }
   }
   fig.error_mean /= measured;
   fig.base_error_mean /= measured;
+  fig.detail_error_mean /= measured;
   return fig;
 }
 

@@ -22,11 +22,16 @@ struct ReprojectedOrbitFigures {
   // and 99th percentile over the measured frames.
   double error_mean = -1, error_p99 = -1;
   double base_error_mean = -1, base_error_p99 = -1;
+  // The orbit as the painter casts most of its moving frames: at the volume's detail
+  // (volume_detail.h; the moving scale ½ asked), its scale, timing and error alike.
+  double detail_scale = -1, detail_ms = -1, detail_cpu_ms = -1;
+  double detail_error_mean = -1, detail_error_p99 = -1;
 };
 
-// An orbit of `view` by 3° a frame at width×height, `blocks` blocks of 8 frames each way, both
-// with the renderer's current volume. With `shots_dir`, writes a few reprojected frames, the
-// full cast and the half-resolution frame of the same camera there (PNG).
+// An orbit of `view` by 3° a frame at width×height, `blocks` blocks of 8 frames each way (the
+// half-resolution, the detail and the reprojected orbit), with the renderer's current volume. With
+// `shots_dir`, writes a few reprojected frames, the full cast and the half-resolution frame of the
+// same camera there (PNG).
 ReprojectedOrbitFigures measureReprojectedOrbit(VolumeRenderer& renderer, const Camera& view,
                                                 int width, int height, int factor, int blocks,
                                                 const std::string& shots_dir);
