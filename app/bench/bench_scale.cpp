@@ -671,14 +671,17 @@ struct ChildRunner {
       std::printf("  could not start the child process\n");
       return;
     }
-    std::string last;
+    // Whole lines, however long (the JSON line runs to several kilobytes).
+    std::string last, line;
     char buf[4096];
     while (std::fgets(buf, sizeof buf, p)) {
-      const std::string line(buf);
+      line += buf;
+      if (line.back() != '\n' && !std::feof(p)) continue;
       if (line.rfind("{\"bench\"", 0) == 0)
         last = line;
       else
-        std::fputs(buf, stdout), std::fflush(stdout);
+        std::fputs(line.c_str(), stdout), std::fflush(stdout);
+      line.clear();
     }
     const int status = pclose(p);
     if (last.empty()) {
