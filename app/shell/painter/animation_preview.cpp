@@ -161,6 +161,7 @@ bool AnimationPreview::advance(double seconds) {
                                                    std::move(spare_frame_), spare_written_);
     spare_frame_ = std::move(frame_);
     spare_written_ = written_;
+    spare_wind_ = std::move(wind_);
     wind_ = std::move(next.wind);
     frame_ = std::move(next.frame);
     written_ = next.written;
@@ -181,13 +182,18 @@ AnimationPreview::WindStep AnimationPreview::stepWind(std::unique_ptr<WindAnimat
 }
 
 void AnimationPreview::startWindAhead() {
-  // The copy is made here, so the thread touches nothing this object still uses.
-  auto wind = std::make_unique<WindAnimation>(*wind_);
-  wind_ahead_ = std::async(std::launch::async,
-                           [wind = std::move(wind), start = start_.get(),
-                            frame = std::move(spare_frame_), previous = spare_written_]() mutable {
-                             return stepWind(std::move(wind), *start, std::move(frame), previous);
-                           });
+  // The thread copies the wind shown into the wind before it (its storage reused) and steps the
+  // copy; meanwhile this object only reads the wind shown (fullFrame waits for the thread).
+  wind_ahead_ =
+      std::async(std::launch::async,
+                 [ahead = std::move(spare_wind_), shown = wind_.get(), start = start_.get(),
+                  frame = std::move(spare_frame_), previous = spare_written_]() mutable {
+                   if (ahead)
+                     *ahead = *shown;
+                   else
+                     ahead = std::make_unique<WindAnimation>(*shown);
+                   return stepWind(std::move(ahead), *start, std::move(frame), previous);
+                 });
 }
 
 void AnimationPreview::dropWindAhead() {
@@ -196,6 +202,7 @@ void AnimationPreview::dropWindAhead() {
     WindStep dropped = wind_ahead_.get();
     spare_frame_ = std::move(dropped.frame);
     spare_written_ = dropped.written;
+    spare_wind_ = std::move(dropped.wind);
   } catch (const std::exception&) {
     // The step failed: its frame went with it; the spare starts again from the frame shown.
     spare_frame_ = std::make_unique<Volume>(*frame_);
@@ -218,7 +225,9 @@ UiChange AnimationPreview::change() const {
 WindowFrame AnimationPreview::fullFrame(const PaintSession& session) const {
   if (!atHalfResolution()) return {*frame_, window_.box.lo};
   if (kind_ == Kind::kMorph) return {morph_full_->frame(t_), window_.box.lo};
-  // The wind's steps are done: its flow map carries the full-resolution window in one pass.
+  // The wind's steps are done: its flow map carries the full-resolution window in one pass
+  // (once the next frame's thread has read the wind: the pass keeps a copy of its start in it).
+  if (wind_ahead_.valid()) wind_ahead_.wait();
   std::optional<Volume> cropped;
   if (!window_.whole) cropped = cropToWindow(session.volume(), window_);
   const Volume& start = cropped ? *cropped : session.volume();
@@ -246,6 +255,7 @@ bool AnimationPreview::apply(PaintSession* session, int64_t t_ns, std::string* e
 void AnimationPreview::leave() {
   dropWindAhead();
   spare_frame_.reset();
+  spare_wind_.reset();
   kind_ = Kind::kNone;
   last_advance_ns_ = -1;
   playing_ = false;

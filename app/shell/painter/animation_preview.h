@@ -111,9 +111,9 @@ class AnimationPreview {
   int direction_ = 0;                    // 0 east, 1 north-east, … (x is east, −z is north)
   std::unique_ptr<WindAnimation> wind_;  // the wind as shown: its steps made frame_
   // The wind's next frame is made on another thread while this one is drawn: a copy of the wind
-  // stepped once, carrying start_ into the spare frame (the frame shown before this one, whose
-  // content spare_written_ bounds). The next advance takes it; a turn of the wind or leaving
-  // drops it (a turn applies from the next step), a pause keeps it.
+  // (made on that thread) stepped once, carrying start_ into the spare frame (the frame shown
+  // before this one, whose content spare_written_ bounds). The next advance takes it; a turn of the
+  // wind or leaving drops it (a turn applies from the next step), a pause keeps it.
   struct WindStep {
     std::unique_ptr<WindAnimation> wind;
     std::unique_ptr<Volume> frame;
@@ -125,7 +125,8 @@ class AnimationPreview {
   void dropWindAhead();
   std::unique_ptr<Volume> spare_frame_;
   VoxelBox spare_written_;
-  std::future<WindStep> wind_ahead_;  // last: it reads start_, so it is waited for first
+  std::unique_ptr<WindAnimation> spare_wind_;  // the wind before: storage for the next copy
+  std::future<WindStep> wind_ahead_;           // last: it reads start_, so it is waited for first
 };
 
 }  // namespace cb
