@@ -78,6 +78,7 @@ struct Script {
   std::vector<Move> drag_moves, orbit_moves;        // not yet on screen
   std::vector<double> drag_seen_ms, orbit_seen_ms;  // mouse move -> the frame showing it shown
   std::string problem;
+  int wind_stopped_at = -1;     // the frame W stopped the wind at
   const char* shots = nullptr;  // a folder for the first drag's and the wind's frames as PNG
 
   void pointer(DisplayEvent::Kind kind, float x, float y) {
@@ -169,12 +170,20 @@ void Script::onFrame() {
       const AnimationPreview* a = screen ? screen->animation() : nullptr;
       const bool blowing = a && a->playing();
       if (n >= 5 && blowing) wind_ms.push_back(frame_ms), wind_cpu.push_back(frame_cpu);
-      if (n > 4 && !blowing) problem = "the wind does not blow";
+      if (n > 4 && !blowing && wind_stopped_at < 0) problem = "the wind does not blow";
       // What a person sees while it blows (the readback is timed into the next frame).
       if (shots && blowing && (n == 6 || n == 12 || n == 19))
         writePng(std::string(shots) + "/wind_" + std::to_string(n) + ".png",
                  readFramebufferRgba8(display.framebuffer(), w, h));
-      if (int(wind_ms.size()) >= kWindFrames || !problem.empty()) {
+      if (int(wind_ms.size()) >= kWindFrames && wind_stopped_at < 0) {
+        display.injectEvent(DisplayEvent::key('w'));  // stopped: the frame at rest, lit in full
+        wind_stopped_at = n;
+      }
+      const bool rested = wind_stopped_at >= 0 && n == wind_stopped_at + 4;
+      if (shots && rested)
+        writePng(std::string(shots) + "/wind_stopped.png",
+                 readFramebufferRgba8(display.framebuffer(), w, h));
+      if (rested || !problem.empty()) {
         display.injectEvent(DisplayEvent::key('x'));
         next();
       }
