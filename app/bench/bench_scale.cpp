@@ -67,10 +67,9 @@ const char kHelp[] =
     "  --parts LIST    all (default), or some of orbit,pen,actions (the fresh frames always run)\n"
     "  (--child runs one thread count in this process; the parent starts it)\n"
     "Targets at 1920x1080 with 2 threads: fresh frame <= 100 ms, the orbit as the painter\n"
-    "draws it >= 30 fps (its moving frames at the volume's detail or reprojected, whichever is "
-    "the\n"
-    "faster; the half-resolution orbit is the baseline), painting >= 60 fps, pen-up -> first lit\n"
-    "<= 100 ms, -> full resolution <= 150 ms.\n";
+    "draws it >= 30 fps (its moving frames at the volume's detail or reprojected, whichever\n"
+    "is the faster; the half-resolution orbit is the baseline), painting >= 60 fps, pen-up ->\n"
+    "first lit <= 100 ms, -> full resolution <= 150 ms.\n";
 
 using Clock = std::chrono::steady_clock;
 

@@ -21,11 +21,7 @@ float sampleDensity(const Volume& volume, glm::vec3 v) {
     if (x < 0 || y < 0 || z < 0 || x >= d.x || y >= d.y || z >= d.z) return 0.0f;
     return volume.at(x, y, z);
   };
-  const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
-  const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
-  const float c01 = lerp(at(i0.x, i0.y, i0.z + 1), at(i0.x + 1, i0.y, i0.z + 1), f.x);
-  const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
-  return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
+  return wind::trilinear(at, i0, f);
 }
 
 // The box of non-zero voxels (per z slab, united in slab order).

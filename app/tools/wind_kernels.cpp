@@ -476,11 +476,7 @@ float PaddedDense::sample(glm::vec3 v) const {
     if (x < 0 || y < 0 || z < 0 || x >= dims_.x || y >= dims_.y || z >= dims_.z) return 0.0f;
     return voxels_[index(x, y, z)];
   };
-  const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
-  const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
-  const float c01 = lerp(at(i0.x, i0.y, i0.z + 1), at(i0.x + 1, i0.y, i0.z + 1), f.x);
-  const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
-  return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
+  return trilinear(at, i0, f);
 }
 
 bool PaddedDense::sampleRow(int x0, int y, int z, int count, const float* dx, const float* dy,

@@ -23,6 +23,17 @@ T lerp(T a, T b, float t) {
   return a + (b - a) * t;
 }
 
+// The trilinear blend of the eight values at(i0 + (0|1, 0|1, 0|1)) with weights f: the x lerps,
+// then y, then z (the order every trilinear read of the wind keeps, so the bits agree).
+template <typename At>
+float trilinear(const At& at, glm::ivec3 i0, glm::vec3 f) {
+  const float c00 = lerp(at(i0.x, i0.y, i0.z), at(i0.x + 1, i0.y, i0.z), f.x);
+  const float c10 = lerp(at(i0.x, i0.y + 1, i0.z), at(i0.x + 1, i0.y + 1, i0.z), f.x);
+  const float c01 = lerp(at(i0.x, i0.y, i0.z + 1), at(i0.x + 1, i0.y, i0.z + 1), f.x);
+  const float c11 = lerp(at(i0.x, i0.y + 1, i0.z + 1), at(i0.x + 1, i0.y + 1, i0.z + 1), f.x);
+  return lerp(lerp(c00, c10, f.y), lerp(c01, c11, f.y), f.z);
+}
+
 // False makes every kernel take its scalar version (the tests compare both); true (the default)
 // uses AVX2 where the CPU has it.
 void allowAvx2(bool allow);

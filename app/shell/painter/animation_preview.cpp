@@ -157,7 +157,7 @@ bool AnimationPreview::advance(double seconds) {
     if (t_ >= 1.0f) playing_ = false;  // holds the target until applied or left
   } else {
     WindStep next = wind_ahead_.valid() ? wind_ahead_.get()
-                                        : stepWind(std::make_unique<WindAnimation>(*wind_), *start_,
+                                        : stepWind(copyOf(*wind_, std::move(spare_wind_)), *start_,
                                                    std::move(spare_frame_), spare_written_);
     spare_frame_ = std::move(frame_);
     spare_written_ = written_;
@@ -170,6 +170,13 @@ bool AnimationPreview::advance(double seconds) {
   // What was cleared and what was written: nothing else of the window changed.
   paste(before.unite(written_));
   return true;
+}
+
+std::unique_ptr<WindAnimation> AnimationPreview::copyOf(const WindAnimation& wind,
+                                                        std::unique_ptr<WindAnimation> storage) {
+  if (!storage) return std::make_unique<WindAnimation>(wind);
+  *storage = wind;
+  return storage;
 }
 
 AnimationPreview::WindStep AnimationPreview::stepWind(std::unique_ptr<WindAnimation> wind,
@@ -185,15 +192,11 @@ void AnimationPreview::startWindAhead() {
   // The thread copies the wind shown into the wind before it (its storage reused) and steps the
   // copy; meanwhile this object only reads the wind shown (fullFrame waits for the thread).
   wind_ahead_ =
-      std::async(std::launch::async,
-                 [ahead = std::move(spare_wind_), shown = wind_.get(), start = start_.get(),
-                  frame = std::move(spare_frame_), previous = spare_written_]() mutable {
-                   if (ahead)
-                     *ahead = *shown;
-                   else
-                     ahead = std::make_unique<WindAnimation>(*shown);
-                   return stepWind(std::move(ahead), *start, std::move(frame), previous);
-                 });
+      std::async(std::launch::async, [ahead = std::move(spare_wind_), shown = wind_.get(),
+                                      start = start_.get(), frame = std::move(spare_frame_),
+                                      previous = spare_written_]() mutable {
+        return stepWind(copyOf(*shown, std::move(ahead)), *start, std::move(frame), previous);
+      });
 }
 
 void AnimationPreview::dropWindAhead() {

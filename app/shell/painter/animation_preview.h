@@ -119,6 +119,9 @@ class AnimationPreview {
     std::unique_ptr<Volume> frame;
     VoxelBox written;
   };
+  // `wind` copied into `storage` (its allocations reused), or into a new one when there is none.
+  static std::unique_ptr<WindAnimation> copyOf(const WindAnimation& wind,
+                                               std::unique_ptr<WindAnimation> storage);
   static WindStep stepWind(std::unique_ptr<WindAnimation> wind, const Volume& start,
                            std::unique_ptr<Volume> frame, const VoxelBox& previous);
   void startWindAhead();
